@@ -1,0 +1,82 @@
+"""The ``aliasing`` command: argument parsing only; every action is a library call.
+
+Errors in the input (``ValueError`` from the library, bad arguments) print one line on
+stderr and exit with status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+
+import sympy as sp
+
+
+class _Parser(argparse.ArgumentParser):
+    """ArgumentParser whose usage errors are one line on stderr, exit status 2."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def _reproduce(args: argparse.Namespace) -> int:
+    from . import reproduce
+
+    if args.list:
+        for target in reproduce.TARGETS.values():
+            print(f"{target.name:20s} {target.description}")
+        return 0
+    for path in reproduce.reproduce(args.targets, args.out):
+        print(path)
+    return 0
+
+
+def _derive(args: argparse.Namespace) -> int:
+    from . import symbolic
+
+    symbolic._load()
+    if args.list:
+        for d in symbolic.DERIVATIONS.values():
+            print(f"{d.name:40s} {d.source}: {d.summary}")
+        return 0
+    names = args.names or list(symbolic.DERIVATIONS)
+    chosen = [symbolic.get(name) for name in names]  # validate all names before any work
+    show = sp.latex if args.latex else sp.sstr
+    for d in chosen:
+        print(f"# {d.name}  ({d.source}): {d.summary}")
+        print(show(d.func()))
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="aliasing", description="Analytic study of shadow-map perspective aliasing.")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    rep = sub.add_parser("reproduce", help="write reproduced figures and tables", description="Reproduce the papers' figures and tables into a folder.")
+    rep.add_argument("targets", nargs="*", metavar="TARGET", help="target names, or 'all' (default)")
+    rep.add_argument("--out", default="out", help="output folder (default: out)")
+    rep.add_argument("--list", action="store_true", help="list the targets and exit")
+    rep.set_defaults(run=_reproduce)
+
+    der = sub.add_parser("derive", help="print symbolic derivations", description="Print the symbolic (sympy) results, derived from the papers' definitions.")
+    der.add_argument("names", nargs="*", metavar="NAME", help="derivation names (default: all); see --list")
+    der.add_argument("--latex", action="store_true", help="print LaTeX instead of plain text")
+    der.add_argument("--list", action="store_true", help="list the derivations and exit")
+    der.set_defaults(run=_derive)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``aliasing`` console script; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.run(args)
+    except ValueError as exc:
+        print(f"aliasing {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,81 @@
+"""Shadow-map parameterizations along the view depth for an overhead light.
+
+Each map sends eye depth z ∈ [near, far] [world units] to the shadow-map coordinate
+t ∈ [0, 1] (Lloyd et al. 2006 names the depth-aligned axis t; Wimmer et al. 2004 calls
+it s).  The spacing dz/dt [world units per unit t] sets the light-beam width
+w_lz = (1/res_t)·dz/dt (Lloyd 2006 eq. 4).
+
+Example
+-------
+>>> import numpy as np
+>>> t_perspective(np.array([1.0, 100.0]), 1.0, 100.0, n_prime=11.0)
+array([0., 1.])
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from . import _validation as check
+
+
+def _depths(z: ArrayLike, near: ArrayLike, far: ArrayLike):
+    n, f = check.frustum(near, far)
+    zz = check.as_float_array(z, "z")
+    if ((zz < n) | (zz > f)).any():
+        raise ValueError(f"z must lie in [near, far], got {check._show(zz)}")
+    return zz, n, f
+
+
+def t_perspective(z: ArrayLike, near: ArrayLike, far: ArrayLike, n_prime: ArrayLike) -> NDArray[np.float64]:
+    """t(z) of a perspective warping frustum, Lloyd et al. 2006 eq. 6 (sign corrected).
+
+    t = f′(z′ − n′)/(z′(f′ − n′)) with z′ = n′ + z − n and f′ = n′ + f − n; it tends to the
+    uniform map (z − n)/(f − n) as n′ → ∞.  The printed eq. 6 has the wrong sign on its
+    1/z′ term for positive z′ (docs/ERRATA.md, E2).
+
+    Parameters
+    ----------
+    z : array_like
+        Eye depth [world units], near ≤ z ≤ far.
+    near, far : array_like
+        Eye near and far distances [world units].
+    n_prime : array_like
+        Warping parameter n′ ≥ near [world units]; ``inf`` for the uniform map.
+    """
+    zz, n, f = _depths(z, near, far)
+    npr = check.n_prime(n_prime, n)
+    with np.errstate(invalid="ignore"):
+        fp_over_zp = (npr + f - n) / (npr + zz - n)  # f′/z′, → 1 as n′ → ∞
+    fp_over_zp = np.where(np.isinf(npr), 1.0, fp_over_zp)
+    return (zz - n) / (f - n) * fp_over_zp  # eq. (6): f′(z′ − n′)/(z′(f′ − n′))
+
+
+def t_logarithmic(z: ArrayLike, near: ArrayLike, far: ArrayLike) -> NDArray[np.float64]:
+    """t(z) = ln(z/n)/ln(f/n), the optimal map for an overhead light (Lloyd 2006 App. C).
+
+    Example
+    -------
+    >>> float(t_logarithmic(10.0, 1.0, 100.0))
+    0.5
+    """
+    zz, n, f = _depths(z, near, far)
+    return np.log1p((zz - n) / n) / np.log1p((f - n) / n)  # App. C (log1p: accurate as f/n → 1)
+
+
+def spacing_perspective(z: ArrayLike, near: ArrayLike, far: ArrayLike, n_prime: ArrayLike) -> NDArray[np.float64]:
+    """dz/dt of :func:`t_perspective` [world units]: (f − n)·z′²/(f′n′), → f − n as n′ → ∞."""
+    zz, n, f = _depths(z, near, far)
+    npr = check.n_prime(n_prime, n)
+    zp_over_np = 1.0 + (zz - n) / npr  # z′/n′
+    with np.errstate(invalid="ignore"):
+        zp_over_fp = (npr + zz - n) / (npr + f - n)  # z′/f′
+    zp_over_fp = np.where(np.isinf(npr), 1.0, zp_over_fp)
+    return (f - n) * zp_over_np * zp_over_fp
+
+
+def spacing_logarithmic(z: ArrayLike, near: ArrayLike, far: ArrayLike) -> NDArray[np.float64]:
+    """dz/dt of :func:`t_logarithmic` [world units]: z·ln(f/n)."""
+    zz, n, f = _depths(z, near, far)
+    return zz * np.log1p((f - n) / n)

@@ -1,0 +1,54 @@
+"""Plot helpers: one style, deterministic files.
+
+Every helper returns ``(fig, ax)`` or writes files; nothing is shown interactively.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")  # figures are written to files; no display is assumed
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+STYLE = {
+    "figure.dpi": 100,
+    "savefig.dpi": 150,
+    "font.size": 10,
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "legend.frameon": False,
+    "svg.hashsalt": "aliasing",
+}
+
+
+def subplots(ncols: int = 1, *, width: float = 5.0, height: float = 3.6, **kwargs):
+    """A figure with ``ncols`` axes side by side in the package style; returns (fig, axes)."""
+    with plt.rc_context(STYLE):
+        fig, axes = plt.subplots(1, ncols, figsize=(width * ncols, height), squeeze=False, **kwargs)
+    for ax in axes.flat:
+        ax.grid(True, alpha=STYLE["grid.alpha"])
+    return fig, (axes[0, 0] if ncols == 1 else axes[0])
+
+
+def save(fig, out_dir: str | Path, name: str, columns: Mapping[str, Sequence[float]] | None = None) -> list[Path]:
+    """Write ``name.png`` (no timestamp metadata, so reruns are byte-identical) and,
+    when ``columns`` are given, ``name.csv`` with the plotted numbers; returns the paths."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    png = out / f"{name}.png"
+    with plt.rc_context(STYLE):
+        fig.tight_layout()
+        fig.savefig(png, metadata={"Software": None})
+    plt.close(fig)
+    paths = [png]
+    if columns:
+        csv = out / f"{name}.csv"
+        names = list(columns)
+        table = np.column_stack([np.asarray(columns[k], dtype=float) for k in names])
+        np.savetxt(csv, table, delimiter=",", header=",".join(names), comments="", fmt="%.10g")
+        paths.append(csv)
+    return paths

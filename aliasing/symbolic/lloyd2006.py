@@ -1,0 +1,295 @@
+"""Lloyd, Tuft, Yoon, Manocha 2006: overhead directional light, derived with sympy.
+
+*Warping and Partitioning for Low Error Shadow Maps*, EGSR 2006, §4.1–4.2 and
+Appendices A–C.
+
+Symbol map (paper → here → numeric API):
+
+=====================  ==============  ==========================================
+paper                  sympy symbol    numeric API (:mod:`aliasing.error`)
+=====================  ==============  ==========================================
+θ (half field of view) ``theta``       ``fov`` = 2θ in degrees
+n, f (eye near, far)   ``n``, ``f``    ``near``, ``far``
+n′ (warp parameter)    ``n_p``         ``n_prime`` (``inf`` = uniform map)
+η ∈ [−1, 1]            ``eta``         ``eta``
+a = f/n                ``a``           ``far / near``
+res_i, res_s, res_t    same            ``res_image``, ``res_s``, ``res_t``
+=====================  ==============  ==========================================
+
+The light is overhead: it shines along −y of light space, perpendicular to the view
+direction (γ = 90° in the package convention).  The warping frustum has its centre of
+projection a distance n′ before the eye's near plane, so an eye depth z has warping
+depth z′ = n′ + z − n and the far plane f′ = n′ + f − n.
+
+Every function derives its result from the definitions; :data:`PRINTED` holds the
+equations as printed, for comparison (see docs/ERRATA.md for where they differ).
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from . import Printed, derivation
+
+z, n, f, theta = sp.symbols("z n f theta", positive=True)
+n_p = sp.Symbol("n'", positive=True)
+res_i, res_s, res_t = sp.symbols("res_i res_s res_t", positive=True)
+x = sp.Symbol("x", real=True)
+eta = sp.Symbol("eta", real=True)
+a = sp.Symbol("a", positive=True)
+S0 = sp.Symbol("S_0", positive=True)
+z_p = sp.Symbol("z'", positive=True)
+
+SOURCE = "Lloyd et al. 2006"
+
+
+def _on_domain(expr: sp.Expr) -> sp.Expr:
+    """Rewrite ``expr`` on the physical domain f > n, n′ > n, 0 < θ < 90° for sign tests."""
+    gap, d, tan_t = sp.symbols("gap d T", positive=True)
+    return sp.simplify(expr.subs(sp.tan(theta), tan_t).subs({f: n + gap, n_p: n + d}))
+
+
+def warping_frustum() -> dict[str, sp.Expr]:
+    """The warping frustum around the view frustum (Lloyd 2006 Fig. 3, §4.1).
+
+    Its half-angle θ′ is fixed by the tightest fit in x: the frustum must contain the
+    view frustum's half-width z·tanθ at every depth, and z/(z′) grows with z when
+    n′ ≥ n, so the far plane binds: f′·tanθ′ = f·tanθ.
+    """
+    zp = n_p + z - n
+    fp = n_p + f - n
+    tp = sp.Symbol("T", positive=True)
+    (tan_tp,) = sp.solve(sp.Eq(fp * tp, f * sp.tan(theta)), tp)
+    return {"z'": zp, "f'": fp, "tan(theta')": tan_tp}
+
+
+def image_beam_width() -> sp.Expr:
+    """Width of one image pixel's beam at eye depth z (Lloyd 2006 eq. 2, corrected).
+
+    The image's res_i pixels span the frustum's full width 2·z·tanθ at depth z.
+    """
+    return 2 * z * sp.tan(theta) / res_i
+
+
+@derivation("lloyd2006.shadow_map_coordinates", f"{SOURCE}, eqs. 5-6", "s(x, z') and t(z') of the warping frustum mapped to [0, 1]")
+def shadow_map_coordinates() -> sp.Matrix:
+    """s(x, z′) and t(z′) of the warping frustum, normalised to [0, 1] (eqs. 5–6).
+
+    s is linear in x/z′ and maps the frustum's side planes x = ±z′tanθ′ to 0 and 1;
+    t is the projective depth α + β/z′ of an OpenGL frustum matrix, mapping the warping
+    near plane z′ = n′ to 0 and the far plane z′ = f′ to 1.
+    """
+    wf = warping_frustum()
+    fp, tan_tp = wf["f'"], wf["tan(theta')"]
+    A, B, alpha, beta = sp.symbols("A B alpha beta")
+    s_gen = A * x / z_p + B
+    sol_s = sp.solve([s_gen.subs(x, -z_p * tan_tp), s_gen.subs(x, z_p * tan_tp) - 1], [A, B])
+    t_gen = alpha + beta / z_p
+    sol_t = sp.solve([t_gen.subs(z_p, n_p), t_gen.subs(z_p, fp) - 1], [alpha, beta])
+    return sp.Matrix([sp.simplify(s_gen.subs(sol_s)), sp.simplify(t_gen.subs(sol_t))])
+
+
+def light_beam_widths() -> tuple[sp.Expr, sp.Expr]:
+    """w_lx = (1/res_s)·dx/ds and w_lz = (1/res_t)·dz/dt at eye depth z (eqs. 3–4)."""
+    s_map, t_map = shadow_map_coordinates()
+    zp = warping_frustum()["z'"]
+    ds_dx = sp.diff(s_map, x).subs(z_p, zp)
+    dt_dz = sp.diff(t_map.subs(z_p, zp), z)
+    return sp.simplify(1 / (res_s * ds_dx)), sp.simplify(1 / (res_t * dt_dz))
+
+
+@derivation("lloyd2006.m_x", f"{SOURCE}, eq. 7", "perspective aliasing error in x, overhead light")
+def m_x() -> sp.Expr:
+    """m_x(z, n′) = w_lx / w_i (Lloyd 2006 eq. 7)."""
+    w_lx, _ = light_beam_widths()
+    return sp.factor(sp.simplify(w_lx / image_beam_width()))
+
+
+@derivation("lloyd2006.m_z", f"{SOURCE}, eq. 8", "perspective aliasing error in z, overhead light")
+def m_z() -> sp.Expr:
+    """m_z(z, n′) = w_lz / w_i (Lloyd 2006 eq. 8)."""
+    _, w_lz = light_beam_widths()
+    return sp.factor(sp.simplify(w_lz / image_beam_width()))
+
+
+@derivation("lloyd2006.m_z_minimum", f"{SOURCE}, §4.1 (text after eq. 8)", "the only stationary point of m_z over z > 0, a minimum")
+def m_z_minimum() -> sp.Expr:
+    """Location of the single stationary point of m_z in z > 0: z = n′ − n.
+
+    m_z ∝ (z + n′ − n)²/z is convex in z > 0, so this is a minimum and the maxima over
+    [n, f] lie at the end points (the text after eq. 8).
+    """
+    mz = m_z()
+    # the roots are z = ±(n′ − n); keep the positive one and check convexity there
+    (zs,) = [r for r in sp.solve(sp.diff(mz, z), z) if _on_domain(r).is_positive]
+    assert _on_domain(sp.diff(mz, z, 2)).is_positive
+    return zs
+
+
+@derivation("lloyd2006.n_prime_lispsm", f"{SOURCE}, §4.1; Wimmer 2004 §4.3", "n' equating the near- and far-plane maxima of m_z")
+def n_prime_lispsm() -> sp.Expr:
+    """n′ with m_z(n) = m_z(f): the equal-maxima (L∞-optimal) warp, n + √(fn)."""
+    mz = m_z()
+    roots = sp.solve(sp.Eq(mz.subs(z, n), mz.subs(z, f)), n_p)
+    (root,) = [r for r in roots if _on_domain(r - n).is_positive]  # n′ ≥ n by definition
+    return sp.simplify(root)
+
+
+@derivation("lloyd2006.M_x", f"{SOURCE}, eq. 9", "maximum of m_x over z in [n, f]")
+def max_error_x() -> sp.Expr:
+    """M_x: m_x decreases in z for n′ ≥ n (dm_x/dz ∝ −(n′ − n)), so its maximum is at z = n."""
+    mx = m_x()
+    assert _on_domain(sp.diff(mx, z)).is_negative
+    return sp.factor(mx.subs(z, n))
+
+
+@derivation("lloyd2006.M_z", f"{SOURCE}, eq. 10", "maximum of m_z over z in [n, f], piecewise in n'")
+def max_error_z() -> sp.Piecewise:
+    """M_z: the larger end value; the far plane for n′ ≤ n′_LiSPSM, the near plane above."""
+    mz = m_z()
+    return sp.Piecewise(
+        (sp.factor(mz.subs(z, f)), n_p <= n_prime_lispsm()),
+        (sp.factor(mz.subs(z, n)), True),
+    )
+
+
+def _mz_max(value: sp.Expr) -> sp.Expr:
+    """M_z evaluated at the warping parameter ``value`` (∞ allowed), resolutions 1."""
+    mz = m_z().subs({res_i: 1, res_t: 1})
+    n_l = n_prime_lispsm()
+    if value is sp.oo:
+        return sp.limit(mz.subs(z, n), n_p, sp.oo)
+    near_branch = mz.subs(z, n).subs(n_p, value)
+    far_branch = mz.subs(z, f).subs(n_p, value)
+    return far_branch if value in (n, n_l) else sp.Piecewise((far_branch, value <= n_l), (near_branch, True))
+
+
+@derivation("lloyd2006.eta_of_n_prime", f"{SOURCE}, Appendix B", "eta linearly interpolating M_z between n'=inf, n'_LiSPSM and n'=n")
+def eta_of_n_prime() -> sp.Piecewise:
+    """η(n′) from its definition in Appendix B: M_z interpolated linearly.
+
+    η = −1 at n′ = ∞ (M_z maximal at the near plane), 0 at n′_LiSPSM (M_z minimal), and
+    1 at n′ = n (M_z maximal at the far plane).
+    """
+    n_l = n_prime_lispsm()
+    mz = m_z().subs({res_i: 1, res_t: 1})
+    m_near, m_far = mz.subs(z, n), mz.subs(z, f)
+    m_l, m_inf, m_psm = _mz_max(n_l), _mz_max(sp.oo), _mz_max(n)
+    return sp.Piecewise(
+        (sp.simplify((m_l - m_near) / (m_inf - m_l)), n_p > n_l),
+        (sp.simplify((m_far - m_l) / (m_psm - m_l)), True),
+    )
+
+
+@derivation("lloyd2006.n_prime_of_eta", f"{SOURCE}, eq. 11", "the eta -> n' map, solved from Appendix B (a = f/n)")
+def n_prime_of_eta() -> sp.Piecewise:
+    """n′(η), Lloyd 2006 eq. 11, by solving each branch of Appendix B's η(n′) for n′."""
+    upper, lower = eta_of_n_prime().args
+    branches = []
+    for expr, cond in (upper, (eta <= 0)), (lower, True):
+        roots = sp.solve(sp.Eq(expr[0].subs(f, a * n), eta), n_p)
+        (root,) = roots
+        r = sp.Symbol("r", positive=True)  # a = r² lets sympy cancel the common (√a − 1)
+        branches.append((sp.factor(sp.cancel(sp.factor(root.subs(a, r**2)))).subs(r, sp.sqrt(a)), cond))
+    return sp.Piecewise(*branches)
+
+
+@derivation("lloyd2006.storage_factor", f"{SOURCE}, eq. 12", "S = M_x M_z at unit resolutions")
+def storage_factor() -> sp.Piecewise:
+    """S̄ = M_x·M_z with res_i = res_s = res_t = 1 (Lloyd 2006 eq. 12)."""
+    unit = {res_i: 1, res_s: 1, res_t: 1}
+    mx = max_error_x().subs(unit)
+    return sp.Piecewise(*[(sp.factor(sp.simplify(mx * e.subs(unit))), c) for e, c in max_error_z().args])
+
+
+@derivation("lloyd2006.critical_resolutions", f"{SOURCE}, §4.2", "res_s*, res_t* at which M_x = M_z = 1")
+def critical_resolutions() -> sp.Matrix:
+    """Critical resolutions res*_s, res*_t: the resolutions with M_x = 1 and M_z = 1."""
+    rs = sp.solve(sp.Eq(max_error_x(), 1), res_s)[0]
+    return sp.Matrix([rs, sp.Piecewise(*[(sp.solve(sp.Eq(e, 1), res_t)[0], c) for e, c in max_error_z().args])])
+
+
+@derivation("lloyd2006.budget_resolutions", f"{SOURCE}, eqs. 13-14", "res_s, res_t for a texel budget S0 keeping res_s/res_t = res_s*/res_t*")
+def budget_resolutions() -> sp.Matrix:
+    """Split a budget S0: res_s·res_t = S0 and res_s/res_t = res*_s/res*_t (eqs. 13–14)."""
+    rs_c, rt_c = sp.symbols("res_s^* res_t^*", positive=True)
+    sol = sp.solve([sp.Eq(res_s * res_t, S0), sp.Eq(res_s / res_t, rs_c / rt_c)], [res_s, res_t], dict=True)
+    (s,) = [s for s in sol if s[res_s].is_positive is not False]
+    return sp.Matrix([s[res_s], s[res_t]])
+
+
+@derivation("lloyd2006.log_parameterization", f"{SOURCE}, Appendix C", "t(z) with dz/dt proportional to z, normalised to [0, 1]")
+def log_parameterization() -> sp.Expr:
+    """t(z) = ∫_n^z dζ/ζ normalised to [0, 1]: the logarithmic map (Appendix C)."""
+    zeta = sp.Symbol("zeta", positive=True)
+    t_tilde = sp.integrate(1 / zeta, (zeta, n, z))
+    return sp.simplify(sp.expand_log(t_tilde / t_tilde.subs(z, f), force=True))
+
+
+@derivation("lloyd2006.storage_factor_optimal", f"{SOURCE}, Appendix C", "S of the logarithmic parameterization")
+def storage_factor_optimal() -> sp.Expr:
+    """S̄_optimal of the logarithmic map: m_x with n′ = n (PSM in x) times m_z of t = ln(z/n)/ln(f/n)."""
+    t_log = log_parameterization()
+    w_lz = 1 / (res_t * sp.diff(t_log, z))
+    mz = sp.simplify(w_lz / image_beam_width())
+    mx = m_x().subs(n_p, n)
+    return sp.simplify((mx * mz).subs({res_i: 1, res_s: 1, res_t: 1}))
+
+
+@derivation("lloyd2006.projective_spacing", f"{SOURCE}, Appendix A", "dz/dt of a general projective t(z)")
+def projective_spacing() -> sp.Expr:
+    """dz/dt of t = (αz + β)/(γz + δ): proportional to (z + δ/γ)² (Appendix A)."""
+    al, be, ga, de = sp.symbols("alpha beta gamma delta")
+    t = (al * z + be) / (ga * z + de)
+    return sp.factor(sp.simplify(1 / sp.diff(t, z)))
+
+
+def _printed() -> dict[str, Printed]:
+    """The printed equations, read from the text extraction (see docs/ERRATA.md)."""
+    tan = sp.tan(theta)
+    fp = n_p + f - n
+    n_l = n + sp.sqrt(f * n)
+    tan_tp_printed = (fp / f) * tan
+    return {
+        "eq2": Printed("eq. (2)", 2 * tan / res_i * z / n, "w_i(z) = (2 tanθ / res_i)(z / n)"),
+        "eq5": Printed("eq. (5)", x / (z_p * tan_tp_printed) + sp.Rational(1, 2), "s = x/(z′ tanθ′) + 1/2 with tanθ′ = (f′/f) tanθ"),
+        "eq6": Printed("eq. (6)", (fp + n_p) / (2 * (fp - n_p)) + fp * n_p / (z_p * (fp - n_p)) + sp.Rational(1, 2), "t = (f′+n′)/(2(f′−n′)) + f′n′/(z′(f′−n′)) + 1/2"),
+        "eq7": Printed("eq. (7)", res_i / res_s * f * (n_p + z - n) / (z * fp), ""),
+        "eq8": Printed("eq. (8)", res_i / res_t * (f - n) / (2 * tan) * (n_p + z - n) ** 2 / (z * n_p * fp), ""),
+        "eq9": Printed("eq. (9)", res_i / res_s * f * n_p / fp, "M_x = (res_i/res_s) f n′/(n′ + f − n)"),
+        "eq10": Printed(
+            "eq. (10)",
+            sp.Piecewise(
+                (res_i / res_t * n * (f - n) / (2 * tan) * fp / (n_p * f), n_p <= n_l),
+                (res_i / res_t * n * (f - n) / (2 * tan) * n_p / (n * fp), True),
+            ),
+            "M_z = (res_i/res_t) n (f−n)/(2 tanθ) · {(n′+f−n)/(n′f) ; n′/(n(n′+f−n))}",
+        ),
+        "n_lispsm": Printed("§4.1", n + sp.sqrt(f * n), "n′_LSPSM = n + √(fn)"),
+        "eq11": Printed(
+            "eq. (11)",
+            sp.Piecewise(
+                (n * (sp.sqrt(a) + 1 - eta * (a - 1)) / (eta + 1), eta <= 0),
+                (n * (sp.sqrt(a) + 1) / (eta * sp.sqrt(a) + 1), True),
+            ),
+            "",
+        ),
+        "eq12": Printed(
+            "eq. (12)",
+            sp.Piecewise(
+                ((f / n - 1) / (2 * tan), n_p <= n_l),
+                ((f / n - 1) / (2 * tan) * n_p**2 * f / (n * fp**2), True),
+            ),
+            "",
+        ),
+        "eq13": Printed("eqs. (13)-(14)", sp.Matrix(sp.symbols("res_s^* res_t^*", positive=True)), "res_s = √(S0 res*_s/res*_t), res_t = √(S0 res*_t/res*_s)"),
+        "appC_t": Printed("App. C", sp.log(z / n) / sp.log(f / n), "t = ln(z/n)/ln(f/n)"),
+        "appC_S": Printed("App. C", sp.log(f / n) / (2 * tan), "S̄ = ln(f/n)/(2 tanθ)"),
+        "appA": Printed("App. A", sp.Symbol("c_0"), "dz/dt ∝ (z + c0)², c0 a constant"),
+    }
+
+
+PRINTED = _printed()
+# eqs. 13-14 in closed form, built from the placeholders above.
+_rs_c, _rt_c = PRINTED["eq13"].expr
+PRINTED["eq13"] = Printed("eqs. (13)-(14)", sp.Matrix([sp.sqrt(S0 * _rs_c / _rt_c), sp.sqrt(S0 * _rt_c / _rs_c)]), PRINTED["eq13"].reading)
