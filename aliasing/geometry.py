@@ -1,0 +1,212 @@
+"""View frusta, light directions, light space: the geometry every scheme stands on.
+
+Eye space: the eye at the origin looking along +z (the view vector v), x to the right,
+y up; a square image, so the frustum's half-angle θ = fov/2 applies to x and y alike.
+Light directions are unit vectors **towards** the light, given by
+
+* γ [deg], the angle between v and the light vector: 0° looking into the light
+  ("front"), 90° perpendicular, 180° light behind the viewer ("behind");
+* an azimuth [deg] around v, measured from up (+y) towards +x, so that γ = 90°,
+  azimuth 0° is an overhead light.
+
+Light space is Wimmer et al. 2004 §3.4: y_L points to the light, z_L is perpendicular to
+it in the plane of v and the light, oriented like v, and x_L = y_L × z_L.  When the light is
+parallel to v that plane is undefined (the paper does not say what to do; every warp
+becomes uniform there): we take z_L = the eye's up vector (+y), which is perpendicular to
+the light in that case.  It is the limit of the general rule as γ → 180° at azimuth 0°
+(and its negative as γ → 0°); since the frustum is symmetric and the map uniform, no
+error metric depends on the choice.
+
+Example
+-------
+>>> import numpy as np
+>>> light_direction(90.0, 0.0).round(12)  # overhead
+array([0., 1., 0.])
+>>> frustum_vertices(1.0, 10.0, 90.0).shape
+(8, 3)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from . import _validation as check
+
+Array = NDArray[np.float64]
+VIEW = np.array([0.0, 0.0, 1.0])
+UP = np.array([0.0, 1.0, 0.0])
+
+
+def frustum_vertices(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> Array:
+    """The 8 corners of square view frusta, shape ``broadcast(near, far, fov).shape + (8, 3)``.
+
+    Parameters
+    ----------
+    near, far : array_like
+        Near and far distances [world units], 0 < near < far.
+    fov : array_like
+        Full field of view [deg], 0 < fov < 180.
+
+    Returns
+    -------
+    ndarray
+        Corners in eye space [world units]: the 4 near corners then the 4 far corners.
+    """
+    n, f = check.frustum(near, far)
+    t = np.tan(np.radians(check.fov(fov)) / 2)
+    n, f, t = np.broadcast_arrays(n, f, t)
+    signs = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], dtype=float)
+    depth = np.stack([n] * 4 + [f] * 4, axis=-1)  # (..., 8)
+    sx = np.concatenate([signs[:, 0], signs[:, 0]])
+    sy = np.concatenate([signs[:, 1], signs[:, 1]])
+    half = depth * t[..., None]
+    return np.stack([sx * half, sy * half, depth], axis=-1)
+
+
+def light_direction(gamma: ArrayLike, azimuth: ArrayLike = 0.0) -> Array:
+    """Unit vectors towards the light from γ and azimuth [deg]; shape ``(..., 3)``.
+
+    Example
+    -------
+    >>> light_direction([0.0, 180.0]).round(12)
+    array([[ 0.,  0.,  1.],
+           [ 0.,  0., -1.]])
+    """
+    g = np.radians(check.closed_range(gamma, "gamma", 0.0, 180.0, " degrees"))
+    a = np.radians(check.as_float_array(azimuth, "azimuth"))
+    g, a = np.broadcast_arrays(g, a)
+    return np.stack([np.sin(g) * np.sin(a), np.sin(g) * np.cos(a), np.cos(g)], axis=-1)
+
+
+def direction_angles(light: ArrayLike) -> tuple[Array, Array]:
+    """(γ, azimuth) [deg] of light vectors ``(..., 3)`` (need not be normalised)."""
+    lv = _unit(light)
+    gamma = np.degrees(np.arccos(np.clip(lv[..., 2], -1.0, 1.0)))
+    azimuth = np.degrees(np.arctan2(lv[..., 0], lv[..., 1]))
+    return gamma, azimuth
+
+
+def light_space(light: ArrayLike) -> Array:
+    """Wimmer et al. 2004 §3.4 light-space bases, rows (x_L, y_L, z_L); shape ``(..., 3, 3)``.
+
+    y_L is the light vector, z_L = normalise(v − (v·y_L) y_L); when the light is parallel to
+    the view vector (|v × y_L| below 1e-12) z_L is the eye's up vector made perpendicular to
+    y_L instead (see the module docstring).
+
+    Example
+    -------
+    >>> light_space([0.0, 1.0, 0.0]).round(12)  # overhead: z_L is the view vector
+    array([[1., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
+    """
+    y = _unit(light)
+    z = VIEW - (y @ VIEW)[..., None] * y
+    norm = np.linalg.norm(z, axis=-1, keepdims=True)
+    up = UP - (y @ UP)[..., None] * y
+    degenerate = norm < 1e-12
+    z = np.where(degenerate, up, z)
+    z = z / np.linalg.norm(z, axis=-1, keepdims=True)
+    x = np.cross(y, z)
+    return np.stack([x, y, z], axis=-2)
+
+
+def sphere_directions(count: int) -> Array:
+    """``count`` deterministic, near-uniform (equal solid angle) directions on the sphere.
+
+    A Fibonacci lattice: point i at height 1 − (2i + 1)/count, golden-angle longitudes.
+    """
+    count = _count(count)
+    i = np.arange(count)
+    h = 1.0 - (2.0 * i + 1.0) / count
+    lon = i * np.pi * (3.0 - np.sqrt(5.0))
+    r = np.sqrt(1.0 - h * h)
+    # the lattice's pole axis is the eye's up vector, so hemispheres split cleanly
+    return np.stack([r * np.sin(lon), h, r * np.cos(lon)], axis=-1)
+
+
+def hemisphere_directions(count: int) -> Array:
+    """``count`` deterministic equal-solid-angle directions above the viewer (light · up ≥ 0)."""
+    count = _count(count)
+    i = np.arange(count)
+    h = 1.0 - (i + 0.5) / count  # uniform in height ⇒ uniform in solid angle (Archimedes)
+    lon = i * np.pi * (3.0 - np.sqrt(5.0))
+    r = np.sqrt(1.0 - h * h)
+    return np.stack([r * np.sin(lon), h, r * np.cos(lon)], axis=-1)
+
+
+def hemisphere_map(resolution: int) -> tuple[Array, Array, Array]:
+    """Directions over the upper hemisphere on a square grid, for plots like Lloyd 2006 Fig. 7.
+
+    Orthographic view from above: overhead in the centre, behind the viewer on the left
+    (u = −1), in front on the right (u = +1); v runs sideways (x).  Returns ``(u, v, light)``
+    with ``light`` of shape ``(resolution, resolution, 3)``, NaN outside the unit disc.
+    """
+    res = _count(resolution, "resolution")
+    c = np.linspace(-1.0, 1.0, res)
+    u, v = np.meshgrid(c, c)
+    h2 = 1.0 - u * u - v * v
+    inside = h2 >= 0
+    light = np.stack([v, np.sqrt(np.where(inside, h2, 0.0)), u], axis=-1)
+    light[~inside] = np.nan
+    return u, v, light
+
+
+def _unit(light: ArrayLike) -> Array:
+    lv = check.as_float_array(light, "light")
+    if lv.shape[-1:] != (3,):
+        raise ValueError(f"light must have shape (..., 3), got {lv.shape}")
+    norm = np.linalg.norm(lv, axis=-1, keepdims=True)
+    if (norm == 0).any():
+        raise ValueError("light must be a non-zero vector")
+    return lv / norm
+
+
+def _count(value: int, name: str = "N") -> int:
+    if isinstance(value, bool) or int(value) != value or value < 1:
+        raise ValueError(f"{name} must be a whole number >= 1, got {value!r}")
+    return int(value)
+
+
+LIGHT_SPEC = "overhead | behind | front | gamma:DEG[@azimuth:DEG] | sphere:N | hemisphere:N"
+
+
+def lights(spec: str | ArrayLike) -> Array:
+    """Light directions ``(N, 3)`` from a spec string (or pass vectors through).
+
+    ``overhead`` (γ = 90°), ``behind`` (γ = 180°), ``front`` (γ = 0°), ``gamma:DEG`` with an
+    optional ``@azimuth:DEG``, ``sphere:N`` and ``hemisphere:N`` (deterministic equal
+    solid-angle samples; the hemisphere is above the viewer).
+
+    Example
+    -------
+    >>> lights("gamma:45@azimuth:90").round(6)
+    array([[0.707107, 0.      , 0.707107]])
+    >>> lights("hemisphere:100").shape
+    (100, 3)
+    """
+    if not isinstance(spec, str):
+        return np.atleast_2d(_unit(spec))
+    text = spec.strip().lower()
+    named = {"overhead": (90.0, 0.0), "behind": (180.0, 0.0), "front": (0.0, 0.0)}
+    try:
+        if text in named:
+            return light_direction(*named[text])[None]
+        kind, _, rest = text.partition(":")
+        if kind in ("sphere", "hemisphere") and rest:
+            count = int(rest)
+            return sphere_directions(count) if kind == "sphere" else hemisphere_directions(count)
+        if kind == "gamma" and rest:
+            gamma_text, _, az_text = rest.partition("@")
+            azimuth = 0.0
+            if az_text:
+                key, _, value = az_text.partition(":")
+                if key != "azimuth" or not value:
+                    raise ValueError
+                azimuth = float(value)
+            return light_direction(float(gamma_text), azimuth)[None]
+    except ValueError as exc:
+        if "must" in str(exc):  # a range error from the checks: keep its message
+            raise ValueError(f"light {spec!r}: {exc}") from None
+    raise ValueError(f"malformed light {spec!r}; expected {LIGHT_SPEC}")
