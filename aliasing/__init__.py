@@ -47,6 +47,8 @@ from .error import (
 )
 from .warping import WARPING_RULES, eta_from_n_prime, n_prime_from_eta, n_prime_lispsm, warping_parameter
 
+from . import gmnpr  # noqa: E402,F401  (registers the gmnpr, glpr and lispsm-zhang warping rules)
+
 __version__ = "0.1.0"
 
 __all__ = [

@@ -49,6 +49,36 @@ def _derive(args: argparse.Namespace) -> int:
     return 0
 
 
+def _floats(text: str, name: str) -> list[float]:
+    """A comma-separated list of numbers; ValueError names the option."""
+    try:
+        values = [float(item) for item in text.split(",") if item.strip()]
+    except ValueError:
+        raise ValueError(f"{name} must be a comma-separated list of numbers, got {text!r}") from None
+    if not values:
+        raise ValueError(f"{name} must not be empty")
+    return values
+
+
+def _sweep(args: argparse.Namespace) -> int:
+    from . import sweep
+
+    names = [name for name in args.schemes.split(",") if name.strip()]
+    rows = sweep.sweep(
+        names,
+        f_over_n=_floats(args.f_over_n, "--f-over-n"),
+        fov=_floats(args.fov, "--fov"),
+        light=args.light,
+        summary=args.summary,
+    )
+    text = sweep.format_rows(rows, args.format)
+    if args.out:
+        sweep.write(text, args.out)
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="aliasing", description="Analytic study of shadow-map perspective aliasing.")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
@@ -64,6 +94,22 @@ def build_parser() -> argparse.ArgumentParser:
     der.add_argument("--latex", action="store_true", help="print LaTeX instead of plain text")
     der.add_argument("--list", action="store_true", help="list the derivations and exit")
     der.set_defaults(run=_derive)
+
+    swp = sub.add_parser(
+        "sweep",
+        help="evaluate schemes over depth ratios, fields of view and light directions",
+        description="M_x, M_z and S of shadow-map schemes for directional lights (unit resolutions).",
+        epilog="schemes: Standard | P | Po | LogP (Log) | Sopt | LogSopt | <warping rule> | ZP<k> | ZP<k>+<any>.  "
+        "lights: overhead | behind | front | gamma:DEG[@azimuth:DEG] | sphere:N | hemisphere:N",
+    )
+    swp.add_argument("--schemes", required=True, help="comma-separated scheme names, e.g. Standard,P,ZP5+LogP")
+    swp.add_argument("--f-over-n", default="1000", help="comma-separated depth ratios far/near (default 1000)")
+    swp.add_argument("--fov", default="60", help="comma-separated FULL fields of view in degrees (the papers' θ is half: θ = 30° is --fov 60; default 60)")
+    swp.add_argument("--light", default="overhead", help="light directions (default overhead)")
+    swp.add_argument("--summary", action="store_true", help="min, max, max/min and mean of S over the directions (Lloyd 2007 Table 3 layout)")
+    swp.add_argument("--format", default="csv", choices=["csv", "json"], help="output format (default csv)")
+    swp.add_argument("--out", help="output file (default: standard output); written atomically")
+    swp.set_defaults(run=_sweep)
     return parser
 
 

@@ -78,6 +78,54 @@ def fit(vertices: ArrayLike, light: ArrayLike) -> LightFit:
     return LightFit(x=x, y=y, depth=y.max(axis=-1), eye_depth=verts @ VIEW)
 
 
+@dataclass(frozen=True)
+class WarpingFrustum:
+    """The perspective warping frustum P fitted to the vertices (Wimmer et al. 2004 §3.4–3.6).
+
+    In light-image-plane coordinates (x across, y along the projected view direction from
+    the nearest vertex): centre of projection at (0, −n′); near plane y = 0, far plane
+    y = W_ly (distances n′ and n′ + W_ly from the centre); ``x_lo``, ``x_hi`` the extent of
+    the vertices projected centrally onto the near plane.  All ``(N, K)``.
+    """
+
+    n_prime: Array
+    depth: Array
+    x_lo: Array
+    x_hi: Array
+
+    def coordinates(self, x: ArrayLike, y: ArrayLike) -> tuple[Array, Array]:
+        """Shadow-map (s, t) ∈ [0, 1]² of light-plane points ``(N, K, M)`` (M points per map).
+
+        s = (n′x/(y + n′) − x_lo)/(x_hi − x_lo), t = f′(z′ − n′)/(z′(f′ − n′)) with z′ = y + n′
+        (Lloyd 2006 eqs. 5–6, corrected); for n′ = ∞ both are the uniform maps.
+        """
+        xx, yy = np.asarray(x, float), np.asarray(y, float)
+        npr, d = self.n_prime[..., None], self.depth[..., None]
+        with np.errstate(invalid="ignore"):
+            zp_np = np.where(np.isinf(npr), 1.0, 1.0 + yy / npr)  # z′/n′
+        s = (xx / zp_np - self.x_lo[..., None]) / (self.x_hi - self.x_lo)[..., None]
+        t = yy / d / (zp_np * _ratio_to_far(npr, 0.0, d))  # eq. (6): (z′ − n′)/(f′ − n′) · f′/z′
+        return s, t
+
+
+def warping_frustum(lf: LightFit, n_prime: ArrayLike = np.inf) -> WarpingFrustum:
+    """Fit P (or, for n′ = ∞, the tight orthographic map) to the projected vertices.
+
+    Example
+    -------
+    >>> from aliasing.geometry import frustum_vertices, light_direction
+    >>> lf = fit(frustum_vertices(1.0, 100.0, 90.0), light_direction(90.0))
+    >>> p = warping_frustum(lf, 11.0)
+    >>> [float(c.min()) for c in p.coordinates(lf.x, lf.y)], [float(c.max()) for c in p.coordinates(lf.x, lf.y)]
+    ([0.0, 0.0], [1.0, 1.0])
+    """
+    npr = np.broadcast_to(check.as_float_array(n_prime, "n_prime"), lf.depth.shape)
+    with np.errstate(invalid="ignore"):
+        zp_np = np.where(np.isinf(npr)[..., None], 1.0, 1.0 + lf.y / npr[..., None])
+    near_x = lf.x / zp_np
+    return WarpingFrustum(n_prime=npr, depth=lf.depth, x_lo=near_x.min(axis=-1), x_hi=near_x.max(axis=-1))
+
+
 def _ratio_to_far(n_prime: Array, y: Array, depth: Array) -> Array:
     """(n′ + Y)/(n′ + W_ly), with its limit 1 at n′ = ∞."""
     with np.errstate(invalid="ignore"):
@@ -109,9 +157,8 @@ def vertex_errors(lf: LightFit, fov: ArrayLike, n_prime: ArrayLike = np.inf, par
     y, depth = lf.y, lf.depth[..., None]
     with np.errstate(invalid="ignore"):
         zp_np = np.where(np.isinf(npr), 1.0, 1.0 + y / npr)  # z′/n′
-    # s: x projected onto the warping frustum's near plane, n′X/z′ (X itself when uniform)
-    near_x = lf.x / zp_np
-    w_lx = zp_np * np.ptp(near_x, axis=-1, keepdims=True)  # eq. (3): z′·W_n/n′
+    wf = warping_frustum(lf, npr[..., 0])
+    w_lx = zp_np * (wf.x_hi - wf.x_lo)[..., None]  # eq. (3): z′·W_n/n′, W_n the near-plane width
     if kind == "logperspective":
         with np.errstate(invalid="ignore", divide="ignore"):
             log_term = np.where(np.isinf(npr), depth, npr * np.log1p(depth / npr))  # n′ ln(1 + W_ly/n′)

@@ -67,22 +67,33 @@ def frustum_vertices(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> Array:
 def light_direction(gamma: ArrayLike, azimuth: ArrayLike = 0.0) -> Array:
     """Unit vectors towards the light from γ and azimuth [deg]; shape ``(..., 3)``.
 
+    Exact at multiples of 90° (overhead is exactly (0, 1, 0)).
+
     Example
     -------
-    >>> light_direction([0.0, 180.0]).round(12)
+    >>> light_direction([0.0, 180.0])
     array([[ 0.,  0.,  1.],
            [ 0.,  0., -1.]])
     """
-    g = np.radians(check.closed_range(gamma, "gamma", 0.0, 180.0, " degrees"))
-    a = np.radians(check.as_float_array(azimuth, "azimuth"))
+    g = check.closed_range(gamma, "gamma", 0.0, 180.0, " degrees")
+    a = check.as_float_array(azimuth, "azimuth")
     g, a = np.broadcast_arrays(g, a)
-    return np.stack([np.sin(g) * np.sin(a), np.sin(g) * np.cos(a), np.cos(g)], axis=-1)
+    sg, cg = sind(g), sind(90.0 - g)
+    return np.stack([sg * sind(a), sg * sind(90.0 - a), cg], axis=-1)
+
+
+def sind(x: ArrayLike) -> Array:
+    """sin of an angle in degrees, exact at multiples of 90° (the argument is folded to [−90°, 90°])."""
+    r = np.asarray(x, dtype=float)
+    r = np.where(np.abs(r) > 180.0, np.remainder(r + 180.0, 360.0) - 180.0, r)  # reduce only when needed: keeps tiny angles exact
+    r = np.where(r > 90.0, 180.0 - r, np.where(r < -90.0, -180.0 - r, r))
+    return np.sin(np.radians(r))
 
 
 def direction_angles(light: ArrayLike) -> tuple[Array, Array]:
     """(γ, azimuth) [deg] of light vectors ``(..., 3)`` (need not be normalised)."""
     lv = _unit(light)
-    gamma = np.degrees(np.arccos(np.clip(lv[..., 2], -1.0, 1.0)))
+    gamma = np.degrees(np.arctan2(np.hypot(lv[..., 0], lv[..., 1]), lv[..., 2]))  # accurate near 0° and 180°
     azimuth = np.degrees(np.arctan2(lv[..., 0], lv[..., 1]))
     return gamma, azimuth
 
@@ -102,10 +113,11 @@ def light_space(light: ArrayLike) -> Array:
            [0., 0., 1.]])
     """
     y = _unit(light)
-    z = VIEW - (y @ VIEW)[..., None] * y
+    # (y × v) × y = v − (v·y) y, but without the cancellation as y → ±v
+    z = np.cross(np.cross(y, VIEW), y)
     norm = np.linalg.norm(z, axis=-1, keepdims=True)
-    up = UP - (y @ UP)[..., None] * y
-    degenerate = norm < 1e-12
+    up = np.cross(np.cross(y, UP), y)
+    degenerate = norm < 1e-300
     z = np.where(degenerate, up, z)
     z = z / np.linalg.norm(z, axis=-1, keepdims=True)
     x = np.cross(y, z)

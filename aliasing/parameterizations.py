@@ -79,3 +79,40 @@ def spacing_logarithmic(z: ArrayLike, near: ArrayLike, far: ArrayLike) -> NDArra
     """dz/dt of :func:`t_logarithmic` [world units]: z·ln(f/n)."""
     zz, n, f = _depths(z, near, far)
     return zz * np.log1p((f - n) / n)
+
+
+def t_log_perspective(y: ArrayLike, y0: ArrayLike, y1: ArrayLike, a: ArrayLike) -> NDArray[np.float64]:
+    """LogPSM's t-mapping F_lp,t on a face or frustum spanning y ∈ [y0, y1] (Lloyd 2007 eqs. 77–78).
+
+    F_lp,t = c0 ln(c1 F_p,t + c2) with F_p,t the perspective map whose centre of projection
+    sits at y = −a (eqs. 75–76); the constants make it equal to the logarithmic map of the
+    shifted coordinate, t = ln((y + a)/(y0 + a)) / ln((y1 + a)/(y0 + a)) (eq. 77).  ``a`` is
+    the free parameter: a = 0 puts the centre at the eye, a → ∞ gives the uniform map.
+
+    Parameters
+    ----------
+    y : array_like
+        Coordinate along the map's t direction [world units], y0 ≤ y ≤ y1.
+    y0, y1 : array_like
+        The extent [world units], y1 > y0 and y0 + a > 0.
+    a : array_like
+        Offset of the centre of projection [world units], ≥ 0 (``inf`` allowed).
+
+    Example
+    -------
+    >>> t_log_perspective([1.0, 10.0, 100.0], 1.0, 100.0, 0.0)
+    array([0. , 0.5, 1. ])
+    """
+    yy = check.as_float_array(y, "y")
+    lo, hi = check.as_float_array(y0, "y0"), check.as_float_array(y1, "y1")
+    if (hi <= lo).any():
+        raise ValueError("y1 must be greater than y0")
+    if ((yy < lo) | (yy > hi)).any():
+        raise ValueError(f"y must lie in [y0, y1], got {check._show(yy)}")
+    shift = check.as_float_array(a, "a")
+    if (shift < 0).any() or (lo + shift <= 0).any():
+        raise ValueError("a must be >= 0 with y0 + a > 0")
+    with np.errstate(invalid="ignore"):
+        # eq. (77)/(78): c0 ln(c1 F_p,t + c2) = ln((y + a)/(y0 + a)) / ln((y1 + a)/(y0 + a))
+        t = np.log1p((yy - lo) / (lo + shift)) / np.log1p((hi - lo) / (lo + shift))
+    return np.where(np.isinf(shift), (yy - lo) / (hi - lo), t)

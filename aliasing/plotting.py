@@ -25,13 +25,19 @@ STYLE = {
 }
 
 
-def subplots(ncols: int = 1, *, width: float = 5.0, height: float = 3.6, **kwargs):
-    """A figure with ``ncols`` axes side by side in the package style; returns (fig, axes)."""
+def subplots(ncols: int = 1, *, nrows: int = 1, width: float = 5.0, height: float = 3.6, **kwargs):
+    """A figure with ``nrows`` × ``ncols`` axes in the package style; returns (fig, axes).
+
+    ``axes`` is one Axes for 1 × 1, a 1-D array for a single row, else a 2-D array;
+    ``width`` and ``height`` are per panel [inches].
+    """
     with plt.rc_context(STYLE):
-        fig, axes = plt.subplots(1, ncols, figsize=(width * ncols, height), squeeze=False, **kwargs)
+        fig, axes = plt.subplots(nrows, ncols, figsize=(width * ncols, height * nrows), squeeze=False, **kwargs)
     for ax in axes.flat:
         ax.grid(True, alpha=STYLE["grid.alpha"])
-    return fig, (axes[0, 0] if ncols == 1 else axes[0])
+    if nrows == 1:
+        return fig, (axes[0, 0] if ncols == 1 else axes[0])
+    return fig, axes
 
 
 def save(fig, out_dir: str | Path, name: str, columns: Mapping[str, Sequence[float]] | None = None) -> list[Path]:

@@ -30,6 +30,12 @@ TARGETS: dict[str, Target] = {
         Target("lloyd2006-fig5", "lloyd2006_fig5", "Lloyd 2006 Fig. 5: m_x, m_z along z for several n' (n=1, f=20)"),
         Target("lloyd2006-fig6", "lloyd2006_fig6", "Lloyd 2006 Fig. 6: M_x, M_z, S over eta (n=1, f=100)"),
         Target("wimmer2004-fig6", "wimmer2004_fig6", "Wimmer 2004 Fig. 6: dp/ds over z, uniform/PSM/LiSPSM (z_n=1, z_f=100)"),
+        Target("zhang2007-fig5", "zhang2007_fig5", "Zhang 2007 Fig. 5: lambda over theta, eq. 4/GMNPR/LiSPSM/GLPR (n=1, f=100, phi=pi/6 assumed)"),
+        Target("zhang2007-fig6", "zhang2007_fig6", "Zhang 2007 Fig. 6: F over z, LiSPSM and GMNPR, theta above/below phi (n=1, f=100, phi=pi/6)"),
+        Target("lloyd2006-fig7", "lloyd2006_fig7", "Lloyd 2006 Fig. 7: log10 S over the hemisphere of light directions, standard vs LiSPSM (f/n=1000, theta=30)"),
+        Target("lloyd2007-fig29", "lloyd2007_fig29", "Lloyd 2007 Fig. 29: M_s, M_t and S over eta for several light directions, P and LogP (n=1, f=1024, theta=30)"),
+        Target("lloyd2007-fig30", "lloyd2007_fig30", "Lloyd 2007 Fig. 30: eta shaping strategies over gamma (fixed, 1/sin, S-optimal, eq. 79), P and LogP (n=1, f=1024, theta=30)"),
+        Target("lloyd2007-table3", "lloyd2007_table3", "Lloyd 2007 Table 3, non-FP rows, beside the printed values (f/n=1000, theta=30)"),
     )
 }
 

@@ -80,7 +80,7 @@ def parse(name: str) -> Scheme:
     m = re.fullmatch(r"zp(\d+)(?:\+(.+))?", text, flags=re.IGNORECASE)
     k, base = (int(m.group(1)), m.group(2) or "standard") if m else (1, text)
     if m and k < 1:
-        raise ValueError(f"k in {name!r} must be >= 1 (ZP<k> with k z-partitions)")
+        raise ValueError(f"k in {name!r} must be >= 1 (ZP<k> has k z-partitions); grammar: {GRAMMAR}")
     key = base.strip().lower()
     if key in _BASES:
         rule, param = _BASES[key]
@@ -97,6 +97,9 @@ def parse(name: str) -> Scheme:
 def z_partitions(near: float, far: float, k: int) -> tuple[Array, Array]:
     """Self-similar split depths n_i = n (f/n)^((i−1)/k), f_i = n (f/n)^(i/k) (Lloyd 2006 eqs. 15–16)."""
     n, f = check.frustum(near, far)
+    if isinstance(k, bool) or int(k) != k or k < 1:
+        raise ValueError(f"k must be a whole number >= 1 (number of z-partitions), got {k!r}")
+    k = int(k)
     edges = float(n) * (float(f) / float(n)) ** (np.arange(k + 1) / k)  # eqs. (15), (16)
     edges[-1] = float(f)
     return edges[:-1], edges[1:]

@@ -245,10 +245,11 @@ def _uniform(near: ArrayLike, far: ArrayLike) -> NDArray[np.float64]:
     return np.full(np.broadcast(n, f).shape, np.inf)
 
 
-@register("psm", "Stamminger & Drettakis 2002; Lloyd et al. 2006 §4.1 (n′ = n)", "perspective shadow map: warp centred on the eye")
-def _psm(near: ArrayLike, far: ArrayLike) -> NDArray[np.float64]:
+@register("psm", "Stamminger & Drettakis 2002; Lloyd et al. 2006 §4.1 (n′ = n); Lloyd 2007 eq. 120 at η = 1", "PSM-like warp: n′ = n overhead, n_γ = W_ly/(f/n − 1) in general")
+def _psm(near: ArrayLike, far: ArrayLike, depth: ArrayLike | None = None) -> NDArray[np.float64]:
     n, f = check.frustum(near, far)
-    return np.broadcast_to(n, np.broadcast(n, f).shape).astype(float)
+    ng = _n_gamma(n, f, depth)
+    return np.broadcast_to(ng, np.broadcast(n, f, ng).shape).astype(float)
 
 
 @register("lispsm", "Wimmer et al. 2004 §4.3–4.4 (n′ = (n + √(fn))/sin γ)", "LiSPSM: n_opt/sin γ with the eye's near and far; n + √(fn) overhead")

@@ -41,10 +41,12 @@ reconstructed here so that it gives eq. 2 exactly:
 
 Every function derives its result from these definitions; :data:`PRINTED` holds the
 equations as printed (our reading of the text extraction), for comparison.  Where they
-differ see docs/ERRATA.md (entries Z1–).
+differ, and where the paper's argument fails, see docs/ERRATA.md (Z1–Z3).
 """
 
 from __future__ import annotations
+
+from functools import cache
 
 import sympy as sp
 
@@ -86,6 +88,7 @@ def view_frustum_light_space() -> dict[str, sp.Expr]:
     return {"near-": zl(n, -1), "near+": zl(n, 1), "far-": zl(f, -1), "far+": zl(f, 1)}
 
 
+@cache  # sympy expressions are immutable; several derivations reuse these
 def light_space_extent(regime: int) -> tuple[sp.Expr, sp.Expr]:
     """(z_L,min, z_L,max) of the view frustum, the near and far planes of P (B = V).
 
@@ -103,6 +106,7 @@ def light_space_extent(regime: int) -> tuple[sp.Expr, sp.Expr]:
     return (c["near-"] if regime == 1 else c["far-"]), c["far+"]
 
 
+@cache
 def _depth(regime: int) -> sp.Expr:
     lo, hi = light_space_extent(regime)
     return sp.simplify(hi - lo)
@@ -125,6 +129,7 @@ def _s_map(near: sp.Expr, far: sp.Expr) -> sp.Expr:
     return s.subs(sp.solve([s.subs(z_p, near), s.subs(z_p, far) - 1], [al, be]))
 
 
+@cache
 def _error(regime: int) -> sp.Expr:
     """F(λ, θ, z) of one regime from eq. 1: F = (1/tanφ)·dz/(z ds), on the central view ray."""
     z_min, _ = light_space_extent(regime)
@@ -136,6 +141,7 @@ def _error(regime: int) -> sp.Expr:
     return sp.simplify(1 / (sp.tan(phi) * z * ds_dz))
 
 
+@cache
 def _psi_varphi(regime: int) -> tuple[sp.Expr, sp.Expr]:
     """ψ and ϕ of F = ψ(z + ϕ)²/z, read off the derived F.
 
@@ -278,6 +284,35 @@ def lambda_glpr() -> sp.Piecewise:
     # regime 2: the root is (tanθ/tanφ − 1)/2, not positive for θ ≤ φ
     assert sp.simplify(out[1] - (sp.tan(theta) / sp.tan(phi) - 1) / 2) == 0
     return sp.Piecewise((out[0], theta > phi), (sp.nan, True))
+
+
+@derivation(
+    "zhang2007.lambda_minimax_degenerate",
+    f"{SOURCE}, eq. 3 (our analysis, theta < phi)",
+    "[lambda*, tan(theta_1)]: for theta < theta_1 the L-inf optimum is lambda* (F(n) > F(f)), not eq. 4's lambda_2",
+)
+def lambda_minimax_degenerate() -> sp.Matrix:
+    """Where eq. 3 (equal end errors) stops being L∞-optimal, and the optimum there.
+
+    Not in the paper.  In regime 2, ν = 1/2, so F(f) = K_f(1 + 1/(4λ(λ+1))) decreases in
+    λ for every λ > 0, and F(n)/F(f) = (f/n)((λ + μ)/(λ + 1/2))² increases in λ (μ < 1/2):
+    for λ ≥ λ2, max(F(n), F(f)) = F(n).  F(n) ∝ (λ + μ)²/(λ(λ+1)) has its minimum at
+    λ* = μ/(1 − 2μ) = f tanφ/(2(f − n) tanθ) − 1/2.  Where λ2 < λ*, raising λ from λ2
+    lowers both end errors, so λ2 is not the minimiser: the L∞-optimal λ over λ > 0 is
+    λ2 on [θ1, φ] and λ* on (0, θ1], with λ2(θ1) = λ*(θ1).
+
+    Returns the column [λ*, tan θ1].
+    """
+    k_n, mu, _, nu = (e.args[1][0] for e in boundary_errors())
+    assert nu == sp.Rational(1, 2)
+    g = (lam + mu) ** 2 / (lam * (lam + 1))
+    (lam_star,) = sp.solve(sp.numer(sp.together(sp.diff(g, lam))) / (lam + mu), lam)
+    lam_star = sp.simplify(lam_star)
+    lam2 = lambda_optimal().args[1][0]
+    tt = sp.Symbol("T", positive=True)  # tan θ
+    roots = sp.solve(sp.Eq(lam2.subs(sp.tan(theta), tt), lam_star.subs(sp.tan(theta), tt)), tt)
+    (tan_theta1,) = [r for r in roots if r.subs(_PROBE[2]).evalf() > 0]
+    return sp.Matrix([lam_star, sp.simplify(tan_theta1)])
 
 
 def shadow_map_depth_normalised() -> sp.Expr:
