@@ -79,6 +79,36 @@ def _sweep(args: argparse.Namespace) -> int:
     return 0
 
 
+def _splits(args: argparse.Namespace) -> int:
+    from . import budgets, partitioning, sweep
+
+    if args.list:
+        for m in partitioning.SPLIT_METHODS.values():
+            print(f"{m.name:16s} {m.summary}  [{m.source}]")
+        return 0
+    missing = [flag for flag, value in (("--near", args.near), ("--far", args.far), ("-k", args.k)) if value is None]
+    if missing:
+        raise ValueError(f"splits needs {', '.join(missing)} (or --list)")
+    params = {} if args.lam is None else {"lam": args.lam}
+    rows = budgets.splits_report(
+        args.method, args.near, args.far, args.k, fov=args.fov, light=args.light, warp=args.warp,
+        budget=args.budget, res_image=args.image_res, allocations=tuple(a for a in args.allocations.split(",") if a), **params,
+    )
+    if args.format == "table":
+        sys.stdout.write(_table(rows))
+    else:
+        sys.stdout.write(sweep.format_rows(rows, args.format))
+    return 0
+
+
+def _table(rows: list[dict]) -> str:
+    """Rows as an aligned plain-text table."""
+    keys = list(rows[0])
+    cells = [[k for k in keys]] + [[f"{r[k]:.6g}" if isinstance(r[k], float) else str(r[k]) for k in keys] for r in rows]
+    widths = [max(len(c[i]) for c in cells) for i in range(len(keys))]
+    return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="aliasing", description="Analytic study of shadow-map perspective aliasing.")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
@@ -110,6 +140,27 @@ def build_parser() -> argparse.ArgumentParser:
     swp.add_argument("--format", default="csv", choices=["csv", "json"], help="output format (default csv)")
     swp.add_argument("--out", help="output file (default: standard output); written atomically")
     swp.set_defaults(run=_sweep)
+
+    spl = sub.add_parser(
+        "splits",
+        help="split distances of cascaded maps, their storage factors, resolutions and errors",
+        description="Where the split planes go, each partition's S over the light directions, and with a texel budget "
+        "the resolution and maximum perspective aliasing error of each allocation.",
+    )
+    spl.add_argument("--list", action="store_true", help="list split methods and presets and exit")
+    spl.add_argument("--method", default="log", help="split method (default log; see --list)")
+    spl.add_argument("--lambda", dest="lam", type=float, help="blend λ in [0, 1] for practical-style methods")
+    spl.add_argument("--near", type=float, help="near distance")
+    spl.add_argument("--far", type=float, help="far distance")
+    spl.add_argument("-k", type=int, help="number of partitions")
+    spl.add_argument("--fov", type=float, default=60.0, help="FULL field of view in degrees (default 60)")
+    spl.add_argument("--light", default="overhead", help="light directions (default overhead)")
+    spl.add_argument("--warp", default="Standard", help="warp inside each partition: Standard, P, LogP or a warping rule (default Standard)")
+    spl.add_argument("--budget", type=float, help="total texels over all maps (with --image-res)")
+    spl.add_argument("--image-res", type=float, help="image resolution in pixels per side (with --budget)")
+    spl.add_argument("--allocations", default="error,equal", help="allocations to compare (default error,equal)")
+    spl.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
+    spl.set_defaults(run=_splits)
     return parser
 
 

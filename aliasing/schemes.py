@@ -105,7 +105,7 @@ def z_partitions(near: float, far: float, k: int) -> tuple[Array, Array]:
     return edges[:-1], edges[1:]
 
 
-def evaluate(scheme: str | Scheme, near: float = 1.0, far: float = 1000.0, fov: float = 60.0, light: str | ArrayLike = "overhead", **options: ArrayLike) -> Result:
+def evaluate(scheme: str | Scheme, near: float = 1.0, far: float = 1000.0, fov: float = 60.0, light: str | ArrayLike = "overhead", *, edges: ArrayLike | None = None, **options: ArrayLike) -> Result:
     """M_x, M_z, S̄ of a scheme for every light direction (vectorized over directions).
 
     Parameters
@@ -118,11 +118,19 @@ def evaluate(scheme: str | Scheme, near: float = 1.0, far: float = 1000.0, fov: 
         Full field of view [deg].
     light : str or array_like
         A light spec (:data:`aliasing.geometry.LIGHT_SPEC`) or vectors ``(N, 3)`` towards the light.
+    edges : array_like, optional
+        Explicit split distances C_0 = near < … < C_k = far (e.g. from
+        :func:`aliasing.partitioning.split_distances`) instead of ``ZP<k>``'s self-similar
+        ones; k is then ``len(edges) − 1`` and the scheme's own k is ignored.
     **options
         Passed to the warping rule (e.g. ``c_fraction`` for P/LogP, ``focus`` for TSM).
     """
     sch = parse(scheme) if isinstance(scheme, str) else scheme
-    n_i, f_i = z_partitions(near, far, sch.k)
+    if edges is None:
+        n_i, f_i = z_partitions(near, far, sch.k)
+    else:
+        n_i, f_i = _explicit_partitions(edges, near, far)
+        sch = Scheme(name=sch.name, k=len(n_i), rule=sch.rule, parameterization=sch.parameterization)
     verts = geometry.frustum_vertices(n_i, f_i, fov)  # (K, 8, 3)
     lv = geometry.lights(light)
     lf = directional.fit(verts, lv)
@@ -135,6 +143,15 @@ def evaluate(scheme: str | Scheme, near: float = 1.0, far: float = 1000.0, fov: 
     M_x, M_z = mx.max(axis=-1), mz.max(axis=-1)
     eta = _eta_or_nan(npr, n_i, f_i, lf.depth)
     return Result(sch, M_x, M_z, (M_x * M_z).sum(axis=-1), np.asarray(npr, float), eta, sch.k)
+
+
+def _explicit_partitions(edges: ArrayLike, near: float, far: float) -> tuple[Array, Array]:
+    c = check.as_float_array(edges, "edges").ravel()
+    if c.size < 2 or np.any(np.diff(c) <= 0):
+        raise ValueError("edges must be at least two increasing split distances")
+    if not (np.isclose(c[0], near, rtol=1e-12) and np.isclose(c[-1], far, rtol=1e-12)):
+        raise ValueError(f"edges must start at near ({near:g}) and end at far ({far:g})")
+    return c[:-1], c[1:]
 
 
 def _eta_or_nan(npr: Array, n_i: Array, f_i: Array, depth: Array) -> Array:

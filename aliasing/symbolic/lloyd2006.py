@@ -293,3 +293,79 @@ PRINTED = _printed()
 # eqs. 13-14 in closed form, built from the placeholders above.
 _rs_c, _rt_c = PRINTED["eq13"].expr
 PRINTED["eq13"] = Printed("eqs. (13)-(14)", sp.Matrix([sp.sqrt(S0 * _rs_c / _rt_c), sp.sqrt(S0 * _rt_c / _rs_c)]), PRINTED["eq13"].reading)
+
+
+# --- §5.3: storage factors of z-partitioned schemes (eqs. 17–20, App. C) ----------------
+
+k = sp.Symbol("k", positive=True, integer=True)
+
+
+def _partition_ratio() -> sp.Expr:
+    """f_i/n_i of the self-similar partitions (eqs. 15–16), the same for every i: (f/n)^(1/k)."""
+    i = sp.Symbol("i", positive=True, integer=True)
+    n_i = n * (f / n) ** ((i - 1) / k)  # eq. (15)
+    f_i = n * (f / n) ** (i / k)  # eq. (16)
+    return sp.simplify(sp.powsimp(f_i / n_i, force=True))
+
+
+def _storage_per_partition(warped: bool) -> sp.Expr:
+    """Eq. 12 on one partition: its minimal branch (warped) or its n′ → ∞ limit (uniform)."""
+    (low, _), (high, _) = storage_factor().args
+    r = _partition_ratio()
+    expr = low if warped else sp.limit(high, n_p, sp.oo)
+    return sp.simplify(expr.subs(f, r * n))
+
+
+@derivation("lloyd2006.S_zp_overhead", f"{SOURCE}, eq. 17", "S of k self-similar z-partitions, uniform maps, light overhead")
+def storage_zp_overhead() -> sp.Expr:
+    """k maps, each eq. 12 with n′ → ∞ on a partition of ratio (f/n)^(1/k)."""
+    return sp.factor(k * _storage_per_partition(warped=False))
+
+
+@derivation("lloyd2006.S_zp_w_overhead", f"{SOURCE}, eq. 18", "S of k self-similar z-partitions, warped (n' <= n'_LiSPSM), light overhead")
+def storage_zp_w_overhead() -> sp.Expr:
+    """k maps, each eq. 12's minimal branch: warping removes the factor (f/n)^(1/k)."""
+    return sp.factor(k * _storage_per_partition(warped=True))
+
+
+@derivation("lloyd2006.S_zp_behind", f"{SOURCE}, eq. 20", "S of k z-partitions with the light behind the viewer (no warping possible)")
+def storage_zp_behind() -> sp.Expr:
+    """Light behind: each partition is seen as the square of its far face.
+
+    A critical map has the image's texel spacing at the partition's near plane, so in each
+    direction it needs (far-face width)/(near-face width) = f_i/n_i times the image
+    resolution: S_i = (f_i/n_i)², summed over the k maps.
+    """
+    width = lambda depth: 2 * depth * sp.tan(theta)  # noqa: E731  frustum width at a depth
+    r = _partition_ratio()
+    per_map = (width(r * n) / width(n)) ** 2
+    return sp.simplify(k * per_map)
+
+
+@derivation("lloyd2006.S_fp_zp_w_behind", f"{SOURCE}, eq. 21", "FP+ZP+W with the light behind: four warped side faces plus the near face")
+def storage_fp_zp_w_behind() -> sp.Expr:
+    """Light behind at θ = 45°: each side face, seen from behind, is the overhead case.
+
+    Seen along the view direction, a side face projects to the trapezoid between its near
+    edge (width 2n tanθ) and far edge (width 2f tanθ), a depth (f − n) tanθ apart; the whole
+    frustum seen from overhead is the trapezoid of the same widths a depth f − n apart, with
+    the same image beams 2d tanθ/res_i at eye depth d.  The two coincide at θ = 45°, so each
+    of the four faces costs S̄_ZP+W,overhead, and the near face, seen head-on with the
+    image's own spacing, costs 1.  (The check against a general face-partition evaluation
+    comes with face partitioning.)
+    """
+    return sp.factor(4 * storage_zp_w_overhead().subs(theta, sp.pi / 4) + 1)
+
+
+def _printed_53() -> dict[str, Printed]:
+    a = f / n
+    tan = sp.tan(theta)
+    return {
+        "eq17": Printed("eq. (17)", k * a ** (1 / k) * (a ** (1 / k) - 1) / (2 * tan), ""),
+        "eq18": Printed("eq. (18)", k * (a ** (1 / k) - 1) / (2 * tan), ""),
+        "eq20": Printed("eq. (20)", k * a ** (2 / k), "k (f/n)^(2/k) with k ≥ 1"),
+        "eq21": Printed("eq. (21)", 4 * (k * (a ** (1 / k) - 1) / (2 * tan)).subs(theta, sp.pi / 4) + 1, "4 S̄_ZP+W,overhead + 1 with θ = 45°"),
+    }
+
+
+PRINTED.update(_printed_53())

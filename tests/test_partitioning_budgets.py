@@ -1,0 +1,156 @@
+"""Split schemes, storage factors of z-partitions (Lloyd 2006 §5.3) and resolution budgets."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from aliasing import budgets, error, partitioning, schemes
+from aliasing.cli import main
+from aliasing.symbolic import equivalent
+from aliasing.symbolic import lloyd2006 as L
+
+
+# --- symbolic §5.3 against the printed equations --------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "derive, key",
+    [(L.storage_zp_overhead, "eq17"), (L.storage_zp_w_overhead, "eq18"), (L.storage_zp_behind, "eq20"), (L.storage_fp_zp_w_behind, "eq21")],
+)
+def test_section_5_3_derived_equals_printed(derive, key):
+    assert equivalent(derive(), L.PRINTED[key].expr)
+
+
+def test_zp_closed_forms_equal_general_evaluation():
+    # eqs. 17, 18 (overhead) and 20 (behind) against the vertex evaluation of aliasing.schemes
+    S17 = sp.lambdify((L.f, L.n, L.k, L.theta), L.storage_zp_overhead())
+    S18 = sp.lambdify((L.f, L.n, L.k, L.theta), L.storage_zp_w_overhead())
+    S20 = sp.lambdify((L.f, L.n, L.k), L.storage_zp_behind())
+    for ratio, fov in ((1000.0, 60.0), (37.0, 100.0)):
+        for k in (1, 2, 5, 9):
+            th = np.radians(fov / 2)
+            assert schemes.evaluate(f"ZP{k}", 1.0, ratio, fov, "overhead").S[0] == pytest.approx(S17(ratio, 1.0, k, th), rel=1e-12)
+            assert schemes.evaluate(f"ZP{k}+LiSPSM", 1.0, ratio, fov, "overhead").S[0] == pytest.approx(S18(ratio, 1.0, k, th), rel=1e-12)
+            assert schemes.evaluate(f"ZP{k}", 1.0, ratio, fov, "behind").S[0] == pytest.approx(S20(ratio, 1.0, k), rel=1e-12)
+
+
+def test_zp_w_approaches_the_optimal_log_storage():
+    # Lloyd 2006 Fig. 10: S_ZP+W,overhead → ln(f/n)/(2 tanθ) as k → ∞ (App. C), from above
+    S18 = sp.lambdify((L.f, L.n, L.k, L.theta), L.storage_zp_w_overhead())
+    opt = float(error.storage_factor_optimal(1.0, 1000.0, 60.0))
+    values = np.array([S18(1000.0, 1.0, k, np.radians(30.0)) for k in (1, 4, 16, 64, 4096)])
+    assert np.all(np.diff(values) < 0) and np.all(values > opt)
+    assert values[-1] == pytest.approx(opt, rel=1e-3)
+
+
+# --- split schemes ------------------------------------------------------------------------
+
+
+def test_log_splits_are_eqs_15_16_and_self_similar():
+    c = partitioning.split_distances("log", 2.0, 2000.0, 6)
+    i = np.arange(7)
+    np.testing.assert_allclose(c, 2.0 * 1000.0 ** (i / 6), rtol=1e-14)
+    np.testing.assert_allclose(c[1:] / c[:-1], 1000.0 ** (1 / 6), rtol=1e-13)
+
+
+def test_uniform_and_practical_splits():
+    u = partitioning.split_distances("uniform", 1.0, 101.0, 4)
+    np.testing.assert_allclose(u, [1, 26, 51, 76, 101])
+    lg = partitioning.split_distances("log", 1.0, 101.0, 4)
+    for lam in (0.0, 0.3, 1.0):
+        p = partitioning.split_distances("practical", 1.0, 101.0, 4, lam=lam)
+        np.testing.assert_allclose(p, lam * lg + (1 - lam) * u, rtol=1e-14)
+        assert np.all(np.diff(p) > 0)
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda: partitioning.split_distances("log", 1.0, 10.0, 0), "k must be a whole number >= 1"),
+        (lambda: partitioning.split_distances("log", 1.0, 10.0, 2.5), "k must be a whole number >= 1"),
+        (lambda: partitioning.split_distances("log", 0.0, 10.0, 2), r"near must be in \(0, inf\)"),
+        (lambda: partitioning.split_distances("log", 5.0, 5.0, 2), "far must be greater than near"),
+        (lambda: partitioning.split_distances("practical", 1.0, 10.0, 2, lam=-0.1), r"lambda must be in \[0, 1\]"),
+        (lambda: partitioning.split_distances("log", 1.0, 10.0, 2, lam=0.5), "takes no parameters"),
+        (lambda: partitioning.split_distances("cascades", 1.0, 10.0, 2), "unknown split method 'cascades'"),
+        (lambda: schemes.evaluate("P", 1.0, 10.0, 60.0, edges=[1.0, 5.0, 4.0, 10.0]), "increasing"),
+        (lambda: schemes.evaluate("P", 1.0, 10.0, 60.0, edges=[1.0, 5.0, 9.0]), "end at far"),
+    ],
+)
+def test_bad_split_input(call, message):
+    with pytest.raises(ValueError, match=message):
+        call()
+
+
+def test_explicit_edges_equal_zp():
+    e = partitioning.split_distances("log", 1.0, 500.0, 4)
+    a = schemes.evaluate("ZP4+P", 1.0, 500.0, 70.0, "sphere:60")
+    b = schemes.evaluate("P", 1.0, 500.0, 70.0, "sphere:60", edges=e)
+    np.testing.assert_array_equal(a.S, b.S)
+    assert b.maps == 4
+
+
+# --- budgets --------------------------------------------------------------------------------
+
+
+def test_error_allocation_equalises_and_is_minimax():
+    r = schemes.evaluate("P", 1.0, 1000.0, 60.0, "hemisphere:50", edges=partitioning.split_distances("practical", 1.0, 1000.0, 4, lam=0.7))
+    budget, res = 4096.0**2, 1024.0
+    rs, rt = budgets.allocate("error", r.M_x, r.M_z, budget)
+    np.testing.assert_allclose((rs * rt).sum(axis=-1), budget, rtol=1e-12)
+    err = budgets.max_error(r.M_x, r.M_z, rs, rt, res)
+    np.testing.assert_allclose(err, res * np.sqrt(r.S / budget)[:, None] * np.ones_like(err), rtol=1e-12)
+    # no other allocation of the same budget does better: the equal shares are worse or equal
+    for other in ("equal", "equal-balanced"):
+        rs2, rt2 = budgets.allocate(other, r.M_x, r.M_z, budget)
+        np.testing.assert_allclose((rs2 * rt2).sum(axis=-1), budget, rtol=1e-12)
+        assert np.all(budgets.max_error(r.M_x, r.M_z, rs2, rt2, res).max(axis=-1) >= err.max(axis=-1) * (1 - 1e-12))
+
+
+def test_single_map_error_allocation_is_eqs_13_14():
+    rs_c, rt_c = error.critical_resolution(1.0, 100.0, 60.0, 11.0, res_image=1.0)
+    rs, rt = budgets.allocate("error", np.array([[rs_c]]), np.array([[rt_c]]), 2048.0**2)
+    es, et = error.resolution_for_budget(2048.0**2, rs_c, rt_c)
+    assert rs[0, 0] == pytest.approx(es, rel=1e-12) and rt[0, 0] == pytest.approx(et, rel=1e-12)
+
+
+def test_budget_validation():
+    with pytest.raises(ValueError, match="at least one texel per map"):
+        budgets.allocate("equal", np.ones((1, 4)), np.ones((1, 4)), 3.0)
+    with pytest.raises(ValueError, match="unknown allocation"):
+        budgets.allocate("fair", np.ones((1, 2)), np.ones((1, 2)), 30.0)
+    with pytest.raises(ValueError, match="go together"):
+        budgets.splits_report("log", 1.0, 10.0, 2, budget=100.0)
+
+
+def test_splits_cli(capsys):
+    code = main(["splits", "--method", "log", "--near", "1", "--far", "1000", "-k", "4", "--warp", "P", "--budget", "16777216", "--image-res", "1024", "--format", "csv"])
+    out = capsys.readouterr().out.splitlines()
+    assert code == 0 and out[0].startswith("partition,near,far,S_max")
+    last = out[-1].split(",")
+    assert last[0] == "all"
+    # ZP4+P overhead: S = 4((f/n)^(1/4) − 1)/(2 tan 30°); error = 1024 √(S / 4096²)
+    s = 4 * (1000 ** 0.25 - 1) / (2 * np.tan(np.radians(30)))
+    assert float(last[3]) == pytest.approx(s, rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    "argv, needle",
+    [
+        (["--near", "1", "--far", "10"], "splits needs -k"),
+        (["--method", "nope", "--near", "1", "--far", "10", "-k", "2"], "unknown split method"),
+        (["--method", "practical", "--lambda", "2", "--near", "1", "--far", "10", "-k", "2"], "lambda must be in [0, 1]"),
+        (["--near", "1", "--far", "10", "-k", "3", "--budget", "2", "--image-res", "64"], "at least one texel per map"),
+        (["--near", "-1", "--far", "10", "-k", "3"], "near must be in (0, inf)"),
+        (["--near", "1", "--far", "10", "-k", "x"], "invalid int value"),
+    ],
+)
+def test_splits_cli_bad_input(argv, needle, capsys):
+    try:
+        code = main(["splits", *argv])
+    except SystemExit as exc:
+        code = exc.code
+    err = capsys.readouterr().err
+    assert code == 2 and len(err.strip().splitlines()) == 1 and needle in err
