@@ -89,7 +89,7 @@ def splits_report(
     method: str,
     near: float,
     far: float,
-    k: int,
+    k: int | None = None,
     *,
     fov: float = 60.0,
     light: str | ArrayLike = "overhead",
@@ -112,11 +112,12 @@ def splits_report(
     Parameters
     ----------
     method : str
-        Split method (:data:`aliasing.partitioning.SPLIT_METHODS`).
+        Split method or engine preset (:data:`aliasing.partitioning.SPLIT_METHODS`);
+        padded or overlapping presets are evaluated with their real map extents.
     near, far : float
-        Eye near and far distances [world units].
-    k : int
-        Number of partitions.
+        Eye near and far (shadow) distances [world units].
+    k : int, optional
+        Number of partitions (an engine preset's default when omitted).
     fov : float
         Full field of view [deg].
     light : str or array_like
@@ -142,11 +143,11 @@ def splits_report(
 
     if (budget is None) != (res_image is None):
         raise ValueError("budget and image resolution go together: give both or neither")
-    edges = partitioning.split_distances(method, near, far, k, **params)
-    r = schemes.evaluate(warp, near, far, fov, light, edges=edges)
+    n_i, f_i = partitioning.partitions(method, near, far, k, **params)
+    r = schemes.evaluate(warp, near, far, fov, light, edges=(n_i, f_i))
     s = r.M_x * r.M_z  # (N, K)
-    rows = [{"partition": i + 1, "near": float(edges[i]), "far": float(edges[i + 1]), "S_max": float(s[:, i].max())} for i in range(len(edges) - 1)]
-    total = {"partition": "all", "near": float(edges[0]), "far": float(edges[-1]), "S_max": float(r.S.max())}
+    rows = [{"partition": i + 1, "near": float(n_i[i]), "far": float(f_i[i]), "S_max": float(s[:, i].max())} for i in range(len(n_i))]
+    total = {"partition": "all", "near": float(n_i.min()), "far": float(f_i.max()), "S_max": float(r.S.max())}
     if budget is not None:
         for name in allocations:
             rs, rt = allocate(name, r.M_x, r.M_z, budget)

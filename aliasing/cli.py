@@ -84,9 +84,10 @@ def _splits(args: argparse.Namespace) -> int:
 
     if args.list:
         for m in partitioning.SPLIT_METHODS.values():
-            print(f"{m.name:16s} {m.summary}  [{m.source}]")
+            k = f"k={m.default_k}" if m.default_k else "k required"
+            print(f"{m.name:12s} {k:10s} {m.summary}  [{m.source}]")
         return 0
-    missing = [flag for flag, value in (("--near", args.near), ("--far", args.far), ("-k", args.k)) if value is None]
+    missing = [flag for flag, value in (("--near", args.near), ("--far", args.far)) if value is None]
     if missing:
         raise ValueError(f"splits needs {', '.join(missing)} (or --list)")
     params = {} if args.lam is None else {"lam": args.lam}
@@ -151,8 +152,8 @@ def build_parser() -> argparse.ArgumentParser:
     spl.add_argument("--method", default="log", help="split method (default log; see --list)")
     spl.add_argument("--lambda", dest="lam", type=float, help="blend λ in [0, 1] for practical-style methods")
     spl.add_argument("--near", type=float, help="near distance")
-    spl.add_argument("--far", type=float, help="far distance")
-    spl.add_argument("-k", type=int, help="number of partitions")
+    spl.add_argument("--far", type=float, help="far distance (for engine presets: the shadow distance)")
+    spl.add_argument("-k", type=int, help="number of partitions (default: the preset's own; required for log, uniform, practical)")
     spl.add_argument("--fov", type=float, default=60.0, help="FULL field of view in degrees (default 60)")
     spl.add_argument("--light", default="overhead", help="light directions (default overhead)")
     spl.add_argument("--warp", default="Standard", help="warp inside each partition: Standard, P, LogP or a warping rule (default Standard)")

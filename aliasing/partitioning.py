@@ -27,59 +27,100 @@ Array = NDArray[np.float64]
 
 @dataclass(frozen=True)
 class SplitMethod:
-    """A registered split scheme; ``func(near, far, k, **params) -> C (k + 1,)``."""
+    """A registered split scheme; ``func(near, far, k, **params) -> C (k + 1,)``.
+
+    ``default_k`` is an engine's default cascade count (None: k must be given);
+    ``max_k`` the most it supports; ``extend`` maps the split distances to each map's
+    (near_i, far_i) where an engine pads or overlaps its cascades.
+    """
 
     name: str
     func: Callable[..., Array]
     source: str
     summary: str
+    default_k: int | None = None
+    max_k: int | None = None
+    extend: Callable[..., tuple[Array, Array]] | None = None
 
 
 SPLIT_METHODS: dict[str, SplitMethod] = {}
 
 
-def register(name: str, source: str, summary: str) -> Callable:
+def register(name: str, source: str, summary: str, *, default_k: int | None = None, max_k: int | None = None, extend: Callable | None = None) -> Callable:
     """Decorator adding a split method to :data:`SPLIT_METHODS`."""
 
     def wrap(func: Callable[..., Array]) -> Callable[..., Array]:
         if name in SPLIT_METHODS:
             raise RuntimeError(f"split method {name!r} registered twice")
-        SPLIT_METHODS[name] = SplitMethod(name, func, source, summary)
+        SPLIT_METHODS[name] = SplitMethod(name, func, source, summary, default_k, max_k, extend)
         return func
 
     return wrap
 
 
-def split_distances(method: str, near: float, far: float, k: int, **params: float) -> Array:
+def split_distances(method: str, near: float, far: float, k: int | None = None, **params: float) -> Array:
     """The k + 1 split distances C_0 = near < … < C_k = far of a named scheme [world units].
+
+    For engine presets ``far`` is the engine's shadow distance (three.js ``maxFar``, Godot
+    ``max_distance``, Unity's shadow distance, …): shadows end there.
 
     Parameters
     ----------
     method : str
         A name in :data:`SPLIT_METHODS` (case-insensitive).
     near, far : float
-        Eye near and far distances [world units], 0 < near < far.
-    k : int
-        Number of partitions, ≥ 1.
+        Eye near and far (shadow) distances [world units], 0 < near < far.
+    k : int, optional
+        Number of partitions, ≥ 1; an engine preset's default when omitted.
     **params
         Method parameters (``lam`` for ``practical``, …); unknown ones are an error.
 
     Raises
     ------
     ValueError
-        Unknown method or parameter, k < 1, near ≤ 0, far ≤ near, λ outside [0, 1].
+        Unknown method or parameter, k < 1 or above the engine's maximum, near ≤ 0,
+        far ≤ near, λ outside [0, 1].
     """
+    entry, n, f, kk = _resolve(method, near, far, k)
+    accepted = set(inspect.signature(entry.func).parameters) - {"near", "far", "k"}
+    own = {key: v for key, v in params.items() if key in accepted}
+    unknown = set(params) - accepted - _extend_params(entry)
+    if unknown:
+        raise ValueError(f"split method {entry.name!r} takes {sorted(accepted | _extend_params(entry)) or 'no parameters'}, not {sorted(unknown)}")
+    edges = np.asarray(entry.func(n, f, kk, **own), dtype=float)
+    edges[0], edges[-1] = n, f  # exact ends, whatever the rounding inside
+    return edges
+
+
+def partitions(method: str, near: float, far: float, k: int | None = None, **params: float) -> tuple[Array, Array]:
+    """Each map's (near_i, far_i) [world units]: the split distances, padded or overlapped
+    the way the engine does it (Ogre's padding, bgfx's and Unreal's overlaps)."""
+    entry, n, f, kk = _resolve(method, near, far, k)
+    own = {key: v for key, v in params.items() if key not in _extend_params(entry)}
+    edges = split_distances(method, near, far, kk, **own)
+    if entry.extend is None:
+        return edges[:-1], edges[1:]
+    extra = {key: v for key, v in params.items() if key in _extend_params(entry)}
+    lo, hi = entry.extend(edges, **extra)
+    return np.maximum(lo, n), np.minimum(hi, f)
+
+
+def _extend_params(entry: SplitMethod) -> set[str]:
+    return set() if entry.extend is None else set(inspect.signature(entry.extend).parameters) - {"edges"}
+
+
+def _resolve(method: str, near: float, far: float, k: int | None) -> tuple[SplitMethod, float, float, int]:
     key = check.choice(method, "split method", SPLIT_METHODS)
     entry = SPLIT_METHODS[key]
     n, f = (float(v) for v in check.frustum(near, far))
+    if k is None:
+        if entry.default_k is None:
+            raise ValueError(f"split method {key!r} needs k (number of partitions)")
+        k = entry.default_k
     kk = _partitions(k)
-    accepted = set(inspect.signature(entry.func).parameters) - {"near", "far", "k"}
-    unknown = set(params) - accepted
-    if unknown:
-        raise ValueError(f"split method {key!r} takes {sorted(accepted) or 'no parameters'}, not {sorted(unknown)}")
-    edges = np.asarray(entry.func(n, f, kk, **params), dtype=float)
-    edges[0], edges[-1] = n, f  # exact ends, whatever the rounding inside
-    return edges
+    if entry.max_k is not None and kk > entry.max_k:
+        raise ValueError(f"k must be at most {entry.max_k} for {key!r}, got {kk}")
+    return entry, n, f, kk
 
 
 def _partitions(k: int) -> int:
@@ -114,3 +155,131 @@ def _uniform_method(near: float, far: float, k: int) -> Array:
 def _practical(near: float, far: float, k: int, lam: float = 0.5) -> Array:
     w = _lam(lam)
     return w * _log(near, far, k) + (1 - w) * _uniform(near, far, k)
+
+
+def _fractions(n: float, f: float, k: int, fractions: tuple[float, ...]) -> Array:
+    """Fixed fractions of (f − n) measured from n; C_k = f."""
+    return n + (f - n) * np.array([0.0, *fractions[: k - 1], 1.0])
+
+
+# --- engine presets: formulas read from the engines' public source (see each source) ----
+
+
+@register(
+    "threejs-csm",
+    "three.js examples/jsm/csm/CSM.js getBreaks() + CSMFrustum.js split() (mrdoob/three.js)",
+    "practical, λ = 0.5 fixed; breaks C/F applied as fractions of F − n from n",
+    default_k=3,
+)
+def _threejs(near: float, far: float, k: int) -> Array:
+    c = 0.5 * _log(near, far, k) + 0.5 * _uniform(near, far, k)  # λ is a literal 0.5 in getBreaks
+    return near + c / far * (far - near)  # CSMFrustum.split lerps the corners by C/F
+
+
+@register(
+    "babylon",
+    "Babylon.js cascadedShadowGenerator.ts _splitFrustum() (BabylonJS/Babylon.js)",
+    "practical over [minZ, maxZ], λ = 0.5, 4 cascades (2–4)",
+    default_k=4,
+    max_k=4,
+)
+def _babylon(near: float, far: float, k: int, lam: float = 0.5) -> Array:
+    return _practical(near, far, k, lam)
+
+
+def _ogre_padding(edges: Array, padding: float = 1.0) -> tuple[Array, Array]:
+    pad = float(check.closed_range(padding, "padding", 0.0, np.inf))
+    lo, hi = edges[:-1].copy(), edges[1:].copy()
+    lo[1:] -= pad  # each inner boundary is covered ±padding (getShadowCamera)
+    hi[:-1] += pad
+    return lo, hi
+
+
+@register(
+    "ogre-pssm",
+    "Ogre OgreShadowCameraSetupPSSM.cpp calculateSplitPoints() / getShadowCamera(); default λ in the header (OGRECave/ogre)",
+    "practical, λ = 0.95, 3 splits, inner boundaries padded by 1 world unit",
+    default_k=3,
+    extend=_ogre_padding,
+)
+def _ogre(near: float, far: float, k: int, lam: float = 0.95) -> Array:
+    return _practical(near, far, k, lam)
+
+
+@register(
+    "filament",
+    "Filament ShadowMapManager.cpp CascadeSplits; LightManager.h cascadeSplitPositions {0.125, 0.25, 0.5} (google/filament; default read from copies)",
+    "split positions 0.125, 0.25, 0.5 of (far − near) from near; up to 4 cascades",
+    default_k=4,
+    max_k=4,
+)
+def _filament(near: float, far: float, k: int) -> Array:
+    return _fractions(near, far, k, (0.125, 0.25, 0.5))
+
+
+def _bgfx_overlap(edges: Array) -> tuple[Array, Array]:
+    lo, hi = edges[:-1].copy(), edges[1:].copy()
+    hi[:-1] = 1.005 * lo[1:]  # far_i = 1.005 × near_{i+1}
+    return lo, hi
+
+
+@register(
+    "bgfx",
+    "bgfx examples/16-shadowmaps/shadowmaps.cpp splitFrustum() (bkaradzic/bgfx, long-standing version)",
+    "practical at s = (2i − 1)/(2k), λ = 0.6, 4 splits, far_i = 1.005 near_(i+1)",
+    default_k=4,
+    max_k=4,
+    extend=_bgfx_overlap,
+)
+def _bgfx(near: float, far: float, k: int, lam: float = 0.6) -> Array:
+    w = _lam(lam)
+    s = np.concatenate([[0.0], (2 * np.arange(1, k) - 1) / (2 * k), [1.0]])  # odd half-steps, not i/k
+    return w * near * (far / near) ** s + (1 - w) * (near + (far - near) * s)
+
+
+@register(
+    "godot",
+    "Godot 4 scene/3d/light_3d.cpp defaults; renderer_scene_cull.cpp _light_instance_setup_directional_shadow (godotengine/godot)",
+    "fixed fractions 0.1, 0.2, 0.5 of (max_distance − near) from near; PSSM 4 (or 2) splits",
+    default_k=4,
+    max_k=4,
+)
+def _godot(near: float, far: float, k: int) -> Array:
+    if k == 3:
+        raise ValueError("k must be 1, 2 or 4 for 'godot' (orthogonal, PSSM 2 or PSSM 4 splits)")
+    return _fractions(near, far, k, (0.1, 0.2, 0.5))
+
+
+@register(
+    "unity-urp",
+    "Unity URP UniversalRenderPipelineAsset.cs cascade split defaults (read from copies; normalisation not public)",
+    "fixed fractions of the shadow distance: 0.25 | 0.1, 0.3 | 0.067, 0.2, 0.467",
+    default_k=4,
+    max_k=4,
+)
+def _unity(near: float, far: float, k: int) -> Array:
+    table = {1: (), 2: (0.25,), 3: (0.1, 0.3), 4: (0.067, 0.2, 0.467)}
+    return _fractions(near, far, k, table[k])
+
+
+def _unreal_overlap(edges: Array, transition: float = 0.1) -> tuple[Array, Array]:
+    frac = float(check.closed_range(transition, "transition", 0.0, 1.0))
+    lo, hi = edges[:-1].copy(), edges[1:].copy()
+    hi[:-1] += frac * (hi[:-1] - lo[:-1])  # each non-last cascade extended by 10 % of its length
+    return lo, hi
+
+
+@register(
+    "unreal",
+    "Unreal Engine 4 CSM: CascadeDistributionExponent, CascadeTransitionFraction (read from copies; Epic's repository is private)",
+    "geometric: C_i = n + (E^i − 1)/(E^k − 1)(f − n), E = 3, 3 cascades, +10 % overlap",
+    default_k=3,
+    extend=_unreal_overlap,
+)
+def _unreal(near: float, far: float, k: int, exponent: float = 3.0) -> Array:
+    e = float(check.as_float_array(exponent, "exponent"))
+    if e <= 0:
+        raise ValueError(f"exponent must be in (0, inf), got {e:g}")
+    i = np.arange(k + 1)
+    frac = i / k if e == 1.0 else (e**i - 1) / (e**k - 1)
+    return near + frac * (far - near)

@@ -120,8 +120,10 @@ def evaluate(scheme: str | Scheme, near: float = 1.0, far: float = 1000.0, fov: 
         A light spec (:data:`aliasing.geometry.LIGHT_SPEC`) or vectors ``(N, 3)`` towards the light.
     edges : array_like, optional
         Explicit split distances C_0 = near < … < C_k = far (e.g. from
-        :func:`aliasing.partitioning.split_distances`) instead of ``ZP<k>``'s self-similar
-        ones; k is then ``len(edges) − 1`` and the scheme's own k is ignored.
+        :func:`aliasing.partitioning.split_distances`), or a pair of arrays
+        ``(near_i, far_i)`` for padded or overlapping maps (from
+        :func:`aliasing.partitioning.partitions`), instead of ``ZP<k>``'s self-similar
+        ones; k is then the number of maps and the scheme's own k is ignored.
     **options
         Passed to the warping rule (e.g. ``c_fraction`` for P/LogP, ``focus`` for TSM).
     """
@@ -145,13 +147,20 @@ def evaluate(scheme: str | Scheme, near: float = 1.0, far: float = 1000.0, fov: 
     return Result(sch, M_x, M_z, (M_x * M_z).sum(axis=-1), np.asarray(npr, float), eta, sch.k)
 
 
-def _explicit_partitions(edges: ArrayLike, near: float, far: float) -> tuple[Array, Array]:
-    c = check.as_float_array(edges, "edges").ravel()
-    if c.size < 2 or np.any(np.diff(c) <= 0):
-        raise ValueError("edges must be at least two increasing split distances")
-    if not (np.isclose(c[0], near, rtol=1e-12) and np.isclose(c[-1], far, rtol=1e-12)):
+def _explicit_partitions(edges: ArrayLike | tuple[ArrayLike, ArrayLike], near: float, far: float) -> tuple[Array, Array]:
+    if isinstance(edges, tuple) and len(edges) == 2:
+        lo = check.as_float_array(edges[0], "edges").ravel()
+        hi = check.as_float_array(edges[1], "edges").ravel()
+        if lo.shape != hi.shape or lo.size == 0 or np.any(hi <= lo):
+            raise ValueError("edges as (near_i, far_i) need equal lengths and near_i < far_i")
+    else:
+        c = check.as_float_array(edges, "edges").ravel()
+        if c.size < 2 or np.any(np.diff(c) <= 0):
+            raise ValueError("edges must be at least two increasing split distances")
+        lo, hi = c[:-1], c[1:]
+    if not (np.isclose(lo.min(), near, rtol=1e-12) and np.isclose(hi.max(), far, rtol=1e-12)):
         raise ValueError(f"edges must start at near ({near:g}) and end at far ({far:g})")
-    return c[:-1], c[1:]
+    return lo, hi
 
 
 def _eta_or_nan(npr: Array, n_i: Array, f_i: Array, depth: Array) -> Array:

@@ -139,7 +139,7 @@ def test_splits_cli(capsys):
 @pytest.mark.parametrize(
     "argv, needle",
     [
-        (["--near", "1", "--far", "10"], "splits needs -k"),
+        (["--near", "1", "--far", "10"], "needs k (number of partitions)"),
         (["--method", "nope", "--near", "1", "--far", "10", "-k", "2"], "unknown split method"),
         (["--method", "practical", "--lambda", "2", "--near", "1", "--far", "10", "-k", "2"], "lambda must be in [0, 1]"),
         (["--near", "1", "--far", "10", "-k", "3", "--budget", "2", "--image-res", "64"], "at least one texel per map"),
@@ -154,3 +154,68 @@ def test_splits_cli_bad_input(argv, needle, capsys):
         code = exc.code
     err = capsys.readouterr().err
     assert code == 2 and len(err.strip().splitlines()) == 1 and needle in err
+
+
+# --- engine presets: worked examples from the engines' own defaults ---------------------------
+
+
+@pytest.mark.parametrize(
+    "method, near, far, expected",
+    [
+        # Ogre PSSMShadowCameraSetup constructor: calculateSplitPoints(3, 100, 100000), λ = 0.95
+        ("ogre-pssm", 100.0, 100000.0, [100.0, 2620.0, 12835.0, 100000.0]),
+        # bgfx example 16 splitFrustum: n = 1, f = 550, 4 splits, λ = 0.6, s = (2i − 1)/(2k)
+        ("bgfx", 1.0, 550.0, [1.0, 29.17, 89.14, 168.62, 550.0]),
+        # Godot 4: split_1..3 = 0.1, 0.2, 0.5 of (max_distance − near), near 0.05, max_distance 100
+        ("godot", 0.05, 100.0, [0.05, 10.045, 20.04, 50.025, 100.0]),
+        # Filament cascadeSplitPositions {0.125, 0.25, 0.5}
+        ("filament", 0.0 + 1.0, 801.0, [1.0, 101.0, 201.0, 401.0, 801.0]),
+        # Unreal: E = 3, k = 3: fractions 0, 1/13, 4/13, 1 of (F − n)
+        ("unreal", 1.0, 14.0, [1.0, 2.0, 5.0, 14.0]),
+    ],
+)
+def test_presets_reproduce_engine_defaults(method, near, far, expected):
+    np.testing.assert_allclose(partitioning.split_distances(method, near, far), expected, rtol=5e-4)
+
+
+def test_threejs_applies_breaks_as_fractions_from_near():
+    # CSM.js stores C/F and CSMFrustum.split lerps near → far corners by it: n + (C/F)(F − n)
+    n, f = 0.1, 1000.0
+    textbook = 0.5 * partitioning.split_distances("log", n, f, 3) + 0.5 * partitioning.split_distances("uniform", n, f, 3)
+    got = partitioning.split_distances("threejs-csm", n, f)
+    np.testing.assert_allclose(got[1:-1], (n + textbook / f * (f - n))[1:-1], rtol=1e-14)  # ends are n and F
+    assert got[0] == n and got[-1] == f
+
+
+def test_padding_and_overlaps():
+    lo, hi = partitioning.partitions("ogre-pssm", 1.0, 1000.0)
+    e = partitioning.split_distances("ogre-pssm", 1.0, 1000.0)
+    np.testing.assert_allclose(lo, [e[0], e[1] - 1, e[2] - 1])
+    np.testing.assert_allclose(hi, [e[1] + 1, e[2] + 1, e[3]])
+    lo, hi = partitioning.partitions("bgfx", 1.0, 550.0)
+    np.testing.assert_allclose(hi[:-1], 1.005 * lo[1:])
+    lo, hi = partitioning.partitions("unreal", 1.0, 14.0)
+    np.testing.assert_allclose(hi, [2.1, 5.3, 14.0])
+    # an overlapping preset evaluates every map over its real extent
+    r = schemes.evaluate("Standard", 1.0, 550.0, 60.0, "overhead", edges=partitioning.partitions("bgfx", 1.0, 550.0))
+    assert r.maps == 4 and np.isfinite(r.S).all()
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda: partitioning.split_distances("babylon", 1.0, 10.0, 5), "at most 4"),
+        (lambda: partitioning.split_distances("godot", 1.0, 10.0, 3), "1, 2 or 4"),
+        (lambda: partitioning.split_distances("log", 1.0, 10.0), "needs k"),
+        (lambda: partitioning.partitions("ogre-pssm", 1.0, 10.0, padding=-1.0), r"padding must be in \[0, inf\]"),
+    ],
+)
+def test_preset_bad_input(call, message):
+    with pytest.raises(ValueError, match=message):
+        call()
+
+
+def test_splits_list_shows_every_method(capsys):
+    assert main(["splits", "--list"]) == 0
+    listed = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
+    assert listed == list(partitioning.SPLIT_METHODS)
