@@ -91,6 +91,14 @@ def _splits(args: argparse.Namespace) -> int:
     if missing:
         raise ValueError(f"splits needs {', '.join(missing)} (or --list)")
     params = {} if args.lam is None else {"lam": args.lam}
+    for item in args.param:
+        key, sep, value = item.partition("=")
+        try:
+            params[key.strip()] = float(value)
+        except ValueError:
+            sep = ""
+        if not sep or not key.strip():
+            raise ValueError(f"--param takes KEY=NUMBER, got {item!r}")
     rows = budgets.splits_report(
         args.method, args.near, args.far, args.k, fov=args.fov, light=args.light, warp=args.warp,
         budget=args.budget, res_image=args.image_res, allocations=tuple(a for a in args.allocations.split(",") if a), **params,
@@ -151,6 +159,7 @@ def build_parser() -> argparse.ArgumentParser:
     spl.add_argument("--list", action="store_true", help="list split methods and presets and exit")
     spl.add_argument("--method", default="log", help="split method (default log; see --list)")
     spl.add_argument("--lambda", dest="lam", type=float, help="blend λ in [0, 1] for practical-style methods")
+    spl.add_argument("--param", action="append", default=[], metavar="KEY=VALUE", help="other method parameters, e.g. ratio=2, bias=0, resolution_ratio=2, padding=1, exponent=3")
     spl.add_argument("--near", type=float, help="near distance")
     spl.add_argument("--far", type=float, help="far distance (for engine presets: the shadow distance)")
     spl.add_argument("-k", type=int, help="number of partitions (default: the preset's own; required for log, uniform, practical)")

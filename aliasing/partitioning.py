@@ -141,20 +141,65 @@ def _uniform(n: float, f: float, k: int) -> Array:
     return n + (f - n) * np.arange(k + 1) / k
 
 
-@register("log", "Lloyd et al. 2006 eqs. 15–16; Lloyd et al. 2007 eqs. 80–82; Zhang et al. 2006 eq. 1", "self-similar: C_i = n (f/n)^(i/k), equal f_i/n_i")
+@register("log", "Lloyd et al. 2006 eqs. 15–16; Lloyd et al. 2007 eqs. 80–82", "self-similar: C_i = n (f/n)^(i/k), equal f_i/n_i")
 def _log_method(near: float, far: float, k: int) -> Array:
     return _log(near, far, k)
 
 
-@register("uniform", "Zhang et al. 2006 eq. 2", "equal depth ranges: C_i = n + (f − n) i/k")
+@register("uniform", "equal depth ranges (the uniform split of the PSSM literature)", "equal depth ranges: C_i = n + (f − n) i/k")
 def _uniform_method(near: float, far: float, k: int) -> Array:
     return _uniform(near, far, k)
 
 
-@register("practical", "Zhang et al. 2006 eq. 3 (λ-weighted form used by engines)", "C_i = λ C_i^log + (1 − λ) C_i^uni")
+@register("practical", "the PSSM 'practical split' as engines implement it (three.js, Babylon.js, Ogre, Filament); not in the supplied Zhang 2006 text (ERRATA P1)", "C_i = λ C_i^log + (1 − λ) C_i^uni")
 def _practical(near: float, far: float, k: int, lam: float = 0.5) -> Array:
     w = _lam(lam)
     return w * _log(near, far, k) + (1 - w) * _uniform(near, far, k)
+
+
+def _ratio_param(ratio: float, name: str) -> float:
+    value = float(check.as_float_array(ratio, name))
+    if not value > 1.0 or not np.isfinite(value):
+        raise ValueError(f"{name} must be in (1, inf), got {value:g}")
+    return value
+
+
+@register("pssm", "Zhang et al. 2006 eqs. 1–3 (as printed in the supplied text)", "C_i = min(n + (f − n)/γ^(k−i) + δ_bias, f): distances from near grow by γ")
+def _pssm(near: float, far: float, k: int, ratio: float = 2.0, bias: float = 0.0) -> Array:
+    """Zhang 2006's "theoretic split scheme": L_i = C_i − n grows geometrically, L_(i+1) = γ L_i.
+
+    The text gives no value for γ or δ_bias; γ = 2 and δ_bias = 0 are our defaults.  Eq. 3
+    adds δ_bias to every plane, where eqs. 1–2 imply γ^(i−1)·δ_bias (ERRATA P2): eq. 3 as
+    printed is implemented.
+    """
+    g = _ratio_param(ratio, "ratio")
+    d = float(check.closed_range(bias, "bias", 0.0, np.inf))
+    i = np.arange(k + 1)
+    c = np.minimum(near + (far - near) / g ** (k - i) + d, far)  # eq. (3)
+    c[0] = near
+    if np.any(np.diff(c) <= 0):
+        raise ValueError("bias too large: the split planes must increase (eq. 3 clamps them at far)")
+    return c
+
+
+@register("pssm-transition", "Zhang et al. 2006 eq. 4 (consistent aliasing transition), uniform maps per split", "C_i = n + (f − n)(1 − λ^−i)/(1 − λ^−k): E1 drops by the resolution ratio λ at each plane")
+def _pssm_transition(near: float, far: float, k: int, resolution_ratio: float = 2.0) -> Array:
+    """Eq. 4 with uniform maps: E1 ∝ (f_i − n_i)/z, so E1^i/E1^(i+1) = λ means l_i = λ l_(i+1).
+
+    λ = ds_(i+1)/ds_i is the resolution ratio between neighbouring maps (2 in the paper); as
+    λ → 1 this tends to the uniform split.
+    """
+    lam = _ratio_param(resolution_ratio, "resolution_ratio")
+    i = np.arange(k + 1)
+    return near + (far - near) * (1 - lam ** (-i)) / (1 - lam ** (-k))
+
+
+@register("pssm-transition-log", "Zhang et al. 2006 eq. 4 (consistent aliasing transition), logarithmic maps per split", "C_i = n (f/n)^((1 − λ^−i)/(1 − λ^−k)); the log split as λ → 1")
+def _pssm_transition_log(near: float, far: float, k: int, resolution_ratio: float = 2.0) -> Array:
+    """Eq. 4 with logarithmic maps: E1 ∝ ln(f_i/n_i), so ln a_i = λ ln a_(i+1) with a_i = C_i/C_(i−1)."""
+    lam = _ratio_param(resolution_ratio, "resolution_ratio")
+    i = np.arange(k + 1)
+    return near * (far / near) ** ((1 - lam ** (-i)) / (1 - lam ** (-k)))
 
 
 def _fractions(n: float, f: float, k: int, fractions: tuple[float, ...]) -> Array:

@@ -344,15 +344,16 @@ def storage_zp_behind() -> sp.Expr:
 
 @derivation("lloyd2006.S_fp_zp_w_behind", f"{SOURCE}, eq. 21", "FP+ZP+W with the light behind: four warped side faces plus the near face")
 def storage_fp_zp_w_behind() -> sp.Expr:
-    """Light behind at θ = 45°: each side face, seen from behind, is the overhead case.
+    """Light behind: each side face, seen from behind, is the overhead case at θ = 45°.
 
-    Seen along the view direction, a side face projects to the trapezoid between its near
-    edge (width 2n tanθ) and far edge (width 2f tanθ), a depth (f − n) tanθ apart; the whole
-    frustum seen from overhead is the trapezoid of the same widths a depth f − n apart, with
-    the same image beams 2d tanθ/res_i at eye depth d.  The two coincide at θ = 45°, so each
-    of the four faces costs S̄_ZP+W,overhead, and the near face, seen head-on with the
-    image's own spacing, costs 1.  (The check against a general face-partition evaluation
-    comes with face partitioning.)
+    Seen along the view direction, a side face projects to the trapezoid |x| ≤ y between
+    y = n tanθ and y = f tanθ (its half-width equals its distance from the axis: 45° sides,
+    whatever θ), and a pixel at eye depth d = y/tanθ is 2d tanθ/res_i = 2y/res_i wide.  That
+    is exactly the whole frustum seen from overhead with θ = 45° (|x| ≤ z, pixel 2z/res_i),
+    so for any θ each of the four faces costs S̄_ZP+W,overhead(θ = 45°), and the near face,
+    seen head-on with the image's own spacing, costs 1: eq. 21's "θ = 45°" is not a
+    restriction on the view.  (The check against a general face-partition evaluation comes
+    with face partitioning.)
     """
     return sp.factor(4 * storage_zp_w_overhead().subs(theta, sp.pi / 4) + 1)
 
