@@ -12,7 +12,9 @@ Allocations (one registry, :data:`ALLOCATIONS`):
   as res_s/res_t = M_x/M_z (Lloyd 2006 eqs. 13–14); every map then has the same error
   res_i·√(Σ S_j / T), the smallest maximum any allocation can reach;
 * ``equal``: what engines ship: k square maps of T/k texels each;
-* ``equal-balanced``: T/k texels per map, split between s and t by eqs. 13–14.
+* ``equal-balanced``: T/k texels per map, split between s and t by eqs. 13–14;
+* ``pow2``: Zhang et al. 2006 §3.5, square maps of 2^(K−i) texels a side (areas ∝ 4^−i),
+  scaled to the budget.
 
 Example
 -------
@@ -52,10 +54,18 @@ def _equal_balanced(mx: Array, mz: Array, budget: Array) -> tuple[Array, Array]:
     return np.sqrt(mx / mz * share), np.sqrt(mz / mx * share)  # Lloyd 2006 eqs. (13)–(14) per map
 
 
+def _pow2(mx: Array, mz: Array, budget: Array) -> tuple[Array, Array]:
+    k = mx.shape[-1]
+    area = 4.0 ** -np.arange(1, k + 1)  # Zhang 2006 §3.5: resolution(T_i) = 2^(k−i) × 2^(k−i)
+    side = np.sqrt(budget * area / area.sum()) * np.ones_like(mx)
+    return side, side
+
+
 ALLOCATIONS: dict[str, tuple[Callable[[Array, Array, Array], tuple[Array, Array]], str]] = {
     "error": (_error, "Lloyd et al. 2007 eq. 83: texels in proportion to each map's S, s/t by eqs. 13–14"),
     "equal": (_equal, "engines: k square maps of T/k texels"),
     "equal-balanced": (_equal_balanced, "T/k texels per map, s/t by Lloyd 2006 eqs. 13–14"),
+    "pow2": (_pow2, "Zhang et al. 2006 §3.5: square maps whose side halves from split to split"),
 }
 
 
@@ -64,7 +74,7 @@ def allocate(method: str, M_x: ArrayLike, M_z: ArrayLike, budget: ArrayLike) -> 
 
     Parameters
     ----------
-    method : {"error", "equal", "equal-balanced"}
+    method : {"error", "equal", "equal-balanced", "pow2"}
     M_x, M_z : array_like
         Unit-resolution maxima of each map, last axis = maps.
     budget : array_like

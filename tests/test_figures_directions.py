@@ -197,3 +197,18 @@ def test_fig30_what_the_text_says(fig30):
     # "M̃_lp,s has even higher error because η_lp is further from −1 than η_p" (row 2, 0 < γ < θ)
     mid = (g > 0) & (g < 30)
     assert np.all(fig30["M_s(v_n1)[1/sin(gamma)|LogP]"][mid] > fig30["M_s(v_n1)[1/sin(gamma)|P]"][mid])
+
+
+def test_E7_lispsm_storage_peaks_off_axis_not_behind_or_in_front():
+    # Lloyd 2006 §4.4 on Fig. 7: with warping S̄ "is highest when the light comes from directly behind
+    # or in front of the viewer".  With LiSPSM's n′ = (n + √(fn))/sin γ it peaks near γ ≈ 11° instead,
+    # at over four times the value at γ = 0° or 180° (f/n = 1000, θ = 30°): ERRATA E7.
+    import numpy as np
+
+    from aliasing import geometry, schemes
+
+    gamma = np.linspace(0.0, 180.0, 3601)
+    s = schemes.evaluate("lispsm", 1.0, 1000.0, 60.0, geometry.light_direction(gamma, 0.0)).S
+    peak = gamma[np.argmax(s)]
+    assert 10.0 < min(peak, 180.0 - peak) < 12.5
+    assert s.max() > 4 * max(s[0], s[-1])

@@ -219,3 +219,11 @@ def test_splits_list_shows_every_method(capsys):
     assert main(["splits", "--list"]) == 0
     listed = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
     assert listed == list(partitioning.SPLIT_METHODS)
+
+
+def test_pow2_allocation_is_zhang_2006_section_3_5():
+    # PSSM(3) with k = 10: 512², 256², 128² texels (Zhang 2006 §3.5, Fig. 3 caption)
+    budget = 512**2 + 256**2 + 128**2
+    rs, rt = budgets.allocate("pow2", np.ones((1, 3)), np.ones((1, 3)), budget)
+    np.testing.assert_allclose(rs[0], [512, 256, 128], rtol=1e-12)
+    np.testing.assert_array_equal(rs, rt)
