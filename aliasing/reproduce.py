@@ -35,6 +35,11 @@ TARGETS: dict[str, Target] = {
         Target("lloyd2006-fig7", "lloyd2006_fig7", "Lloyd 2006 Fig. 7: log10 S over the hemisphere of light directions, standard vs LiSPSM (f/n=1000, theta=30)"),
         Target("lloyd2007-fig29", "lloyd2007_fig29", "Lloyd 2007 Fig. 29: M_s, M_t and S over eta for several light directions, P and LogP (n=1, f=1024, theta=30)"),
         Target("lloyd2007-fig30", "lloyd2007_fig30", "Lloyd 2007 Fig. 30: eta shaping strategies over gamma (fixed, 1/sin, S-optimal, eq. 79), P and LogP (n=1, f=1024, theta=30)"),
+        Target("lloyd2006-fig10", "lloyd2006_fig10", "Lloyd 2006 Fig. 10: S over the number of z-partitions k, ZP/ZP+W (eqs. 17-18) vs the log optimum, light overhead (f/n=1000, theta=30 assumed)"),
+        Target("lloyd2006-fig12", "lloyd2006_fig12", "Lloyd 2006 Fig. 12: S over the number of shadow maps, ZP/ZP+W/FP+ZP+W, light overhead and behind (f/n=1000, theta=30)"),
+        Target("lloyd2006-fig13", "lloyd2006_fig13", "Lloyd 2006 Fig. 13: lowest-error scheme with the light behind over f/n x number of maps, crossover j*(f/n)"),
+        Target("zhang2006-splits", "zhang2006_splits", "Zhang 2006 PSSM: split positions of log/uniform/practical/eqs. 1-3/eq. 4 schemes (n=1, f=800, m=3, 4)"),
+        Target("engine-presets", "engine_presets", "Engine cascade presets vs the log split: worst aliasing error over light directions, equal vs error-based allocation (near 0.5, far 500, fov 60, 4x2048^2 texels, 1920 px)"),
         Target("lloyd2007-table3", "lloyd2007_table3", "Lloyd 2007 Table 3, non-FP rows, beside the printed values (f/n=1000, theta=30)"),
     )
 }
