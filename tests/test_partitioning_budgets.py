@@ -227,3 +227,14 @@ def test_pow2_allocation_is_zhang_2006_section_3_5():
     rs, rt = budgets.allocate("pow2", np.ones((1, 3)), np.ones((1, 3)), budget)
     np.testing.assert_allclose(rs[0], [512, 256, 128], rtol=1e-12)
     np.testing.assert_array_equal(rs, rt)
+
+
+def test_E6_eqs_22_23_hold_as_proportionalities():
+    # Lloyd 2006 eqs. 22–23 for large f/n: S_ZP,overhead ≈ j (f/n)^(2/j) and S_FP+ZP+W,overhead ≈ j (f/n)^(4/j),
+    # each up to a constant: 1/(2 tanθ), and (1/4)/(2 tanθ) with one z-partitioning per four maps (ERRATA E6)
+    a, j = sp.Symbol("a", positive=True), sp.Symbol("j", positive=True)
+    zp = L.storage_zp_overhead().subs({L.f: a * L.n, L.k: j})
+    fp = L.storage_zp_w_overhead().subs({L.f: a * L.n, L.k: j / 4})
+    for value in (3, 8):
+        assert sp.limit((zp / (j * a ** (2 / j))).subs(j, value), a, sp.oo) == 1 / (2 * sp.tan(L.theta))
+        assert sp.limit((fp / (j * a ** (4 / j))).subs(j, 4 * value), a, sp.oo) == sp.Rational(1, 4) / (2 * sp.tan(L.theta))
