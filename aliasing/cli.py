@@ -49,33 +49,57 @@ def _derive(args: argparse.Namespace) -> int:
     return 0
 
 
-def _floats(text: str, name: str) -> list[float]:
-    """A comma-separated list of numbers; ValueError names the option."""
-    try:
-        values = [float(item) for item in text.split(",") if item.strip()]
-    except ValueError:
-        raise ValueError(f"{name} must be a comma-separated list of numbers, got {text!r}") from None
-    if not values:
-        raise ValueError(f"{name} must not be empty")
-    return values
-
-
 def _sweep(args: argparse.Namespace) -> int:
     from . import sweep
 
-    names = [name for name in args.schemes.split(",") if name.strip()]
-    rows = sweep.sweep(
-        names,
-        f_over_n=_floats(args.f_over_n, "--f-over-n"),
-        fov=_floats(args.fov, "--fov"),
-        light=args.light,
-        summary=args.summary,
+    cfg = sweep.read_config(args.config) if args.config else {}
+
+    def pick(name: str, default: object) -> object:
+        value = getattr(args, name)
+        return value if value is not None else cfg.get(name, default)
+
+    schemes = pick("schemes", None)
+    if schemes is None:
+        raise ValueError("sweep needs --schemes (or a --config file with schemes)")
+    params = dict(cfg.get("params", {}))
+    for item in args.param:
+        key, sep, value = item.partition("=")
+        if not sep or not key.strip():
+            raise ValueError(f"--param takes KEY=VALUES (numbers or ranges), got {item!r}")
+        params[key.strip()] = value
+    axes = {}
+    for name, flag, default in (("f_over_n", "--f-over-n", "1000"), ("fov", "--fov", "60")):
+        given = getattr(args, name)
+        axes[name] = sweep.grid_values(given, flag) if given is not None else cfg.get(name, default)
+    fmt = str(pick("format", "csv"))
+    jobs = pick("jobs", 1)
+    grid = sweep.plan(
+        schemes,  # type: ignore[arg-type]
+        axes["f_over_n"],
+        axes["fov"],
+        pick("light", "overhead"),  # type: ignore[arg-type]
+        k=pick("k", None),  # type: ignore[arg-type]
+        params=params,
+        near=pick("near", 1.0),  # type: ignore[arg-type]
+        summary=args.summary or cfg.get("summary", False),
+        block=pick("block", sweep.DEFAULT_BLOCK),  # type: ignore[arg-type]
     )
-    text = sweep.format_rows(rows, args.format)
-    if args.out:
-        sweep.write(text, args.out)
-    else:
-        sys.stdout.write(text)
+    if args.dry_run:
+        sys.stdout.write(sweep.dry_run(grid, fmt, jobs))  # type: ignore[arg-type]
+        return 0
+    out = pick("out", None)
+    command = grid.command(fmt) + (f"  # from --config {args.config}" if args.config else "")
+    try:
+        result = sweep.execute(
+            grid, fmt, out, jobs=jobs, dask=pick("dask", None), resume=args.resume,  # type: ignore[arg-type]
+            progress=sweep.progress_bar(sys.stderr), command=command,
+        )
+    except KeyboardInterrupt:
+        kept = f"; finished chunks are kept in {out}.parts: rerun with --resume" if out is not None else ""
+        print(f"\naliasing sweep: interrupted{kept}", file=sys.stderr)
+        return 130
+    if out is None:
+        sys.stdout.write(str(result))
     return 0
 
 
@@ -137,17 +161,31 @@ def build_parser() -> argparse.ArgumentParser:
     swp = sub.add_parser(
         "sweep",
         help="evaluate schemes over depth ratios, fields of view and light directions",
-        description="M_x, M_z and S of shadow-map schemes for directional lights (unit resolutions).",
+        description="M_x, M_z and S of shadow-map schemes for directional lights (unit resolutions), over the product "
+        "of every parameter's values. Numbers take lists and ranges START:STOP:lin|log:COUNT (e.g. 10:10000:log:7). "
+        "With --out, finished chunks are kept in <out>.parts until the output is complete (see --resume).",
         epilog="schemes: Standard | P | Po | LogP (Log) | Sopt | LogSopt | <warping rule> | ZP<k> | ZP<k>+<any>.  "
-        "lights: overhead | behind | front | gamma:DEG[@azimuth:DEG] | sphere:N | hemisphere:N",
+        "lights: overhead | behind | front | gamma:DEG[@azimuth:DEG] | sphere:N | hemisphere:N, comma-separated; "
+        "gamma and azimuth also take ranges, e.g. gamma:0:180:lin:19@azimuth:0:90:lin:4.  "
+        "Config keys: schemes, k, f_over_n, fov, light, near, params (table), summary, format, out, block, jobs, dask; "
+        "command-line options override them.",
     )
-    swp.add_argument("--schemes", required=True, help="comma-separated scheme names, e.g. Standard,P,ZP5+LogP")
-    swp.add_argument("--f-over-n", default="1000", help="comma-separated depth ratios far/near (default 1000)")
-    swp.add_argument("--fov", default="60", help="comma-separated FULL fields of view in degrees (the papers' θ is half: θ = 30° is --fov 60; default 60)")
-    swp.add_argument("--light", default="overhead", help="light directions (default overhead)")
+    swp.add_argument("--config", metavar="TOML", help="read the sweep's parameters from a TOML file")
+    swp.add_argument("--schemes", help="comma-separated scheme names, e.g. Standard,P,ZP5+LogP (required here or in --config)")
+    swp.add_argument("--k", help="numbers of z-partitions (list or range): each scheme B becomes ZP<k>+B (k = 1 keeps B)")
+    swp.add_argument("--param", action="append", default=[], metavar="KEY=VALUES", help="warping-rule option swept for the schemes that take it, e.g. eta=-1:1:lin:5, c_fraction=0.2,0.4")
+    swp.add_argument("--f-over-n", help="depth ratios far/near: list or range (default 1000)")
+    swp.add_argument("--fov", help="FULL fields of view in degrees, list or range (the papers' θ is half: θ = 30° is --fov 60; default 60)")
+    swp.add_argument("--light", help="light directions, comma-separated specs (default overhead)")
+    swp.add_argument("--near", type=float, help="near distance (default 1; results depend on f/n only)")
     swp.add_argument("--summary", action="store_true", help="min, max, max/min and mean of S over the directions (Lloyd 2007 Table 3 layout)")
-    swp.add_argument("--format", default="csv", choices=["csv", "json"], help="output format (default csv)")
-    swp.add_argument("--out", help="output file (default: standard output); written atomically")
+    swp.add_argument("--format", choices=["csv", "json", "netcdf"], help="output format (default csv; netcdf needs --out and the xarray extra)")
+    swp.add_argument("--out", help="output file (default: standard output); written atomically, never truncated by a failed run")
+    swp.add_argument("--jobs", type=int, help="local worker processes (default 1); the output does not depend on it")
+    swp.add_argument("--dask", metavar="ADDRESS", help="compute the chunks on a running Dask scheduler, e.g. tcp://host:8786 (dask extra)")
+    swp.add_argument("--block", type=int, help="light directions per chunk (default 20000)")
+    swp.add_argument("--resume", action="store_true", help="continue an interrupted sweep from <out>.parts without recomputing finished chunks")
+    swp.add_argument("--dry-run", action="store_true", help="print the grid size and an estimated time, compute nothing")
     swp.set_defaults(run=_sweep)
 
     spl = sub.add_parser(

@@ -1,0 +1,57 @@
+"""Numpy rasterizer: the toolkit's independent witness for the analytic aliasing bounds.
+
+* :mod:`.rasterize`: vectorized z-buffer rasterizer for (s, t, depth) triangles, shadow maps
+  through the toolkit's parameterizations (uniform, perspective, log+perspective by
+  logarithmic rasterization) and the eye pass (visible position and normal per pixel);
+* :mod:`.scenes`: seeded procedural scenes (ground, boxes, probe planes) and an ASCII
+  OBJ/PLY loader;
+* :mod:`.measure`: perspective aliasing measured from sampled positions by finite
+  differences, compared with :func:`aliasing.schemes.evaluate`.
+
+Example
+-------
+>>> from aliasing import raster
+>>> sc = raster.ground_and_boxes(near=1.0, far=50.0, boxes=5, seed=1)
+>>> lm = raster.light_map(1.0, 50.0, 60.0, "gamma:60", "P")
+>>> m = raster.shadow_map(sc.triangles, lm, 64)
+>>> m.resolution, m.degenerate   # the boxes' 4 sides facing ±x are edge-on to this light: skipped
+(64, 20)
+"""
+
+from .rasterize import (
+    CHUNK,
+    MAX_RESOLUTION,
+    DepthMap,
+    EyeBuffer,
+    LightMap,
+    eye_pass,
+    light_map,
+    light_maps,
+    log_row_centres,
+    project,
+    rasterize,
+    shadow_map,
+)
+from .scenes import Scene, ground_and_boxes, load_mesh, probes
+from .measure import Measurement, measure
+
+__all__ = [
+    "CHUNK",
+    "MAX_RESOLUTION",
+    "DepthMap",
+    "EyeBuffer",
+    "LightMap",
+    "Measurement",
+    "Scene",
+    "eye_pass",
+    "ground_and_boxes",
+    "light_map",
+    "light_maps",
+    "load_mesh",
+    "log_row_centres",
+    "measure",
+    "probes",
+    "project",
+    "rasterize",
+    "shadow_map",
+]

@@ -1,0 +1,74 @@
+"""Benchmark of the numpy rasterizer (aliasing.raster); run by hand, not under pytest.
+
+Times depth maps of a seeded ~10,000-triangle scene (a ground grid of 2·50² triangles and
+417 boxes of 12, over f/n = 1000) through the Standard, P and LogP maps of one light
+(γ = 60°, azimuth 20°, fov 60°), and the eye pass, at the given resolutions; best of
+``--repeats`` runs (time.perf_counter), setup (scene, map fit) outside the timed region.
+Then, once per resolution and outside the timings, the peak of traced allocations
+(tracemalloc) of one LogP map.  Pin one core with e.g. ``taskset -c 0`` and
+``OMP_NUM_THREADS=1``; the rasterizer itself does not use threads.
+
+Usage::
+
+    python benchmarks/raster.py                       # 2048², best of 3
+    python benchmarks/raster.py --res 2048 4096 --repeats 5
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+import tracemalloc
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+
+from aliasing import raster  # noqa: E402
+
+NEAR, FAR, FOV, LIGHT = 1.0, 1000.0, 60.0, "gamma:60@azimuth:20"
+
+
+def best_of(fn, repeats: int) -> tuple[float, object]:
+    best, out = float("inf"), None
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+def main(argv: list[str] | None = None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--res", type=int, nargs="+", default=[2048])
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--no-memory", action="store_true", help="skip the tracemalloc peak")
+    args = ap.parse_args(argv)
+    scene = raster.ground_and_boxes(NEAR, FAR, FOV, boxes=417, ground_cells=50, seed=args.seed)
+    print(f"scene: {len(scene.triangles)} triangles, seed {args.seed}; light {LIGHT}, f/n {FAR / NEAR:g}, fov {FOV:g}")
+    maps = {name: raster.light_map(NEAR, FAR, FOV, LIGHT, name) for name in ("Standard", "P", "LogP")}
+    for res in args.res:
+        times = {}
+        for name, lm in maps.items():
+            sec, m = best_of(lambda lm=lm: raster.shadow_map(scene.triangles, lm, res), args.repeats)
+            times[name] = sec
+            cover = float(np.isfinite(m.depth).mean())
+            print(f"{res}² {name:8s} depth map {sec:7.3f} s   covered {cover:6.1%}   rasterized {m.rasterized}, degenerate {m.degenerate}")
+        # LogP's map covers more of the scene than Standard's (it fits the frustum tighter in t):
+        # LogP / P compares the logarithmic rasterization with the same map rasterized straight
+        print(f"{res}² LogP / P {times['LogP'] / times['P']:.2f}, LogP / Standard {times['LogP'] / times['Standard']:.2f}, P / Standard {times['P'] / times['Standard']:.2f}")
+        sec, eb = best_of(lambda: raster.eye_pass(scene.triangles, FOV, res), args.repeats)
+        print(f"{res}² eye pass          {sec:7.3f} s   covered {float((eb.triangle >= 0).mean()):6.1%}")
+        if not args.no_memory:
+            tracemalloc.start()
+            raster.shadow_map(scene.triangles, maps["LogP"], res)
+            peak = tracemalloc.get_traced_memory()[1]
+            tracemalloc.stop()
+            print(f"{res}² LogP depth map peak traced memory {peak / 2**20:.0f} MiB")
+
+
+if __name__ == "__main__":
+    main()
