@@ -209,6 +209,10 @@ def build_parser() -> argparse.ArgumentParser:
     spl.add_argument("--allocations", default="error,equal", help="allocations to compare (default error,equal)")
     spl.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
     spl.set_defaults(run=_splits)
+
+    from .raster.validate import add_validate_parser
+
+    add_validate_parser(sub)
     return parser
 
 
