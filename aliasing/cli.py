@@ -213,6 +213,10 @@ def build_parser() -> argparse.ArgumentParser:
     from .raster.validate import add_validate_parser
 
     add_validate_parser(sub)
+
+    from .raster.pictures import add_render_parser
+
+    add_render_parser(sub)
     return parser
 
 

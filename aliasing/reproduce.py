@@ -40,6 +40,10 @@ TARGETS: dict[str, Target] = {
         Target("lloyd2006-fig13", "lloyd2006_fig13", "Lloyd 2006 Fig. 13: lowest-error scheme with the light behind over f/n x number of maps, crossover j*(f/n)"),
         Target("zhang2006-splits", "zhang2006_splits", "Zhang 2006 PSSM: split positions of log/uniform/practical/eqs. 1-3/eq. 4 schemes (n=1, f=800, m=3, 4)"),
         Target("engine-presets", "engine_presets", "Engine cascade presets vs the log split: worst aliasing error over light directions, equal vs error-based allocation (near 0.5, far 500, fov 60, 4x2048^2 texels, 1920 px)"),
+        Target("raster-shadows", "raster_shadows", "Rasterizer: shadowed renders, Standard/P/LogP/ZP4+P at one 256^2 texel budget (f/n=100, gamma 110, azimuth 60)"),
+        Target("raster-grid", "raster_grid", "Rasterizer: shadow-map texel grid projected on the scene, every 8 texels (Lloyd 2006 Fig. 15 style)"),
+        Target("raster-error", "raster_error", "Rasterizer: measured per-pixel perspective error, log colour scale blue<=1..red (Lloyd 2007 Fig. 13 style)"),
+        Target("raster-cdf", "raster_cdf", "Rasterizer: CDF of max error over random light directions, analytic + measured (Lloyd 2007 Fig. 17 style, f/n=1000)"),
         Target("lloyd2007-table3", "lloyd2007_table3", "Lloyd 2007 Table 3, non-FP rows, beside the printed values (f/n=1000, theta=30)"),
     )
 }

@@ -31,8 +31,8 @@ def test_reproduce_all_writes_every_figure(tmp_path, capsys):
     for name in TARGETS:
         files = [p for p in tmp_path.iterdir() if p.stem == name]
         assert files, f"{name} wrote nothing"
-        assert all(p.stat().st_size > 100 for p in files)
-        assert (tmp_path / f"{name}.csv").exists()  # every target writes its numbers
+        csv = tmp_path / f"{name}.csv"  # every target writes its numbers: a header and data rows
+        assert len(csv.read_text().strip().splitlines()) >= 2
     pngs = [p for p in tmp_path.glob("*.png")]
     assert all(p.stat().st_size > 10_000 for p in pngs)
     assert sorted(written) == sorted(str(p) for p in tmp_path.iterdir())

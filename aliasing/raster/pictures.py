@@ -1,0 +1,402 @@
+"""Pictures from the rasterizer: shadowed renders, projected texel grids, error colour maps,
+and cumulative error distributions over light directions.
+
+Every picture is of a seeded :func:`~aliasing.raster.ground_and_boxes` scene seen by the
+conventions' eye (origin, looking along +z, ``fov`` full field of view, ground 1 below the
+eye) with one directional light, shadowed through the maps of a ``scheme`` (Standard, P,
+LogP, a warping rule, each alone or after ``ZP<k>+``) sharing a fixed **texel budget**:
+each of the k maps gets ⌊√(budget/k)⌋² texels, so ``ZP4+P`` at a 512² budget has four
+256² maps.  Each pixel is shaded from the map of the z-partition holding its eye depth.
+
+* :func:`shadow_image`: Lambert shading (ambient + diffuse·max(0, n·l)) with the
+  shadow-map depth test: a pixel is lit when its light depth is at most the stored depth
+  of its texel plus a small slope-scaled bias (constant part plus one texel's depth change
+  over the surface's slope, so planar receivers do not self-shadow);
+* :func:`grid_image`: the shadow map's texel grid projected onto the scene, a line where
+  the texel index (divided by ``every``) changes between neighbouring pixels (Lloyd 2006
+  Fig. 15 style; one colour per z-partition);
+* :func:`error_image`: the measured perspective aliasing error per pixel,
+  m = max(m_x, m_z)·R_image/R_map [image pixels per texel] from finite differences of the
+  map coordinates between neighbouring pixels on the same face (as in
+  :mod:`aliasing.raster.measure`), on a logarithmic colour scale.  What is matched of Lloyd
+  2007 Fig. 13 is only what its caption states (the extraction has no colour bar): a log
+  scale, blue where m ≤ 1 (a texel no larger than a pixel: no visible perspective
+  aliasing), through cyan, green and yellow to red at the high end (``vmax``, default
+  64 pixels per texel); the exact hues and end value of the paper are not
+  reproduced;
+* :func:`error_cdf`: for a few schemes, the cumulative distribution over seeded random
+  light directions (uniform on the sphere) of the maximum perspective error over the view
+  [pixels per texel at the budget], Lloyd 2007 Fig. 17 style: analytic
+  (:func:`aliasing.schemes.evaluate`) over many directions, and measured on probes by the
+  rasterizer (:func:`aliasing.raster.measure`) over a subset as a check.
+
+Images are float arrays (R, R, 3) in [0, 1], row 0 at the *top* (ready for
+``imshow``/``imsave`` without ``origin``).  Everything is vectorised and deterministic.
+
+Example
+-------
+>>> img = shadow_image(1.0, 50.0, 60.0, "gamma:60@azimuth:30", "P", image_res=48, budget=64**2, boxes=5)
+>>> img.shape, bool(img.min() >= 0 and img.max() <= 1)
+((48, 48, 3), True)
+"""
+
+from __future__ import annotations
+
+import argparse
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .. import _validation as check
+from .. import geometry, schemes
+from .measure import _errors, measure
+from .rasterize import LightMap, check_resolution, eye_pass, light_maps, shadow_map
+from .scenes import Scene, ground_and_boxes
+
+Array = NDArray[np.float64]
+
+SKY = np.array([0.78, 0.86, 0.95])
+GROUND = np.array([0.80, 0.78, 0.72])
+BOX = np.array([0.85, 0.55, 0.30])
+AMBIENT = 0.3
+#: Partition colours of the projected grid.
+GRID_COLOURS = np.array([[0.0, 0.0, 0.0], [0.75, 0.0, 0.0], [0.0, 0.35, 0.85], [0.0, 0.55, 0.0], [0.6, 0.0, 0.6], [0.8, 0.45, 0.0]])
+
+
+@dataclass(frozen=True)
+class View:
+    """A scene seen and shadowed through a scheme's maps (what every picture starts from).
+
+    Attributes: ``scene``; ``ground`` (number of ground triangles, the first ones);
+    ``position``, ``normal`` (R, R, 3) from the eye pass (NaN where empty, row 0 at the
+    bottom); ``triangle`` (R, R); ``face`` (R, R): a planar-face id (0 for the ground, one per
+    box face, −1 empty); ``maps``, ``edges`` (split depths), ``map_res`` (per map);
+    ``partition`` (R, R), ``s``, ``t`` (map coordinates in the pixel's map), ``lit`` (bool:
+    passes the depth test), ``light`` (unit vector towards the light), ``fov``.
+    """
+
+    scene: Scene
+    ground: int
+    position: Array
+    normal: Array
+    triangle: NDArray[np.int64]
+    face: NDArray[np.int64]
+    maps: list[LightMap]
+    edges: Array
+    map_res: int
+    partition: NDArray[np.int64]
+    s: Array
+    t: Array
+    lit: NDArray[np.bool_]
+    light: Array
+    fov: float
+
+
+def map_resolution(budget: int, k: int) -> int:
+    """Resolution of each of k maps sharing ``budget`` texels: ⌊√(budget/k)⌋."""
+    b = float(check.positive(budget, "budget"))
+    r = int(np.floor(np.sqrt(b / k) + 1e-9))
+    return check_resolution(r, "budget/k (texels per side of each map)")
+
+
+def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, image_res: int = 256, budget: int = 1024**2,
+         boxes: int = 40, ground_cells: int = 16, seed: int = 1, bias: float = 1e-3, scene: Scene | None = None) -> View:
+    """Render the eye pass and the shadow test of a seeded scene (see the module docstring).
+
+    ``bias`` is the constant part of the depth bias [world units]; the slope-scaled part is
+    one texel's change of light depth over the visible surface.  ``scene`` replaces the
+    seeded ground and boxes (then ``face`` is the triangle index).
+    """
+    res = check_resolution(image_res, "image_res")
+    fv = float(check.fov(fov))
+    lv = geometry.lights(light)
+    if lv.shape[0] != 1:
+        raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
+    lv = lv[0]
+    maps, edges = light_maps(near, far, fv, lv, scheme)
+    rm = map_resolution(budget, len(maps))
+    if scene is None:
+        sc = ground_and_boxes(near, far, fv, boxes=boxes, ground_cells=ground_cells, seed=seed)
+        n_ground = 2 * ground_cells**2
+    else:
+        sc, n_ground = scene, 0
+    eb = eye_pass(sc.triangles, fv, res)
+    hit = eb.triangle >= 0
+    tri_id = np.maximum(eb.triangle, 0)
+    if n_ground:
+        face = np.where(tri_id < n_ground, 0, 1 + (tri_id - n_ground) // 2)
+    else:
+        face = tri_id.copy()
+    face = np.where(hit, face, -1)
+    pos = np.where(hit[..., None], eb.position, 0.0)
+    pos[~hit] = [0.0, 0.0, 1.0]
+    part = np.clip(np.searchsorted(edges, pos[..., 2], side="right") - 1, 0, len(maps) - 1)
+    s_all = np.full((res, res), np.nan)
+    t_all = np.full((res, res), np.nan)
+    lit = np.zeros((res, res), bool)
+    nrm = np.where(hit[..., None], eb.normal, 0.0)
+    for i, lm in enumerate(maps):
+        sel = hit & (part == i)
+        if not sel.any():
+            continue
+        p = pos[sel]
+        s, t, d, _ = lm.coordinates(p)
+        s_all[sel], t_all[sel] = s, t
+        sm = shadow_map(sc.triangles, lm, rm)
+        inside = (s >= 0) & (s < 1) & (t >= 0) & (t < 1)
+        col = np.clip(np.floor(s * rm), 0, rm - 1).astype(np.int64)
+        row = np.clip(np.floor(t * rm), 0, rm - 1).astype(np.int64)
+        stored = sm.depth[row, col]
+        # slope-scaled bias: the light depth changes over one texel's light-plane footprint
+        # by (|n·x_L| dx + |n·z_L| dy)/|n·y_L| on a plane with normal n
+        eps = 1e-4 * (1.0 + np.abs(p).max(axis=-1))
+        s1, _, _, _ = lm.coordinates(p + eps[:, None] * lm.basis[0])
+        _, t1, _, _ = lm.coordinates(p + eps[:, None] * lm.basis[2])
+        dx = eps / np.maximum(np.abs(s1 - s) * rm, 1e-300)
+        dy = eps / np.maximum(np.abs(t1 - t) * rm, 1e-300)
+        n = nrm[sel]
+        slope = (np.abs(n @ lm.basis[0]) * dx + np.abs(n @ lm.basis[2]) * dy) / np.maximum(np.abs(n @ lm.basis[1]), 0.05)
+        # outside the map (clipped texels) counts as lit: the map covers the view frustum
+        lit[sel] = ~inside | (d <= stored + bias + 1.5 * slope)
+    return View(sc, n_ground, eb.position, eb.normal, eb.triangle, face, maps, edges, rm, np.where(hit, part, -1), s_all, t_all, lit, lv, fv)
+
+
+def _base_colour(v: View) -> Array:
+    hit = v.triangle >= 0
+    albedo = np.where((v.triangle < v.ground)[..., None], GROUND, BOX) if v.ground else np.broadcast_to(GROUND, v.position.shape)
+    lam = np.clip(np.where(hit, np.nan_to_num(v.normal) @ v.light, 0.0), 0.0, 1.0)
+    return albedo, lam, hit
+
+
+def _finish(img: Array) -> Array:
+    """Row 0 at the top, clipped to [0, 1]."""
+    return np.clip(img[::-1], 0.0, 1.0)
+
+
+def shade(v: View, *, shadows: bool = True) -> Array:
+    """Lambert shading of a :class:`View` (rows bottom-up as the eye pass)."""
+    albedo, lam, hit = _base_colour(v)
+    diffuse = lam * (v.lit if shadows else 1.0)
+    img = albedo * (AMBIENT + (1 - AMBIENT) * diffuse)[..., None]
+    return np.where(hit[..., None], img, SKY)
+
+
+def shadow_image(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", **kwargs) -> Array:
+    """Shadowed render (R, R, 3) of the seeded scene; ``kwargs`` as :func:`view`."""
+    return _finish(shade(view(near, far, fov, light, scheme, **kwargs)))
+
+
+def grid_image(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, every: int = 16, **kwargs) -> Array:
+    """Shadowed render with the texel grid, a line every ``every`` texels, projected on it.
+
+    A pixel is on a line when the index ⌊s·R/every⌋ or ⌊t·R/every⌋ (R the map resolution)
+    or the partition differs from its right or upper neighbour's.
+    """
+    if isinstance(every, bool) or int(every) != every or every < 1:
+        raise ValueError(f"every must be a whole number >= 1 (texels between grid lines), got {every!r}")
+    v = view(near, far, fov, light, scheme, **kwargs)
+    img = shade(v)
+    hit = v.triangle >= 0
+    ci = np.where(hit, np.floor(np.nan_to_num(v.s) * v.map_res / every), np.nan)
+    cj = np.where(hit, np.floor(np.nan_to_num(v.t) * v.map_res / every), np.nan)
+    line = np.zeros(hit.shape, bool)
+    for axis in (0, 1):
+        for a in (ci, cj, v.partition.astype(float)):
+            nb = np.roll(a, -1, axis=axis)
+            diff = (a != nb) & hit & np.roll(hit, -1, axis=axis)
+            if axis == 0:
+                diff[-1, :] = False
+            else:
+                diff[:, -1] = False
+            line |= diff
+    colour = GRID_COLOURS[np.maximum(v.partition, 0) % len(GRID_COLOURS)]
+    img = np.where(line[..., None], colour, img)
+    return _finish(img)
+
+
+def error_field(v: View, image_res: int | None = None) -> Array:
+    """Measured perspective error per pixel, max(m_x, m_z)·R_image/R_map [pixels per texel].
+
+    Central differences between the pixel's neighbours on the same planar face (NaN at face
+    borders and off the scene).
+    """
+    face = v.face
+    res = face.shape[0]
+    same_u = (face >= 0) & (np.roll(face, 1, 1) == face) & (np.roll(face, -1, 1) == face)
+    same_v = (face >= 0) & (np.roll(face, 1, 0) == face) & (np.roll(face, -1, 0) == face)
+    part = v.partition
+    same_u &= (np.roll(part, 1, 1) == part) & (np.roll(part, -1, 1) == part)
+    same_v &= (np.roll(part, 1, 0) == part) & (np.roll(part, -1, 0) == part)
+    same_u[:, [0, -1]] = False
+    same_v[[0, -1], :] = False
+    ok = same_u & same_v
+    pos = np.where(ok[..., None], v.position, 0.0)
+    pos[~ok] = [0.0, 0.0, 1.0]
+    out = np.full((res, res), np.nan)
+    for i, lm in enumerate(v.maps):
+        sel = ok & (part == i)
+        if not sel.any():
+            continue
+        got = _errors(lm, pos, sel, res, v.fov)
+        out[sel] = np.maximum(got["m_x"], got["m_z"])[sel]
+    return out * res / v.map_res
+
+
+def error_colours(err: ArrayLike, vmax: float = 64.0) -> Array:
+    """Colours (…, 3) of errors on the log scale: blue at ≤ 1, red at ≥ ``vmax``; grey for NaN."""
+    from matplotlib import colormaps
+
+    e = np.asarray(err, float)
+    if not vmax > 1:
+        raise ValueError(f"vmax must be > 1, got {vmax!r}")
+    with np.errstate(invalid="ignore", divide="ignore"):
+        x = np.clip(np.log(np.maximum(e, 1.0)) / np.log(vmax), 0.0, 1.0)
+    rgb = colormaps["jet"](np.nan_to_num(x, nan=0.0))[..., :3]
+    return np.where(np.isfinite(e)[..., None], rgb, 0.6)
+
+
+def error_image(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, vmax: float = 64.0, **kwargs) -> tuple[Array, Array]:
+    """(image (R, R, 3), error (R, R)) of the per-pixel measured perspective error; sky white.
+
+    Both have row 0 at the top.  Pixels at face borders (no central difference) take the
+    colour of a neighbour on the same row when there is one, so edges do not show as grey.
+    """
+    v = view(near, far, fov, light, scheme, **kwargs)
+    err = error_field(v)
+    # fill face-border pixels from the left/right neighbour (display only)
+    fill = err.copy()
+    for shift in (1, -1):
+        nb = np.roll(err, shift, axis=1)
+        fill = np.where(np.isnan(fill) & (v.triangle >= 0), nb, fill)
+    img = error_colours(fill, vmax)
+    img = np.where((v.triangle < 0)[..., None], 1.0, img)
+    # faint shading so the scene stays readable
+    _, lam, hit = _base_colour(v)
+    img = np.where(hit[..., None], img * (0.75 + 0.25 * lam)[..., None], img)
+    return _finish(img), err[::-1]
+
+
+def random_lights(count: int, seed: int = 0) -> Array:
+    """``count`` seeded unit vectors uniform on the sphere (towards the light)."""
+    if isinstance(count, bool) or int(count) != count or count < 1:
+        raise ValueError(f"count must be a whole number >= 1, got {count!r}")
+    v = np.random.default_rng(seed).normal(size=(int(count), 3))
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def analytic_max_error(scheme: str, near: float, far: float, fov: float, lights: ArrayLike, *, image_res: int = 1024, budget: int = 1024**2) -> Array:
+    """Max over maps of max(M_x, M_z)·R_image/R_map per light direction [pixels per texel]."""
+    r = schemes.evaluate(scheme, near, far, fov, np.asarray(lights, float))
+    rm = map_resolution(budget, r.M_x.shape[1])
+    return np.maximum(r.M_x, r.M_z).max(axis=1) * image_res / rm
+
+
+def measured_max_error(scheme: str, near: float, far: float, fov: float, lights: ArrayLike, *, image_res: int = 1024, budget: int = 1024**2, resolution: int = 128, cells: int = 8) -> Array:
+    """The same maxima measured on probes by the rasterizer (resolution² probe image)."""
+    lv = np.asarray(lights, float).reshape(-1, 3)
+    out = np.empty(len(lv))
+    for i, d in enumerate(lv):
+        m = measure(near, far, fov, d, scheme, resolution=resolution, cells=cells, map_resolution=16)
+        k = len(m.M_x)
+        out[i] = np.nanmax(np.maximum(m.measured_x, m.measured_z)) * image_res / map_resolution(budget, k)
+    return out
+
+
+def cdf(values: ArrayLike) -> tuple[Array, Array]:
+    """(sorted finite values, fraction ≤ each) of an empirical distribution."""
+    v = np.sort(np.asarray(values, float).ravel())
+    v = v[np.isfinite(v)]
+    return v, np.arange(1, v.size + 1) / max(v.size, 1)
+
+
+def error_cdf(schemes_: list[str], near: float = 1.0, far: float = 1000.0, fov: float = 60.0, *, directions: int = 2000, measured: int = 24,
+              seed: int = 0, image_res: int = 1024, budget: int = 1024**2, ax=None):
+    """Cumulative distributions of the maximum perspective error over random light directions.
+
+    Returns ``(fig, ax, columns)``; ``columns`` maps ``analytic[S]`` (sorted maxima over
+    ``directions``), ``fraction``, and ``measured[S]`` (measured maxima at the first
+    ``measured`` directions, unsorted, NaN-padded) with ``measured_direction`` indices.
+    """
+    from ..plotting import subplots
+
+    lights = random_lights(directions, seed)
+    if ax is None:
+        fig, ax = subplots()
+    else:
+        fig = ax.figure
+    cols: dict[str, Array] = {}
+    frac = np.arange(1, directions + 1) / directions
+    cols["fraction"] = frac
+    n_meas = min(int(measured), directions)
+    for i, sch in enumerate(schemes_):
+        a = analytic_max_error(sch, near, far, fov, lights, image_res=image_res, budget=budget)
+        xs, ys = cdf(a)
+        line, = ax.plot(xs, ys, label=sch)
+        cols[f"analytic[{sch}]"] = np.concatenate([xs, np.full(directions - xs.size, np.nan)])
+        if n_meas:
+            m = measured_max_error(sch, near, far, fov, lights[:n_meas], image_res=image_res, budget=budget)
+            mx, my = cdf(m)
+            ax.plot(mx, my, "o", ms=3, color=line.get_color(), alpha=0.8)
+            cols[f"measured[{sch}]"] = np.concatenate([m, np.full(directions - n_meas, np.nan)])
+    if n_meas:
+        cols["measured_direction"] = np.concatenate([np.arange(n_meas), np.full(directions - n_meas, np.nan)])
+    ax.set(xscale="log", xlabel="max perspective error [pixels per texel]", ylabel="fraction of light directions", ylim=(0, 1.02))
+    ax.axvline(1.0, color="0.5", lw=0.8, ls=":")
+    ax.legend(title=f"lines: analytic ({directions})\ndots: measured ({n_meas})", fontsize=7, title_fontsize=7, loc="lower right")
+    return fig, ax, cols
+
+
+# ----------------------------------------------------------------------------- CLI
+
+
+def _render(args: argparse.Namespace) -> int:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    f_over_n = float(args.f_over_n)
+    if not f_over_n > 1:
+        raise ValueError(f"--f-over-n must be > 1, got {args.f_over_n!r}")
+    out = Path(args.out)
+    if out.suffix.lower() != ".png":
+        raise ValueError(f"--out must be a .png file, got {args.out!r}")
+    if out.exists() and out.is_dir():
+        raise ValueError(f"--out must be a file, but {args.out!r} is a folder")
+    kw = dict(image_res=args.image_res, budget=args.res**2, seed=args.seed)
+    if args.what == "shadows":
+        img = shadow_image(1.0, f_over_n, args.fov, args.light, args.scheme, **kw)
+    elif args.what == "grid":
+        img = grid_image(1.0, f_over_n, args.fov, args.light, args.scheme, every=args.every, **kw)
+    else:
+        img, _ = error_image(1.0, f_over_n, args.fov, args.light, args.scheme, **kw)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    plt.imsave(out, img, metadata={"Software": None})
+    print(out)
+    return 0
+
+
+def add_render_parser(sub) -> argparse.ArgumentParser:
+    """Add the ``render`` subcommand to an ``add_subparsers`` object (of :class:`aliasing.cli._Parser`)."""
+    ren = sub.add_parser(
+        "render",
+        help="picture of a seeded scene: shadows, projected texel grid or per-pixel error",
+        description="Render a seeded ground-and-boxes scene (near 1, far = f/n, eye 1 above the ground) with one directional "
+        "light through a scheme's shadow maps sharing a texel budget of RES² texels; write a PNG.",
+        epilog="schemes: Standard | P | LogP | <warping rule>, alone or after ZP<k>+.  "
+        "lights: overhead | behind | front | gamma:DEG[@azimuth:DEG] (one direction).",
+    )
+    ren.add_argument("--scheme", default="Standard", help="scheme (default Standard)")
+    ren.add_argument("--f-over-n", default="100", help="depth ratio far/near (default 100)")
+    ren.add_argument("--fov", type=float, default=60.0, help="FULL field of view in degrees (default 60)")
+    ren.add_argument("--light", default="gamma:60@azimuth:30", help="one light direction (default gamma:60@azimuth:30)")
+    ren.add_argument("--what", choices=["shadows", "grid", "error"], default="shadows", help="picture (default shadows)")
+    ren.add_argument("--out", required=True, help="output PNG file")
+    ren.add_argument("--res", type=int, default=1024, help="texel budget as RES² texels over all maps (default 1024)")
+    ren.add_argument("--image-res", type=int, default=512, help="image resolution in pixels per side (default 512)")
+    ren.add_argument("--every", type=int, default=16, help="grid: texels between grid lines (default 16)")
+    ren.add_argument("--seed", type=int, default=1, help="scene seed (default 1)")
+    ren.set_defaults(run=_render)
+    return ren
