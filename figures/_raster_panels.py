@@ -44,5 +44,12 @@ def main(out_dir: Path, name: str, what: str) -> list[Path]:
         ax.imshow(img, interpolation="nearest")
         ax.set_axis_off()
         ax.set_title(f"{sch} ({val:.3g})", fontsize=9)
+    if what == "error":  # the colours of pictures.error_colours: jet on a log scale from 1 to 64
+        from matplotlib import colormaps
+        from matplotlib.cm import ScalarMappable
+        from matplotlib.colors import LogNorm
+
+        bar = fig.colorbar(ScalarMappable(LogNorm(1.0, 64.0), colormaps["jet"]), ax=axes[-1], fraction=0.05, pad=0.02)
+        bar.set_label("error [pixels per texel]", fontsize=8)
     fig.suptitle(f"{name}: f/n = 100, {LIGHT}, 256² texels; value: " + {"shadows": "lit fraction", "grid": "line fraction", "error": "99th pct error"}[what], fontsize=9)
     return save(fig, out_dir, name, cols)
