@@ -2,7 +2,9 @@
 
 Grammar (case-insensitive)::
 
-    scheme := base | "ZP" k | "ZP" k "+" base
+    scheme := base | "ZP" k | "ZP" k "+" base | faces ["+ZP" k] "+" fbase
+    faces  := "FP" | "FPc" | "FPcs"   face partitioning (Lloyd 2007 §6.1.3, §6.5; aliasing.faces)
+    fbase  := "P" | "LogP" | "Log" | "Standard"   the side faces' parameterization
     base   := "Standard"            uniform map (alias "Uniform")
             | "P"                   perspective, Lloyd 2007 eq. 79 shaping (rule "p")
             | "Po"                  perspective, LiSPSM's 1/sin γ as in Lloyd 2007 Table 3 (rule "po")
@@ -11,7 +13,9 @@ Grammar (case-insensitive)::
             | RULE                  perspective with any registered warping rule (see WARPING_RULES)
 
 ``ZP<k>`` splits the frustum into k self-similar partitions (Lloyd 2006 eqs. 15–16), each
-with its own map fitted separately; a scheme's S̄ is the sum over its maps.
+with its own map fitted separately; a scheme's S̄ is the sum over its maps.  Face-partitioned
+schemes need a different number of maps per direction (``Result.map_count``); inside them
+``ZP<k>`` splits each side face into k depth ranges (Lloyd 2006's FP+ZP+W).
 
 Example
 -------
@@ -29,10 +33,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
-from . import directional, geometry, warping
+from . import directional, faces, geometry, warping
 
 Array = NDArray[np.float64]
-GRAMMAR = "Standard | P | Po | LogP (Log) | Sopt | LogSopt | <warping rule> | ZP<k> | ZP<k>+<any of these>"
+GRAMMAR = "Standard | P | Po | LogP (Log) | Sopt | LogSopt | <warping rule> | ZP<k> | ZP<k>+<any of these> | FP|FPc|FPcs[+ZP<k>]+P|LogP|Standard"
+_FACE_VARIANTS = {"fp": "FP", "fpc": "FPc", "fpcs": "FPcs"}
+_FACE_BASES = {"p": ("p", "perspective", "P"), "logp": ("logp", "logperspective", "LogP"), "log": ("logp", "logperspective", "LogP"), "standard": ("uniform", "uniform", "Standard"), "uniform": ("uniform", "uniform", "Standard")}
 _BASES = {
     "standard": ("uniform", "uniform"),
     "uniform": ("uniform", "uniform"),
@@ -53,6 +59,7 @@ class Scheme:
     k: int
     rule: str
     parameterization: str
+    faces: str = ""  # "", "fp", "fpc" or "fpcs"
 
 
 @dataclass(frozen=True)
@@ -65,7 +72,13 @@ class Result:
     S: Array  # (N,): Σ_k M_x M_z
     n_prime: Array  # (N, K) [world units, light-plane]
     eta: Array  # (N, K); NaN where n′ lies outside η's range (warps stronger than PSM)
-    maps: int
+    maps: int  # K map slots (columns); face partitions use only some of them per direction
+    map_count: Array | None = None  # (N,) maps per direction; None: always ``maps``
+
+    @property
+    def maps_used(self) -> Array:
+        """Shadow maps each direction needs ``(N,)`` (Lloyd 2007 Table 3's "# SMs")."""
+        return np.full(self.S.shape, self.maps) if self.map_count is None else self.map_count
 
 
 def parse(name: str) -> Scheme:
@@ -74,9 +87,12 @@ def parse(name: str) -> Scheme:
     Example
     -------
     >>> parse("zp7+log")
-    Scheme(name='ZP7+LogP', k=7, rule='logp', parameterization='logperspective')
+    Scheme(name='ZP7+LogP', k=7, rule='logp', parameterization='logperspective', faces='')
     """
     text = str(name).strip()
+    fm = re.fullmatch(r"(fp|fpc|fpcs)(?:\+zp(\d+))?\+(.+)", text, flags=re.IGNORECASE)
+    if fm:
+        return _parse_faces(name, fm)
     m = re.fullmatch(r"zp(\d+)(?:\+(.+))?", text, flags=re.IGNORECASE)
     k, base = (int(m.group(1)), m.group(2) or "standard") if m else (1, text)
     if m and k < 1:
@@ -92,6 +108,17 @@ def parse(name: str) -> Scheme:
     if rule == "sopt" and param == "logperspective":
         label = "LogSopt"
     return Scheme(name=(f"ZP{k}" if label == "Standard" else f"ZP{k}+{label}") if m else label, k=k, rule=rule, parameterization=param)
+
+
+def _parse_faces(name: str, fm: re.Match) -> Scheme:
+    variant, k, base = fm.group(1).lower(), int(fm.group(2) or 1), fm.group(3).strip().lower()
+    if k < 1:
+        raise ValueError(f"k in {name!r} must be >= 1; grammar: {GRAMMAR}")
+    if base not in _FACE_BASES:
+        raise ValueError(f"unknown side-face parameterization in {name!r}: face partitions take P, LogP or Standard; grammar: {GRAMMAR}")
+    rule, param, label = _FACE_BASES[base]
+    zp = f"+ZP{k}" if fm.group(2) else ""
+    return Scheme(name=f"{_FACE_VARIANTS[variant]}{zp}+{label}", k=k, rule=rule, parameterization=param, faces=variant)
 
 
 def z_partitions(near: float, far: float, k: int) -> tuple[Array, Array]:
@@ -128,6 +155,8 @@ def evaluate(scheme: str | Scheme, near: float = 1.0, far: float = 1000.0, fov: 
         Passed to the warping rule (e.g. ``c_fraction`` for P/LogP, ``focus`` for TSM).
     """
     sch = parse(scheme) if isinstance(scheme, str) else scheme
+    if sch.faces:
+        return _evaluate_faces(sch, near, far, fov, light, edges, **options)
     if edges is None:
         n_i, f_i = z_partitions(near, far, sch.k)
     else:
@@ -145,6 +174,18 @@ def evaluate(scheme: str | Scheme, near: float = 1.0, far: float = 1000.0, fov: 
     M_x, M_z = mx.max(axis=-1), mz.max(axis=-1)
     eta = _eta_or_nan(npr, n_i, f_i, lf.depth)
     return Result(sch, M_x, M_z, (M_x * M_z).sum(axis=-1), np.asarray(npr, float), eta, sch.k)
+
+
+def _evaluate_faces(sch: Scheme, near: float, far: float, fov: float, light: str | ArrayLike, edges: ArrayLike | None, **options: ArrayLike) -> Result:
+    """Face partitioning through :func:`aliasing.faces.face_errors` (options: tau0, tau1)."""
+    if edges is not None:
+        raise ValueError(f"edges apply to z-partitions, not to the face partitions of {sch.name}")
+    unknown = set(options) - {"tau0", "tau1"}
+    if unknown:
+        raise ValueError(f"unknown options for {sch.name}: {', '.join(sorted(unknown))}; face partitions take tau0, tau1")
+    r = faces.face_errors(sch.faces, sch.parameterization, near, far, fov, geometry.lights(light), k=sch.k, **{k: float(v) for k, v in options.items()})
+    nan = np.full(r.M_x.shape, np.nan)
+    return Result(sch, r.M_x, r.M_z, r.S, nan, nan, r.M_x.shape[1], r.maps)
 
 
 def _explicit_partitions(edges: ArrayLike | tuple[ArrayLike, ArrayLike], near: float, far: float) -> tuple[Array, Array]:

@@ -16,7 +16,11 @@ and lambdified here (never retyped):
 Markers: the general vertex evaluation of :func:`aliasing.schemes.evaluate` for ``ZP<j>``
 (ZP) and ``ZP<j>+LiSPSM`` (ZP+W, LiSPSM's rule n′ = n′_LiSPSM/sin γ, which becomes n′ = ∞
 when the light is behind) at ``overhead`` / ``behind``; they equal the closed forms to
-rounding (the tests check 1e-12).
+rounding (the tests check 1e-12).  FP+ZP+W behind is also evaluated generally, by
+:mod:`aliasing.faces` (``FPc+ZP<k>+P``: the near face and four side faces, each split
+into k depth ranges and warped in a bisector-aligned warping frustum, Lloyd 2006 §5.1);
+it equals eq. 21 to rounding.  Overhead, the general evaluation needs only the bottom
+face (the others are edge-on), i.e. k maps — eq. 19's "only one face is visible".
 
 How FP+ZP+W counts shadow maps (the paper does not say it in one place; our reading):
 
@@ -103,6 +107,8 @@ def data(maps: int = MAPS) -> dict[str, np.ndarray]:
     for light in ("overhead", "behind"):
         for key, base in (("ZP", ""), ("ZPW", "+LiSPSM")):
             cols[f"general_{key}_{light}"] = np.array([schemes.evaluate(f"ZP{int(m)}{base}", NEAR, FAR, FOV, light).S[0] for m in j])
+    fp_general = lambda jj: np.array([schemes.evaluate(f"FPc+ZP{int(k)}+P", NEAR, FAR, FOV, "behind").S[0] for k in (jj - 1) / 4])  # noqa: E731
+    cols["general_FPZPW_behind"] = _where(np.isfinite(cols["FPZPW_behind"]), fp_general, j)
     return cols
 
 
@@ -120,8 +126,9 @@ def main(out_dir: Path) -> list[Path]:
                 ax.plot(j[ok], y[ok], ls="--", lw=1.2, label="ZP+W (= ZP, eq. 20)", **style[key])
             else:
                 ax.plot(j[ok], y[ok], marker="o" if key == "FPZPW" else None, ms=4, label=labels[key], **style[key])
-        for key, marker in (("ZP", "x"), ("ZPW", "+")):
-            ax.plot(j, cols[f"general_{key}_{light}"], ls="none", marker=marker, ms=5, color="k", alpha=0.7, label=f"{labels[key]}, general evaluation")
+        for key, marker in (("ZP", "x"), ("ZPW", "+"), ("FPZPW", "1")):
+            if f"general_{key}_{light}" in cols:
+                ax.plot(j, cols[f"general_{key}_{light}"], ls="none", marker=marker, ms=6, color="k", alpha=0.7, label=f"{labels[key]}, general evaluation")
         ax.set(xlabel="number of shadow maps j", yscale="log", xlim=(0, j[-1] + 1))
     axes[0].axhline(cols["optimal"][0], color="0.5", ls=":", lw=1, label=f"optimal, ln(f/n)/(2 tanθ) = {cols['optimal'][0]:.2f}")
     axes[0].set(ylabel=r"storage factor $\bar S$", title="light overhead (eqs. 17, 18, 19; FP at j = 4k)")

@@ -59,6 +59,10 @@ def test_fig12_general_evaluation_equals_closed_forms(fig12):
             np.testing.assert_allclose(fig12[f"general_{key}_{light}"], fig12[f"{key}_{light}"], rtol=1e-12)
     # no warping from behind ("the view frustum is square"): ZP+W = ZP
     np.testing.assert_array_equal(fig12["ZPW_behind"], fig12["ZP_behind"])
+    # eq. 21 (FP+ZP+W behind) against the general face-partition evaluation at j = 4k + 1
+    fp = np.isfinite(fig12["FPZPW_behind"])
+    assert fp.sum() == 9
+    np.testing.assert_allclose(fig12["general_FPZPW_behind"][fp], fig12["FPZPW_behind"][fp], rtol=1e-12)
 
 
 def test_fig12_map_counting(fig12):
