@@ -44,7 +44,8 @@ TARGETS: dict[str, Target] = {
         Target("raster-grid", "raster_grid", "Rasterizer: shadow-map texel grid projected on the scene, every 8 texels (Lloyd 2006 Fig. 15 style)"),
         Target("raster-error", "raster_error", "Rasterizer: measured per-pixel perspective error, log colour scale blue<=1..red (Lloyd 2007 Fig. 13 style)"),
         Target("raster-cdf", "raster_cdf", "Rasterizer: CDF of max error over random light directions, analytic + measured (Lloyd 2007 Fig. 17 style, f/n=1000)"),
-        Target("lloyd2007-table3", "lloyd2007_table3", "Lloyd 2007 Table 3, non-FP rows, beside the printed values (f/n=1000, theta=30)"),
+        Target("lloyd2007-table3", "lloyd2007_table3", "Lloyd 2007 Table 3, all 16 rows (FP/FPc/FPcs included), beside the printed values (f/n=1000, theta=30)"),
+        Target("lloyd2007-fig15", "lloyd2007_fig15", "Lloyd 2007 Fig. 15: S over gamma, ZPk with uniform/P/LogP maps vs FP+LogP and FPcs+LogP (f/n=1024, theta=30)"),
     )
 }
 

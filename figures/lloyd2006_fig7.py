@@ -3,13 +3,16 @@
 log10 S̄ for every directional light above the viewer, seen from above (orthographic
 projection of the hemisphere, :func:`aliasing.geometry.hemisphere_map`): overhead in the
 centre, light behind the viewer on the left (u = −1), in front of the viewer on the right
-(u = +1), sideways along v.  Two panels with one colour scale:
+(u = +1), sideways along v.  Three panels with one colour scale:
 
 * without warping: a standard (uniform) shadow map, n′ = ∞ (scheme ``Standard``);
 * with warping: LiSPSM, n′ = n′_LSPSM.  The paper does not say how n′_LSPSM varies with
   the light direction; we use LiSPSM's own rule n′ = (n + √(fn))/sin γ (warping rule
   ``lispsm``, Wimmer et al. 2004 §4.4), γ folded to [0°, 90°], which reverts continuously
-  to n′ = ∞ as the light moves behind or in front of the viewer.
+  to n′ = ∞ as the light moves behind or in front of the viewer;
+* face partitioning with warping (§5.1, "FP+W"): one LiSPSM map per chosen face, its light
+  space aligned with the bisector of the face's projected side edges — scheme ``FPc+P`` of
+  :mod:`aliasing.faces` (3–5 maps; their S̄ summed).
 
 S̄ = M_x·M_z with M_x, M_z the maxima of m_x, m_z over the frustum's 8 vertices in Wimmer
 light space (§4.4; :mod:`aliasing.directional`), unit resolutions.
@@ -43,9 +46,11 @@ Paper inconsistencies and what is not reproduced:
 * §4.4 writes "with and without warping (n′ = ∞ and n′ = n′_LSPSM, respectively)": the
   pairing is reversed; without warping is n′ = ∞ (the extraction also prints ∞ as "1").
 * §5.1 says "Figure 7 shows how face partitioning reduces the error for the problematic
-  light/camera configurations", so the printed figure seems to have a face-partitioned
-  (FP+W) panel too; the caption does not list panels and the toolkit has no face
-  partitioning yet, so only the two panels of §4.4 are drawn.
+  light/camera configurations", so the printed figure has a face-partitioned (FP+W) panel
+  the caption does not list; ours is the third.  It does what the text says: behind and
+  in front S̄ = 2(f/n − 1) + 1 ≈ 2.0·10³ (log10 3.30) instead of 10⁶, overhead the same
+  865 as LiSPSM, and its maximum over the disc is more than two decades below the other
+  panels' (log10 ≈ 3.5; Lloyd 2007 L18: near the four lateral-edge directions it peaks).
 """
 
 from __future__ import annotations
@@ -61,7 +66,7 @@ from aliasing.plotting import save, subplots
 
 NAME = "lloyd2006-fig7"
 NEAR, FAR, FOV = 1.0, 1000.0, 60.0  # not printed for Fig. 7: f/n = 1000, θ = 30° as in Fig. 12
-SCHEMES = {"standard": "Standard", "lispsm": "lispsm"}  # column suffix → scheme name
+SCHEMES = {"standard": "Standard", "lispsm": "lispsm", "fpw": "FPc+P"}  # column suffix → scheme name
 RESOLUTION = 201
 
 
@@ -88,8 +93,8 @@ def main(out_dir: Path) -> list[Path]:
     grids = {key: cols[f"log10S_{key}"].reshape(res, res) for key in SCHEMES}
     lo = min(np.nanmin(g) for g in grids.values())
     hi = max(np.nanmax(g) for g in grids.values())
-    fig, axes = subplots(2, width=4.4, height=4.4)
-    titles = {"standard": "without warping (standard, $n'=\\infty$)", "lispsm": "with warping (LiSPSM, $n'=(n+\\sqrt{fn})/\\sin\\gamma$)"}
+    fig, axes = subplots(3, width=4.4, height=4.4)
+    titles = {"standard": "without warping (standard, $n'=\\infty$)", "lispsm": "with warping (LiSPSM, $n'=(n+\\sqrt{fn})/\\sin\\gamma$)", "fpw": "face partitioning + warping (FP+W)"}
     for ax, key in zip(axes, SCHEMES):
         im = ax.imshow(grids[key], origin="lower", extent=(-1, 1, -1, 1), vmin=lo, vmax=hi, cmap="viridis", interpolation="nearest")
         ax.add_patch(Circle((0, 0), 1.0, fill=False, lw=1.2, color="k"))
@@ -98,7 +103,7 @@ def main(out_dir: Path) -> list[Path]:
         ax.title.set_fontsize(9)
         centre = grids[key][res // 2, res // 2]
         ax.annotate(f"{centre:.2f}", (0, 0), color="w", ha="center", va="center", fontsize=8)
-    cbar = fig.colorbar(im, cax=axes[1].inset_axes((1.05, 0.0, 0.05, 1.0)))
+    cbar = fig.colorbar(im, cax=axes[-1].inset_axes((1.05, 0.0, 0.05, 1.0)))
     cbar.set_label(r"$\log_{10}\bar S$")
     fig.suptitle(f"Lloyd et al. 2006 Fig. 7: storage factor over the hemisphere (f/n = {FAR / NEAR:g}, θ = {FOV / 2:g}°)", fontsize=10)
     return save(fig, out_dir, NAME, cols)

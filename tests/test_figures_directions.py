@@ -27,9 +27,9 @@ def fig7():
 
 def test_fig7_columns_and_disc(fig7):
     res, cols, grids = fig7
-    assert list(cols) == ["u", "v", "log10S_standard", "log10S_lispsm"]
+    assert list(cols) == ["u", "v", "log10S_standard", "log10S_lispsm", "log10S_fpw"]
     outside = 1.0 - grids["u"] ** 2 - grids["v"] ** 2 < 0  # hemisphere_map's test
-    for key in ("log10S_standard", "log10S_lispsm"):
+    for key in ("log10S_standard", "log10S_lispsm", "log10S_fpw"):
         assert np.isnan(grids[key][outside]).all() and np.isfinite(grids[key][~outside]).all()
     with pytest.raises(ValueError, match="odd"):
         lloyd2006_fig7.data(20)
@@ -64,9 +64,23 @@ def test_fig7_what_the_text_says(fig7):
     assert np.all(lis[away & np.isfinite(lis)] < std[away & np.isfinite(std)])
 
 
+def test_fig7_face_partitioning_panel(fig7):
+    # Lloyd 2006 §5.1: "face partitioning reduces the error for the problematic light/camera
+    # configurations and leads to a more uniform error distribution over all light directions"
+    res, _, grids = fig7
+    c = res // 2
+    fp, lis, std = grids["log10S_fpw"], grids["log10S_lispsm"], grids["log10S_standard"]
+    a = lloyd2006_fig7.FAR / lloyd2006_fig7.NEAR
+    assert fp[c, c] == pytest.approx(lis[c, c], rel=1e-12)  # overhead: the bottom face alone
+    for edge in (fp[c, 0], fp[c, -1]):  # behind / in front: four faces and the near face
+        assert edge == pytest.approx(np.log10(2 * (a - 1) + 1), rel=1e-12)
+    assert np.nanmax(fp) < np.nanmax(lis) - 2 and np.nanmax(fp) < np.nanmin(std) - 2
+    assert np.nanmax(fp) - np.nanmin(fp) < 1.0  # under a decade of spread (LiSPSM: > 3)
+
+
 def test_fig7_symmetries(fig7):
     _, _, grids = fig7
-    for key in ("log10S_standard", "log10S_lispsm"):
+    for key in ("log10S_standard", "log10S_lispsm", "log10S_fpw"):
         g = grids[key]
         # sideways mirror (x → −x) and l → −l with the frustum's up/down symmetry (behind ↔ front)
         np.testing.assert_allclose(g, g[::-1, :], rtol=1e-9)
