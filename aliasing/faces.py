@@ -112,6 +112,37 @@ def chosen_faces(light: ArrayLike, fov: float) -> Array:
     return side * (lv @ normals.T) < -_EDGE_ON
 
 
+def partition_of(points: ArrayLike, near: float, far: float, fov: float, light: ArrayLike) -> NDArray[np.int_]:
+    """The face partition (0 near, 1 bottom, 2 top, 3 left, 4 right) of eye-space points.
+
+    A point belongs to the chosen face that its light ray reaches first while travelling
+    towards smaller eye depth — the exit face along −l̂ when v̂·l̂ ≥ 0, else the entry face
+    along +l̂ (eq. 54): the partition polyhedra are the faces swept along the light.  Points
+    ``(..., 3)`` inside the frustum, one directional ``light`` ``(3,)``; returns ``(...)``.
+
+    Example
+    -------
+    >>> int(partition_of([0.0, 0.0, 500.0], 1.0, 1000.0, 60.0, [0.0, 1.0, 0.0]))  # overhead → bottom
+    1
+    """
+    n, f = (float(v) for v in check.frustum(near, far))
+    pts = check.as_float_array(points, "points")
+    if pts.shape[-1:] != (3,):
+        raise ValueError(f"points must have shape (..., 3), got {pts.shape}")
+    lv = _unit(light)
+    if lv.shape[0] != 1:
+        raise ValueError("partition_of takes one light direction (3,)")
+    travel = -lv[0] if lv[0] @ VIEW >= 0 else lv[0]  # eq. (54): towards the smaller eye depth
+    normal, *_ = side_frames(fov)
+    normals = np.vstack([-VIEW, normal])  # (5, 3), the planes n̂·p = h with h = −n (near), 0 (sides)
+    offset = np.array([-n, 0.0, 0.0, 0.0, 0.0])
+    speed = normals @ travel
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (offset - pts @ normals.T) / speed
+    t = np.where(speed > _EDGE_ON, np.maximum(t, 0.0), np.inf)
+    return np.argmin(t, axis=-1)
+
+
 def face_errors(variant: str, parameterization: str, near: float, far: float, fov: float, light: ArrayLike, *, k: int = 1, tau0: float = TAU0, tau1: float = TAU1) -> FaceResult:
     """M_x, M_z, S̄ and map counts of FP, FPc or FPcs for every light direction.
 

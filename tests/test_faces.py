@@ -240,3 +240,25 @@ def test_table3_face_rows():
     for row, value in measured.items():
         assert ours[row]["S_mean"] == pytest.approx(value, rel=1e-3)
     assert round(ours["FPcs+Log"]["maps"], 1) == T3.PRINTED["FPcs+Log"][5]  # 3.8 with our τ0 = 120°
+
+
+def test_partition_polyhedra_are_the_chosen_faces_swept_along_the_light():
+    rng = np.random.default_rng(5)
+    d = rng.uniform(1.0, 1000.0, 20_000)
+    xy = rng.uniform(-1, 1, (20_000, 2)) * d[:, None] * TAN
+    pts = np.column_stack([xy, d])
+    for light in geometry.sphere_directions(12):
+        idx = faces.partition_of(pts, 1.0, 1000.0, FOV, light)
+        chosen = np.flatnonzero(faces.chosen_faces(light, FOV)[0])
+        assert set(np.unique(idx)) <= set(chosen)
+        # along the ray to its face the eye depth decreases: the face holds the minimum d_e
+        travel = -light if light[2] >= 0 else light
+        assert travel[2] <= 0
+    # points on a chosen face belong to it
+    _, _, _, edges = faces.side_frames(FOV)
+    light = geometry.light_direction(60.0, 20.0)  # in front and above: the bottom face is an exit face
+    assert faces.chosen_faces(light, FOV)[0, 1]
+    on_bottom = 500.0 * (0.3 * edges[0, 0] + 0.7 * edges[0, 1])
+    assert faces.partition_of(on_bottom, 1.0, 1000.0, FOV, light) == 1
+    with pytest.raises(ValueError, match="one light"):
+        faces.partition_of(on_bottom, 1.0, 1000.0, FOV, geometry.sphere_directions(2))
