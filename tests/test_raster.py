@@ -413,6 +413,7 @@ def test_raycast_reference_inputs(monkeypatch):
         raycast.agreement(m, m, tri, tolerance=-1.0)
     assert raycast.agreement(m, m, tri) == 1.0
     monkeypatch.setitem(sys.modules, "embreex", None)  # as if the extra were not installed
+    assert raycast.available() is False
     with pytest.raises(ValueError, match=r"pip install 'aliasing\[bench\]'"):
         raycast.raycast_shadow_map(tri, lm, 4)
     with pytest.raises(ValueError, match="chunk must be"):

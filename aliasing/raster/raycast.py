@@ -27,8 +27,6 @@ True
 
 from __future__ import annotations
 
-import importlib.util
-
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -47,7 +45,11 @@ def available() -> bool:
     >>> isinstance(available(), bool)
     True
     """
-    return importlib.util.find_spec("embreex") is not None
+    try:
+        _embree()
+    except ValueError:
+        return False
+    return True
 
 
 def _embree():
