@@ -117,8 +117,7 @@ def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: st
     if lv.shape[0] != 1:
         raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
     lv = lv[0]
-    if not bias >= 0:
-        raise ValueError(f"bias must be >= 0 (depth-test tolerance in world units), got {bias!r}")
+    bias = _bias(bias)
     maps, edges = light_maps(near, far, fv, lv, scheme)
     rm = map_resolution(budget, len(maps))
     if scene is None:
@@ -151,6 +150,10 @@ def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: st
         sm = shadow_map(sc.triangles, lm, rm)
         lit[sel] = shadow_test(lm, sm, sc.triangles, p, nrm[sel], bias=bias)
     return View(sc, n_ground, eb.position, eb.normal, eb.triangle, face, maps, edges, rm, np.where(hit, part, -1), s_all, t_all, lit, lv, fv)
+
+
+def _bias(value: float) -> float:
+    return float(check.closed_range(value, "bias", 0.0, np.inf, " world units (depth-test tolerance)"))
 
 
 def shadow_test(lm: LightMap, sm: DepthMap, triangles: ArrayLike, points: ArrayLike, normals: ArrayLike, *, bias: float = BIAS) -> NDArray[np.bool_]:
@@ -210,8 +213,7 @@ def shadow_test(lm: LightMap, sm: DepthMap, triangles: ArrayLike, points: ArrayL
     nrm = check.as_float_array(normals, "normals")
     if p.shape[-1:] != (3,) or nrm.shape != p.shape:
         raise ValueError(f"points and normals must have the same shape (..., 3), got {p.shape} and {nrm.shape}")
-    if not bias >= 0:
-        raise ValueError(f"bias must be >= 0 (depth-test tolerance in world units), got {bias!r}")
+    bias = _bias(bias)
     if sm.triangle.size and int(sm.triangle.max()) >= len(tri):
         raise ValueError("triangles must be the scene of sm (sm names a triangle beyond them)")
     rm = sm.resolution
