@@ -4,14 +4,22 @@ Times depth maps of a seeded ~10,000-triangle scene (a ground grid of 2·50² tr
 417 boxes of 12, over f/n = 1000) through the Standard, P and LogP maps of one light
 (γ = 60°, azimuth 20°, fov 60°), and the eye pass, at the given resolutions; best of
 ``--repeats`` runs (time.perf_counter), setup (scene, map fit) outside the timed region.
+Beside each map, in the same run, the ray-casting reference
+(:func:`aliasing.raster.raycast.raycast_shadow_map`, Intel Embree through embreex: one
+orthographic ray per texel through its centre mapped back to the light plane, BVH build
+included) is timed the same way; the script prints raster / ray-cast time and the fraction of
+texels whose depths agree (:func:`aliasing.raster.raycast.agreement`).  Without embreex
+(``pip install 'aliasing[bench]'``) it says so on one line and skips that part.
 Then, once per resolution and outside the timings, the peak of traced allocations
 (tracemalloc) of one LogP map.  Pin one core with e.g. ``taskset -c 0`` and
-``OMP_NUM_THREADS=1``; the rasterizer itself does not use threads.
+``OMP_NUM_THREADS=1``; the rasterizer itself does not use threads, and Embree's threads
+(TBB, BVH build only) are held to the pinned core.
 
 Usage::
 
     python benchmarks/raster.py                       # 2048², best of 3
     python benchmarks/raster.py --res 2048 4096 --repeats 5
+    python benchmarks/raster.py --no-raycast          # without the reference
 """
 
 from __future__ import annotations
@@ -27,6 +35,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 from aliasing import raster  # noqa: E402
+from aliasing.raster import raycast  # noqa: E402
 
 NEAR, FAR, FOV, LIGHT = 1.0, 1000.0, 60.0, "gamma:60@azimuth:20"
 
@@ -46,7 +55,11 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--no-memory", action="store_true", help="skip the tracemalloc peak")
+    ap.add_argument("--no-raycast", action="store_true", help="skip the ray-casting reference")
     args = ap.parse_args(argv)
+    cast = not args.no_raycast and raycast.available()
+    if not args.no_raycast and not cast:
+        print("ray-casting reference skipped: embreex is not installed (pip install 'aliasing[bench]')")
     scene = raster.ground_and_boxes(NEAR, FAR, FOV, boxes=417, ground_cells=50, seed=args.seed)
     print(f"scene: {len(scene.triangles)} triangles, seed {args.seed}; light {LIGHT}, f/n {FAR / NEAR:g}, fov {FOV:g}")
     maps = {name: raster.light_map(NEAR, FAR, FOV, LIGHT, name) for name in ("Standard", "P", "LogP")}
@@ -57,6 +70,12 @@ def main(argv: list[str] | None = None) -> None:
             times[name] = sec
             cover = float(np.isfinite(m.depth).mean())
             print(f"{res}² {name:8s} depth map {sec:7.3f} s   covered {cover:6.1%}   rasterized {m.rasterized}, degenerate {m.degenerate}")
+            if cast:
+                ray_sec, r = best_of(lambda lm=lm: raycast.raycast_shadow_map(scene.triangles, lm, res), args.repeats)
+                agree = raycast.agreement(m, r, scene.triangles)
+                differ = int((m.triangle != r.triangle).sum())
+                print(f"{res}² {name:8s} ray cast  {ray_sec:7.3f} s   raster / ray cast {sec / ray_sec:.2f}   "
+                      f"depths agree on {agree:.5%} of texels ({res * res * (1 - agree):.0f} differ; {differ} name another triangle)")
         # LogP's map covers more of the scene than Standard's (it fits the frustum tighter in t):
         # LogP / P compares the logarithmic rasterization with the same map rasterized straight
         print(f"{res}² LogP / P {times['LogP'] / times['P']:.2f}, LogP / Standard {times['LogP'] / times['Standard']:.2f}, P / Standard {times['P'] / times['Standard']:.2f}")

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from aliasing import geometry, raster, schemes
-from aliasing.raster import scenes
+from aliasing.raster import raycast, scenes
 
 R = sys.modules["aliasing.raster.rasterize"]
 
@@ -151,20 +151,28 @@ def test_rows_outside_and_huge_triangles_bounded_by_chunk():
 # ----------------------------------------------------------------------------- shadow maps
 
 
-def _texel_to_light_plane(lm, res: int):
-    c = (np.arange(res) + 0.5) / res
-    s, t = np.meshgrid(c, c)
-    npr, depth = lm.n_prime, float(lm.frustum.depth[0, 0])
-    x_lo, x_hi = float(lm.frustum.x_lo[0, 0]), float(lm.frustum.x_hi[0, 0])
-    if lm.parameterization == "logperspective":
-        y = npr * np.expm1(t * np.log1p(depth / npr))  # inverse of eq. 77 (y0 = 0, a = n')
-    elif np.isinf(npr):
-        y = t * depth
-    else:
-        y = t * npr * depth / (npr + depth - t * depth)  # inverse of eq. 6
-    zp = 1.0 if np.isinf(npr) else 1.0 + y / npr
-    x = (x_lo + s * (x_hi - x_lo)) * zp
-    return x, y
+@pytest.mark.parametrize("scheme", ["Standard", "P", "LogP"])
+def test_inverse_map_round_trip(scheme):
+    """LightMap.inverse undoes LightMap.coordinates (eqs. 5–6, 77) both ways; texel_centres are its grid."""
+    lm = raster.light_map(1.0, 100.0, 60.0, "gamma:70@azimuth:10", scheme)
+    rng = np.random.default_rng(3)
+    s, t = rng.uniform(-0.1, 1.1, (2, 500))
+    x, y = lm.inverse(s, t)
+    xl, _, zl = lm.basis
+    pts = x[:, None] * xl + (y + lm.y_offset)[:, None] * zl + rng.normal(size=(500, 1)) * lm.basis[1]
+    s2, t2, _, _ = lm.coordinates(pts)
+    np.testing.assert_allclose(s2, s, atol=1e-12)
+    np.testing.assert_allclose(t2, t, atol=1e-12)
+    pv = rng.dirichlet(np.ones(8), 200) @ geometry.frustum_vertices(1.0, 100.0, 60.0)  # points in the view frustum
+    sv, tv, _, _ = lm.coordinates(pv)
+    xv, yv, _ = lm.light_plane(pv)
+    np.testing.assert_allclose(np.stack(lm.inverse(sv, tv)), np.stack([xv, yv]), rtol=1e-10, atol=1e-10)
+    cx, cy = lm.texel_centres(8)
+    ex, ey = lm.inverse((np.arange(8) + 0.5) / 8, ((np.arange(8) + 0.5) / 8)[:, None])
+    np.testing.assert_array_equal(cx, ex)
+    np.testing.assert_array_equal(cy, ey)
+    with pytest.raises(ValueError, match="must not be NaN"):
+        lm.inverse(np.nan, 0.5)
 
 
 @pytest.mark.parametrize("scheme", ["Standard", "P", "LogP"])
@@ -182,7 +190,7 @@ def test_shadow_map_depth_is_exact_light_height(scheme):
     tri = np.array([[o + 500 * e1 - 300 * e2, o - 500 * e1 - 300 * e2, o + 600 * e2]])
     res = 96
     m = raster.shadow_map(tri, lm, res)
-    x, y = _texel_to_light_plane(lm, res)
+    x, y = lm.texel_centres(res)
     xl, yl, zl = lm.basis
     base = x[..., None] * xl + (y + lm.y_offset)[..., None] * zl
     height = (cpl - base @ n) / (yl @ n)
@@ -199,7 +207,7 @@ def test_logarithmic_rasterization_against_straight_edges():
     rng = np.random.default_rng(11)
     verts = geometry.frustum_vertices(1.0, 100.0, 60.0)
     res = 128
-    x, y = _texel_to_light_plane(lm, res)
+    x, y = lm.texel_centres(res)
     mismatches = 0
     for _ in range(6):
         w = rng.dirichlet(np.ones(8), size=3)
@@ -372,3 +380,43 @@ def test_partition_maps_match_the_scheme():
     ref = schemes.evaluate("ZP3+LogP", 1.0, 1000.0, 60.0, "gamma:50@azimuth:70")
     np.testing.assert_allclose([m.n_prime for m in maps], ref.n_prime[0], rtol=1e-12)
     assert all(m.parameterization == "logperspective" for m in maps)
+
+
+# ----------------------------------------------------------------------------- ray-casting reference
+
+
+@pytest.mark.parametrize("scheme", ["Standard", "P", "LogP"])
+def test_raycast_reference_agrees_with_the_rasterizer(scheme):
+    """One Embree ray per texel (centre mapped back by the inverse map) sees what the rasterizer stored."""
+    pytest.importorskip("embreex", reason="the ray-casting reference needs embreex (optional extra: pip install 'aliasing[bench]')")
+    sc = raster.ground_and_boxes(1.0, 100.0, 60.0, boxes=60, ground_cells=8, seed=4)
+    lm = raster.light_map(1.0, 100.0, 60.0, "gamma:60@azimuth:20", scheme)
+    a = raster.shadow_map(sc.triangles, lm, 64)
+    b = raycast.raycast_shadow_map(sc.triangles, lm, 64, chunk=1000)  # several Embree calls
+    boxes = a.triangle >= 2 * 8**2
+    assert np.isfinite(a.depth).sum() > 1000 and boxes.sum() > 50
+    assert raycast.agreement(a, b, sc.triangles) >= 1 - 2 / 64**2  # at most 2 centres within rounding of an edge
+    assert (a.triangle == b.triangle)[boxes].mean() > 0.99
+    # the check can fail: a depth map off by a millionth of the scene's extent on the boxes does not agree
+    extent = np.ptp(sc.triangles.reshape(-1, 3), axis=0).max()
+    shifted = raster.DepthMap(np.where(boxes, a.depth + 2e-6 * extent, a.depth), a.triangle, 64, a.rasterized, a.degenerate)
+    assert raycast.agreement(shifted, b, sc.triangles) < 1 - boxes.mean() / 2
+
+
+def test_raycast_reference_inputs(monkeypatch):
+    lm = raster.light_map(1.0, 10.0, 60.0, "overhead", "P")
+    tri = np.array([[[-20, -1, 0.5], [20, -1, 0.5], [0, -1, 30]]], float)
+    m = raster.shadow_map(tri, lm, 4)
+    with pytest.raises(ValueError, match="same resolution"):
+        raycast.agreement(m, raster.shadow_map(tri, lm, 8), tri)
+    with pytest.raises(ValueError, match="tolerance must be >= 0"):
+        raycast.agreement(m, m, tri, tolerance=-1.0)
+    assert raycast.agreement(m, m, tri) == 1.0
+    monkeypatch.setitem(sys.modules, "embreex", None)  # as if the extra were not installed
+    assert raycast.available() is False
+    with pytest.raises(ValueError, match=r"pip install 'aliasing\[bench\]'"):
+        raycast.raycast_shadow_map(tri, lm, 4)
+    with pytest.raises(ValueError, match="chunk must be"):
+        raycast.raycast_shadow_map(tri, lm, 4, chunk=0)
+    with pytest.raises(ValueError, match="lm must be a LightMap"):
+        raycast.raycast_shadow_map(tri, "P", 4)

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from aliasing import cli
+from aliasing import raster
 from aliasing.raster import pictures, scenes
 
 
@@ -34,6 +35,57 @@ def test_overhead_box_shadow_under_the_box():
     assert under.sum() > 20 and away.sum() > 1000
     assert not v.lit[under].any()
     assert v.lit[away].all()
+
+
+def _ray_hits_box(p: np.ndarray, lo: np.ndarray, hi: np.ndarray, towards: np.ndarray) -> np.ndarray:
+    """Exact shadow of an axis-aligned box: does the ray p + λ·towards (λ > 0) meet it? (slab test)"""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t1, t2 = (lo - p) / towards, (hi - p) / towards
+    enter = np.nanmax(np.minimum(t1, t2), axis=-1)
+    leave = np.nanmin(np.maximum(t1, t2), axis=-1)
+    return leave >= np.maximum(enter, 1e-9)
+
+
+@pytest.mark.parametrize("scheme", ["Standard", "LogP"])
+def test_box_shadow_touches_the_box_and_ground_has_no_acne(scheme):
+    """One box (1 high) on the ground, 256² texels, the raster-shadows light: Standard's texels are
+    0.6 × 0.5 world units there, so a bias scaled by the texel's depth change (the former 1.5 texels)
+    exceeded the box and its shadow came loose ("peter-panning"); the plane tests of
+    pictures.shadow_test keep it attached, and planar ground still never shadows itself."""
+    light = "gamma:110@azimuth:60"  # towards +x (and up, behind the eye): shadows fall towards −x
+    ground = np.array([[[-200, -1, 0.5], [200, -1, 0.5], [200, -1, 150]], [[-200, -1, 0.5], [200, -1, 150], [-200, -1, 150]]], float)
+    centre, half = np.array([1.5, -0.5, 6.0]), np.array([0.5, 0.5, 0.5])
+    sc = scenes.Scene(np.concatenate([ground, scenes._box(centre[None], half[None])]), np.full(14, -1, np.int64))
+    v = pictures.view(1.0, 100.0, 60.0, light, scheme, image_res=384, budget=256**2, scene=sc)
+    on_ground = (v.triangle >= 0) & (v.triangle < 2)
+    p = np.nan_to_num(v.position)
+    shadow = on_ground & _ray_hits_box(p, centre - half, centre + half, v.light)
+    # the ground along the box's base on the side away from the light (within 0.1 of the face x = 1)
+    beside = on_ground & (p[..., 0] > 0.9) & (p[..., 0] < 1.0) & (np.abs(p[..., 2] - 6.0) < 0.25)
+    assert beside.sum() >= 20 and shadow[beside].all()
+    assert not v.lit[beside].any()
+    # most of the exact shadow is drawn (what is missed lies within a texel of its outline)
+    assert v.lit[shadow].mean() < 0.15
+    # lit ground away from the box (the shadow reaches ≈ 2.6 from its centre): no acne
+    open_ground = on_ground & ~shadow & (np.hypot(p[..., 0] - 1.5, p[..., 2] - 6.0) > 5.0)
+    assert open_ground.sum() > 10000
+    assert 1 - v.lit[open_ground].mean() < 0.01
+
+
+def test_shadow_test_inputs():
+    lm = raster.light_map(1.0, 10.0, 60.0, "overhead", "P")
+    tri = np.array([[[-20, -1, 0.5], [20, -1, 0.5], [0, -1, 30]]], float)
+    sm = raster.shadow_map(tri, lm, 8)
+    p, n = np.array([[0.0, -1.0, 5.0]]), np.array([[0.0, 1.0, 0.0]])
+    assert pictures.shadow_test(lm, sm, tri, p, n).tolist() == [True]
+    with pytest.raises(ValueError, match=r"bias must be in \[0, inf\]"):
+        pictures.shadow_test(lm, sm, tri, p, n, bias=-1.0)
+    with pytest.raises(ValueError, match="same shape"):
+        pictures.shadow_test(lm, sm, tri, p, n[:, :2])
+    with pytest.raises(ValueError, match="scene of sm"):
+        pictures.shadow_test(lm, sm, tri[:0], p, n)
+    with pytest.raises(ValueError, match=r"bias must be in \[0, inf\]"):
+        pictures.view(1.0, 10.0, 60.0, "overhead", image_res=8, budget=8**2, bias=-1.0)
 
 
 def test_grid_and_error_values():

@@ -6,7 +6,9 @@
 * :mod:`.scenes`: seeded procedural scenes (ground, boxes, probe planes) and an ASCII
   OBJ/PLY loader;
 * :mod:`.measure`: perspective aliasing measured from sampled positions by finite
-  differences, compared with :func:`aliasing.schemes.evaluate`.
+  differences, compared with :func:`aliasing.schemes.evaluate`;
+* :mod:`.raycast`: a ray-casting reference for the shadow maps (one Embree ray per texel;
+  optional, ``pip install 'aliasing[bench]'``).
 
 Example
 -------

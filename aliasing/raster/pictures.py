@@ -9,9 +9,10 @@ each of the k maps gets ⌊√(budget/k)⌋² texels, so ``ZP4+P`` at a 512² bu
 256² maps.  Each pixel is shaded from the map of the z-partition holding its eye depth.
 
 * :func:`shadow_image`: Lambert shading (ambient + diffuse·max(0, n·l)) with the
-  shadow-map depth test: a pixel is lit when its light depth is at most the stored depth
-  of its texel plus a small slope-scaled bias (constant part plus one texel's depth change
-  over the surface's slope, so planar receivers do not self-shadow);
+  shadow-map test of :func:`shadow_test`: the stored sample and the pixel's surface are
+  compared as planes (the occluder's plane on the pixel's light ray, the receiver's plane
+  on the texel centre's ray), so planar receivers never shadow themselves (no acne) and no
+  bias grows with the texel (no "peter-panning": shadows touch the objects casting them);
 * :func:`grid_image`: the shadow map's texel grid projected onto the scene, a line where
   the texel index (divided by ``every``) changes between neighbouring pixels (Lloyd 2006
   Fig. 15 style; one colour per z-partition);
@@ -52,7 +53,7 @@ from numpy.typing import ArrayLike, NDArray
 from .. import _validation as check
 from .. import geometry, schemes
 from .measure import _errors, measure
-from .rasterize import LightMap, check_resolution, eye_pass, light_maps, shadow_map
+from .rasterize import DepthMap, LightMap, check_resolution, eye_pass, light_maps, shadow_map
 from .scenes import Scene, ground_and_boxes
 
 Array = NDArray[np.float64]
@@ -61,6 +62,8 @@ SKY = np.array([0.78, 0.86, 0.95])
 GROUND = np.array([0.80, 0.78, 0.72])
 BOX = np.array([0.85, 0.55, 0.30])
 AMBIENT = 0.3
+#: Default tolerance of the shadow test's depth comparisons [world units].
+BIAS = 1e-3
 #: Partition colours of the projected grid.
 GRID_COLOURS = np.array([[0.0, 0.0, 0.0], [0.75, 0.0, 0.0], [0.0, 0.35, 0.85], [0.0, 0.55, 0.0], [0.6, 0.0, 0.6], [0.8, 0.45, 0.0]])
 
@@ -102,12 +105,11 @@ def map_resolution(budget: int, k: int) -> int:
 
 
 def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, image_res: int = 256, budget: int = 1024**2,
-         boxes: int = 40, ground_cells: int = 16, seed: int = 1, bias: float = 1e-3, scene: Scene | None = None) -> View:
+         boxes: int = 40, ground_cells: int = 16, seed: int = 1, bias: float = BIAS, scene: Scene | None = None) -> View:
     """Render the eye pass and the shadow test of a seeded scene (see the module docstring).
 
-    ``bias`` is the constant part of the depth bias [world units]; the slope-scaled part is
-    one texel's change of light depth over the visible surface.  ``scene`` replaces the
-    seeded ground and boxes (then ``face`` is the triangle index).
+    ``bias`` is the tolerance of the depth tests of :func:`shadow_test` [world units, ≥ 0].
+    ``scene`` replaces the seeded ground and boxes (then ``face`` is the triangle index).
     """
     res = check_resolution(image_res, "image_res")
     fv = float(check.fov(fov))
@@ -115,6 +117,7 @@ def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: st
     if lv.shape[0] != 1:
         raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
     lv = lv[0]
+    bias = _bias(bias)
     maps, edges = light_maps(near, far, fv, lv, scheme)
     rm = map_resolution(budget, len(maps))
     if scene is None:
@@ -145,22 +148,97 @@ def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: st
         s, t, d, _ = lm.coordinates(p)
         s_all[sel], t_all[sel] = s, t
         sm = shadow_map(sc.triangles, lm, rm)
-        inside = (s >= 0) & (s < 1) & (t >= 0) & (t < 1)
-        col = np.clip(np.floor(s * rm), 0, rm - 1).astype(np.int64)
-        row = np.clip(np.floor(t * rm), 0, rm - 1).astype(np.int64)
-        stored = sm.depth[row, col]
-        # slope-scaled bias: the light depth changes over one texel's light-plane footprint
-        # by (|n·x_L| dx + |n·z_L| dy)/|n·y_L| on a plane with normal n
-        eps = 1e-4 * (1.0 + np.abs(p).max(axis=-1))
-        s1, _, _, _ = lm.coordinates(p + eps[:, None] * lm.basis[0])
-        _, t1, _, _ = lm.coordinates(p + eps[:, None] * lm.basis[2])
-        dx = eps / np.maximum(np.abs(s1 - s) * rm, 1e-300)
-        dy = eps / np.maximum(np.abs(t1 - t) * rm, 1e-300)
-        n = nrm[sel]
-        slope = (np.abs(n @ lm.basis[0]) * dx + np.abs(n @ lm.basis[2]) * dy) / np.maximum(np.abs(n @ lm.basis[1]), 0.05)
-        # outside the map (clipped texels) counts as lit: the map covers the view frustum
-        lit[sel] = ~inside | (d <= stored + bias + 1.5 * slope)
+        lit[sel] = shadow_test(lm, sm, sc.triangles, p, nrm[sel], bias=bias)
     return View(sc, n_ground, eb.position, eb.normal, eb.triangle, face, maps, edges, rm, np.where(hit, part, -1), s_all, t_all, lit, lv, fv)
+
+
+def _bias(value: float) -> float:
+    return float(check.closed_range(value, "bias", 0.0, np.inf, " world units (depth-test tolerance)"))
+
+
+def shadow_test(lm: LightMap, sm: DepthMap, triangles: ArrayLike, points: ArrayLike, normals: ArrayLike, *, bias: float = BIAS) -> NDArray[np.bool_]:
+    """Shadow-map test of surface points: True where lit (not occluded towards the light).
+
+    A texel stores one sample of the surface nearest the light: its depth at the texel's
+    centre and its triangle.  Treating the receiver and that occluder as locally planar, a
+    point p is lit when any of these holds (each within ``bias``):
+
+    1. p's depth is at most the stored depth (the plain test);
+    2. the occluder's plane, met on p's own light ray, is not nearer the light than p
+       (e.g. a box face beside the ground it stands on: the ground sampled at the texel
+       centre lies below the face at p);
+    3. the receiver's plane, met on the ray through the texel's centre (found with the
+       map's inverse, :meth:`~aliasing.raster.LightMap.inverse`), is not farther than the
+       stored depth (e.g. near a box's convex edge, or a planar receiver, which thus never
+       shadows itself: no acne).
+
+    No bias grows with the texel, so occluders of any height cast shadows that touch them
+    (no "peter-panning").  What remains is the map's own sampling error: shadow outlines
+    are the occluders' footprints on the texel grid, up to a texel out of place.
+
+    Parameters
+    ----------
+    lm : LightMap
+        The map the depth map was rendered through.
+    sm : DepthMap
+        :func:`aliasing.raster.shadow_map` of ``triangles`` through ``lm``.
+    triangles : array_like, shape (T, 3, 3)
+        The scene [world units], indexed by ``sm.triangle``.
+    points, normals : array_like, shape (..., 3)
+        Surface points [world units] and their surfaces' normals (any length or sign).
+    bias : float
+        Tolerance of the three depth comparisons [world units], ≥ 0.
+
+    Returns
+    -------
+    ndarray of bool, shape (...)
+        True where lit; points outside the map count as lit.
+
+    Example
+    -------
+    >>> from aliasing.raster import light_map
+    >>> lm = light_map(1.0, 20.0, 60.0, "gamma:60", "Standard")
+    >>> ground = np.array([[[-40, -1, 0.5], [40, -1, 0.5], [0, -1, 60]]], float)
+    >>> roof = np.array([[[-1, 0, 4], [1, 0, 4], [0, 0, 6]]], float)   # 1 above the ground
+    >>> scene = np.concatenate([ground, roof])
+    >>> sm = shadow_map(scene, lm, 64)
+    >>> p = np.array([[0.0, -1.0, 15.0], [0.0, 0.0, 5.0], [0.0, -1.0, 4.4]])   # open ground, roof, roof's shadow
+    >>> shadow_test(lm, sm, scene, p, [[0, 1, 0]] * 3).tolist()
+    [True, True, False]
+    """
+    tri = np.asarray(triangles, float)
+    if tri.ndim != 3 or tri.shape[1:] != (3, 3):
+        raise ValueError(f"triangles must have shape (T, 3, 3), got {tri.shape}")
+    p = check.as_float_array(points, "points")
+    nrm = check.as_float_array(normals, "normals")
+    if p.shape[-1:] != (3,) or nrm.shape != p.shape:
+        raise ValueError(f"points and normals must have the same shape (..., 3), got {p.shape} and {nrm.shape}")
+    bias = _bias(bias)
+    if sm.triangle.size and int(sm.triangle.max()) >= len(tri):
+        raise ValueError("triangles must be the scene of sm (sm names a triangle beyond them)")
+    rm = sm.resolution
+    s, t, d, _ = lm.coordinates(p)
+    inside = (s >= 0) & (s < 1) & (t >= 0) & (t < 1)
+    col = np.clip(np.floor(np.nan_to_num(s) * rm), 0, rm - 1).astype(np.int64)
+    row = np.clip(np.floor(np.nan_to_num(t) * rm), 0, rm - 1).astype(np.int64)
+    stored, occ = sm.depth[row, col], sm.triangle[row, col]
+    up = lm.basis[1]  # towards the light; height along it is −depth
+    lit = d <= stored + bias
+    # 2. the occluder's plane on p's ray p + λ·up: λ > 0 is nearer the light than p
+    a = tri[np.maximum(occ, 0)]
+    n_o = np.cross(a[..., 1, :] - a[..., 0, :], a[..., 2, :] - a[..., 0, :])
+    across = n_o @ up
+    ok = (occ >= 0) & (np.abs(across) > 1e-9 * np.linalg.norm(n_o, axis=-1))
+    lam = ((a[..., 0, :] - p) * n_o).sum(-1) / np.where(ok, across, 1.0)
+    lit |= ok & (lam <= bias)
+    # 3. the receiver's plane on the ray through the texel centre c0 + μ·up (c0 at height 0)
+    xc, yc = lm.inverse((col + 0.5) / rm, (row + 0.5) / rm)
+    c0 = xc[..., None] * lm.basis[0] + (yc + lm.y_offset)[..., None] * lm.basis[2]
+    along = nrm @ up
+    ok = np.abs(along) > 1e-9 * np.linalg.norm(nrm, axis=-1)
+    mu = ((p - c0) * nrm).sum(-1) / np.where(ok, along, 1.0)
+    lit |= ok & (-mu <= stored + bias)
+    return ~inside | lit
 
 
 def _base_colour(v: View) -> Array:

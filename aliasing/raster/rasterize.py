@@ -372,6 +372,57 @@ class LightMap:
         y = npr * np.expm1(tl * np.log1p(depth / npr))
         return (y / depth) * (npr + depth) / (npr + y)
 
+    def inverse(self, s: ArrayLike, t: ArrayLike) -> tuple[Array, Array]:
+        """Light-plane (x, y) [world units] of map coordinates (s, t): the inverse of :meth:`coordinates`.
+
+        ``t`` is this map's own t (the log map's for ``logperspective``).  Uniform:
+        x = x_lo + s·W_x, y = t·W_ly; perspective (inverse of Lloyd 2006 eqs. 5–6):
+        y = n′W_ly·t/(n′ + W_ly(1 − t)); log+perspective (inverse of Lloyd 2007 eq. 77):
+        y = n′((1 + W_ly/n′)^t − 1); then x = (x_lo + s·(x_hi − x_lo))·(1 + y/n′).
+
+        Parameters
+        ----------
+        s, t : array_like
+            Map coordinates [map units], broadcastable; values outside [0, 1] extrapolate.
+
+        Example
+        -------
+        >>> lm = light_map(1.0, 100.0, 60.0, "gamma:60@azimuth:20", "LogP")
+        >>> x, y = lm.inverse([0.25, 0.5], [0.1, 0.9])
+        >>> s, t, _, _ = lm.coordinates(x[:, None] * lm.basis[0] + (y + lm.y_offset)[:, None] * lm.basis[2])
+        >>> np.allclose(s, [0.25, 0.5]) and np.allclose(t, [0.1, 0.9])
+        True
+        """
+        ss, tt = np.broadcast_arrays(check.as_float_array(s, "s"), check.as_float_array(t, "t"))
+        npr, depth = self.n_prime, float(self.frustum.depth[0, 0])
+        if np.isinf(npr):
+            y = tt * depth
+        elif self.parameterization == "logperspective":
+            y = npr * np.expm1(tt * np.log1p(depth / npr))
+        else:
+            y = tt * npr * depth / (npr + depth * (1.0 - tt))
+        zp = 1.0 if np.isinf(npr) else 1.0 + y / npr
+        x_lo, x_hi = float(self.frustum.x_lo[0, 0]), float(self.frustum.x_hi[0, 0])
+        return (x_lo + ss * (x_hi - x_lo)) * zp, y
+
+    def texel_centres(self, resolution: int) -> tuple[Array, Array]:
+        """Light-plane (x, y) [world units] of the centres of a resolution² map's texels, each (R, R).
+
+        Entry [j, i] is the texel at s = (i + ½)/R, t = (j + ½)/R of this map's own t: the
+        light rays that :func:`shadow_map` samples (for log+perspective maps, the rows of
+        :func:`log_row_centres`).
+
+        Example
+        -------
+        >>> lm = light_map(1.0, 100.0, 60.0, "overhead", "P")
+        >>> x, y = lm.texel_centres(4)
+        >>> x.shape, bool((np.diff(y[:, 0]) > 0).all())   # rows go away from the map's near edge
+        ((4, 4), True)
+        """
+        res = check_resolution(resolution)
+        c = (np.arange(res) + 0.5) / res
+        return self.inverse(c[None, :], c[:, None])
+
 
 def light_map(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str | schemes.Scheme = "Standard", **options: ArrayLike) -> LightMap:
     """Fit the map of a single-map ``scheme`` (Standard, P, LogP, any rule) for one light.

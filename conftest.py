@@ -1,0 +1,20 @@
+"""Repository-wide pytest hooks: doctests of optional-dependency modules skip without them."""
+
+from __future__ import annotations
+
+import importlib.util
+
+import pytest
+
+#: module file (relative to the repository) -> (optional module it needs, the extra that brings it)
+OPTIONAL_DOCTESTS = {"aliasing/raster/raycast.py": ("embreex", "bench")}
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    for path, (module, extra) in OPTIONAL_DOCTESTS.items():
+        if importlib.util.find_spec(module) is not None:
+            continue
+        skip = pytest.mark.skip(reason=f"{module} is not installed (optional extra: pip install 'aliasing[{extra}]')")
+        for item in items:
+            if item.nodeid.startswith(path + "::"):
+                item.add_marker(skip)
