@@ -143,6 +143,137 @@ def partition_of(points: ArrayLike, near: float, far: float, fov: float, light: 
     return np.argmin(t, axis=-1)
 
 
+@dataclass(frozen=True)
+class FaceFrames:
+    """Light-plane frames of the FPc / FPcs side-face maps (§6.5) for N directions.
+
+    H = 1 (FPc) or 2 (FPcs: a face's two halves, the second used only when split), k depth
+    ranges.  A map's frame: Y along ``axis`` from the eye's projection (the origin), X along
+    ``across`` = l̂ × axis, centre of projection at Y = −a; its (half) face's vertices are
+    the side edges ``edges`` at the eye depths ``depth[i]``, ``depth[i + 1]``.
+
+    Attributes
+    ----------
+    axis, across : ndarray (N, 4, H, 3)
+        Unit vectors ⟂ l̂ [eye space].
+    edges : ndarray (N, 4, H, 2, 3)
+        The (half) face's two side edges, scaled to unit eye depth.
+    depth : ndarray (k + 1,)
+        Eye depths bounding the k ranges [world units].
+    Y, X : ndarray (N, 4, H, k, 4)
+        The vertices' frame coordinates [world units] (vertex order: edge a, edge b at the
+        range's near depth, edge b, edge a at its far depth).
+    a : ndarray (N, 4, H, k)
+        Centre-of-projection offset [world units]: √(Y0 Y1) (P), 0 (LogP), ∞ (uniform).
+    y0, y1 : ndarray (N, 4, H, k)
+        Min and max of Y over the vertices [world units].
+    s_lo, s_hi : ndarray (N, 4, H, k)
+        Range of X/(Y + a) over the vertices (of X for uniform): the map's s spans it.
+    used : ndarray of bool (N, 4, H)
+        The slot has a map: the face is chosen (eq. 54) and, for a second half, split.
+    tau : ndarray (N, 4)
+        Angle between each face's projected side edges [deg].
+    """
+
+    axis: Array
+    across: Array
+    edges: Array
+    depth: Array
+    Y: Array
+    X: Array
+    a: Array
+    y0: Array
+    y1: Array
+    s_lo: Array
+    s_hi: Array
+    used: NDArray[np.bool_]
+    tau: Array
+
+
+def _arguments(variant: str, parameterization: str, near: float, far: float, fov: float, light: ArrayLike, k: int, tau0: float, tau1: float) -> tuple[str, str, float, float, float, Array, int]:
+    var = check.choice(variant, "variant", VARIANTS)
+    kind = check.choice(parameterization, "parameterization", FACE_PARAMETERIZATIONS)
+    n, f = (float(v) for v in check.frustum(near, far))
+    fov = float(check.fov(fov))
+    if isinstance(k, bool) or int(k) != k or k < 1:
+        raise ValueError(f"k must be a whole number >= 1 (depth ranges per face), got {k!r}")
+    if not 90.0 < float(tau0) <= float(tau1) <= 180.0:
+        raise ValueError(f"tau0 and tau1 must satisfy 90 < tau0 <= tau1 <= 180 [deg], got {tau0!r}, {tau1!r}")
+    return var, kind, n, f, fov, _unit(light), int(k)
+
+
+def face_frames(variant: str, parameterization: str, near: float, far: float, fov: float, light: ArrayLike, *, k: int = 1, tau0: float = TAU0, tau1: float = TAU1) -> FaceFrames:
+    """The adjusted light-plane frames of FPc or FPcs side-face maps (module docstring).
+
+    The one definition of the FPc / FPcs side maps: :func:`face_errors` evaluates its
+    errors on them and :func:`aliasing.raster.face_maps` rasterizes through them.
+
+    Parameters
+    ----------
+    variant : {"fpc", "fpcs"}
+        Coordinate-frame adjusted, or adjusted and split.
+    parameterization, near, far, fov, light, k, tau0, tau1
+        As in :func:`face_errors`.
+
+    Returns
+    -------
+    FaceFrames
+
+    Example
+    -------
+    >>> fr = face_frames("fpc", "perspective", 1.0, 100.0, 60.0, [0.0, 1.0, 0.0])   # overhead
+    >>> fr.used[0, :, 0].tolist(), fr.axis[0, 0, 0].round(12).tolist()   # the bottom face, axis ∥ view
+    ([True, False, False, False], [0.0, 0.0, 1.0])
+    >>> float(fr.a[0, 0, 0, 0]) == float(np.sqrt(fr.y0[0, 0, 0, 0] * fr.y1[0, 0, 0, 0]))
+    True
+    """
+    var = check.choice(variant, "variant", ("fpc", "fpcs"))
+    _, kind, n, f, fov, lv, k = _arguments(var, parameterization, near, far, fov, light, k, tau0, tau1)
+    return _frames(var, kind, n, f, fov, lv, k, float(tau0), float(tau1))
+
+
+def _frames(var: str, kind: str, n: float, f: float, fov: float, lv: Array, k: int, tau0: float, tau1: float) -> FaceFrames:
+    """:func:`face_frames` on checked arguments."""
+    depth = n * (f / n) ** (np.arange(k + 1) / k)
+    depth[-1] = f
+    chosen = chosen_faces(lv, fov)
+    _, _, _, edges = side_frames(fov)
+    halves = 1 if var == "fpc" else 2
+    N = lv.shape[0]
+    axis = np.zeros((N, 4, halves, 3))
+    bounds = np.zeros((N, 4, halves, 2, 3))
+    used = np.zeros((N, 4, halves), bool)
+    tau = np.full((N, 4), np.nan)
+    for j in range(4):  # four faces; everything inside is vectorized over directions
+        e0, e1 = _project(edges[j, 0], lv), _project(edges[j, 1], lv)  # (N, 3)
+        tau[:, j] = np.degrees(np.arccos(np.clip(np.sum(_normalize(e0) * _normalize(e1), -1), -1, 1)))
+        bis = _normalize(_normalize(e0) + _normalize(e1))
+        split = np.zeros(N, bool) if var == "fpc" else tau[:, j] > tau0
+        with np.errstate(divide="ignore", invalid="ignore"):  # an edge ∥ light: the face is edge-on, not chosen
+            mid = edges[j, 0] / np.linalg.norm(e0, axis=-1)[:, None] + edges[j, 1] / np.linalg.norm(e1, axis=-1)[:, None]
+            mid = mid / (mid @ VIEW)[:, None]  # the split line: the ray from the eye projecting onto the bisector
+        whole = (np.broadcast_to(edges[j, 0], mid.shape), np.broadcast_to(edges[j, 1], mid.shape))
+        ease = np.clip((tau[:, j] - tau0) / max(tau1 - tau0, 1e-300), 0.0, 1.0) if tau1 > tau0 else (tau[:, j] >= tau0).astype(float)
+        for h, (a_edge, b_edge, toward) in enumerate([(whole[0], mid, e0), (mid, whole[1], e1)][:halves]):
+            axis[:, j, h] = _eased_axis(bis, toward, np.where(split, ease * tau[:, j] / 4, 0.0))
+            bounds[:, j, h, 0] = np.where(split[:, None], a_edge, whole[0])
+            bounds[:, j, h, 1] = np.where(split[:, None], b_edge, whole[1])
+            used[:, j, h] = chosen[:, 1 + j] & (split if h == 1 else True)
+    across = np.cross(lv[:, None, None, :], axis)
+    lo, hi = depth[:-1], depth[1:]
+    vdepth = np.stack([lo, lo, hi, hi], axis=-1)  # (k, 4)
+    ends = bounds[:, :, :, [0, 1, 1, 0]]  # (N, 4, H, 4, 3)
+    verts = vdepth[None, None, None, :, :, None] * ends[:, :, :, None]  # (N, 4, H, k, 4, 3)
+    Y = np.einsum("nfhkvj,nfhj->nfhkv", verts, axis)
+    X = np.einsum("nfhkvj,nfhj->nfhkv", verts, across)
+    y0, y1 = Y.min(axis=-1), Y.max(axis=-1)
+    # faces not chosen (and so discarded) may have Y ≤ 0 here
+    with np.errstate(invalid="ignore", divide="ignore"):
+        a = _face_a(kind, y0, y1)
+        q = X if kind == "uniform" else X / (Y + a[..., None])
+    return FaceFrames(axis, across, bounds, depth, Y, X, a, y0, y1, q.min(axis=-1), q.max(axis=-1), used, tau)
+
+
 def face_errors(variant: str, parameterization: str, near: float, far: float, fov: float, light: ArrayLike, *, k: int = 1, tau0: float = TAU0, tau1: float = TAU1) -> FaceResult:
     """M_x, M_z, S̄ and map counts of FP, FPc or FPcs for every light direction.
 
@@ -173,53 +304,30 @@ def face_errors(variant: str, parameterization: str, near: float, far: float, fo
     >>> round(float(r.S[0]), 1), int(r.maps[0])   # four sides at (f/n − 1)/2, the near face 1
     (1999.0, 5)
     """
-    var = check.choice(variant, "variant", VARIANTS)
-    kind = check.choice(parameterization, "parameterization", FACE_PARAMETERIZATIONS)
-    n, f = (float(v) for v in check.frustum(near, far))
-    fov = float(check.fov(fov))
-    if isinstance(k, bool) or int(k) != k or k < 1:
-        raise ValueError(f"k must be a whole number >= 1 (depth ranges per face), got {k!r}")
-    if not 90.0 < float(tau0) <= float(tau1) <= 180.0:
-        raise ValueError(f"tau0 and tau1 must satisfy 90 < tau0 <= tau1 <= 180 [deg], got {tau0!r}, {tau1!r}")
-    lv = _unit(light)
+    var, kind, n, f, fov, lv, k = _arguments(variant, parameterization, near, far, fov, light, k, tau0, tau1)
     chosen = chosen_faces(lv, fov)
-    edges_d = n * (f / n) ** (np.arange(int(k) + 1) / int(k))
-    edges_d[-1] = f
-    lo, hi = edges_d[:-1], edges_d[1:]
     near_x, near_z = _near_face(lv)
-    normal, centre, across, edges = side_frames(fov)
     tan = np.tan(np.radians(fov) / 2)
-    tau = np.full((lv.shape[0], 4), np.nan)
-    mx = np.zeros((lv.shape[0], 4, 2, int(k)))
-    mz = np.zeros_like(mx)
-    for j in range(4):  # four faces; everything inside is vectorized over directions
-        e0, e1 = _project(edges[j, 0], lv), _project(edges[j, 1], lv)  # (N, 3)
-        tau[:, j] = np.degrees(np.arccos(np.clip(np.sum(_normalize(e0) * _normalize(e1), -1), -1, 1)))
-        if var == "fp":
-            x, z = _fixed_side(lv, normal[j], centre[j], across[j], lo, hi, fov, kind)
-            mx[:, j, 0], mz[:, j, 0] = x, z
-            continue
-        bis = _normalize(_normalize(e0) + _normalize(e1))
-        split = np.zeros(lv.shape[0], bool) if var == "fpc" else tau[:, j] > tau0
-        with np.errstate(divide="ignore", invalid="ignore"):  # an edge ∥ light: the face is edge-on, not chosen
-            mid = edges[j, 0] / np.linalg.norm(e0, axis=-1)[:, None] + edges[j, 1] / np.linalg.norm(e1, axis=-1)[:, None]
-            mid = mid / (mid @ VIEW)[:, None]  # the split line: the ray from the eye projecting onto the bisector
-        whole = (np.broadcast_to(edges[j, 0], mid.shape), np.broadcast_to(edges[j, 1], mid.shape))
-        ease = np.clip((tau[:, j] - tau0) / max(tau1 - tau0, 1e-300), 0.0, 1.0) if tau1 > tau0 else (tau[:, j] >= tau0).astype(float)
-        for h, (a_edge, b_edge, toward) in enumerate([(whole[0], mid, e0), (mid, whole[1], e1)]):
-            axis = _eased_axis(bis, toward, np.where(split, ease * tau[:, j] / 4, 0.0))
-            e_a, e_b = np.where(split[:, None], a_edge, whole[0]), np.where(split[:, None], b_edge, whole[1])
-            x, z = _adjusted_side(lv, axis, e_a, e_b, lo, hi, tan, kind)
-            use = split if h == 1 else np.ones_like(split)
-            mx[:, j, h], mz[:, j, h] = np.where(use[:, None], x, 0.0), np.where(use[:, None], z, 0.0)
-    if var != "fpcs":
-        mx, mz = mx[:, :, :1], mz[:, :, :1]  # no second halves without splitting
-    side_on = chosen[:, 1:, None, None]
-    mx, mz = np.where(side_on, mx, 0.0), np.where(side_on, mz, 0.0)
+    if var == "fp":
+        normal, centre, across, edges = side_frames(fov)
+        depth = n * (f / n) ** (np.arange(k + 1) / k)
+        depth[-1] = f
+        mx = np.zeros((lv.shape[0], 4, 1, k))
+        mz = np.zeros_like(mx)
+        for j in range(4):
+            mx[:, j, 0], mz[:, j, 0] = _fixed_side(lv, normal[j], centre[j], across[j], depth[:-1], depth[1:], fov, kind)
+        e0, e1 = (np.stack([_project(edges[j, i], lv) for j in range(4)], axis=1) for i in (0, 1))
+        tau = np.degrees(np.arccos(np.clip(np.sum(_normalize(e0) * _normalize(e1), -1), -1, 1)))
+        used = chosen[:, 1:, None]
+    else:
+        fr = _frames(var, kind, n, f, fov, lv, k, float(tau0), float(tau1))
+        mx, mz = _adjusted_side(fr, tan, kind)
+        tau, used = fr.tau, fr.used
+    mx, mz = np.where(used[..., None], mx, 0.0), np.where(used[..., None], mz, 0.0)
     M_x = np.concatenate([np.where(chosen[:, 0], near_x, 0.0)[:, None], mx.reshape(len(lv), -1)], axis=1)
     M_z = np.concatenate([np.where(chosen[:, 0], near_z, 0.0)[:, None], mz.reshape(len(lv), -1)], axis=1)
     halves = np.where(var == "fpcs", (tau > tau0) & chosen[:, 1:], False)
-    maps = chosen[:, 0] + int(k) * (chosen[:, 1:].sum(axis=1) + halves.sum(axis=1))
+    maps = chosen[:, 0] + k * (chosen[:, 1:].sum(axis=1) + halves.sum(axis=1))
     return FaceResult(M_x, M_z, (M_x * M_z).sum(axis=1), maps.astype(int), np.where(chosen[:, 1:], tau, np.nan), chosen)
 
 
@@ -301,28 +409,18 @@ def _eased_axis(bis: Array, toward: Array, angle: Array) -> Array:
     return np.cos(r) * bis + np.sin(r) * perp
 
 
-def _adjusted_side(lv: Array, axis: Array, e_a: Array, e_b: Array, lo: Array, hi: Array, tan: float, kind: str) -> tuple[Array, Array]:
-    """FPc: warping frustum along ``axis`` in the light plane, fitted to a (half) face.
+def _adjusted_side(fr: FaceFrames, tan: float, kind: str) -> tuple[Array, Array]:
+    """FPc: M_x, M_z ``(N, 4, H, k)`` of the warping frusta of :func:`face_frames`.
 
-    The (half) face between side edges ``e_a``, ``e_b`` (unit eye depth, ``(N, 3)``) and
-    eye depths [lo_i, hi_i]; Y is measured from the eye's projection along ``axis``, X
-    across it; the centre of projection is at Y = −a.  Returns M_x, M_z ``(N, k)``.
+    At unit resolutions, per vertex: the texel across, (Y + a)·(s_hi − s_lo) (eq. 3 on the
+    face's own frustum; s_hi − s_lo for uniform), and along (eqs. 96–97, 102), over the
+    pixel width 2 d tanθ at the vertex's eye depth d; the maxima over the vertices.
     """
-    across = np.cross(lv, axis)
-    # vertices (N, k, 4, 3): the two edges at the range's near and far depths
-    depth = np.stack([lo, lo, hi, hi], axis=-1)[None, :, :, None]  # (1, k, 4, 1)
-    ends = np.stack([e_a, e_b, e_b, e_a], axis=1)[:, None]  # (N, 1, 4, 3)
-    verts = depth * ends
-    Y = np.einsum("nkvj,nj->nkv", verts, axis)
-    X = np.einsum("nkvj,nj->nkv", verts, across)
-    y0, y1 = Y.min(axis=-1, keepdims=True), Y.max(axis=-1, keepdims=True)
-    w_i = 2 * tan * depth[..., 0]  # pixel width at the vertices' eye depth (unit resolution)
-    # faces not chosen (and so discarded) may have Y ≤ 0 here
+    lo, hi = fr.depth[:-1], fr.depth[1:]
+    w_i = 2 * tan * np.stack([lo, lo, hi, hi], axis=-1)  # (k, 4)
     with np.errstate(invalid="ignore", divide="ignore"):
-        a = _face_a(kind, y0, y1)
-        along, _ = _widths(kind, Y, y0, y1, a)
-        if kind == "uniform":
-            w_x = np.ptp(X, axis=-1, keepdims=True) * np.ones_like(Y)
-        else:
-            w_x = (Y + a) * np.ptp(X / (Y + a), axis=-1, keepdims=True)  # eq. (3) on the face's own frustum
+        a, y0, y1 = fr.a[..., None], fr.y0[..., None], fr.y1[..., None]
+        along, _ = _widths(kind, fr.Y, y0, y1, a)
+        span = (fr.s_hi - fr.s_lo)[..., None]
+        w_x = span * np.ones_like(fr.Y) if kind == "uniform" else (fr.Y + a) * span
     return (w_x / w_i).max(axis=-1), (along / w_i).max(axis=-1)
