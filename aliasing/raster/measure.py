@@ -18,7 +18,9 @@ spans the image, one texel the map, as in :mod:`aliasing.directional`):
 
 Their maxima over dense probes are compared with :func:`aliasing.schemes.evaluate`'s M_x,
 M_z for the same light and parameterization; with ``ZP<k>+…`` schemes each pixel uses the
-map of the z-partition holding its eye depth and each map is compared with its own bound.
+map of the z-partition holding its eye depth, with face partitions (``FPc+…``, ``FPcs+…``)
+the map of its face partition (:meth:`~aliasing.raster.MapSet.assign`), and each map is
+compared with its own bound (:func:`aliasing.faces.face_errors`' per-map M_x, M_z).
 
 What this witnesses: the perspective error checks the closed-form beam widths of
 :mod:`aliasing.directional` and the claim that their maxima lie at the frustum's vertices,
@@ -43,7 +45,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import geometry, schemes
-from .rasterize import LightMap, check_resolution, eye_pass, light_maps, shadow_map
+from .rasterize import LightMap, check_resolution, eye_pass, map_set, shadow_map
 from .scenes import Scene, probes
 
 Array = NDArray[np.float64]
@@ -55,8 +57,8 @@ class Measurement:
 
     Per-pixel arrays (R, R), row j is v = (j + ½)/R: ``m_s``, ``m_t`` (image error),
     ``m_x``, ``m_z`` (perspective error), ``s``, ``t`` (map coordinates of the visible point in
-    its partition's map), ``partition`` (z-partition of the pixel, −1 off the probes).
-    Per map, shape (k,): ``M_x``, ``M_z`` analytic (unit resolutions, from
+    its partition's map), ``partition`` (index of the pixel's map, −1 off the probes).
+    Per map, shape (k,) (k maps of :func:`~aliasing.raster.map_set`, in its order): ``M_x``, ``M_z`` analytic (unit resolutions, from
     :func:`aliasing.schemes.evaluate`); ``measured_x``, ``measured_z`` the maxima of m_x, m_z
     over the pixels shaded from that map (NaN if none); ``ratio_x``, ``ratio_z``
     measured/analytic; ``n_prime`` [world units].  Scalars: ``image_ratio_s``,
@@ -111,15 +113,15 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     light : str or array_like
         One light direction (spec or vector towards the light).
     scheme : str
-        Scheme (Standard, P, LogP, a warping rule, each alone or after ``ZP<k>+``): each pixel
-        is measured in the map of the z-partition holding its eye depth.
+        Scheme (Standard, P, LogP, a warping rule, each alone or after ``ZP<k>+``; or
+        ``FPc+…``, ``FPcs+…``): each pixel is measured in the map of its z- or face partition.
     resolution : int
         Image resolution R_i [pixels per side].
     cells : int
         Probe grid (see :func:`aliasing.raster.probes`); ignored when ``scene`` is given.
     scene : Scene, optional
         A scene with probes (group ≥ 0); default ``probes(near, far, fov, light, cells=cells,
-        splits=...)`` with the scheme's split depths.
+        splits=...)`` with the scheme's z split depths (none for face partitions).
     map_resolution : int
         Resolution of the shadow map rasterized for the ``self_lit`` check [texels per side].
     **options
@@ -137,9 +139,10 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     """
     res = check_resolution(resolution)
     rm = check_resolution(map_resolution, "map_resolution")
-    maps, edges = light_maps(near, far, fov, light, scheme, **options)
+    ms = map_set(near, far, fov, light, scheme, **options)
+    maps, edges = ms.maps, ms.edges
     analytic = schemes.evaluate(scheme, near, far, fov, geometry.lights(light), **options)
-    sc = probes(near, far, fov, light, cells=cells, splits=edges) if scene is None else scene
+    sc = probes(near, far, fov, light, cells=cells, splits=None if ms.faces else edges) if scene is None else scene
     if not (sc.group >= 0).any():
         raise ValueError("scene must contain probes (triangles with group >= 0)")
     eb = eye_pass(sc.triangles, fov, res)
@@ -154,8 +157,8 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     ok = same_u & same_v
     if not ok.any():
         raise ValueError(f"no probe pixel could be measured: increase resolution (got {res}) or reduce cells")
-    # each pixel is shaded from the map of the z-partition holding its eye depth
-    part = np.clip(np.searchsorted(edges, pos[..., 2], side="right") - 1, 0, len(maps) - 1)
+    # each pixel is shaded from the map of its z- or face partition
+    part = ms.assign(pos)
     fields = {key: np.full((res, res), np.nan) for key in ("s", "t", "m_s", "m_t", "m_x", "m_z")}
     measured_x, measured_z, self_lit = [], [], []
     for i, lm in enumerate(maps):
@@ -177,7 +180,7 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
         texel = sm.triangle[row, col]
         own = np.where(texel >= 0, sc.group[np.maximum(texel, 0)], -2) == group
         self_lit.append(own[sel])
-    M_x, M_z = analytic.M_x[0].copy(), analytic.M_z[0].copy()
+    M_x, M_z = analytic.M_x[0][ms.slots], analytic.M_z[0][ms.slots]
     mx, mz = np.array(measured_x), np.array(measured_z)
     # stated discretisation tolerance: the central differences' truncation error is
     # h² |third derivative| / (6 |first derivative|), relative, h = 1/R: observed ≤ 1e-5 at
@@ -186,7 +189,7 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     count = int(ok.sum())
     m_s, m_t, m_x, m_z = fields["m_s"], fields["m_t"], fields["m_x"], fields["m_z"]
     s, t = fields["s"], fields["t"]
-    M_x_pix, M_z_pix = M_x[part], M_z[part]
+    M_x_pix, M_z_pix = M_x[np.maximum(part, 0)], M_z[np.maximum(part, 0)]
     with np.errstate(invalid="ignore"):
         image_ratio_s = float(np.nanmax(m_s / M_x_pix))
         image_ratio_t = float(np.nanmax(m_t / M_z_pix))

@@ -49,7 +49,7 @@ import numpy as np
 from .. import _validation as check
 from .. import geometry, schemes
 from .measure import measure
-from .rasterize import light_maps
+from .rasterize import map_set
 from .scenes import probes as probe_scene
 
 MIN_RES = 16
@@ -170,8 +170,8 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
     seed = _whole(seed, "seed", 0, 2**32 - 1)
     near, far = 1.0, c["f_over_n"]
     lv = c["lv"]
-    _, edges = light_maps(near, far, c["fov"], lv, c["scheme"].name, **options)
-    scene = probe_scene(near, far, c["fov"], lv, cells=c["probes"], seed=seed, splits=edges)
+    ms = map_set(near, far, c["fov"], lv, c["scheme"].name, **options)
+    scene = probe_scene(near, far, c["fov"], lv, cells=c["probes"], seed=seed, splits=None if ms.faces else ms.edges)
     m = measure(near, far, c["fov"], lv, c["scheme"].name, resolution=c["res"], scene=scene, map_resolution=c["res"], **options)
     S = m.M_x * m.M_z
     measured_S = m.measured_x * m.measured_z
