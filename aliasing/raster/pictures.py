@@ -4,9 +4,11 @@ and cumulative error distributions over light directions.
 Every picture is of a seeded :func:`~aliasing.raster.ground_and_boxes` scene seen by the
 conventions' eye (origin, looking along +z, ``fov`` full field of view, ground 1 below the
 eye) with one directional light, shadowed through the maps of a ``scheme`` (Standard, P,
-LogP, a warping rule, each alone or after ``ZP<k>+``) sharing a fixed **texel budget**:
+LogP, a warping rule, each alone or after ``ZP<k>+``; or face partitions ``FPc+…``,
+``FPcs+…``) sharing a fixed **texel budget**:
 each of the k maps gets ⌊√(budget/k)⌋² texels, so ``ZP4+P`` at a 512² budget has four
-256² maps.  Each pixel is shaded from the map of the z-partition holding its eye depth.
+256² maps.  Each pixel is shaded from the map of its z- or face partition
+(:meth:`aliasing.raster.MapSet.assign`).
 
 * :func:`shadow_image`: Lambert shading (ambient + diffuse·max(0, n·l)) with the
   shadow-map test of :func:`shadow_test`: the stored sample and the pixel's surface are
@@ -53,7 +55,7 @@ from numpy.typing import ArrayLike, NDArray
 from .. import _validation as check
 from .. import geometry, schemes
 from .measure import _errors, measure
-from .rasterize import DepthMap, LightMap, check_resolution, eye_pass, light_maps, shadow_map
+from .rasterize import DepthMap, LightMap, check_resolution, eye_pass, map_set, shadow_map
 from .scenes import Scene, ground_and_boxes
 
 Array = NDArray[np.float64]
@@ -118,7 +120,8 @@ def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: st
         raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
     lv = lv[0]
     bias = _bias(bias)
-    maps, edges = light_maps(near, far, fv, lv, scheme)
+    ms = map_set(near, far, fv, lv, scheme)
+    maps, edges = ms.maps, ms.edges
     rm = map_resolution(budget, len(maps))
     if scene is None:
         sc = ground_and_boxes(near, far, fv, boxes=boxes, ground_cells=ground_cells, seed=seed)
@@ -135,7 +138,7 @@ def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: st
     face = np.where(hit, face, -1)
     pos = np.where(hit[..., None], eb.position, 0.0)
     pos[~hit] = [0.0, 0.0, 1.0]
-    part = np.clip(np.searchsorted(edges, pos[..., 2], side="right") - 1, 0, len(maps) - 1)
+    part = ms.assign(pos)
     s_all = np.full((res, res), np.nan)
     t_all = np.full((res, res), np.nan)
     lit = np.zeros((res, res), bool)
@@ -233,7 +236,7 @@ def shadow_test(lm: LightMap, sm: DepthMap, triangles: ArrayLike, points: ArrayL
     lit |= ok & (lam <= bias)
     # 3. the receiver's plane on the ray through the texel centre c0 + μ·up (c0 at height 0)
     xc, yc = lm.inverse((col + 0.5) / rm, (row + 0.5) / rm)
-    c0 = xc[..., None] * lm.basis[0] + (yc + lm.y_offset)[..., None] * lm.basis[2]
+    c0 = lm.plane_point(xc, yc)
     along = nrm @ up
     ok = np.abs(along) > 1e-9 * np.linalg.norm(nrm, axis=-1)
     mu = ((p - c0) * nrm).sum(-1) / np.where(ok, along, 1.0)

@@ -374,7 +374,8 @@ class LightMap:
         x, y, h = self.light_plane(points)
         s, t, w = self.map_plane(x, y)
         if self.parameterization == "logperspective" and np.isfinite(self.n_prime):
-            t = np.log1p(y / self.n_prime) / np.log1p(float(self.frustum.depth[0, 0]) / self.n_prime)
+            with np.errstate(invalid="ignore", divide="ignore"):  # behind the centre of projection: NaN
+                t = np.log1p(y / self.n_prime) / np.log1p(float(self.frustum.depth[0, 0]) / self.n_prime)
         return s, t, -h, w
 
     def perspective_t(self, t_log: ArrayLike) -> Array:
@@ -632,6 +633,9 @@ class MapSet:
         The view frustum [world units, deg].
     light : ndarray (3,)
         Unit vector towards the light.
+    frames : FaceFrames or None
+        The side faces' frames (:func:`aliasing.faces.face_frames`, for this one light) of
+        face partitions; None for z-partitions.
     """
 
     maps: list[LightMap]
@@ -642,6 +646,7 @@ class MapSet:
     far: float
     fov: float
     light: Array
+    frames: faces.FaceFrames | None = None
 
     def assign(self, points: ArrayLike) -> NDArray[np.int_]:
         """Index into ``maps`` of the map shading each eye-space point ``(..., 3)`` in the frustum.
@@ -657,7 +662,9 @@ class MapSet:
         if not self.faces:
             return np.clip(np.searchsorted(self.edges, p[..., 2], side="right") - 1, 0, k - 1)
         face = faces.partition_of(p, self.near, self.far, self.fov, self.light)
-        fr = faces.face_frames(self.faces, "uniform", self.near, self.far, self.fov, self.light, k=k)
+        fr = self.frames
+        if fr is None:
+            raise ValueError(f"frames must be the face frames of the {self.faces} partitions (see map_set), got None")
         normal, *_ = faces.side_frames(self.fov)
         lv = self.light
         travel = -lv if lv[2] >= 0 else lv  # eq. (54), as in partition_of
@@ -738,7 +745,7 @@ def map_set(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
                 c = (0, j, h, i)
                 maps.append(frame_map(lv[0], fr.axis[0, j, h], fr.y0[c], fr.y1[c], fr.a[c], fr.s_lo[c], fr.s_hi[c], sch.parameterization))
                 slots.append(1 + (j * halves + h) * k + i)
-    return MapSet(maps, np.asarray(slots), fr.depth, sch.faces, n, f, fv, lv[0])
+    return MapSet(maps, np.asarray(slots), fr.depth, sch.faces, n, f, fv, lv[0], fr)
 
 
 def log_row_centres(lm: LightMap, resolution: int) -> Array:
