@@ -466,7 +466,7 @@ def add_render_parser(sub) -> argparse.ArgumentParser:
         help="picture of a seeded scene: shadows, projected texel grid or per-pixel error",
         description="Render a seeded ground-and-boxes scene (near 1, far = f/n, eye 1 above the ground) with one directional "
         "light through a scheme's shadow maps sharing a texel budget of RES² texels; write a PNG.",
-        epilog="schemes: Standard | P | LogP | <warping rule>, alone or after ZP<k>+.  "
+        epilog="schemes: Standard | P | LogP | <warping rule>, alone or after ZP<k>+; FPc|FPcs[+ZP<k>]+P|LogP|Standard.  "
         "lights: overhead | behind | front | gamma:DEG[@azimuth:DEG] (one direction).",
     )
     ren.add_argument("--scheme", default="Standard", help="scheme (default Standard)")

@@ -698,12 +698,9 @@ def map_set(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
 
     Parameters
     ----------
-    near, far : float
-        Eye near and far distances [world units], 0 < near < far.
-    fov : float
-        Full field of view [deg].
-    light : str or array_like
-        One light direction (spec or vector towards the light).
+    near, far, fov, light
+        The view frustum (0 < near < far [world units], full field of view [deg]) and one
+        light direction, as for :func:`light_map`.
     scheme : str
         Any scheme of :mod:`aliasing.schemes` except ``FP+…``.
     **options

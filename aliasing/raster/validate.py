@@ -120,7 +120,8 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
     Parameters
     ----------
     scheme : str
-        Scheme name (Standard, P, LogP, a warping rule, each alone or after ``ZP<k>+``).
+        Scheme name (Standard, P, LogP, a warping rule, each alone or after ``ZP<k>+``; or
+        ``FPc+…``, ``FPcs+…``, whose per-map bounds are :func:`aliasing.faces.face_errors`).
     f_over_n : float
         Depth ratio far/near, > 1 (near = 1).
     fov : float
@@ -446,7 +447,7 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
         "(and S = M_x*M_z) with the analytic bounds (unit resolutions). PASS: no ratio above 1 + tolerance and every map's "
         "ratios at least --reach. Exit status 0 pass, 1 fail, 2 bad input. With --grid, every option takes a comma list "
         "(numbers also ranges START:STOP:lin|log:COUNT) and the product is validated, one row each.",
-        epilog="schemes: Standard | P | Po | LogP (Log) | Sopt | LogSopt | <warping rule> | ZP<k> | ZP<k>+<any>.  "
+        epilog="schemes: Standard | P | Po | LogP (Log) | Sopt | LogSopt | <warping rule> | ZP<k> | ZP<k>+<any> | FPc|FPcs[+ZP<k>]+P|LogP|Standard (face-fixed FP is not rasterized).  "
         "light: overhead | behind | front | gamma:DEG[@azimuth:DEG] (one direction; with --grid comma-separated, gamma and azimuth take lists and ranges).",
     )
     p.add_argument("--scheme", required=True, help="scheme name, e.g. P or ZP4+LogP (with --grid: comma list)")
