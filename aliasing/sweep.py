@@ -333,7 +333,7 @@ def expand_lights(light: str | Sequence[str] | ArrayLike) -> tuple[tuple[str, ..
     (('overhead', 'gamma:0:180:lin:3@azimuth:0,90'), (7, 3))
     """
     if isinstance(light, str):
-        specs = _split_lights(light)
+        specs = split_lights(light)
     elif isinstance(light, (list, tuple)) and all(isinstance(s, str) for s in light):
         specs = [s.strip() for s in light if s.strip()]
     else:
@@ -358,8 +358,27 @@ def expand_lights(light: str | Sequence[str] | ArrayLike) -> tuple[tuple[str, ..
     return tuple(specs), np.concatenate(blocks)
 
 
-def _split_lights(text: str) -> list[str]:
-    """Split at commas, keeping ``gamma:…@azimuth:30,60`` lists inside one spec."""
+def split_lights(text: str) -> list[str]:
+    """Split light specs at commas, keeping ``gamma:…@azimuth:30,60`` lists inside one spec.
+
+    Parameters
+    ----------
+    text : str
+        Comma-separated light specs (:data:`aliasing.geometry.LIGHT_SPEC`, with lists and
+        ranges after ``gamma:`` and ``@azimuth:``).
+
+    Returns
+    -------
+    list of str
+        The specs, stripped; empty parts are dropped.
+
+    Example
+    -------
+    >>> split_lights("overhead, gamma:30,60@azimuth:0,90, hemisphere:10")
+    ['overhead', 'gamma:30,60@azimuth:0,90', 'hemisphere:10']
+    """
+    if not isinstance(text, str):
+        raise ValueError(f"light must be text of comma-separated specs, got {text!r}")
     out: list[str] = []
     for part in (p.strip() for p in text.split(",")):
         if not part:
@@ -685,12 +704,6 @@ def _run_dask(grid: Grid, kind: str, todo: Sequence[int], done: Callable[[int, o
         client.close()
 
 
-def _check_jobs(jobs: int) -> int:
-    if isinstance(jobs, bool) or int(jobs) != jobs or jobs < 1:
-        raise ValueError(f"jobs must be a whole number >= 1 (local processes), got {jobs!r}")
-    return int(jobs)
-
-
 def _workdir(out: Path) -> Path:
     return out.with_name(out.name + ".parts")
 
@@ -823,7 +836,7 @@ def execute(
     P,100,60,180,0,100,100,10000,1,inf,-1
     """
     kind = check.choice(fmt, "format", OUTPUT_FORMATS)
-    jobs = _check_jobs(jobs)
+    jobs = check.jobs(jobs)
     if kind == "netcdf" and out is None:
         raise ValueError("format netcdf needs an output file (--out)")
     if resume and out is None:
@@ -955,7 +968,7 @@ def estimate(grid: Grid, fmt: str = "csv", jobs: int = 1, sample: int = 500) -> 
     """
     import time
 
-    jobs = _check_jobs(jobs)
+    jobs = check.jobs(jobs)
     kind = _kind(grid, check.choice(fmt, "format", OUTPUT_FORMATS))
     small = Grid(grid.variants, grid.f_over_n[:1], grid.fov[:1], grid.light, grid.directions[:sample], grid.near, grid.summary, sample)
     picks = sorted(set(np.linspace(0, len(grid.variants) - 1, min(8, len(grid.variants))).round().astype(int).tolist()))
@@ -1134,7 +1147,7 @@ def table(
         if progress:
             progress(count, total)
 
-    _run_chunks(grid, "arrays", list(range(total)), done, _check_jobs(jobs), dask)
+    _run_chunks(grid, "arrays", list(range(total)), done, check.jobs(jobs), dask)
     return SweepTable._from_payloads(grid, [payloads[i] for i in range(total)])
 
 

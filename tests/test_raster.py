@@ -372,3 +372,22 @@ def test_partition_maps_match_the_scheme():
     ref = schemes.evaluate("ZP3+LogP", 1.0, 1000.0, 60.0, "gamma:50@azimuth:70")
     np.testing.assert_allclose([m.n_prime for m in maps], ref.n_prime[0], rtol=1e-12)
     assert all(m.parameterization == "logperspective" for m in maps)
+
+
+def test_pixel_errors_is_public_and_checks_its_input():
+    from aliasing.raster.measure import pixel_errors
+
+    lm = raster.light_map(1.0, 100.0, 60.0, "overhead", "P")
+    pos = np.tile([0.0, 0.0, 10.0], (8, 8, 1))
+    ok = np.zeros((8, 8), bool)
+    assert sorted(pixel_errors(lm, pos, ok, 8, 60.0)) == ["m_s", "m_t", "m_x", "m_z", "s", "t"]
+    for args, match in [
+        (("map", pos, ok, 8, 60.0), "lm must be a LightMap"),
+        ((lm, pos[:4], ok, 8, 60.0), r"position must have shape .* \(8, 8, 3\)"),
+        ((lm, pos, ok.astype(int), 8, 60.0), "ok must be a boolean array"),
+        ((lm, pos, ok, 0, 60.0), "resolution must be in"),
+        ((lm, pos, ok, 8, 180.0), r"fov .* must be in \(0, 180\)"),
+        ((lm, -pos, ~ok, 8, 60.0), "z > 0"),
+    ]:
+        with pytest.raises(ValueError, match=match):
+            pixel_errors(*args)

@@ -77,6 +77,18 @@ def test_light_specs_lists_and_gamma_ranges():
         S.expand_lights(" , ")
 
 
+def test_split_lights_keeps_gamma_lists_together():
+    assert S.split_lights("gamma:30,60@azimuth:0,90,behind, ,sphere:4") == ["gamma:30,60@azimuth:0,90", "behind", "sphere:4"]
+    with pytest.raises(ValueError, match="light must be text"):
+        S.split_lights(["overhead"])
+
+
+@pytest.mark.parametrize("jobs", [0, -1, 1.5, True, float("nan"), float("inf"), "2", None])
+def test_jobs_must_be_a_whole_number_at_least_1(jobs):
+    with pytest.raises(ValueError, match=r"^jobs must be a whole number >= 1 \(local processes\)"):
+        S.execute(S.plan("P"), jobs=jobs)
+
+
 def test_plan_counts_the_product_and_chunks():
     g = S.plan("P,LogP", f_over_n="10:1000:log:3", fov="30:90:lin:4", light="sphere:25", k=[1, 5], block=10)
     assert g.shape == (4, 3, 4, 25) and g.size == 4 * 3 * 4 * 25

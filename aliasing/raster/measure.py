@@ -42,6 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .. import _validation as check
 from .. import geometry, schemes
 from .rasterize import LightMap, check_resolution, eye_pass, light_maps, shadow_map
 from .scenes import Scene, probes
@@ -199,6 +200,61 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
         tolerance=tol, pixels=count, scheme=analytic.scheme.name,
         n_prime=np.array([m.n_prime for m in maps]), edges=edges, self_lit=self_lit_frac,
     )
+
+
+def pixel_errors(lm: LightMap, position: ArrayLike, ok: ArrayLike, resolution: int, fov: float) -> dict[str, Array]:
+    """Per-pixel map coordinates and the image and perspective errors through one light map.
+
+    Central differences between a pixel's neighbours (pixel spacing 1/R in image units) of
+    the map coordinates (s, t) and of the visible points X; see the module docstring for
+    the quantities.
+
+    Parameters
+    ----------
+    lm : LightMap
+        The map (:func:`aliasing.raster.light_map`, or one of :func:`~aliasing.raster.light_maps`).
+    position : array_like, shape (R, R, 3)
+        Visible eye-space point per pixel [world units] (:attr:`EyeBuffer.position`); it
+        must be finite with z > 0 wherever ``ok``.
+    ok : array_like of bool, shape (R, R)
+        Pixels to measure: those whose four neighbours lie on the same plane (and map).
+    resolution : int
+        R [pixels per side], the image resolution of ``position``.
+    fov : float
+        Full field of view [deg], in (0, 180).
+
+    Returns
+    -------
+    dict of ndarray (R, R)
+        ``s``, ``t`` (map coordinates, everywhere), ``m_s``, ``m_t`` (image error) and
+        ``m_x``, ``m_z`` (perspective error), unit resolutions, NaN off ``ok``.
+
+    Example
+    -------
+    >>> from aliasing import raster
+    >>> lm = raster.light_map(1.0, 100.0, 60.0, "overhead", "Standard")
+    >>> sc = raster.probes(1.0, 100.0, 60.0, "overhead", cells=4)
+    >>> eb = raster.eye_pass(sc.triangles, 60.0, 64)
+    >>> g = np.where(eb.triangle >= 0, sc.group[eb.triangle], -1)  # probe of each pixel
+    >>> ok = (g >= 0) & (g == np.roll(g, 1, 0)) & (g == np.roll(g, -1, 0)) & (g == np.roll(g, 1, 1)) & (g == np.roll(g, -1, 1))
+    >>> got = pixel_errors(lm, np.where(ok[..., None], eb.position, 1.0), ok, 64, 60.0)
+    >>> bound = schemes.evaluate("Standard", 1.0, 100.0, 60.0, "overhead").M_x[0, 0]
+    >>> sorted(got), bool(np.nanmax(got["m_x"]) <= bound * 1.001)
+    (['m_s', 'm_t', 'm_x', 'm_z', 's', 't'], True)
+    """
+    if not isinstance(lm, LightMap):
+        raise ValueError(f"lm must be a LightMap (aliasing.raster.light_map), got {type(lm).__name__}")
+    res = check_resolution(resolution)
+    fv = float(check.fov(fov))
+    pos = np.asarray(position, dtype=float)
+    if pos.shape != (res, res, 3):
+        raise ValueError(f"position must have shape (resolution, resolution, 3) = ({res}, {res}, 3), got {pos.shape}")
+    mask = np.asarray(ok)
+    if mask.shape != (res, res) or mask.dtype != bool:
+        raise ValueError(f"ok must be a boolean array of shape ({res}, {res}), got {mask.dtype} {mask.shape}")
+    if not (np.all(np.isfinite(pos[mask])) and np.all(pos[mask][:, 2] > 0)):
+        raise ValueError("position must be finite with z > 0 (in front of the eye) at every ok pixel")
+    return _errors(lm, pos, mask, res, fv)
 
 
 def _errors(lm: LightMap, pos: Array, ok: NDArray[np.bool_], res: int, fov: float) -> dict[str, Array]:

@@ -252,7 +252,7 @@ def expand_light_specs(lights: str | Iterable[str]) -> list[str]:
     """
     from .. import sweep
 
-    specs = sweep._split_lights(lights) if isinstance(lights, str) else [str(s).strip() for s in lights if str(s).strip()]
+    specs = sweep.split_lights(lights) if isinstance(lights, str) else [str(s).strip() for s in lights if str(s).strip()]
     if not specs:
         raise ValueError("light is empty: the validation grid has no directions")
     out: list[str] = []
@@ -312,7 +312,7 @@ def validate_rows(schemes: str | Iterable[str], f_over_n: object, fov: object, l
     ratios = _numbers(f_over_n, "f_over_n")
     fovs = _numbers(fov, "fov")
     specs = expand_light_specs(lights)
-    jobs = sweep._check_jobs(jobs)
+    jobs = check.jobs(jobs)
     tasks = [
         dict(scheme=s, f_over_n=r, fov=v, light=l, res=res, image_res=image_res, probes=probes, seed=seed, reach=reach)
         for s, r, v, l in itertools.product(names, ratios, fovs, specs)
