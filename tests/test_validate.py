@@ -214,3 +214,15 @@ def test_cli_bad_input_one_line_exit_2(capsys, argv, match):
     code, out, err = run(capsys, "validate", *argv)
     assert code == 2 and out == ""
     assert len(err.strip().splitlines()) == 1 and match in err
+
+
+def test_projection_factor_reported_about_one_on_probes(capsys):
+    r = validate("ZP2+LogP", 100, 60, "gamma:60@azimuth:30", res=128, probes=8)
+    assert r["projection_min"] <= r["projection_median"] <= r["projection_max"]
+    assert abs(r["projection_median"] - 1) < 5e-3
+    assert 0.92 < r["projection_min"] < 1 < r["projection_max"] < 1.08
+    code, out, _ = run(capsys, *BASE, "--scheme", "P", "--f-over-n", "100", "--light", "gamma:60@azimuth:30")
+    assert code == 0 and "projection factor cos(psi_e)/cos(psi_l) on the probes: min " in out
+    code, out, _ = run(capsys, *BASE, "--grid", "--scheme", "P", "--f-over-n", "100", "--light", "gamma:60@azimuth:30")
+    row = next(csv.DictReader(io.StringIO(out)))
+    assert float(row["projection_median"]) == pytest.approx(validate("P", 100, 60, "gamma:60@azimuth:30", res=128, probes=8)["projection_median"], rel=1e-9)

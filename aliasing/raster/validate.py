@@ -152,7 +152,11 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
         totals ``S_total``, ``measured_S_total``, ``ratio_S_total``, ``critical_area``
         (S_total·image_res² texels); ``max_ratio``, ``min_ratio`` (over maps, of the M_x and
         M_z ratios), ``tolerance``, ``reach``, ``within_bound``, ``reached``, ``passed``,
-        ``pixels``, ``self_lit``.
+        ``pixels``, ``self_lit``; ``projection_min``, ``projection_median``,
+        ``projection_max``: the projection factor cos ψ_e / cos ψ_l measured from the normals
+        over the probe pixels (:func:`aliasing.raster.measure.projection_factors`), about 1 by
+        construction of the probes (Lloyd 2006 §3.3), so the measured error is perspective
+        aliasing alone.
 
     Raises
     ------
@@ -216,6 +220,9 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
         "passed": within and reached,
         "pixels": int(m.pixels),
         "self_lit": float(m.self_lit),
+        "projection_min": float(np.nanmin(m.projection)),
+        "projection_median": float(np.nanmedian(m.projection)),
+        "projection_max": float(np.nanmax(m.projection)),
     }
 
 
@@ -347,6 +354,8 @@ def format_text(r: dict) -> str:
     lines = [
         f"scheme {r['scheme']}  f/n {r['f_over_n']:g}  fov {r['fov']:g} deg  light {r['light']} (gamma {r['gamma']:.6g} deg)  maps {r['maps']}",
         f"measurement: res {r['res']} px, {r['probes']}x{r['probes']} probes, seed {r['seed']}, {r['pixels']} pixels, self-lit {r['self_lit']:.3f}",
+        f"projection factor cos(psi_e)/cos(psi_l) on the probes: min {r['projection_min']:.4f}, median {r['projection_median']:.4f}, "
+        f"max {r['projection_max']:.4f} (about 1 by construction: perspective aliasing alone)",
         f"{'':10s}{'map':>4s}{'analytic':>14s}{'measured':>14s}{'ratio':>12s}",
     ]
     k = r["maps"]
@@ -367,7 +376,7 @@ def format_text(r: dict) -> str:
 
 
 def _table(rows: list[dict]) -> str:
-    keys = ["scheme", "f_over_n", "fov", "light", "maps", "ratio_M_x", "ratio_M_z", "ratio_S", "max_ratio", "min_ratio", "passed"]
+    keys = ["scheme", "f_over_n", "fov", "light", "maps", "ratio_M_x", "ratio_M_z", "ratio_S", "max_ratio", "min_ratio", "projection_min", "projection_max", "passed"]
     cells = [keys] + [[_fmt(r[k]).replace(", ", ";") for k in keys] for r in rows]
     widths = [max(len(c[i]) for c in cells) for i in range(len(keys))]
     return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells)
