@@ -11,6 +11,7 @@ import pytest
 import aliasing
 from aliasing import sweep as S
 from aliasing.cli import main
+from conftest import Stop, interrupt_after, stop_after
 
 
 def _cli(argv, capsys):
@@ -213,18 +214,6 @@ def test_cli_unwritable_output_keeps_nothing(tmp_path, capsys):
 # ---- no data lost: interrupt, resume, refuse a different sweep -------------------------
 
 
-class _Stop(Exception):
-    pass
-
-
-def _stop_after(n):
-    def progress(done, total):
-        if done >= n:
-            raise _Stop
-
-    return progress
-
-
 ARGS = dict(f_over_n=[10.0, 1000.0], fov=[60.0], light="sphere:30", block=10)
 ARGV = ["--schemes", "P,ZP3+LogP", "--f-over-n", "10,1000", "--fov", "60", "--light", "sphere:30", "--block", "10"]
 
@@ -236,8 +225,8 @@ def test_interrupted_sweep_resumes_to_identical_bytes(tmp_path, capsys, monkeypa
     part.write_text("precious\n")
     grid = S.plan("P,ZP3+LogP", **ARGS)
     assert grid.chunks == 12
-    with pytest.raises(_Stop):
-        S.execute(grid, "csv", part, jobs=jobs, progress=_stop_after(5))
+    with pytest.raises(Stop):
+        S.execute(grid, "csv", part, jobs=jobs, progress=stop_after(5))
     assert part.read_text() == "precious\n"  # a failed run never touches the output
     work = tmp_path / "part.csv.parts"
     saved = sorted(p.name for p in work.glob("*.csv"))
@@ -257,8 +246,8 @@ def test_interrupted_sweep_resumes_to_identical_bytes(tmp_path, capsys, monkeypa
 def test_resume_refuses_a_different_sweep(tmp_path, capsys):
     out = tmp_path / "s.json"
     out.write_text("old\n")
-    with pytest.raises(_Stop):
-        S.execute(S.plan("P,ZP3+LogP", **ARGS), "json", out, progress=_stop_after(2))
+    with pytest.raises(Stop):
+        S.execute(S.plan("P,ZP3+LogP", **ARGS), "json", out, progress=stop_after(2))
     _one_line_error([*ARGV, "--format", "json", "--out", str(out), "--resume", "--fov", "61"], capsys, "belongs to a different sweep")
     _one_line_error([*ARGV, "--out", str(out), "--resume"], capsys, "belongs to a different sweep")  # csv ≠ json
     assert out.read_text() == "old\n"
@@ -269,8 +258,8 @@ def test_resume_refuses_a_different_sweep(tmp_path, capsys):
 def test_resume_of_a_summary_sweep(tmp_path, capsys):
     whole, part = tmp_path / "w.csv", tmp_path / "p.csv"
     assert _cli([*ARGV, "--summary", "--out", str(whole)], capsys)[0] == 0
-    with pytest.raises(_Stop):
-        S.execute(S.plan("P,ZP3+LogP", summary=True, **ARGS), "csv", part, progress=_stop_after(7))
+    with pytest.raises(Stop):
+        S.execute(S.plan("P,ZP3+LogP", summary=True, **ARGS), "csv", part, progress=stop_after(7))
     assert _cli([*ARGV, "--summary", "--out", str(part), "--resume"], capsys)[0] == 0
     assert part.read_bytes() == whole.read_bytes()
 
@@ -374,15 +363,7 @@ def test_dask_malformed_address_is_one_line(capsys):
 def test_cli_ctrl_c_keeps_chunks_and_resume_finishes(tmp_path, capsys, monkeypatch):
     whole, part = tmp_path / "whole.csv", tmp_path / "part.csv"
     assert _cli([*ARGV, "--out", str(whole)], capsys)[0] == 0
-
-    def interrupt_after_4(stream):
-        def progress(done, total):
-            if done == 4:
-                raise KeyboardInterrupt
-
-        return progress
-
-    monkeypatch.setattr(S, "progress_bar", interrupt_after_4)
+    monkeypatch.setattr(S, "progress_bar", interrupt_after(4))
     code, _, err = _cli([*ARGV, "--out", str(part)], capsys)
     assert code == 130 and "interrupted; finished chunks are kept in" in err and "--resume" in err
     assert not part.exists() and len(list((tmp_path / "part.csv.parts").glob("*.csv"))) == 4
