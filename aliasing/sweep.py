@@ -1074,7 +1074,9 @@ def _estimate(grid: Plan, fmt: str, jobs: int, sample: int = 500) -> tuple[float
 
     jobs = check.jobs(jobs)
     kind = grid.payload_kind(check.choice(fmt, "format", grid.formats))
-    tasks, note = grid.timing(kind, sample)
+    if isinstance(sample, bool) or not isinstance(sample, (int, np.integer)) or sample < 1:
+        raise ValueError(f"sample must be a whole number >= 1 (directions timed per scheme), got {sample!r}")
+    tasks, note = grid.timing(kind, int(sample))
     tasks[0][0].compute()  # warm-up
     per: list[float] = []
     for task, evaluations in tasks:
@@ -1266,6 +1268,7 @@ def collect(grid: Plan, kind: str, *, jobs: int = 1, dask: str | None = None, pr
     (2, ['M_x', 'M_z', 'S', 'eta', 'n_prime'])
     """
     jobs = check.jobs(jobs)
+    kind = check.choice(kind, "payload kind", _EXT)
     payloads: dict[int, object] = {}
     total = grid.chunks
 

@@ -90,6 +90,17 @@ def test_jobs_must_be_a_whole_number_at_least_1(jobs):
         S.execute(S.plan("P"), jobs=jobs)
 
 
+def test_engine_helpers_check_their_input():
+    g = S.plan("P", light="overhead")
+    with pytest.raises(ValueError, match="sample must be a whole number >= 1"):
+        S.estimate(g, sample=0)
+    with pytest.raises(ValueError, match="unknown payload kind 'xml'"):
+        S.collect(g, "xml")
+    with pytest.raises(ValueError, match="count must be a whole number >= 1"):
+        S.spread(0)
+    assert S.spread(9, 3) == [0, 4, 8] and len(S.collect(g, "csv")) == 1
+
+
 def test_plan_counts_the_product_and_chunks():
     g = S.plan("P,LogP", f_over_n="10:1000:log:3", fov="30:90:lin:4", light="sphere:25", k=[1, 5], block=10)
     assert g.shape == (4, 3, 4, 25) and g.size == 4 * 3 * 4 * 25

@@ -668,7 +668,7 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
     """
     p = sub.add_parser(
         "validate",
-        help="measure a scheme's aliasing error with the rasterizer and compare it with the analytic bounds",
+        help="measure a scheme's aliasing error with the rasterizer and compare it with the analytic bounds (--grid: a resumable sweep of them)",
         description="Rasterize seeded probe planes, measure the perspective error m_x, m_z per pixel and compare their maxima "
         "(and S = M_x*M_z) with the analytic bounds (unit resolutions). PASS: no ratio above 1 + tolerance and every map's "
         "ratios at least --reach. Exit status 0 pass, 1 fail, 2 bad input. With --grid, every option takes a comma list "
