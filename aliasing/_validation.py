@@ -82,6 +82,14 @@ def choice(value: str, name: str, allowed: Iterable[str]) -> str:
     return key
 
 
+def jobs(value: object, name: str = "jobs") -> int:
+    """Require a whole number >= 1 of local worker processes; returns it as an int."""
+    number = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
+    if not (number and np.isfinite(value) and float(value).is_integer() and value >= 1):  # type: ignore[arg-type]
+        raise ValueError(f"{name} must be a whole number >= 1 (local processes), got {value!r}")
+    return int(value)
+
+
 def _show(arr: NDArray[np.float64]) -> str:
     """Short text for an offending value (the scalar, or the range of an array)."""
     if arr.ndim == 0 or arr.size == 1:

@@ -89,18 +89,7 @@ def _sweep(args: argparse.Namespace) -> int:
         return 0
     out = pick("out", None)
     command = grid.command(fmt) + (f"  # from --config {args.config}" if args.config else "")
-    try:
-        result = sweep.execute(
-            grid, fmt, out, jobs=jobs, dask=pick("dask", None), resume=args.resume,  # type: ignore[arg-type]
-            progress=sweep.progress_bar(sys.stderr), command=command,
-        )
-    except KeyboardInterrupt:
-        kept = f"; finished chunks are kept in {out}.parts: rerun with --resume" if out is not None else ""
-        print(f"\naliasing sweep: interrupted{kept}", file=sys.stderr)
-        return 130
-    if out is None:
-        sys.stdout.write(str(result))
-    return 0
+    return sweep.run_command(grid, fmt, out, name="sweep", jobs=jobs, dask=pick("dask", None), resume=args.resume, command=command)  # type: ignore[arg-type]
 
 
 def _splits(args: argparse.Namespace) -> int:

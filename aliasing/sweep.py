@@ -28,7 +28,7 @@ import types
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TextIO
+from typing import Any, ClassVar, Protocol, TextIO
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -333,7 +333,7 @@ def expand_lights(light: str | Sequence[str] | ArrayLike) -> tuple[tuple[str, ..
     (('overhead', 'gamma:0:180:lin:3@azimuth:0,90'), (7, 3))
     """
     if isinstance(light, str):
-        specs = _split_lights(light)
+        specs = split_lights(light)
     elif isinstance(light, (list, tuple)) and all(isinstance(s, str) for s in light):
         specs = [s.strip() for s in light if s.strip()]
     else:
@@ -358,8 +358,27 @@ def expand_lights(light: str | Sequence[str] | ArrayLike) -> tuple[tuple[str, ..
     return tuple(specs), np.concatenate(blocks)
 
 
-def _split_lights(text: str) -> list[str]:
-    """Split at commas, keeping ``gamma:…@azimuth:30,60`` lists inside one spec."""
+def split_lights(text: str) -> list[str]:
+    """Split light specs at commas, keeping ``gamma:…@azimuth:30,60`` lists inside one spec.
+
+    Parameters
+    ----------
+    text : str
+        Comma-separated light specs (:data:`aliasing.geometry.LIGHT_SPEC`, with lists and
+        ranges after ``gamma:`` and ``@azimuth:``).
+
+    Returns
+    -------
+    list of str
+        The specs, stripped; empty parts are dropped.
+
+    Example
+    -------
+    >>> split_lights("overhead, gamma:30,60@azimuth:0,90, hemisphere:10")
+    ['overhead', 'gamma:30,60@azimuth:0,90', 'hemisphere:10']
+    """
+    if not isinstance(text, str):
+        raise ValueError(f"light must be text of comma-separated specs, got {text!r}")
     out: list[str] = []
     for part in (p.strip() for p in text.split(",")):
         if not part:
@@ -374,6 +393,38 @@ def _split_lights(text: str) -> list[str]:
 
 def _digest_bytes(data: bytes) -> str:
     return hashlib.sha256(data).hexdigest()
+
+
+def parameters_digest(parameters: dict, fmt: str, data: bytes = b"") -> str:
+    """SHA-256 of a grid's parameters (JSON-ready), its output format, the toolkit version and ``data``.
+
+    What a work directory's manifest records, so that ``--resume`` refuses a different grid.
+
+    Example
+    -------
+    >>> a = parameters_digest({"fov": [60.0]}, "csv")
+    >>> len(a), a == parameters_digest({"fov": [60.0]}, "json")
+    (64, False)
+    """
+    from . import __version__
+
+    text = json.dumps({"parameters": parameters, "format": fmt, "aliasing": __version__}, sort_keys=True)
+    return _digest_bytes(text.encode() + data)
+
+
+def spread(count: int, most: int = 8) -> list[int]:
+    """At most ``most`` indices in ``range(count)``, spread evenly with both ends (for timing samples).
+
+    Example
+    -------
+    >>> spread(20, 4), spread(3)
+    ([0, 6, 13, 19], [0, 1, 2])
+    """
+    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 1:
+        raise ValueError(f"count must be a whole number >= 1, got {count!r}")
+    if isinstance(most, bool) or not isinstance(most, (int, np.integer)) or most < 1:
+        raise ValueError(f"most must be a whole number >= 1, got {most!r}")
+    return sorted(set(np.linspace(0, count - 1, min(most, count)).round().astype(int).tolist()))
 
 
 @dataclass(frozen=True)
@@ -392,6 +443,8 @@ class Grid:
     near: float = 1.0
     summary: bool = False
     block: int = DEFAULT_BLOCK
+
+    formats: ClassVar[tuple[str, ...]] = OUTPUT_FORMATS
 
     @property
     def param_names(self) -> tuple[str, ...]:
@@ -452,11 +505,8 @@ class Grid:
         }
 
     def digest(self, fmt: str) -> str:
-        """SHA-256 of the parameters, the output format and the toolkit version."""
-        from . import __version__
-
-        text = json.dumps({"parameters": self.parameters(), "format": fmt, "aliasing": __version__}, sort_keys=True)
-        return _digest_bytes(text.encode() + np.ascontiguousarray(self.directions).tobytes())
+        """SHA-256 of the parameters, the directions, the output format and the toolkit version."""
+        return parameters_digest(self.parameters(), fmt, np.ascontiguousarray(self.directions).tobytes())
 
     def command(self, fmt: str = "csv") -> str:
         """An ``aliasing sweep`` command line for this sweep."""
@@ -473,6 +523,24 @@ class Grid:
         """One line: the grid's axes, size and chunks."""
         v, r, f, n = self.shape
         return f"grid: {v} schemes × {r} f/n × {f} fov × {n} directions = {self.size:,} evaluations in {self.chunks:,} chunks"
+
+    def payload_kind(self, fmt: str) -> str:
+        """How chunks are kept for output ``fmt``: CSV or JSON text, or arrays (summaries, NetCDF)."""
+        return "arrays" if self.summary or fmt == "netcdf" else fmt
+
+    def assemble(self, payload_kind: str, fmt: str, payloads: Iterable[object]) -> Iterator[str | bytes]:
+        """The output text in pieces, from every chunk's payload in order."""
+        return _assemble_stream(self, payload_kind, fmt, payloads)
+
+    def table(self, payloads: Sequence[object], command: str | None = None) -> SweepTable:
+        """The :class:`SweepTable` of every chunk's ``arrays`` payload, in order."""
+        return SweepTable._from_payloads(self, list(payloads), command)
+
+    def timing(self, kind: str, sample: int = 500) -> tuple[list[tuple[_Task, int]], str]:
+        """Chunks to time for :func:`estimate` (``sample`` directions of up to 8 schemes), with their evaluations."""
+        small = Grid(self.variants, self.f_over_n[:1], self.fov[:1], self.light, self.directions[:sample], self.near, self.summary, sample)
+        tasks = [(small.chunk(v, kind), len(small.directions)) for v in spread(len(self.variants))]
+        return tasks, f"timed on {len(small.directions)} directions per scheme"
 
 
 def plan(
@@ -540,6 +608,10 @@ class _Task:
     ratio: float
     fov: float
     light: np.ndarray
+
+    def compute(self) -> str | dict[str, np.ndarray]:
+        """This chunk's payload (:func:`compute_chunk`)."""
+        return compute_chunk(self)
 
 
 def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
@@ -615,14 +687,52 @@ def _csv_fragment(task: _Task, gamma: np.ndarray, azimuth: np.ndarray, r: scheme
 Progress = Callable[[int, int], None]
 
 
-def _run_chunks(grid: Grid, kind: str, todo: Sequence[int], done: Callable[[int, object], None], jobs: int, dask: str | None) -> None:
+class Task(Protocol):
+    """One chunk's work: small, picklable (sent to processes or Dask workers)."""
+
+    def compute(self) -> Any:
+        """The chunk's payload."""
+
+
+class Plan(Protocol):
+    """What :func:`execute` runs: a planned grid split into chunks.
+
+    :class:`Grid` (``aliasing sweep``) and :class:`aliasing.raster.validate.ValidationGrid`
+    (``aliasing validate --grid``) are plans.  ``payload_kind(fmt)`` says how the chunks
+    are kept for an output format: ``csv`` / ``json`` (text), ``arrays`` (``.npz``) or
+    ``rows`` (a list of row dicts, kept as JSON lines).
+    """
+
+    formats: ClassVar[tuple[str, ...]]
+
+    @property
+    def chunks(self) -> int: ...
+    @property
+    def size(self) -> int: ...
+    def chunk(self, index: int, kind: str) -> Task: ...
+    def payload_kind(self, fmt: str) -> str: ...
+    def parameters(self) -> dict: ...
+    def digest(self, fmt: str) -> str: ...
+    def command(self, fmt: str = "csv") -> str: ...
+    def describe(self) -> str: ...
+    def assemble(self, payload_kind: str, fmt: str, payloads: Iterable[object]) -> Iterator[str | bytes]: ...
+    def table(self, payloads: Sequence[object], command: str | None = None) -> SweepTable: ...
+    def timing(self, kind: str, sample: int = 500) -> tuple[list[tuple[Task, int]], str]: ...
+
+
+def run_task(task: Task) -> Any:
+    """``task.compute()``: the function sent to worker processes and Dask workers."""
+    return task.compute()
+
+
+def _run_chunks(grid: Plan, kind: str, todo: Sequence[int], done: Callable[[int, object], None], jobs: int, dask: str | None) -> None:
     """Compute the chunks ``todo`` in-process, in ``jobs`` processes or on Dask; ``done`` each."""
     if dask:
         _run_dask(grid, kind, todo, done, dask)
         return
     if jobs == 1 or len(todo) <= 1:
         for i in todo:
-            done(i, compute_chunk(grid.chunk(i, kind)))
+            done(i, grid.chunk(i, kind).compute())
         return
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
@@ -632,7 +742,7 @@ def _run_chunks(grid: Grid, kind: str, todo: Sequence[int], done: Callable[[int,
     try:
         while True:
             for i in itertools.islice(queue, 2 * jobs - len(pending)):
-                pending[ex.submit(compute_chunk, grid.chunk(i, kind))] = i
+                pending[ex.submit(run_task, grid.chunk(i, kind))] = i
             if not pending:
                 break
             finished, _ = wait(pending, return_when=FIRST_COMPLETED)
@@ -646,7 +756,7 @@ DASK_TIMEOUT = 10.0
 """Seconds to wait for a Dask scheduler before giving up."""
 
 
-def _run_dask(grid: Grid, kind: str, todo: Sequence[int], done: Callable[[int, object], None], address: str) -> None:
+def _run_dask(grid: Plan, kind: str, todo: Sequence[int], done: Callable[[int, object], None], address: str) -> None:
     try:
         from distributed import Client, as_completed
     except ImportError:
@@ -669,7 +779,7 @@ def _run_dask(grid: Grid, kind: str, todo: Sequence[int], done: Callable[[int, o
         index: dict = {}
 
         def submit(i: int):
-            fut = client.submit(compute_chunk, grid.chunk(i, kind), pure=False)
+            fut = client.submit(run_task, grid.chunk(i, kind), pure=False)
             index[fut.key] = i
             return fut
 
@@ -683,12 +793,6 @@ def _run_dask(grid: Grid, kind: str, todo: Sequence[int], done: Callable[[int, o
                 stream.add(submit(nxt))
     finally:
         client.close()
-
-
-def _check_jobs(jobs: int) -> int:
-    if isinstance(jobs, bool) or int(jobs) != jobs or jobs < 1:
-        raise ValueError(f"jobs must be a whole number >= 1 (local processes), got {jobs!r}")
-    return int(jobs)
 
 
 def _workdir(out: Path) -> Path:
@@ -718,7 +822,7 @@ def _atomic_bytes(data: bytes, target: Path) -> None:
         raise
 
 
-_EXT = {"csv": "csv", "json": "json", "arrays": "npz"}
+_EXT = {"csv": "csv", "json": "json", "arrays": "npz", "rows": "jsonl"}
 
 
 def _payload_bytes(kind: str, payload: object) -> bytes:
@@ -726,6 +830,8 @@ def _payload_bytes(kind: str, payload: object) -> bytes:
         buf = io.BytesIO()
         np.savez(buf, **payload)  # type: ignore[arg-type]
         return buf.getvalue()
+    if kind == "rows":  # exact: JSON keeps every float's repr (NaN and inf too), ints and bools
+        return "".join(json.dumps(row) + "\n" for row in payload).encode()  # type: ignore[attr-defined]
     return str(payload).encode()
 
 
@@ -733,10 +839,12 @@ def _payload_load(kind: str, path: Path) -> object:
     if kind == "arrays":
         with np.load(path, allow_pickle=False) as data:
             return {key: data[key] for key in data.files}
+    if kind == "rows":
+        return [json.loads(line) for line in path.read_text().splitlines()]
     return path.read_bytes()  # UTF-8 text, copied into the output as it is
 
 
-def _open_workdir(grid: Grid, fmt: str, out: Path, resume: bool, kind: str) -> tuple[Path, set[int]]:
+def _open_workdir(grid: Plan, fmt: str, out: Path, resume: bool, kind: str) -> tuple[Path, set[int]]:
     """Create or reopen ``<out>.parts``; the chunks already finished there."""
     from . import __version__
 
@@ -764,12 +872,8 @@ def _open_workdir(grid: Grid, fmt: str, out: Path, resume: bool, kind: str) -> t
     return work, finished
 
 
-def _kind(grid: Grid, fmt: str) -> str:
-    return "arrays" if grid.summary or fmt == "netcdf" else fmt
-
-
 def execute(
-    grid: Grid,
+    grid: Plan,
     fmt: str = "csv",
     out: str | os.PathLike | None = None,
     *,
@@ -778,6 +882,7 @@ def execute(
     resume: bool = False,
     progress: Progress | None = None,
     command: str | None = None,
+    on_payloads: Callable[[list], None] | None = None,
 ) -> str | Path:
     """Run a planned sweep chunk by chunk; write ``out`` (atomically) or return the text.
 
@@ -791,10 +896,11 @@ def execute(
 
     Parameters
     ----------
-    grid : Grid
-        From :func:`plan`.
-    fmt : {"csv", "json", "netcdf"}
-        Output format (netcdf needs ``out`` and the ``xarray`` extra).
+    grid : Plan
+        From :func:`plan`, or a validation grid from :func:`aliasing.raster.validate.plan`.
+    fmt : str
+        Output format, one of ``grid.formats``: csv, json, netcdf (needs ``out`` and the
+        ``xarray`` extra); validation grids also write a text table.
     out : path, optional
         Output file; without it the text is returned (no work directory, no resume).
     jobs : int
@@ -808,6 +914,10 @@ def execute(
         keeping the finished chunks).
     command : str, optional
         The command line, stored in NetCDF attributes.
+    on_payloads : callable, optional
+        Called with the list of every chunk's payload, in order, once all are done and
+        before the output is written (resumed chunks included), e.g. to check the rows of
+        a validation grid; for small payloads only (it holds them all in memory).
 
     Returns
     -------
@@ -822,15 +932,15 @@ def execute(
     P,100,60,90,0,10,8.573651497,85.73651497,1,11,0
     P,100,60,180,0,100,100,10000,1,inf,-1
     """
-    kind = check.choice(fmt, "format", OUTPUT_FORMATS)
-    jobs = _check_jobs(jobs)
+    kind = check.choice(fmt, "format", grid.formats)
+    jobs = check.jobs(jobs)
     if kind == "netcdf" and out is None:
         raise ValueError("format netcdf needs an output file (--out)")
     if resume and out is None:
         raise ValueError("resume needs an output file (--out): the work directory sits beside it")
     if kind == "netcdf":
-        _xarray()
-    payload_kind = _kind(grid, kind)
+        import_xarray()
+    payload_kind = grid.payload_kind(kind)
     total = grid.chunks
     results: dict[int, object] = {}
     work: Path | None = None
@@ -864,13 +974,17 @@ def execute(
             return results[i]
         return _payload_load(payload_kind, work / f"{i:06d}.{_EXT[payload_kind]}")
 
+    payloads: Iterable[object] = (load(i) for i in range(total))
+    if on_payloads is not None or kind == "netcdf":
+        payloads = list(payloads)
+        if on_payloads is not None:
+            on_payloads(payloads)
     if target is None:
-        return _assemble_text(grid, payload_kind, kind, (load(i) for i in range(total)))
+        return "".join(str(part) for part in grid.assemble(payload_kind, kind, payloads))
     if kind == "netcdf":
-        table = SweepTable._from_payloads(grid, [load(i) for i in range(total)], command or grid.command(kind))
-        _write_netcdf(table, target)
+        _write_netcdf(grid.table(payloads, command or grid.command(kind)), target)  # type: ignore[arg-type]
     else:
-        _write_text_stream(_assemble_stream(grid, payload_kind, kind, (load(i) for i in range(total))), target)
+        _write_text_stream(grid.assemble(payload_kind, kind, payloads), target)
     shutil.rmtree(work)  # type: ignore[arg-type]
     return target
 
@@ -896,10 +1010,6 @@ def _assemble_stream(grid: Grid, payload_kind: str, fmt: str, payloads: Iterable
     yield "\n]\n"
 
 
-def _assemble_text(grid: Grid, payload_kind: str, fmt: str, payloads: Iterable[object]) -> str:
-    return "".join(str(part) for part in _assemble_stream(grid, payload_kind, fmt, payloads))
-
-
 def _write_text_stream(parts: Iterable[str | bytes], target: Path) -> None:
     fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
     try:
@@ -912,7 +1022,8 @@ def _write_text_stream(parts: Iterable[str | bytes], target: Path) -> None:
         raise
 
 
-def _xarray():
+def import_xarray() -> types.ModuleType:
+    """The ``xarray`` module; ValueError naming the optional extra to install if it is missing."""
     try:
         import xarray
     except ImportError:
@@ -941,11 +1052,13 @@ def _netcdf_engine() -> str:
     raise ValueError("format netcdf needs netCDF4 or h5netcdf: pip install 'aliasing[xarray]'")
 
 
-def estimate(grid: Grid, fmt: str = "csv", jobs: int = 1, sample: int = 500) -> float:
-    """Estimated wall time [s] of :func:`execute`, from timing ``sample`` directions per scheme.
+def estimate(grid: Plan, fmt: str = "csv", jobs: int = 1, sample: int = 500) -> float:
+    """Estimated wall time [s] of :func:`execute`, from timing a few chunks (``grid.timing``).
 
-    At most 8 scheme variants are timed (spread over the axis); the others are assumed
-    to cost the mean.  Process start-up and file writing are not included.
+    For a sweep :class:`Grid`, ``sample`` directions of at most 8 scheme variants (spread
+    over the axis; the others are assumed to cost the mean); for a validation grid, one
+    validation of at most 8 schemes.  The first timed chunk runs once more before, to warm
+    up.  Process start-up and file writing are not included.
 
     Example
     -------
@@ -953,20 +1066,25 @@ def estimate(grid: Grid, fmt: str = "csv", jobs: int = 1, sample: int = 500) -> 
     >>> 0 < seconds < 600
     True
     """
+    return _estimate(grid, fmt, jobs, sample)[0]
+
+
+def _estimate(grid: Plan, fmt: str, jobs: int, sample: int = 500) -> tuple[float, str]:
     import time
 
-    jobs = _check_jobs(jobs)
-    kind = _kind(grid, check.choice(fmt, "format", OUTPUT_FORMATS))
-    small = Grid(grid.variants, grid.f_over_n[:1], grid.fov[:1], grid.light, grid.directions[:sample], grid.near, grid.summary, sample)
-    picks = sorted(set(np.linspace(0, len(grid.variants) - 1, min(8, len(grid.variants))).round().astype(int).tolist()))
-    compute_chunk(small.chunk(picks[0], kind))  # warm-up
+    jobs = check.jobs(jobs)
+    kind = grid.payload_kind(check.choice(fmt, "format", grid.formats))
+    if isinstance(sample, bool) or not isinstance(sample, (int, np.integer)) or sample < 1:
+        raise ValueError(f"sample must be a whole number >= 1 (directions timed per scheme), got {sample!r}")
+    tasks, note = grid.timing(kind, int(sample))
+    tasks[0][0].compute()  # warm-up
     per: list[float] = []
-    for v in picks:
+    for task, evaluations in tasks:
         t0 = time.perf_counter()
-        compute_chunk(small.chunk(v, kind))
-        per.append((time.perf_counter() - t0) / len(small.directions))
+        task.compute()
+        per.append((time.perf_counter() - t0) / evaluations)
     per_eval = float(np.mean(per))
-    return per_eval * grid.size / min(jobs, grid.chunks)
+    return per_eval * grid.size / min(jobs, grid.chunks), note
 
 
 def _duration(seconds: float) -> str:
@@ -977,7 +1095,7 @@ def _duration(seconds: float) -> str:
     return f"{hours} h {minutes:02d} min" if hours else f"{minutes} min {sec:02d} s"
 
 
-def dry_run(grid: Grid, fmt: str = "csv", jobs: int = 1) -> str:
+def dry_run(grid: Plan, fmt: str = "csv", jobs: int = 1) -> str:
     """The grid size and a time estimate, as printed by ``aliasing sweep --dry-run``.
 
     Example
@@ -985,8 +1103,8 @@ def dry_run(grid: Grid, fmt: str = "csv", jobs: int = 1) -> str:
     >>> print(dry_run(plan("P,LogP", light="hemisphere:1000")).splitlines()[0])
     grid: 2 schemes × 1 f/n × 1 fov × 1000 directions = 2,000 evaluations in 2 chunks
     """
-    seconds = estimate(grid, fmt, jobs)
-    return f"{grid.describe()}\nestimated time: {_duration(seconds)} with {jobs} job{'s' if jobs > 1 else ''} (timed on {min(500, len(grid.directions))} directions per scheme)\n"
+    seconds, note = _estimate(grid, fmt, jobs)
+    return f"{grid.describe()}\nestimated time: {_duration(seconds)} with {jobs} job{'s' if jobs > 1 else ''} ({note})\n"
 
 
 # ---- the table object -----------------------------------------------------------------
@@ -1049,6 +1167,12 @@ class SweepTable:
         """CSV or JSON text, the bytes ``aliasing sweep`` writes."""
         return format_rows(self.rows(), fmt)
 
+    def attributes(self) -> dict:
+        """Attributes of :meth:`to_xarray` (and NetCDF files): toolkit version, command, parameters (JSON)."""
+        from . import __version__
+
+        return {"aliasing_version": __version__, "command": self.command, "parameters": json.dumps(self.grid.parameters())}
+
     def to_pandas(self):
         """A ``pandas.DataFrame`` of :meth:`rows` (needs pandas)."""
         import pandas as pd
@@ -1063,9 +1187,7 @@ class SweepTable:
         version and the command.  In summary mode the variables are S_min, S_max,
         S_max_over_min and S_mean over the directions.
         """
-        from . import __version__
-
-        xr = _xarray()
+        xr = import_xarray()
         g = self.grid
         gamma, azimuth = geometry.direction_angles(g.directions)
         kmax = max(d["M_x"].shape[-1] for d in self.data)
@@ -1075,7 +1197,8 @@ class SweepTable:
         for key, column in zip(g.param_names, g.columns):
             coords[column] = ("scheme", [float(dict(v.options).get(key, np.nan)) for v in g.variants])
         S = np.stack([d["S"] for d in self.data])
-        attrs = {"aliasing_version": __version__, "command": self.command, "parameters": json.dumps(g.parameters()), "near": g.near, "light": ",".join(g.light), "summary": int(g.summary), "block": g.block}
+        attrs = self.attributes()
+        attrs.update(near=g.near, light=",".join(g.light), summary=int(g.summary), block=g.block)
         attrs.update(units_fov="degrees (full field of view)", units_gamma="degrees", units_S="image areas (unit resolutions)")
         if g.summary:
             s_min, s_max = S.min(axis=-1), S.max(axis=-1)
@@ -1123,19 +1246,39 @@ def table(
     ('ZP5+LogP', 1000.0, 5.98)
     """
     grid = plan(schemes, f_over_n, fov, light, k=k, params=params, near=near, summary=summary, block=block)
+    return grid.table(collect(grid, "arrays", jobs=jobs, dask=dask, progress=progress))
+
+
+def collect(grid: Plan, kind: str, *, jobs: int = 1, dask: str | None = None, progress: Progress | None = None) -> list:
+    """Every chunk's payload of ``kind``, in order, computed in memory (no work directory).
+
+    Parameters
+    ----------
+    grid : Plan
+        A sweep :class:`Grid` or a validation grid.
+    kind : str
+        Payload kind (``arrays`` for a :class:`Grid`'s table, ``rows`` for a validation grid).
+    jobs, dask, progress
+        As in :func:`execute`.
+
+    Example
+    -------
+    >>> payloads = collect(plan("P,LogP", light="overhead"), "arrays", jobs=1)
+    >>> len(payloads), sorted(payloads[0])
+    (2, ['M_x', 'M_z', 'S', 'eta', 'n_prime'])
+    """
+    jobs = check.jobs(jobs)
+    kind = check.choice(kind, "payload kind", _EXT)
     payloads: dict[int, object] = {}
     total = grid.chunks
-    count = 0
 
     def done(i: int, payload: object) -> None:
-        nonlocal count
         payloads[i] = payload
-        count += 1
         if progress:
-            progress(count, total)
+            progress(len(payloads), total)
 
-    _run_chunks(grid, "arrays", list(range(total)), done, _check_jobs(jobs), dask)
-    return SweepTable._from_payloads(grid, [payloads[i] for i in range(total)])
+    _run_chunks(grid, kind, list(range(total)), done, jobs, dask)
+    return [payloads[i] for i in range(total)]
 
 
 def _load_toml(path: str | os.PathLike) -> dict:
@@ -1244,6 +1387,43 @@ def progress_bar(stream: TextIO | None = None, width: int = 30) -> Progress | No
         out.flush()
 
     return show
+
+
+def run_command(
+    grid: Plan,
+    fmt: str,
+    out: str | os.PathLike | None,
+    *,
+    name: str,
+    jobs: int = 1,
+    dask: str | None = None,
+    resume: bool = False,
+    command: str | None = None,
+    on_payloads: Callable[[list], None] | None = None,
+) -> int:
+    """:func:`execute` for a command line; returns the exit status.
+
+    A progress bar on stderr if it is a terminal; without ``out`` the text goes to stdout;
+    Ctrl-C stops with a line saying where the finished chunks are kept, and status 130.
+    ``name`` is the subcommand (``sweep``, ``validate``) for that line.  Errors
+    (``ValueError``) propagate: ``aliasing.cli.main`` prints them as one line, status 2.
+
+    Example
+    -------
+    >>> run_command(plan("P", f_over_n=100, light="behind"), "csv", None, name="sweep")
+    scheme,f_over_n,fov,gamma,azimuth,M_x,M_z,S,maps,n_prime,eta
+    P,100,60,180,0,100,100,10000,1,inf,-1
+    0
+    """
+    try:
+        result = execute(grid, fmt, out, jobs=jobs, dask=dask, resume=resume, progress=progress_bar(sys.stderr), command=command, on_payloads=on_payloads)
+    except KeyboardInterrupt:
+        kept = f"; finished chunks are kept in {out}.parts: rerun with --resume" if out is not None else ""
+        print(f"\naliasing {name}: interrupted{kept}", file=sys.stderr)
+        return 130
+    if out is None:
+        sys.stdout.write(str(result))
+    return 0
 
 
 class _CallableModule(types.ModuleType):

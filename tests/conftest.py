@@ -1,4 +1,4 @@
-"""Shared fixtures: parameter grids for numeric-vs-symbolic checks."""
+"""Shared fixtures: parameter grids for numeric-vs-symbolic checks; progress callbacks that interrupt a run."""
 
 from __future__ import annotations
 
@@ -48,3 +48,30 @@ def assert_close(actual, desired, rtol=1e-12, atol=0.0):
     """assert_allclose after broadcasting both sides to a common shape."""
     a, d = np.broadcast_arrays(np.asarray(actual, float), np.asarray(desired, float))
     np.testing.assert_allclose(a, d, rtol=rtol, atol=atol)
+
+
+class Stop(Exception):
+    """Raised by :func:`stop_after`'s progress callback."""
+
+
+def stop_after(n):
+    """A ``progress(done, total)`` callback that stops a run (raises Stop) once ``n`` chunks are done."""
+
+    def progress(done, total):
+        if done >= n:
+            raise Stop
+
+    return progress
+
+
+def interrupt_after(n):
+    """A stand-in for ``aliasing.sweep.progress_bar`` whose bar is Ctrl-C after ``n`` chunks."""
+
+    def progress_bar(stream):
+        def progress(done, total):
+            if done == n:
+                raise KeyboardInterrupt
+
+        return progress
+
+    return progress_bar

@@ -101,7 +101,7 @@ def test_adjusted_frame_vertex_maxima_bound_the_face_interior():
         d = np.exp(rng.uniform(0, math.log(F_N), 2000))
         w = rng.uniform(0, 1, 2000)
         pts = d[:, None] * ((1 - w)[:, None] * edges[j, 0] + w[:, None] * edges[j, 1])
-        Y, X = pts @ axis.T, pts @ across.T  # (M, N)
+        Y = pts @ axis.T  # (M, N)
         mx = (Y + a) * span / (2 * TAN * d[:, None])
         mz = (Y + a) ** 2 * (y1 - y0) / ((y0 + a) * (y1 + a)) / (2 * TAN * d[:, None])
         on = r.chosen[:, j + 1]

@@ -420,3 +420,56 @@ def test_raycast_reference_inputs(monkeypatch):
         raycast.raycast_shadow_map(tri, lm, 4, chunk=0)
     with pytest.raises(ValueError, match="lm must be a LightMap"):
         raycast.raycast_shadow_map(tri, "P", 4)
+
+
+def test_pixel_errors_is_public_and_checks_its_input():
+    from aliasing.raster.measure import pixel_errors
+
+    lm = raster.light_map(1.0, 100.0, 60.0, "overhead", "P")
+    pos = np.tile([0.0, 0.0, 10.0], (8, 8, 1))
+    ok = np.zeros((8, 8), bool)
+    assert sorted(pixel_errors(lm, pos, ok, 8, 60.0)) == ["m_s", "m_t", "m_x", "m_z", "s", "t"]
+    for args, match in [
+        (("map", pos, ok, 8, 60.0), "lm must be a LightMap"),
+        ((lm, pos[:4], ok, 8, 60.0), r"position must have shape .* \(8, 8, 3\)"),
+        ((lm, pos, ok.astype(int), 8, 60.0), "ok must be a boolean array"),
+        ((lm, pos, ok, 0, 60.0), "resolution must be in"),
+        ((lm, pos, ok, 8, 180.0), r"fov .* must be in \(0, 180\)"),
+        ((lm, -pos, ~ok, 8, 60.0), "z > 0"),
+    ]:
+        with pytest.raises(ValueError, match=match):
+            pixel_errors(*args)
+
+
+def test_projection_factor_is_one_on_bisector_normals_and_cos_psi_e_facing_the_light():
+    from aliasing.raster.measure import projection_factors
+
+    rng = np.random.default_rng(5)
+    pos = rng.uniform([-5, -5, 1], [5, 5, 50], size=(200, 3))
+    lv = geometry.lights("gamma:60@azimuth:30")[0]
+    to_eye = -pos / np.linalg.norm(pos, axis=-1, keepdims=True)
+    half = to_eye + lv
+    half /= np.linalg.norm(half, axis=-1, keepdims=True)
+    np.testing.assert_allclose(projection_factors(pos, half, "gamma:60@azimuth:30"), 1.0, rtol=1e-12)
+    facing = np.broadcast_to(lv, pos.shape)  # normal towards the light: cos ψ_l = 1
+    np.testing.assert_allclose(projection_factors(pos, facing, lv), to_eye @ lv, rtol=1e-12)
+    assert np.isnan(projection_factors(pos, -facing, lv)).all()  # facing away from the light
+    with pytest.raises(ValueError, match="same shape"):
+        projection_factors(pos, half[:3], lv)
+    with pytest.raises(ValueError, match="single direction"):
+        projection_factors(pos, half, "sphere:3")
+
+
+def test_projection_factor_about_one_on_probes_far_from_one_on_the_ground():
+    r = raster.measure(1.0, 100.0, 60.0, "gamma:150", "P", resolution=128, cells=8)
+    on = np.isfinite(r.m_x)
+    assert np.array_equal(np.isfinite(r.projection), on)
+    assert abs(np.median(r.projection[on]) - 1) < 5e-3 and np.all(np.abs(r.projection[on] - 1) < 0.08)
+    # the ground seen from 1 unit above, lit from overhead: grazing to the eye, facing the light
+    from aliasing.raster.measure import projection_factors
+
+    ground = raster.ground_and_boxes(1.0, 100.0, 60.0, boxes=0, ground_cells=4)
+    eb = raster.eye_pass(ground.triangles, 60.0, 64)
+    hit = eb.triangle >= 0
+    f = projection_factors(eb.position, eb.normal, "overhead")[hit]
+    assert hit.sum() > 500 and np.all(f < 0.6) and np.median(f) < 0.35

@@ -11,6 +11,7 @@ import pytest
 import aliasing
 from aliasing import sweep as S
 from aliasing.cli import main
+from conftest import Stop, interrupt_after, stop_after
 
 
 def _cli(argv, capsys):
@@ -75,6 +76,29 @@ def test_light_specs_lists_and_gamma_ranges():
     assert S.expand_lights("gamma:30,60@azimuth:0,45")[1].shape == (4, 3)
     with pytest.raises(ValueError, match="light is empty"):
         S.expand_lights(" , ")
+
+
+def test_split_lights_keeps_gamma_lists_together():
+    assert S.split_lights("gamma:30,60@azimuth:0,90,behind, ,sphere:4") == ["gamma:30,60@azimuth:0,90", "behind", "sphere:4"]
+    with pytest.raises(ValueError, match="light must be text"):
+        S.split_lights(["overhead"])
+
+
+@pytest.mark.parametrize("jobs", [0, -1, 1.5, True, float("nan"), float("inf"), "2", None])
+def test_jobs_must_be_a_whole_number_at_least_1(jobs):
+    with pytest.raises(ValueError, match=r"^jobs must be a whole number >= 1 \(local processes\)"):
+        S.execute(S.plan("P"), jobs=jobs)
+
+
+def test_engine_helpers_check_their_input():
+    g = S.plan("P", light="overhead")
+    with pytest.raises(ValueError, match="sample must be a whole number >= 1"):
+        S.estimate(g, sample=0)
+    with pytest.raises(ValueError, match="unknown payload kind 'xml'"):
+        S.collect(g, "xml")
+    with pytest.raises(ValueError, match="count must be a whole number >= 1"):
+        S.spread(0)
+    assert S.spread(9, 3) == [0, 4, 8] and len(S.collect(g, "csv")) == 1
 
 
 def test_plan_counts_the_product_and_chunks():
@@ -201,18 +225,6 @@ def test_cli_unwritable_output_keeps_nothing(tmp_path, capsys):
 # ---- no data lost: interrupt, resume, refuse a different sweep -------------------------
 
 
-class _Stop(Exception):
-    pass
-
-
-def _stop_after(n):
-    def progress(done, total):
-        if done >= n:
-            raise _Stop
-
-    return progress
-
-
 ARGS = dict(f_over_n=[10.0, 1000.0], fov=[60.0], light="sphere:30", block=10)
 ARGV = ["--schemes", "P,ZP3+LogP", "--f-over-n", "10,1000", "--fov", "60", "--light", "sphere:30", "--block", "10"]
 
@@ -224,8 +236,8 @@ def test_interrupted_sweep_resumes_to_identical_bytes(tmp_path, capsys, monkeypa
     part.write_text("precious\n")
     grid = S.plan("P,ZP3+LogP", **ARGS)
     assert grid.chunks == 12
-    with pytest.raises(_Stop):
-        S.execute(grid, "csv", part, jobs=jobs, progress=_stop_after(5))
+    with pytest.raises(Stop):
+        S.execute(grid, "csv", part, jobs=jobs, progress=stop_after(5))
     assert part.read_text() == "precious\n"  # a failed run never touches the output
     work = tmp_path / "part.csv.parts"
     saved = sorted(p.name for p in work.glob("*.csv"))
@@ -245,8 +257,8 @@ def test_interrupted_sweep_resumes_to_identical_bytes(tmp_path, capsys, monkeypa
 def test_resume_refuses_a_different_sweep(tmp_path, capsys):
     out = tmp_path / "s.json"
     out.write_text("old\n")
-    with pytest.raises(_Stop):
-        S.execute(S.plan("P,ZP3+LogP", **ARGS), "json", out, progress=_stop_after(2))
+    with pytest.raises(Stop):
+        S.execute(S.plan("P,ZP3+LogP", **ARGS), "json", out, progress=stop_after(2))
     _one_line_error([*ARGV, "--format", "json", "--out", str(out), "--resume", "--fov", "61"], capsys, "belongs to a different sweep")
     _one_line_error([*ARGV, "--out", str(out), "--resume"], capsys, "belongs to a different sweep")  # csv ≠ json
     assert out.read_text() == "old\n"
@@ -257,8 +269,8 @@ def test_resume_refuses_a_different_sweep(tmp_path, capsys):
 def test_resume_of_a_summary_sweep(tmp_path, capsys):
     whole, part = tmp_path / "w.csv", tmp_path / "p.csv"
     assert _cli([*ARGV, "--summary", "--out", str(whole)], capsys)[0] == 0
-    with pytest.raises(_Stop):
-        S.execute(S.plan("P,ZP3+LogP", summary=True, **ARGS), "csv", part, progress=_stop_after(7))
+    with pytest.raises(Stop):
+        S.execute(S.plan("P,ZP3+LogP", summary=True, **ARGS), "csv", part, progress=stop_after(7))
     assert _cli([*ARGV, "--summary", "--out", str(part), "--resume"], capsys)[0] == 0
     assert part.read_bytes() == whole.read_bytes()
 
@@ -362,15 +374,7 @@ def test_dask_malformed_address_is_one_line(capsys):
 def test_cli_ctrl_c_keeps_chunks_and_resume_finishes(tmp_path, capsys, monkeypatch):
     whole, part = tmp_path / "whole.csv", tmp_path / "part.csv"
     assert _cli([*ARGV, "--out", str(whole)], capsys)[0] == 0
-
-    def interrupt_after_4(stream):
-        def progress(done, total):
-            if done == 4:
-                raise KeyboardInterrupt
-
-        return progress
-
-    monkeypatch.setattr(S, "progress_bar", interrupt_after_4)
+    monkeypatch.setattr(S, "progress_bar", interrupt_after(4))
     code, _, err = _cli([*ARGV, "--out", str(part)], capsys)
     assert code == 130 and "interrupted; finished chunks are kept in" in err and "--resume" in err
     assert not part.exists() and len(list((tmp_path / "part.csv.parts").glob("*.csv"))) == 4

@@ -214,3 +214,154 @@ def test_cli_bad_input_one_line_exit_2(capsys, argv, match):
     code, out, err = run(capsys, "validate", *argv)
     assert code == 2 and out == ""
     assert len(err.strip().splitlines()) == 1 and match in err
+
+
+def test_projection_factor_reported_about_one_on_probes(capsys):
+    r = validate("ZP2+LogP", 100, 60, "gamma:60@azimuth:30", res=128, probes=8)
+    assert r["projection_min"] <= r["projection_median"] <= r["projection_max"]
+    assert abs(r["projection_median"] - 1) < 5e-3
+    assert 0.92 < r["projection_min"] < 1 < r["projection_max"] < 1.08
+    code, out, _ = run(capsys, *BASE, "--scheme", "P", "--f-over-n", "100", "--light", "gamma:60@azimuth:30")
+    assert code == 0 and "projection factor cos(psi_e)/cos(psi_l) on the probes: min " in out
+    code, out, _ = run(capsys, *BASE, "--grid", "--scheme", "P", "--f-over-n", "100", "--light", "gamma:60@azimuth:30")
+    row = next(csv.DictReader(io.StringIO(out)))
+    assert float(row["projection_median"]) == pytest.approx(validate("P", 100, 60, "gamma:60@azimuth:30", res=128, probes=8)["projection_median"], rel=1e-9)
+
+
+# ----------------------------------------------------------------------------- grids through the sweep engine
+
+import aliasing.raster.validate as V  # noqa: E402
+from aliasing import sweep as S  # noqa: E402
+from conftest import Stop, interrupt_after, stop_after  # noqa: E402
+
+GRID = ("--grid", "--scheme", "Standard,ZP2+P", "--f-over-n", "10,100", "--light", "gamma:60,gamma:150", "--res", "48", "--probes", "4", "--reach", "0.8")
+GRID_ARGS = dict(schemes="Standard,ZP2+P", f_over_n="10,100", fov=60, lights="gamma:60,gamma:150", res=48, probes=4, reach=0.8)
+
+
+def test_grid_plan_chunks_and_bad_input():
+    g = V.plan(**GRID_ARGS)
+    assert g.shape == (2, 2, 1, 2) and g.chunks == g.size == 8
+    assert dict(g.chunk(5, "rows").arguments)["scheme"] == "ZP2+P" and dict(g.chunk(5, "rows").arguments)["light"] == "gamma:150"
+    assert g.digest("csv") != V.plan(**{**GRID_ARGS, "res": 64}).digest("csv") != g.digest("json")
+    with pytest.raises(ValueError, match="appears more than once"):
+        V.plan("P,p", 10, 60, "overhead", res=48, probes=4)
+    with pytest.raises(ValueError, match=r"^unknown format 'xml'"):
+        S.execute(g, "xml")
+
+
+@pytest.mark.parametrize("fmt", ["csv", "json", "text"])
+def test_grid_file_jobs_2_is_byte_identical_to_jobs_1_and_stdout(tmp_path, capsys, fmt):
+    one, two = tmp_path / "one", tmp_path / "two"
+    code, out, err = run(capsys, "validate", *GRID, "--format", fmt, "--out", str(one))
+    assert code == 0 and out == "" and err == ""  # no progress bar: stderr is not a terminal
+    assert run(capsys, "validate", *GRID, "--format", fmt, "--out", str(two), "--jobs", "2")[0] == 0
+    assert one.read_bytes() == two.read_bytes()
+    code, printed, _ = run(capsys, "validate", *GRID, "--format", fmt)
+    assert code == 0 and printed == one.read_text()
+    assert one.read_text() == V.validate_sweep(**GRID_ARGS).format(fmt)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["one", "two"]  # work directories removed
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_interrupted_grid_resumes_to_identical_bytes_without_redoing_validations(tmp_path, capsys, monkeypatch, jobs):
+    whole, part = tmp_path / "whole.csv", tmp_path / "part.csv"
+    assert run(capsys, "validate", *GRID, "--out", str(whole))[0] == 0
+    part.write_text("precious\n")
+    with pytest.raises(Stop):
+        S.execute(V.plan(**GRID_ARGS), "csv", part, jobs=jobs, progress=stop_after(3))
+    assert part.read_text() == "precious\n"  # a failed run never touches the output
+    work = tmp_path / "part.csv.parts"
+    saved = sorted(p.name for p in work.glob("*.jsonl"))
+    assert 3 <= len(saved) < 8 and (work / "manifest.json").exists()
+    code, _, err = run(capsys, "validate", *GRID, "--out", str(part))  # without --resume nothing is thrown away
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "pass --resume" in err
+    calls = []
+    real = V.validate
+    monkeypatch.setattr(V, "validate", lambda **kw: calls.append((kw["scheme"], kw["f_over_n"], kw["light"])) or real(**kw))
+    assert run(capsys, "validate", *GRID, "--out", str(part), "--resume")[0] == 0
+    assert part.read_bytes() == whole.read_bytes()
+    assert len(calls) == 8 - len(saved)  # finished validations not redone
+    assert not work.exists()
+
+
+def test_ctrl_c_keeps_validations_and_resume_finishes(tmp_path, capsys, monkeypatch):
+    whole, part = tmp_path / "whole.json", tmp_path / "part.json"
+    assert run(capsys, "validate", *GRID, "--format", "json", "--out", str(whole))[0] == 0
+    monkeypatch.setattr(S, "progress_bar", interrupt_after(2))
+    code, _, err = run(capsys, "validate", *GRID, "--format", "json", "--out", str(part))
+    assert code == 130 and "aliasing validate: interrupted; finished chunks are kept in" in err
+    assert not part.exists() and len(list((tmp_path / "part.json.parts").glob("*.jsonl"))) == 2
+    monkeypatch.undo()
+    assert run(capsys, "validate", *GRID, "--format", "json", "--out", str(part), "--resume")[0] == 0
+    assert part.read_bytes() == whole.read_bytes()
+
+
+@pytest.mark.parametrize("change", [("--res", "64"), ("--light", "gamma:60,gamma:151"), ("--format", "json")])
+def test_resume_refuses_a_different_validation_grid(tmp_path, capsys, change):
+    out = tmp_path / "v.csv"
+    out.write_text("old\n")
+    with pytest.raises(Stop):
+        S.execute(V.plan(**GRID_ARGS), "csv", out, progress=stop_after(2))
+    code, printed, err = run(capsys, "validate", *GRID, *change, "--out", str(out), "--resume")
+    assert code == 2 and printed == "" and len(err.strip().splitlines()) == 1 and "belongs to a different sweep" in err
+    assert out.read_text() == "old\n"
+    # nor does a sweep resume a validation grid's work directory
+    code, _, err = _sweep_cli(["--schemes", "P", "--out", str(out), "--resume"], capsys)
+    assert code == 2 and "belongs to a different sweep" in err
+
+
+def _sweep_cli(argv, capsys):
+    from aliasing.cli import main as aliasing_main
+
+    code = aliasing_main(["sweep", *argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_failed_validation_in_a_grid_file_exits_1(tmp_path, capsys):
+    out = tmp_path / "v.csv"
+    code, _, _ = run(capsys, "validate", *GRID, "--reach", "1", "--out", str(out))
+    assert code == 1 and "False" in out.read_text()
+
+
+def test_grid_dry_run_and_single_case_flags(tmp_path, capsys):
+    out = tmp_path / "never.csv"
+    code, text, _ = run(capsys, "validate", *GRID, "--jobs", "2", "--dry-run", "--out", str(out))
+    assert code == 0 and not out.exists()
+    lines = text.splitlines()
+    assert lines[0] == "grid: 2 schemes × 2 f/n × 1 fov × 2 lights = 8 validations in 8 chunks (res 48, 4x4 probes)"
+    assert lines[1].startswith("estimated time: ") and "with 2 jobs (timed on one validation of 2 schemes)" in lines[1]
+    for flag in (("--out", str(out)), ("--resume",), ("--dask", "tcp://127.0.0.1:1"), ("--dry-run",)):
+        code, printed, err = run(capsys, "validate", "--scheme", "P", "--f-over-n", "10", *flag)
+        assert code == 2 and printed == "" and f"{flag[0]} needs --grid" in err and len(err.strip().splitlines()) == 1
+
+
+def test_grid_table_pandas_xarray_and_netcdf(tmp_path, capsys):
+    xr = pytest.importorskip("xarray")
+    pytest.importorskip("h5netcdf")
+    t = V.validate_sweep(**GRID_ARGS)
+    assert isinstance(t, S.SweepTable) and len(t) == 8 and t.rows() == V.validate_rows(**GRID_ARGS)
+    df = t.to_pandas()
+    assert len(df) == 8 and "projection_median" in df.columns
+    out = tmp_path / "v.nc"
+    assert run(capsys, "validate", *GRID, "--format", "netcdf", "--out", str(out))[0] == 0
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        assert dict(ds.sizes) == {"scheme": 2, "f_over_n": 2, "fov": 1, "light": 2, "map": 2}
+        assert ds.attrs["command"].startswith("aliasing validate --grid --scheme Standard,ZP2+P")
+        row = t.rows()[-1]  # ZP2+P, f/n 100, gamma:150
+        np.testing.assert_array_equal(ds["ratio_M_x"].sel(scheme="ZP2+P", f_over_n=100, light="gamma:150").values[0], row["ratio_M_x"])
+        assert bool(ds["passed"].sel(scheme="Standard", f_over_n=10, light="gamma:60").values[0]) == t.rows()[0]["passed"]
+        assert np.isnan(ds["M_x"].sel(scheme="Standard").values[..., 1]).all()
+        assert float(ds["gamma"].sel(light="gamma:150")) == 150.0
+
+
+def test_dask_local_cluster_grid_is_byte_identical(tmp_path, capsys):
+    distributed = pytest.importorskip("distributed")
+    local, remote = tmp_path / "local.csv", tmp_path / "dask.csv"
+    assert run(capsys, "validate", *GRID, "--out", str(local))[0] == 0
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as cluster:
+        code, _, err = run(capsys, "validate", *GRID, "--out", str(remote), "--dask", cluster.scheduler_address)
+        assert code == 0, err
+        t = V.validate_sweep(**GRID_ARGS, dask=cluster.scheduler_address)
+    assert remote.read_bytes() == local.read_bytes()
+    assert t.format("csv") == local.read_text()

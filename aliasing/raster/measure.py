@@ -15,6 +15,11 @@ spans the image, one texel the map, as in :mod:`aliasing.directional`):
   on the light plane's axes, over the eye-beam width w_i = 2 d tanθ at the point's depth d:
   m_x = |x_L·∂X/∂s|/w_i, m_z = |z_L·∂X/∂t|/w_i (Lloyd 2006 eqs. 2–4; 2007 eqs. 96–97);
   the ratios m_s/m_x and m_t/m_z are the projection factors (with the off-axis stretch).
+* the **projection factor** cos ψ_e / cos ψ_l from the eye pass's normals
+  (:func:`projection_factors`; ψ_e, ψ_l the angles of the normal to the eye and light
+  directions): the factor by which the image error exceeds the perspective error on a
+  surface (Lloyd 2006 §3.3).  The probes face the bisector of the two directions, so it is
+  about 1 on them: this is what makes them measure perspective aliasing alone.
 
 Their maxima over dense probes are compared with :func:`aliasing.schemes.evaluate`'s M_x,
 M_z for the same light and parameterization; with ``ZP<k>+…`` schemes each pixel uses the
@@ -44,6 +49,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .. import _validation as check
 from .. import geometry, schemes
 from .rasterize import LightMap, check_resolution, eye_pass, map_set, shadow_map
 from .scenes import Scene, probes
@@ -74,6 +80,7 @@ class Measurement:
     m_t: Array
     m_x: Array
     m_z: Array
+    projection: Array
     s: Array
     t: Array
     partition: NDArray[np.int64]
@@ -187,6 +194,7 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     # R = 384 over the tested schemes and lights; 1e-3 bounds it with margin
     tol = 1e-3
     count = int(ok.sum())
+    projection = np.where(ok, projection_factors(eb.position, eb.normal, light), np.nan)
     m_s, m_t, m_x, m_z = fields["m_s"], fields["m_t"], fields["m_x"], fields["m_z"]
     s, t = fields["s"], fields["t"]
     M_x_pix, M_z_pix = M_x[np.maximum(part, 0)], M_z[np.maximum(part, 0)]
@@ -195,13 +203,112 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
         image_ratio_t = float(np.nanmax(m_t / M_z_pix))
     self_lit_frac = float(np.concatenate(self_lit).mean())
     return Measurement(
-        m_s=m_s, m_t=m_t, m_x=m_x, m_z=m_z, s=s, t=t, partition=np.where(on, part, -1),
+        m_s=m_s, m_t=m_t, m_x=m_x, m_z=m_z, projection=projection, s=s, t=t, partition=np.where(on, part, -1),
         M_x=M_x, M_z=M_z, measured_x=mx, measured_z=mz,
         ratio_x=mx / M_x, ratio_z=mz / M_z,
         image_ratio_s=image_ratio_s, image_ratio_t=image_ratio_t,
         tolerance=tol, pixels=count, scheme=analytic.scheme.name,
         n_prime=np.array([m.n_prime for m in maps]), edges=edges, self_lit=self_lit_frac,
     )
+
+
+def pixel_errors(lm: LightMap, position: ArrayLike, ok: ArrayLike, resolution: int, fov: float) -> dict[str, Array]:
+    """Per-pixel map coordinates and the image and perspective errors through one light map.
+
+    Central differences between a pixel's neighbours (pixel spacing 1/R in image units) of
+    the map coordinates (s, t) and of the visible points X; see the module docstring for
+    the quantities.
+
+    Parameters
+    ----------
+    lm : LightMap
+        The map (:func:`aliasing.raster.light_map`, or one of :func:`~aliasing.raster.light_maps`).
+    position : array_like, shape (R, R, 3)
+        Visible eye-space point per pixel [world units] (:attr:`EyeBuffer.position`); it
+        must be finite with z > 0 wherever ``ok``.
+    ok : array_like of bool, shape (R, R)
+        Pixels to measure: those whose four neighbours lie on the same plane (and map).
+    resolution : int
+        R [pixels per side], the image resolution of ``position``.
+    fov : float
+        Full field of view [deg], in (0, 180).
+
+    Returns
+    -------
+    dict of ndarray (R, R)
+        ``s``, ``t`` (map coordinates, everywhere), ``m_s``, ``m_t`` (image error) and
+        ``m_x``, ``m_z`` (perspective error), unit resolutions, NaN off ``ok``.
+
+    Example
+    -------
+    >>> from aliasing import raster
+    >>> lm = raster.light_map(1.0, 100.0, 60.0, "overhead", "Standard")
+    >>> sc = raster.probes(1.0, 100.0, 60.0, "overhead", cells=4)
+    >>> eb = raster.eye_pass(sc.triangles, 60.0, 64)
+    >>> g = np.where(eb.triangle >= 0, sc.group[eb.triangle], -1)  # probe of each pixel
+    >>> ok = (g >= 0) & (g == np.roll(g, 1, 0)) & (g == np.roll(g, -1, 0)) & (g == np.roll(g, 1, 1)) & (g == np.roll(g, -1, 1))
+    >>> got = pixel_errors(lm, np.where(ok[..., None], eb.position, 1.0), ok, 64, 60.0)
+    >>> bound = schemes.evaluate("Standard", 1.0, 100.0, 60.0, "overhead").M_x[0, 0]
+    >>> sorted(got), bool(np.nanmax(got["m_x"]) <= bound * 1.001)
+    (['m_s', 'm_t', 'm_x', 'm_z', 's', 't'], True)
+    """
+    if not isinstance(lm, LightMap):
+        raise ValueError(f"lm must be a LightMap (aliasing.raster.light_map), got {type(lm).__name__}")
+    res = check_resolution(resolution)
+    fv = float(check.fov(fov))
+    pos = np.asarray(position, dtype=float)
+    if pos.shape != (res, res, 3):
+        raise ValueError(f"position must have shape (resolution, resolution, 3) = ({res}, {res}, 3), got {pos.shape}")
+    mask = np.asarray(ok)
+    if mask.shape != (res, res) or mask.dtype != bool:
+        raise ValueError(f"ok must be a boolean array of shape ({res}, {res}), got {mask.dtype} {mask.shape}")
+    if not (np.all(np.isfinite(pos[mask])) and np.all(pos[mask][:, 2] > 0)):
+        raise ValueError("position must be finite with z > 0 (in front of the eye) at every ok pixel")
+    return _errors(lm, pos, mask, res, fv)
+
+
+def projection_factors(position: ArrayLike, normal: ArrayLike, light: str | ArrayLike) -> Array:
+    """The projection aliasing factor cos ψ_e / cos ψ_l of each visible point, from its normal.
+
+    ψ_e is the angle between the surface normal and the direction to the eye, ψ_l the angle
+    between the normal and the direction to the light (Lloyd 2006 §3.3; Lloyd 2007 eqs.
+    29–31: the aliasing error is the perspective error times this factor).  Probe planes
+    face the bisector of the two directions, so the factor is 1 at their centres and close
+    to 1 over them; on a ground plane seen at a grazing angle it is far below 1.
+
+    Parameters
+    ----------
+    position : array_like, shape (..., 3)
+        Eye-space points [world units] (:attr:`EyeBuffer.position`; NaN where empty).
+    normal : array_like, shape (..., 3)
+        Unit normals facing the eye (:attr:`EyeBuffer.normal`; NaN where empty).
+    light : str or array_like
+        One light direction (spec or vector towards the light).
+
+    Returns
+    -------
+    ndarray, shape (...)
+        The factor (dimensionless), NaN where nothing is visible or the surface faces away
+        from the light (cos ψ_l ≤ 0: in its own shadow).
+
+    Example
+    -------
+    >>> # a ground plane (normal +y) seen 10 units ahead from 1 unit above, lit from overhead
+    >>> round(float(projection_factors([0.0, -1.0, 10.0], [0.0, 1.0, 0.0], "overhead")), 4)
+    0.0995
+    """
+    pos = np.asarray(position, dtype=float)
+    nrm = np.asarray(normal, dtype=float)
+    if pos.ndim < 1 or pos.shape[-1] != 3 or nrm.shape != pos.shape:
+        raise ValueError(f"position and normal must have the same shape (..., 3), got {pos.shape} and {nrm.shape}")
+    lv = geometry.lights(light)
+    if lv.shape[0] != 1:
+        raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
+    with np.errstate(invalid="ignore", divide="ignore"):
+        to_eye = -pos / np.linalg.norm(pos, axis=-1, keepdims=True)
+        cos_e = np.sum(nrm * to_eye, axis=-1)
+        cos_l = nrm @ lv[0]
+        return np.where(cos_l > 0, cos_e / np.where(cos_l > 0, cos_l, 1.0), np.nan)
 
 
 def _errors(lm: LightMap, pos: Array, ok: NDArray[np.bool_], res: int, fov: float) -> dict[str, Array]:

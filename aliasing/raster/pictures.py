@@ -54,7 +54,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import geometry, schemes
-from .measure import _errors, measure
+from .measure import measure, pixel_errors
 from .rasterize import DepthMap, LightMap, check_resolution, eye_pass, map_set, shadow_map
 from .scenes import Scene, ground_and_boxes
 
@@ -320,7 +320,7 @@ def error_field(v: View, image_res: int | None = None) -> Array:
         sel = ok & (part == i)
         if not sel.any():
             continue
-        got = _errors(lm, pos, sel, res, v.fov)
+        got = pixel_errors(lm, pos, sel, res, v.fov)
         out[sel] = np.maximum(got["m_x"], got["m_z"])[sel]
     return out * res / v.map_res
 

@@ -16,10 +16,15 @@ analytic bounds of :func:`aliasing.schemes.evaluate`:
   probe density: at the defaults (res 384, 24 probes per side) every tested case reaches 0.95;
   at res 192 with 12 probes a few (PSM/LiSPSM at γ = 120°, fov 170°) reach only about 0.90.
 
-:func:`validate_rows` runs the product of schemes × f/n × fov × lights (one row per
-combination, in that order), optionally in ``jobs`` local processes with output identical to
-``jobs=1``; :func:`add_validate_parser` adds the ``validate`` subcommand (single case, or the
-grid with ``--grid``) to the ``aliasing`` command.
+Grids: :func:`plan` checks and expands the product schemes × f/n × fov × lights (one row
+per combination, in that order) into a :class:`ValidationGrid`, one validation per chunk,
+which runs through the engine of ``aliasing sweep`` (:func:`aliasing.sweep.execute`): in
+``jobs`` local processes or on a Dask cluster, with output files written chunk by chunk
+(atomically, resumable without redoing finished validations) and identical however it ran.
+:func:`validate_sweep` runs a grid in memory and returns a :class:`ValidationTable` (a
+:class:`~aliasing.sweep.SweepTable`: rows, CSV/JSON/text, pandas, xarray);
+:func:`validate_rows` is its rows.  :func:`add_validate_parser` adds the ``validate``
+subcommand (single case, or the grid with ``--grid``) to the ``aliasing`` command.
 
 Resolutions: ``res`` is the eye-pass resolution R_i of the measurement (pixels per side;
 finite differences between neighbouring pixels, spacing 1/R_i); it also sets the resolution of
@@ -41,13 +46,16 @@ import argparse
 import itertools
 import json
 import re
+import shlex
 import sys
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
 from .. import _validation as check
-from .. import geometry, schemes
+from .. import geometry, schemes, sweep
 from .measure import measure
 from .rasterize import map_set
 from .scenes import probes as probe_scene
@@ -153,7 +161,11 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
         totals ``S_total``, ``measured_S_total``, ``ratio_S_total``, ``critical_area``
         (S_total·image_res² texels); ``max_ratio``, ``min_ratio`` (over maps, of the M_x and
         M_z ratios), ``tolerance``, ``reach``, ``within_bound``, ``reached``, ``passed``,
-        ``pixels``, ``self_lit``.
+        ``pixels``, ``self_lit``; ``projection_min``, ``projection_median``,
+        ``projection_max``: the projection factor cos ψ_e / cos ψ_l measured from the normals
+        over the probe pixels (:func:`aliasing.raster.measure.projection_factors`), about 1 by
+        construction of the probes (Lloyd 2006 §3.3), so the measured error is perspective
+        aliasing alone.
 
     Raises
     ------
@@ -217,6 +229,9 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
         "passed": within and reached,
         "pixels": int(m.pixels),
         "self_lit": float(m.self_lit),
+        "projection_min": float(np.nanmin(m.projection)),
+        "projection_median": float(np.nanmedian(m.projection)),
+        "projection_max": float(np.nanmax(m.projection)),
     }
 
 
@@ -232,8 +247,6 @@ def _names(value: str | Iterable[str], name: str) -> list[str]:
 
 
 def _numbers(value: object, name: str) -> list[float]:
-    from .. import sweep
-
     if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool):
         value = [value]
     return list(sweep.grid_values(value, name))  # type: ignore[arg-type]
@@ -251,9 +264,7 @@ def expand_light_specs(lights: str | Iterable[str]) -> list[str]:
     >>> expand_light_specs("overhead,gamma:30:150:lin:3")
     ['overhead', 'gamma:30@azimuth:0', 'gamma:90@azimuth:0', 'gamma:150@azimuth:0']
     """
-    from .. import sweep
-
-    specs = sweep._split_lights(lights) if isinstance(lights, str) else [str(s).strip() for s in lights if str(s).strip()]
+    specs = sweep.split_lights(lights) if isinstance(lights, str) else [str(s).strip() for s in lights if str(s).strip()]
     if not specs:
         raise ValueError("light is empty: the validation grid has no directions")
     out: list[str] = []
@@ -274,32 +285,254 @@ def expand_light_specs(lights: str | Iterable[str]) -> list[str]:
     return out
 
 
-def _task(kwargs: dict) -> dict:
-    return validate(**kwargs)
+GRID_FORMATS = ("csv", "json", "text", "netcdf")
+"""Output formats of a validation grid (netcdf needs an output file and the xarray extra)."""
+PER_MAP = ("M_x", "M_z", "S", "measured_M_x", "measured_M_z", "measured_S", "ratio_M_x", "ratio_M_z", "ratio_S", "critical_res_s", "critical_res_t")
+"""Row keys with one value per map (a list when the scheme has several maps)."""
 
 
-def validate_rows(schemes: str | Iterable[str], f_over_n: object, fov: object, lights: str | Iterable[str], res: int = DEFAULT_RES, *, image_res: int | None = None, probes: int = DEFAULT_PROBES, seed: int = 0, reach: float = DEFAULT_REACH, jobs: int = 1) -> list[dict]:
-    """Validations over the product schemes × f/n × fov × lights: one row per combination.
+@dataclass(frozen=True)
+class ValidationTask:
+    """One chunk of a validation grid: the keyword arguments of one :func:`validate` call."""
+
+    index: int
+    arguments: tuple[tuple[str, object], ...]
+
+    def compute(self) -> list[dict]:
+        """The chunk's rows: ``[validate(**arguments)]``."""
+        return [validate(**dict(self.arguments))]
+
+
+@dataclass(frozen=True)
+class ValidationGrid:
+    """A planned validation grid: schemes × f/n × fov × lights, one validation per chunk.
+
+    Build it with :func:`plan`; run it with :func:`aliasing.sweep.execute` (chunked, resumable
+    output files, processes or Dask, as ``aliasing sweep``) or :func:`validate_sweep` (in
+    memory).  Chunks are in row order: scheme (outer), f/n, fov, light (inner).
+    """
+
+    schemes: tuple[str, ...]
+    f_over_n: tuple[float, ...]
+    fov: tuple[float, ...]
+    lights: tuple[str, ...]
+    res: int = DEFAULT_RES
+    image_res: int | None = None
+    probes: int = DEFAULT_PROBES
+    seed: int = 0
+    reach: float = DEFAULT_REACH
+
+    formats: ClassVar[tuple[str, ...]] = GRID_FORMATS
+
+    @property
+    def shape(self) -> tuple[int, int, int, int]:
+        """(schemes, f/n values, fovs, lights)."""
+        return (len(self.schemes), len(self.f_over_n), len(self.fov), len(self.lights))
+
+    @property
+    def chunks(self) -> int:
+        """Number of chunks, one validation each (also :attr:`size`, the number of validations)."""
+        return len(self.schemes) * len(self.f_over_n) * len(self.fov) * len(self.lights)
+
+    size = chunks
+
+    def chunk(self, index: int, kind: str = "rows") -> ValidationTask:
+        """The validation of chunk ``index`` (0 ≤ index < :attr:`chunks`)."""
+        s, r, f, l = (int(i) for i in np.unravel_index(index, self.shape))
+        args = dict(scheme=self.schemes[s], f_over_n=self.f_over_n[r], fov=self.fov[f], light=self.lights[l], res=self.res, image_res=self.image_res, probes=self.probes, seed=self.seed, reach=self.reach)
+        return ValidationTask(index, tuple(args.items()))
+
+    def payload_kind(self, fmt: str) -> str:
+        """Chunks are kept as their rows (JSON lines), whatever the output format."""
+        return "rows"
+
+    def parameters(self) -> dict:
+        """Every parameter of the grid, JSON-ready (what the manifest's hash covers)."""
+        return {"validate": True, "schemes": list(self.schemes), "f_over_n": list(self.f_over_n), "fov": list(self.fov), "lights": list(self.lights),
+                "res": self.res, "image_res": self.image_res, "probes": self.probes, "seed": self.seed, "reach": self.reach}
+
+    def digest(self, fmt: str) -> str:
+        """SHA-256 of the parameters, the output format and the toolkit version."""
+        return sweep.parameters_digest(self.parameters(), fmt)
+
+    def command(self, fmt: str = "csv") -> str:
+        """An ``aliasing validate --grid`` command line for this grid."""
+        def nums(values: Sequence[float]) -> str:
+            return ",".join(f"{x:.10g}" for x in values)
+
+        parts = ["aliasing", "validate", "--grid", "--scheme", ",".join(self.schemes), "--f-over-n", nums(self.f_over_n), "--fov", nums(self.fov), "--light", ",".join(self.lights)]
+        parts += ["--res", str(self.res)] + (["--image-res", str(self.image_res)] if self.image_res is not None else [])
+        parts += ["--probes", str(self.probes), "--seed", str(self.seed), "--reach", f"{self.reach:.10g}", "--format", fmt]
+        return shlex.join(parts)
+
+    def describe(self) -> str:
+        """One line: the grid's axes, size and chunks."""
+        s, r, f, l = self.shape
+        return f"grid: {s} schemes × {r} f/n × {f} fov × {l} lights = {self.size:,} validations in {self.chunks:,} chunks (res {self.res}, {self.probes}x{self.probes} probes)"
+
+    def assemble(self, payload_kind: str, fmt: str, payloads: Iterable[list[dict]]) -> Iterator[str]:
+        """The output text (:func:`format_rows`) of every chunk's rows, in order."""
+        yield format_rows([row for rows in payloads for row in rows], fmt)
+
+    def table(self, payloads: Sequence[list[dict]], command: str | None = None) -> ValidationTable:
+        """The :class:`ValidationTable` of every chunk's rows, in order."""
+        return ValidationTable(self, [row for rows in payloads for row in rows], command)
+
+    def timing(self, kind: str = "rows", sample: int = 500) -> tuple[list[tuple[ValidationTask, int]], str]:
+        """One validation of up to 8 schemes (spread over the axis) for :func:`aliasing.sweep.estimate`; ``sample`` is unused."""
+        per_scheme = self.chunks // len(self.schemes)
+        picks = sweep.spread(len(self.schemes))
+        return [(self.chunk(i * per_scheme, kind), 1) for i in picks], f"timed on one validation of {len(picks)} scheme{'s' if len(picks) > 1 else ''}"
+
+
+class ValidationTable(sweep.SweepTable):
+    """A finished validation grid in memory: a :class:`~aliasing.sweep.SweepTable` of its rows.
+
+    ``.rows()`` (:func:`validate`'s dicts, in grid order), ``.format("csv" | "json" |
+    "text")``, ``.to_pandas()``, ``.to_xarray()``, and ``.passed`` (every validation passed).
+
+    Example
+    -------
+    >>> t = validate_sweep("P", [10, 100], 60, "gamma:60,gamma:150", res=64, probes=4)
+    >>> len(t), t.passed, t.to_xarray()["ratio_M_x"].dims
+    (4, True, ('scheme', 'f_over_n', 'fov', 'light', 'map'))
+    """
+
+    grid: ValidationGrid
+
+    def __init__(self, grid: ValidationGrid, rows: list[dict], command: str | None = None) -> None:
+        super().__init__(grid, rows, command)  # type: ignore[arg-type]
+
+    def __len__(self) -> int:
+        return len(self.data)
+
+    @property
+    def passed(self) -> bool:
+        """Whether every validation passed."""
+        return all(r["passed"] for r in self.data)
+
+    def rows(self) -> list[dict]:
+        """:func:`validate`'s dicts, scheme (outer), f/n, fov, light (inner)."""
+        return [dict(r) for r in self.data]
+
+    def format(self, fmt: str = "csv") -> str:
+        """CSV, JSON or a text table (:func:`format_rows`), the bytes ``aliasing validate --grid`` writes."""
+        return format_rows(self.rows(), fmt)
+
+    def to_xarray(self):
+        """An ``xarray.Dataset`` with dims scheme, f_over_n, fov, light (and map, for :data:`PER_MAP`).
+
+        Per-map variables are padded with NaN up to the largest number of maps; ``gamma`` is a
+        coordinate of ``light``, ``maps`` of ``scheme``; res, probes, seed, reach and the other
+        parameters, the toolkit version and the command are attributes.
+        """
+        xr = sweep.import_xarray()
+        g, rows = self.grid, self.data
+        dims = ("scheme", "f_over_n", "fov", "light")
+        kmax = max(r["maps"] for r in rows)
+        coords: dict = {"scheme": list(g.schemes), "f_over_n": list(g.f_over_n), "fov": list(g.fov), "light": list(g.lights), "map": np.arange(kmax)}
+        coords["gamma"] = ("light", [r["gamma"] for r in rows[: len(g.lights)]])
+        coords["maps"] = ("scheme", [r["maps"] for r in rows[:: self.grid.chunks // len(g.schemes)]])
+        skip = {*dims, "gamma", "maps", "res", "image_res", "probes", "seed", "reach"}
+        data: dict = {}
+        for key in (k for k in rows[0] if k not in skip):
+            if key in PER_MAP:
+                padded = np.full((len(rows), kmax), np.nan)
+                for i, r in enumerate(rows):
+                    values = r[key] if isinstance(r[key], list) else [r[key]]
+                    padded[i, : len(values)] = values
+                data[key] = ((*dims, "map"), padded.reshape(g.shape + (kmax,)))
+            else:
+                data[key] = (dims, np.array([r[key] for r in rows]).reshape(g.shape))
+        attrs = self.attributes()
+        attrs.update(res=g.res, image_res=rows[0]["image_res"], probes=g.probes, seed=g.seed, reach=g.reach)
+        attrs.update(units_fov="degrees (full field of view)", units_gamma="degrees", units_S="image areas (unit resolutions)")
+        return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def plan(schemes: str | Iterable[str], f_over_n: object, fov: object, lights: str | Iterable[str], res: int = DEFAULT_RES, *, image_res: int | None = None, probes: int = DEFAULT_PROBES, seed: int = 0, reach: float = DEFAULT_REACH) -> ValidationGrid:
+    """Check and expand a validation grid's parameters into a :class:`ValidationGrid`.
+
+    Every combination is checked before any work: a bad value anywhere raises ``ValueError``.
 
     Parameters
     ----------
     schemes : str or iterable of str
         Scheme names (comma-separated text or a list).
     f_over_n, fov : number, list or text
-        Numbers or ranges ``START:STOP:lin|log:COUNT`` (see :func:`aliasing.sweep.grid_values`).
+        Depth ratios far/near (> 1) and FULL fields of view [deg] in (0, 180): numbers or
+        ranges ``START:STOP:lin|log:COUNT`` (see :func:`aliasing.sweep.grid_values`).
     lights : str or iterable of str
         Light specs, each one direction (see :func:`expand_light_specs`).
     res, image_res, probes, seed, reach
-        As in :func:`validate`, for every row.
+        As in :func:`validate`, for every validation.
+
+    Returns
+    -------
+    ValidationGrid
+
+    Example
+    -------
+    >>> g = plan("P,LogP", "10:1000:log:3", 60, "gamma:30:150:lin:5", res=64, probes=4)
+    >>> g.shape, g.chunks
+    ((2, 3, 1, 5), 30)
+    """
+    names = _names(schemes, "schemes")
+    ratios = _numbers(f_over_n, "f_over_n")
+    fovs = _numbers(fov, "fov")
+    specs = expand_light_specs(lights)
+    seed = _whole(seed, "seed", 0, 2**32 - 1)
+    canonical: dict[str, None] = {}
+    for name, ratio, fv, spec in itertools.product(names, ratios, fovs, specs):  # fail fast, before any work
+        canonical[_check(name, ratio, fv, spec, res, image_res, probes, reach)["scheme"].name] = None
+    if len(canonical) != len(names):
+        raise ValueError(f"schemes: a scheme appears more than once in {', '.join(names)}")
+    c = _check(names[0], ratios[0], fovs[0], specs[0], res, image_res, probes, reach)
+    ri = None if image_res is None else c["image_res"]
+    return ValidationGrid(tuple(canonical), tuple(ratios), tuple(fovs), tuple(specs), c["res"], ri, c["probes"], seed, c["reach"])
+
+
+def validate_sweep(schemes: str | Iterable[str], f_over_n: object, fov: object, lights: str | Iterable[str], res: int = DEFAULT_RES, *, image_res: int | None = None, probes: int = DEFAULT_PROBES, seed: int = 0, reach: float = DEFAULT_REACH, jobs: int = 1, dask: str | None = None, progress: sweep.Progress | None = None) -> ValidationTable:
+    """Validations over the product schemes × f/n × fov × lights, in memory, as a :class:`ValidationTable`.
+
+    The Python side of ``aliasing validate --grid`` (which writes files chunk by chunk
+    through :func:`aliasing.sweep.execute`, resumable).  The rows are identical whatever
+    ``jobs`` and ``dask``.
+
+    Parameters
+    ----------
+    schemes, f_over_n, fov, lights, res, image_res, probes, seed, reach
+        As in :func:`plan`.
     jobs : int
-        Local worker processes (concurrent.futures); the rows are identical whatever ``jobs``.
+        Local worker processes.
+    dask : str, optional
+        Address of a running Dask scheduler to run the validations on instead.
+    progress : callable, optional
+        ``progress(done, total)`` after each validation.
+
+    Returns
+    -------
+    ValidationTable
+
+    Example
+    -------
+    >>> t = validate_sweep("Standard,P", [10, 100], 60, "gamma:60,gamma:150", res=64, probes=4)
+    >>> len(t), t.rows()[0]["scheme"], all(r["within_bound"] for r in t.rows())
+    (8, 'Standard', True)
+    """
+    grid = plan(schemes, f_over_n, fov, lights, res, image_res=image_res, probes=probes, seed=seed, reach=reach)
+    return grid.table(sweep.collect(grid, "rows", jobs=jobs, dask=dask, progress=progress))
+
+
+def validate_rows(schemes: str | Iterable[str], f_over_n: object, fov: object, lights: str | Iterable[str], res: int = DEFAULT_RES, *, image_res: int | None = None, probes: int = DEFAULT_PROBES, seed: int = 0, reach: float = DEFAULT_REACH, jobs: int = 1) -> list[dict]:
+    """Validations over the product schemes × f/n × fov × lights: one row per combination.
+
+    ``validate_sweep(...).rows()`` (see :func:`validate_sweep` for the parameters).
 
     Returns
     -------
     list of dict
         :func:`validate`'s dicts, ordered scheme (outer), f/n, fov, light (inner).
-
-    Every input is checked before any work: a bad value anywhere raises ``ValueError``.
 
     Example
     -------
@@ -307,26 +540,7 @@ def validate_rows(schemes: str | Iterable[str], f_over_n: object, fov: object, l
     >>> len(rows), all(r["within_bound"] for r in rows)
     (8, True)
     """
-    from .. import sweep
-
-    names = _names(schemes, "schemes")
-    ratios = _numbers(f_over_n, "f_over_n")
-    fovs = _numbers(fov, "fov")
-    specs = expand_light_specs(lights)
-    jobs = sweep._check_jobs(jobs)
-    tasks = [
-        dict(scheme=s, f_over_n=r, fov=v, light=l, res=res, image_res=image_res, probes=probes, seed=seed, reach=reach)
-        for s, r, v, l in itertools.product(names, ratios, fovs, specs)
-    ]
-    for t in tasks:  # fail fast, before any work or process starts
-        _check(t["scheme"], t["f_over_n"], t["fov"], t["light"], res, image_res, probes, reach)
-    _whole(seed, "seed", 0, 2**32 - 1)
-    if jobs == 1 or len(tasks) <= 1:
-        return [_task(t) for t in tasks]
-    from concurrent.futures import ProcessPoolExecutor
-
-    with ProcessPoolExecutor(max_workers=min(jobs, len(tasks))) as ex:
-        return list(ex.map(_task, tasks))  # map keeps the input order
+    return validate_sweep(schemes, f_over_n, fov, lights, res, image_res=image_res, probes=probes, seed=seed, reach=reach, jobs=jobs).rows()
 
 
 # --------------------------------------------------------------------------- output
@@ -348,6 +562,8 @@ def format_text(r: dict) -> str:
     lines = [
         f"scheme {r['scheme']}  f/n {r['f_over_n']:g}  fov {r['fov']:g} deg  light {r['light']} (gamma {r['gamma']:.6g} deg)  maps {r['maps']}",
         f"measurement: res {r['res']} px, {r['probes']}x{r['probes']} probes, seed {r['seed']}, {r['pixels']} pixels, self-lit {r['self_lit']:.3f}",
+        f"projection factor cos(psi_e)/cos(psi_l) on the probes: min {r['projection_min']:.4f}, median {r['projection_median']:.4f}, "
+        f"max {r['projection_max']:.4f} (about 1 by construction: perspective aliasing alone)",
         f"{'':10s}{'map':>4s}{'analytic':>14s}{'measured':>14s}{'ratio':>12s}",
     ]
     k = r["maps"]
@@ -368,7 +584,7 @@ def format_text(r: dict) -> str:
 
 
 def _table(rows: list[dict]) -> str:
-    keys = ["scheme", "f_over_n", "fov", "light", "maps", "ratio_M_x", "ratio_M_z", "ratio_S", "max_ratio", "min_ratio", "passed"]
+    keys = ["scheme", "f_over_n", "fov", "light", "maps", "ratio_M_x", "ratio_M_z", "ratio_S", "max_ratio", "min_ratio", "projection_min", "projection_max", "passed"]
     cells = [keys] + [[_fmt(r[k]).replace(", ", ";") for k in keys] for r in rows]
     widths = [max(len(c[i]) for c in cells) for i in range(len(keys))]
     return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells)
@@ -376,8 +592,6 @@ def _table(rows: list[dict]) -> str:
 
 def format_rows(rows: list[dict], fmt: str = "csv") -> str:
     """Validation rows as ``csv`` (per-map lists joined with ';'), ``json`` or a ``text`` table."""
-    from .. import sweep
-
     kind = check.choice(fmt, "format", FORMATS)
     if kind == "text":
         return _table(rows)
@@ -402,14 +616,27 @@ def _number(value: str, flag: str) -> float:
         raise ValueError(f"{flag} must be a number, got {value!r}") from None
 
 
+def _run_grid(args: argparse.Namespace, fmt: str) -> int:
+    grid = plan(args.scheme, args.f_over_n, args.fov, args.light, args.res, image_res=args.image_res, probes=args.probes, seed=args.seed, reach=args.reach)
+    if args.dry_run:
+        sys.stdout.write(sweep.dry_run(grid, fmt, args.jobs))
+        return 0
+    failed: list[dict] = []
+
+    def verdict(payloads: list) -> None:
+        failed.extend(r for rows in payloads for r in rows if not r["passed"])
+
+    code = sweep.run_command(grid, fmt, args.out, name="validate", jobs=args.jobs, dask=args.dask, resume=args.resume, on_payloads=verdict)
+    return code or (1 if failed else 0)
+
+
 def _run(args: argparse.Namespace) -> int:
     fmt = args.format or ("csv" if args.grid else "text")
     if args.grid:
-        rows = validate_rows(args.scheme, args.f_over_n, args.fov, args.light, args.res, image_res=args.image_res, probes=args.probes, seed=args.seed, reach=args.reach, jobs=args.jobs)
-        sys.stdout.write(format_rows(rows, fmt))
-        return 0 if all(r["passed"] for r in rows) else 1
-    if args.jobs != 1:
-        raise ValueError("--jobs needs --grid (one validation runs in one process)")
+        return _run_grid(args, fmt)
+    for flag, given in (("--jobs", args.jobs != 1), ("--out", args.out), ("--resume", args.resume), ("--dask", args.dask), ("--dry-run", args.dry_run)):
+        if given:
+            raise ValueError(f"{flag} needs --grid (one validation runs in one process, its report goes to stdout)")
     kind = check.choice(fmt, "format", FORMATS)
     r = validate(
         _single(args.scheme, "--scheme"), _number(args.f_over_n, "--f-over-n"), _number(args.fov, "--fov"), _single(args.light, "--light"),
@@ -442,11 +669,15 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
     """
     p = sub.add_parser(
         "validate",
-        help="measure a scheme's aliasing error with the rasterizer and compare it with the analytic bounds",
+        help="measure a scheme's aliasing error with the rasterizer and compare it with the analytic bounds (--grid: a resumable sweep of them)",
         description="Rasterize seeded probe planes, measure the perspective error m_x, m_z per pixel and compare their maxima "
         "(and S = M_x*M_z) with the analytic bounds (unit resolutions). PASS: no ratio above 1 + tolerance and every map's "
         "ratios at least --reach. Exit status 0 pass, 1 fail, 2 bad input. With --grid, every option takes a comma list "
-        "(numbers also ranges START:STOP:lin|log:COUNT) and the product is validated, one row each.",
+        "(numbers also ranges START:STOP:lin|log:COUNT) and the product is validated, one row each, through the engine of "
+        "'aliasing sweep': one validation per chunk, --jobs N processes or --dask ADDRESS, and with --out each finished chunk "
+        "kept in <out>.parts until the output is complete (--resume continues an interrupted grid); the output does not "
+        "depend on how it ran. Reports include the projection factor cos(psi_e)/cos(psi_l) measured from the normals on "
+        "the probes (about 1 by construction).",
         epilog="schemes: Standard | P | Po | LogP (Log) | Sopt | LogSopt | <warping rule> | ZP<k> | ZP<k>+<any> | FPc|FPcs[+ZP<k>]+P|LogP|Standard (face-fixed FP is not rasterized).  "
         "light: overhead | behind | front | gamma:DEG[@azimuth:DEG] (one direction; with --grid comma-separated, gamma and azimuth take lists and ranges).",
     )
@@ -459,8 +690,12 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
     p.add_argument("--probes", type=int, default=DEFAULT_PROBES, help=f"probe grid cells per side (default {DEFAULT_PROBES})")
     p.add_argument("--seed", type=int, default=0, help="seed of the probe depths (default 0)")
     p.add_argument("--reach", type=float, default=DEFAULT_REACH, help=f"fraction of the bound the maxima must reach to pass (default {DEFAULT_REACH})")
-    p.add_argument("--format", choices=FORMATS, help="text (default; with --grid a table) | json | csv (default with --grid)")
+    p.add_argument("--format", choices=GRID_FORMATS, help="text (default; with --grid a table) | json | csv (default with --grid) | netcdf (--grid --out only; xarray extra)")
     p.add_argument("--grid", action="store_true", help="validate the product of comma lists, one row per combination")
     p.add_argument("--jobs", type=int, default=1, help="local worker processes with --grid (default 1); the output does not depend on it")
+    p.add_argument("--out", help="with --grid: output file (default: standard output); written atomically, never truncated by a failed run")
+    p.add_argument("--resume", action="store_true", help="with --grid --out: continue an interrupted grid from <out>.parts without redoing finished validations")
+    p.add_argument("--dask", metavar="ADDRESS", help="with --grid: run the validations on a running Dask scheduler, e.g. tcp://host:8786 (dask extra)")
+    p.add_argument("--dry-run", action="store_true", help="with --grid: print the grid size and an estimated time, validate nothing")
     p.set_defaults(run=_run)
     return p
