@@ -14,7 +14,7 @@ Grammar (case-insensitive)::
 
 ``ZP<k>`` splits the frustum into k self-similar partitions (Lloyd 2006 eqs. 15–16), each
 with its own map fitted separately; a scheme's S̄ is the sum over its maps.  Face-partitioned
-schemes need a different number of maps per direction (``Result.map_count``); inside them
+schemes need a different number of maps per direction (``Result.maps_used``); inside them
 ``ZP<k>`` splits each side face into k depth ranges (Lloyd 2006's FP+ZP+W).
 
 Example
@@ -73,12 +73,14 @@ class Result:
     n_prime: Array  # (N, K) [world units, light-plane]
     eta: Array  # (N, K); NaN where n′ lies outside η's range (warps stronger than PSM)
     maps: int  # K map slots (columns); face partitions use only some of them per direction
-    map_count: Array | None = None  # (N,) maps per direction; None: always ``maps``
 
     @property
-    def maps_used(self) -> Array:
-        """Shadow maps each direction needs ``(N,)`` (Lloyd 2007 Table 3's "# SMs")."""
-        return np.full(self.S.shape, self.maps) if self.map_count is None else self.map_count
+    def maps_used(self) -> NDArray[np.int_]:
+        """Shadow maps each direction needs ``(N,)`` (Lloyd 2007 Table 3's "# SMs").
+
+        A used map has M_x > 0; the unused slots of face partitions hold 0.
+        """
+        return np.count_nonzero(self.M_x > 0, axis=-1)
 
 
 def parse(name: str) -> Scheme:
@@ -185,7 +187,7 @@ def _evaluate_faces(sch: Scheme, near: float, far: float, fov: float, light: str
         raise ValueError(f"unknown options for {sch.name}: {', '.join(sorted(unknown))}; face partitions take tau0, tau1")
     r = faces.face_errors(sch.faces, sch.parameterization, near, far, fov, geometry.lights(light), k=sch.k, **{k: float(v) for k, v in options.items()})
     nan = np.full(r.M_x.shape, np.nan)
-    return Result(sch, r.M_x, r.M_z, r.S, nan, nan, r.M_x.shape[1], r.maps)
+    return Result(sch, r.M_x, r.M_z, r.S, nan, nan, r.M_x.shape[1])
 
 
 def _explicit_partitions(edges: ArrayLike | tuple[ArrayLike, ArrayLike], near: float, far: float) -> tuple[Array, Array]:

@@ -88,11 +88,18 @@ def sweep(scheme_names: Iterable[str], f_over_n: ArrayLike = (1000.0,), fov: Arr
 
 def _summary_row(name: str, ratio: float, fov: float, r: schemes.Result) -> dict:
     s_min, s_max = float(r.S.min()), float(r.S.max())
-    return {"scheme": name, "f_over_n": float(ratio), "fov": float(fov), "directions": int(r.S.size), "maps": r.maps, "S_min": s_min, "S_max": s_max, "S_max_over_min": s_max / s_min, "S_mean": float(r.S.mean())}
+    return {"scheme": name, "f_over_n": float(ratio), "fov": float(fov), "directions": int(r.S.size), "maps": _mean_maps(r), "S_min": s_min, "S_max": s_max, "S_max_over_min": s_max / s_min, "S_mean": float(r.S.mean())}
+
+
+def _mean_maps(r: schemes.Result) -> int | float:
+    """The number of maps, or its mean over the directions when it varies (face partitions)."""
+    used = r.maps_used
+    return int(used[0]) if np.all(used == used[0]) else float(used.mean())
 
 
 def _direction_rows(name: str, ratio: float, fov: float, gamma: np.ndarray, azimuth: np.ndarray, r: schemes.Result) -> list[dict]:
     per_map = {"M_x": r.M_x.tolist(), "M_z": r.M_z.tolist(), "n_prime": r.n_prime.tolist(), "eta": r.eta.tolist()}
+    used = r.maps_used.tolist()
     return [
         {
             "scheme": name,
@@ -103,7 +110,7 @@ def _direction_rows(name: str, ratio: float, fov: float, gamma: np.ndarray, azim
             "M_x": _scalar(per_map["M_x"][i]),
             "M_z": _scalar(per_map["M_z"][i]),
             "S": float(r.S[i]),
-            "maps": r.maps,
+            "maps": used[i],
             "n_prime": _scalar(per_map["n_prime"][i]),
             "eta": _scalar(per_map["eta"][i]),
         }
@@ -676,9 +683,9 @@ def _csv_fragment(task: _Task, gamma: np.ndarray, azimuth: np.ndarray, r: scheme
     formatting value by value.
     """
     head = _csv_cells([r.scheme.name, *task.cells, float(task.ratio), float(task.fov)]).replace("%", "%%")
-    cols = [_column(c) for c in (gamma, azimuth, r.M_x, r.M_z, r.S, r.n_prime, r.eta)]
+    cols = [_column(c) for c in (gamma, azimuth, r.M_x, r.M_z, r.S)] + [("%d", r.maps_used.tolist())] + [_column(c) for c in (r.n_prime, r.eta)]
     f = [c[0] for c in cols]
-    line = f"{head},{f[0]},{f[1]},{f[2]},{f[3]},{f[4]},{r.maps},{f[5]},{f[6]}\n"
+    line = f"{head},{f[0]},{f[1]},{f[2]},{f[3]},{f[4]},{f[5]},{f[6]},{f[7]}\n"
     return "".join([line % row for row in zip(*(c[1] for c in cols))])
 
 
