@@ -11,8 +11,17 @@ the surface (eq. 9 for a point light, eq. 26 as corrected in erratum L11 for a d
 light), the light image plane (eq. 37) and the parameterization's spacing matrix
 δ_l = ∂G/∂s (eqs. 38–39), scaled by the resolutions (eq. 34).  δ_e = (∂i/∂u)⁻¹ (eq. 40).
 A scalar error is a metric h(M_a) (§3.4: a p-norm, the Frobenius norm or the
-determinant), :func:`metric`.  The symbolic source is
+determinant), :func:`error_metric`.  The symbolic source is
 :mod:`aliasing.symbolic.lloyd2007_matrix`.
+
+§3.4's two candidate 3D perspective errors, h(X_l)/h(X_e) from the beams' cross-sections
+(:func:`cross_sections`) and h(M_a) on the surface half-way between the eye and the light
+(:func:`halfway_normal`, §3.3), are "not guaranteed to be equivalent".  What the tests show:
+the half-way surface carries the light beam's cross-section isometrically onto the eye
+beam's (it is the mirror between them), M_a = X_e⁻¹ P X_l with P orthogonal, so the two agree
+exactly for h = |det| (and any surface gives |det M_a| = |det X_l|/|det X_e| · cos ψ_e/cos ψ_l,
+eq. 29's factorisation), while for the 2-norm h(M_a) lies between h(X_l)/h(X_e) and
+cond(X_e) times it.
 
 Conventions: a :class:`Camera` (the eye, a point light or a directional light) looks along
 −ẑ of its axes (rows x̂, ŷ, ẑ); its image plane lies ``near`` before its centre of
@@ -299,14 +308,14 @@ def spacing_light(dF_du: ArrayLike) -> Array:
     return np.linalg.inv(jac)  # eq. (39)
 
 
-def metric(M: ArrayLike, kind: str | int | float = "2") -> Array:
+def error_metric(M: ArrayLike, metric: str | int | float = "2") -> Array:
     """Scalar aliasing error h(M) of a 2×2 matrix (Lloyd et al. 2007 §3.4).
 
     Parameters
     ----------
     M : array_like, shape (..., 2, 2)
         An aliasing matrix (or a beam cross-section, :func:`cross_sections`).
-    kind : {"1", "2", "inf", "fro", "det", "column"}
+    metric : {"1", "2", "inf", "fro", "det", "column"}
         The induced p-norms for p = 1, 2, ∞ (1 and 2 and ``np.inf`` are accepted too), the
         Frobenius norm, |det M| (the projected texel's area [pixels²]) or the largest
         Euclidean column norm (the longest projected texel edge [pixels]).
@@ -319,10 +328,10 @@ def metric(M: ArrayLike, kind: str | int | float = "2") -> Array:
     Examples
     --------
     >>> M = [[3.0, 0.0], [4.0, 1.0]]
-    >>> [round(float(metric(M, k)), 4) for k in ("1", "2", "inf", "fro", "det", "column")]
+    >>> [round(float(error_metric(M, metric=k)), 4) for k in ("1", "2", "inf", "fro", "det", "column")]
     [7.0, 5.0645, 5.0, 5.099, 3.0, 5.0]
     """
-    key = check.choice(str(kind), "metric", METRICS)
+    key = check.choice(str(metric), "metric", METRICS)
     arr = _delta(M)
     if key == "det":
         return np.abs(np.linalg.det(arr))
@@ -390,7 +399,7 @@ def cross_sections(point: ArrayLike, eye: Camera, light: Camera, *, delta_l: Arr
     >>> eye = Camera(axes=np.eye(3), position=[0.0, 0.0, 10.0])
     >>> sun = Camera(axes=np.eye(3), direction=[0.0, 0.0, 1.0], width=20.0)
     >>> X_l, X_e = cross_sections([0.0, 0.0, 0.0], eye, sun)
-    >>> float(metric(X_l, "det")), float(metric(X_e, "det"))
+    >>> float(error_metric(X_l, "det")), float(error_metric(X_e, "det"))
     (400.0, 400.0)
     """
     p = _vectors(point, "point")

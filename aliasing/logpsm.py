@@ -144,8 +144,18 @@ def _unit_coordinate(value: ArrayLike, name: str) -> Array:
     return check.closed_range(value, name, 0.0, 1.0)
 
 
-def _cos_phi(coord: Array, l_c: ArrayLike, l_z: ArrayLike) -> Array:
-    """cos φ_l = l_z/√((c − l_c)² + l_z²) (eq. 57); 1 for l_z = inf."""
+def _cos_phi(coord: Array, l_c: ArrayLike, l_z: ArrayLike, directional: bool = False) -> Array:
+    """cos φ_l = l_z/√((c − l_c)² + l_z²) (eq. 57); 1 for l_z = inf.
+
+    For a directional light (l_c, l_z) is the direction towards it, projected on the plane
+    of the face's normal and the coordinate axis: cos φ_l = l_z/√(l_c² + l_z²), constant.
+    """
+    if directional:
+        lz = check.positive(l_z, "lz")
+        lc = check.as_float_array(l_c, "light coordinate")
+        if np.isinf(lc).any():
+            raise ValueError("the direction of a directional light must be finite")
+        return lz / np.sqrt(lc * lc + lz * lz) + 0.0 * coord  # eq. (57), parallel rays
     lz = check.positive(l_z, "lz", allow_inf=True)
     lc = check.as_float_array(l_c, "light coordinate")
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -153,7 +163,7 @@ def _cos_phi(coord: Array, l_c: ArrayLike, l_z: ArrayLike) -> Array:
     return 1.0 / np.sqrt(q * q + 1.0)  # eq. (57)
 
 
-def delta_bound_end(v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, ly: ArrayLike = 0.0, lz: ArrayLike = np.inf, face: str = "far") -> Array:
+def delta_bound_end(v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, ly: ArrayLike = 0.0, lz: ArrayLike = np.inf, face: str = "far", directional: bool = False) -> Array:
     """Error-bound spacing δ_b,t on an end face, Lloyd et al. 2007, eq. 58.
 
     δ_b,t^end(v) = cosθ/cos φ_ly(v), with y(v) = W_e d_e/n_e (v − 1/2) across the face.
@@ -170,6 +180,9 @@ def delta_bound_end(v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLik
         Light position over the face [world units]; ``lz = inf`` is an overhead directional light.
     face : {"near", "far"}
         Which end face (sets d_e).
+    directional : bool, optional
+        If True, (``ly``, ``lz``) is the direction towards a directional light (lz > 0) and
+        cos φ_l is constant over the face.
 
     Returns
     -------
@@ -186,10 +199,10 @@ def delta_bound_end(v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLik
     n, f = check.frustum(near, far)
     de = {"near": n, "far": f}[check.choice(face, "face", ["near", "far"])]
     yy = We * de / n * (vv - 0.5)
-    return ct / _cos_phi(yy, ly, lz)  # eq. (58)
+    return ct / _cos_phi(yy, ly, lz, directional)  # eq. (58)
 
 
-def delta_bound_side_s(u: ArrayLike, v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx: ArrayLike = 0.0, lz: ArrayLike = np.inf) -> Array:
+def delta_bound_side_s(u: ArrayLike, v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx: ArrayLike = 0.0, lz: ArrayLike = np.inf, directional: bool = False) -> Array:
     """Error-bound spacing δ_b,s on a side face, Lloyd et al. 2007, eq. 61.
 
     δ_b,s^side(u, v) = (y(v)/y1) cosθ/cos φ_lx(u).  Parameters as in
@@ -209,10 +222,10 @@ def delta_bound_side_s(u: ArrayLike, v: ArrayLike, near: ArrayLike, far: ArrayLi
     y0, y1, We, ct = side_face(near, far, fov)
     yy = y0 + (y1 - y0) * vv
     xx = We * y1 / y0 * (uu - 0.5)
-    return yy / y1 * ct / _cos_phi(xx, lx, lz)  # eq. (61)
+    return yy / y1 * ct / _cos_phi(xx, lx, lz, directional)  # eq. (61)
 
 
-def delta_bound_side_t(v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, ly: ArrayLike = 0.0, lz: ArrayLike = np.inf) -> Array:
+def delta_bound_side_t(v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, ly: ArrayLike = 0.0, lz: ArrayLike = np.inf, directional: bool = False) -> Array:
     """Error-bound spacing δ_b,t on a side face, Lloyd et al. 2007, eq. 62.
 
     δ_b,t^side(v) = W_e y(v)/((y1 − y0) y0) · cosθ/cos φ_ly(v).  Parameters as in
@@ -231,7 +244,7 @@ def delta_bound_side_t(v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: Array
     vv = _unit_coordinate(v, "v")
     y0, y1, We, ct = side_face(near, far, fov)
     yy = y0 + (y1 - y0) * vv
-    return We * yy / ((y1 - y0) * y0) * ct / _cos_phi(yy, ly, lz)  # eq. (62)
+    return We * yy / ((y1 - y0) * y0) * ct / _cos_phi(yy, ly, lz, directional)  # eq. (62)
 
 
 def zeta_bound(kind: str, coord: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx: ArrayLike = 0.0, ly: ArrayLike = 0.0, lz: ArrayLike = 1.0, v: ArrayLike = 0.0, face: str = "far") -> Array:
@@ -285,7 +298,11 @@ def zeta_bound(kind: str, coord: ArrayLike, near: ArrayLike, far: ArrayLike, fov
     yy = y0 + (y1 - y0) * cc
     L = np.sqrt(ly_**2 + lz_**2)
     inv_cos = np.sqrt((yy - ly_) ** 2 + lz_**2) / lz_
-    return -y0 / (We * ct) * lz_ / L * np.log(2 / yy * ((ly_ * (ly_ - yy) + lz_**2) / (lz_ * L) + inv_cos))  # eq. (68)
+    first = (ly_ * (ly_ - yy) + lz_**2) / (lz_ * L)
+    # first + inv_cos cancels when the light is low and y is beyond it; (inv_cos² − first²) = y²/L², so
+    # there first + inv_cos = y²/(L² (inv_cos − first)) (the same value, without the cancellation)
+    arg = np.where(first < 0, 2 * yy / (L**2 * np.maximum(inv_cos - first, np.finfo(float).tiny)), 2 / yy * np.maximum(first + inv_cos, 0.0))
+    return -y0 / (We * ct) * lz_ / L * np.log(arg)  # eq. (68)
 
 
 def rho_bound(kind: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx: ArrayLike = 0.0, ly: ArrayLike = 0.0, lz: ArrayLike = 1.0, v: ArrayLike = 0.0, face: str = "far") -> Array:
@@ -317,9 +334,12 @@ def rho_bound(kind: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx:
 
 
 # --- §5: parameterizations of a side face -------------------------------------------------
-def _ab(a: ArrayLike, b: ArrayLike) -> tuple[Array, Array]:
+def _ab(a: ArrayLike, b: ArrayLike, y0: Array, y1: Array) -> tuple[Array, Array]:
+    """a ≥ 0; b real or ±inf with its root −b of eq. 106 off the face (−b ∉ [y0, y1]) and b ≠ a."""
     aa = check.closed_range(a, "a", 0.0, np.inf)
-    bb = check.closed_range(b, "b", 0.0, np.inf)
+    bb = check.as_float_array(b, "b")
+    if ((-bb >= y0) & (-bb <= y1)).any():
+        raise ValueError(f"b must be > −y0 or < −y1 (the root −b of δ_lp,t, eq. 106, must lie off the face [y0, y1]), got b={check._show(bb)}")
     if (bb == aa).any():
         raise ValueError("b must differ from a (b = a makes eq. 110's logarithm 0); use b = inf for eq. 78")
     return aa, bb
@@ -340,7 +360,8 @@ def parameterization(kind: str, v: ArrayLike, near: ArrayLike, far: ArrayLike, f
     a : array_like, optional
         Centre of projection at y = −a [world units], ≥ 0 (``inf`` is uniform).
     b : array_like, optional
-        Second root of δ_lp,t (eq. 106) [world units], ≥ 0 and ≠ a; ``inf`` gives eq. 78.
+        Second root −b of δ_lp,t (eq. 106) [world units], ≠ a, with −b off the face (b > −y0:
+        a convex parabola, or b < −y1: a concave one); ``±inf`` gives eq. 78.
     u : array_like, optional
         Face coordinate in [0, 1] for ``perspective_s``.
 
@@ -356,8 +377,8 @@ def parameterization(kind: str, v: ArrayLike, near: ArrayLike, far: ArrayLike, f
     """
     key = check.choice(kind, "kind", ["uniform", "perspective_s", "perspective_t", "log_t", "logp_t"])
     vv = _unit_coordinate(v, "v")
-    aa, bb = _ab(a, b)
     y0, y1, We, _ = side_face(near, far, fov)
+    aa, bb = _ab(a, b, y0, y1)
     yy = y0 + (y1 - y0) * vv
     if key == "uniform":
         return vv + 0.0 * yy  # eq. (74)
@@ -399,8 +420,8 @@ def spacing(kind: str, v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: Array
     """
     key = check.choice(kind, "kind", ["uniform", "perspective_s", "perspective_t", "log_t", "logp_t"])
     vv = _unit_coordinate(v, "v")
-    aa, bb = _ab(a, b)
     y0, y1, _, _ = side_face(near, far, fov)
+    aa, bb = _ab(a, b, y0, y1)
     yy = y0 + (y1 - y0) * vv
     if key == "uniform":
         return np.ones_like(yy)  # eq. (90)
@@ -435,8 +456,8 @@ def logp_inverse(t: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, 
     0.3
     """
     tt = _unit_coordinate(t, "t")
-    aa, bb = _ab(a, b)
     y0, y1, _, _ = side_face(near, far, fov)
+    aa, bb = _ab(a, b, y0, y1)
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         c0_inf = -1 / np.log((y1 + aa) / (y0 + aa))  # eq. (78)
         y_inf = (y0 + aa) * np.exp(-tt / c0_inf) - aa  # eq. (84), corrected

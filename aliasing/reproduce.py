@@ -46,6 +46,12 @@ TARGETS: dict[str, Target] = {
         Target("raster-cdf", "raster_cdf", "Rasterizer: CDF of max error over random light directions, analytic + measured (Lloyd 2007 Fig. 17 style, f/n=1000)"),
         Target("lloyd2007-table3", "lloyd2007_table3", "Lloyd 2007 Table 3, all 16 rows (FP/FPc/FPcs included), beside the printed values (f/n=1000, theta=30)"),
         Target("lloyd2007-fig15", "lloyd2007_fig15", "Lloyd 2007 Fig. 15: S over gamma, ZPk with uniform/P/LogP maps vs FP+LogP and FPcs+LogP (f/n=1024, theta=30)"),
+        Target("lloyd2007-fig18", "lloyd2007_fig18", "Lloyd 2007 Fig. 18: error-bound spacing delta_b,t on a side face for lights at l_y = kappa(y1-y0), l_z = sigma(y1-y0) (theta=45, n=1, f=1000)"),
+        Target("lloyd2007-fig19", "lloyd2007_fig19", "Lloyd 2007 Fig. 19: error-bound spacing delta_b,t on the far face, light over its centre, cos theta factored out"),
+        Target("lloyd2007-fig20", "lloyd2007_fig20", "Lloyd 2007 Fig. 20: error-bound spacing delta_b,s(u, v) on a side face, light centred (l_z = 0.1(y1-y0) assumed)"),
+        Target("lloyd2007-fig21", "lloyd2007_fig21", "Lloyd 2007 Fig. 21: R_b (t end, s side, t side) of the error-bound parameterizations vs light position"),
+        Target("lloyd2007-fig25", "lloyd2007_fig25", "Lloyd 2007 Fig. 25: R_log,t on a side face vs light position, optimal a and a = 0"),
+        Target("lloyd2007-fig26", "lloyd2007_fig26", "Lloyd 2007 Fig. 26: S of the linear log+perspective form, parabolic fits, two-parabola S vs light position"),
     )
 }
 
