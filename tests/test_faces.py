@@ -251,9 +251,16 @@ def test_partition_polyhedra_are_the_chosen_faces_swept_along_the_light():
         idx = faces.partition_of(pts, 1.0, 1000.0, FOV, light)
         chosen = np.flatnonzero(faces.chosen_faces(light, FOV)[0])
         assert set(np.unique(idx)) <= set(chosen)
-        # along the ray to its face the eye depth decreases: the face holds the minimum d_e
+        # moving along the light towards smaller eye depth, each point reaches its face's plane
+        # while still inside the frustum (the face, not its extension, is hit first)
         travel = -light if light[2] >= 0 else light
-        assert travel[2] <= 0
+        normal, *_ = faces.side_frames(FOV)
+        normals = np.vstack([[0.0, 0.0, -1.0], normal])
+        offset = np.array([-1.0, 0, 0, 0, 0])
+        t = (offset[idx] - np.sum(pts * normals[idx], axis=1)) / (normals[idx] @ travel)
+        hit = pts + t[:, None] * travel
+        assert np.all(t >= -1e-9) and np.all(hit[:, 2] <= pts[:, 2] + 1e-9)
+        assert np.all(hit @ normals.T - offset <= 1e-6 * np.abs(hit).max())
     # points on a chosen face belong to it
     _, _, _, edges = faces.side_frames(FOV)
     light = geometry.light_direction(60.0, 20.0)  # in front and above: the bottom face is an exit face
