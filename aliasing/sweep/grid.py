@@ -1,0 +1,519 @@
+"""The sweep grid: axes from numbers, lists and ranges; scheme variants; light specs; chunks.
+
+A :class:`Grid` is the product scheme variants × f/n × fov × light directions, split into
+chunks of one variant, one f/n, one fov and a block of directions; :func:`compute_chunk`
+evaluates one chunk (vectorized).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import inspect
+import itertools
+import json
+import re
+import shlex
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, ClassVar
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .. import _validation as check
+from .. import geometry, schemes, warping
+from .rows import _column, _csv_cells, _direction_rows, _json_value, _with_cells
+
+if TYPE_CHECKING:
+    from .tables import SweepTable
+
+
+RANGE = "START:STOP:lin|log:COUNT"
+OUTPUT_FORMATS = ("csv", "json", "netcdf")
+DEFAULT_BLOCK = 20_000
+"""Light directions per chunk: large enough to amortise the per-call cost, small enough that
+the (N, k, 8) arrays of ZP schemes stay in cache-friendly sizes (see benchmarks/README.md)."""
+
+
+def grid_values(value: str | float | Sequence, name: str) -> tuple[float, ...]:
+    """Numbers of one grid axis from a number, a list, or text with numbers and ranges.
+
+    A range ``START:STOP:lin:COUNT`` is ``numpy.linspace``, ``START:STOP:log:COUNT``
+    ``numpy.geomspace`` (both ends included); text is comma-separated.
+
+    Parameters
+    ----------
+    value : str, float or sequence
+        E.g. ``"10:10000:log:4"``, ``"30,60"``, ``[30, "60:90:lin:2"]`` or ``45``.
+    name : str
+        The parameter's name, for error messages.
+
+    Returns
+    -------
+    tuple of float
+
+    Example
+    -------
+    >>> grid_values("10:10000:log:4", "f_over_n")
+    (10.0, 100.0, 1000.0, 10000.0)
+    >>> grid_values("30:90:lin:3,120", "fov")
+    (30.0, 60.0, 90.0, 120.0)
+    """
+    if isinstance(value, str):
+        items: list = [s.strip() for s in value.split(",") if s.strip()]
+    elif isinstance(value, (list, tuple, np.ndarray)):
+        items = list(np.asarray(value, dtype=object).ravel())
+    else:
+        items = [value]
+    out: list[float] = []
+    for item in items:
+        if isinstance(item, str) and ":" in item:
+            out.extend(_range(item, name))
+            continue
+        if isinstance(item, (bool, np.bool_)) or not isinstance(item, (int, float, str, np.integer, np.floating)):
+            raise ValueError(f"{name} must be a comma-separated list of numbers or ranges {RANGE}, got {item!r}")
+        try:
+            out.append(float(item))
+        except ValueError:
+            raise ValueError(f"{name} must be a comma-separated list of numbers or ranges {RANGE}, got {value!r}") from None
+    if not out:
+        raise ValueError(f"{name} is empty: the sweep grid has no points")
+    if any(np.isnan(v) for v in out):
+        raise ValueError(f"{name} must not be NaN")
+    return tuple(out)
+
+
+def _range(text: str, name: str) -> list[float]:
+    parts = [p.strip() for p in text.split(":")]
+    try:
+        if len(parts) != 4 or parts[2].lower() not in ("lin", "log"):
+            raise ValueError
+        start, stop, count = float(parts[0]), float(parts[1]), int(parts[3])
+    except ValueError:
+        raise ValueError(f"{name}: malformed range {text!r}; expected {RANGE}, e.g. 10:10000:log:7") from None
+    if count < 1:
+        raise ValueError(f"{name}: range {text!r} has COUNT {count}; it must be >= 1 (the sweep grid would be empty)")
+    if parts[2].lower() == "log":
+        if start <= 0 or stop <= 0:
+            raise ValueError(f"{name}: log range {text!r} needs START and STOP > 0")
+        values = np.geomspace(start, stop, count)
+    else:
+        values = np.linspace(start, stop, count)
+    return [float(v) for v in values]
+
+
+@dataclass(frozen=True)
+class Variant:
+    """One point of the scheme axis: a canonical scheme name and its warping-rule options."""
+
+    name: str
+    options: tuple[tuple[str, float], ...] = ()
+
+    @property
+    def label(self) -> str:
+        """Unique label, e.g. ``ETA[eta=-0.5]``."""
+        if not self.options:
+            return self.name
+        return f"{self.name}[{','.join(f'{k}={v:.10g}' for k, v in self.options)}]"
+
+
+def _rule_options(scheme: schemes.Scheme) -> set[str]:
+    rule = warping.WARPING_RULES.get(scheme.rule)
+    if rule is None:
+        return set()
+    return set(inspect.signature(rule.func).parameters) - {"near", "far"} - set(warping.CONTEXT)
+
+
+def expand_schemes(names: str | Iterable[str], k: ArrayLike | str | None = None, params: dict | None = None) -> tuple[Variant, ...]:
+    """The scheme axis: names × k × the warping-rule options each scheme takes.
+
+    Parameters
+    ----------
+    names : str or iterable of str
+        Scheme names (comma-separated text or a list).
+    k : int, list or str, optional
+        Numbers of z-partitions: each base scheme ``B`` becomes ``ZP<k>+B`` (k = 1 keeps ``B``).
+    params : dict, optional
+        Warping-rule option → grid values (:func:`grid_values`); each scheme is crossed with
+        the options its rule takes (e.g. ``eta`` for the ``eta`` rule, ``c_fraction`` for P
+        and LogP, ``focus`` and ``line`` for TSM).
+
+    Example
+    -------
+    >>> [v.label for v in expand_schemes("P,eta", k=[1, 5], params={"eta": [-1, 0]})]
+    ['P', 'ZP5+P', 'ETA[eta=-1]', 'ETA[eta=0]', 'ZP5+ETA[eta=-1]', 'ZP5+ETA[eta=0]']
+    """
+    listed = [n.strip() for n in names.split(",")] if isinstance(names, str) else [str(n).strip() for n in names]
+    listed = [n for n in listed if n]
+    if not listed:
+        raise ValueError("schemes must name at least one scheme")
+    ks: tuple[int, ...] | None = None
+    if k is not None:
+        raw = grid_values(k, "k")
+        if any(v != int(v) or v < 1 for v in raw):
+            raise ValueError(f"k must be whole numbers >= 1 (z-partitions), got {k!r}")
+        ks = tuple(int(v) for v in raw)
+    params = dict(params or {})
+    grids = {key: grid_values(value, f"param {key}") for key, value in params.items()}
+    for key in grids:
+        if key in warping.CONTEXT:
+            raise ValueError(f"param {key!r} is swept by the grid itself (f_over_n, fov, light), not a rule option")
+    used: set[str] = set()
+    out: list[Variant] = []
+    for text in listed:
+        base = schemes.parse(text)
+        if ks is None:
+            parsed = [base]
+        else:
+            if base.k != 1 or text.lower().startswith("zp"):
+                raise ValueError(f"k: scheme {text!r} already names its k; give the base scheme (e.g. LogP) with k")
+            parsed = [base if kv == 1 else schemes.parse(f"ZP{kv}+{base.name}") for kv in ks]
+        for sch in parsed:
+            keys = [key for key in grids if key in _rule_options(sch)]
+            used.update(keys)
+            for combo in itertools.product(*(grids[key] for key in keys)):
+                out.append(Variant(sch.name, tuple(zip(keys, combo))))
+    unused = sorted(set(grids) - used)
+    if unused:
+        raise ValueError(f"param {unused[0]!r} is taken by none of the schemes {', '.join(listed)}")
+    labels = [v.label for v in out]
+    dupes = sorted({lab for lab in labels if labels.count(lab) > 1})
+    if dupes:
+        raise ValueError(f"schemes: {dupes[0]!r} appears more than once in the grid")
+    return tuple(out)
+
+
+def expand_lights(light: str | Sequence[str] | ArrayLike) -> tuple[tuple[str, ...], np.ndarray]:
+    """Light specs (comma-separated or a list) → ``(specs, vectors (N, 3))``.
+
+    Besides :data:`aliasing.geometry.LIGHT_SPEC`, ``gamma:RANGE[@azimuth:RANGE]`` with
+    ranges or numbers sweeps the product of γ (outer) and azimuth (inner).
+
+    Example
+    -------
+    >>> specs, lv = expand_lights("overhead,gamma:0:180:lin:3@azimuth:0,90")
+    >>> specs, lv.shape
+    (('overhead', 'gamma:0:180:lin:3@azimuth:0,90'), (7, 3))
+    """
+    if isinstance(light, str):
+        specs = split_lights(light)
+    elif isinstance(light, (list, tuple)) and all(isinstance(s, str) for s in light):
+        specs = [s.strip() for s in light if s.strip()]
+    else:
+        lv = geometry.lights(light)
+        return ("vectors:" + _digest_bytes(np.ascontiguousarray(lv).tobytes())[:16],), lv
+    if not specs:
+        raise ValueError("light is empty: the sweep grid has no directions")
+    blocks = []
+    for spec in specs:
+        text = spec.lower()
+        kind, _, rest = text.partition(":")
+        g_text, _, a_text = rest.partition("@")
+        if kind == "gamma" and (":" in g_text or ":" in a_text.partition(":")[2] or "," in rest):
+            key, _, az = a_text.partition(":")
+            if a_text and key != "azimuth":
+                raise ValueError(f"malformed light {spec!r}; expected gamma:DEG|RANGE[@azimuth:DEG|RANGE]")
+            g = np.array(grid_values(g_text, "light gamma"))
+            a = np.array(grid_values(az, "light azimuth") if a_text else (0.0,))
+            blocks.append(geometry.light_direction(g[:, None], a[None, :]).reshape(-1, 3))
+        else:
+            blocks.append(geometry.lights(spec))
+    return tuple(specs), np.concatenate(blocks)
+
+
+def split_lights(text: str) -> list[str]:
+    """Split light specs at commas, keeping ``gamma:…@azimuth:30,60`` lists inside one spec.
+
+    Parameters
+    ----------
+    text : str
+        Comma-separated light specs (:data:`aliasing.geometry.LIGHT_SPEC`, with lists and
+        ranges after ``gamma:`` and ``@azimuth:``).
+
+    Returns
+    -------
+    list of str
+        The specs, stripped; empty parts are dropped.
+
+    Example
+    -------
+    >>> split_lights("overhead, gamma:30,60@azimuth:0,90, hemisphere:10")
+    ['overhead', 'gamma:30,60@azimuth:0,90', 'hemisphere:10']
+    """
+    if not isinstance(text, str):
+        raise ValueError(f"light must be text of comma-separated specs, got {text!r}")
+    out: list[str] = []
+    for part in (p.strip() for p in text.split(",")):
+        if not part:
+            continue
+        starts_spec = re.match(r"(overhead|behind|front|gamma|sphere|hemisphere)\b", part, flags=re.IGNORECASE)
+        if out and out[-1].lower().startswith("gamma") and not starts_spec:
+            out[-1] += "," + part
+        else:
+            out.append(part)
+    return out
+
+
+def _digest_bytes(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
+
+
+def parameters_digest(parameters: dict, fmt: str, data: bytes = b"") -> str:
+    """SHA-256 of a grid's parameters (JSON-ready), its output format, the toolkit version and ``data``.
+
+    What a work directory's manifest records, so that ``--resume`` refuses a different grid.
+
+    Example
+    -------
+    >>> a = parameters_digest({"fov": [60.0]}, "csv")
+    >>> len(a), a == parameters_digest({"fov": [60.0]}, "json")
+    (64, False)
+    """
+    from .. import __version__
+
+    text = json.dumps({"parameters": parameters, "format": fmt, "aliasing": __version__}, sort_keys=True)
+    return _digest_bytes(text.encode() + data)
+
+
+def spread(count: int, most: int = 8) -> list[int]:
+    """At most ``most`` indices in ``range(count)``, spread evenly with both ends (for timing samples).
+
+    Example
+    -------
+    >>> spread(20, 4), spread(3)
+    ([0, 6, 13, 19], [0, 1, 2])
+    """
+    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 1:
+        raise ValueError(f"count must be a whole number >= 1, got {count!r}")
+    if isinstance(most, bool) or not isinstance(most, (int, np.integer)) or most < 1:
+        raise ValueError(f"most must be a whole number >= 1, got {most!r}")
+    return sorted(set(np.linspace(0, count - 1, min(most, count)).round().astype(int).tolist()))
+
+
+@dataclass(frozen=True)
+class Grid:
+    """A planned sweep: the product scheme variants × f/n × fov × light directions.
+
+    Build it with :func:`plan`; it is split into chunks of one variant, one f/n, one fov
+    and a block of at most ``block`` directions, in that (row) order.
+    """
+
+    variants: tuple[Variant, ...]
+    f_over_n: tuple[float, ...]
+    fov: tuple[float, ...]
+    light: tuple[str, ...]
+    directions: np.ndarray = field(repr=False, compare=False)
+    near: float = 1.0
+    summary: bool = False
+    block: int = DEFAULT_BLOCK
+
+    formats: ClassVar[tuple[str, ...]] = OUTPUT_FORMATS
+
+    @property
+    def param_names(self) -> tuple[str, ...]:
+        """Warping-rule options swept, in first-seen order."""
+        seen: dict[str, None] = {}
+        for v in self.variants:
+            seen.update(dict.fromkeys(k for k, _ in v.options))
+        return tuple(seen)
+
+    @property
+    def columns(self) -> tuple[str, ...]:
+        """Output columns of the swept options: ``param_<name>``."""
+        return tuple(f"param_{key}" for key in self.param_names)
+
+    def _cells(self, var: Variant) -> tuple[float | None, ...]:
+        return tuple(dict(var.options).get(key) for key in self.param_names)
+
+    @property
+    def shape(self) -> tuple[int, int, int, int]:
+        """(variants, f/n values, fovs, directions)."""
+        return (len(self.variants), len(self.f_over_n), len(self.fov), len(self.directions))
+
+    @property
+    def size(self) -> int:
+        """Number of direction × scheme × frustum evaluations."""
+        return int(np.prod(self.shape))
+
+    @property
+    def blocks(self) -> int:
+        """Direction blocks per (variant, f/n, fov)."""
+        return -(-len(self.directions) // self.block)
+
+    @property
+    def chunks(self) -> int:
+        """Number of chunks."""
+        return len(self.variants) * len(self.f_over_n) * len(self.fov) * self.blocks
+
+    def chunk(self, index: int, kind: str) -> _Task:
+        """The work of chunk ``index`` (0 ≤ index < :attr:`chunks`) for a payload ``kind``."""
+        v, rest = divmod(index, len(self.f_over_n) * len(self.fov) * self.blocks)
+        r, rest = divmod(rest, len(self.fov) * self.blocks)
+        f, b = divmod(rest, self.blocks)
+        var = self.variants[v]
+        return _Task(index, kind, var.name, var.options, self.columns, self._cells(var), self.near, self.f_over_n[r], self.fov[f], self.directions[b * self.block : (b + 1) * self.block])
+
+    def parameters(self) -> dict:
+        """Every parameter of the sweep, JSON-ready (what the manifest's hash covers)."""
+        return {
+            "schemes": [v.name for v in self.variants],
+            "options": [dict(v.options) for v in self.variants],
+            "f_over_n": list(self.f_over_n),
+            "fov": list(self.fov),
+            "light": list(self.light),
+            "directions": len(self.directions),
+            "near": self.near,
+            "summary": self.summary,
+            "block": self.block,
+        }
+
+    def digest(self, fmt: str) -> str:
+        """SHA-256 of the parameters, the directions, the output format and the toolkit version."""
+        return parameters_digest(self.parameters(), fmt, np.ascontiguousarray(self.directions).tobytes())
+
+    def command(self, fmt: str = "csv") -> str:
+        """An ``aliasing sweep`` command line for this sweep."""
+        names = ",".join(dict.fromkeys(v.name for v in self.variants))
+        parts = ["aliasing", "sweep", "--schemes", names]
+        for key in self.param_names:
+            values = dict.fromkeys(dict(v.options)[key] for v in self.variants if key in dict(v.options))
+            parts += ["--param", f"{key}=" + ",".join(f"{x:.10g}" for x in values)]
+        parts += ["--f-over-n", ",".join(f"{x:.10g}" for x in self.f_over_n), "--fov", ",".join(f"{x:.10g}" for x in self.fov)]
+        parts += ["--light", ",".join(self.light), "--near", f"{self.near:.10g}", "--block", str(self.block), "--format", fmt]
+        return shlex.join(parts + (["--summary"] if self.summary else []))
+
+    def describe(self) -> str:
+        """One line: the grid's axes, size and chunks."""
+        v, r, f, n = self.shape
+        return f"grid: {v} schemes × {r} f/n × {f} fov × {n} directions = {self.size:,} evaluations in {self.chunks:,} chunks"
+
+    def payload_kind(self, fmt: str) -> str:
+        """How chunks are kept for output ``fmt``: CSV or JSON text, or arrays (summaries, NetCDF)."""
+        return "arrays" if self.summary or fmt == "netcdf" else fmt
+
+    def assemble(self, payload_kind: str, fmt: str, payloads: Iterable[object]) -> Iterator[str | bytes]:
+        """The output text in pieces, from every chunk's payload in order."""
+        from .tables import _assemble_stream  # the formats sit above the grid
+
+        return _assemble_stream(self, payload_kind, fmt, payloads)
+
+    def table(self, payloads: Sequence[object], command: str | None = None) -> SweepTable:
+        """The :class:`SweepTable` of every chunk's ``arrays`` payload, in order."""
+        from .tables import SweepTable
+
+        return SweepTable._from_payloads(self, list(payloads), command)
+
+    def timing(self, kind: str, sample: int = 500) -> tuple[list[tuple[_Task, int]], str]:
+        """Chunks to time for :func:`estimate` (``sample`` directions of up to 8 schemes), with their evaluations."""
+        small = Grid(self.variants, self.f_over_n[:1], self.fov[:1], self.light, self.directions[:sample], self.near, self.summary, sample)
+        tasks = [(small.chunk(v, kind), len(small.directions)) for v in spread(len(self.variants))]
+        return tasks, f"timed on {len(small.directions)} directions per scheme"
+
+
+def plan(
+    schemes: str | Iterable[str],
+    f_over_n: ArrayLike | str = (1000.0,),
+    fov: ArrayLike | str = (60.0,),
+    light: str | Sequence[str] | ArrayLike = "overhead",
+    *,
+    k: ArrayLike | str | None = None,
+    params: dict | None = None,
+    near: float = 1.0,
+    summary: bool = False,
+    block: int = DEFAULT_BLOCK,
+) -> Grid:
+    """Validate and expand a sweep's parameters into a :class:`Grid`.
+
+    Every axis takes a number, a list or text with ranges (:func:`grid_values`).
+
+    Parameters
+    ----------
+    schemes : str or iterable of str
+        Scheme names (:data:`aliasing.schemes.GRAMMAR`).
+    f_over_n, fov : array_like or str
+        Depth ratios far/near (> 1) and full fields of view [deg] in (0, 180).
+    light : str, sequence of str or array_like
+        Light specs (:func:`expand_lights`) or vectors ``(N, 3)``.
+    k, params
+        See :func:`expand_schemes`.
+    near : float
+        Near distance [world units].
+    summary : bool
+        One row per scheme, f/n and fov (min, max, max/min, mean of S̄).
+    block : int
+        Directions per chunk.
+
+    Example
+    -------
+    >>> g = plan("P,LogP", f_over_n="10:1000:log:3", fov=[60], light="hemisphere:100", k=[1, 5])
+    >>> g.shape, g.size, g.chunks
+    ((4, 3, 1, 100), 1200, 12)
+    """
+    variants = expand_schemes(schemes, k, params)
+    ratios = grid_values(f_over_n, "f_over_n")
+    check.depth_ratio(ratios)
+    fovs = grid_values(fov, "fov")
+    check.fov(fovs)
+    specs, lv = expand_lights(light)
+    near = float(check.positive(near, "near"))
+    if isinstance(block, bool) or int(block) != block or block < 1:
+        raise ValueError(f"block must be a whole number >= 1 (directions per chunk), got {block!r}")
+    return Grid(variants, ratios, fovs, specs, lv, near, bool(summary), int(block))
+
+
+@dataclass(frozen=True)
+class _Task:
+    """One chunk's work, small and picklable (sent to processes or Dask workers)."""
+
+    index: int
+    kind: str  # "csv" | "json" text fragments, or "arrays"
+    name: str
+    options: tuple[tuple[str, float], ...]
+    columns: tuple[str, ...]  # param_<option> columns of the whole grid
+    cells: tuple[float | None, ...]  # this variant's values in them (None: not taken)
+    near: float
+    ratio: float
+    fov: float
+    light: np.ndarray
+
+    def compute(self) -> str | dict[str, np.ndarray]:
+        """This chunk's payload (:func:`compute_chunk`)."""
+        return compute_chunk(self)
+
+
+def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
+    """Evaluate one chunk (vectorized over its directions); the payload of its kind.
+
+    CSV or JSON text of its rows (no header), or the arrays S, M_x, M_z, n′, η.
+
+    Example
+    -------
+    >>> g = plan("ZP2+P", light="overhead,front")
+    >>> print(compute_chunk(g.chunk(0, "csv")), end="")
+    ZP2+P,1000,60,90,0,5.623413252;5.623413252,4.716015218;4.716015218,53.04020494,2,6.623413252;209.4507176,0;0
+    ZP2+P,1000,60,0,0,31.6227766;31.6227766,31.6227766;31.6227766,2000,2,inf;inf,-1;-1
+    >>> compute_chunk(g.chunk(0, "arrays"))["M_x"].shape
+    (2, 2)
+    """
+    r = schemes.evaluate(task.name, task.near, task.near * task.ratio, task.fov, task.light, **dict(task.options))
+    if task.kind == "arrays":
+        return {"S": r.S, "M_x": r.M_x, "M_z": r.M_z, "n_prime": r.n_prime, "eta": r.eta}
+    gamma, azimuth = geometry.direction_angles(task.light)
+    if task.kind == "json":
+        rows = _direction_rows(r.scheme.name, task.ratio, task.fov, gamma, azimuth, r)
+        rows = [_with_cells(row, task) for row in rows]
+        return ",\n".join(" " + json.dumps({k: _json_value(v) for k, v in row.items()}, indent=1).replace("\n", "\n ") for row in rows)
+    return _csv_fragment(task, gamma, azimuth, r)
+
+
+def _csv_fragment(task: _Task, gamma: np.ndarray, azimuth: np.ndarray, r: schemes.Result) -> str:
+    """CSV lines of the per-direction rows, byte-identical to :func:`format_rows`.
+
+    One %-format per chunk (``'%.10g' % x`` is ``f"{x:.10g}"``), about 1.5x faster than
+    formatting value by value.
+    """
+    head = _csv_cells([r.scheme.name, *task.cells, float(task.ratio), float(task.fov)]).replace("%", "%%")
+    cols = [_column(c) for c in (gamma, azimuth, r.M_x, r.M_z, r.S)] + [("%d", r.maps_used.tolist())] + [_column(c) for c in (r.n_prime, r.eta)]
+    f = [c[0] for c in cols]
+    line = f"{head},{f[0]},{f[1]},{f[2]},{f[3]},{f[4]},{f[5]},{f[6]},{f[7]}\n"
+    return "".join([line % row for row in zip(*(c[1] for c in cols))])

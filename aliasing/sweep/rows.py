@@ -1,0 +1,166 @@
+"""Rows of a sweep as plain dicts, and their CSV/JSON text.
+
+The small, direct API: :func:`sweep` evaluates every scheme × f/n × fov over the light
+directions into rows (ready for ``pandas.DataFrame(rows)``); :func:`format_rows` writes
+them as CSV or JSON.  Per-map quantities (M_x, M_z, n′, η of a ``ZP<k>`` scheme) are lists.
+
+Example
+-------
+>>> rows = sweep(["Standard", "ZP5+LogP"], f_over_n=[1000.0], fov=[60.0], light="overhead", summary=True)
+>>> [(r["scheme"], round(r["S_min"], 3)) for r in rows]
+[('Standard', 865159.378), ('ZP5+LogP', 5.982)]
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .. import _validation as check
+from .. import geometry, schemes
+
+
+FORMATS = ("csv", "json")
+ROW_FIELDS = ("scheme", "f_over_n", "fov", "gamma", "azimuth", "M_x", "M_z", "S", "maps", "n_prime", "eta")
+SUMMARY_FIELDS = ("scheme", "f_over_n", "fov", "directions", "maps", "S_min", "S_max", "S_max_over_min", "S_mean")
+
+
+def sweep(scheme_names: Iterable[str], f_over_n: ArrayLike = (1000.0,), fov: ArrayLike = (60.0,), light: str | ArrayLike = "overhead", *, near: float = 1.0, summary: bool = False, **options) -> list[dict]:
+    """Evaluate every scheme × f/n × fov over the light directions.
+
+    Parameters
+    ----------
+    scheme_names : iterable of str
+        Scheme names (:data:`aliasing.schemes.GRAMMAR`).
+    f_over_n : array_like
+        Depth ratios far/near, each > 1.
+    fov : array_like
+        Full fields of view [deg], each in (0, 180).
+    light : str or array_like
+        Light spec (:data:`aliasing.geometry.LIGHT_SPEC`) or vectors ``(N, 3)``.
+    near : float
+        Near distance [world units]; results depend on f/n only.
+    summary : bool
+        One row per scheme, f/n and fov with min, max, max/min and mean of S̄ over the
+        directions (the layout of Lloyd et al. 2007 Table 3) instead of one row per direction.
+    **options
+        Passed to the warping rules.
+
+    Returns
+    -------
+    list of dict
+        With the keys :data:`ROW_FIELDS` or :data:`SUMMARY_FIELDS`.
+    """
+    parsed = [schemes.parse(name) for name in scheme_names]
+    if not parsed:
+        raise ValueError("schemes must name at least one scheme")
+    ratios = np.atleast_1d(check.depth_ratio(f_over_n))
+    fovs = np.atleast_1d(check.fov(fov))
+    lv = geometry.lights(light)
+    gamma, azimuth = geometry.direction_angles(lv)
+    rows: list[dict] = []
+    for sch in parsed:
+        for ratio in ratios:
+            for fv in fovs:
+                r = schemes.evaluate(sch, near, near * ratio, fv, lv, **options)
+                if summary:
+                    rows.append(_summary_row(sch.name, ratio, fv, r))
+                else:
+                    rows.extend(_direction_rows(sch.name, ratio, fv, gamma, azimuth, r))
+    return rows
+
+
+def _summary_row(name: str, ratio: float, fov: float, r: schemes.Result) -> dict:
+    s_min, s_max = float(r.S.min()), float(r.S.max())
+    return {"scheme": name, "f_over_n": float(ratio), "fov": float(fov), "directions": int(r.S.size), "maps": _mean_maps(r), "S_min": s_min, "S_max": s_max, "S_max_over_min": s_max / s_min, "S_mean": float(r.S.mean())}
+
+
+def _mean_maps(r: schemes.Result) -> int | float:
+    """The number of maps, or its mean over the directions when it varies (face partitions)."""
+    used = r.maps_used
+    return int(used[0]) if np.all(used == used[0]) else float(used.mean())
+
+
+def _direction_rows(name: str, ratio: float, fov: float, gamma: np.ndarray, azimuth: np.ndarray, r: schemes.Result) -> list[dict]:
+    per_map = {"M_x": r.M_x.tolist(), "M_z": r.M_z.tolist(), "n_prime": r.n_prime.tolist(), "eta": r.eta.tolist()}
+    used = r.maps_used.tolist()
+    return [
+        {
+            "scheme": name,
+            "f_over_n": float(ratio),
+            "fov": float(fov),
+            "gamma": float(gamma[i]),
+            "azimuth": float(azimuth[i]),
+            "M_x": _scalar(per_map["M_x"][i]),
+            "M_z": _scalar(per_map["M_z"][i]),
+            "S": float(r.S[i]),
+            "maps": used[i],
+            "n_prime": _scalar(per_map["n_prime"][i]),
+            "eta": _scalar(per_map["eta"][i]),
+        }
+        for i in range(r.S.size)
+    ]
+
+
+def _scalar(values: list[float]) -> float | list[float]:
+    return values[0] if len(values) == 1 else values
+
+
+def format_rows(rows: Sequence[dict], fmt: str = "csv") -> str:
+    """Rows as CSV (lists joined with ';') or JSON (a list of row objects)."""
+    kind = check.choice(fmt, "format", FORMATS)
+    if kind == "json":
+        return json.dumps([{k: _json_value(v) for k, v in row.items()} for row in rows], indent=1) + "\n"
+    if not rows:
+        return ""
+    buf = io.StringIO()
+    writer = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
+    writer.writeheader()
+    for row in rows:
+        writer.writerow({k: ";".join(f"{x:.10g}" for x in v) if isinstance(v, list) else (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})
+    return buf.getvalue()
+
+
+def _json_value(value):
+    """JSON has no inf/NaN: write them as strings, like CSV does."""
+    if isinstance(value, list):
+        return [_json_value(v) for v in value]
+    if isinstance(value, float) and not np.isfinite(value):
+        return str(value)
+    return value
+
+
+def _with_cells(row: dict, task: Any) -> dict:
+    """Insert the swept rule options' columns (``param_<name>``, ``task.columns`` and ``.cells``) after ``scheme``."""
+    if not task.columns:
+        return row
+    head = {"scheme": row["scheme"], **dict(zip(task.columns, task.cells))}
+    head.update((k, v) for k, v in row.items() if k != "scheme")
+    return head
+
+
+def _fmt(x: object) -> str:
+    if x is None:
+        return ""
+    return f"{x:.10g}" if isinstance(x, float) else str(x)
+
+
+def _csv_cells(cells: Sequence[object]) -> str:
+    buf = io.StringIO()
+    csv.writer(buf, lineterminator="").writerow([_fmt(c) for c in cells])
+    return buf.getvalue()
+
+
+def _column(a: np.ndarray) -> tuple[str, list]:
+    """A %-format and the values of one output column (per-map lists joined with ';')."""
+    if a.ndim == 2 and a.shape[1] == 1:
+        a = a[:, 0]
+    if a.ndim == 1:
+        return "%.10g", a.tolist()
+    return "%s", [";".join(f"{x:.10g}" for x in row) for row in a.tolist()]

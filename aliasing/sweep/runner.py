@@ -1,0 +1,206 @@
+"""Execution: compute a plan's chunks in-process, in local processes or on Dask, behind one interface.
+
+:func:`_run_chunks` is the runner used by :func:`aliasing.sweep.execute`,
+:func:`collect` and the validation grids of :mod:`aliasing.raster.validate`.
+"""
+
+from __future__ import annotations
+
+import itertools
+import sys
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from typing import TYPE_CHECKING, Any, ClassVar, Protocol, TextIO
+
+from .. import _validation as check
+from .store import _EXT
+
+if TYPE_CHECKING:
+    from .tables import SweepTable
+
+
+Progress = Callable[[int, int], None]
+
+
+class Task(Protocol):
+    """One chunk's work: small, picklable (sent to processes or Dask workers)."""
+
+    def compute(self) -> Any:
+        """The chunk's payload."""
+
+
+class Plan(Protocol):
+    """What :func:`execute` runs: a planned grid split into chunks.
+
+    :class:`Grid` (``aliasing sweep``) and :class:`aliasing.raster.validate.ValidationGrid`
+    (``aliasing validate --grid``) are plans.  ``payload_kind(fmt)`` says how the chunks
+    are kept for an output format: ``csv`` / ``json`` (text), ``arrays`` (``.npz``) or
+    ``rows`` (a list of row dicts, kept as JSON lines).
+    """
+
+    formats: ClassVar[tuple[str, ...]]
+
+    @property
+    def chunks(self) -> int: ...
+    @property
+    def size(self) -> int: ...
+    def chunk(self, index: int, kind: str) -> Task: ...
+    def payload_kind(self, fmt: str) -> str: ...
+    def parameters(self) -> dict: ...
+    def digest(self, fmt: str) -> str: ...
+    def command(self, fmt: str = "csv") -> str: ...
+    def describe(self) -> str: ...
+    def assemble(self, payload_kind: str, fmt: str, payloads: Iterable[object]) -> Iterator[str | bytes]: ...
+    def table(self, payloads: Sequence[object], command: str | None = None) -> SweepTable: ...
+    def timing(self, kind: str, sample: int = 500) -> tuple[list[tuple[Task, int]], str]: ...
+
+
+def run_task(task: Task) -> Any:
+    """``task.compute()``: the function sent to worker processes and Dask workers."""
+    return task.compute()
+
+
+def _run_chunks(grid: Plan, kind: str, todo: Sequence[int], done: Callable[[int, object], None], jobs: int, dask: str | None) -> None:
+    """Compute the chunks ``todo`` in-process, in ``jobs`` processes or on Dask; ``done`` each."""
+    if dask:
+        _run_dask(grid, kind, todo, done, dask)
+        return
+    if jobs == 1 or len(todo) <= 1:
+        for i in todo:
+            done(i, grid.chunk(i, kind).compute())
+        return
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
+    pending: dict = {}
+    queue = iter(todo)
+    ex = ProcessPoolExecutor(max_workers=jobs)
+    try:
+        while True:
+            for i in itertools.islice(queue, 2 * jobs - len(pending)):
+                pending[ex.submit(run_task, grid.chunk(i, kind))] = i
+            if not pending:
+                break
+            finished, _ = wait(pending, return_when=FIRST_COMPLETED)
+            for fut in sorted(finished, key=pending.__getitem__):
+                done(pending.pop(fut), fut.result())
+    finally:
+        ex.shutdown(wait=True, cancel_futures=True)
+
+
+DASK_TIMEOUT = 10.0
+"""Seconds to wait for a Dask scheduler before giving up."""
+
+
+def _run_dask(grid: Plan, kind: str, todo: Sequence[int], done: Callable[[int, object], None], address: str) -> None:
+    try:
+        from distributed import Client, as_completed
+    except ImportError:
+        raise ValueError("dask: --dask needs the optional extra: pip install 'aliasing[dask]'") from None
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    try:  # a malformed address would leave distributed's half-made Client hanging at exit
+        scheme, location = parse_address(str(address))
+        if scheme in ("tcp", "tls"):
+            parse_host_port(location)
+    except (ValueError, TypeError) as exc:
+        raise ValueError(f"dask: malformed scheduler address {address!r} ({exc}); expected e.g. tcp://host:8786") from None
+    try:
+        client = Client(address, timeout=DASK_TIMEOUT, set_as_default=False)
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise ValueError(f"dask: cannot reach a Dask scheduler at {address!r}: {exc}".splitlines()[0]) from None
+    try:
+        workers = max(1, sum(client.nthreads().values()))
+        queue = iter(todo)
+        index: dict = {}
+
+        def submit(i: int):
+            fut = client.submit(run_task, grid.chunk(i, kind), pure=False)
+            index[fut.key] = i
+            return fut
+
+        stream = as_completed([submit(i) for i in itertools.islice(queue, 2 * workers)], loop=client.loop)
+        for fut in stream:
+            i = index.pop(fut.key)
+            done(i, fut.result())
+            fut.release()
+            nxt = next(queue, None)
+            if nxt is not None:
+                stream.add(submit(nxt))
+    finally:
+        client.close()
+
+
+def _duration(seconds: float) -> str:
+    if seconds < 60:
+        return f"{seconds:.2g} s" if seconds < 10 else f"{seconds:.0f} s"
+    minutes, sec = divmod(int(round(seconds)), 60)
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours} h {minutes:02d} min" if hours else f"{minutes} min {sec:02d} s"
+
+
+def collect(grid: Plan, kind: str, *, jobs: int = 1, dask: str | None = None, progress: Progress | None = None) -> list:
+    """Every chunk's payload of ``kind``, in order, computed in memory (no work directory).
+
+    Parameters
+    ----------
+    grid : Plan
+        A sweep :class:`Grid` or a validation grid.
+    kind : str
+        Payload kind (``arrays`` for a :class:`Grid`'s table, ``rows`` for a validation grid).
+    jobs, dask, progress
+        As in :func:`execute`.
+
+    Example
+    -------
+    >>> from aliasing.sweep import plan
+    >>> payloads = collect(plan("P,LogP", light="overhead"), "arrays", jobs=1)
+    >>> len(payloads), sorted(payloads[0])
+    (2, ['M_x', 'M_z', 'S', 'eta', 'n_prime'])
+    """
+    jobs = check.jobs(jobs)
+    kind = check.choice(kind, "payload kind", _EXT)
+    payloads: dict[int, object] = {}
+    total = grid.chunks
+
+    def done(i: int, payload: object) -> None:
+        payloads[i] = payload
+        if progress:
+            progress(len(payloads), total)
+
+    _run_chunks(grid, kind, list(range(total)), done, jobs, dask)
+    return [payloads[i] for i in range(total)]
+
+
+def progress_bar(stream: TextIO | None = None, width: int = 30) -> Progress | None:
+    """A one-line ``\\r`` progress bar on ``stream`` (stderr) if it is a terminal, else None.
+
+    Example
+    -------
+    >>> import io
+    >>> progress_bar(io.StringIO()) is None  # not a terminal: quiet
+    True
+    """
+    import time
+
+    out = stream if stream is not None else sys.stderr
+    try:
+        if not out.isatty():
+            return None
+    except (AttributeError, ValueError):
+        return None
+    start = time.monotonic()
+    first: list[int] = []
+
+    def show(done: int, total: int) -> None:
+        if not first:
+            first.append(done)
+        frac = done / total if total else 1.0
+        filled = int(round(width * frac))
+        elapsed = time.monotonic() - start
+        fresh = done - first[0]
+        left = f", {_duration(elapsed / fresh * (total - done))} left" if fresh and done < total else ""
+        out.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{total} chunks {100 * frac:3.0f}%{left}   ")
+        if done >= total:
+            out.write("\n")
+        out.flush()
+
+    return show

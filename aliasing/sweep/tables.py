@@ -1,0 +1,151 @@
+"""Finished sweeps: :class:`SweepTable` (rows, pandas, xarray) and the assembled output text."""
+
+from __future__ import annotations
+
+import json
+import types
+from collections.abc import Iterable, Iterator
+
+import numpy as np
+
+from .. import geometry, schemes
+from .grid import Grid, _Task
+from .rows import ROW_FIELDS, _csv_cells, _direction_rows, _summary_row, _with_cells, format_rows
+
+
+def _assemble_stream(grid: Grid, payload_kind: str, fmt: str, payloads: Iterable[object]) -> Iterator[str | bytes]:
+    """The output in pieces: text, or the bytes of chunk files as they are (UTF-8)."""
+    if payload_kind == "arrays":  # summary rows (small)
+        yield format_rows(SweepTable._from_payloads(grid, list(payloads)).rows(), fmt)
+        return
+    header = _with_cells(dict.fromkeys(ROW_FIELDS), grid.chunk(0, fmt))
+    if fmt == "csv":
+        yield _csv_cells(list(header)) + "\n"
+        yield from payloads  # type: ignore[misc]
+        return
+    yield "[\n"
+    first = True
+    for text in payloads:
+        if text:
+            if not first:
+                yield ",\n"
+            yield text  # type: ignore[misc]
+            first = False
+    yield "\n]\n"
+
+
+def import_xarray() -> types.ModuleType:
+    """The ``xarray`` module; ValueError naming the optional extra to install if it is missing."""
+    try:
+        import xarray
+    except ImportError:
+        raise ValueError("format netcdf needs the optional extra: pip install 'aliasing[xarray]'") from None
+    return xarray
+
+
+class SweepTable:
+    """A finished sweep in memory: rows, pandas, xarray.
+
+    ``S`` and the per-map arrays are kept per scheme variant with shape
+    ``(f/n, fov, directions[, maps])``.  Build it with :func:`table` (also reachable as
+    ``aliasing.sweep(...)``).
+
+    Example
+    -------
+    >>> from aliasing.sweep import table
+    >>> t = table("P,ZP3+P", f_over_n=[10, 100], fov=60, light="hemisphere:4")
+    >>> len(t), t.rows()[0]["scheme"], t.to_xarray()["S"].dims
+    (16, 'P', ('scheme', 'f_over_n', 'fov', 'direction'))
+    """
+
+    def __init__(self, grid: Grid, data: list[dict[str, np.ndarray]], command: str | None = None) -> None:
+        self.grid = grid
+        self.data = data
+        self.command = command or grid.command()
+
+    @classmethod
+    def _from_payloads(cls, grid: Grid, payloads: list, command: str | None = None) -> SweepTable:
+        _, nr, nf, _ = grid.shape
+        per = nr * nf * grid.blocks
+        data = []
+        for v in range(len(grid.variants)):
+            chunk = payloads[v * per : (v + 1) * per]
+            merged = {}
+            for key in chunk[0]:
+                arr = np.concatenate([c[key] for c in chunk])  # blocks in order, per (r, f)
+                merged[key] = arr.reshape((nr, nf, -1) + arr.shape[1:])
+            data.append(merged)
+        return cls(grid, data, command)
+
+    def __len__(self) -> int:
+        v, r, f, n = self.grid.shape
+        return v * r * f if self.grid.summary else self.grid.size
+
+    def rows(self) -> list[dict]:
+        """Rows as :func:`sweep` gives them (plus a column per swept rule option)."""
+        g = self.grid
+        gamma, azimuth = geometry.direction_angles(g.directions)
+        rows: list[dict] = []
+        for var, d in zip(g.variants, self.data):
+            task = _Task(0, "", var.name, var.options, g.columns, g._cells(var), g.near, 0.0, 0.0, g.directions)
+            maps = d["M_x"].shape[-1]
+            sch = schemes.parse(var.name)
+            for r, ratio in enumerate(g.f_over_n):
+                for f, fv in enumerate(g.fov):
+                    res = schemes.Result(sch, d["M_x"][r, f], d["M_z"][r, f], d["S"][r, f], d["n_prime"][r, f], d["eta"][r, f], maps)
+                    new = [_summary_row(sch.name, ratio, fv, res)] if g.summary else _direction_rows(sch.name, ratio, fv, gamma, azimuth, res)
+                    rows.extend(_with_cells(row, task) for row in new)
+        return rows
+
+    def format(self, fmt: str = "csv") -> str:
+        """CSV or JSON text, the bytes ``aliasing sweep`` writes."""
+        return format_rows(self.rows(), fmt)
+
+    def attributes(self) -> dict:
+        """Attributes of :meth:`to_xarray` (and NetCDF files): toolkit version, command, parameters (JSON)."""
+        from .. import __version__
+
+        return {"aliasing_version": __version__, "command": self.command, "parameters": json.dumps(self.grid.parameters())}
+
+    def to_pandas(self):
+        """A ``pandas.DataFrame`` of :meth:`rows` (needs pandas)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.rows())
+
+    def to_xarray(self):
+        """An ``xarray.Dataset`` with dims scheme, f_over_n, fov, direction (and map).
+
+        Per-map variables (M_x, M_z, n_prime, eta) have a ``map`` dimension padded with NaN
+        up to the largest number of maps; attributes hold every parameter, the toolkit
+        version and the command.  In summary mode the variables are S_min, S_max,
+        S_max_over_min and S_mean over the directions.
+        """
+        xr = import_xarray()
+        g = self.grid
+        gamma, azimuth = geometry.direction_angles(g.directions)
+        kmax = max(d["M_x"].shape[-1] for d in self.data)
+        coords: dict = {"scheme": [v.label for v in g.variants], "f_over_n": list(g.f_over_n), "fov": list(g.fov)}
+        coords["scheme_name"] = ("scheme", [v.name for v in g.variants])
+        coords["maps"] = ("scheme", [d["M_x"].shape[-1] for d in self.data])
+        for key, column in zip(g.param_names, g.columns):
+            coords[column] = ("scheme", [float(dict(v.options).get(key, np.nan)) for v in g.variants])
+        S = np.stack([d["S"] for d in self.data])
+        attrs = self.attributes()
+        attrs.update(near=g.near, light=",".join(g.light), summary=int(g.summary), block=g.block)
+        attrs.update(units_fov="degrees (full field of view)", units_gamma="degrees", units_S="image areas (unit resolutions)")
+        if g.summary:
+            s_min, s_max = S.min(axis=-1), S.max(axis=-1)
+            data = {"S_min": (("scheme", "f_over_n", "fov"), s_min), "S_max": (("scheme", "f_over_n", "fov"), s_max),
+                    "S_max_over_min": (("scheme", "f_over_n", "fov"), s_max / s_min), "S_mean": (("scheme", "f_over_n", "fov"), S.mean(axis=-1))}
+            coords["directions"] = len(g.directions)
+            return xr.Dataset(data, coords=coords, attrs=attrs)
+        coords.update(direction=np.arange(len(g.directions)), gamma=("direction", gamma), azimuth=("direction", azimuth), map=np.arange(kmax))
+        dims = ("scheme", "f_over_n", "fov", "direction", "map")
+        data = {"S": (dims[:4], S)}
+        for key in ("M_x", "M_z", "n_prime", "eta"):
+            padded = np.full(S.shape + (kmax,), np.nan)
+            for i, d in enumerate(self.data):
+                padded[i, ..., : d[key].shape[-1]] = d[key]
+            data[key] = (dims, padded)
+        return xr.Dataset(data, coords=coords, attrs=attrs)
