@@ -88,6 +88,8 @@ def _sweep(args: argparse.Namespace) -> int:
         sys.stdout.write(sweep.dry_run(grid, fmt, jobs))  # type: ignore[arg-type]
         return 0
     out = pick("out", None)
+    if out is not None:
+        sweep.store.resolve_out(out)  # refuse a device, FIFO or unwritable file before any work
     command = grid.command(fmt) + (f"  # from --config {args.config}" if args.config else "")
     return sweep.run_command(grid, fmt, out, name="sweep", jobs=jobs, dask=pick("dask", None), resume=args.resume, command=command)  # type: ignore[arg-type]
 

@@ -8,6 +8,7 @@ from collections.abc import Callable
 
 from .engine import execute
 from .runner import Plan, progress_bar
+from .store import _workdir, resolve_out
 
 
 def run_command(
@@ -37,10 +38,14 @@ def run_command(
     P,100,60,180,0,100,100,10000,1,inf,-1
     0
     """
+    def notice(line: str) -> None:
+        print(f"aliasing {name}: {line}", file=sys.stderr)
+
     try:
-        result = execute(grid, fmt, out, jobs=jobs, dask=dask, resume=resume, progress=progress_bar(sys.stderr), command=command, on_payloads=on_payloads)
+        result = execute(grid, fmt, out, jobs=jobs, dask=dask, resume=resume, progress=progress_bar(sys.stderr), command=command, on_payloads=on_payloads, notice=notice)
     except KeyboardInterrupt:
-        kept = f"; finished chunks are kept in {out}.parts: rerun with --resume" if out is not None else ""
+        target = resolve_out(out) if out is not None else None
+        kept = f"; finished chunks are kept in {_workdir(target)}: rerun with --resume" if target is not None else ""
         print(f"\naliasing {name}: interrupted{kept}", file=sys.stderr)
         return 130
     if out is None:

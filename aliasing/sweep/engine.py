@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import sys
 from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 
@@ -13,7 +14,7 @@ from numpy.typing import ArrayLike
 from .. import _validation as check
 from .grid import DEFAULT_BLOCK, plan
 from .runner import Plan, Progress, _duration, _run_chunks, collect
-from .store import _EXT, _atomic_bytes, _check_out, _open_workdir, _payload_bytes, _payload_load, _write_netcdf, _write_text_stream
+from .store import WorkDir, _check_out, _open_workdir, _write_netcdf, _write_text_stream, resolve_out
 from .tables import SweepTable, import_xarray
 
 
@@ -28,6 +29,7 @@ def execute(
     progress: Progress | None = None,
     command: str | None = None,
     on_payloads: Callable[[list], None] | None = None,
+    notice: Callable[[str], None] | None = None,
 ) -> str | Path:
     """Run a planned sweep chunk by chunk; write ``out`` (atomically) or return the text.
 
@@ -47,13 +49,18 @@ def execute(
         Output format, one of ``grid.formats``: csv, json, netcdf (needs ``out`` and the
         ``xarray`` extra); validation grids also write a text table.
     out : path, optional
-        Output file; without it the text is returned (no work directory, no resume).
+        Output file; without it the text is returned (no work directory, no resume); ``-``
+        or ``/dev/stdout`` streams it to standard output (and returns ``"-"``).  A symbolic
+        link is followed (its target is replaced atomically); devices, FIFOs and sockets are
+        refused before any work (:func:`aliasing.sweep.store.resolve_out`).
     jobs : int
         Local processes.
     dask : str, optional
         Address of a running Dask scheduler to compute the chunks on instead.
     resume : bool
-        Continue the work directory of an interrupted run of the same sweep.
+        Continue the work directory of an interrupted run of the same sweep.  Only chunks
+        whose SHA-256 and row count match the manifest are reused; the others are
+        recomputed and ``notice`` is told so in one line.
     progress : callable, optional
         ``progress(done, total)`` after each chunk (an exception from it stops the run,
         keeping the finished chunks).
@@ -63,6 +70,9 @@ def execute(
         Called with the list of every chunk's payload, in order, once all are done and
         before the output is written (resumed chunks included), e.g. to check the rows of
         a validation grid; for small payloads only (it holds them all in memory).
+    notice : callable, optional
+        Receives the one line naming damaged chunks recomputed on resume (default: printed
+        on stderr).
 
     Returns
     -------
@@ -79,6 +89,9 @@ def execute(
     """
     kind = check.choice(fmt, "format", grid.formats)
     jobs = check.jobs(jobs)
+    stream = out is not None and resolve_out(out) is None
+    if stream:
+        out = None
     if kind == "netcdf" and out is None:
         raise ValueError("format netcdf needs an output file (--out)")
     if resume and out is None:
@@ -88,11 +101,14 @@ def execute(
     payload_kind = grid.payload_kind(kind)
     total = grid.chunks
     results: dict[int, object] = {}
-    work: Path | None = None
+    work: WorkDir | None = None
     target = _check_out(out) if out is not None else None
     finished: set[int] = set()
     if target is not None:
         work, finished = _open_workdir(grid, kind, target, resume, payload_kind)
+        if work.damaged:
+            line = f"resume: recomputing {len(work.damaged)} damaged chunk{'s' if len(work.damaged) > 1 else ''} in {str(work.path)!r}: {', '.join(work.damaged)}"
+            (notice or _stderr_notice)(line)
     count = len(finished)
     if progress and count:
         progress(count, total)
@@ -100,7 +116,7 @@ def execute(
     def done(i: int, payload: object) -> None:
         nonlocal count
         if work is not None:
-            _atomic_bytes(_payload_bytes(payload_kind, payload), work / f"{i:06d}.{_EXT[payload_kind]}")
+            work.save(i, payload)
         else:
             results[i] = payload
         count += 1
@@ -111,27 +127,36 @@ def execute(
         _run_chunks(grid, payload_kind, [i for i in range(total) if i not in finished], done, jobs, dask)
     except BaseException:
         if work is not None and count == 0:  # nothing worth keeping: leave no work directory
-            shutil.rmtree(work, ignore_errors=True)
+            shutil.rmtree(work.path, ignore_errors=True)
         raise
 
     def load(i: int) -> object:
         if work is None:
             return results[i]
-        return _payload_load(payload_kind, work / f"{i:06d}.{_EXT[payload_kind]}")
+        return work.load(i)
 
     payloads: Iterable[object] = (load(i) for i in range(total))
     if on_payloads is not None or kind == "netcdf":
         payloads = list(payloads)
         if on_payloads is not None:
             on_payloads(payloads)
+    if stream:
+        for part in grid.assemble(payload_kind, kind, payloads):
+            sys.stdout.write(part if isinstance(part, str) else part.decode())
+        sys.stdout.flush()
+        return "-"
     if target is None:
         return "".join(str(part) for part in grid.assemble(payload_kind, kind, payloads))
     if kind == "netcdf":
         _write_netcdf(grid.table(payloads, command or grid.command(kind)), target)  # type: ignore[arg-type]
     else:
         _write_text_stream(grid.assemble(payload_kind, kind, payloads), target)
-    shutil.rmtree(work)  # type: ignore[arg-type]
+    shutil.rmtree(work.path)  # type: ignore[union-attr]
     return target
+
+
+def _stderr_notice(line: str) -> None:
+    print(f"aliasing: {line}", file=sys.stderr)
 
 
 def estimate(grid: Plan, fmt: str = "csv", jobs: int = 1, sample: int = 500) -> float:
