@@ -284,7 +284,7 @@ def test_progress_bar_only_on_a_terminal():
     tty = Tty()
     S.execute(S.plan("P", light="sphere:5", block=2), progress=S.progress_bar(tty))
     text = tty.getvalue()
-    assert text.count("\r") == 3 and "3/3 chunks 100%" in text and text.endswith("\n")
+    assert "100%" in text and "3/3" in text and "chunk" in text and text.endswith("\n")  # tqdm's bar, closed at the end
 
 
 # ---- the table object, pandas, xarray, NetCDF -------------------------------------------

@@ -170,8 +170,10 @@ def collect(grid: Plan, kind: str, *, jobs: int = 1, dask: str | None = None, pr
     return [payloads[i] for i in range(total)]
 
 
-def progress_bar(stream: TextIO | None = None, width: int = 30) -> Progress | None:
-    """A one-line ``\\r`` progress bar on ``stream`` (stderr) if it is a terminal, else None.
+def progress_bar(stream: TextIO | None = None) -> Progress | None:
+    """A tqdm progress bar of chunks on ``stream`` (stderr) if it is a terminal, else None (quiet).
+
+    Returns a ``progress(done, total)`` callback; the bar closes when ``done`` reaches ``total``.
 
     Example
     -------
@@ -179,28 +181,22 @@ def progress_bar(stream: TextIO | None = None, width: int = 30) -> Progress | No
     >>> progress_bar(io.StringIO()) is None  # not a terminal: quiet
     True
     """
-    import time
-
     out = stream if stream is not None else sys.stderr
     try:
         if not out.isatty():
             return None
     except (AttributeError, ValueError):
         return None
-    start = time.monotonic()
-    first: list[int] = []
+    from tqdm import tqdm
+
+    bar: list = []
 
     def show(done: int, total: int) -> None:
-        if not first:
-            first.append(done)
-        frac = done / total if total else 1.0
-        filled = int(round(width * frac))
-        elapsed = time.monotonic() - start
-        fresh = done - first[0]
-        left = f", {_duration(elapsed / fresh * (total - done))} left" if fresh and done < total else ""
-        out.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {done}/{total} chunks {100 * frac:3.0f}%{left}   ")
+        if not bar:
+            bar.append(tqdm(total=total, initial=done, unit="chunk", file=out, dynamic_ncols=True, leave=True))
+        else:
+            bar[0].update(done - bar[0].n)
         if done >= total:
-            out.write("\n")
-        out.flush()
+            bar[0].close()
 
     return show
