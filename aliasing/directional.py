@@ -37,6 +37,7 @@ Example
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -238,69 +239,95 @@ def light_frame(view: View, light: ArrayLike) -> LightFrame:
 
 @dataclass(frozen=True)
 class SliceFit:
-    """Maps fitted to the z-slices [near_i, far_i] of a :class:`LightFrame`, shape ``(N, K)``.
+    """Maps fitted to the z-slices [near_i, far_i] of a :class:`LightFrame`, shape ``(K, N)``.
 
+    Maps first, directions last, so that every inner loop runs over the N directions.
     ``y_lo``: the nearest vertex along y (the map's near plane); ``y_near``, ``y_far``: the
     largest y − y_lo among the slice's near and far corners; ``depth`` = W_ly.
     """
 
     frame: LightFrame
-    near: Array  # (K,)
-    far: Array  # (K,)
+    near: Array  # (K, 1)
+    far: Array  # (K, 1)
     y_lo: Array
     y_near: Array
     y_far: Array
     depth: Array
 
+    @cached_property
+    def vertices(self) -> tuple[Array, Array]:
+        """x and y − y_lo of the 8 vertices, ``(8, K, N)`` each (the 4 near corners, then far).
+
+        Computed once per slice fit and shared by every map fitted to it; reductions over
+        the vertices run over contiguous ``(K, N)`` slabs.
+        """
+        fr, K = self.frame, self.near.shape[0]
+        x, y = np.empty((8, K, fr.size)), np.empty((8, K, fr.size))
+        for j, d in enumerate((self.near, self.far)):
+            np.multiply(d[None], fr.X[:, None, :], out=x[4 * j : 4 * j + 4])
+            np.multiply(d[None], fr.Y[:, None, :], out=y[4 * j : 4 * j + 4])
+        y -= self.y_lo
+        return x, y
+
     def light_fit(self) -> LightFit:
-        """The full per-vertex :class:`LightFit` ``(N, K, 8)`` (for code that needs every vertex)."""
-        fr, n, f = self.frame, self.near[None, :, None], self.far[None, :, None]
-        x = np.concatenate([n * fr.X.T[:, None], f * fr.X.T[:, None]], axis=-1)
-        y = np.concatenate([n * fr.Y.T[:, None], f * fr.Y.T[:, None]], axis=-1) - self.y_lo[..., None]
-        eye = np.concatenate([np.repeat(self.near[:, None], 4, 1), np.repeat(self.far[:, None], 4, 1)], axis=1)
-        return LightFit(x=x, y=y, depth=self.depth, eye_depth=eye)
+        """The per-vertex :class:`LightFit` ``(N, K, 8)`` of the same maps."""
+        x, y = self.vertices
+        n, f = self.near[:, 0], self.far[:, 0]
+        eye = np.concatenate([np.repeat(n[:, None], 4, 1), np.repeat(f[:, None], 4, 1)], axis=1)
+        return LightFit(x=np.transpose(x, (2, 1, 0)), y=np.transpose(y, (2, 1, 0)), depth=self.depth.T, eye_depth=eye)
 
 
 def slice_fit(frame: LightFrame, near: ArrayLike, far: ArrayLike) -> SliceFit:
     """Fit one map per z-slice ``[near_i, far_i]`` ``(K,)`` for every direction of ``frame``.
 
     Extremes over a slice's 8 vertices come from the corner extremes scaled by the two
-    depths (d > 0 keeps the order, rounding included), so this is ``(N, K)`` work only.
+    depths (d > 0 keeps the order, rounding included), so this is ``(K, N)`` work only.
+
+    Example
+    -------
+    >>> fr = light_frame(View(1.0, 100.0, 90.0), [0.0, 1.0, 0.0])
+    >>> slice_fit(fr, [1.0, 10.0], [10.0, 100.0]).depth.tolist()   # (K, N): f_i − n_i overhead
+    [[9.0], [90.0]]
     """
-    n = np.atleast_1d(np.asarray(near, float))[None, :]
-    f = np.atleast_1d(np.asarray(far, float))[None, :]
-    ymin, ymax = frame.y_min[:, None], frame.y_max[:, None]
+    n = np.asarray(near, float).reshape(-1, 1)
+    f = np.asarray(far, float).reshape(-1, 1)
+    ymin, ymax = frame.y_min[None], frame.y_max[None]
     lo = np.minimum(n * ymin, f * ymin)
     y_near, y_far = n * ymax - lo, f * ymax - lo
-    return SliceFit(frame, n[0], f[0], lo, y_near, y_far, np.maximum(y_near, y_far))
+    return SliceFit(frame, n, f, lo, y_near, y_far, np.maximum(y_near, y_far))
 
 
 def slice_errors(sf: SliceFit, n_prime: ArrayLike = np.inf, parameterization: str = "perspective") -> tuple[Array, Array]:
-    """M_x, M_z ``(N, K)``: :func:`max_errors` of the slices' maps, without a vertex axis.
+    """M_x, M_z ``(K, N)``: :func:`max_errors` of the slices' maps, without a vertex axis.
 
     Same model and same floating-point operations per vertex as :func:`vertex_errors`
     (Lloyd et al. 2006 §4.4 eqs. 2–4; Lloyd et al. 2007 eq. 78), but m_x and m_z grow
     with y at a fixed eye depth, so their maxima over a slice's 4 near (4 far) corners are
     at the corner of largest y; only the near-plane x extent of a warped map needs all
-    8 vertices.
+    8 vertices.  ``n_prime`` broadcasts to ``(K, N)``.
+
+    Example
+    -------
+    >>> sf = slice_fit(light_frame(View(1.0, 100.0, 90.0), [0.0, 1.0, 0.0]), 1.0, 100.0)
+    >>> [float(m[0, 0]) for m in slice_errors(sf, 11.0)]   # Lloyd 2006 eqs. 7-12 at n' = n + sqrt(fn)
+    [10.0, 4.95]
     """
     kind = check.choice(parameterization, "parameterization", PARAMETERIZATIONS)
     fr = sf.frame
     npr = np.broadcast_to(np.asarray(n_prime, float), sf.depth.shape)
     if (npr <= 0).any() or np.isnan(npr).any():
         raise ValueError("n_prime must be in (0, inf]")
-    n, f = sf.near[None], sf.far[None]
+    n, f = sf.near, sf.far
     if kind == "uniform" or np.isinf(npr).all():
         npr = np.full(sf.depth.shape, np.inf)
-        x_lo = np.minimum(n * fr.x_min[:, None], f * fr.x_min[:, None])
-        x_hi = np.maximum(n * fr.x_max[:, None], f * fr.x_max[:, None])
+        x_lo = np.minimum(n * fr.x_min, f * fr.x_min)
+        x_hi = np.maximum(n * fr.x_max, f * fr.x_max)
     else:
-        x_lo = x_hi = None
-        for d in (n, f):
-            for c in range(4):
-                q = d * fr.X[c][:, None] / (1.0 + (d * fr.Y[c][:, None] - sf.y_lo) / npr)  # x/(z′/n′): central projection onto the near plane
-                x_lo = q if x_lo is None else np.minimum(x_lo, q)
-                x_hi = q if x_hi is None else np.maximum(x_hi, q)
+        x, y = sf.vertices
+        q = np.divide(y, npr, out=np.empty_like(y))
+        q += 1.0  # z′/n′
+        np.divide(x, q, out=q)  # x/(z′/n′): central projection onto the near plane
+        x_lo, x_hi = q.min(axis=0), q.max(axis=0)
     width = x_hi - x_lo
     depth = sf.depth
     inf = np.isinf(npr)

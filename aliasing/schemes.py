@@ -205,36 +205,37 @@ def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = Non
         else:
             groups.setdefault(-1 if edges is not None else sch.k, []).append(i)
     parts = {k: (n_e, f_e) if k == -1 else z_partitions(view.near, view.far, k) for k in groups}
-    blocks: dict[int, list[tuple[Array, ...]]] = {i: [] for ids in groups.values() for i in ids}
+    out = {i: np.empty((4, len(lv), len(parts[k][0]))) for k, ids in groups.items() for i in ids}  # M_x, M_z, n′, η
     for start in range(0, len(lv) if groups else 0, chunk):
         block = lv[start : start + chunk]
         frame = directional.light_frame(view, block)
-        gamma = directional.folded_gamma(block)[:, None]
+        gamma = directional.folded_gamma(block)[None]
         for k, ids in groups.items():
             n_i, f_i = parts[k]
             sf = directional.slice_fit(frame, n_i, f_i)
             for i in ids:
-                blocks[i].append(_maps(parsed[i], sf, gamma, options))
+                for o, a in zip(out[i], _maps(parsed[i], sf, gamma, options)):
+                    o[start : start + chunk] = a.T
     for k, ids in groups.items():
         n_i, _ = parts[k]
         for i in ids:
             sch = parsed[i]
             if k == -1:
                 sch = Scheme(name=sch.name, k=len(n_i), rule=sch.rule, parameterization=sch.parameterization)
-            M_x, M_z, npr, eta = (np.concatenate(a) for a in zip(*blocks[i]))
+            M_x, M_z, npr, eta = out[i]
             results[i] = Result(sch, M_x, M_z, (M_x * M_z).sum(axis=-1), npr, eta, sch.k)
     return results  # type: ignore[return-value]
 
 
 def _maps(sch: Scheme, sf: directional.SliceFit, gamma: Array, options: dict) -> tuple[Array, ...]:
-    """M_x, M_z, n′, η ``(N, K)`` of one scheme's maps on fitted slices."""
+    """M_x, M_z, n′, η ``(K, N)`` of one scheme's maps on fitted slices."""
     n_i, f_i, fov = sf.near, sf.far, sf.frame.view.fov
     if sch.rule == "sopt":
         npr = _s_optimal(sf, sch.parameterization)
     else:
         npr = np.broadcast_to(warping.warping_parameter(sch.rule, n_i, f_i, fov=fov, gamma=gamma, depth=sf.depth, **options), sf.depth.shape)
     M_x, M_z = directional.slice_errors(sf, npr, sch.parameterization)
-    return M_x, M_z, np.asarray(npr, float), _eta_or_nan(npr, n_i, f_i, sf.depth)
+    return M_x, M_z, npr, _eta_or_nan(npr, n_i, f_i, sf.depth)
 
 
 def _evaluate_faces(sch: Scheme, view: View, light: Array, edges: ArrayLike | None, **options: ArrayLike) -> Result:
