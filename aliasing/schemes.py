@@ -205,7 +205,7 @@ def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = Non
         else:
             groups.setdefault(-1 if edges is not None else sch.k, []).append(i)
     parts = {k: (n_e, f_e) if k == -1 else z_partitions(view.near, view.far, k) for k in groups}
-    out = {i: np.empty((4, len(lv), len(parts[k][0]))) for k, ids in groups.items() for i in ids}  # M_x, M_z, n′, η
+    out = {i: np.empty((4, len(parts[k][0]), len(lv))) for k, ids in groups.items() for i in ids}  # M_x, M_z, n′, η as (K, N)
     for start in range(0, len(lv) if groups else 0, chunk):
         block = lv[start : start + chunk]
         frame = directional.light_frame(view, block)
@@ -214,8 +214,7 @@ def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = Non
             n_i, f_i = parts[k]
             sf = directional.slice_fit(frame, n_i, f_i)
             for i in ids:
-                for o, a in zip(out[i], _maps(parsed[i], sf, gamma, options)):
-                    o[start : start + chunk] = a.T
+                out[i][:, :, start : start + chunk] = _maps(parsed[i], sf, gamma, options)
     for k, ids in groups.items():
         n_i, _ = parts[k]
         for i in ids:
@@ -223,7 +222,8 @@ def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = Non
             if k == -1:
                 sch = Scheme(name=sch.name, k=len(n_i), rule=sch.rule, parameterization=sch.parameterization)
             M_x, M_z, npr, eta = out[i]
-            results[i] = Result(sch, M_x, M_z, (M_x * M_z).sum(axis=-1), npr, eta, sch.k)
+            S = (M_x * M_z).sum(axis=0)  # Σ over maps in map order, as a sum over the last axis of (N, K)
+            results[i] = Result(sch, M_x.T, M_z.T, S, npr.T, eta.T, sch.k)  # (N, K) views of (K, N) memory
     return results  # type: ignore[return-value]
 
 
@@ -269,7 +269,7 @@ def _explicit_partitions(edges: ArrayLike | tuple[ArrayLike, ArrayLike], near: f
 def _eta_or_nan(npr: Array, n_i: Array, f_i: Array, depth: Array) -> Array:
     ng = depth * n_i / (f_i - n_i)
     inside = npr >= ng * (1 - 1e-12)
-    return np.where(inside, warping.eta_from_n_prime(np.where(inside, npr, ng), n_i, f_i, depth), np.nan)
+    return np.where(inside, warping.eta_checked(np.where(inside, npr, ng), n_i, f_i, ng), np.nan)
 
 
 def _s_optimal(sf: directional.SliceFit, parameterization: str) -> Array:
