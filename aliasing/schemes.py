@@ -166,7 +166,7 @@ def evaluate(scheme: str | Scheme | Sequence[str | Scheme], near: float | View |
     return evaluate_many([scheme], near, far, fov, light, edges=edges, **options)[0]
 
 
-CHUNK = 2048
+CHUNK = 4096
 """Directions per block in :func:`evaluate_many`: keeps each ``(N, K)`` temporary in cache."""
 
 
