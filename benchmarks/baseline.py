@@ -173,10 +173,31 @@ def interleaved(funcs: dict[str, object], repeats: int) -> dict[str, float]:
     return {k: float(np.median(v)) for k, v in times.items()}
 
 
+def scaling(repeats: int, count: int = 20_000) -> None:
+    """How the toolkit's cost grows with partitions k and with schemes sharing one frame."""
+    light = geometry.hemisphere_directions(count)
+    ks = (1, 2, 5, 10, 20, 50)
+    t = interleaved({k: lambda k=k: schemes.evaluate(f"ZP{k}+P", NEAR, FAR, FOV, light) for k in ks}, repeats)
+    print(f"\nZPk+P over {count:,} directions (median of {repeats}):\n")
+    print("| k | time [ms] | µs per map and direction |")
+    print("|---:|---:|---:|")
+    for k in ks:
+        print(f"| {k} | {1e3 * t[k]:.1f} | {1e6 * t[k] / (k * count):.3f} |")
+    sets = {1: ROWS[1:2], 3: ROWS[1:4], 6: ROWS[1:4] + ROWS[5:7] + ROWS[8:9], 10: ROWS}
+    t = interleaved({n: lambda names=names: schemes.evaluate_many(names, NEAR, FAR, FOV, light) for n, names in sets.items()}, repeats)
+    print(f"\nevaluate_many over {count:,} directions (median of {repeats}):\n")
+    print("| schemes | maps | time [ms] |")
+    print("|---|---:|---:|")
+    for n, names in sets.items():
+        maps = sum(int(r[2]) if r.startswith("ZP") else 1 for r in names)
+        print(f"| {', '.join(names)} | {maps} | {1e3 * t[n]:.1f} |")
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--counts", type=int, nargs="+", default=[20_000])
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--scaling", action="store_true", help="also time ZPk+P over k and evaluate_many over the number of schemes")
     args = parser.parse_args(argv)
     print(f"load before: {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} {os.getloadavg()[2]:.2f} (1/5/15 min); numpy {np.__version__}")
     for count in args.counts:
@@ -203,6 +224,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"toolkit / floor = {tk / floor:.2f}")
         single = t["single map: evaluate('P')"]
         print(f"single map P: {1e3 * single:.1f} ms (target <= 20 ms: {'met' if single <= 0.020 else 'MISSED'})")
+    if args.scaling:
+        scaling(args.repeats)
     print(f"load after: {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} {os.getloadavg()[2]:.2f}")
     return 0
 
