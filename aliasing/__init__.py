@@ -45,6 +45,7 @@ from .error import (
     storage_factor,
     storage_factor_optimal,
 )
+from .view import View
 from .warping import WARPING_RULES, eta_from_n_prime, n_prime_from_eta, n_prime_lispsm, warping_parameter
 
 from . import gmnpr  # noqa: E402,F401  (registers the gmnpr, glpr and lispsm-zhang warping rules)
@@ -53,6 +54,7 @@ from . import sweep  # noqa: E402,F401  (a callable module: aliasing.sweep(...) 
 __version__ = "0.1.0"
 
 __all__ = [
+    "View",
     "WARPING_RULES",
     "critical_resolution",
     "dp_ds",

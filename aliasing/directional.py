@@ -37,12 +37,14 @@ Example
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 from .geometry import VIEW, light_space
+from .view import View, half_angle
 
 Array = NDArray[np.float64]
 PARAMETERIZATIONS = ("uniform", "perspective", "logperspective")
@@ -140,15 +142,15 @@ def vertex_errors(lf: LightFit, fov: ArrayLike, n_prime: ArrayLike = np.inf, par
     ----------
     lf : LightFit
         From :func:`fit`.
-    fov : array_like
-        Full field of view [deg] of the eye.
+    fov : array_like or View
+        Full field of view [deg] of the eye (or a :class:`aliasing.View`, whose fov is used).
     n_prime : array_like
         Warping parameter n′ [world units] broadcastable to ``(N, K)``; ``inf`` is a uniform
         map (for ``logperspective`` too, whose limit it is).
     parameterization : {"uniform", "perspective", "logperspective"}
     """
     kind = check.choice(parameterization, "parameterization", PARAMETERIZATIONS)
-    w_i = 2 * np.tan(np.radians(check.fov(fov)) / 2) * lf.eye_depth  # eq. (2), corrected
+    w_i = 2 * _tan_theta(fov) * lf.eye_depth  # eq. (2), corrected
     npr = np.broadcast_to(check.as_float_array(n_prime, "n_prime"), lf.depth.shape)[..., None]
     if (npr <= 0).any():
         raise ValueError("n_prime must be in (0, inf]")
@@ -182,3 +184,166 @@ def folded_gamma(light: ArrayLike) -> Array:
     lv = np.atleast_2d(check.as_float_array(light, "light"))
     cos = np.abs(lv @ VIEW) / np.linalg.norm(lv, axis=-1)
     return np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
+
+
+def _tan_theta(fov: ArrayLike | View) -> Array | float:
+    return fov.tan_theta if isinstance(fov, View) else np.tan(half_angle(fov))
+
+
+# --- shared light frames: the rotation done once per (view, directions) -------------------------
+
+
+@dataclass(frozen=True)
+class LightFrame:
+    """The view's 4 corner rays in each direction's light-image-plane frame, computed once.
+
+    ``X``, ``Y``: coordinates ``(4, N)`` of the corner rays at unit eye depth across (x_L)
+    and along the projected view direction (Wimmer's z_L); a vertex at eye depth d of
+    corner c is at ``(d X[c], d Y[c])``, so every z-slice of the frustum — every map of every
+    z-partition — is these coordinates scaled, with no rotation per map (issue 12).
+    ``x_min`` … ``y_max`` ``(N,)``: their extremes over the corners.
+    """
+
+    view: View
+    X: Array
+    Y: Array
+    x_min: Array
+    x_max: Array
+    y_min: Array
+    y_max: Array
+
+    @property
+    def size(self) -> int:
+        """Number of directions N."""
+        return self.X.shape[1]
+
+
+def light_frame(view: View, light: ArrayLike) -> LightFrame:
+    """Rotate the corner rays of one ``view`` into the light frames of ``light`` ``(N, 3)``.
+
+    Example
+    -------
+    >>> fr = light_frame(View(1.0, 100.0, 90.0), [0.0, 1.0, 0.0])   # overhead
+    >>> fr.Y[:, 0].tolist(), fr.X[:, 0].tolist()    # along the view: 1 at every corner
+    ([1.0, 1.0, 1.0, 1.0], [-1.0, 1.0, 1.0, -1.0])
+    """
+    if view.shape != ():
+        raise ValueError(f"a light frame needs one view (scalar near, far, fov), got fields of shape {view.shape}")
+    basis = light_space(np.atleast_2d(check.as_float_array(light, "light")))  # (N, 3, 3)
+    rays = view.corner_rays  # (4, 3); the third component is 1
+    bx, bz = basis[:, 0].T.copy(), basis[:, 2].T.copy()  # (3, N): contiguous per component
+    X = rays[:, 0, None] * bx[0] + rays[:, 1, None] * bx[1] + bx[2]  # (4, N), no einsum on a 3-long axis
+    Y = rays[:, 0, None] * bz[0] + rays[:, 1, None] * bz[1] + bz[2]
+    return LightFrame(view, X, Y, X.min(axis=0), X.max(axis=0), Y.min(axis=0), Y.max(axis=0))
+
+
+@dataclass(frozen=True)
+class SliceFit:
+    """Maps fitted to the z-slices [near_i, far_i] of a :class:`LightFrame`, shape ``(K, N)``.
+
+    Maps first, directions last, so that every inner loop runs over the N directions.
+    ``y_lo``: the nearest vertex along y (the map's near plane); ``y_near``, ``y_far``: the
+    largest y − y_lo among the slice's near and far corners; ``depth`` = W_ly.
+    """
+
+    frame: LightFrame
+    near: Array  # (K, 1)
+    far: Array  # (K, 1)
+    y_lo: Array
+    y_near: Array
+    y_far: Array
+    depth: Array
+
+    @cached_property
+    def vertices(self) -> tuple[Array, Array]:
+        """x and y − y_lo of the 8 vertices, ``(8, K, N)`` each (the 4 near corners, then far).
+
+        Computed once per slice fit and shared by every map fitted to it; reductions over
+        the vertices run over contiguous ``(K, N)`` slabs.
+        """
+        fr, K = self.frame, self.near.shape[0]
+        x, y = np.empty((8, K, fr.size)), np.empty((8, K, fr.size))
+        for j, d in enumerate((self.near, self.far)):
+            np.multiply(d[None], fr.X[:, None, :], out=x[4 * j : 4 * j + 4])
+            np.multiply(d[None], fr.Y[:, None, :], out=y[4 * j : 4 * j + 4])
+        y -= self.y_lo
+        return x, y
+
+    def light_fit(self) -> LightFit:
+        """The per-vertex :class:`LightFit` ``(N, K, 8)`` of the same maps."""
+        x, y = self.vertices
+        n, f = self.near[:, 0], self.far[:, 0]
+        eye = np.concatenate([np.repeat(n[:, None], 4, 1), np.repeat(f[:, None], 4, 1)], axis=1)
+        return LightFit(x=np.transpose(x, (2, 1, 0)), y=np.transpose(y, (2, 1, 0)), depth=self.depth.T, eye_depth=eye)
+
+
+def slice_fit(frame: LightFrame, near: ArrayLike, far: ArrayLike) -> SliceFit:
+    """Fit one map per z-slice ``[near_i, far_i]`` ``(K,)`` for every direction of ``frame``.
+
+    Extremes over a slice's 8 vertices come from the corner extremes scaled by the two
+    depths (d > 0 keeps the order, rounding included), so this is ``(K, N)`` work only.
+
+    Example
+    -------
+    >>> fr = light_frame(View(1.0, 100.0, 90.0), [0.0, 1.0, 0.0])
+    >>> slice_fit(fr, [1.0, 10.0], [10.0, 100.0]).depth.tolist()   # (K, N): f_i − n_i overhead
+    [[9.0], [90.0]]
+    """
+    n = np.asarray(near, float).reshape(-1, 1)
+    f = np.asarray(far, float).reshape(-1, 1)
+    ymin, ymax = frame.y_min[None], frame.y_max[None]
+    lo = np.minimum(n * ymin, f * ymin)
+    y_near, y_far = n * ymax - lo, f * ymax - lo
+    return SliceFit(frame, n, f, lo, y_near, y_far, np.maximum(y_near, y_far))
+
+
+def slice_errors(sf: SliceFit, n_prime: ArrayLike = np.inf, parameterization: str = "perspective") -> tuple[Array, Array]:
+    """M_x, M_z ``(K, N)``: :func:`max_errors` of the slices' maps, without a vertex axis.
+
+    Same model and same floating-point operations per vertex as :func:`vertex_errors`
+    (Lloyd et al. 2006 §4.4 eqs. 2–4; Lloyd et al. 2007 eq. 78), but m_x and m_z grow
+    with y at a fixed eye depth, so their maxima over a slice's 4 near (4 far) corners are
+    at the corner of largest y; only the near-plane x extent of a warped map needs all
+    8 vertices.  ``n_prime`` broadcasts to ``(K, N)``.
+
+    Example
+    -------
+    >>> sf = slice_fit(light_frame(View(1.0, 100.0, 90.0), [0.0, 1.0, 0.0]), 1.0, 100.0)
+    >>> [float(m[0, 0]) for m in slice_errors(sf, 11.0)]   # Lloyd 2006 eqs. 7-12 at n' = n + sqrt(fn)
+    [10.0, 4.95]
+    """
+    kind = check.choice(parameterization, "parameterization", PARAMETERIZATIONS)
+    fr = sf.frame
+    npr = np.broadcast_to(np.asarray(n_prime, float), sf.depth.shape)
+    if (npr <= 0).any() or np.isnan(npr).any():
+        raise ValueError("n_prime must be in (0, inf]")
+    n, f = sf.near, sf.far
+    if kind == "uniform" or np.isinf(npr).all():
+        npr = np.full(sf.depth.shape, np.inf)
+        x_lo = np.minimum(n * fr.x_min, f * fr.x_min)
+        x_hi = np.maximum(n * fr.x_max, f * fr.x_max)
+    else:
+        x, y = sf.vertices
+        q = np.divide(y, npr, out=np.empty_like(y))
+        q += 1.0  # z′/n′
+        np.divide(x, q, out=q)  # x/(z′/n′): central projection onto the near plane
+        x_lo, x_hi = q.min(axis=0), q.max(axis=0)
+    width = x_hi - x_lo
+    depth = sf.depth
+    inf = np.isinf(npr)
+    two_tan = 2 * fr.view.tan_theta
+    if kind == "logperspective":
+        with np.errstate(invalid="ignore", divide="ignore"):
+            log_term = np.where(inf, depth, npr * np.log1p(depth / npr))  # n′ ln(1 + W_ly/n′)
+    out_x, out_z = [], []
+    for y, d in ((sf.y_near, n), (sf.y_far, f)):
+        zp_np = 1.0 + y / npr  # z′/n′ (exactly 1 at n′ = ∞)
+        w_i = two_tan * d  # eq. (2), corrected
+        out_x.append(zp_np * width / w_i)  # eq. (3)
+        if kind == "logperspective":
+            out_z.append(zp_np * log_term / w_i)  # eq. (78)
+        else:
+            with np.errstate(invalid="ignore"):
+                ratio = np.where(inf, 1.0, (npr + y) / (npr + depth))
+            out_z.append(zp_np * ratio * depth / w_i)  # eq. (4)
+    return np.maximum(*out_x), np.maximum(*out_z)

@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
+from .view import half_angle
 from .parameterizations import _depths
 
 Array = NDArray[np.float64]
@@ -33,7 +34,7 @@ Array = NDArray[np.float64]
 
 def _half_tan(fov: ArrayLike) -> Array:
     """tan θ for the full field of view ``fov`` [deg]."""
-    return np.tan(np.radians(check.fov(fov)) / 2)
+    return np.tan(half_angle(fov))
 
 
 def _frustum_warp(near: ArrayLike, far: ArrayLike, n_prime: ArrayLike) -> tuple[Array, Array, Array]:

@@ -54,6 +54,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 from .geometry import VIEW
+from .view import View, half_angle, split_view
 
 Array = NDArray[np.float64]
 VARIANTS = ("fp", "fpc", "fpcs")
@@ -88,7 +89,7 @@ def side_frames(fov: float) -> tuple[Array, Array, Array, Array]:
     line and z along its normal.  Returns ``normal (4, 3)``, ``centre (4, 3)``,
     ``across (4, 3)`` and the side edges ``(4, 2, 3)`` scaled to unit eye depth.
     """
-    th = np.radians(check.fov(fov)) / 2
+    th = half_angle(fov)
     c, s, t = np.cos(th), np.sin(th), np.tan(th)
     out = np.array([[0, -1, 0], [0, 1, 0], [-1, 0, 0], [1, 0, 0]], float)  # bottom, top, left, right
     normal = out * c - VIEW * s
@@ -190,19 +191,20 @@ class FaceFrames:
     tau: Array
 
 
-def _arguments(variant: str, parameterization: str, near: float, far: float, fov: float, light: ArrayLike, k: int, tau0: float, tau1: float) -> tuple[str, str, float, float, float, Array, int]:
+def _arguments(variant: str, parameterization: str, near: float | View, far: float | None, fov: float | None, light: ArrayLike | None, k: int, tau0: float, tau1: float) -> tuple[str, str, View, Array, int]:
     var = check.choice(variant, "variant", VARIANTS)
     kind = check.choice(parameterization, "parameterization", FACE_PARAMETERIZATIONS)
-    n, f = (float(v) for v in check.frustum(near, far))
-    fov = float(check.fov(fov))
+    view, light = split_view(near, far, fov, light, (None, None, None, None))
+    if view.shape != ():
+        raise ValueError(f"near, far and fov must be scalars here, got shape {view.shape}")
     if isinstance(k, bool) or int(k) != k or k < 1:
         raise ValueError(f"k must be a whole number >= 1 (depth ranges per face), got {k!r}")
     if not 90.0 < float(tau0) <= float(tau1) <= 180.0:
         raise ValueError(f"tau0 and tau1 must satisfy 90 < tau0 <= tau1 <= 180 [deg], got {tau0!r}, {tau1!r}")
-    return var, kind, n, f, fov, _unit(light), int(k)
+    return var, kind, view, _unit(light), int(k)
 
 
-def face_frames(variant: str, parameterization: str, near: float, far: float, fov: float, light: ArrayLike, *, k: int = 1, tau0: float = TAU0, tau1: float = TAU1) -> FaceFrames:
+def face_frames(variant: str, parameterization: str, near: float | View, far: float | None = None, fov: float | None = None, light: ArrayLike | None = None, *, k: int = 1, tau0: float = TAU0, tau1: float = TAU1) -> FaceFrames:
     """The adjusted light-plane frames of FPc or FPcs side-face maps (module docstring).
 
     The one definition of the FPc / FPcs side maps: :func:`face_errors` evaluates its
@@ -228,8 +230,8 @@ def face_frames(variant: str, parameterization: str, near: float, far: float, fo
     True
     """
     var = check.choice(variant, "variant", ("fpc", "fpcs"))
-    _, kind, n, f, fov, lv, k = _arguments(var, parameterization, near, far, fov, light, k, tau0, tau1)
-    return _frames(var, kind, n, f, fov, lv, k, float(tau0), float(tau1))
+    _, kind, view, lv, k = _arguments(var, parameterization, near, far, fov, light, k, tau0, tau1)
+    return _frames(var, kind, view.near, view.far, view.fov, lv, k, float(tau0), float(tau1))
 
 
 def _frames(var: str, kind: str, n: float, f: float, fov: float, lv: Array, k: int, tau0: float, tau1: float) -> FaceFrames:
@@ -274,7 +276,7 @@ def _frames(var: str, kind: str, n: float, f: float, fov: float, lv: Array, k: i
     return FaceFrames(axis, across, bounds, depth, Y, X, a, y0, y1, q.min(axis=-1), q.max(axis=-1), used, tau)
 
 
-def face_errors(variant: str, parameterization: str, near: float, far: float, fov: float, light: ArrayLike, *, k: int = 1, tau0: float = TAU0, tau1: float = TAU1) -> FaceResult:
+def face_errors(variant: str, parameterization: str, near: float | View, far: float | None = None, fov: float | None = None, light: ArrayLike | None = None, *, k: int = 1, tau0: float = TAU0, tau1: float = TAU1) -> FaceResult:
     """M_x, M_z, S̄ and map counts of FP, FPc or FPcs for every light direction.
 
     Parameters
@@ -284,7 +286,8 @@ def face_errors(variant: str, parameterization: str, near: float, far: float, fo
     parameterization : {"uniform", "perspective", "logperspective"}
         On the side faces (Lloyd 2007 eqs. 74, 75–76, 78); the near face is uniform.
     near, far : float
-        Eye near and far distances [world units], 0 < near < far.
+        Eye near and far distances [world units], 0 < near < far; or a
+        :class:`aliasing.View` in ``near``, followed by ``light``.
     fov : float
         Full field of view [deg] of the square frustum.
     light : array_like
@@ -304,10 +307,11 @@ def face_errors(variant: str, parameterization: str, near: float, far: float, fo
     >>> round(float(r.S[0]), 1), int(r.maps[0])   # four sides at (f/n − 1)/2, the near face 1
     (1999.0, 5)
     """
-    var, kind, n, f, fov, lv, k = _arguments(variant, parameterization, near, far, fov, light, k, tau0, tau1)
+    var, kind, view, lv, k = _arguments(variant, parameterization, near, far, fov, light, k, tau0, tau1)
+    n, f, fov = view.near, view.far, view.fov
     chosen = chosen_faces(lv, fov)
     near_x, near_z = _near_face(lv)
-    tan = np.tan(np.radians(fov) / 2)
+    tan = view.tan_theta
     if var == "fp":
         normal, centre, across, edges = side_frames(fov)
         depth = n * (f / n) ** (np.arange(k + 1) / k)
@@ -315,7 +319,7 @@ def face_errors(variant: str, parameterization: str, near: float, far: float, fo
         mx = np.zeros((lv.shape[0], 4, 1, k))
         mz = np.zeros_like(mx)
         for j in range(4):
-            mx[:, j, 0], mz[:, j, 0] = _fixed_side(lv, normal[j], centre[j], across[j], depth[:-1], depth[1:], fov, kind)
+            mx[:, j, 0], mz[:, j, 0] = _fixed_side(lv, normal[j], centre[j], across[j], depth[:-1], depth[1:], view, kind)
         e0, e1 = (np.stack([_project(edges[j, i], lv) for j in range(4)], axis=1) for i in (0, 1))
         tau = np.degrees(np.arccos(np.clip(np.sum(_normalize(e0) * _normalize(e1), -1), -1, 1)))
         used = chosen[:, 1:, None]
@@ -385,9 +389,9 @@ def _widths(kind: str, y: Array, y0: Array, y1: Array, a: Array) -> tuple[Array,
     return along, (y + a) / (y1 + a)  # eq. (96)
 
 
-def _fixed_side(lv: Array, normal: Array, centre: Array, across: Array, lo: Array, hi: Array, fov: float, kind: str) -> tuple[Array, Array]:
+def _fixed_side(lv: Array, normal: Array, centre: Array, across: Array, lo: Array, hi: Array, view: View, kind: str) -> tuple[Array, Array]:
     """FP: F_p / F_lp / F_un fixed to a side face, M_x and M_z per depth range ``(N, k)``."""
-    cos_t = np.cos(np.radians(fov) / 2)
+    cos_t = view.cos_theta
     cx, cy = _cos_phi(lv, across, normal=normal, centre=centre)
     y0, y1 = lo / cos_t, hi / cos_t  # Fig. 5: the face's ends along its centre line
     a = _face_a(kind, y0, y1)
@@ -398,7 +402,7 @@ def _fixed_side(lv: Array, normal: Array, centre: Array, across: Array, lo: Arra
         out_x.append(frac * hi / d)  # texel across W(y1)(y + a)/(y1 + a), W(y1) = 2 hi tanθ; pixel 2d tanθ
         out_z.append(along / d)  # texel along the face over the pixel 2d tanθ (the 2 tanθ below)
     mx = np.maximum(*out_x)[None] * cx[:, None]
-    mz = np.maximum(*out_z)[None] * cy[:, None] / (2 * np.tan(np.radians(fov) / 2))
+    mz = np.maximum(*out_z)[None] * cy[:, None] / (2 * view.tan_theta)
     return mx, mz
 
 

@@ -32,19 +32,21 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
+from .view import View, as_view
 
 Array = NDArray[np.float64]
 VIEW = np.array([0.0, 0.0, 1.0])
 UP = np.array([0.0, 1.0, 0.0])
 
 
-def frustum_vertices(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> Array:
+def frustum_vertices(near: ArrayLike | View, far: ArrayLike | None = None, fov: ArrayLike | None = None) -> Array:
     """The 8 corners of square view frusta, shape ``broadcast(near, far, fov).shape + (8, 3)``.
 
     Parameters
     ----------
     near, far : array_like
-        Near and far distances [world units], 0 < near < far.
+        Near and far distances [world units], 0 < near < far; or a
+        :class:`aliasing.View` in ``near`` (and nothing else).
     fov : array_like
         Full field of view [deg], 0 < fov < 180.
 
@@ -53,15 +55,7 @@ def frustum_vertices(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> Array:
     ndarray
         Corners in eye space [world units]: the 4 near corners then the 4 far corners.
     """
-    n, f = check.frustum(near, far)
-    t = np.tan(np.radians(check.fov(fov)) / 2)
-    n, f, t = np.broadcast_arrays(n, f, t)
-    signs = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], dtype=float)
-    depth = np.stack([n] * 4 + [f] * 4, axis=-1)  # (..., 8)
-    sx = np.concatenate([signs[:, 0], signs[:, 0]])
-    sy = np.concatenate([signs[:, 1], signs[:, 1]])
-    half = depth * t[..., None]
-    return np.stack([sx * half, sy * half, depth], axis=-1)
+    return as_view(near, far, fov).slice_vertices()
 
 
 def light_direction(gamma: ArrayLike, azimuth: ArrayLike = 0.0) -> Array:

@@ -27,6 +27,7 @@ Example
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,6 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 from . import directional, faces, geometry, warping
+from .view import View, split_view
 
 Array = NDArray[np.float64]
 GRAMMAR = "Standard | P | Po | LogP (Log) | Sopt | LogSopt | <warping rule> | ZP<k> | ZP<k>+<any of these> | FP|FPc|FPcs[+ZP<k>]+P|LogP|Standard"
@@ -134,19 +136,22 @@ def z_partitions(near: float, far: float, k: int) -> tuple[Array, Array]:
     return edges[:-1], edges[1:]
 
 
-def evaluate(scheme: str | Scheme, near: float = 1.0, far: float = 1000.0, fov: float = 60.0, light: str | ArrayLike = "overhead", *, edges: ArrayLike | None = None, **options: ArrayLike) -> Result:
+def evaluate(scheme: str | Scheme | Sequence[str | Scheme], near: float | View | None = None, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, *, edges: ArrayLike | None = None, **options: ArrayLike) -> Result | list[Result]:
     """M_x, M_z, S̄ of a scheme for every light direction (vectorized over directions).
 
     Parameters
     ----------
-    scheme : str or Scheme
-        A name in the grammar of this module.
+    scheme : str or Scheme, or a list of them
+        A name in the grammar of this module; a list evaluates every scheme on the same
+        directions (:func:`evaluate_many`) and returns a list of Results.
     near, far : float
-        Eye near and far distances [world units], 0 < near < far.
+        Eye near and far distances [world units], 0 < near < far (default 1 and 1000).
+        Or a :class:`aliasing.View` in ``near``: ``evaluate("P", view, light)``.
     fov : float
-        Full field of view [deg].
+        Full field of view [deg] (default 60).
     light : str or array_like
-        A light spec (:data:`aliasing.geometry.LIGHT_SPEC`) or vectors ``(N, 3)`` towards the light.
+        A light spec (:data:`aliasing.geometry.LIGHT_SPEC`) or vectors ``(N, 3)`` towards
+        the light (default ``"overhead"``).
     edges : array_like, optional
         Explicit split distances C_0 = near < … < C_k = far (e.g. from
         :func:`aliasing.partitioning.split_distances`), or a pair of arrays
@@ -156,36 +161,91 @@ def evaluate(scheme: str | Scheme, near: float = 1.0, far: float = 1000.0, fov: 
     **options
         Passed to the warping rule (e.g. ``c_fraction`` for P/LogP, ``focus`` for TSM).
     """
-    sch = parse(scheme) if isinstance(scheme, str) else scheme
-    if sch.faces:
-        return _evaluate_faces(sch, near, far, fov, light, edges, **options)
-    if edges is None:
-        n_i, f_i = z_partitions(near, far, sch.k)
-    else:
-        n_i, f_i = _explicit_partitions(edges, near, far)
-        sch = Scheme(name=sch.name, k=len(n_i), rule=sch.rule, parameterization=sch.parameterization)
-    verts = geometry.frustum_vertices(n_i, f_i, fov)  # (K, 8, 3)
+    if not isinstance(scheme, (str, Scheme)):
+        return evaluate_many(scheme, near, far, fov, light, edges=edges, **options)
+    return evaluate_many([scheme], near, far, fov, light, edges=edges, **options)[0]
+
+
+CHUNK = 4096
+"""Directions per block in :func:`evaluate_many`: keeps each ``(N, K)`` temporary in cache."""
+
+
+def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = None, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, *, edges: ArrayLike | None = None, chunk: int = CHUNK, **options: ArrayLike) -> list[Result]:
+    """:func:`evaluate` for several schemes on the same directions: one Result per name.
+
+    Every name is parsed before any work (an unknown one fails as it does alone).  The
+    light frame of each direction and the corner rays' light-space coordinates are computed
+    once (:func:`aliasing.directional.light_frame`) and shared by every scheme and every
+    z-partition; schemes with the same partitions share the map fits too.  Directions are
+    processed in blocks of ``chunk``.
+
+    Example
+    -------
+    >>> [round(float(r.S[0]), 3) for r in evaluate_many(["P", "ZP5+LogP"], 1.0, 1000.0, 60.0, "overhead")]
+    [865.159, 5.982]
+    """
+    if isinstance(names, (str, Scheme)):
+        raise ValueError("names must be a list of scheme names (use evaluate for one)")
+    parsed = [parse(s) if isinstance(s, str) else s for s in names]
+    if not parsed:
+        raise ValueError("names must list at least one scheme")
+    if isinstance(chunk, bool) or not isinstance(chunk, (int, np.integer)) or chunk < 1:
+        raise ValueError(f"chunk must be a whole number >= 1 (directions per block), got {chunk!r}")
+    view, light = split_view(near, far, fov, light, (1.0, 1000.0, 60.0, "overhead"))
     lv = geometry.lights(light)
-    lf = directional.fit(verts, lv)
-    gamma = directional.folded_gamma(lv)[:, None]
+    if view.shape != ():
+        raise ValueError(f"evaluate takes one view: near, far and fov must be scalars, got shape {view.shape}")
+    if edges is not None:
+        n_e, f_e = _explicit_partitions(edges, view.near, view.far)
+    results: list[Result | None] = [None] * len(parsed)
+    groups: dict[int, list[int]] = {}
+    for i, sch in enumerate(parsed):
+        if sch.faces:
+            results[i] = _evaluate_faces(sch, view, lv, edges, **options)
+        else:
+            groups.setdefault(-1 if edges is not None else sch.k, []).append(i)
+    parts = {k: (n_e, f_e) if k == -1 else z_partitions(view.near, view.far, k) for k in groups}
+    out = {i: np.empty((4, len(parts[k][0]), len(lv))) for k, ids in groups.items() for i in ids}  # M_x, M_z, n′, η as (K, N)
+    for start in range(0, len(lv) if groups else 0, chunk):
+        block = lv[start : start + chunk]
+        frame = directional.light_frame(view, block)
+        gamma = directional.folded_gamma(block)[None]
+        for k, ids in groups.items():
+            n_i, f_i = parts[k]
+            sf = directional.slice_fit(frame, n_i, f_i)
+            for i in ids:
+                out[i][:, :, start : start + chunk] = _maps(parsed[i], sf, gamma, options)
+    for k, ids in groups.items():
+        n_i, _ = parts[k]
+        for i in ids:
+            sch = parsed[i]
+            if k == -1:
+                sch = Scheme(name=sch.name, k=len(n_i), rule=sch.rule, parameterization=sch.parameterization)
+            M_x, M_z, npr, eta = out[i]
+            S = (M_x * M_z).sum(axis=0)  # Σ over maps in map order, as a sum over the last axis of (N, K)
+            results[i] = Result(sch, M_x.T, M_z.T, S, npr.T, eta.T, sch.k)  # (N, K) views of (K, N) memory
+    return results  # type: ignore[return-value]
+
+
+def _maps(sch: Scheme, sf: directional.SliceFit, gamma: Array, options: dict) -> tuple[Array, ...]:
+    """M_x, M_z, n′, η ``(K, N)`` of one scheme's maps on fitted slices."""
+    n_i, f_i, fov = sf.near, sf.far, sf.frame.view.fov
     if sch.rule == "sopt":
-        npr = _s_optimal(lf, n_i, f_i, fov, sch.parameterization)
+        npr = _s_optimal(sf, sch.parameterization)
     else:
-        npr = np.broadcast_to(warping.warping_parameter(sch.rule, n_i, f_i, fov=fov, gamma=gamma, depth=lf.depth, **options), lf.depth.shape)
-    mx, mz = directional.vertex_errors(lf, fov, npr, sch.parameterization)
-    M_x, M_z = mx.max(axis=-1), mz.max(axis=-1)
-    eta = _eta_or_nan(npr, n_i, f_i, lf.depth)
-    return Result(sch, M_x, M_z, (M_x * M_z).sum(axis=-1), np.asarray(npr, float), eta, sch.k)
+        npr = np.broadcast_to(warping.warping_parameter(sch.rule, n_i, f_i, fov=fov, gamma=gamma, depth=sf.depth, **options), sf.depth.shape)
+    M_x, M_z = directional.slice_errors(sf, npr, sch.parameterization)
+    return M_x, M_z, npr, _eta_or_nan(npr, n_i, f_i, sf.depth)
 
 
-def _evaluate_faces(sch: Scheme, near: float, far: float, fov: float, light: str | ArrayLike, edges: ArrayLike | None, **options: ArrayLike) -> Result:
+def _evaluate_faces(sch: Scheme, view: View, light: Array, edges: ArrayLike | None, **options: ArrayLike) -> Result:
     """Face partitioning through :func:`aliasing.faces.face_errors` (options: tau0, tau1)."""
     if edges is not None:
         raise ValueError(f"edges apply to z-partitions, not to the face partitions of {sch.name}")
     unknown = set(options) - {"tau0", "tau1"}
     if unknown:
         raise ValueError(f"unknown options for {sch.name}: {', '.join(sorted(unknown))}; face partitions take tau0, tau1")
-    r = faces.face_errors(sch.faces, sch.parameterization, near, far, fov, geometry.lights(light), k=sch.k, **{k: float(v) for k, v in options.items()})
+    r = faces.face_errors(sch.faces, sch.parameterization, view, light, k=sch.k, **{k: float(v) for k, v in options.items()})
     nan = np.full(r.M_x.shape, np.nan)
     return Result(sch, r.M_x, r.M_z, r.S, nan, nan, r.M_x.shape[1])
 
@@ -209,10 +269,10 @@ def _explicit_partitions(edges: ArrayLike | tuple[ArrayLike, ArrayLike], near: f
 def _eta_or_nan(npr: Array, n_i: Array, f_i: Array, depth: Array) -> Array:
     ng = depth * n_i / (f_i - n_i)
     inside = npr >= ng * (1 - 1e-12)
-    return np.where(inside, warping.eta_from_n_prime(np.where(inside, npr, ng), n_i, f_i, depth), np.nan)
+    return np.where(inside, warping.eta_checked(np.where(inside, npr, ng), n_i, f_i, ng), np.nan)
 
 
-def _s_optimal(lf: directional.LightFit, n_i: Array, f_i: Array, fov: float, parameterization: str) -> Array:
+def _s_optimal(sf: directional.SliceFit, parameterization: str) -> Array:
     """n′ minimising S̄ of each map, over η ∈ [−1, 1] (n′ from n_γ to ∞), per direction.
 
     Lloyd 2007 App. B calls this optimum involved to compute; here: a grid over η, then a
@@ -220,16 +280,17 @@ def _s_optimal(lf: directional.LightFit, n_i: Array, f_i: Array, fov: float, par
     Vectorized over directions and partitions; the loops run over η samples only.
     """
 
+    n_i, f_i = sf.near, sf.far
+
     def storage(eta: Array) -> Array:
-        npr = warping.n_prime_from_eta(eta, n_i, f_i, lf.depth)
-        mx, mz = directional.vertex_errors(lf, fov, npr, parameterization)
-        return mx.max(axis=-1) * mz.max(axis=-1)
+        mx, mz = directional.slice_errors(sf, warping.n_prime_from_eta(eta, n_i, f_i, sf.depth), parameterization)
+        return mx * mz
 
     grid = np.linspace(-1.0, 1.0, 41)
-    best_eta = np.full(lf.depth.shape, -1.0)
+    best_eta = np.full(sf.depth.shape, -1.0)
     best_s = storage(best_eta)
     for e in grid[1:]:
-        s = storage(np.full(lf.depth.shape, e))
+        s = storage(np.full(sf.depth.shape, e))
         better = s < best_s
         best_eta, best_s = np.where(better, e, best_eta), np.where(better, s, best_s)
     step = grid[1] - grid[0]
@@ -241,4 +302,4 @@ def _s_optimal(lf: directional.LightFit, n_i: Array, f_i: Array, fov: float, par
         lo, hi = np.where(left, lo, a), np.where(left, b, hi)
     mid = (lo + hi) / 2
     eta = np.where(storage(mid) < best_s, mid, best_eta)
-    return warping.n_prime_from_eta(eta, n_i, f_i, lf.depth)
+    return warping.n_prime_from_eta(eta, n_i, f_i, sf.depth)

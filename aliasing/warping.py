@@ -17,6 +17,7 @@ Example
 
 from __future__ import annotations
 
+import functools
 import inspect
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -86,12 +87,18 @@ def warping_parameter(method: str, near: ArrayLike, far: ArrayLike, **options: A
     """
     key = check.choice(method, "warping method", WARPING_RULES)
     rule = WARPING_RULES[key]
-    accepted = set(inspect.signature(rule.func).parameters) - {"near", "far"}
+    accepted = _accepted(rule.func)
     unknown = set(options) - accepted - set(CONTEXT)
     if unknown:
         own = sorted(accepted - set(CONTEXT))
         raise ValueError(f"warping method {key!r} takes options {own or 'none'}, not {sorted(unknown)}")
     return rule.func(near, far, **{k: v for k, v in options.items() if k in accepted})
+
+
+@functools.lru_cache(maxsize=None)
+def _accepted(func: Callable) -> frozenset[str]:
+    """The options a rule takes besides near and far (its signature, read once)."""
+    return frozenset(inspect.signature(func).parameters) - {"near", "far"}
 
 
 def n_prime_lispsm(near: ArrayLike, far: ArrayLike) -> NDArray[np.float64]:
@@ -166,6 +173,14 @@ def eta_from_n_prime(n_prime: ArrayLike, near: ArrayLike, far: ArrayLike, depth:
     npr = check.as_float_array(n_prime, "n_prime")
     if (npr < ng * (1 - 1e-12)).any():
         raise ValueError("n_prime must be in [n_γ, inf] (n_γ = near for an overhead light; PSM is n_γ)")
+    return eta_checked(npr, n, f, ng)
+
+
+def eta_checked(npr: NDArray[np.float64], n: NDArray[np.float64], f: NDArray[np.float64], ng: NDArray[np.float64]) -> NDArray[np.float64]:
+    """:func:`eta_from_n_prime` on checked arrays: n′ ≥ n_γ, n_γ = W_ly/(f/n − 1) given (eq. 120 inverted).
+
+    For the inner loops of :mod:`aliasing.schemes`, which validate once at their edge.
+    """
     a = f / n
     ra = np.sqrt(a)
     q = npr / ng

@@ -106,7 +106,7 @@ def data(maps: int = MAPS) -> dict[str, np.ndarray]:
     cols["optimal"] = np.full(j.shape, float(S["optimal"](1.0)))
     for light in ("overhead", "behind"):
         for key, base in (("ZP", ""), ("ZPW", "+LiSPSM")):
-            cols[f"general_{key}_{light}"] = np.array([schemes.evaluate(f"ZP{int(m)}{base}", NEAR, FAR, FOV, light).S[0] for m in j])
+            cols[f"general_{key}_{light}"] = np.array([r.S[0] for r in schemes.evaluate_many([f"ZP{int(m)}{base}" for m in j], NEAR, FAR, FOV, light)])
     fp_general = lambda jj: np.array([schemes.evaluate(f"FPc+ZP{int(k)}+P", NEAR, FAR, FOV, "behind").S[0] for k in (jj - 1) / 4])  # noqa: E731
     cols["general_FPZPW_behind"] = _where(np.isfinite(cols["FPZPW_behind"]), fp_general, j)
     return cols

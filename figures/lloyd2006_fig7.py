@@ -80,9 +80,10 @@ def data(resolution: int = RESOLUTION) -> dict[str, np.ndarray]:
     u, v, light = hemisphere_map(resolution)
     inside = ~np.isnan(light[..., 0])
     cols: dict[str, np.ndarray] = {"u": u.ravel(), "v": v.ravel()}
-    for key, scheme in SCHEMES.items():
+    results = schemes.evaluate_many(list(SCHEMES.values()), NEAR, FAR, FOV, light[inside])  # all schemes and directions in one call
+    for key, r in zip(SCHEMES, results):
         s = np.full(u.shape, np.nan)
-        s[inside] = schemes.evaluate(scheme, NEAR, FAR, FOV, light[inside]).S  # all directions in one call
+        s[inside] = r.S
         cols[f"log10S_{key}"] = np.log10(s).ravel()
     return cols
 

@@ -38,11 +38,11 @@ def data() -> dict[str, np.ndarray]:
     gamma = np.arange(1, 361) * 0.25
     light = light_direction(gamma, 0.0)
     cols: dict[str, np.ndarray] = {"gamma": gamma}
-    for base, _ in BASES:
-        for k in KS:
-            cols[f"ZP{k}{base}"] = schemes.evaluate(f"ZP{k}{base}", NEAR, FAR, FOV, light).S
-    for name in FACES:
-        r = schemes.evaluate(name, NEAR, FAR, FOV, light)
+    names = [f"ZP{k}{base}" for base, _ in BASES for k in KS]
+    results = schemes.evaluate_many(names + list(FACES), NEAR, FAR, FOV, light)  # one light frame for all rows
+    for name, r in zip(names, results):
+        cols[name] = r.S
+    for name, r in zip(FACES, results[len(names) :]):
         cols[name], cols[f"{name} maps"] = r.S, r.maps_used.astype(float)
     return cols
 

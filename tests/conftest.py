@@ -75,3 +75,21 @@ def interrupt_after(n):
         return progress
 
     return progress_bar
+
+
+# Hypothesis profiles (issue 11 item 6): "ci" (derandomized, the default) and "long"
+# (ALIASING_HYPOTHESIS=long).  Registered only if no other block of this file did already.
+try:
+    from hypothesis import settings as _hyp_settings
+    from hypothesis.errors import InvalidArgument as _HypInvalidArgument
+except ImportError:  # the test extra is not installed
+    pass
+else:
+    import os as _os
+
+    for _name, _options in (("ci", {"derandomize": True, "deadline": None}), ("long", {"max_examples": 2000, "deadline": None})):
+        try:
+            _hyp_settings.get_profile(_name)
+        except _HypInvalidArgument:
+            _hyp_settings.register_profile(_name, **_options)
+    _hyp_settings.load_profile("long" if _os.environ.get("ALIASING_HYPOTHESIS") == "long" else "ci")
