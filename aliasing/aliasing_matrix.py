@@ -48,6 +48,17 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 
+__all__ = [
+    "Camera",
+    "aliasing_matrix",
+    "camera_axes",
+    "cross_sections",
+    "error_metric",
+    "halfway_normal",
+    "spacing_eye",
+    "spacing_light",
+]
+
 Array = NDArray[np.float64]
 METRICS = ("1", "2", "inf", "fro", "det", "column")
 

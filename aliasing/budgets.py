@@ -34,6 +34,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 
+__all__ = [
+    "ALLOCATIONS",
+    "allocate",
+    "max_error",
+    "splits_report",
+]
+
 Array = NDArray[np.float64]
 
 

@@ -28,6 +28,18 @@ from numpy.typing import ArrayLike, NDArray
 from . import _validation as check
 from .parameterizations import _depths
 
+__all__ = [
+    "critical_resolution",
+    "dp_ds",
+    "m_x",
+    "m_z",
+    "max_error_x",
+    "max_error_z",
+    "resolution_for_budget",
+    "storage_factor",
+    "storage_factor_optimal",
+]
+
 Array = NDArray[np.float64]
 
 

@@ -58,6 +58,13 @@ from numpy.typing import ArrayLike, NDArray
 from . import _validation as check
 from . import logpsm
 
+__all__ = [
+    "face_factors",
+    "max_over_lights",
+    "optimal_factors",
+    "optimal_root",
+]
+
 Array = NDArray[np.float64]
 KINDS = ("bound", "uniform", "perspective", "log", "logp")
 FACES = ("side", "near", "far")

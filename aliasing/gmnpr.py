@@ -36,6 +36,15 @@ from . import _validation as check
 from .parameterizations import _depths
 from .warping import register
 
+__all__ = [
+    "generalized_error",
+    "lambda_glpr",
+    "lambda_gmnpr",
+    "lambda_lispsm",
+    "lambda_optimal",
+    "light_space_depth",
+]
+
 Array = NDArray[np.float64]
 
 

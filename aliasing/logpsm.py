@@ -31,6 +31,22 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 
+__all__ = [
+    "aliasing_error",
+    "critical_factor_side",
+    "critical_factors",
+    "delta_bound_end",
+    "delta_bound_side_s",
+    "delta_bound_side_t",
+    "logp_inverse",
+    "parameterization",
+    "perspective_factor",
+    "rho_bound",
+    "side_face",
+    "spacing",
+    "zeta_bound",
+]
+
 Array = NDArray[np.float64]
 
 

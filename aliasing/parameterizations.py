@@ -19,6 +19,14 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 
+__all__ = [
+    "spacing_logarithmic",
+    "spacing_perspective",
+    "t_log_perspective",
+    "t_logarithmic",
+    "t_perspective",
+]
+
 
 def _depths(z: ArrayLike, near: ArrayLike, far: ArrayLike):
     n, f = check.frustum(near, far)

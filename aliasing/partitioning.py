@@ -22,6 +22,14 @@ from numpy.typing import NDArray
 
 from . import _validation as check
 
+__all__ = [
+    "SPLIT_METHODS",
+    "SplitMethod",
+    "partitions",
+    "register",
+    "split_distances",
+]
+
 Array = NDArray[np.float64]
 
 

@@ -75,3 +75,25 @@ def interrupt_after(n):
         return progress
 
     return progress_bar
+
+
+# Hypothesis profiles (the API fuzz suite, tests/test_fuzz_api.py): "ci" is the default,
+# derandomized so a run is reproducible; "long" runs many more cases locally
+# (ALIASING_HYPOTHESIS=long, or pytest --hypothesis-profile=long).  Registered only if no
+# other conftest registered the same names first.
+try:
+    import os as _os
+
+    from hypothesis import settings as _hsettings
+except ImportError:  # the test extra is not installed: the fuzz suite skips itself
+    _hsettings = None
+if _hsettings is not None:
+    for _name, _kwargs in {
+        "ci": dict(max_examples=2400, derandomize=True, deadline=None, print_blob=True),
+        "long": dict(max_examples=50_000, derandomize=False, deadline=None, print_blob=True),
+    }.items():
+        try:
+            _hsettings.get_profile(_name)
+        except Exception:  # not registered yet
+            _hsettings.register_profile(_name, **_kwargs)
+    _hsettings.load_profile(_os.environ.get("ALIASING_HYPOTHESIS", "ci"))
