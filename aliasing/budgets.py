@@ -76,6 +76,7 @@ ALLOCATIONS: dict[str, tuple[Callable[[Array, Array, Array], tuple[Array, Array]
 }
 
 
+@check.names_broadcast
 def allocate(method: str, M_x: ArrayLike, M_z: ArrayLike, budget: ArrayLike) -> tuple[Array, Array]:
     """Resolutions (res_s, res_t) [texels] of each map, shape of ``M_x`` (…, K).
 
@@ -96,12 +97,14 @@ def allocate(method: str, M_x: ArrayLike, M_z: ArrayLike, budget: ArrayLike) -> 
     return ALLOCATIONS[key][0](mx, mz, np.asarray(t)[..., None] if np.ndim(t) else t)
 
 
+@check.names_broadcast
 def max_error(M_x: ArrayLike, M_z: ArrayLike, res_s: ArrayLike, res_t: ArrayLike, res_image: ArrayLike = 1.0) -> Array:
     """Maximum perspective aliasing error of each map, res_i·max(M_x/res_s, M_z/res_t)."""
     ri = check.positive(res_image, "res_image")
     return ri * np.maximum(np.asarray(M_x) / check.positive(res_s, "res_s"), np.asarray(M_z) / check.positive(res_t, "res_t"))
 
 
+@check.names_broadcast
 def splits_report(
     method: str,
     near: float,

@@ -249,6 +249,7 @@ def _R_s(c: _Setup, a, zeros: Array) -> Array:
     return R + zeros
 
 
+@check.names_broadcast
 def face_factors(kind: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx: ArrayLike = 0.0, ly: ArrayLike = 0.0, lz: ArrayLike = np.inf,
                  directional: bool = False, a: ArrayLike = 0.0, b: ArrayLike = np.inf, face: str = "side", samples: int = 257) -> dict[str, Array]:
     """R_s, R_t and S = R_s R_t of a face for a light, Lloyd et al. 2007, eqs. 47, 63–65, 70–71.
@@ -311,6 +312,7 @@ def _first_row_under(fkey: str, lx: Array, near, far, fov) -> Array:
     return np.where(y_needed <= y1, (y_needed - y0) / (y1 - y0), np.inf)
 
 
+@check.names_broadcast
 def optimal_factors(kind: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, minimize: str = "S", lx: ArrayLike = 0.0, ly: ArrayLike = 0.0,
                     lz: ArrayLike = np.inf, directional: bool = False, b: ArrayLike = np.inf, a_max: float = 1e4, samples: int = 129) -> dict[str, Array]:
     """R_s, R_t, S with the perspective parameter a chosen per light to minimise one of them.
@@ -355,6 +357,7 @@ def optimal_factors(kind: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, 
     return {**out, "a": a_opt + 0 * out["S"]}
 
 
+@check.names_broadcast
 def optimal_root(near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx: ArrayLike = 0.0, ly: ArrayLike = 0.0, lz: ArrayLike = np.inf,
                  directional: bool = False, a: ArrayLike = 0.0, samples: int = 129) -> dict[str, Array]:
     """R_s, R_t, S of the log+perspective parameterization with its second root b chosen per light.
@@ -401,6 +404,7 @@ def optimal_root(near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx: ArrayLi
     return {"R_s": R_s, "R_t": R_t, "S": R_s * R_t, "b": b_opt}
 
 
+@check.names_broadcast
 def max_over_lights(factors: dict[str, Array], axis: int | tuple[int, ...] | None = None) -> dict[str, Array]:
     """𝐑 = max_Ω R and 𝐒 = max_Ω S over the light positions, Lloyd et al. 2007, eqs. 72–73.
 
