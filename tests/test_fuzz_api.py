@@ -240,8 +240,13 @@ values = st.one_of(scalars, arrays, nested)
 CI_CALLS = 2400
 
 
+# Names a message may use for a parameter: its symbol or its command-line option.
+ALIASES = {"lam": {"lambda"}, "spec": {"light"}}
+
+
 def _names(func: Callable, kwargs: dict[str, object]) -> set[str]:
-    return {p.name for p in _params(func)} | set(kwargs)
+    names = {p.name for p in _params(func)} | set(kwargs)
+    return names.union(*(ALIASES.get(n, set()) for n in names))
 
 
 @st.composite
