@@ -86,9 +86,15 @@ def broadcast(**arrays: ArrayLike) -> list[NDArray]:
         raise ValueError(f"shapes do not broadcast together: {shapes}") from None
 
 
-def names_broadcast(func: Callable) -> Callable:
-    """Decorator: numpy's "operands could not be broadcast together" inside ``func`` becomes a
-    ValueError naming the array arguments and their shapes."""
+def public(func: Callable) -> Callable:
+    """Decorator for public numeric functions.
+
+    * numpy's "operands could not be broadcast together" inside ``func`` becomes a ValueError
+      naming the array arguments and their shapes;
+    * float overflow and division by zero give ±inf silently (a valid input whose answer
+      exceeds 1.8e308, or a light grazing a face, has the answer inf); an invalid operation
+      (inf − inf, 0·inf, 0/0 → NaN) still warns, so that a NaN is never returned quietly.
+    """
     signature = inspect.signature(func)
 
     def rename(exc: ValueError, args: tuple, kwargs: dict) -> None:
@@ -103,12 +109,14 @@ def names_broadcast(func: Callable) -> Callable:
 
     def wrapper(*args, **kwargs):
         try:
-            return func(*args, **kwargs)
+            with errstate(over="ignore", under="ignore", divide="ignore"):
+                return func(*args, **kwargs)
         except ValueError as exc:
             rename(exc, args, kwargs)
 
     # rebuilt with the wrapped function's globals so that doctest still finds the function
     # as belonging to its module (it compares __globals__) and runs its Example
+    errstate = np.errstate  # a closure variable: the wrapper may read no globals of this module
     wrapper = types.FunctionType(wrapper.__code__, func.__globals__, func.__name__, None, wrapper.__closure__)
     return functools.wraps(func)(wrapper)
 

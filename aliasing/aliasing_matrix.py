@@ -146,7 +146,7 @@ class Camera:
         return self.direction is not None
 
 
-@check.names_broadcast
+@check.public
 def camera_axes(view: ArrayLike, up: ArrayLike = (0.0, 1.0, 0.0)) -> Array:
     """Orthonormal camera axes (rows x̂, ŷ, ẑ) looking along ``view``, ẑ = −view/|view|.
 
@@ -232,7 +232,7 @@ def _chain(factors: list[Array]) -> Array:
     return out
 
 
-@check.names_broadcast
+@check.public
 def aliasing_matrix(
     point: ArrayLike,
     normal: ArrayLike,
@@ -280,7 +280,7 @@ def aliasing_matrix(
     return r_img[..., :, None] * di_ds / r_map[..., None, :]  # eq. (34)
 
 
-@check.names_broadcast
+@check.public
 def spacing_eye(point: ArrayLike, normal: ArrayLike, eye: Camera, light: Camera) -> Array:
     """Eye spacing matrix δ_e = (∂i/∂u)⁻¹, Lloyd et al. 2007, eq. 40.
 
@@ -303,7 +303,7 @@ def spacing_eye(point: ArrayLike, normal: ArrayLike, eye: Camera, light: Camera)
     return np.linalg.inv(_chain(_factors(point, normal, eye, light)))  # eq. (40)
 
 
-@check.names_broadcast
+@check.public
 def spacing_light(dF_du: ArrayLike) -> Array:
     """Light spacing matrix δ_l = ∂G/∂s = (∂F/∂u)⁻¹, Lloyd et al. 2007, eq. 39.
 
@@ -328,7 +328,7 @@ def spacing_light(dF_du: ArrayLike) -> Array:
     return np.linalg.inv(jac)  # eq. (39)
 
 
-@check.names_broadcast
+@check.public
 def error_metric(M: ArrayLike, metric: str | int | float = "2") -> Array:
     """Scalar aliasing error h(M) of a 2×2 matrix (Lloyd et al. 2007 §3.4).
 
@@ -374,7 +374,7 @@ def _basis(w: Array, hint: Array) -> Array:
     return np.stack(np.broadcast_arrays(b1, np.cross(w, b1)), axis=-1)
 
 
-@check.names_broadcast
+@check.public
 def halfway_normal(point: ArrayLike, eye: Camera, light: Camera) -> Array:
     """Unit normal half-way between the eye direction v̂_e and the light direction −v̂_l (§3.3).
 
@@ -401,7 +401,7 @@ def halfway_normal(point: ArrayLike, eye: Camera, light: Camera) -> Array:
     return _unit(h, "halfway vector (the eye and the light are in opposite directions)")
 
 
-@check.names_broadcast
+@check.public
 def cross_sections(point: ArrayLike, eye: Camera, light: Camera, *, delta_l: ArrayLike | None = None, res_image: ArrayLike = 1.0, res_map: ArrayLike = 1.0) -> tuple[Array, Array]:
     """Differential cross-sections X_l (one texel) and X_e (one pixel) of the beams at a point.
 

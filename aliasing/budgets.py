@@ -81,7 +81,7 @@ ALLOCATIONS: dict[str, tuple[Callable[[Array, Array, Array], tuple[Array, Array]
 }
 
 
-@check.names_broadcast
+@check.public
 def allocate(method: str, M_x: ArrayLike, M_z: ArrayLike, budget: ArrayLike) -> tuple[Array, Array]:
     """Resolutions (res_s, res_t) [texels] of each map, shape of ``M_x`` (…, K).
 
@@ -110,7 +110,7 @@ def allocate(method: str, M_x: ArrayLike, M_z: ArrayLike, budget: ArrayLike) -> 
     return res_s, res_t
 
 
-@check.names_broadcast
+@check.public
 def max_error(M_x: ArrayLike, M_z: ArrayLike, res_s: ArrayLike, res_t: ArrayLike, res_image: ArrayLike = 1.0) -> Array:
     """Maximum perspective aliasing error of each map, res_i·max(M_x/res_s, M_z/res_t)."""
     ri = check.positive(res_image, "res_image")
@@ -121,7 +121,7 @@ def max_error(M_x: ArrayLike, M_z: ArrayLike, res_s: ArrayLike, res_t: ArrayLike
         return ri * np.maximum(mx / rs, mz / rt)
 
 
-@check.names_broadcast
+@check.public
 def splits_report(
     method: str,
     near: float,

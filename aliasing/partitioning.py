@@ -66,7 +66,7 @@ def register(name: str, source: str, summary: str, *, default_k: int | None = No
     return wrap
 
 
-@check.names_broadcast
+@check.public
 def split_distances(method: str, near: float, far: float, k: int | None = None, **params: float) -> Array:
     """The k + 1 split distances C_0 = near < … < C_k = far of a named scheme [world units].
 
@@ -101,7 +101,7 @@ def split_distances(method: str, near: float, far: float, k: int | None = None, 
     return edges
 
 
-@check.names_broadcast
+@check.public
 def partitions(method: str, near: float, far: float, k: int | None = None, **params: float) -> tuple[Array, Array]:
     """Each map's (near_i, far_i) [world units]: the split distances, padded or overlapped
     the way the engine does it (Ogre's padding, bgfx's and Unreal's overlaps)."""
