@@ -179,7 +179,11 @@ def splits_report(
     from . import partitioning, schemes
 
     if (budget is None) != (res_image is None):
-        raise ValueError("budget and image resolution go together: give both or neither")
+        raise ValueError("budget and res_image (image resolution) go together: give both or neither")
+    if isinstance(allocations, str) or not isinstance(allocations, (tuple, list)) or not all(isinstance(a, str) for a in allocations):
+        raise ValueError(f"allocations must be a tuple of allocation names ({', '.join(ALLOCATIONS)}), got {allocations!r:.60}")
+    for name in allocations:
+        check.choice(name, "allocations entry", ALLOCATIONS)
     n_i, f_i = partitioning.partitions(method, near, far, k, **params)
     r = schemes.evaluate(warp, near, far, fov, light, edges=(n_i, f_i))
     s = r.M_x * r.M_z  # (N, K)

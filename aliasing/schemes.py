@@ -91,7 +91,8 @@ def parse(name: str) -> Scheme:
     >>> parse("zp7+log")
     Scheme(name='ZP7+LogP', k=7, rule='logp', parameterization='logperspective', faces='')
     """
-    text = str(name).strip()
+    check.instance(name, "name (scheme name)", str)
+    text = name.strip()
     fm = re.fullmatch(r"(fp|fpc|fpcs)(?:\+zp(\d+))?\+(.+)", text, flags=re.IGNORECASE)
     if fm:
         return _parse_faces(name, fm)
@@ -125,10 +126,8 @@ def _parse_faces(name: str, fm: re.Match) -> Scheme:
 
 def z_partitions(near: float, far: float, k: int) -> tuple[Array, Array]:
     """Self-similar split depths n_i = n (f/n)^((i−1)/k), f_i = n (f/n)^(i/k) (Lloyd 2006 eqs. 15–16)."""
-    n, f = check.frustum(near, far)
-    if isinstance(k, bool) or int(k) != k or k < 1:
-        raise ValueError(f"k must be a whole number >= 1 (number of z-partitions), got {k!r}")
-    k = int(k)
+    n, f = check.frustum(check.scalar(near, "near"), check.scalar(far, "far"))
+    k = check.whole(k, "k", 1, 1024, " (number of z-partitions)")
     edges = float(n) * (float(f) / float(n)) ** (np.arange(k + 1) / k)  # eqs. (15), (16)
     edges[-1] = float(f)
     return edges[:-1], edges[1:]
@@ -157,6 +156,7 @@ def evaluate(scheme: str | Scheme, near: float = 1.0, far: float = 1000.0, fov: 
         Passed to the warping rule (e.g. ``c_fraction`` for P/LogP, ``focus`` for TSM).
     """
     sch = parse(scheme) if isinstance(scheme, str) else scheme
+    check.instance(sch, "scheme", Scheme)  # a name or a parsed Scheme, nothing else (issue 19)
     if sch.faces:
         return _evaluate_faces(sch, near, far, fov, light, edges, **options)
     if edges is None:
