@@ -48,25 +48,35 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 
+__all__ = [
+    "Camera",
+    "aliasing_matrix",
+    "camera_axes",
+    "cross_sections",
+    "error_metric",
+    "halfway_normal",
+    "spacing_eye",
+    "spacing_light",
+]
+
 Array = NDArray[np.float64]
 METRICS = ("1", "2", "inf", "fro", "det", "column")
 
 
 def _vectors(value: ArrayLike, name: str, size: int = 3) -> Array:
-    arr = check.as_float_array(value, name)
+    arr = check.finite(value, name)
     if arr.ndim == 0 or arr.shape[-1] != size:
         raise ValueError(f"{name} must have a last axis of length {size} (shape (..., {size})), got shape {arr.shape}")
-    if np.isinf(arr).any():
-        raise ValueError(f"{name} must be finite")
     return arr
 
 
 def _unit(value: ArrayLike, name: str) -> Array:
     arr = _vectors(value, name)
-    norm = np.linalg.norm(arr, axis=-1, keepdims=True)
-    if (norm == 0).any():
+    scale = np.abs(arr).max(axis=-1, keepdims=True) if arr.size else np.ones(arr.shape[:-1] + (1,))
+    if (scale == 0).any():
         raise ValueError(f"{name} must be a non-zero vector")
-    return arr / norm
+    arr = arr / scale  # first to the largest component: |v| itself may overflow or underflow
+    return arr / np.linalg.norm(arr, axis=-1, keepdims=True)
 
 
 def _dot(a: Array, b: Array) -> Array:
@@ -136,6 +146,7 @@ class Camera:
         return self.direction is not None
 
 
+@check.public
 def camera_axes(view: ArrayLike, up: ArrayLike = (0.0, 1.0, 0.0)) -> Array:
     """Orthonormal camera axes (rows x̂, ŷ, ẑ) looking along ``view``, ẑ = −view/|view|.
 
@@ -158,9 +169,9 @@ def camera_axes(view: ArrayLike, up: ArrayLike = (0.0, 1.0, 0.0)) -> Array:
            [0., 0., 1.]])
     """
     z = -_unit(view, "view")
-    x = np.cross(_vectors(up, "up"), z)
+    x = np.cross(_unit(up, "up"), z)
     norm = np.linalg.norm(x, axis=-1, keepdims=True)
-    if (norm <= 1e-12 * np.linalg.norm(_vectors(up, "up"), axis=-1, keepdims=True)).any():
+    if (norm <= 1e-12).any():
         raise ValueError("up must not be parallel to view")
     x = x / norm
     return np.stack(np.broadcast_arrays(x, np.cross(z, x), z), axis=-2) + 0.0  # + 0.0: no signed zeros
@@ -168,6 +179,7 @@ def camera_axes(view: ArrayLike, up: ArrayLike = (0.0, 1.0, 0.0)) -> Array:
 
 def _factors(point: ArrayLike, normal: ArrayLike, eye: Camera, light: Camera) -> list[Array]:
     """∂i/∂p_e, ∂p_e/∂p, ∂p/∂p_l, ∂p_l/∂u of eq. 35 at the surface point ``point``."""
+    _cameras(eye, light)
     if eye.directional:
         raise ValueError("eye must have a position (a centre of projection), not a direction")
     p = _vectors(point, "point")
@@ -199,13 +211,18 @@ def _factors(point: ArrayLike, normal: ArrayLike, eye: Camera, light: Camera) ->
     return [di_dpe, dpe_dp, dp_dpl, dpl_du]
 
 
-def _delta(delta_l: ArrayLike | None) -> Array:
+def _delta(delta_l: ArrayLike | None, name: str = "delta_l") -> Array:
     if delta_l is None:
         return np.eye(2)
-    arr = check.as_float_array(delta_l, "delta_l")
+    arr = check.finite(delta_l, name)
     if arr.ndim < 2 or arr.shape[-2:] != (2, 2):
-        raise ValueError(f"delta_l must have shape (..., 2, 2), got shape {arr.shape}")
+        raise ValueError(f"{name} must have shape (..., 2, 2), got shape {arr.shape}")
     return arr
+
+
+def _cameras(eye: object, light: object) -> None:
+    check.instance(eye, "eye", Camera)
+    check.instance(light, "light", Camera)
 
 
 def _chain(factors: list[Array]) -> Array:
@@ -215,6 +232,7 @@ def _chain(factors: list[Array]) -> Array:
     return out
 
 
+@check.public
 def aliasing_matrix(
     point: ArrayLike,
     normal: ArrayLike,
@@ -262,6 +280,7 @@ def aliasing_matrix(
     return r_img[..., :, None] * di_ds / r_map[..., None, :]  # eq. (34)
 
 
+@check.public
 def spacing_eye(point: ArrayLike, normal: ArrayLike, eye: Camera, light: Camera) -> Array:
     """Eye spacing matrix δ_e = (∂i/∂u)⁻¹, Lloyd et al. 2007, eq. 40.
 
@@ -284,6 +303,7 @@ def spacing_eye(point: ArrayLike, normal: ArrayLike, eye: Camera, light: Camera)
     return np.linalg.inv(_chain(_factors(point, normal, eye, light)))  # eq. (40)
 
 
+@check.public
 def spacing_light(dF_du: ArrayLike) -> Array:
     """Light spacing matrix δ_l = ∂G/∂s = (∂F/∂u)⁻¹, Lloyd et al. 2007, eq. 39.
 
@@ -302,12 +322,13 @@ def spacing_light(dF_du: ArrayLike) -> Array:
     array([[0.5 , 0.  ],
            [0.  , 0.25]])
     """
-    jac = _delta(dF_du)
+    jac = _delta(dF_du, "dF_du")
     if (np.linalg.det(jac) == 0).any():
         raise ValueError("dF_du must be invertible (det ≠ 0)")
     return np.linalg.inv(jac)  # eq. (39)
 
 
+@check.public
 def error_metric(M: ArrayLike, metric: str | int | float = "2") -> Array:
     """Scalar aliasing error h(M) of a 2×2 matrix (Lloyd et al. 2007 §3.4).
 
@@ -332,7 +353,7 @@ def error_metric(M: ArrayLike, metric: str | int | float = "2") -> Array:
     [7.0, 5.0645, 5.0, 5.099, 3.0, 5.0]
     """
     key = check.choice(str(metric), "metric", METRICS)
-    arr = _delta(M)
+    arr = _delta(M, "M")
     if key == "det":
         return np.abs(np.linalg.det(arr))
     if key == "column":
@@ -353,6 +374,7 @@ def _basis(w: Array, hint: Array) -> Array:
     return np.stack(np.broadcast_arrays(b1, np.cross(w, b1)), axis=-1)
 
 
+@check.public
 def halfway_normal(point: ArrayLike, eye: Camera, light: Camera) -> Array:
     """Unit normal half-way between the eye direction v̂_e and the light direction −v̂_l (§3.3).
 
@@ -371,6 +393,7 @@ def halfway_normal(point: ArrayLike, eye: Camera, light: Camera) -> Array:
     >>> halfway_normal([0.0, 0.0, 0.0], eye, sun).round(6)
     array([0.707107, 0.      , 0.707107])
     """
+    _cameras(eye, light)
     p = _vectors(point, "point")
     if eye.directional:
         raise ValueError("eye must have a position (a centre of projection), not a direction")
@@ -378,6 +401,7 @@ def halfway_normal(point: ArrayLike, eye: Camera, light: Camera) -> Array:
     return _unit(h, "halfway vector (the eye and the light are in opposite directions)")
 
 
+@check.public
 def cross_sections(point: ArrayLike, eye: Camera, light: Camera, *, delta_l: ArrayLike | None = None, res_image: ArrayLike = 1.0, res_map: ArrayLike = 1.0) -> tuple[Array, Array]:
     """Differential cross-sections X_l (one texel) and X_e (one pixel) of the beams at a point.
 
@@ -402,6 +426,7 @@ def cross_sections(point: ArrayLike, eye: Camera, light: Camera, *, delta_l: Arr
     >>> float(error_metric(X_l, "det")), float(error_metric(X_e, "det"))
     (400.0, 400.0)
     """
+    _cameras(eye, light)
     p = _vectors(point, "point")
     w_l = _beam(p, light)
     di_dpe, dpe_dp, dp_dpl, dpl_du = _factors(p, w_l, eye, light)  # ∂p/∂p_l onto the plane ⟂ the light beam

@@ -34,6 +34,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 
+__all__ = [
+    "ALLOCATIONS",
+    "allocate",
+    "max_error",
+    "splits_report",
+]
+
 Array = NDArray[np.float64]
 
 
@@ -61,6 +68,11 @@ def _pow2(mx: Array, mz: Array, budget: Array) -> tuple[Array, Array]:
     return side, side
 
 
+# A range of M_x, M_z and budget in which every allocation's arithmetic stays inside float64
+# (its products and ratios of two such numbers); outside it allocate refuses rather than
+# returning inf or 0 texels.
+_LO, _HI = 1e-150, 1e150
+
 ALLOCATIONS: dict[str, tuple[Callable[[Array, Array, Array], tuple[Array, Array]], str]] = {
     "error": (_error, "Lloyd et al. 2007 eq. 83: texels in proportion to each map's S, s/t by eqs. 13–14"),
     "equal": (_equal, "engines: k square maps of T/k texels"),
@@ -69,6 +81,7 @@ ALLOCATIONS: dict[str, tuple[Callable[[Array, Array, Array], tuple[Array, Array]
 }
 
 
+@check.public
 def allocate(method: str, M_x: ArrayLike, M_z: ArrayLike, budget: ArrayLike) -> tuple[Array, Array]:
     """Resolutions (res_s, res_t) [texels] of each map, shape of ``M_x`` (…, K).
 
@@ -80,21 +93,35 @@ def allocate(method: str, M_x: ArrayLike, M_z: ArrayLike, budget: ArrayLike) -> 
     budget : array_like
         Total texels T over all maps; at least one texel per map.
     """
-    key = check.choice(method, "allocation", ALLOCATIONS)
+    key = check.choice(method, "allocation method", ALLOCATIONS)
     mx = check.positive(M_x, "M_x")
     mz = check.positive(M_z, "M_z")
     t = check.positive(budget, "budget")
+    if mx.ndim == 0 or mx.shape != mz.shape or mx.shape[-1] == 0:
+        raise ValueError(f"M_x and M_z must have the same shape (..., K) with K >= 1 maps on the last axis, got {mx.shape} and {mz.shape}")
     if (t < mx.shape[-1]).any():
         raise ValueError(f"budget must be at least one texel per map ({mx.shape[-1]} maps), got {check._show(t)}")
-    return ALLOCATIONS[key][0](mx, mz, np.asarray(t)[..., None] if np.ndim(t) else t)
+    tt = np.asarray(t)[..., None] if np.ndim(t) else t
+    check.broadcast(M_x=mx, budget=tt)
+    with np.errstate(over="ignore", under="ignore"):
+        res_s, res_t = ALLOCATIONS[key][0](mx, mz, tt)
+    if not (np.isfinite(res_s).all() and np.isfinite(res_t).all() and (res_s > 0).all() and (res_t > 0).all()):
+        raise ValueError(f"M_x, M_z and budget give resolutions outside the float range; keep M_x, M_z and budget within [{_LO:g}, {_HI:g}]")
+    return res_s, res_t
 
 
+@check.public
 def max_error(M_x: ArrayLike, M_z: ArrayLike, res_s: ArrayLike, res_t: ArrayLike, res_image: ArrayLike = 1.0) -> Array:
     """Maximum perspective aliasing error of each map, res_i·max(M_x/res_s, M_z/res_t)."""
     ri = check.positive(res_image, "res_image")
-    return ri * np.maximum(np.asarray(M_x) / check.positive(res_s, "res_s"), np.asarray(M_z) / check.positive(res_t, "res_t"))
+    mx, mz = check.positive(M_x, "M_x"), check.positive(M_z, "M_z")
+    rs, rt = check.positive(res_s, "res_s"), check.positive(res_t, "res_t")
+    check.broadcast(M_x=mx, M_z=mz, res_s=rs, res_t=rt, res_image=ri)
+    with np.errstate(over="ignore", under="ignore"):  # an error beyond 1.8e308 is inf, which is its honest value
+        return ri * np.maximum(mx / rs, mz / rt)
 
 
+@check.public
 def splits_report(
     method: str,
     near: float,
@@ -152,7 +179,11 @@ def splits_report(
     from . import partitioning, schemes
 
     if (budget is None) != (res_image is None):
-        raise ValueError("budget and image resolution go together: give both or neither")
+        raise ValueError("budget and res_image (image resolution) go together: give both or neither")
+    if isinstance(allocations, str) or not isinstance(allocations, (tuple, list)) or not all(isinstance(a, str) for a in allocations):
+        raise ValueError(f"allocations must be a tuple of allocation names ({', '.join(ALLOCATIONS)}), got {allocations!r:.60}")
+    for name in allocations:
+        check.choice(name, "allocations entry", ALLOCATIONS)
     n_i, f_i = partitioning.partitions(method, near, far, k, **params)
     r = schemes.evaluate(warp, near, far, fov, light, edges=(n_i, f_i))
     s = r.M_x * r.M_z  # (N, K)

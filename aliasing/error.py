@@ -29,6 +29,18 @@ from . import _validation as check
 from .view import half_angle
 from .parameterizations import _depths
 
+__all__ = [
+    "critical_resolution",
+    "dp_ds",
+    "m_x",
+    "m_z",
+    "max_error_x",
+    "max_error_z",
+    "resolution_for_budget",
+    "storage_factor",
+    "storage_factor_optimal",
+]
+
 Array = NDArray[np.float64]
 
 
@@ -44,11 +56,17 @@ def _frustum_warp(near: ArrayLike, far: ArrayLike, n_prime: ArrayLike) -> tuple[
 
 def _ratio(n_prime: Array, u: ArrayLike, v: ArrayLike) -> Array:
     """(n′ + u)/(n′ + v), with its limit 1 at n′ = ∞."""
-    with np.errstate(invalid="ignore"):
-        r = (n_prime + u) / (n_prime + v)
-    return np.where(np.isinf(n_prime), 1.0, r)
+    n_prime, u, v = np.broadcast_arrays(n_prime, np.asarray(u, float), np.asarray(v, float))
+    finite = np.isfinite(n_prime)
+    # divided by the largest term first, so that sums near 1.8e308 do not overflow to inf/inf
+    scale = np.maximum(np.where(finite, np.abs(n_prime), 0.0), np.maximum(np.abs(u), np.abs(v)))
+    scale = np.where(scale > 0, scale, 1.0)
+    with np.errstate(invalid="ignore", divide="ignore", under="ignore"):
+        r = (n_prime / scale + u / scale) / (n_prime / scale + v / scale)
+    return np.where(finite, r, 1.0)
 
 
+@check.public
 def m_x(z: ArrayLike, near: ArrayLike, far: ArrayLike, n_prime: ArrayLike = np.inf, *, res_image: ArrayLike = 1.0, res_s: ArrayLike = 1.0) -> Array:
     """Perspective aliasing error across the view, m_x = w_lx/w_i (Lloyd et al. 2006 eq. 7).
 
@@ -80,6 +98,7 @@ def m_x(z: ArrayLike, near: ArrayLike, far: ArrayLike, n_prime: ArrayLike = np.i
     return ri / rs * f / zz * _ratio(npr, zz - n, f - n)  # eq. (7): f z′/(z f′)
 
 
+@check.public
 def m_z(z: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime: ArrayLike = np.inf, *, res_image: ArrayLike = 1.0, res_t: ArrayLike = 1.0) -> Array:
     """Perspective aliasing error along the view depth, m_z = w_lz/w_i (Lloyd et al. 2006 eq. 8).
 
@@ -114,6 +133,7 @@ def m_z(z: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime: 
     return ri / rt * (f - n) / (2 * _half_tan(fov)) * zp_over_np * _ratio(npr, zz - n, f - n) / zz  # eq. (8)
 
 
+@check.public
 def max_error_x(near: ArrayLike, far: ArrayLike, n_prime: ArrayLike = np.inf, *, res_image: ArrayLike = 1.0, res_s: ArrayLike = 1.0) -> Array:
     """M_x = max over z of m_x, at z = near (Lloyd et al. 2006 eq. 9, corrected: docs/ERRATA.md E3).
 
@@ -130,6 +150,7 @@ def max_error_x(near: ArrayLike, far: ArrayLike, n_prime: ArrayLike = np.inf, *,
     return ri / rs * f / n * _ratio(npr, 0.0, f - n)  # eq. (9) corrected: f n′/(n f′)
 
 
+@check.public
 def max_error_z(near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime: ArrayLike = np.inf, *, res_image: ArrayLike = 1.0, res_t: ArrayLike = 1.0) -> Array:
     """M_z = max over z of m_z (Lloyd et al. 2006 eq. 10, corrected: docs/ERRATA.md E3).
 
@@ -152,6 +173,7 @@ def max_error_z(near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime: ArrayL
     return scale * np.where(npr <= n_l, far_plane, near_plane)  # eq. (10) corrected
 
 
+@check.public
 def storage_factor(near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime: ArrayLike = np.inf) -> Array:
     """Storage factor S̄ = M_x·M_z at unit resolutions (Lloyd et al. 2006 eq. 12).
 
@@ -170,6 +192,7 @@ def storage_factor(near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime: Arr
     return base * np.where(npr <= n_l, 1.0, np_over_fp**2 * f / n)  # eq. (12)
 
 
+@check.public
 def storage_factor_optimal(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> Array:
     """S̄ of the logarithmic parameterization, ln(f/n)/(2 tanθ) (Lloyd et al. 2006 App. C).
 
@@ -182,6 +205,7 @@ def storage_factor_optimal(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> A
     return np.log1p((f - n) / n) / (2 * _half_tan(fov))  # App. C; log1p keeps f/n → 1 accurate
 
 
+@check.public
 def critical_resolution(near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime: ArrayLike = np.inf, *, res_image: ArrayLike = 1.0) -> tuple[Array, Array]:
     """Critical resolutions (res*_s, res*_t) [texels] at which M_x = M_z = 1 (Lloyd 2006 §4.2).
 
@@ -198,6 +222,7 @@ def critical_resolution(near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime
     return rs, rt
 
 
+@check.public
 def resolution_for_budget(budget: ArrayLike, res_s_critical: ArrayLike, res_t_critical: ArrayLike) -> tuple[Array, Array]:
     """Split a texel budget S0 between s and t (Lloyd et al. 2006 eqs. 13–14).
 
@@ -228,6 +253,7 @@ def resolution_for_budget(budget: ArrayLike, res_s_critical: ArrayLike, res_t_cr
     return np.sqrt(s0 * rs_c / rt_c), np.sqrt(s0 * rt_c / rs_c)  # eqs. (13), (14)
 
 
+@check.public
 def dp_ds(z: ArrayLike, near: ArrayLike, far: ArrayLike, n_prime: ArrayLike = np.inf) -> Array:
     """Wimmer et al. 2004 eq. 3: perspective aliasing dp/ds along the view depth.
 

@@ -58,6 +58,13 @@ from numpy.typing import ArrayLike, NDArray
 from . import _validation as check
 from . import logpsm
 
+__all__ = [
+    "face_factors",
+    "max_over_lights",
+    "optimal_factors",
+    "optimal_root",
+]
+
 Array = NDArray[np.float64]
 KINDS = ("bound", "uniform", "perspective", "log", "logp")
 FACES = ("side", "near", "far")
@@ -188,11 +195,14 @@ class _Setup:
     samples: int
 
 
+# Most samples per face coordinate (each holds one float per light position and sample).
+MAX_SAMPLES = 100_000
+
+
 def _setup(kind, near, far, fov, lx, ly, lz, directional, face, samples) -> _Setup:
     key, fkey = _kind_face(kind, face)
     lx_, ly_, lz_ = _light(lx, ly, lz, directional)
-    if int(samples) != samples or int(samples) < 3:
-        raise ValueError(f"samples must be an integer ≥ 3, got {samples!r}")
+    samples = check.whole(samples, "samples", 3, MAX_SAMPLES)
     near_, far_ = check.frustum(near, far)
     in_plane = np.zeros(lz_.shape, bool) if directional else lz_ == 0
     return _Setup(key, fkey, near_, far_, check.fov(fov), lx_, ly_, np.where(in_plane, 1.0, lz_), in_plane, directional, int(samples))
@@ -242,6 +252,7 @@ def _R_s(c: _Setup, a, zeros: Array) -> Array:
     return R + zeros
 
 
+@check.public
 def face_factors(kind: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx: ArrayLike = 0.0, ly: ArrayLike = 0.0, lz: ArrayLike = np.inf,
                  directional: bool = False, a: ArrayLike = 0.0, b: ArrayLike = np.inf, face: str = "side", samples: int = 257) -> dict[str, Array]:
     """R_s, R_t and S = R_s R_t of a face for a light, Lloyd et al. 2007, eqs. 47, 63–65, 70–71.
@@ -304,6 +315,7 @@ def _first_row_under(fkey: str, lx: Array, near, far, fov) -> Array:
     return np.where(y_needed <= y1, (y_needed - y0) / (y1 - y0), np.inf)
 
 
+@check.public
 def optimal_factors(kind: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, minimize: str = "S", lx: ArrayLike = 0.0, ly: ArrayLike = 0.0,
                     lz: ArrayLike = np.inf, directional: bool = False, b: ArrayLike = np.inf, a_max: float = 1e4, samples: int = 129) -> dict[str, Array]:
     """R_s, R_t, S with the perspective parameter a chosen per light to minimise one of them.
@@ -348,6 +360,7 @@ def optimal_factors(kind: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, 
     return {**out, "a": a_opt + 0 * out["S"]}
 
 
+@check.public
 def optimal_root(near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx: ArrayLike = 0.0, ly: ArrayLike = 0.0, lz: ArrayLike = np.inf,
                  directional: bool = False, a: ArrayLike = 0.0, samples: int = 129) -> dict[str, Array]:
     """R_s, R_t, S of the log+perspective parameterization with its second root b chosen per light.
@@ -394,6 +407,7 @@ def optimal_root(near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx: ArrayLi
     return {"R_s": R_s, "R_t": R_t, "S": R_s * R_t, "b": b_opt}
 
 
+@check.public
 def max_over_lights(factors: dict[str, Array], axis: int | tuple[int, ...] | None = None) -> dict[str, Array]:
     """𝐑 = max_Ω R and 𝐒 = max_Ω S over the light positions, Lloyd et al. 2007, eqs. 72–73.
 
@@ -417,6 +431,7 @@ def max_over_lights(factors: dict[str, Array], axis: int | tuple[int, ...] | Non
     >>> round(float(max_over_lights(f)["R_t"]), 4)  # eq. 89: ln(f/n)/sin 2θ
     6.9078
     """
+    check.instance(factors, "factors", dict)
     missing = {"R_s", "R_t", "S"} - set(factors)
     if missing:
         raise ValueError(f"factors must hold R_s, R_t and S (the output of face_factors), missing {sorted(missing)}")

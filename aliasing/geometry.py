@@ -70,15 +70,15 @@ def light_direction(gamma: ArrayLike, azimuth: ArrayLike = 0.0) -> Array:
            [ 0.,  0., -1.]])
     """
     g = check.closed_range(gamma, "gamma", 0.0, 180.0, " degrees")
-    a = check.as_float_array(azimuth, "azimuth")
-    g, a = np.broadcast_arrays(g, a)
+    a = check.finite(azimuth, "azimuth")
+    g, a = check.broadcast(gamma=g, azimuth=a)
     sg, cg = sind(g), sind(90.0 - g)
     return np.stack([sg * sind(a), sg * sind(90.0 - a), cg], axis=-1)
 
 
 def sind(x: ArrayLike) -> Array:
     """sin of an angle in degrees, exact at multiples of 90° (the argument is folded to [−90°, 90°])."""
-    r = np.asarray(x, dtype=float)
+    r = check.finite(x, "x")
     r = np.where(np.abs(r) > 180.0, np.remainder(r + 180.0, 360.0) - 180.0, r)  # reduce only when needed: keeps tiny angles exact
     r = np.where(r > 90.0, 180.0 - r, np.where(r < -90.0, -180.0 - r, r))
     return np.sin(np.radians(r))
@@ -149,7 +149,7 @@ def hemisphere_map(resolution: int) -> tuple[Array, Array, Array]:
     (u = −1), in front on the right (u = +1); v runs sideways (x).  Returns ``(u, v, light)``
     with ``light`` of shape ``(resolution, resolution, 3)``, NaN outside the unit disc.
     """
-    res = _count(resolution, "resolution")
+    res = _count(resolution, "resolution", MAX_MAP_RESOLUTION)
     c = np.linspace(-1.0, 1.0, res)
     u, v = np.meshgrid(c, c)
     h2 = 1.0 - u * u - v * v
@@ -160,19 +160,24 @@ def hemisphere_map(resolution: int) -> tuple[Array, Array, Array]:
 
 
 def _unit(light: ArrayLike) -> Array:
-    lv = check.as_float_array(light, "light")
+    lv = check.finite(light, "light")  # an infinite vector has no direction
     if lv.shape[-1:] != (3,):
         raise ValueError(f"light must have shape (..., 3), got {lv.shape}")
-    norm = np.linalg.norm(lv, axis=-1, keepdims=True)
-    if (norm == 0).any():
+    scale = np.abs(lv).max(axis=-1, keepdims=True)
+    if (scale == 0).any():
         raise ValueError("light must be a non-zero vector")
-    return lv / norm
+    lv = lv / scale  # scaled first: |v| of a vector near 1e308 or 1e-320 would overflow or lose digits
+    return lv / np.linalg.norm(lv, axis=-1, keepdims=True)
 
 
-def _count(value: int, name: str = "N") -> int:
-    if isinstance(value, bool) or int(value) != value or value < 1:
-        raise ValueError(f"{name} must be a whole number >= 1, got {value!r}")
-    return int(value)
+# Most directions a spec or count may ask for: (N, 3) float64 is 240 MB at 10^7.
+MAX_DIRECTIONS = 10**7
+# Largest hemisphere_map grid side (three (res, res) arrays and a (res, res, 3) one).
+MAX_MAP_RESOLUTION = 8192
+
+
+def _count(value: int, name: str = "count", hi: int = MAX_DIRECTIONS) -> int:
+    return check.whole(value, name, 1, hi)
 
 
 LIGHT_SPEC = "overhead | behind | front | gamma:DEG[@azimuth:DEG] | sphere:N | hemisphere:N"
@@ -201,7 +206,7 @@ def lights(spec: str | ArrayLike) -> Array:
             return light_direction(*named[text])[None]
         kind, _, rest = text.partition(":")
         if kind in ("sphere", "hemisphere") and rest:
-            count = int(rest)
+            count = _count(int(rest), "N")
             return sphere_directions(count) if kind == "sphere" else hemisphere_directions(count)
         if kind == "gamma" and rest:
             gamma_text, _, az_text = rest.partition("@")

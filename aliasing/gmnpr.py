@@ -36,6 +36,15 @@ from . import _validation as check
 from .parameterizations import _depths
 from .warping import register
 
+__all__ = [
+    "generalized_error",
+    "lambda_glpr",
+    "lambda_gmnpr",
+    "lambda_lispsm",
+    "lambda_optimal",
+    "light_space_depth",
+]
+
 Array = NDArray[np.float64]
 
 
@@ -70,6 +79,7 @@ def _geometry(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLike)
     return _Geometry(n, f, regime1, theta_deg > fov_deg / 2, theta, phi, sin_t, cos_t, tan_p, z_min, depth)
 
 
+@check.public
 def light_space_depth(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLike = 90.0) -> Array:
     """Light-space depth D = P_f − P_n of the warping frustum fitted to the view frustum.
 
@@ -100,6 +110,7 @@ def light_space_depth(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: Ar
     return _geometry(near, far, fov, gamma).depth
 
 
+@check.public
 def lambda_optimal(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLike = 90.0) -> Array:
     """λ equating the error at the near and far plane, F(n) = F(f) (Zhang et al. 2007, eqs. 3–4).
 
@@ -135,6 +146,7 @@ def lambda_optimal(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: Array
     return np.where(g.regime1, lam1, lam2)
 
 
+@check.public
 def lambda_gmnpr(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLike = 90.0) -> Array:
     """λ_GMNPR (Zhang et al. 2007, eq. 8): eq. 4's λ1 for θ ≥ φ, λ2* of eq. 7 below.
 
@@ -168,6 +180,7 @@ def lambda_gmnpr(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLi
     return np.where(g.regime1, lam1, lam2_star)
 
 
+@check.public
 def lambda_lispsm(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLike = 90.0) -> Array:
     """λ_LiSPSM = P_n/(P_f − P_n) with P_n = (n + √(fn))/sinθ (Zhang et al. 2007, eq. 9).
 
@@ -198,6 +211,7 @@ def lambda_lispsm(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayL
         return (g.n + np.sqrt(g.f * g.n)) / (g.sin_t * g.depth)  # eq. (9)
 
 
+@check.public
 def lambda_glpr(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLike = 90.0) -> Array:
     """λ_GLPR: the λ with F(z) ∝ z (Zhang et al. 2007, §3, GLPR; no formula printed).
 
@@ -230,6 +244,7 @@ def lambda_glpr(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLik
     return np.where(g.beyond, lam, np.nan)  # λ ≤ 0 for θ ≤ φ: GLPR does not exist
 
 
+@check.public
 def generalized_error(lam: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLike, z: ArrayLike) -> Array:
     """Generalized perspective aliasing error F(λ, θ, z) (Zhang et al. 2007, eq. 2).
 

@@ -31,10 +31,27 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 
+__all__ = [
+    "aliasing_error",
+    "critical_factor_side",
+    "critical_factors",
+    "delta_bound_end",
+    "delta_bound_side_s",
+    "delta_bound_side_t",
+    "logp_inverse",
+    "parameterization",
+    "perspective_factor",
+    "rho_bound",
+    "side_face",
+    "spacing",
+    "zeta_bound",
+]
+
 Array = NDArray[np.float64]
 
 
 # --- §3: the general aliasing error -----------------------------------------------------
+@check.public
 def aliasing_error(
     dG_dt: ArrayLike,
     W_l: ArrayLike,
@@ -94,6 +111,7 @@ def aliasing_error(
     return rj / rt * g * wl / we * ne / nl * dl / de * cos["phi_l"] / cos["phi_e"] * cos["psi_e"] / cos["psi_l"]  # eq. (19)
 
 
+@check.public
 def perspective_factor(W_l: ArrayLike, W_e: ArrayLike, n_e: ArrayLike, d_e: ArrayLike, phi_l: ArrayLike, phi_e: ArrayLike, *, n_l: ArrayLike = 1.0, d_l: ArrayLike = 1.0) -> Array:
     """Perspective factor δ̃_e = W_e n_l d_e cosφ_e/(W_l n_e d_l cosφ_l), Lloyd et al. 2007, eq. 30.
 
@@ -114,6 +132,7 @@ def perspective_factor(W_l: ArrayLike, W_e: ArrayLike, n_e: ArrayLike, d_e: Arra
 
 
 # --- faces ------------------------------------------------------------------------------
+@check.public
 def side_face(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> tuple[Array, Array, Array, Array]:
     """(y0, y1, W_e, cosθ) of a side face: y0 = n/cosθ, y1 = f/cosθ, W_e = 2n tanθ (§4.4).
 
@@ -152,17 +171,18 @@ def _cos_phi(coord: Array, l_c: ArrayLike, l_z: ArrayLike, directional: bool = F
     """
     if directional:
         lz = check.positive(l_z, "lz")
-        lc = check.as_float_array(l_c, "light coordinate")
+        lc = check.as_float_array(l_c, "lx/ly (light coordinate)")
         if np.isinf(lc).any():
-            raise ValueError("the direction of a directional light must be finite")
+            raise ValueError("lx/ly: the direction of a directional light must be finite")
         return lz / np.sqrt(lc * lc + lz * lz) + 0.0 * coord  # eq. (57), parallel rays
     lz = check.positive(l_z, "lz", allow_inf=True)
-    lc = check.as_float_array(l_c, "light coordinate")
+    lc = check.as_float_array(l_c, "lx/ly (light coordinate)")
     with np.errstate(invalid="ignore", divide="ignore"):
         q = np.where(np.isinf(lz), 0.0, (coord - lc) / np.where(np.isinf(lz), 1.0, lz))
     return 1.0 / np.sqrt(q * q + 1.0)  # eq. (57)
 
 
+@check.public
 def delta_bound_end(v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, ly: ArrayLike = 0.0, lz: ArrayLike = np.inf, face: str = "far", directional: bool = False) -> Array:
     """Error-bound spacing δ_b,t on an end face, Lloyd et al. 2007, eq. 58.
 
@@ -202,6 +222,7 @@ def delta_bound_end(v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLik
     return ct / _cos_phi(yy, ly, lz, directional)  # eq. (58)
 
 
+@check.public
 def delta_bound_side_s(u: ArrayLike, v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx: ArrayLike = 0.0, lz: ArrayLike = np.inf, directional: bool = False) -> Array:
     """Error-bound spacing δ_b,s on a side face, Lloyd et al. 2007, eq. 61.
 
@@ -225,6 +246,7 @@ def delta_bound_side_s(u: ArrayLike, v: ArrayLike, near: ArrayLike, far: ArrayLi
     return yy / y1 * ct / _cos_phi(xx, lx, lz, directional)  # eq. (61)
 
 
+@check.public
 def delta_bound_side_t(v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, ly: ArrayLike = 0.0, lz: ArrayLike = np.inf, directional: bool = False) -> Array:
     """Error-bound spacing δ_b,t on a side face, Lloyd et al. 2007, eq. 62.
 
@@ -247,6 +269,7 @@ def delta_bound_side_t(v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: Array
     return We * yy / ((y1 - y0) * y0) * ct / _cos_phi(yy, ly, lz, directional)  # eq. (62)
 
 
+@check.public
 def zeta_bound(kind: str, coord: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx: ArrayLike = 0.0, ly: ArrayLike = 0.0, lz: ArrayLike = 1.0, v: ArrayLike = 0.0, face: str = "far") -> Array:
     """Antiderivative ζ_b of 1/δ_b in the face coordinate, Lloyd et al. 2007, eqs. 66–68.
 
@@ -305,6 +328,7 @@ def zeta_bound(kind: str, coord: ArrayLike, near: ArrayLike, far: ArrayLike, fov
     return -y0 / (We * ct) * lz_ / L * np.log(arg)  # eq. (68)
 
 
+@check.public
 def rho_bound(kind: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, lx: ArrayLike = 0.0, ly: ArrayLike = 0.0, lz: ArrayLike = 1.0, v: ArrayLike = 0.0, face: str = "far") -> Array:
     """Normalising constant ρ_b = R_b of the error-bound parameterization, Lloyd et al. 2007, eqs. 63–65.
 
@@ -345,6 +369,7 @@ def _ab(a: ArrayLike, b: ArrayLike, y0: Array, y1: Array) -> tuple[Array, Array]
     return aa, bb
 
 
+@check.public
 def parameterization(kind: str, v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, a: ArrayLike = 0.0, b: ArrayLike = np.inf, u: ArrayLike = 0.5) -> Array:
     """A side-face parameterization in s or t, Lloyd et al. 2007, eqs. 74–78, 106–110.
 
@@ -400,6 +425,7 @@ def parameterization(kind: str, v: ArrayLike, near: ArrayLike, far: ArrayLike, f
     return np.where(np.isinf(bb), np.log((yy + aa) / (y0 + aa)) / np.log((y1 + aa) / (y0 + aa)), finite)
 
 
+@check.public
 def spacing(kind: str, v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, a: ArrayLike = 0.0, b: ArrayLike = np.inf) -> Array:
     """Normalised spacing δ = (dF/dv)⁻¹ of a side-face parameterization, Lloyd et al. 2007.
 
@@ -438,6 +464,7 @@ def spacing(kind: str, v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: Array
     return np.where(np.isinf(bb), lin, finite)
 
 
+@check.public
 def logp_inverse(t: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, a: ArrayLike = 0.0, b: ArrayLike = np.inf) -> Array:
     """Inverse of F_lp,t: v(t), Lloyd et al. 2007, eq. 84 (corrected, erratum L15).
 
@@ -469,6 +496,7 @@ def logp_inverse(t: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, 
 
 
 # --- App. A: closed-form critical resolution factors (overhead directional light) --------
+@check.public
 def critical_factors(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> dict[str, Array]:
     """Closed-form critical resolution factors R and storage S, Lloyd et al. 2007, eqs. 87–103.
 
@@ -525,6 +553,7 @@ def critical_factors(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> dict[st
     }
 
 
+@check.public
 def critical_factor_side(kind: str, direction: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, a: ArrayLike = 0.0, b: ArrayLike = np.inf, samples: int = 2001) -> Array:
     """R = max_v δ_l/δ_b on a side face for the overhead light, by sampling (Lloyd 2007 eq. 47).
 
@@ -543,7 +572,8 @@ def critical_factor_side(kind: str, direction: str, near: ArrayLike, far: ArrayL
     99.0
     """
     key = check.choice(direction, "direction", ["s", "t"])
-    vv = np.linspace(0.0, 1.0, int(samples)).reshape((-1,) + (1,) * len(np.broadcast(np.asarray(near), np.asarray(far), np.asarray(fov), np.asarray(a), np.asarray(b)).shape))
+    samples = check.whole(samples, "samples", 2, 100_000)  # bounded: one float per sample and frustum
+    vv = np.linspace(0.0, 1.0, samples).reshape((-1,) + (1,) * len(np.broadcast(np.asarray(near), np.asarray(far), np.asarray(fov), np.asarray(a), np.asarray(b)).shape))
     if key == "s":
         spacing_kind = {"uniform": "uniform", "perspective": "perspective_s", "logp": "perspective_s"}[check.choice(kind, "kind", ["uniform", "perspective", "logp"])]
         ratio = spacing(spacing_kind, vv, near, far, fov, a=a) / delta_bound_side_s(0.5, vv, near, far, fov)  # eqs. (47), (71)

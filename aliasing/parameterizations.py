@@ -19,6 +19,14 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 
+__all__ = [
+    "spacing_logarithmic",
+    "spacing_perspective",
+    "t_log_perspective",
+    "t_logarithmic",
+    "t_perspective",
+]
+
 
 def _depths(z: ArrayLike, near: ArrayLike, far: ArrayLike):
     n, f = check.frustum(near, far)
@@ -28,6 +36,7 @@ def _depths(z: ArrayLike, near: ArrayLike, far: ArrayLike):
     return zz, n, f
 
 
+@check.public
 def t_perspective(z: ArrayLike, near: ArrayLike, far: ArrayLike, n_prime: ArrayLike) -> NDArray[np.float64]:
     """t(z) of a perspective warping frustum, Lloyd et al. 2006 eq. 6 (sign corrected).
 
@@ -52,6 +61,7 @@ def t_perspective(z: ArrayLike, near: ArrayLike, far: ArrayLike, n_prime: ArrayL
     return (zz - n) / (f - n) * fp_over_zp  # eq. (6): f′(z′ − n′)/(z′(f′ − n′))
 
 
+@check.public
 def t_logarithmic(z: ArrayLike, near: ArrayLike, far: ArrayLike) -> NDArray[np.float64]:
     """t(z) = ln(z/n)/ln(f/n), the optimal map for an overhead light (Lloyd 2006 App. C).
 
@@ -64,6 +74,7 @@ def t_logarithmic(z: ArrayLike, near: ArrayLike, far: ArrayLike) -> NDArray[np.f
     return np.log1p((zz - n) / n) / np.log1p((f - n) / n)  # App. C (log1p: accurate as f/n → 1)
 
 
+@check.public
 def spacing_perspective(z: ArrayLike, near: ArrayLike, far: ArrayLike, n_prime: ArrayLike) -> NDArray[np.float64]:
     """dz/dt of :func:`t_perspective` [world units]: (f − n)·z′²/(f′n′), → f − n as n′ → ∞."""
     zz, n, f = _depths(z, near, far)
@@ -75,12 +86,14 @@ def spacing_perspective(z: ArrayLike, near: ArrayLike, far: ArrayLike, n_prime: 
     return (f - n) * zp_over_np * zp_over_fp
 
 
+@check.public
 def spacing_logarithmic(z: ArrayLike, near: ArrayLike, far: ArrayLike) -> NDArray[np.float64]:
     """dz/dt of :func:`t_logarithmic` [world units]: z·ln(f/n)."""
     zz, n, f = _depths(z, near, far)
     return zz * np.log1p((f - n) / n)
 
 
+@check.public
 def t_log_perspective(y: ArrayLike, y0: ArrayLike, y1: ArrayLike, a: ArrayLike) -> NDArray[np.float64]:
     """LogPSM's t-mapping F_lp,t on a face or frustum spanning y ∈ [y0, y1] (Lloyd 2007 eqs. 77–78).
 

@@ -22,6 +22,14 @@ from numpy.typing import NDArray
 
 from . import _validation as check
 
+__all__ = [
+    "SPLIT_METHODS",
+    "SplitMethod",
+    "partitions",
+    "register",
+    "split_distances",
+]
+
 Array = NDArray[np.float64]
 
 
@@ -58,6 +66,7 @@ def register(name: str, source: str, summary: str, *, default_k: int | None = No
     return wrap
 
 
+@check.public
 def split_distances(method: str, near: float, far: float, k: int | None = None, **params: float) -> Array:
     """The k + 1 split distances C_0 = near < … < C_k = far of a named scheme [world units].
 
@@ -92,6 +101,7 @@ def split_distances(method: str, near: float, far: float, k: int | None = None, 
     return edges
 
 
+@check.public
 def partitions(method: str, near: float, far: float, k: int | None = None, **params: float) -> tuple[Array, Array]:
     """Each map's (near_i, far_i) [world units]: the split distances, padded or overlapped
     the way the engine does it (Ogre's padding, bgfx's and Unreal's overlaps)."""
@@ -112,7 +122,7 @@ def _extend_params(entry: SplitMethod) -> set[str]:
 def _resolve(method: str, near: float, far: float, k: int | None) -> tuple[SplitMethod, float, float, int]:
     key = check.choice(method, "split method", SPLIT_METHODS)
     entry = SPLIT_METHODS[key]
-    n, f = (float(v) for v in check.frustum(near, far))
+    n, f = (float(v) for v in check.frustum(check.scalar(near, "near"), check.scalar(far, "far")))
     if k is None:
         if entry.default_k is None:
             raise ValueError(f"split method {key!r} needs k (number of partitions)")
@@ -123,14 +133,16 @@ def _resolve(method: str, near: float, far: float, k: int | None) -> tuple[Split
     return entry, n, f, kk
 
 
+# Most partitions any method accepts (k + 1 split distances; engines use at most 8).
+MAX_PARTITIONS = 1024
+
+
 def _partitions(k: int) -> int:
-    if isinstance(k, bool) or int(k) != k or k < 1:
-        raise ValueError(f"k must be a whole number >= 1 (number of partitions), got {k!r}")
-    return int(k)
+    return check.whole(k, "k", 1, MAX_PARTITIONS, " (number of partitions)")
 
 
 def _lam(lam: float) -> float:
-    return float(check.closed_range(lam, "lambda", 0.0, 1.0))
+    return float(check.closed_range(check.scalar(lam, "lambda"), "lambda", 0.0, 1.0))
 
 
 def _log(n: float, f: float, k: int) -> Array:
@@ -158,7 +170,7 @@ def _practical(near: float, far: float, k: int, lam: float = 0.5) -> Array:
 
 
 def _ratio_param(ratio: float, name: str) -> float:
-    value = float(check.as_float_array(ratio, name))
+    value = check.scalar(ratio, name)
     if not value > 1.0 or not np.isfinite(value):
         raise ValueError(f"{name} must be in (1, inf), got {value:g}")
     return value
@@ -173,7 +185,7 @@ def _pssm(near: float, far: float, k: int, ratio: float = 2.0, bias: float = 0.0
     printed is implemented.
     """
     g = _ratio_param(ratio, "ratio")
-    d = float(check.closed_range(bias, "bias", 0.0, np.inf))
+    d = float(check.closed_range(check.scalar(bias, "bias"), "bias", 0.0, np.inf))
     i = np.arange(k + 1)
     c = np.minimum(near + (far - near) / g ** (k - i) + d, far)  # eq. (3)
     c[0] = near
@@ -233,7 +245,7 @@ def _babylon(near: float, far: float, k: int, lam: float = 0.5) -> Array:
 
 
 def _ogre_padding(edges: Array, padding: float = 1.0) -> tuple[Array, Array]:
-    pad = float(check.closed_range(padding, "padding", 0.0, np.inf))
+    pad = float(check.closed_range(check.scalar(padding, "padding"), "padding", 0.0, np.inf))
     lo, hi = edges[:-1].copy(), edges[1:].copy()
     lo[1:] -= pad  # each inner boundary is covered ±padding (getShadowCamera)
     hi[:-1] += pad
@@ -308,7 +320,7 @@ def _unity(near: float, far: float, k: int) -> Array:
 
 
 def _unreal_overlap(edges: Array, transition: float = 0.1) -> tuple[Array, Array]:
-    frac = float(check.closed_range(transition, "transition", 0.0, 1.0))
+    frac = float(check.closed_range(check.scalar(transition, "transition"), "transition", 0.0, 1.0))
     lo, hi = edges[:-1].copy(), edges[1:].copy()
     hi[:-1] += frac * (hi[:-1] - lo[:-1])  # each non-last cascade extended by 10 % of its length
     return lo, hi
@@ -322,7 +334,7 @@ def _unreal_overlap(edges: Array, transition: float = 0.1) -> tuple[Array, Array
     extend=_unreal_overlap,
 )
 def _unreal(near: float, far: float, k: int, exponent: float = 3.0) -> Array:
-    e = float(check.as_float_array(exponent, "exponent"))
+    e = check.scalar(exponent, "exponent")
     if e <= 0:
         raise ValueError(f"exponent must be in (0, inf), got {e:g}")
     i = np.arange(k + 1)

@@ -93,7 +93,8 @@ def parse(name: str) -> Scheme:
     >>> parse("zp7+log")
     Scheme(name='ZP7+LogP', k=7, rule='logp', parameterization='logperspective', faces='')
     """
-    text = str(name).strip()
+    check.instance(name, "name (scheme name)", str)
+    text = name.strip()
     fm = re.fullmatch(r"(fp|fpc|fpcs)(?:\+zp(\d+))?\+(.+)", text, flags=re.IGNORECASE)
     if fm:
         return _parse_faces(name, fm)
@@ -127,10 +128,8 @@ def _parse_faces(name: str, fm: re.Match) -> Scheme:
 
 def z_partitions(near: float, far: float, k: int) -> tuple[Array, Array]:
     """Self-similar split depths n_i = n (f/n)^((i−1)/k), f_i = n (f/n)^(i/k) (Lloyd 2006 eqs. 15–16)."""
-    n, f = check.frustum(near, far)
-    if isinstance(k, bool) or int(k) != k or k < 1:
-        raise ValueError(f"k must be a whole number >= 1 (number of z-partitions), got {k!r}")
-    k = int(k)
+    n, f = check.frustum(check.scalar(near, "near"), check.scalar(far, "far"))
+    k = check.whole(k, "k", 1, 1024, " (number of z-partitions)")
     edges = float(n) * (float(f) / float(n)) ** (np.arange(k + 1) / k)  # eqs. (15), (16)
     edges[-1] = float(f)
     return edges[:-1], edges[1:]
@@ -187,6 +186,8 @@ def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = Non
     if isinstance(names, (str, Scheme)):
         raise ValueError("names must be a list of scheme names (use evaluate for one)")
     parsed = [parse(s) if isinstance(s, str) else s for s in names]
+    for sch in parsed:
+        check.instance(sch, "scheme", Scheme)  # a name or a parsed Scheme, nothing else (issue 19)
     if not parsed:
         raise ValueError("names must list at least one scheme")
     if isinstance(chunk, bool) or not isinstance(chunk, (int, np.integer)) or chunk < 1:

@@ -234,6 +234,7 @@ def shaping_eta(gamma: ArrayLike, fov: ArrayLike, shaping: Shaping | str = "p") 
     array([-1.    , -0.7333, -0.2   ,  1.    ])
     """
     sh = SHAPING[check.choice(shaping, "shaping", SHAPING)] if isinstance(shaping, str) else shaping
+    check.instance(sh, "shaping", Shaping)
     g = check.closed_range(gamma, "gamma", 0.0, 180.0, " degrees")
     g = np.minimum(g, 180.0 - g)
     theta = check.fov(fov) / 2

@@ -77,19 +77,16 @@ def interrupt_after(n):
     return progress_bar
 
 
-# Hypothesis profiles (issue 11 item 6): "ci" (derandomized, the default) and "long"
-# (ALIASING_HYPOTHESIS=long).  Registered only if no other block of this file did already.
+# Hypothesis profiles (issue 11 item 6, issue 19 item 5): "ci" is the default, derandomized
+# so that a run is reproducible (each test sets its own example count); "long" runs many more
+# cases locally (ALIASING_HYPOTHESIS=long, or pytest --hypothesis-profile=long).
 try:
-    from hypothesis import settings as _hyp_settings
-    from hypothesis.errors import InvalidArgument as _HypInvalidArgument
-except ImportError:  # the test extra is not installed
-    pass
-else:
     import os as _os
 
-    for _name, _options in (("ci", {"derandomize": True, "deadline": None}), ("long", {"max_examples": 2000, "deadline": None})):
-        try:
-            _hyp_settings.get_profile(_name)
-        except _HypInvalidArgument:
-            _hyp_settings.register_profile(_name, **_options)
-    _hyp_settings.load_profile("long" if _os.environ.get("ALIASING_HYPOTHESIS") == "long" else "ci")
+    from hypothesis import settings as _hsettings
+except ImportError:  # the test extra is not installed: the property tests skip themselves
+    _hsettings = None
+if _hsettings is not None:
+    _hsettings.register_profile("ci", derandomize=True, deadline=None, print_blob=True)
+    _hsettings.register_profile("long", max_examples=50_000, derandomize=False, deadline=None, print_blob=True)
+    _hsettings.load_profile(_os.environ.get("ALIASING_HYPOTHESIS", "ci"))

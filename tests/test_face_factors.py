@@ -222,7 +222,7 @@ def test_logpsm_spacing_with_a_negative_root_equals_symbolic_and_is_normalised(b
         (lambda: face_factors("uniform", NEAR, FAR, FOV, lz=-1.0), "lz must be in [0, inf]"),
         (lambda: face_factors("uniform", NEAR, FAR, FOV, lz=0.0, directional=True), "lz must be in (0, inf)"),
         (lambda: face_factors("uniform", NEAR, FAR, FOV, ly=np.inf), "lx and ly must be finite"),
-        (lambda: face_factors("uniform", NEAR, FAR, FOV, samples=2), "samples must be an integer"),
+        (lambda: face_factors("uniform", NEAR, FAR, FOV, samples=2), "samples must be a whole number >= 3"),
         (lambda: face_factors("uniform", FAR, NEAR, FOV), "far must be greater than near"),
         (lambda: face_factors("logp", NEAR, FAR, FOV, b=-100.0), "b must be > −y0 or < −y1"),
         (lambda: face_factors("uniform", NEAR, FAR, FOV, a=-1.0), "a must be in [0, inf]"),

@@ -492,7 +492,7 @@ def test_closed_forms_numeric_equal_symbolic():
         (lambda: logpsm.parameterization("perspective_t", 0.5, 1.0, 10.0, 60.0, a=-1.0), "a must be in [0, inf]"),
         (lambda: logpsm.delta_bound_side_t(0.5, 1.0, 10.0, 60.0, lz=-1.0), "lz must be in (0, inf]"),
         (lambda: logpsm.aliasing_error(1, 1, 1, 1, 1, 95.0, 0, 0, 0), "phi_l must be in [0, 90)"),
-        (lambda: logpsm.zeta_bound("end", 0.5, 1.0, 10.0, 60.0, lz=np.inf), "lz must be in (0, inf)"),
+        (lambda: logpsm.zeta_bound("end", 0.5, 1.0, 10.0, 60.0, lz=np.inf), "lz must be finite, got inf"),
     ],
 )
 def test_validation_names_parameter_and_range(call, word):

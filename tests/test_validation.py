@@ -11,7 +11,7 @@ CASES = [
     (lambda: error.storage_factor(10.0, 10.0, 60.0), r"far must be greater than near"),
     (lambda: error.storage_factor(10.0, 5.0, 60.0), r"far must be greater than near"),
     (lambda: error.storage_factor(0.0, 5.0, 60.0), r"near must be in \(0, inf\)"),
-    (lambda: error.storage_factor(1.0, np.inf, 60.0), r"far must be in \(0, inf\)"),
+    (lambda: error.storage_factor(1.0, np.inf, 60.0), r"far must be finite, got inf"),
     (lambda: error.storage_factor(1.0, 5.0, 180.0), r"fov .* must be in \(0, 180\) degrees"),
     (lambda: error.storage_factor(1.0, 5.0, 0.0), r"fov .* must be in \(0, 180\) degrees"),
     (lambda: error.storage_factor(1.0, 5.0, [30.0, -1.0]), r"fov .*array with values in \[-1, 30\]"),
