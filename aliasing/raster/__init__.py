@@ -1,8 +1,11 @@
 """Numpy rasterizer: the toolkit's independent witness for the analytic aliasing bounds.
 
-* :mod:`.rasterize`: vectorized z-buffer rasterizer for (s, t, depth) triangles, shadow maps
-  through the toolkit's parameterizations (uniform, perspective, log+perspective by
-  logarithmic rasterization) and the eye pass (visible position and normal per pixel);
+* :mod:`.rasterize`: the rasterizer's public names, from one module per concern:
+  :mod:`.core` (validation, clipping, the vectorized z-buffer :func:`rasterize` for (s, t,
+  depth) triangles), :mod:`.coverage` (covered spans and depths), :mod:`.lightmap` (maps
+  through the toolkit's parameterizations), :mod:`.facemaps` (face-partition maps, map
+  sets), :mod:`.shadow` (shadow maps; log+perspective by logarithmic rasterization) and
+  :mod:`.eye` (the eye pass: visible position and normal per pixel);
 * :mod:`.scenes`: seeded procedural scenes (ground, boxes, probe planes) and an ASCII
   OBJ/PLY loader;
 * :mod:`.measure`: perspective aliasing measured from sampled positions by finite

@@ -51,7 +51,11 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import geometry, schemes
-from .rasterize import LightMap, check_resolution, eye_pass, map_set, shadow_map
+from .core import check_resolution
+from .eye import eye_pass
+from .facemaps import map_set
+from .lightmap import LightMap
+from .shadow import shadow_map
 from .scenes import Scene, probes
 
 Array = NDArray[np.float64]

@@ -1,0 +1,251 @@
+"""Face-partition maps (Lloyd 2007 §6.1.3, §6.5) and the map set of any scheme for one light.
+
+:func:`frame_map` builds an FPc / FPcs side face's adjusted frame, :func:`near_face_map` the
+near face's uniform map, and :func:`map_set` the maps of any scheme with which map shades
+which point.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .. import _validation as check
+from .. import directional, faces, geometry, schemes
+from .lightmap import LightMap, _unit_vector, light_maps
+
+Array = NDArray[np.float64]
+
+
+def frame_map(light: ArrayLike, axis: ArrayLike, y0: float, y1: float, a: float, s_lo: float, s_hi: float, parameterization: str) -> LightMap:
+    """The map of a warping frustum with an explicit light-plane frame (FPc side faces).
+
+    Y is measured along ``axis`` (⟂ the light) from the origin's projection, X along
+    l̂ × axis; the map spans Y ∈ [y0, y1] and its centre of projection is at Y = −a, so
+    n′ = y0 + a.  s ∝ X/(Y + a) over [s_lo, s_hi] (X itself when uniform); t is the
+    perspective warp of that frustum (Lloyd 2006 eq. 6) or, for ``logperspective``,
+    ln((Y + a)/(y0 + a))/ln((y1 + a)/(y0 + a)) (Lloyd 2007 eqs. 77–78), or uniform.
+
+    Parameters
+    ----------
+    light : array_like, shape (3,)
+        Direction towards the light (any length > 0).
+    axis : array_like, shape (3,)
+        The frame's Y direction, non-zero and ⟂ ``light`` (made unit here).
+    y0, y1 : float
+        The map's near and far edges along Y [world units], y0 + a > 0, y1 > y0.
+    a : float
+        Offset of the centre of projection [world units], ≥ 0; ``inf`` for uniform.
+    s_lo, s_hi : float
+        Range of X/(Y + a) (of X if uniform) the map's s spans, s_lo < s_hi.
+    parameterization : {"uniform", "perspective", "logperspective"}
+
+    Returns
+    -------
+    LightMap
+
+    Example
+    -------
+    >>> fr = faces.face_frames("fpc", "logperspective", 1.0, 100.0, 60.0, [0.0, 1.0, 0.0])
+    >>> i = (0, 0, 0, 0)   # first direction, bottom face, whole face, depth range 0
+    >>> lm = frame_map([0.0, 1.0, 0.0], fr.axis[i[:3]], fr.y0[i], fr.y1[i], fr.a[i], fr.s_lo[i], fr.s_hi[i], "logperspective")
+    >>> s, t, _, _ = lm.coordinates(geometry.frustum_vertices(1.0, 100.0, 60.0)[[0, 1, 4, 5]])   # the bottom face's corners
+    >>> np.round(s, 12).tolist(), np.round(t, 12).tolist()
+    ([0.0, 1.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0])
+    """
+    kind = check.choice(parameterization, "parameterization", faces.FACE_PARAMETERIZATIONS)
+    lv = _unit_vector(light, "light")
+    ax = check.as_float_array(axis, "axis")
+    if ax.shape != (3,) or not np.linalg.norm(ax) > 0 or abs(ax @ lv) > 1e-9 * np.linalg.norm(ax):
+        raise ValueError(f"axis must be a non-zero vector (3,) perpendicular to light, got {ax!r}")
+    ax = ax / np.linalg.norm(ax)
+    lo, hi, lo_s, hi_s = (float(check.as_float_array(v, n)) for v, n in ((y0, "y0"), (y1, "y1"), (s_lo, "s_lo"), (s_hi, "s_hi")))
+    off = float(check.as_float_array(a, "a"))
+    if not np.isfinite(lo) or not hi > lo or not np.isfinite(hi):
+        raise ValueError(f"y0 and y1 must be finite with y1 > y0 [world units], got {lo!r}, {hi!r}")
+    if not lo_s < hi_s or not np.isfinite(hi_s - lo_s):
+        raise ValueError(f"s_lo and s_hi must be finite with s_lo < s_hi, got {lo_s!r}, {hi_s!r}")
+    if kind == "uniform":
+        npr = np.inf
+    else:
+        if not (off >= 0 and np.isfinite(off)) or not lo + off > 0:
+            raise ValueError(f"a must be in [0, inf) with y0 + a > 0 (centre of projection behind the map) [world units], got a = {off!r}, y0 = {lo!r}")
+        npr = lo + off
+    scale = 1.0 if kind == "uniform" else npr
+    wf = directional.WarpingFrustum(n_prime=np.array([[npr]]), depth=np.array([[hi - lo]]), x_lo=np.array([[scale * lo_s]]), x_hi=np.array([[scale * hi_s]]))
+    return LightMap(np.stack([np.cross(lv, ax), lv, ax]), lo, wf, kind, float(npr))
+
+
+def near_face_map(near: float, fov: float, light: ArrayLike) -> LightMap:
+    """The near face's uniform map (face-fixed, Lloyd 2007 §6.1.3), as a light-plane map.
+
+    A point's (s, t) are those of the point where its light ray meets the near plane, in
+    the near face's rectangle: an affine map of the light plane, with light-plane axes
+    x_L ∝ l̂ × ŷ (⟂ the face's t-edges) and z_L ∝ x̂ × l̂ (⟂ its s-edges).  The light-beam
+    widths along them, 2n tanθ·cos φ_lx and 2n tanθ·cos φ_ly per unit s and t, are the
+    analytic model's (m = cos φ_l at the near face, eqs. 55, 58).
+
+    Parameters
+    ----------
+    near : float
+        Eye near distance [world units], > 0.
+    fov : float
+        Full field of view [deg].
+    light : array_like, shape (3,)
+        Direction towards the light; not parallel to the near plane (the face is then edge-on).
+
+    Example
+    -------
+    >>> lm = near_face_map(1.0, 90.0, [0.3, 0.4, -0.8])
+    >>> s, t, _, _ = lm.coordinates([[-1.0, -1.0, 1.0], [1.0, 1.0, 1.0], [0.0, 0.0, 1.0]])
+    >>> np.round(s, 12).tolist(), np.round(t, 12).tolist()
+    ([0.0, 1.0, 0.5], [0.0, 1.0, 0.5])
+    """
+    n = float(check.positive(near, "near"))
+    h = n * np.tan(np.radians(float(check.fov(fov))) / 2)
+    lv = _unit_vector(light, "light")
+    if abs(lv[2]) < 1e-9:
+        raise ValueError(f"light must not be parallel to the near plane (the near face is then edge-on, no map), got {lv!r}")
+    x_l = np.cross(lv, [0.0, 1.0, 0.0])
+    z_l = np.cross([1.0, 0.0, 0.0], lv)
+    x_l, z_l = x_l / np.linalg.norm(x_l), z_l / np.linalg.norm(z_l)
+    x_l, z_l = x_l * np.sign(x_l[0]), z_l * np.sign(z_l[1])  # s grows with eye x, t with eye y
+    corners = np.array([[-h, -h, n], [h, h, n]])
+    x, y = corners @ x_l, corners @ z_l
+    wf = directional.WarpingFrustum(n_prime=np.array([[np.inf]]), depth=np.array([[y[1] - y[0]]]), x_lo=np.array([[x[0]]]), x_hi=np.array([[x[1]]]))
+    return LightMap(np.stack([x_l, lv, z_l]), float(y[0]), wf, "uniform", float("inf"))
+
+
+@dataclass(frozen=True)
+class MapSet:
+    """The shadow maps of a scheme for one light, and which map shades which point.
+
+    Attributes
+    ----------
+    maps : list of LightMap
+        One per map the light needs (z-partitions in depth order; for face partitions the
+        near face's map first if chosen, then the side faces' in :mod:`aliasing.faces`'
+        slot order).
+    slots : ndarray of int (len(maps),)
+        Each map's column in :func:`aliasing.schemes.evaluate`'s ``M_x``, ``M_z``.
+    edges : ndarray (k + 1,)
+        Depth split points: z-partitions' C_0 … C_k, or a face's k depth ranges
+        (eye depth of the face point a light ray meets) [world units].
+    faces : str
+        "" (z-partitions), "fpc" or "fpcs".
+    near, far, fov : float
+        The view frustum [world units, deg].
+    light : ndarray (3,)
+        Unit vector towards the light.
+    frames : FaceFrames or None
+        The side faces' frames (:func:`aliasing.faces.face_frames`, for this one light) of
+        face partitions; None for z-partitions.
+    """
+
+    maps: list[LightMap]
+    slots: NDArray[np.int_]
+    edges: Array
+    faces: str
+    near: float
+    far: float
+    fov: float
+    light: Array
+    frames: faces.FaceFrames | None = None
+
+    def assign(self, points: ArrayLike) -> NDArray[np.int_]:
+        """Index into ``maps`` of the map shading each eye-space point ``(..., 3)`` in the frustum.
+
+        z-partitions: the partition holding the point's eye depth.  Face partitions: the
+        chosen face its light ray meets (:func:`aliasing.faces.partition_of`), for FPcs the
+        half of that face, and the depth range of the point where the ray meets it.
+        """
+        p = check.as_float_array(points, "points")
+        if p.shape[-1:] != (3,):
+            raise ValueError(f"points must have shape (..., 3), got {p.shape}")
+        k = self.edges.size - 1
+        if not self.faces:
+            return np.clip(np.searchsorted(self.edges, p[..., 2], side="right") - 1, 0, k - 1)
+        face = faces.partition_of(p, self.near, self.far, self.fov, self.light)
+        fr = self.frames
+        if fr is None:
+            raise ValueError(f"frames must be the face frames of the {self.faces} partitions (see map_set), got None")
+        normal, *_ = faces.side_frames(self.fov)
+        lv = self.light
+        travel = -lv if lv[2] >= 0 else lv  # eq. (54), as in partition_of
+        j = np.clip(face - 1, 0, 3)
+        nj = normal[j]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            hit = p - ((p * nj).sum(-1) / (nj @ travel))[..., None] * travel  # on the side face's plane
+        rng = np.clip(np.searchsorted(self.edges, hit[..., 2], side="right") - 1, 0, k - 1)
+        half = np.zeros(face.shape, int)
+        if fr.used.shape[2] == 2:  # FPcs: the side of the split ray (half 0's second edge) holding the point
+            split = fr.edges[0, j, 0, 1]  # (..., 3)
+            first = fr.edges[0, j, 0, 0]
+            side = np.cross(split, p) @ lv
+            ref = np.cross(split, first) @ lv
+            half = np.where(fr.used[0, j, 1] & (side * ref < 0), 1, 0)
+        slot = np.where(face == 0, 0, 1 + (j * fr.used.shape[2] + half) * k + rng)
+        lookup = np.full(1 + 4 * fr.used.shape[2] * k, -1)
+        lookup[self.slots] = np.arange(len(self.maps))
+        return lookup[slot]
+
+
+def map_set(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", **options: ArrayLike) -> MapSet:
+    """The maps of any scheme for one light: single, z-partitioned or face-partitioned.
+
+    ``ZP<k>+…`` and single-map schemes: :func:`light_maps`.  ``FPc+P|LogP|Standard`` and
+    ``FPcs+…`` (options ``tau0``, ``tau1``; also with ``+ZP<k>``): the near face's uniform
+    map (:func:`near_face_map`) if chosen and each used side-face slot's adjusted frame
+    (:func:`aliasing.faces.face_frames`, through :func:`frame_map`) — the same frames
+    :func:`aliasing.faces.face_errors` evaluates.  Face-fixed ``FP+…`` (a projective map
+    in each side face's own plane) is not built: it raises ``ValueError``.
+
+    Parameters
+    ----------
+    near, far, fov, light
+        The view frustum (0 < near < far [world units], full field of view [deg]) and one
+        light direction, as for :func:`light_map`.
+    scheme : str
+        Any scheme of :mod:`aliasing.schemes` except ``FP+…``.
+    **options
+        Warping-rule options, or ``tau0``, ``tau1`` for face partitions.
+
+    Example
+    -------
+    >>> ms = map_set(1.0, 100.0, 60.0, "gamma:60@azimuth:30", "FPc+LogP")
+    >>> len(ms.maps), ms.slots.tolist()
+    (3, [0, 1, 3])
+    >>> ms.assign([[0.0, -20.0, 50.0], [-25.0, 20.0, 50.0], [0.0, 0.0, 1.0]]).tolist()   # bottom, left, near
+    [1, 2, 0]
+    """
+    sch = schemes.parse(scheme) if isinstance(scheme, str) else scheme
+    n, f = (float(v) for v in check.frustum(near, far))
+    fv = float(check.fov(fov))
+    lv = geometry.lights(light)
+    if lv.shape[0] != 1:
+        raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
+    if not sch.faces:
+        maps, edges = light_maps(n, f, fv, lv, sch.name, **options)
+        return MapSet(maps, np.arange(len(maps)), edges, "", n, f, fv, lv[0])
+    if sch.faces == "fp":
+        raise ValueError(f"scheme {sch.name!r}: face-fixed FP maps (projective in each face's plane) are not rasterized; use FPc or FPcs")
+    unknown = set(options) - {"tau0", "tau1"}
+    if unknown:
+        raise ValueError(f"unknown options for {sch.name}: {', '.join(sorted(unknown))}; face partitions take tau0, tau1")
+    fr = faces.face_frames(sch.faces, sch.parameterization, n, f, fv, lv, k=sch.k, **{key: float(v) for key, v in options.items()})
+    maps, slots = [], []
+    if faces.chosen_faces(lv, fv)[0, 0]:
+        maps.append(near_face_map(n, fv, lv[0]))
+        slots.append(0)
+    halves, k = fr.used.shape[2], sch.k
+    for j in range(4):  # ≤ 4 faces × 2 halves × k ranges
+        for h in range(halves):
+            if not fr.used[0, j, h]:
+                continue
+            for i in range(k):
+                c = (0, j, h, i)
+                maps.append(frame_map(lv[0], fr.axis[0, j, h], fr.y0[c], fr.y1[c], fr.a[c], fr.s_lo[c], fr.s_hi[c], sch.parameterization))
+                slots.append(1 + (j * halves + h) * k + i)
+    return MapSet(maps, np.asarray(slots), fr.depth, sch.faces, n, f, fv, lv[0], fr)
