@@ -55,7 +55,7 @@ from numpy.typing import ArrayLike, NDArray
 from .. import _validation as check
 from .. import geometry, schemes
 from .measure import measure, pixel_errors
-from .rasterize import DepthMap, LightMap, check_resolution, eye_pass, map_set, shadow_map
+from .rasterize import DepthMap, LightMap, MapSet, check_resolution, eye_pass, map_set, shadow_map
 from .scenes import Scene, ground_and_boxes
 
 Array = NDArray[np.float64]
@@ -79,7 +79,9 @@ class View:
     bottom); ``triangle`` (R, R); ``face`` (R, R): a planar-face id (0 for the ground, one per
     box face, −1 empty); ``maps``, ``edges`` (split depths), ``map_res`` (per map);
     ``partition`` (R, R), ``s``, ``t`` (map coordinates in the pixel's map), ``lit`` (bool:
-    passes the depth test), ``light`` (unit vector towards the light), ``fov``.
+    passes the depth test), ``light`` (unit vector towards the light), ``fov``;
+    ``map_resolutions`` (each map's side when they differ, e.g. an error-based budget; None:
+    all ``map_res``).
     """
 
     scene: Scene
@@ -97,6 +99,12 @@ class View:
     lit: NDArray[np.bool_]
     light: Array
     fov: float
+    map_resolutions: NDArray[np.int64] | None = None
+
+    def resolution_of(self) -> Array:
+        """Map side [texels] of the map shading each pixel (R, R); NaN off the scene."""
+        mr = np.full(len(self.maps), self.map_res, float) if self.map_resolutions is None else self.map_resolutions.astype(float)
+        return np.where(self.partition >= 0, mr[np.maximum(self.partition, 0)], np.nan)
 
 
 def map_resolution(budget: int, k: int) -> int:
@@ -113,22 +121,45 @@ def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: st
     ``bias`` is the tolerance of the depth tests of :func:`shadow_test` [world units, ≥ 0].
     ``scene`` replaces the seeded ground and boxes (then ``face`` is the triangle index).
     """
-    res = check_resolution(image_res, "image_res")
     fv = float(check.fov(fov))
     lv = geometry.lights(light)
     if lv.shape[0] != 1:
         raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
-    lv = lv[0]
-    bias = _bias(bias)
-    ms = map_set(near, far, fv, lv, scheme)
-    maps, edges = ms.maps, ms.edges
-    rm = map_resolution(budget, len(maps))
+    ms = map_set(near, far, fv, lv[0], scheme)
+    rm = map_resolution(budget, len(ms.maps))
     if scene is None:
         sc = ground_and_boxes(near, far, fv, boxes=boxes, ground_cells=ground_cells, seed=seed)
         n_ground = 2 * ground_cells**2
     else:
         sc, n_ground = scene, 0
-    eb = eye_pass(sc.triangles, fv, res)
+    return render_view(sc, ms, [rm] * len(ms.maps), image_res=image_res, bias=bias, ground=n_ground)
+
+
+def render_view(sc: Scene, ms: MapSet, resolutions: ArrayLike, *, image_res: int = 256, bias: float = BIAS, ground: int = 0) -> View:
+    """Eye pass and shadow test of an eye-space scene through a map set, one resolution per map.
+
+    Parameters
+    ----------
+    sc : Scene
+        Eye-space triangles [world units].
+    ms : MapSet
+        The maps (:func:`aliasing.raster.map_set`, or explicit cascades).
+    resolutions : array_like of int
+        Each map's side [texels], one per map.
+    image_res : int
+        Image side [pixels].
+    bias : float
+        Depth-test tolerance [world units], ≥ 0.
+    ground : int
+        Number of leading ground triangles (one planar face; 0: one face per triangle).
+    """
+    res = check_resolution(image_res, "image_res")
+    rms = [check_resolution(r, "map resolution") for r in np.atleast_1d(np.asarray(resolutions)).tolist()]
+    if len(rms) != len(ms.maps):
+        raise ValueError(f"resolutions must give one side per map ({len(ms.maps)}), got {len(rms)}")
+    bias = _bias(bias)
+    maps, n_ground = ms.maps, ground
+    eb = eye_pass(sc.triangles, ms.fov, res)
     hit = eb.triangle >= 0
     tri_id = np.maximum(eb.triangle, 0)
     if n_ground:
@@ -150,9 +181,10 @@ def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: st
         p = pos[sel]
         s, t, d, _ = lm.coordinates(p)
         s_all[sel], t_all[sel] = s, t
-        sm = shadow_map(sc.triangles, lm, rm)
+        sm = shadow_map(sc.triangles, lm, rms[i])
         lit[sel] = shadow_test(lm, sm, sc.triangles, p, nrm[sel], bias=bias)
-    return View(sc, n_ground, eb.position, eb.normal, eb.triangle, face, maps, edges, rm, np.where(hit, part, -1), s_all, t_all, lit, lv, fv)
+    return View(sc, n_ground, eb.position, eb.normal, eb.triangle, face, list(maps), ms.edges, rms[0], np.where(hit, part, -1), s_all, t_all, lit,
+                ms.light, ms.fov, np.asarray(rms, np.int64))
 
 
 def _bias(value: float) -> float:
@@ -275,13 +307,24 @@ def grid_image(near: float, far: float, fov: float, light: str | ArrayLike, sche
     A pixel is on a line when the index ⌊s·R/every⌋ or ⌊t·R/every⌋ (R the map resolution)
     or the partition differs from its right or upper neighbour's.
     """
+    _every(every)
+    return grid_of(view(near, far, fov, light, scheme, **kwargs), every)
+
+
+def _every(every: int) -> int:
     if isinstance(every, bool) or int(every) != every or every < 1:
         raise ValueError(f"every must be a whole number >= 1 (texels between grid lines), got {every!r}")
-    v = view(near, far, fov, light, scheme, **kwargs)
+    return int(every)
+
+
+def grid_of(v: View, every: int = 16) -> Array:
+    """The texel-grid picture of a :class:`View` (see :func:`grid_image`), lines in the cascade colours."""
+    every = _every(every)
     img = shade(v)
     hit = v.triangle >= 0
-    ci = np.where(hit, np.floor(np.nan_to_num(v.s) * v.map_res / every), np.nan)
-    cj = np.where(hit, np.floor(np.nan_to_num(v.t) * v.map_res / every), np.nan)
+    mr = np.nan_to_num(v.resolution_of(), nan=1.0)
+    ci = np.where(hit, np.floor(np.nan_to_num(v.s) * mr / every), np.nan)
+    cj = np.where(hit, np.floor(np.nan_to_num(v.t) * mr / every), np.nan)
     line = np.zeros(hit.shape, bool)
     for axis in (0, 1):
         for a in (ci, cj, v.partition.astype(float)):
@@ -322,7 +365,7 @@ def error_field(v: View, image_res: int | None = None) -> Array:
             continue
         got = pixel_errors(lm, pos, sel, res, v.fov)
         out[sel] = np.maximum(got["m_x"], got["m_z"])[sel]
-    return out * res / v.map_res
+    return out * res / v.resolution_of()
 
 
 def error_colours(err: ArrayLike, vmax: float = 64.0) -> Array:
@@ -344,7 +387,11 @@ def error_image(near: float, far: float, fov: float, light: str | ArrayLike, sch
     Both have row 0 at the top.  Pixels at face borders (no central difference) take the
     colour of a neighbour on the same row when there is one, so edges do not show as grey.
     """
-    v = view(near, far, fov, light, scheme, **kwargs)
+    return error_of(view(near, far, fov, light, scheme, **kwargs), vmax)
+
+
+def error_of(v: View, vmax: float = 64.0) -> tuple[Array, Array]:
+    """(image, error) of a :class:`View`, as :func:`error_image`."""
     err = error_field(v)
     # fill face-border pixels from the left/right neighbour (display only)
     fill = err.copy()
