@@ -135,7 +135,7 @@ def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: st
     return render_view(sc, ms, [rm] * len(ms.maps), image_res=image_res, bias=bias, ground=n_ground)
 
 
-def render_view(sc: Scene, ms: MapSet, resolutions: ArrayLike, *, image_res: int = 256, bias: float = BIAS, ground: int = 0) -> View:
+def render_view(sc: Scene, ms: MapSet, resolutions: ArrayLike, *, image_res: int = 256, bias: float = BIAS, ground: int = 0, faces: ArrayLike | None = None) -> View:
     """Eye pass and shadow test of an eye-space scene through a map set, one resolution per map.
 
     Parameters
@@ -152,6 +152,9 @@ def render_view(sc: Scene, ms: MapSet, resolutions: ArrayLike, *, image_res: int
         Depth-test tolerance [world units], ≥ 0.
     ground : int
         Number of leading ground triangles (one planar face; 0: one face per triangle).
+    faces : array_like of int, optional
+        A planar-face id per triangle (e.g. coplanar triangles of a mesh share one), for the
+        error's differences; overrides ``ground``.
     """
     res = check_resolution(image_res, "image_res")
     rms = [check_resolution(r, "map resolution") for r in np.atleast_1d(np.asarray(resolutions)).tolist()]
@@ -162,7 +165,12 @@ def render_view(sc: Scene, ms: MapSet, resolutions: ArrayLike, *, image_res: int
     eb = eye_pass(sc.triangles, ms.fov, res)
     hit = eb.triangle >= 0
     tri_id = np.maximum(eb.triangle, 0)
-    if n_ground:
+    if faces is not None:
+        fid = np.asarray(faces, np.int64)
+        if fid.shape != (len(sc.triangles),):
+            raise ValueError(f"faces must give one id per triangle ({len(sc.triangles)}), got shape {fid.shape}")
+        face = fid[tri_id]
+    elif n_ground:
         face = np.where(tri_id < n_ground, 0, 1 + (tri_id - n_ground) // 2)
     else:
         face = tri_id.copy()
@@ -356,8 +364,11 @@ def error_field(v: View, image_res: int | None = None) -> Array:
     same_u[:, [0, -1]] = False
     same_v[[0, -1], :] = False
     ok = same_u & same_v
-    pos = np.where(ok[..., None], v.position, 0.0)
-    pos[~ok] = [0.0, 0.0, 1.0]
+    # keep the true positions of every visible pixel: the border pixels of a face are the
+    # neighbours of its ok pixels (a placeholder there would enter their differences)
+    hit = face >= 0
+    pos = np.where(hit[..., None], v.position, 0.0)
+    pos[~hit] = [0.0, 0.0, 1.0]
     out = np.full((res, res), np.nan)
     for i, lm in enumerate(v.maps):
         sel = ok & (part == i)

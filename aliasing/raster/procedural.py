@@ -68,7 +68,7 @@ def city(triangles: int = 100_000, seed: int = 0, *, size: float = 400.0) -> Arr
     Returns
     -------
     ndarray (T, 3, 3)
-        Ground (a 32 × 32 grid), buildings (boxes 4–30 wide, 3–60 high, on a street grid)
+        Ground (a grid of up to 32 × 32 cells), buildings (boxes 4–30 wide, 3–60 high, on a street grid)
         and trees (trunk and crown, 3–12 high) [world units].
     """
     if isinstance(triangles, bool) or int(triangles) != triangles or not 1_000 <= triangles <= 10_000_000:
@@ -77,7 +77,7 @@ def city(triangles: int = 100_000, seed: int = 0, *, size: float = 400.0) -> Arr
         raise ValueError(f"size must be > 0 [world units], got {size!r}")
     rng = np.random.default_rng(seed)
     half = size / 2
-    g = 32
+    g = int(min(32, np.sqrt(0.05 * triangles)))  # ground cells per side: ≤ 10 % of the triangles
     xs = np.linspace(-half, half, g + 1)
     xx, zz = np.meshgrid(xs, xs, indexing="ij")
     pts = np.stack([xx, np.zeros_like(xx), zz], -1)
