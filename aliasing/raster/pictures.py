@@ -325,10 +325,16 @@ def _every(every: int) -> int:
     return int(every)
 
 
-def grid_of(v: View, every: int = 16) -> Array:
-    """The texel-grid picture of a :class:`View` (see :func:`grid_image`), lines in the cascade colours."""
+def grid_of(v: View, every: int = 16, *, wash: float = 0.0) -> Array:
+    """The texel-grid picture of a :class:`View` (see :func:`grid_image`), lines in the cascade colours.
+
+    ``wash`` in [0, 1) lightens the shaded scene under the lines (img·(1 − wash) + wash) so
+    that dark lines stay visible on shadowed surfaces.
+    """
     every = _every(every)
-    img = shade(v)
+    if not 0 <= wash < 1:
+        raise ValueError(f"wash must be in [0, 1), got {wash!r}")
+    img = shade(v) * (1 - wash) + wash
     hit = v.triangle >= 0
     mr = np.nan_to_num(v.resolution_of(), nan=1.0)
     ci = np.where(hit, np.floor(np.nan_to_num(v.s) * mr / every), np.nan)
@@ -491,6 +497,13 @@ def error_cdf(schemes_: list[str], near: float = 1.0, far: float = 1000.0, fov: 
 
 
 def _render(args: argparse.Namespace) -> int:
+    if args.scene is not None or "," in args.scheme or args.splits is not None or args.what == "cdf" or args.format != "text" \
+            or any(v is not None for v in (args.eye, args.target, args.camera, args.light_dir, args.k, args.lam, args.near, args.far)) or args.param:
+        from .scenerender import run
+
+        return run(args)
+    if args.out is None:
+        raise ValueError("--out FILE.png is required")
     import matplotlib
 
     matplotlib.use("Agg")
@@ -505,12 +518,13 @@ def _render(args: argparse.Namespace) -> int:
     if out.exists() and out.is_dir():
         raise ValueError(f"--out must be a file, but {args.out!r} is a folder")
     kw = dict(image_res=args.image_res, budget=args.res**2, seed=args.seed)
+    fov = 60.0 if args.fov is None else args.fov
     if args.what == "shadows":
-        img = shadow_image(1.0, f_over_n, args.fov, args.light, args.scheme, **kw)
+        img = shadow_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
     elif args.what == "grid":
-        img = grid_image(1.0, f_over_n, args.fov, args.light, args.scheme, every=args.every, **kw)
+        img = grid_image(1.0, f_over_n, fov, args.light, args.scheme, every=args.every, **kw)
     else:
-        img, _ = error_image(1.0, f_over_n, args.fov, args.light, args.scheme, **kw)
+        img, _ = error_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
     out.parent.mkdir(parents=True, exist_ok=True)
     plt.imsave(out, img, metadata={"Software": None})
     print(out)
@@ -521,21 +535,39 @@ def add_render_parser(sub) -> argparse.ArgumentParser:
     """Add the ``render`` subcommand to an ``add_subparsers`` object (of :class:`aliasing.cli._Parser`)."""
     ren = sub.add_parser(
         "render",
-        help="picture of a seeded scene: shadows, projected texel grid or per-pixel error",
-        description="Render a seeded ground-and-boxes scene (near 1, far = f/n, eye 1 above the ground) with one directional "
-        "light through a scheme's shadow maps sharing a texel budget of RES² texels; write a PNG.",
-        epilog="schemes: Standard | P | LogP | <warping rule>, alone or after ZP<k>+; FPc|FPcs[+ZP<k>]+P|LogP|Standard.  "
-        "lights: overhead | behind | front | gamma:DEG[@azimuth:DEG] (one direction).",
+        help="picture of a seeded or loaded scene: shadows, projected texel grid, per-pixel error, error distribution",
+        description="Render a seeded ground-and-boxes scene (near 1, far = f/n, eye 1 above the ground), or your own scene "
+        "(--scene FILE: glTF/GLB, OBJ, PLY, STL) seen by a world-space camera, with one directional light through each "
+        "scheme's shadow maps sharing a texel budget of RES² texels; write a PNG (schemes side by side) and a statistics table.",
+        epilog="schemes: Standard | P | LogP | <warping rule>, alone or after ZP<k>+; FPc|FPcs[+ZP<k>]+P|LogP|Standard; "
+        "comma-separated for side-by-side panels; with --splits NAME a warp used in every cascade.  "
+        "lights: overhead | behind | front | gamma:DEG[@azimuth:DEG] (eye space), or --light-dir X,Y,Z (world space, towards the light).",
     )
-    ren.add_argument("--scheme", default="Standard", help="scheme (default Standard)")
-    ren.add_argument("--f-over-n", default="100", help="depth ratio far/near (default 100)")
-    ren.add_argument("--fov", type=float, default=60.0, help="FULL field of view in degrees (default 60)")
-    ren.add_argument("--light", default="gamma:60@azimuth:30", help="one light direction (default gamma:60@azimuth:30)")
-    ren.add_argument("--what", choices=["shadows", "grid", "error"], default="shadows", help="picture (default shadows)")
-    ren.add_argument("--out", required=True, help="output PNG file")
+    ren.add_argument("--scheme", default="Standard", help="scheme(s), comma-separated (default Standard)")
+    ren.add_argument("--f-over-n", default="100", help="seeded scene: depth ratio far/near (default 100)")
+    ren.add_argument("--fov", type=float, default=None, help="FULL field of view in degrees (default 60, or the glTF camera's)")
+    ren.add_argument("--light", default="gamma:60@azimuth:30", help="one eye-space light direction (default gamma:60@azimuth:30)")
+    ren.add_argument("--what", choices=["shadows", "grid", "error", "cdf"], default="shadows", help="picture (default shadows)")
+    ren.add_argument("--out", help="output PNG file (required unless --format json)")
     ren.add_argument("--res", type=int, default=1024, help="texel budget as RES² texels over all maps (default 1024)")
     ren.add_argument("--image-res", type=int, default=512, help="image resolution in pixels per side (default 512)")
     ren.add_argument("--every", type=int, default=16, help="grid: texels between grid lines (default 16)")
     ren.add_argument("--seed", type=int, default=1, help="scene seed (default 1)")
+    scn = ren.add_argument_group("your own scene (needs the scenes extra for glTF/GLB, binary PLY, STL)")
+    scn.add_argument("--scene", metavar="FILE", help="scene file: .glb, .gltf, .obj, .ply, .stl")
+    scn.add_argument("--eye", metavar="X,Y,Z", help="camera position (world space; --eye=-5,2,0 when X is negative)")
+    scn.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at (world space)")
+    scn.add_argument("--up", metavar="X,Y,Z", default="0,1,0", help="up vector (default 0,1,0)")
+    scn.add_argument("--camera", metavar="NAME", help="a glTF camera of the file, by camera or node name")
+    scn.add_argument("--near", type=float, help="near distance (default 1, or the glTF camera's znear)")
+    scn.add_argument("--far", type=float, help="far (shadow) distance (default 100, or the glTF camera's zfar)")
+    scn.add_argument("--light-dir", metavar="X,Y,Z", help="world-space direction towards the light (write --light-dir=-1,2,0 when X is negative)")
+    cas = ren.add_argument_group("cascades")
+    cas.add_argument("--splits", metavar="NAME", help="split method or engine preset for every scheme (see aliasing splits --list)")
+    cas.add_argument("--lambda", dest="lam", type=float, help="blend λ in [0, 1] of practical-style splits")
+    cas.add_argument("-k", type=int, help="number of cascades (default: the preset's own)")
+    cas.add_argument("--param", action="append", default=[], metavar="KEY=VALUE", help="other split parameters, as in aliasing splits")
+    cas.add_argument("--allocation", choices=["equal", "error"], default="equal", help="texel budget per cascade: equal, or error-based (Lloyd 2007 eq. 83)")
+    ren.add_argument("--format", default="text", help="statistics on stdout: text (table) or json (default text)")
     ren.set_defaults(run=_render)
     return ren

@@ -104,8 +104,8 @@ def city(triangles: int = 100_000, seed: int = 0, *, size: float = 400.0) -> Arr
 
 
 def street_camera(size: float = 400.0) -> Camera:
-    """The demo camera of :func:`city`: 2 above a street corner, looking across the block."""
-    return look_at([-0.45 * size, 2.0, -0.45 * size], [0.2 * size, 0.0, 0.25 * size], near=0.5, far=size, fov=60.0)
+    """The demo camera of :func:`city`: 20 up, outside a corner of the block, looking at its centre (near 0.5, far 1.5·size)."""
+    return look_at([-0.55 * size, 20.0, -0.55 * size], [0.0, 0.0, 0.0], near=0.5, far=1.5 * size, fov=60.0)
 
 
 def _quaternion(rot: Array) -> list[float]:

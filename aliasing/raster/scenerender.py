@@ -217,3 +217,151 @@ def table(renders: list[SchemeRender]) -> str:
 
 def _cell(v: object) -> str:
     return f"{v:.4g}" if isinstance(v, float) else str(v)
+
+
+# ----------------------------------------------------------------------------- pictures and CLI
+
+
+def figure(renders: list[SchemeRender], what: str = "shadows", *, every: int = 16, vmax: float = 64.0):
+    """Side-by-side panels of the schemes (``shadows``, ``grid``, ``error``) or their per-pixel
+    error distributions on one plot (``cdf``); returns the matplotlib Figure."""
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import LogNorm
+    from matplotlib.patches import Patch
+
+    from .pictures import GRID_COLOURS, cdf, error_of, grid_of, shade
+
+    kind = check.choice(what, "what", dict.fromkeys(("shadows", "grid", "error", "cdf")))
+    if kind == "cdf":
+        fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
+        for r in renders:
+            xs, ys = cdf(r.error)
+            ax.plot(xs, ys, label=f"{r.label} (max {r.stats['max']:.3g}, bound {r.stats['analytic_max']:.3g})")
+        ax.axvline(1.0, color="0.5", lw=0.8, ls=":")
+        ax.set(xscale="log", xlabel="measured perspective error [image pixels per texel]", ylabel="fraction of measured pixels", ylim=(0, 1.02))
+        ax.legend(fontsize=7, loc="lower right")
+        return fig
+    n = len(renders)
+    fig, axes = plt.subplots(1, n, figsize=(3.6 * n, 4.3 if kind == "grid" else 3.9), layout="constrained", squeeze=False)
+    for ax, r in zip(axes[0], renders):
+        if kind == "shadows":
+            img = np.clip(shade(r.view)[::-1], 0, 1)
+        elif kind == "grid":
+            img = grid_of(r.view, every, wash=0.45)
+        else:
+            img = error_of(r.view, vmax)[0]
+            img = np.where(np.isnan(r.error[::-1])[..., None] & (r.view.triangle[::-1] >= 0)[..., None], 0.6 * img + 0.25, img)
+        ax.imshow(img, interpolation="nearest")
+        ax.set_xticks([]), ax.set_yticks([])
+        s = r.stats
+        ax.set_title(f"{r.label}\np99 {s['p99']:.3g}, max {s['max']:.3g} px/texel, ≤1: {100 * s['frac_le_1']:.0f}%", fontsize=8)
+        if kind == "grid":
+            cs = r.cascades
+            handles = [Patch(color=GRID_COLOURS[i % len(GRID_COLOURS)], label=f"map {i}: {_range(cs, i)}, {r.resolutions[i]}²") for i in range(len(r.resolutions))]
+            ax.legend(handles=handles, fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.01), ncol=2, frameon=False)
+    if kind == "error":
+        sm = plt.cm.ScalarMappable(norm=LogNorm(1.0, vmax), cmap="jet")
+        fig.colorbar(sm, ax=axes[0].tolist(), shrink=0.8, label="perspective error [pixels per texel] (grey: not measured)")
+    return fig
+
+
+def _range(cs: CascadeSet, i: int) -> str:
+    if np.isnan(cs.near_i[i]):
+        return "face map"
+    return f"{cs.near_i[i]:.3g}–{cs.far_i[i]:.3g}"
+
+
+def report(st: SceneSetup, renders: list[SchemeRender], *, budget: int, allocation: str, splits: str | None) -> dict:
+    """JSON-ready numbers of a render: the view, the light, and each scheme's statistics."""
+    cam = st.camera
+    return {
+        "source": st.source, "triangles": int(len(st.scene.triangles)), "degenerate_skipped": st.degenerate,
+        "camera": {"name": cam.name, "eye": cam.eye.tolist(), "forward": cam.rotation[2].tolist(), "up": cam.rotation[1].tolist(),
+                   "near": cam.near, "far": cam.far, "fov": cam.fov},
+        "light_eye_space": st.light.tolist(), "gamma": float(np.degrees(np.arccos(np.clip(st.light[2], -1, 1)))),
+        "budget": int(budget), "allocation": allocation, "splits": splits, "image_res": int(renders[0].view.position.shape[0]),
+        "schemes": [_finite(r.stats) for r in renders],
+    }
+
+
+def _finite(value: object) -> object:
+    """JSON has no NaN: write it as null."""
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_finite(v) for v in value]
+    if isinstance(value, float) and not np.isfinite(value):
+        return None
+    return value
+
+
+def params_of(lam: float | None, items: list[str]) -> dict[str, float]:
+    """Split parameters from ``--lambda`` and ``--param KEY=NUMBER`` (as ``aliasing splits``)."""
+    params = {} if lam is None else {"lam": float(lam)}
+    for item in items:
+        key, sep, value = item.partition("=")
+        try:
+            params[key.strip()] = float(value)
+        except ValueError:
+            sep = ""
+        if not sep or not key.strip():
+            raise ValueError(f"--param takes KEY=NUMBER, got {item!r}")
+    return params
+
+
+def run(args) -> int:
+    """``aliasing render`` with --scene, several schemes, --splits or --what cdf."""
+    import json
+    import sys
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .scenes import ground_and_boxes
+
+    fmt = check.choice(args.format, "format", dict.fromkeys(("text", "json")))
+    out = None if args.out is None else Path(args.out)
+    if out is not None and out.suffix.lower() != ".png":
+        raise ValueError(f"--out must be a .png file, got {args.out!r}")
+    if out is None and fmt != "json":
+        raise ValueError("--out FILE.png is required (or --format json for the numbers alone)")
+    light = None if args.light_dir is not None else args.light
+    if args.scene is not None:
+        st = setup(args.scene, eye=args.eye, target=args.target, up=args.up, camera=args.camera, near=args.near, far=args.far, fov=args.fov,
+                   light_dir=args.light_dir, light=light)
+    else:
+        for flag, value in (("--eye", args.eye), ("--target", args.target), ("--camera", args.camera), ("--light-dir", args.light_dir)):
+            if value is not None:
+                raise ValueError(f"{flag} needs --scene FILE (the seeded scene is in eye space)")
+        f = float(args.f_over_n) if args.far is None else float(args.far)
+        n = 1.0 if args.near is None else float(args.near)
+        fv = 60.0 if args.fov is None else float(args.fov)
+        sc = ground_and_boxes(n, f, fv, seed=args.seed, boxes=40, ground_cells=16)
+        cam = Camera(np.zeros(3), np.eye(3), *(float(x) for x in check.frustum(n, f)), float(check.fov(fv)), "eye space")
+        ls = geometry.lights(light)
+        if ls.shape[0] != 1:
+            raise ValueError(f"light must be a single direction, got {ls.shape[0]}")
+        st = SceneSetup(sc, plane_ids(sc.triangles), cam, ls[0])
+    names = [s.strip() for s in args.scheme.split(",") if s.strip()]
+    params = params_of(args.lam, args.param)
+    if args.splits is None and (args.k is not None or params):
+        raise ValueError("-k, --lambda and --param need --splits NAME (see aliasing splits --list)")
+    budget = int(args.res) ** 2
+    renders = render(st, names, splits=args.splits, k=args.k, allocation=args.allocation, budget=budget, image_res=args.image_res, **params)
+    if out is not None:
+        fig = figure(renders, args.what, every=args.every)
+        out.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(out, dpi=110, bbox_inches="tight", pad_inches=0.1, metadata={"Software": None})
+        plt.close(fig)
+    if fmt == "json":
+        sys.stdout.write(json.dumps(report(st, renders, budget=budget, allocation=args.allocation, splits=args.splits), indent=1) + "\n")
+    else:
+        print(out)
+        if st.degenerate:
+            print(f"skipped {st.degenerate} degenerate triangles")
+        sys.stdout.write(table(renders))
+    return 0
+
