@@ -151,3 +151,24 @@ def test_degenerate_counted_in_report(tmp_path, capsys):
     code, out, err = _render(["--scene", str(p), "--eye", "0,2,-10", "--target", "0,0,10", "--image-res", "24", "--res", "32", "--out", str(tmp_path / "d.png")], capsys)
     assert code == 0, err
     assert "skipped 1 degenerate triangles" in out
+
+
+def test_readme_scene_commands(tmp_path, monkeypatch, capsys):
+    """The README's "Your own scene" commands run as written, in one folder (the GLB first)."""
+    import re
+    import shlex
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    section = readme.split("### Your own scene", 1)[1].split("\n## ", 1)[0]
+    lines = [ln.strip() for block in re.findall(r"```bash\n(.*?)```", section, flags=re.S) for ln in block.splitlines() if ln.strip()]
+    assert lines[0].startswith("python -m aliasing.raster.procedural") and len(lines) >= 4
+    monkeypatch.chdir(tmp_path)
+    for line in lines:
+        argv = shlex.split(line)
+        if argv[0] == "python":
+            assert procedural.main(argv[3:]) == 0, line
+        else:
+            assert argv[0] == "aliasing" and cli.main(argv[1:]) == 0, line
+    capsys.readouterr()
+    assert (tmp_path / "city.glb").exists() and (tmp_path / "shadows.png").exists() and (tmp_path / "grid.png").exists()
