@@ -33,6 +33,10 @@ each of the k maps gets ⌊√(budget/k)⌋² texels, so ``ZP4+P`` at a 512² bu
   (:func:`aliasing.schemes.evaluate`) over many directions, and measured on probes by the
   rasterizer (:func:`aliasing.raster.measure`) over a subset as a check.
 
+:func:`render_view` is the core of :func:`view` for any eye-space scene and map set, with one
+resolution per map (explicit cascades and error-based budgets, :mod:`aliasing.raster.scenerender`
+for loaded scenes); :func:`grid_of` and :func:`error_of` draw an existing :class:`View`.
+
 Images are float arrays (R, R, 3) in [0, 1], row 0 at the *top* (ready for
 ``imshow``/``imsave`` without ``origin``).  Everything is vectorised and deterministic.
 

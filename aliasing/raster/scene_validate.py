@@ -147,7 +147,12 @@ def add_scene_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--lambda", dest="lam", type=float, help="blend λ of practical-style splits")
     g.add_argument("-k", type=int, help="number of cascades (default: the preset's own)")
     g.add_argument("--param", action="append", default=[], metavar="KEY=VALUE", help="other split parameters")
-    p._option_string_actions["--f-over-n"].required = False  # not needed with --scene; checked below without it
+    f_over_n = p._option_string_actions.get("--f-over-n")
+    if f_over_n is not None and f_over_n.required:  # not needed with --scene; checked in run() without it
+        f_over_n.required = False
+        required = True
+    else:
+        required = False
     probes_run = p.get_default("run")
 
     def run(args: argparse.Namespace) -> int:
@@ -155,7 +160,7 @@ def add_scene_options(p: argparse.ArgumentParser) -> None:
             for flag, value in (("--eye", args.eye), ("--camera", args.camera), ("--light-dir", args.light_dir), ("--splits", args.splits)):
                 if value is not None:
                     raise ValueError(f"{flag} needs --scene FILE (probe validation is in eye space, with ZP<k> partitions)")
-            if args.f_over_n is None:
+            if required and getattr(args, "f_over_n", None) is None:
                 raise ValueError("--f-over-n is required (or --scene FILE)")
             return probes_run(args)
         if args.grid:
