@@ -36,20 +36,24 @@ from .scenes import _box
 
 Array = NDArray[np.float64]
 
-#: Crown segments of a tree: 2·SEGMENTS triangles (sides and base) plus 12 for the trunk.
+#: Crown segments of a tree at 10⁴ triangles (2·segments triangles, sides and base, plus 12
+#: for the trunk); larger scenes get finer crowns (up to :data:`MAX_SEGMENTS`) rather than a
+#: denser forest.
 SEGMENTS = 8
-_TREE = 12 + 2 * SEGMENTS
+MAX_SEGMENTS = 48
+#: Most buildings (12 triangles each): a city block's few hundred, however large the scene.
+MAX_BUILDINGS = 600
 
 
-def _cones(base: Array, radius: Array, height: Array) -> Array:
-    """Cones with SEGMENTS sides: base centre (N, 3), radius (N,), height (N,) → (2·SEGMENTS·N, 3, 3)."""
-    a = 2 * np.pi * np.arange(SEGMENTS + 1) / SEGMENTS
+def _cones(base: Array, radius: Array, height: Array, segments: int = SEGMENTS) -> Array:
+    """Cones with ``segments`` sides: base centre (N, 3), radius (N,), height (N,) → (2·segments·N, 3, 3)."""
+    a = 2 * np.pi * np.arange(segments + 1) / segments
     ring = np.stack([np.cos(a), np.zeros_like(a), np.sin(a)], -1)  # (S+1, 3)
     rim = base[:, None, :] + radius[:, None, None] * ring[None]  # (N, S+1, 3)
     tip = base + np.stack([0 * height, height, 0 * height], -1)
     n = len(base)
-    side = np.stack([rim[:, :-1], rim[:, 1:], np.broadcast_to(tip[:, None], (n, SEGMENTS, 3))], 2)
-    bottom = np.stack([rim[:, 1:], rim[:, :-1], np.broadcast_to(base[:, None], (n, SEGMENTS, 3))], 2)
+    side = np.stack([rim[:, :-1], rim[:, 1:], np.broadcast_to(tip[:, None], (n, segments, 3))], 2)
+    bottom = np.stack([rim[:, 1:], rim[:, :-1], np.broadcast_to(base[:, None], (n, segments, 3))], 2)
     return np.concatenate([side, bottom], 1).reshape(-1, 3, 3)
 
 
@@ -59,7 +63,7 @@ def city(triangles: int = 100_000, seed: int = 0, *, size: float = 400.0) -> Arr
     Parameters
     ----------
     triangles : int
-        Approximate triangle count, in [10³, 10⁷] (within a few percent).
+        Approximate triangle count, in [10³, 10⁷] (within 1 %).
     seed : int
         Seed of :func:`numpy.random.default_rng`.
     size : float
@@ -68,8 +72,9 @@ def city(triangles: int = 100_000, seed: int = 0, *, size: float = 400.0) -> Arr
     Returns
     -------
     ndarray (T, 3, 3)
-        Ground (a grid of up to 32 × 32 cells), buildings (boxes 4–30 wide, 3–60 high, on a street grid)
-        and trees (trunk and crown, 3–12 high) [world units].
+        Ground (a grid taking about a quarter of the triangles), buildings (boxes, up to
+        :data:`MAX_BUILDINGS`, footprints up to a third of a lot, 3–60 high, on a 12 × 12 street grid of lots) and trees (a
+        box trunk and a cone crown, 3–12 high; the crowns' segments grow with the count) [world units].
     """
     if isinstance(triangles, bool) or int(triangles) != triangles or not 1_000 <= triangles <= 10_000_000:
         raise ValueError(f"triangles must be a whole number in [1000, 10000000], got {triangles!r}")
@@ -77,15 +82,16 @@ def city(triangles: int = 100_000, seed: int = 0, *, size: float = 400.0) -> Arr
         raise ValueError(f"size must be > 0 [world units], got {size!r}")
     rng = np.random.default_rng(seed)
     half = size / 2
-    g = int(min(32, np.sqrt(0.05 * triangles)))  # ground cells per side: ≤ 10 % of the triangles
+    g = max(1, int(np.sqrt(0.125 * triangles)))  # ground cells per side: 2g² ≈ a quarter of the triangles
     xs = np.linspace(-half, half, g + 1)
     xx, zz = np.meshgrid(xs, xs, indexing="ij")
     pts = np.stack([xx, np.zeros_like(xx), zz], -1)
     a, b, c, d = pts[:-1, :-1], pts[1:, :-1], pts[1:, 1:], pts[:-1, 1:]
     ground = np.concatenate([np.stack([a, c, b], -2), np.stack([a, d, c], -2)]).reshape(-1, 3, 3)
     rest = int(triangles) - len(ground)
-    n_build = int(0.3 * rest) // 12
-    n_tree = (rest - 12 * n_build) // _TREE
+    n_build = min(int(0.3 * rest) // 12, MAX_BUILDINGS)
+    seg = int(np.clip(round(SEGMENTS * np.sqrt(triangles / 10_000)), SEGMENTS, MAX_SEGMENTS))
+    n_tree = (rest - 12 * n_build) // (12 + 2 * seg)
     # buildings on a 12 × 12 street grid of lots, several per lot, random footprints
     lot = size / 12
     cell = rng.integers(0, 12, (n_build, 2))
@@ -99,7 +105,7 @@ def city(triangles: int = 100_000, seed: int = 0, *, size: float = 400.0) -> Arr
     th = rng.uniform(3.0, 12.0, n_tree)
     trunk_h = 0.35 * th
     trunk = _box(np.stack([txz[:, 0], trunk_h / 2, txz[:, 1]], -1), np.stack([0.08 * th, trunk_h / 2, 0.08 * th], -1))
-    crown = _cones(np.stack([txz[:, 0], trunk_h, txz[:, 1]], -1), 0.3 * th, 0.65 * th)
+    crown = _cones(np.stack([txz[:, 0], trunk_h, txz[:, 1]], -1), 0.3 * th, 0.65 * th, seg)
     return np.concatenate([ground, buildings, trunk, crown])
 
 
