@@ -129,3 +129,18 @@ def test_figure_scripts_write_files(tmp_path, mod):
     m = importlib.import_module(f"aliasing.figures.{mod}")
     paths = m.main(tmp_path)
     assert {p.suffix for p in paths} == {".png", ".csv"} and all(p.stat().st_size > 0 for p in paths)
+
+
+def test_render_cli_seeded_side_by_side_and_json(tmp_path, capsys):
+    """Several schemes on the seeded scene (eye space), --what cdf, --splits and --format json."""
+    import json
+
+    out = tmp_path / "cdf.png"
+    assert _run(["render", "--scheme", "Standard,ZP3+P", "--what", "cdf", "--f-over-n", "50", "--out", str(out), "--res", "64", "--image-res", "40"], capsys) == 0
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and "ZP3+P" in capsys.readouterr().out
+    assert _run(["render", "--scheme", "LogP", "--splits", "practical", "-k", "3", "--lambda", "0.5", "--far", "50", "--res", "64", "--image-res", "40",
+                 "--format", "json"], capsys) == 0
+    rep = json.loads(capsys.readouterr().out)
+    assert rep["schemes"][0]["scheme"] == "practical+LogP" and [c["far"] for c in rep["schemes"][0]["cascades"]][-1] == 50.0
+    assert _run(["render", "--scheme", "P", "--eye", "0,0,0", "--out", str(out)], capsys) == 2
+    assert "--eye needs --scene" in capsys.readouterr().err

@@ -33,6 +33,10 @@ each of the k maps gets ⌊√(budget/k)⌋² texels, so ``ZP4+P`` at a 512² bu
   (:func:`aliasing.schemes.evaluate`) over many directions, and measured on probes by the
   rasterizer (:func:`aliasing.raster.measure`) over a subset as a check.
 
+:func:`render_view` is the core of :func:`view` for any eye-space scene and map set, with one
+resolution per map (explicit cascades and error-based budgets, :mod:`aliasing.raster.scenerender`
+for loaded scenes); :func:`grid_of` and :func:`error_of` draw an existing :class:`View`.
+
 Images are float arrays (R, R, 3) in [0, 1], row 0 at the *top* (ready for
 ``imshow``/``imsave`` without ``origin``).  Everything is vectorised and deterministic.
 
@@ -55,7 +59,7 @@ from numpy.typing import ArrayLike, NDArray
 from .. import _validation as check
 from .. import geometry, schemes
 from .measure import measure, pixel_errors
-from .rasterize import DepthMap, LightMap, check_resolution, eye_pass, map_set, shadow_map
+from .rasterize import DepthMap, LightMap, MapSet, check_resolution, eye_pass, map_set, shadow_map
 from .scenes import Scene, ground_and_boxes
 
 Array = NDArray[np.float64]
@@ -79,7 +83,9 @@ class View:
     bottom); ``triangle`` (R, R); ``face`` (R, R): a planar-face id (0 for the ground, one per
     box face, −1 empty); ``maps``, ``edges`` (split depths), ``map_res`` (per map);
     ``partition`` (R, R), ``s``, ``t`` (map coordinates in the pixel's map), ``lit`` (bool:
-    passes the depth test), ``light`` (unit vector towards the light), ``fov``.
+    passes the depth test), ``light`` (unit vector towards the light), ``fov``;
+    ``map_resolutions`` (each map's side when they differ, e.g. an error-based budget; None:
+    all ``map_res``).
     """
 
     scene: Scene
@@ -97,6 +103,12 @@ class View:
     lit: NDArray[np.bool_]
     light: Array
     fov: float
+    map_resolutions: NDArray[np.int64] | None = None
+
+    def resolution_of(self) -> Array:
+        """Map side [texels] of the map shading each pixel (R, R); NaN off the scene."""
+        mr = np.full(len(self.maps), self.map_res, float) if self.map_resolutions is None else self.map_resolutions.astype(float)
+        return np.where(self.partition >= 0, mr[np.maximum(self.partition, 0)], np.nan)
 
 
 def map_resolution(budget: int, k: int) -> int:
@@ -113,25 +125,56 @@ def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: st
     ``bias`` is the tolerance of the depth tests of :func:`shadow_test` [world units, ≥ 0].
     ``scene`` replaces the seeded ground and boxes (then ``face`` is the triangle index).
     """
-    res = check_resolution(image_res, "image_res")
     fv = float(check.fov(fov))
     lv = geometry.lights(light)
     if lv.shape[0] != 1:
         raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
-    lv = lv[0]
-    bias = _bias(bias)
-    ms = map_set(near, far, fv, lv, scheme)
-    maps, edges = ms.maps, ms.edges
-    rm = map_resolution(budget, len(maps))
+    ms = map_set(near, far, fv, lv[0], scheme)
+    rm = map_resolution(budget, len(ms.maps))
     if scene is None:
         sc = ground_and_boxes(near, far, fv, boxes=boxes, ground_cells=ground_cells, seed=seed)
         n_ground = 2 * ground_cells**2
     else:
         sc, n_ground = scene, 0
-    eb = eye_pass(sc.triangles, fv, res)
+    return render_view(sc, ms, [rm] * len(ms.maps), image_res=image_res, bias=bias, ground=n_ground)
+
+
+def render_view(sc: Scene, ms: MapSet, resolutions: ArrayLike, *, image_res: int = 256, bias: float = BIAS, ground: int = 0, faces: ArrayLike | None = None) -> View:
+    """Eye pass and shadow test of an eye-space scene through a map set, one resolution per map.
+
+    Parameters
+    ----------
+    sc : Scene
+        Eye-space triangles [world units].
+    ms : MapSet
+        The maps (:func:`aliasing.raster.map_set`, or explicit cascades).
+    resolutions : array_like of int
+        Each map's side [texels], one per map.
+    image_res : int
+        Image side [pixels].
+    bias : float
+        Depth-test tolerance [world units], ≥ 0.
+    ground : int
+        Number of leading ground triangles (one planar face; 0: one face per triangle).
+    faces : array_like of int, optional
+        A planar-face id per triangle (e.g. coplanar triangles of a mesh share one), for the
+        error's differences; overrides ``ground``.
+    """
+    res = check_resolution(image_res, "image_res")
+    rms = [check_resolution(r, "map resolution") for r in np.atleast_1d(np.asarray(resolutions)).tolist()]
+    if len(rms) != len(ms.maps):
+        raise ValueError(f"resolutions must give one side per map ({len(ms.maps)}), got {len(rms)}")
+    bias = _bias(bias)
+    maps, n_ground = ms.maps, ground
+    eb = eye_pass(sc.triangles, ms.fov, res)
     hit = eb.triangle >= 0
     tri_id = np.maximum(eb.triangle, 0)
-    if n_ground:
+    if faces is not None:
+        fid = np.asarray(faces, np.int64)
+        if fid.shape != (len(sc.triangles),):
+            raise ValueError(f"faces must give one id per triangle ({len(sc.triangles)}), got shape {fid.shape}")
+        face = fid[tri_id]
+    elif n_ground:
         face = np.where(tri_id < n_ground, 0, 1 + (tri_id - n_ground) // 2)
     else:
         face = tri_id.copy()
@@ -150,9 +193,10 @@ def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: st
         p = pos[sel]
         s, t, d, _ = lm.coordinates(p)
         s_all[sel], t_all[sel] = s, t
-        sm = shadow_map(sc.triangles, lm, rm)
+        sm = shadow_map(sc.triangles, lm, rms[i])
         lit[sel] = shadow_test(lm, sm, sc.triangles, p, nrm[sel], bias=bias)
-    return View(sc, n_ground, eb.position, eb.normal, eb.triangle, face, maps, edges, rm, np.where(hit, part, -1), s_all, t_all, lit, lv, fv)
+    return View(sc, n_ground, eb.position, eb.normal, eb.triangle, face, list(maps), ms.edges, rms[0], np.where(hit, part, -1), s_all, t_all, lit,
+                ms.light, ms.fov, np.asarray(rms, np.int64))
 
 
 def _bias(value: float) -> float:
@@ -275,13 +319,30 @@ def grid_image(near: float, far: float, fov: float, light: str | ArrayLike, sche
     A pixel is on a line when the index ⌊s·R/every⌋ or ⌊t·R/every⌋ (R the map resolution)
     or the partition differs from its right or upper neighbour's.
     """
+    _every(every)
+    return grid_of(view(near, far, fov, light, scheme, **kwargs), every)
+
+
+def _every(every: int) -> int:
     if isinstance(every, bool) or int(every) != every or every < 1:
         raise ValueError(f"every must be a whole number >= 1 (texels between grid lines), got {every!r}")
-    v = view(near, far, fov, light, scheme, **kwargs)
-    img = shade(v)
+    return int(every)
+
+
+def grid_of(v: View, every: int = 16, *, wash: float = 0.0) -> Array:
+    """The texel-grid picture of a :class:`View` (see :func:`grid_image`), lines in the cascade colours.
+
+    ``wash`` in [0, 1) lightens the shaded scene under the lines (img·(1 − wash) + wash) so
+    that dark lines stay visible on shadowed surfaces.
+    """
+    every = _every(every)
+    if not 0 <= wash < 1:
+        raise ValueError(f"wash must be in [0, 1), got {wash!r}")
+    img = shade(v) * (1 - wash) + wash
     hit = v.triangle >= 0
-    ci = np.where(hit, np.floor(np.nan_to_num(v.s) * v.map_res / every), np.nan)
-    cj = np.where(hit, np.floor(np.nan_to_num(v.t) * v.map_res / every), np.nan)
+    mr = np.nan_to_num(v.resolution_of(), nan=1.0)
+    ci = np.where(hit, np.floor(np.nan_to_num(v.s) * mr / every), np.nan)
+    cj = np.where(hit, np.floor(np.nan_to_num(v.t) * mr / every), np.nan)
     line = np.zeros(hit.shape, bool)
     for axis in (0, 1):
         for a in (ci, cj, v.partition.astype(float)):
@@ -313,8 +374,11 @@ def error_field(v: View, image_res: int | None = None) -> Array:
     same_u[:, [0, -1]] = False
     same_v[[0, -1], :] = False
     ok = same_u & same_v
-    pos = np.where(ok[..., None], v.position, 0.0)
-    pos[~ok] = [0.0, 0.0, 1.0]
+    # keep the true positions of every visible pixel: the border pixels of a face are the
+    # neighbours of its ok pixels (a placeholder there would enter their differences)
+    hit = face >= 0
+    pos = np.where(hit[..., None], v.position, 0.0)
+    pos[~hit] = [0.0, 0.0, 1.0]
     out = np.full((res, res), np.nan)
     for i, lm in enumerate(v.maps):
         sel = ok & (part == i)
@@ -322,7 +386,7 @@ def error_field(v: View, image_res: int | None = None) -> Array:
             continue
         got = pixel_errors(lm, pos, sel, res, v.fov)
         out[sel] = np.maximum(got["m_x"], got["m_z"])[sel]
-    return out * res / v.map_res
+    return out * res / v.resolution_of()
 
 
 def error_colours(err: ArrayLike, vmax: float = 64.0) -> Array:
@@ -344,7 +408,11 @@ def error_image(near: float, far: float, fov: float, light: str | ArrayLike, sch
     Both have row 0 at the top.  Pixels at face borders (no central difference) take the
     colour of a neighbour on the same row when there is one, so edges do not show as grey.
     """
-    v = view(near, far, fov, light, scheme, **kwargs)
+    return error_of(view(near, far, fov, light, scheme, **kwargs), vmax)
+
+
+def error_of(v: View, vmax: float = 64.0) -> tuple[Array, Array]:
+    """(image, error) of a :class:`View`, as :func:`error_image`."""
     err = error_field(v)
     # fill face-border pixels from the left/right neighbour (display only)
     fill = err.copy()
@@ -433,6 +501,13 @@ def error_cdf(schemes_: list[str], near: float = 1.0, far: float = 1000.0, fov: 
 
 
 def _render(args: argparse.Namespace) -> int:
+    if args.scene is not None or "," in args.scheme or args.splits is not None or args.what == "cdf" or args.format != "text" \
+            or any(v is not None for v in (args.eye, args.target, args.camera, args.light_dir, args.k, args.lam, args.near, args.far)) or args.param:
+        from .scenerender import run
+
+        return run(args)
+    if args.out is None:
+        raise ValueError("--out FILE.png is required")
     import matplotlib
 
     matplotlib.use("Agg")
@@ -447,12 +522,13 @@ def _render(args: argparse.Namespace) -> int:
     if out.exists() and out.is_dir():
         raise ValueError(f"--out must be a file, but {args.out!r} is a folder")
     kw = dict(image_res=args.image_res, budget=args.res**2, seed=args.seed)
+    fov = 60.0 if args.fov is None else args.fov
     if args.what == "shadows":
-        img = shadow_image(1.0, f_over_n, args.fov, args.light, args.scheme, **kw)
+        img = shadow_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
     elif args.what == "grid":
-        img = grid_image(1.0, f_over_n, args.fov, args.light, args.scheme, every=args.every, **kw)
+        img = grid_image(1.0, f_over_n, fov, args.light, args.scheme, every=args.every, **kw)
     else:
-        img, _ = error_image(1.0, f_over_n, args.fov, args.light, args.scheme, **kw)
+        img, _ = error_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
     out.parent.mkdir(parents=True, exist_ok=True)
     plt.imsave(out, img, metadata={"Software": None})
     print(out)
@@ -463,21 +539,39 @@ def add_render_parser(sub) -> argparse.ArgumentParser:
     """Add the ``render`` subcommand to an ``add_subparsers`` object (of :class:`aliasing.cli._Parser`)."""
     ren = sub.add_parser(
         "render",
-        help="picture of a seeded scene: shadows, projected texel grid or per-pixel error",
-        description="Render a seeded ground-and-boxes scene (near 1, far = f/n, eye 1 above the ground) with one directional "
-        "light through a scheme's shadow maps sharing a texel budget of RES² texels; write a PNG.",
-        epilog="schemes: Standard | P | LogP | <warping rule>, alone or after ZP<k>+; FPc|FPcs[+ZP<k>]+P|LogP|Standard.  "
-        "lights: overhead | behind | front | gamma:DEG[@azimuth:DEG] (one direction).",
+        help="picture of a seeded or loaded scene: shadows, projected texel grid, per-pixel error, error distribution",
+        description="Render a seeded ground-and-boxes scene (near 1, far = f/n, eye 1 above the ground), or your own scene "
+        "(--scene FILE: glTF/GLB, OBJ, PLY, STL) seen by a world-space camera, with one directional light through each "
+        "scheme's shadow maps sharing a texel budget of RES² texels; write a PNG (schemes side by side) and a statistics table.",
+        epilog="schemes: Standard | P | LogP | <warping rule>, alone or after ZP<k>+; FPc|FPcs[+ZP<k>]+P|LogP|Standard; "
+        "comma-separated for side-by-side panels; with --splits NAME a warp used in every cascade.  "
+        "lights: overhead | behind | front | gamma:DEG[@azimuth:DEG] (eye space), or --light-dir X,Y,Z (world space, towards the light).",
     )
-    ren.add_argument("--scheme", default="Standard", help="scheme (default Standard)")
-    ren.add_argument("--f-over-n", default="100", help="depth ratio far/near (default 100)")
-    ren.add_argument("--fov", type=float, default=60.0, help="FULL field of view in degrees (default 60)")
-    ren.add_argument("--light", default="gamma:60@azimuth:30", help="one light direction (default gamma:60@azimuth:30)")
-    ren.add_argument("--what", choices=["shadows", "grid", "error"], default="shadows", help="picture (default shadows)")
-    ren.add_argument("--out", required=True, help="output PNG file")
+    ren.add_argument("--scheme", default="Standard", help="scheme(s), comma-separated (default Standard)")
+    ren.add_argument("--f-over-n", default="100", help="seeded scene: depth ratio far/near (default 100)")
+    ren.add_argument("--fov", type=float, default=None, help="FULL field of view in degrees (default 60, or the glTF camera's)")
+    ren.add_argument("--light", default="gamma:60@azimuth:30", help="one eye-space light direction (default gamma:60@azimuth:30)")
+    ren.add_argument("--what", choices=["shadows", "grid", "error", "cdf"], default="shadows", help="picture (default shadows)")
+    ren.add_argument("--out", help="output PNG file (required unless --format json)")
     ren.add_argument("--res", type=int, default=1024, help="texel budget as RES² texels over all maps (default 1024)")
     ren.add_argument("--image-res", type=int, default=512, help="image resolution in pixels per side (default 512)")
     ren.add_argument("--every", type=int, default=16, help="grid: texels between grid lines (default 16)")
     ren.add_argument("--seed", type=int, default=1, help="scene seed (default 1)")
+    scn = ren.add_argument_group("your own scene (needs the scenes extra for glTF/GLB, binary PLY, STL)")
+    scn.add_argument("--scene", metavar="FILE", help="scene file: .glb, .gltf, .obj, .ply, .stl")
+    scn.add_argument("--eye", metavar="X,Y,Z", help="camera position (world space; --eye=-5,2,0 when X is negative)")
+    scn.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at (world space)")
+    scn.add_argument("--up", metavar="X,Y,Z", default="0,1,0", help="up vector (default 0,1,0)")
+    scn.add_argument("--camera", metavar="NAME", help="a glTF camera of the file, by camera or node name")
+    scn.add_argument("--near", type=float, help="near distance (default 1, or the glTF camera's znear)")
+    scn.add_argument("--far", type=float, help="far (shadow) distance (default 100, or the glTF camera's zfar)")
+    scn.add_argument("--light-dir", metavar="X,Y,Z", help="world-space direction towards the light (write --light-dir=-1,2,0 when X is negative)")
+    cas = ren.add_argument_group("cascades")
+    cas.add_argument("--splits", metavar="NAME", help="split method or engine preset for every scheme (see aliasing splits --list)")
+    cas.add_argument("--lambda", dest="lam", type=float, help="blend λ in [0, 1] of practical-style splits")
+    cas.add_argument("-k", type=int, help="number of cascades (default: the preset's own)")
+    cas.add_argument("--param", action="append", default=[], metavar="KEY=VALUE", help="other split parameters, as in aliasing splits")
+    cas.add_argument("--allocation", choices=["equal", "error"], default="equal", help="texel budget per cascade: equal, or error-based (Lloyd 2007 eq. 83)")
+    ren.add_argument("--format", default="text", help="statistics on stdout: text (table) or json (default text)")
     ren.set_defaults(run=_render)
     return ren

@@ -698,4 +698,7 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
     p.add_argument("--dask", metavar="ADDRESS", help="with --grid: run the validations on a running Dask scheduler, e.g. tcp://host:8786 (dask extra)")
     p.add_argument("--dry-run", action="store_true", help="with --grid: print the grid size and an estimated time, validate nothing")
     p.set_defaults(run=_run)
+    from .scene_validate import add_scene_options  # --scene FILE (aliasing.raster.scene_validate)
+
+    add_scene_options(p)
     return p

@@ -1,0 +1,367 @@
+"""Your own scene: a loaded mesh, a world-space camera and light, each scheme rendered and measured.
+
+:func:`setup` loads a file (:mod:`aliasing.raster.loading`), places the camera
+(``eye``/``target``/``up`` or a glTF camera by name, :mod:`aliasing.raster.camera`) and
+turns the world-space light direction into eye space: everything after it is the toolkit's
+eye space.  :func:`render` draws the scene through each scheme's maps (any split method or
+engine preset, :mod:`aliasing.raster.cascades`) sharing one texel budget and measures the
+perspective aliasing error per pixel on lit surfaces within [near, far]
+(:func:`aliasing.raster.pictures.error_field`:
+m = max(m_x, m_z)·R_image/R_map [image pixels per texel], the projection factor of the
+surface left out as in the analytic model), with :func:`statistics`: its percentiles, the
+fraction of pixels at ≤ 1 texel per pixel, and each map's analytic maximum
+max(M_x, M_z)·R_image/R_map (Lloyd 2006 eqs. 7–10 at the map's resolution).
+
+Coplanar triangles count as one planar face (:func:`plane_ids`), so the error's central
+differences run across a mesh's tessellation, not only inside single triangles.
+
+Example
+-------
+>>> from aliasing.raster import procedural
+>>> tri = procedural.city(2000, seed=1, size=100.0)
+>>> st = setup(tri, eye="-40,2,-40", target="0,0,0", near=0.5, far=100.0, light_dir="1,2,0.5")
+>>> r = render(st, ["Standard", "LogP"], budget=128**2, image_res=48)
+>>> [x.label for x in r], r[0].stats["max"] >= r[0].stats["p99"] >= r[0].stats["p50"] > 0
+(['Standard', 'LogP'], True)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .. import _validation as check
+from .. import geometry
+from .camera import Camera, look_at, vector
+from .cascades import CascadeSet, budget_shares, cascade_set
+from .loading import WorldScene, load_scene
+from .pictures import BIAS, View, error_field, render_view
+from .scenes import Scene
+
+Array = NDArray[np.float64]
+
+PERCENTILES = (50, 90, 99)
+#: Errors are measured where the surface faces the light by more than this cosine (n·l):
+#: surfaces turned away are in their own shadow (nothing for the map to alias), and near
+#: grazing light the map's Jacobian on the surface is singular (finite differences blow up).
+MIN_COS_LIGHT = 0.1
+
+
+@dataclass(frozen=True)
+class SceneSetup:
+    """An eye-space scene ready to render: ``scene``, per-triangle planar ``faces``, the
+    ``camera`` (near, far, fov), ``light`` (eye-space unit vector towards the light), the
+    loaded file's ``degenerate`` triangle count, and ``source``."""
+
+    scene: Scene
+    faces: NDArray[np.int64]
+    camera: Camera
+    light: Array
+    degenerate: int = 0
+    source: str = ""
+
+
+@dataclass(frozen=True)
+class SchemeRender:
+    """One scheme on the scene: ``label``, its ``view``, ``cascades``, map ``resolutions``
+    [texels per side], per-pixel ``error`` (R, R, row 0 at the bottom; NaN where not
+    measured, beyond far or on surfaces not facing the light, :data:`MIN_COS_LIGHT`) and ``stats``."""
+
+    label: str
+    view: View
+    cascades: CascadeSet
+    resolutions: NDArray[np.int64]
+    error: Array
+    stats: dict = field(default_factory=dict)
+
+
+def plane_ids(triangles: ArrayLike) -> NDArray[np.int64]:
+    """An id per triangle, equal for coplanar triangles (normal and offset within 1e-6 relative).
+
+    Example
+    -------
+    >>> quad = [[[0, 0, 0], [1, 0, 0], [1, 0, 1]], [[0, 0, 0], [1, 0, 1], [0, 0, 1]], [[0, 0, 0], [0, 1, 0], [0, 1, 1]]]
+    >>> plane_ids(np.array(quad, float)).tolist()
+    [0, 0, 1]
+    """
+    tri = np.asarray(triangles, float)
+    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    n /= np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-300)
+    # one sign per plane: the first clearly non-zero component positive
+    lead = np.argmax(np.abs(n) > 1e-6, axis=-1)
+    n *= np.sign(np.take_along_axis(n, lead[:, None], -1))
+    d = (n * tri[:, 0]).sum(-1)
+    scale = max(float(np.abs(tri).max()), 1e-300)
+    key = np.column_stack([np.round(n * 1e6), np.round(d / scale * 1e6)])
+    _, first, inv = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    rank = np.argsort(np.argsort(first))  # ids in order of first appearance
+    return rank[inv.ravel()].astype(np.int64)
+
+
+def setup(scene: str | WorldScene | ArrayLike, *, eye: ArrayLike | str | None = None, target: ArrayLike | str | None = None, up: ArrayLike | str = (0.0, 1.0, 0.0),
+          camera: str | None = None, near: float | None = None, far: float | None = None, fov: float | None = None,
+          light_dir: ArrayLike | str | None = None, light: str | ArrayLike | None = None) -> SceneSetup:
+    """Load (if a path), place the camera, convert to eye space.
+
+    Parameters
+    ----------
+    scene : str, WorldScene or array_like (T, 3, 3)
+        A file (:func:`aliasing.raster.loading.load_scene`) or world-space triangles.
+    eye, target, up : array_like or "X,Y,Z"
+        A look-at camera [world units] (eye ≠ target, up not parallel to the view).
+    camera : str, optional
+        A glTF camera's name instead of eye/target (near, far, fov override its own).
+    near, far : float, optional
+        Eye near and far (shadow) distances [world units]; defaults 1 and 100 for a look-at camera.
+    fov : float, optional
+        Full field of view [deg]; default 60 (look-at) or the glTF camera's yfov.
+    light_dir : array_like or "X,Y,Z", optional
+        World-space direction towards the light (non-zero).
+    light : str or array_like, optional
+        Or an eye-space light (:data:`aliasing.geometry.LIGHT_SPEC`, one direction);
+        default ``gamma:60@azimuth:30`` when neither is given.
+    """
+    if isinstance(scene, WorldScene):
+        ws = scene
+    elif isinstance(scene, str) or hasattr(scene, "__fspath__"):
+        ws = load_scene(scene)
+    else:
+        tri = check.as_float_array(scene, "scene")
+        if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri) or not np.isfinite(tri).all():
+            raise ValueError(f"scene triangles must be finite with shape (T, 3, 3), T >= 1, got {tri.shape}")
+        ws = WorldScene(tri)
+    if camera is not None:
+        if eye is not None or target is not None:
+            raise ValueError("give either camera (a glTF camera name) or eye and target, not both")
+        cam = ws.camera(camera, near=near, far=far, fov=fov)
+    else:
+        if eye is None or target is None:
+            raise ValueError("a scene needs a camera: eye and target (--eye X,Y,Z --target X,Y,Z) or a glTF camera name (--camera NAME)")
+        cam = look_at(eye, target, up, near=1.0 if near is None else near, far=100.0 if far is None else far, fov=60.0 if fov is None else fov)
+    if light_dir is not None and light is not None:
+        raise ValueError("give either light_dir (world space) or light (eye space), not both")
+    if light_dir is not None:
+        lv = cam.direction_to_eye(vector(light_dir, "light direction"))
+    else:
+        ls = geometry.lights("gamma:60@azimuth:30" if light is None else light)
+        if ls.shape[0] != 1:
+            raise ValueError(f"light must be a single direction, got {ls.shape[0]}")
+        lv = ls[0]
+    sc = ws.in_eye_space(cam)
+    return SceneSetup(sc, plane_ids(sc.triangles), cam, lv, ws.degenerate, ws.source)
+
+
+def render(st: SceneSetup, schemes_: list[str], *, splits: str | None = None, k: int | None = None, allocation: str = "equal", budget: int = 1024**2,
+           image_res: int = 512, bias: float = BIAS, **params: float) -> list[SchemeRender]:
+    """Render and measure each scheme on the scene, all sharing ``budget`` texels.
+
+    ``splits``, ``k``, ``params``: the partitions of every scheme (a split method or engine
+    preset, :func:`aliasing.raster.cascades.cascade_set`); ``allocation``: ``equal`` or
+    ``error`` (:func:`aliasing.raster.cascades.budget_shares`).
+    """
+    if not schemes_:
+        raise ValueError("schemes must name at least one scheme")
+    cam = st.camera
+    out = []
+    for name in schemes_:
+        cs = cascade_set(cam.near, cam.far, cam.fov, st.light, name.strip(), splits=splits, k=k, **params)
+        res = budget_shares(cs, budget, allocation)
+        v = render_view(st.scene, cs.maps, res, image_res=image_res, bias=bias, faces=st.faces)
+        if not (v.triangle >= 0).any():
+            raise ValueError("no triangles in front of the camera: the image is empty")
+        facing = np.nan_to_num(v.normal) @ st.light > MIN_COS_LIGHT  # lit side, not grazing the light
+        err = np.where((v.position[..., 2] <= cam.far) & facing, error_field(v), np.nan)  # shadows end at far
+        out.append(SchemeRender(cs.label, v, cs, res, err, statistics(err, cs, res, v, budget)))
+    return out
+
+
+def statistics(err: ArrayLike, cs: CascadeSet, resolutions: ArrayLike, v: View, budget: int) -> dict:
+    """Percentiles (50/90/99), max and fraction ≤ 1 of the measured error [pixels per texel],
+    with each map's depth range, side, budget share, pixel share and analytic maximum."""
+    e = np.asarray(err, float)
+    e = e[np.isfinite(e)]
+    res = np.asarray(resolutions, float)
+    image_res = v.position.shape[0]
+    analytic = np.maximum(cs.M_x, cs.M_z) * image_res / res  # Lloyd 2006 eqs. (7)-(10) at resolution res
+    hit = v.partition >= 0
+    pix = np.array([(v.partition == i).sum() for i in range(len(res))], float) / max(int(hit.sum()), 1)
+    out = {"scheme": cs.label, "maps": len(res), "pixels_measured": int(e.size)}
+    for p in PERCENTILES:
+        out[f"p{p}"] = float(np.percentile(e, p)) if e.size else float("nan")
+    out["max"] = float(e.max()) if e.size else float("nan")
+    out["frac_le_1"] = float((e <= 1.0).mean()) if e.size else float("nan")
+    used = pix > 0
+    out["analytic_max"] = float(analytic[used].max()) if used.any() else float("nan")
+    out["cascades"] = [
+        {"map": i, "near": float(cs.near_i[i]), "far": float(cs.far_i[i]), "side": int(res[i]), "budget_share": float(res[i] ** 2 / budget),
+         "pixel_share": float(pix[i]), "analytic_max": float(analytic[i])}
+        for i in range(len(res))
+    ]
+    return out
+
+
+def table(renders: list[SchemeRender]) -> str:
+    """The statistics as aligned text: one row per scheme, then one per cascade."""
+    keys = ["scheme", "maps", "p50", "p90", "p99", "max", "frac_le_1", "analytic_max"]
+    rows = [keys] + [[_cell(r.stats[k]) for k in keys] for r in renders]
+    w = [max(len(r[i]) for r in rows) for i in range(len(keys))]
+    text = "".join("  ".join(c.rjust(w[i]) for i, c in enumerate(r)) + "\n" for r in rows)
+    text += "errors: measured perspective error [image pixels per texel] (p50/p90/p99/max over measured pixels); frac_le_1: share at <= 1\n"
+    ck = ["scheme", "map", "near", "far", "side", "budget_share", "pixel_share", "analytic_max"]
+    crow = [ck] + [[_cell(r.label)] + [_cell(c[k]) for k in ck[1:]] for r in renders for c in r.stats["cascades"]]
+    w = [max(len(r[i]) for r in crow) for i in range(len(ck))]
+    return text + "\n" + "".join("  ".join(c.rjust(w[i]) for i, c in enumerate(r)) + "\n" for r in crow)
+
+
+def _cell(v: object) -> str:
+    return f"{v:.4g}" if isinstance(v, float) else str(v)
+
+
+# ----------------------------------------------------------------------------- pictures and CLI
+
+
+def figure(renders: list[SchemeRender], what: str = "shadows", *, every: int = 16, vmax: float = 64.0):
+    """Side-by-side panels of the schemes (``shadows``, ``grid``, ``error``) or their per-pixel
+    error distributions on one plot (``cdf``); returns the matplotlib Figure."""
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import LogNorm
+    from matplotlib.patches import Patch
+
+    from .pictures import GRID_COLOURS, cdf, error_of, grid_of, shade
+
+    kind = check.choice(what, "what", dict.fromkeys(("shadows", "grid", "error", "cdf")))
+    if kind == "cdf":
+        fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
+        for r in renders:
+            xs, ys = cdf(r.error)
+            ax.plot(xs, ys, label=f"{r.label} (max {r.stats['max']:.3g}, bound {r.stats['analytic_max']:.3g})")
+        ax.axvline(1.0, color="0.5", lw=0.8, ls=":")
+        ax.set(xscale="log", xlabel="measured perspective error [image pixels per texel]", ylabel="fraction of measured pixels", ylim=(0, 1.02))
+        ax.legend(fontsize=7, loc="lower right")
+        return fig
+    n = len(renders)
+    fig, axes = plt.subplots(1, n, figsize=(3.6 * n, 4.3 if kind == "grid" else 3.9), layout="constrained", squeeze=False)
+    for ax, r in zip(axes[0], renders):
+        if kind == "shadows":
+            img = np.clip(shade(r.view)[::-1], 0, 1)
+        elif kind == "grid":
+            img = grid_of(r.view, every, wash=0.45)
+        else:
+            img = error_of(r.view, vmax)[0]
+            img = np.where(np.isnan(r.error[::-1])[..., None] & (r.view.triangle[::-1] >= 0)[..., None], 0.6 * img + 0.25, img)
+        ax.imshow(img, interpolation="nearest")
+        ax.set_xticks([]), ax.set_yticks([])
+        s = r.stats
+        ax.set_title(f"{r.label}\np99 {s['p99']:.3g}, max {s['max']:.3g} px/texel, ≤1: {100 * s['frac_le_1']:.0f}%", fontsize=8)
+        if kind == "grid":
+            cs = r.cascades
+            handles = [Patch(color=GRID_COLOURS[i % len(GRID_COLOURS)], label=f"map {i}: {_range(cs, i)}, {r.resolutions[i]}²") for i in range(len(r.resolutions))]
+            ax.legend(handles=handles, fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.01), ncol=2, frameon=False)
+    if kind == "error":
+        sm = plt.cm.ScalarMappable(norm=LogNorm(1.0, vmax), cmap="jet")
+        fig.colorbar(sm, ax=axes[0].tolist(), shrink=0.8, label="perspective error [pixels per texel] (grey: not measured)")
+    return fig
+
+
+def _range(cs: CascadeSet, i: int) -> str:
+    if np.isnan(cs.near_i[i]):
+        return "face map"
+    return f"{cs.near_i[i]:.3g}–{cs.far_i[i]:.3g}"
+
+
+def report(st: SceneSetup, renders: list[SchemeRender], *, budget: int, allocation: str, splits: str | None) -> dict:
+    """JSON-ready numbers of a render: the view, the light, and each scheme's statistics."""
+    cam = st.camera
+    return {
+        "source": st.source, "triangles": int(len(st.scene.triangles)), "degenerate_skipped": st.degenerate,
+        "camera": {"name": cam.name, "eye": cam.eye.tolist(), "forward": cam.rotation[2].tolist(), "up": cam.rotation[1].tolist(),
+                   "near": cam.near, "far": cam.far, "fov": cam.fov},
+        "light_eye_space": st.light.tolist(), "gamma": float(np.degrees(np.arccos(np.clip(st.light[2], -1, 1)))),
+        "budget": int(budget), "allocation": allocation, "splits": splits, "image_res": int(renders[0].view.position.shape[0]),
+        "schemes": [_finite(r.stats) for r in renders],
+    }
+
+
+def _finite(value: object) -> object:
+    """JSON has no NaN: write it as null."""
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_finite(v) for v in value]
+    if isinstance(value, float) and not np.isfinite(value):
+        return None
+    return value
+
+
+def params_of(lam: float | None, items: list[str]) -> dict[str, float]:
+    """Split parameters from ``--lambda`` and ``--param KEY=NUMBER`` (as ``aliasing splits``)."""
+    params = {} if lam is None else {"lam": float(lam)}
+    for item in items:
+        key, sep, value = item.partition("=")
+        try:
+            params[key.strip()] = float(value)
+        except ValueError:
+            sep = ""
+        if not sep or not key.strip():
+            raise ValueError(f"--param takes KEY=NUMBER, got {item!r}")
+    return params
+
+
+def run(args) -> int:
+    """``aliasing render`` with --scene, several schemes, --splits or --what cdf."""
+    import json
+    import sys
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .scenes import ground_and_boxes
+
+    fmt = check.choice(args.format, "format", dict.fromkeys(("text", "json")))
+    out = None if args.out is None else Path(args.out)
+    if out is not None and out.suffix.lower() != ".png":
+        raise ValueError(f"--out must be a .png file, got {args.out!r}")
+    if out is None and fmt != "json":
+        raise ValueError("--out FILE.png is required (or --format json for the numbers alone)")
+    light = None if args.light_dir is not None else args.light
+    if args.scene is not None:
+        st = setup(args.scene, eye=args.eye, target=args.target, up=args.up, camera=args.camera, near=args.near, far=args.far, fov=args.fov,
+                   light_dir=args.light_dir, light=light)
+    else:
+        for flag, value in (("--eye", args.eye), ("--target", args.target), ("--camera", args.camera), ("--light-dir", args.light_dir)):
+            if value is not None:
+                raise ValueError(f"{flag} needs --scene FILE (the seeded scene is in eye space)")
+        f = float(args.f_over_n) if args.far is None else float(args.far)
+        n = 1.0 if args.near is None else float(args.near)
+        fv = 60.0 if args.fov is None else float(args.fov)
+        sc = ground_and_boxes(n, f, fv, seed=args.seed, boxes=40, ground_cells=16)
+        cam = Camera(np.zeros(3), np.eye(3), *(float(x) for x in check.frustum(n, f)), float(check.fov(fv)), "eye space")
+        ls = geometry.lights(light)
+        if ls.shape[0] != 1:
+            raise ValueError(f"light must be a single direction, got {ls.shape[0]}")
+        st = SceneSetup(sc, plane_ids(sc.triangles), cam, ls[0])
+    names = [s.strip() for s in args.scheme.split(",") if s.strip()]
+    params = params_of(args.lam, args.param)
+    if args.splits is None and (args.k is not None or params):
+        raise ValueError("-k, --lambda and --param need --splits NAME (see aliasing splits --list)")
+    budget = int(args.res) ** 2
+    renders = render(st, names, splits=args.splits, k=args.k, allocation=args.allocation, budget=budget, image_res=args.image_res, **params)
+    if out is not None:
+        fig = figure(renders, args.what, every=args.every)
+        out.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(out, dpi=110, bbox_inches="tight", pad_inches=0.1, metadata={"Software": None})
+        plt.close(fig)
+    if fmt == "json":
+        sys.stdout.write(json.dumps(report(st, renders, budget=budget, allocation=args.allocation, splits=args.splits), indent=1) + "\n")
+    else:
+        print(out)
+        if st.degenerate:
+            print(f"skipped {st.degenerate} degenerate triangles")
+        sys.stdout.write(table(renders))
+    return 0
+
