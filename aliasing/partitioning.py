@@ -340,3 +340,74 @@ def _unreal(near: float, far: float, k: int, exponent: float = 3.0) -> Array:
     i = np.arange(k + 1)
     frac = i / k if e == 1.0 else (e**i - 1) / (e**k - 1)
     return near + frac * (far - near)
+
+
+@register(
+    "osg-pssm",
+    "OpenSceneGraph src/osgShadow/ParallelSplitShadowMap.cpp calculateFrustumCorners(), SPLIT_EXP (openscenegraph/OpenSceneGraph, commit 029da13c)",
+    "power-law split C_i = n + (f − n)(i/k)^(bias + 1), bias = 0.66 (static fSplitSchemeBias; SPLIT_EXP is the constructor's mode), k from the constructor",
+)
+def _osg_pssm(near: float, far: float, k: int, bias: float = 0.66) -> Array:
+    """OSG's "exponential" split: the fraction of (f − n) grows as a power of i/k, C_0 = n, C_k = f.
+
+    Read from the public source (not copied): split ``i`` starts at
+    n + (f − n)(i/k)^(bias + 1); OSG clamps bias to [0, 3] where we raise a ValueError.
+    It is not a blend of log and uniform splits; bias = 0 is the uniform split.
+
+    Example
+    -------
+    >>> split_distances("osg-pssm", 1.0, 101.0, 2).round(4)
+    array([  1.    ,  32.6439, 101.    ])
+    """
+    b = float(check.closed_range(bias, "bias", 0.0, 3.0))
+    return near + (far - near) * (np.arange(k + 1) / k) ** (b + 1.0)
+
+
+def _bgfx_current_splits(near: float, setting_far: float, k: int, lam: float) -> Array:
+    """bgfx's calculateCascadeSplits(): the far end of each of the k cascades, for its m_far."""
+    s = (2 * np.arange(k) + 1) / (2.5 * k)  # odd indices over 2.5 k, not 2 k: the last is (2k − 1)/(2.5k) < 1
+    return lam * near * (setting_far / near) ** s + (1 - lam) * (near + (setting_far - near) * s)
+
+
+def bgfx_current_setting_far(near: float, far: float, k: int = 4, lam: float = 0.6) -> float:
+    """The m_far [world units] at which bgfx's current split makes its last cascade end at ``far``.
+
+    bgfx's cascades stop short of its far plane: with n = 1, m_far = 550, k = 4, λ = 0.6 the last
+    one ends at 203.83.  ``far`` here is where shadows end (as for every engine preset), so the
+    setting is found by a root search (the end is increasing in m_far).
+
+    Example
+    -------
+    >>> round(bgfx_current_setting_far(1.0, 203.8255785, 4, 0.6), 3)
+    550.0
+    """
+    from scipy.optimize import brentq
+
+    n, f = (float(v) for v in check.frustum(near, far))
+    w, kk = _lam(lam), _partitions(k)
+    end = lambda m: _bgfx_current_splits(n, m, kk, w)[-1] - f
+    hi = f
+    while end(hi) < 0:  # the end is below m_far, so a finite bracket exists
+        hi *= 2.0
+    return float(brentq(end, f, hi, xtol=1e-12 * f, rtol=1e-14))
+
+
+@register(
+    "bgfx-current",
+    "bgfx examples/16-shadowmaps/shadowmaps.cpp calculateCascadeSplits() (bkaradzic/bgfx, commit 01dbbbc0; GPU Gems 3 ch. 10 blend)",
+    "log/uniform blend λ = 0.6 at s = (2i + 1)/(2.5k), 4 cascades, no overlap; the last cascade ends before m_far (far = that end)",
+    default_k=4,
+    max_k=4,
+)
+def _bgfx_current(near: float, far: float, k: int, lam: float = 0.6) -> Array:
+    """bgfx's current cascade split: cascade i ends at λ n (m/n)^s_i + (1 − λ)(n + (m − n) s_i),
+    s_i = (2i + 1)/(2.5k), m = m_far; cascade 0 starts at n.  ``far`` is where the last cascade
+    ends, and m_far is solved for (:func:`bgfx_current_setting_far`).
+
+    Example
+    -------
+    >>> split_distances("bgfx-current", 1.0, 203.8255785, 4, lam=0.6).round(2)
+    array([  1.  ,  23.49,  70.26, 124.27, 203.83])
+    """
+    m = bgfx_current_setting_far(near, far, k, lam)
+    return np.concatenate([[near], _bgfx_current_splits(near, m, k, _lam(lam))])

@@ -52,6 +52,10 @@ TARGETS: dict[str, Target] = {
         Target("lloyd2007-fig21", "lloyd2007_fig21", "Lloyd 2007 Fig. 21: R_b (t end, s side, t side) of the error-bound parameterizations vs light position"),
         Target("lloyd2007-fig25", "lloyd2007_fig25", "Lloyd 2007 Fig. 25: R_log,t on a side face vs light position, optimal a and a = 0"),
         Target("lloyd2007-fig26", "lloyd2007_fig26", "Lloyd 2007 Fig. 26: S of the linear log+perspective form, parabolic fits, two-parabola S vs light position"),
+        Target("lloyd2007-fig22", "lloyd2007_fig22", "Lloyd 2007 Fig. 22: R_un (t end, s side, t side) of the uniform parameterization vs light position"),
+        Target("lloyd2007-fig23", "lloyd2007_fig23", "Lloyd 2007 Fig. 23: optimal R_p,s, R_p,t and S_p of the perspective parameterization vs light position"),
+        Target("lloyd2007-fig24", "lloyd2007_fig24", "Lloyd 2007 Fig. 24: the range of optimal perspective parameters a of S_p (l_y = 0.5 y1) and its top vs light position"),
+        Target("warping-rule-grid", "warping_rule_grid", "New: max S / Standard's max and mean S / S-optimal mean of P, LogP, LiSPSM, GMNPR, GLPR and the pyramid rules over f/n 10..1e5 x fov 20..120 (2000 directions)"),
     )
 }
 

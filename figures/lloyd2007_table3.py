@@ -17,7 +17,8 @@ relative difference.  What the comparison shows (docs/ERRATA.md):
 * the printed P and Po rows are swapped (L5): our P (eq. 79 shaping) is the printed Po row
   and our Po (1/sin γ) the printed P row, as the paper's own text requires;
 * the printed ZP5+P max/min and mean repeat the ZP5+Log row (L6);
-* means differ by 1–2 % (sampling not stated), more for P and Po;
+* means differ by +1.0 to +2.3 % in most rows, −9.1 % for P and −5.6/−6.6 % for FP: none of the
+  hypotheses of :mod:`aliasing.table3_hypotheses` explains them (L20); those cells are flagged;
 * FP: minima and maxima agree at the printed precision (the maximum is the closed form
   2(f/n − 1) + 1, resp. 2 ln(f/n) + 1, at γ = 0); the means are 6–7 % lower (L17);
 * FPc, FPcs: means within 1.5 % and FPcs's 3.8 maps agree; the printed maxima are sample
@@ -59,16 +60,88 @@ PRINTED = {
     "FPcs+Log": (5.98, 31.7, 5.3, 14.3, 1.31, 3.8),
 }
 NOTES = {
-    "P": "printed P and Po rows are swapped (ERRATA L5): compare with the printed Po row",
-    "Po": "printed P and Po rows are swapped (ERRATA L5): compare with the printed P row",
-    "ZP5+P": "printed max/min and mean repeat the ZP5+Log row (ERRATA L6)",
-    "FP+P": "mean 6 % low, map count 3.67 exactly (ERRATA L17)",
-    "FP+Log": "mean 7 % low, map count 3.67 exactly (ERRATA L17)",
-    "FPc+P": "max is a sample maximum: S is unbounded (ERRATA L18)",
-    "FPcs+P": "max is a sample maximum: S is unbounded (ERRATA L18); tau0, tau1 ours",
-    "FPc+Log": "max is a sample maximum: S is unbounded (ERRATA L18)",
-    "FPcs+Log": "max is a sample maximum: S is unbounded (ERRATA L18); tau0, tau1 ours",
+    "P": "compared with the printed Po row: the printed P and Po rows are swapped (ERRATA L5)",
+    "Po": "compared with the printed P row: the printed P and Po rows are swapped (ERRATA L5)",
+    "FPcs+P": "tau0, tau1 ours (not given in the paper)",
+    "FPcs+Log": "tau0, tau1 ours (not given in the paper)",
 }
+# which printed row each of our rows is compared with (ERRATA L5: P and Po swapped in print)
+COMPARED_WITH = {"P": "Po", "Po": "P"}
+# explained differences: (row, column) → erratum; "*" matches every row
+EXPLAINED = {
+    ("ZP5+P", "S_max_over_min"): "L6: printed cell repeats ZP5+Log; 159/12.9 = 12.3 from the row's own min and max",
+    ("ZP5+P", "S_mean"): "L6: printed cell repeats ZP5+Log; compared here with 4.93 x 10.94 = 53.9",
+    ("FP+P", "maps"): "L17: exactly 1 + 4(90+theta)/180 = 3.667; printed 3.6",
+    ("FPc+P", "maps"): "L17: exactly 3.667; printed 3.6",
+    ("FP+Log", "maps"): "L17: exactly 3.667; printed 3.6",
+    ("FPc+Log", "maps"): "L17: exactly 3.667; printed 3.6",
+    ("FPc+P", "S_max"): "L18: S is unbounded near a lateral-edge direction; the printed max is a sample max",
+    ("FPcs+P", "S_max"): "L18: S is unbounded; the printed max is a sample max",
+    ("FPc+Log", "S_max"): "L18: S is unbounded; the printed max is a sample max",
+    ("FPcs+Log", "S_max"): "L18: S is unbounded; the printed max is a sample max",
+    ("FPc+P", "S_max_over_min"): "L18: follows from the sample max",
+    ("FPcs+P", "S_max_over_min"): "L18: follows from the sample max",
+    ("FPc+Log", "S_max_over_min"): "L18: follows from the sample max",
+    ("FPcs+Log", "S_max_over_min"): "L18: follows from the sample max",
+    ("*", "rel_mean"): "L17/L20: Rel. mean divides by Mean(FP+Log), whose residual is unexplained (L20)",
+}
+# ZP5+P's printed mean and max/min repeat ZP5+Log (L6): compare with the row-implied values
+L6_IMPLIED = {"S_max_over_min": 159 / 12.9, "S_mean": 4.93 * 10.94}
+
+
+def printed_value(row: str, col: str) -> float:
+    """The printed cell our ``row``, ``col`` is compared with (L5's swap and L6's implied values applied)."""
+    if row == "ZP5+P" and col in L6_IMPLIED:
+        return L6_IMPLIED[col]
+    return PRINTED[COMPARED_WITH.get(row, row)][COLUMNS.index(col)]
+
+
+def agrees(value: float, printed: float, col: str) -> bool:
+    """Equal at the printed precision: 3 significant figures (2 for a map count)."""
+    digits = 2 if col == "maps" else 3
+    exp = int(np.floor(np.log10(abs(printed))))
+    return round(value, -exp + digits - 1) == round(printed, -exp + digits - 1)
+
+
+def classify(row: str, col: str, value: float, directions: int = DIRECTIONS) -> str:
+    """"agrees", an erratum's explanation, or "UNEXPLAINED: …" for a cell."""
+    printed = printed_value(row, col)
+    if agrees(value, printed, col):
+        return "agrees"
+    why = EXPLAINED.get((row, col)) or EXPLAINED.get(("*", col))
+    if why:
+        return why
+    if col == "S_max" and value < printed and agrees(sup_max(row), printed, "S_max"):
+        return "L20: sampled max below the supremum, which agrees at the printed precision"
+    if col == "S_max_over_min":
+        lo = (PRINTED_ROW(row)[1] - half_unit(PRINTED_ROW(row)[1])) / (PRINTED_ROW(row)[0] + half_unit(PRINTED_ROW(row)[0]))
+        hi = (PRINTED_ROW(row)[1] + half_unit(PRINTED_ROW(row)[1])) / (PRINTED_ROW(row)[0] - half_unit(PRINTED_ROW(row)[0]))
+        if lo <= value <= hi:
+            return "L20: within the range the row's printed min and max allow at their precision"
+        if value < printed and agrees(sup_max(row) / PRINTED_ROW(row)[0], printed, col):
+            return "L20: our sampled max is below the supremum; with the supremum it agrees"
+    if col == "S_mean":
+        return "UNEXPLAINED: mean residual; no hypothesis of L20 fits (aliasing.table3_hypotheses)"
+    if col == "S_max":
+        return f"UNEXPLAINED: our supremum over directions is {sup_max(row):.5g}"
+    return "UNEXPLAINED"
+
+
+def PRINTED_ROW(row: str) -> tuple:
+    return PRINTED[COMPARED_WITH.get(row, row)]
+
+
+def half_unit(printed: float, digits: int = 3) -> float:
+    """Half a unit in the last of ``digits`` significant figures of ``printed``."""
+    return 0.5 * 10.0 ** (int(np.floor(np.log10(abs(printed)))) - digits + 1)
+
+
+def sup_max(row: str) -> float:
+    """Supremum of S over directions: the larger of the limit γ → 0 along a frustum diagonal
+    (Standard's 2(f/n)²) and the maximum over a 0.01° γ grid in the view's vertical plane (Po's 3.6546e6)."""
+    diag = schemes.evaluate(row, 1.0, F_OVER_N, FOV, geometry.light_direction(1e-6, 45.0)).S[0]
+    plane = schemes.evaluate(row, 1.0, F_OVER_N, FOV, geometry.light_direction(np.arange(0.01, 90.0, 0.01), 0.0)).S.max()
+    return float(max(diag, plane))
 
 
 def lights(directions: int = DIRECTIONS) -> np.ndarray:
@@ -87,30 +160,62 @@ def data(directions: int = DIRECTIONS) -> dict[str, dict[str, float]]:
     return out
 
 
+def cells(ours: dict[str, dict[str, float]], directions: int = DIRECTIONS) -> dict[tuple[str, str], tuple[float, float, str]]:
+    """(row, column) → (ours, printed compared with, classification)."""
+    return {(r, c): (ours[r][c], printed_value(r, c), classify(r, c, ours[r][c], directions)) for r in ROWS for c in COLUMNS}
+
+
 def main(out_dir: Path, directions: int = DIRECTIONS) -> list[Path]:
     ours = data(directions)
+    table = cells(ours, directions)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    csv_lines = ["row," + ",".join(f"{c},{c}_printed,{c}_rel_diff" for c in COLUMNS) + ",note"]
+    csv_lines = ["row," + ",".join(f"{c},{c}_printed,{c}_rel_diff,{c}_status" for c in COLUMNS) + ",note"]
     md = [
-        f"# Lloyd et al. 2007, Table 3: ours vs printed\n\nf/n = {F_OVER_N:g}, θ = {FOV / 2:g}°, overhead + {directions} hemisphere directions. Cells: ours / printed (relative difference).\n",
+        f"# Lloyd et al. 2007, Table 3: ours vs printed\n\nf/n = {F_OVER_N:g}, θ = {FOV / 2:g}°, overhead + {directions} hemisphere directions. "
+        "Cells: ours / printed (relative difference); ✓ agrees at the printed precision, [Ln] explained by that erratum (docs/ERRATA.md), "
+        "**UNEXPLAINED** otherwise (listed below the table).\n",
         "| row | " + " | ".join(COLUMNS) + " | note |",
         "|---" * (len(COLUMNS) + 2) + "|",
     ]
+    flagged, explained = [], []
     for name in ROWS:
         cells_csv, cells_md = [], []
-        for col, printed in zip(COLUMNS, PRINTED[name]):
-            value = ours[name][col]
+        for col in COLUMNS:
+            value, printed, status = table[(name, col)]
             rel = (value - printed) / printed
-            cells_csv.append(f"{value:.6g},{printed:g},{rel:+.4f}")
-            cells_md.append(f"{value:.4g} / {printed:g} ({rel:+.1%})")
+            cells_csv.append(f"{value:.6g},{printed:g},{rel:+.4f},\"{status}\"")
+            tag = "✓" if status == "agrees" else ("**UNEXPLAINED**" if status.startswith("UNEXPLAINED") else f"[{status.split(':')[0].split(' ')[-1].strip('()')}]")
+            cells_md.append(f"{value:.4g} / {printed:.4g} ({rel:+.1%}) {tag}")
+            if status.startswith("UNEXPLAINED"):
+                flagged.append(f"- {name}, {col}: {rel:+.1%}. {status}")
+            elif status != "agrees":
+                explained.append(f"- {name}, {col}: {status}")
         note = NOTES.get(name, "")
         csv_lines.append(f"{name}," + ",".join(cells_csv) + f",{note}")
         md.append(f"| {name} | " + " | ".join(cells_md) + f" | {note} |")
+    md += ["", "## Unexplained cells", ""] + (flagged or ["none"]) + ["", "## Explained cells", ""] + explained
+    md += ["", "Hypotheses tried for the means: docs/ERRATA.md L20 and `lloyd2007-table3-hypotheses.md` (written beside this table)."]
     csv_path, md_path = out / f"{NAME}.csv", out / f"{NAME}.md"
     csv_path.write_text("\n".join(csv_lines) + "\n")
     md_path.write_text("\n".join(md) + "\n")
-    return [csv_path, md_path]
+    hyp_path = out / f"{NAME}-hypotheses.md"
+    hyp_path.write_text(hypotheses_table(directions))
+    return [csv_path, md_path, hyp_path]
+
+
+def hypotheses_table(directions: int = DIRECTIONS) -> str:
+    """Markdown: every hypothesis of :mod:`aliasing.table3_hypotheses` × every row's mean residual."""
+    from aliasing import table3_hypotheses as H
+
+    head = ["| hypothesis | group | " + " | ".join(H.ROWS) + " | rows within print |", "|---" * (len(H.ROWS) + 3) + "|"]
+    lines = []
+    for name, hyp in H.HYPOTHESES.items():
+        res = H.residuals(name, max(directions, 100))
+        lines.append(f"| {name} | {hyp.group} | " + " | ".join(f"{100 * res[r]:+.1f}%" for r in H.ROWS) + f" | {len(H.fits(res))}/{len(H.ROWS)} |")
+    intro = (f"# Lloyd et al. 2007, Table 3 means: hypotheses × rows\n\n(ours − printed)/printed of Mean S, ≈{directions} directions "
+             "(P/Po swapped, ERRATA L5; ZP5+P vs 53.9, L6). 'Within print': |residual| ≤ 0.5 %.\n")
+    return intro + "\n" + "\n".join(head + lines) + "\n"
 
 
 if __name__ == "__main__":
