@@ -196,3 +196,14 @@ def test_cli_engines_json_and_errors(capsys):
     assert err.count("\n") == 1 and "first" in err
     assert cli.main(["engines", "--list"]) == 0
     assert "vsm:PRESET" in capsys.readouterr().out
+
+
+def test_dxsdk_body_diagonal_square_misses_corners_at_wide_fov():
+    # DirectX SDK FIT_TO_SCENE pads to the body diagonal only: below the far-face diagonal at fov 60
+    assert float(stable.body_diagonal(10.0, 1e4, 60.0)) < float(stable.diagonal(10.0, 1e4, 60.0))
+    assert stable.coverage("log", 10.0, 1e5, 60.0, "hemisphere:200", k=4, fit="body", scene=True) < 0.5
+    assert stable.coverage("log", 10.0, 1e5, 30.0, "hemisphere:200", k=4, fit="body", scene=True) == 1.0
+    for fit in ("diagonal", "sphere"):
+        assert stable.coverage("log", 10.0, 1e5, 90.0, "hemisphere:200", k=4, fit=fit, scene=True) == 1.0
+    row = compare.compare(["csm-stable:dxsdk-scene"], lights="overhead")[0]
+    assert row["max_error"] > 0

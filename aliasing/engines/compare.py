@@ -3,7 +3,7 @@
 Scheme specs (``:``-separated options, case-insensitive)::
 
     csm:SPLIT[:k=N]                          tight fit (the papers'), a split of aliasing.partitioning
-    csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal][:snap=none|bevy|pad][:scene=1][:overlap=P]
+    csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body][:snap=none|bevy|pad][:scene=1][:overlap=P]
     sdsm[:k=N][:zmin=Z][:zmax=Z]             log partitions of the occupied range (default [near, far], k = 4)
     vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P]
     matched | exact
@@ -150,9 +150,9 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
         opts = _options(rest, spec, {"k", "fit", "snap", "scene", "overlap"})
         if name in stable.PRESETS:
             p = stable.PRESETS[name]
-            name, kw = p.split, {"fit": p.fit, "snap": p.snap, "overlap": p.overlap}
+            name, kw = p.split, {"fit": p.fit, "snap": p.snap, "overlap": p.overlap, "scene": p.scene}
             if "k" not in opts:
-                opts["k"] = "4"  # the bevy preset's default cascade count (CascadeShadowConfigBuilder, as recalled)
+                opts["k"] = "4"  # Bevy's default cascade count (CascadeShadowConfigBuilder, as recalled); the DX sample's default 4 levels likewise not re-read
         else:
             kw = {"fit": "sphere"}
         kw["k"] = _k(opts, spec, None)
@@ -240,7 +240,7 @@ def _cell(v: object) -> str:
 
 LISTING = """families and presets:
   csm:SPLIT[:k=N]                 split methods: {splits}
-  csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal][:snap=none|bevy|pad][:scene=1][:overlap=P]
+  csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body][:snap=none|bevy|pad][:scene=1][:overlap=P]
                                   stable presets: {stables}
   sdsm[:k=N][:zmin=Z][:zmax=Z]    log partitions of the occupied range (Lauritzen et al. 2011)
   vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P]

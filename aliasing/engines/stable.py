@@ -28,9 +28,17 @@ Fits
     ``crates/bevy_pbr/src/light/mod.rs``, ``calculate_cascade``, bevyengine/bevy as stored,
     commit c62a6fcd; the same construction as the DirectX SDK's CascadedShadowMaps11
     "fit to cascades" stable mode, whose source was not read here).
+``body``
+    A square of side |c0 − c6| only, the body diagonal (DirectX SDK
+    ``CascadedShadowMaps11/CascadedShadowsManager.cpp`` ``InitFrame``, FIT_TO_SCENE branch,
+    walbourn/directx-sdk-samples commit 1494e2be: "pad the projection to be the size of the
+    diagonal of the frustum partition", min and max floored to texels).  Finding: when the
+    far face's diagonal 2√2·t·b is longer than the body diagonal (wide fov or a slice
+    starting near the eye, as fit to scene always does) this square does **not** cover the
+    slice for every light direction; :func:`coverage` measures it.  Bevy's max() fixes it.
 Fit to scene (``scene=True``)
     Every cascade's fit range starts at the near plane: [near, b_k] (DirectX SDK
-    FIT_TO_SCENE; source not read here, the definition is the issue's).
+    FIT_TO_SCENE, same source: "interval 1 is covered by cascades 1 to 8").
 Texel snapping (``snap``)
     ``"none"``: sizes unchanged.  ``"bevy"``: the map centre is floored to a texel;
     Bevy keeps the side D (so up to one texel at one border may be uncovered) —
@@ -63,7 +71,7 @@ from .. import _validation as check
 from .. import directional, geometry, partitioning
 
 Array = NDArray[np.float64]
-FITS = ("tight", "sphere", "diagonal")
+FITS = ("tight", "sphere", "diagonal", "body")
 SNAPS = ("none", "bevy", "pad")
 
 
@@ -77,12 +85,23 @@ class StablePreset:
     snap: str
     overlap: float
     source: str
+    scene: bool = False
 
 
 # Only modes whose source was read in this session; others (Filament ``stable``, Godot 4,
 # Babylon.js ``stabilizeCascades``, Unity StableFit) are not shipped: their fit shape was
 # not verified, and the project does not invent defaults.
 PRESETS: dict[str, StablePreset] = {
+    "dxsdk-scene": StablePreset(
+        "dxsdk-scene",
+        "log",
+        "body",
+        "none",
+        0.0,
+        "DirectX SDK CascadedShadowMaps11 CascadedShadowsManager.cpp InitFrame, FIT_TO_SCENE + m_bMoveLightTexelSize (walbourn/directx-sdk-samples); "
+        "scene=True; split: the sample's partitions are user-set, the toolkit's log split stands in",
+        scene=True,
+    ),
     "bevy": StablePreset(
         "bevy",
         "log",
@@ -145,6 +164,38 @@ def diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
     return np.maximum(body, 2 * np.sqrt(2) * t * b)
 
 
+def body_diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
+    """|c0 − c6| = √((b − a)² + 2t²(a + b)²) [world units], the DirectX SDK's cascade bound.
+
+    Example
+    -------
+    >>> round(float(body_diagonal(0.0 + 1e-9, 1.0, 90.0)), 6)
+    1.732051
+    """
+    a, b = check.frustum(a, b)
+    t = np.tan(np.radians(check.fov(fov)) / 2)
+    return np.sqrt((b - a) ** 2 + 2 * t**2 * (a + b) ** 2)
+
+
+def coverage(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "hemisphere:200", **options) -> float:
+    """Fraction of light directions for which every cascade's map covers its slice (tight extents ≤ sides).
+
+    Example
+    -------
+    >>> coverage("log", 0.1, 100.0, 60.0, "hemisphere:100", k=3, fit="diagonal")
+    1.0
+    """
+    fit_keys = {"fit", "snap", "resolution", "scene", "overlap"}
+    base = {key: v for key, v in options.items() if key not in fit_keys}
+    for key in ("scene", "overlap"):
+        if key in options:
+            base[key] = options[key]
+    tight = evaluate(split, near, far, fov, light, **base)  # same fit ranges, tight extents
+    other = evaluate(split, near, far, fov, light, **options)
+    ok = (other.width_x >= tight.width_x * (1 - 1e-12)) & (other.width_y >= tight.width_y * (1 - 1e-12))
+    return float(ok.all(axis=-1).mean())
+
+
 def cascade_ranges(split: str | ArrayLike, near: float, far: float, k: int | None = None, *, scene: bool = False, overlap: float = 0.0, **params: float) -> tuple[tuple[Array, Array], tuple[Array, Array]]:
     """(fit ranges, used ranges) of a split preset or explicit split distances.
 
@@ -205,7 +256,12 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
         lf = directional.fit(geometry.frustum_vertices(a, b, fov), lv)
         wx, wy = np.ptp(lf.x, axis=-1), lf.depth
     else:
-        side = 2 * sphere_radius(a, b, fov) if kind == "sphere" else np.ceil(diagonal(a, b, fov))  # Bevy rounds up
+        if kind == "sphere":
+            side = 2 * sphere_radius(a, b, fov)
+        elif kind == "diagonal":
+            side = np.ceil(diagonal(a, b, fov))  # Bevy rounds up to a whole unit
+        else:
+            side = body_diagonal(a, b, fov)
         wx = wy = np.broadcast_to(side, (len(lv), len(a)))
     if snapping == "pad":
         wx, wy = wx * res / (res - 1), wy * res / (res - 1)  # one texel more, W′ = W + W′/R
