@@ -207,3 +207,21 @@ def test_dxsdk_body_diagonal_square_misses_corners_at_wide_fov():
         assert stable.coverage("log", 10.0, 1e5, 90.0, "hemisphere:200", k=4, fit=fit, scene=True) == 1.0
     row = compare.compare(["csm-stable:dxsdk-scene"], lights="overhead")[0]
     assert row["max_error"] > 0
+
+
+def test_sdsm_histogram_partitions():
+    e = np.geomspace(1.0, 1024.0, 11)
+    counts = [0, 0, 5, 5, 0, 0, 0, 0, 5, 5]
+    lo, hi = sdsm.adaptive_log(e, counts, 2)
+    assert lo.tolist() == [4.0, 256.0] and hi.tolist() == [16.0, 1024.0]  # the empty octaves get no map
+    lo, hi = sdsm.kmeans(e, counts, 2)
+    assert lo.tolist() == [4.0, 256.0] and hi.tolist() == [16.0, 1024.0]
+    one = sdsm.adaptive_log(e, counts, 1)
+    assert one[0].tolist() == [4.0] and one[1].tolist() == [1024.0]
+    gaps = stable.evaluate((lo, hi), 1.0, 1024.0, 60.0, "hemisphere:20")
+    whole = stable.evaluate(sdsm.log_partitions(1.0, 1024.0, 4.0, 1024.0, 2), 4.0, 1024.0, 60.0, "hemisphere:20")
+    assert (gaps.S < whole.S).all()  # fitting the populated ranges only costs less
+    with pytest.raises(ValueError, match="no samples"):
+        sdsm.kmeans(e, np.zeros(10), 2)
+    with pytest.raises(ValueError, match="k"):
+        sdsm.adaptive_log(e, counts, 0)

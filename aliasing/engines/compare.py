@@ -140,6 +140,7 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
         res = stable.evaluate(edges, lo, hi, fov, lights)
         axis = stable.evaluate(edges, lo, hi, fov, "overhead")
         return _cascade_row(spec, res, axis, t, image_res, shadow_res)
+        return _cascade_row(spec, res, axis, t, image_res, shadow_res)
     if not parts:
         raise ValueError(f"scheme {spec!r}: {family} needs a split method or preset (see aliasing splits --list)")
     name, rest = parts[0], parts[1:]

@@ -206,6 +206,11 @@ def cascade_ranges(split: str | ArrayLike, near: float, far: float, k: int | Non
     ([1.0, 1.0], [1.0, 10.0])
     """
     n, f = (float(x) for x in check.frustum(near, far))
+    if isinstance(split, tuple) and len(split) == 2:  # (near_i, far_i) of separate maps, e.g. SDSM's populated ranges
+        lo, hi = (check.as_float_array(x, "split").ravel() for x in split)
+        if lo.size == 0 or lo.shape != hi.shape or np.any(hi <= lo) or lo.min() < n * (1 - 1e-12) or hi.max() > f * (1 + 1e-12):
+            raise ValueError("split as (near_i, far_i) needs equal non-empty lengths, near_i < far_i, inside [near, far]")
+        return (lo.copy(), hi.copy()), (lo.copy(), hi.copy())
     if isinstance(split, str):
         edges = partitioning.split_distances(split, n, f, k, **params)
         lo, hi = partitioning.partitions(split, n, f, k, **params)
@@ -227,8 +232,9 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
 
     Parameters
     ----------
-    split : str or array_like
-        A split method of :mod:`aliasing.partitioning` or split distances near … far [world units].
+    split : str, array_like or tuple
+        A split method of :mod:`aliasing.partitioning`, split distances near … far [world
+        units], or a pair (near_i, far_i) of separate maps' ranges (used where they are fitted).
     near, far : float
         Eye near and shadow distance [world units], 0 < near < far.
     fov : float
