@@ -52,6 +52,7 @@ TARGETS: dict[str, Target] = {
         Target("lloyd2007-fig21", "lloyd2007_fig21", "Lloyd 2007 Fig. 21: R_b (t end, s side, t side) of the error-bound parameterizations vs light position"),
         Target("lloyd2007-fig25", "lloyd2007_fig25", "Lloyd 2007 Fig. 25: R_log,t on a side face vs light position, optimal a and a = 0"),
         Target("lloyd2007-fig26", "lloyd2007_fig26", "Lloyd 2007 Fig. 26: S of the linear log+perspective form, parabolic fits, two-parabola S vs light position"),
+        Target("engines-comparison", "engines_comparison", "Engine schemes (issue 18): m_x along the view and critical storage over gamma, stable CSM, SDSM, UE5 VSM High/Epic, matched and exact limits (near 10 cm, far 1 km, fov 60, 1920 px)"),
     )
 }
 

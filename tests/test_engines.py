@@ -225,3 +225,13 @@ def test_sdsm_histogram_partitions():
         sdsm.kmeans(e, np.zeros(10), 2)
     with pytest.raises(ValueError, match="k"):
         sdsm.adaptive_log(e, counts, 0)
+
+
+def test_figure_data_shows_the_documented_ranges():
+    from aliasing.figures import engines_comparison as fig
+
+    cols = fig.data(samples=400, gammas=7)
+    assert ((cols["m_matched"] > 0.5) & (cols["m_matched"] <= 1.0)).all()
+    far = cols["d"] > 100.0  # beyond the first level's clamp (level 6 reaches 2^(6 − B′) cm)
+    assert cols["m_vsm_high"][far].max() <= 2.0 + 1e-9 and cols["m_vsm_high"][far].min() > 1.0
+    assert np.ptp(cols["S_csm_stable_filament"]) == 0.0 and (cols["S_csm_stable_filament"] >= cols["S_csm_filament"]).all()
