@@ -18,7 +18,9 @@ texels per cascade): ``max_error`` (max over lights and receivers of max(m_x, m_
 (m_x along the view axis over [near, far], light overhead), ``storage_texels``, ``S_bar``
 (the papers' critical storage in image areas: Σ_maps texels·M_x·M_z / W², the maximum over
 lights; for VSM a bound: texels·M²/W²), ``pages`` (VSM: the frustum bound, worst light),
-``overflow`` and ``extra_bias`` (VSM pool), ``storage_ratio`` and ``error_ratio`` to the
+``overflow`` and ``extra_bias`` (VSM pool), ``coverage`` (cascades: the fraction of light
+directions for which every map covers its slice; below 1 the row's error is not a valid
+bound, see :func:`aliasing.engines.stable.coverage`), ``storage_ratio`` and ``error_ratio`` to the
 matched limit (:mod:`aliasing.engines.limits`).
 
 Example
@@ -43,7 +45,7 @@ from .. import partitioning
 from . import limits, sdsm, stable, vsm
 
 FAMILIES = ("csm", "csm-stable", "sdsm", "vsm", "matched", "exact")
-FIELDS = ("scheme", "max_error", "median_error", "m_axis_min", "m_axis_max", "storage_texels", "S_bar", "pages", "overflow", "extra_bias", "storage_ratio", "error_ratio")
+FIELDS = ("scheme", "max_error", "median_error", "m_axis_min", "m_axis_max", "storage_texels", "S_bar", "pages", "overflow", "extra_bias", "coverage", "storage_ratio", "error_ratio")
 
 
 def _options(parts: list[str], spec: str, allowed: set[str]) -> dict[str, str]:
@@ -88,6 +90,7 @@ def _cascade_row(spec: str, res: stable.StableResult, axis: stable.StableResult,
         "m_axis_max": float((wx / (2 * t * u)).max() * scale),
         "storage_texels": float(k * shadow_res**2),
         "S_bar": float(res.S.max()),
+        "coverage": 1.0,  # tight fits cover their slices by construction
     }
 
 
@@ -168,7 +171,9 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
     check.choice(name, "split method", partitioning.SPLIT_METHODS)
     res = stable.evaluate(name, near, far, fov, lights, **kw)
     axis = stable.evaluate(name, near, far, fov, "overhead", **kw)
-    return _cascade_row(spec, res, axis, t, image_res, shadow_res)
+    row = _cascade_row(spec, res, axis, t, image_res, shadow_res)
+    row["coverage"] = stable.coverage(name, near, far, fov, lights, **kw) if family == "csm-stable" else 1.0
+    return row
 
 
 def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, far: float = 100000.0, lights: str | np.ndarray = "hemisphere:200", image_res: int = 1920, shadow_res: int = 2048, unit: str = "cm") -> list[dict]:
