@@ -1,0 +1,20 @@
+"""Today's engine shadow schemes beside the papers' (issue 18).
+
+Modules
+-------
+stable
+    Cascade fits: tight (the papers'), bounding sphere, fixed diagonal (Bevy), fit to
+    scene; texel snapping; cascade overlap; cost as a ratio to the tight fit.
+sdsm
+    Sample-distribution shadow maps: log partitions on an occupied depth range.
+vsm
+    Unreal Engine 5 virtual shadow-map clipmaps for a directional light: level selection,
+    texel size per level, the error's saw-tooth, pages and the page pool.
+limits
+    Resolution-matched (power-of-two levels) and exact sampling.
+compare
+    One row per scheme for ``aliasing engines``.
+
+Every module works in the scene's length unit; the VSM model's constants are the
+engine's, which works in centimetres.
+"""

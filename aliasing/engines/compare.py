@@ -1,0 +1,293 @@
+"""One comparison row per engine scheme, and the ``aliasing engines`` subcommand.
+
+Scheme specs (``:``-separated options, case-insensitive)::
+
+    csm:SPLIT[:k=N]                          tight fit (the papers'), a split of aliasing.partitioning
+    csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body][:snap=none|bevy|pad][:scene=1][:overlap=P]
+    sdsm[:k=N][:zmin=Z][:zmax=Z]             log partitions of the occupied range (default [near, far], k = 4)
+    vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P]
+    matched | exact
+
+``csm-stable`` takes a stable preset (:data:`aliasing.engines.stable.PRESETS`) or a split
+with the toolkit's default stable fit (a minimal bounding sphere, unsnapped: the model's
+choice, not an engine's).
+
+Row fields (errors at the given resolutions: ``--image-res`` pixels across, ``--shadow-res``
+texels per cascade): ``max_error`` (max over lights and receivers of max(m_x, m_z)),
+``median_error`` (median over lights of each light's max), ``m_axis_min``/``m_axis_max``
+(m_x along the view axis over [near, far], light overhead), ``storage_texels``, ``S_bar``
+(the papers' critical storage in image areas: Σ_maps texels·M_x·M_z / W², the maximum over
+lights; for VSM a bound: texels·M²/W²), ``pages`` (VSM: the frustum bound, worst light),
+``overflow`` and ``extra_bias`` (VSM pool), ``coverage`` (cascades: the fraction of light
+directions for which every map covers its slice; below 1 the row's error is not a valid
+bound, see :func:`aliasing.engines.stable.coverage`), ``storage_ratio`` and ``error_ratio`` to the
+matched limit (:mod:`aliasing.engines.limits`).
+
+Example
+-------
+>>> rows = compare(["csm:log:k=4", "matched"], near=10.0, far=10000.0, lights="overhead")
+>>> [r["scheme"] for r in rows], rows[1]["error_ratio"]
+(['csm:log:k=4', 'matched'], 1.0)
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+from collections.abc import Sequence
+
+import numpy as np
+
+from .. import _validation as check
+from .. import partitioning
+from . import limits, sdsm, stable, vsm
+
+FAMILIES = ("csm", "csm-stable", "sdsm", "vsm", "matched", "exact")
+FIELDS = ("scheme", "max_error", "median_error", "m_axis_min", "m_axis_max", "storage_texels", "S_bar", "pages", "overflow", "extra_bias", "coverage", "storage_ratio", "error_ratio")
+
+
+def _options(parts: list[str], spec: str, allowed: set[str]) -> dict[str, str]:
+    opts = {}
+    for item in parts:
+        key, eq, value = item.partition("=")
+        if not eq or key not in allowed:
+            raise ValueError(f"scheme {spec!r}: unknown option {item!r}; allowed: {', '.join(sorted(allowed))}")
+        opts[key] = value
+    return opts
+
+
+def _num(opts: dict[str, str], key: str, spec: str, default: float | None = None) -> float | None:
+    if key not in opts:
+        return default
+    try:
+        return float(opts[key])
+    except ValueError:
+        raise ValueError(f"scheme {spec!r}: {key} must be a number, got {opts[key]!r}") from None
+
+
+def _k(opts: dict[str, str], spec: str, default: int | None) -> int | None:
+    k = _num(opts, "k", spec, default)
+    if k is None:
+        return None
+    if not float(k).is_integer() or k < 1:
+        raise ValueError(f"scheme {spec!r}: k must be a whole number >= 1, got {opts.get('k')}")
+    return int(k)
+
+
+def _cascade_row(spec: str, res: stable.StableResult, axis: stable.StableResult, t: float, image_res: int, shadow_res: int) -> dict:
+    scale = image_res / shadow_res  # unit-resolution m → m at W pixels and R texels
+    per_dir = np.maximum(res.M_x, res.M_z).max(axis=-1) * scale
+    u, v = axis.used
+    wx = axis.width_x[0]
+    k = res.M_x.shape[1]
+    return {
+        "scheme": spec,
+        "max_error": float(per_dir.max()),
+        "median_error": float(np.median(per_dir)),
+        "m_axis_min": float((wx / (2 * t * v)).min() * scale),  # m_x = W_x/(2 tanθ d), smallest at each cascade's far end
+        "m_axis_max": float((wx / (2 * t * u)).max() * scale),
+        "storage_texels": float(k * shadow_res**2),
+        "S_bar": float(res.S.max()),
+        "coverage": 1.0,  # tight fits cover their slices by construction
+    }
+
+
+def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | np.ndarray, image_res: int, shadow_res: int, unit: str) -> dict:
+    """The comparison row of one scheme spec (see the module docstring)."""
+    text = str(spec).strip().lower()
+    family, *parts = text.split(":")
+    check.choice(family, "scheme family", FAMILIES)
+    t = float(np.tan(np.radians(fov) / 2))
+    if family in ("matched", "exact"):
+        if parts:
+            raise ValueError(f"scheme {spec!r}: {family} takes no options")
+        return limits.row(family, image_res)
+    if family == "vsm":
+        if not parts:
+            raise ValueError(f"scheme {spec!r}: vsm needs a preset ({', '.join(vsm.PRESETS)}) or bias=B")
+        if "=" not in parts[0]:
+            preset = check.choice(parts[0], "vsm preset", vsm.PRESETS)
+            base = vsm.PRESETS[preset]
+            opts = _options(parts[1:], spec, {"first", "last", "pool"})
+        else:
+            base = vsm.PRESETS["default"]
+            opts = _options(parts, spec, {"bias", "first", "last", "pool"})
+        bias = _num(opts, "bias", spec, base.bias)
+        first, last, pool = (_num(opts, key, spec, d) for key, d in (("first", 6), ("last", 22), ("pool", base.pool)))
+        if pool is None or pool < 1:
+            raise ValueError(f"scheme {spec!r}: pool (physical pages) must be a whole number >= 1, got {pool:g}")
+        c = vsm.Clipmap(fov, image_res, bias, int(first), int(last), unit)
+        worst = vsm.frustum_max(c, near, far)
+        lo, hi = vsm.m_axis_range(c, near, far)
+        pool_info = vsm.pool_check(c, near, far, lights, int(pool))
+        texels = pool_info["pages"] * vsm.PAGE**2
+        return {
+            "scheme": spec,
+            "max_error": worst,
+            "median_error": worst,  # the clipmap is centred on the camera: no light dependence in m
+            "m_axis_min": lo,
+            "m_axis_max": hi,
+            "storage_texels": float(texels),
+            "S_bar": float(texels * worst**2 / image_res**2),
+            "pages": pool_info["pages"],
+            "overflow": bool(pool_info["overflow"]),
+            "extra_bias": pool_info["extra_bias"],
+        }
+    if family == "sdsm":
+        opts = _options(parts, spec, {"k", "zmin", "zmax"})
+        k = _k(opts, spec, 4)
+        lo, hi = sdsm.occupied(near, far, _num(opts, "zmin", spec, near), _num(opts, "zmax", spec, far))
+        edges = sdsm.log_partitions(near, far, lo, hi, k)
+        res = stable.evaluate(edges, lo, hi, fov, lights)
+        axis = stable.evaluate(edges, lo, hi, fov, "overhead")
+        return _cascade_row(spec, res, axis, t, image_res, shadow_res)
+        return _cascade_row(spec, res, axis, t, image_res, shadow_res)
+    if not parts:
+        raise ValueError(f"scheme {spec!r}: {family} needs a split method or preset (see aliasing splits --list)")
+    name, rest = parts[0], parts[1:]
+    if family == "csm":
+        opts = _options(rest, spec, {"k"})
+        kw = {"k": _k(opts, spec, None)}
+    else:
+        opts = _options(rest, spec, {"k", "fit", "snap", "scene", "overlap"})
+        if name in stable.PRESETS:
+            p = stable.PRESETS[name]
+            name, kw = p.split, {"fit": p.fit, "snap": p.snap, "overlap": p.overlap, "scene": p.scene}
+            if "k" not in opts:
+                opts["k"] = "4"  # Bevy's default cascade count (CascadeShadowConfigBuilder, as recalled); the DX sample's default 4 levels likewise not re-read
+        else:
+            kw = {"fit": "sphere"}
+        kw["k"] = _k(opts, spec, None)
+        for key in ("fit", "snap"):
+            if key in opts:
+                kw[key] = opts[key]
+        if "scene" in opts:
+            kw["scene"] = opts["scene"] not in ("0", "false", "no")
+        if "overlap" in opts:
+            kw["overlap"] = _num(opts, "overlap", spec)
+        kw["resolution"] = float(shadow_res)
+    check.choice(name, "split method", partitioning.SPLIT_METHODS)
+    res = stable.evaluate(name, near, far, fov, lights, **kw)
+    axis = stable.evaluate(name, near, far, fov, "overhead", **kw)
+    row = _cascade_row(spec, res, axis, t, image_res, shadow_res)
+    row["coverage"] = stable.coverage(name, near, far, fov, lights, **kw) if family == "csm-stable" else 1.0
+    return row
+
+
+def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, far: float = 100000.0, lights: str | np.ndarray = "hemisphere:200", image_res: int = 1920, shadow_res: int = 2048, unit: str = "cm") -> list[dict]:
+    """Rows for ``schemes`` with their ratios to the matched limit.
+
+    Parameters
+    ----------
+    schemes : sequence of str
+        Scheme specs (module docstring).
+    fov : float
+        Full field of view [deg].
+    near, far : float
+        Eye near and shadow distance [scene units].
+    lights : str or array_like
+        Light specs, comma-separated (the sweep's), or vectors ``(N, 3)``.
+    image_res : int
+        Eye image width [pixels].
+    shadow_res : int
+        Texels per side of each cascade.
+    unit : str
+        The scene's unit (VSM's constants are in cm).
+    """
+    check.fov(fov)
+    check.frustum(near, far)
+    for value, name in ((image_res, "image_res"), (shadow_res, "shadow_res")):
+        if not (float(value) >= 1 and float(value).is_integer()):
+            raise ValueError(f"{name} must be a whole number >= 1 (pixels/texels per side), got {value!r}")
+    check.choice(unit, "unit", vsm.CM_PER_UNIT)
+    if not schemes:
+        raise ValueError("schemes is empty: name at least one scheme")
+    if isinstance(lights, str):
+        from ..sweep import expand_lights
+
+        lights = expand_lights(lights)[1]
+    ref = limits.row("matched", int(image_res))
+    rows = []
+    for spec in schemes:
+        row = {key: None for key in FIELDS}
+        row.update(scheme_row(spec, fov=float(fov), near=float(near), far=float(far), lights=lights, image_res=int(image_res), shadow_res=int(shadow_res), unit=unit))
+        row["storage_ratio"] = row["storage_texels"] / ref["storage_texels"]
+        row["error_ratio"] = row["max_error"] / ref["max_error"]
+        rows.append(row)
+    return rows
+
+
+def format_rows(rows: list[dict], fmt: str) -> str:
+    """Rows as ``table``, ``csv`` or ``json`` text."""
+    if fmt == "json":
+        return json.dumps(rows, indent=1) + "\n"
+    if fmt == "csv":
+        buf = io.StringIO()
+        w = csv.DictWriter(buf, fieldnames=FIELDS, lineterminator="\n")
+        w.writeheader()
+        w.writerows({k: ("" if v is None else v) for k, v in r.items()} for r in rows)
+        return buf.getvalue()
+    cells = [list(FIELDS)] + [[_cell(r[k]) for k in FIELDS] for r in rows]
+    widths = [max(len(c[i]) for c in cells) for i in range(len(FIELDS))]
+    return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(FIELDS))) + "\n" for c in cells)
+
+
+def _cell(v: object) -> str:
+    if v is None:
+        return "-"
+    if isinstance(v, bool):
+        return "yes" if v else "no"
+    if isinstance(v, float):
+        return f"{v:.4g}"
+    return str(v)
+
+
+LISTING = """families and presets:
+  csm:SPLIT[:k=N]                 split methods: {splits}
+  csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body][:snap=none|bevy|pad][:scene=1][:overlap=P]
+                                  stable presets: {stables}
+  sdsm[:k=N][:zmin=Z][:zmax=Z]    log partitions of the occupied range (Lauritzen et al. 2011)
+  vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P]
+                                  presets: {vsms}
+  matched                         resolution-matched, power-of-two levels (Lefohn et al. 2007)
+  exact                           irregular z-buffer / ray-traced shadows
+"""
+
+
+def _run(args: argparse.Namespace) -> int:
+    if args.list:
+        print(LISTING.format(splits=", ".join(partitioning.SPLIT_METHODS), stables=", ".join(f"{p.name} ({p.source})" for p in stable.PRESETS.values()), vsms=", ".join(f"{p.name} (bias {p.bias:g}, pool {p.pool})" for p in vsm.PRESETS.values())), end="")
+        return 0
+    schemes = [s for s in (args.schemes or "").split(",") if s.strip()]
+    rows = compare(schemes, fov=args.fov, near=args.near, far=args.far, lights=args.light, image_res=args.image_res, shadow_res=args.shadow_res, unit=args.unit)
+    print(format_rows(rows, args.format), end="")
+    return 0
+
+
+def add_engines_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    """Add the ``engines`` subcommand to the ``aliasing`` command's subparsers ``sub``.
+
+    ValueErrors (bad input) are printed by ``aliasing.cli.main`` as one line, exit 2.
+    """
+    p = sub.add_parser(
+        "engines",
+        help="compare today's engine schemes (stable CSM, SDSM, UE5 VSM) with the matched and exact limits",
+        description="One row per scheme: error at the given resolutions (max, median over lights, along the view axis), "
+        "storage in texels and as the papers' S, VSM pages and pool, and ratios to the resolution-matched limit.",
+        epilog="schemes: csm:SPLIT[:k=N] | csm-stable:SPLIT|PRESET[:fit=..][:snap=..][:scene=1][:overlap=P] | sdsm[:k=N][:zmin=Z][:zmax=Z] | "
+        "vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P] | matched | exact (see --list).",
+    )
+    p.add_argument("--schemes", default="csm:filament,csm-stable:filament,sdsm:k=4,vsm:high,vsm:epic,matched,exact", help="comma list of scheme specs")
+    p.add_argument("--fov", type=float, default=60.0, help="FULL field of view in degrees (default 60)")
+    p.add_argument("--near", type=float, default=10.0, help="near distance in --unit (default 10)")
+    p.add_argument("--far", type=float, default=100000.0, help="shadow distance in --unit (default 100000)")
+    p.add_argument("--image-res", type=int, default=1920, help="eye image width in pixels (default 1920)")
+    p.add_argument("--shadow-res", type=int, default=2048, help="texels per side of each cascade (default 2048)")
+    p.add_argument("--unit", default="cm", help="scene length unit: cm (default, as the engine), m, mm, in, ft")
+    p.add_argument("--light", default="hemisphere:200", help="light directions, the sweep's comma-separated specs (default hemisphere:200)")
+    p.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
+    p.add_argument("--list", action="store_true", help="list the families and presets and exit")
+    p.set_defaults(run=_run)
+    return p

@@ -1,0 +1,305 @@
+"""Stabilized cascade fits and what they cost against the tight fit.
+
+Each cascade k has a *fit range* [a_k, b_k] (the eye depths its map must cover) and a
+*used range* [u_k, v_k] (the receivers that sample it: the split interval, the finest
+cascade wins).  Its map is orthographic (uniform), side W_x × W_y in the light image
+plane (:mod:`aliasing.directional`'s light space), so with unit resolutions
+
+    m_x(d) = W_x / (2 tanθ d),  m_z(d) = W_y / (2 tanθ d)     (Lloyd et al. 2006, eq. 2 with
+                                                               a uniform map, eqs. 7–8)
+
+and the maxima are at the first used depth u_k: M_x,k = W_x/(2 tanθ u_k), likewise M_z,k;
+S̄ = Σ_k M_x,k M_z,k.  For the tight fit with fit range = used range this is exactly
+:func:`aliasing.schemes.evaluate` of ``Standard`` with the same edges (tested).
+
+Fits
+----
+``tight``
+    W_x, W_y the extents of the slice's 8 corners in light space (depends on the light).
+``sphere``
+    A square of side 2r, r the radius of the slice's *minimal* enclosing sphere, closed
+    form in :func:`sphere_radius` (derived in :mod:`aliasing.symbolic.engines`).  Independent
+    of the light direction, so rotation-stable.  Engines that centre the sphere on the
+    corners' average (and round r) use a slightly larger sphere; that variant's source was
+    not read in this session, so it is not modelled.
+``diagonal``
+    A square of side D = max(|c0 − c6|, |c4 − c6|): the slice's body diagonal or its far
+    face's diagonal, whichever is longer, rounded up to a whole world unit (Bevy
+    ``crates/bevy_pbr/src/light/mod.rs``, ``calculate_cascade``, bevyengine/bevy as stored,
+    commit c62a6fcd; the same construction as the DirectX SDK's CascadedShadowMaps11
+    "fit to cascades" stable mode, whose source was not read here).
+``body``
+    A square of side |c0 − c6| only, the body diagonal (DirectX SDK
+    ``CascadedShadowMaps11/CascadedShadowsManager.cpp`` ``InitFrame``, FIT_TO_SCENE branch,
+    walbourn/directx-sdk-samples commit 1494e2be: "pad the projection to be the size of the
+    diagonal of the frustum partition", min and max floored to texels).  Finding: when the
+    far face's diagonal 2√2·t·b is longer than the body diagonal (wide fov or a slice
+    starting near the eye, as fit to scene always does) this square does **not** cover the
+    slice for every light direction; :func:`coverage` measures it.  Bevy's max() fixes it.
+Fit to scene (``scene=True``)
+    Every cascade's fit range starts at the near plane: [near, b_k] (DirectX SDK
+    FIT_TO_SCENE, same source: "interval 1 is covered by cascades 1 to 8").
+Texel snapping (``snap``)
+    ``"none"``: sizes unchanged.  ``"bevy"``: the map centre is floored to a texel;
+    Bevy keeps the side D (so up to one texel at one border may be uncovered) —
+    the size is unchanged.  ``"pad"``: a coverage-preserving snap: the side grows by one
+    texel, W′ = W·R/(R − 1) at R texels per side (the model's assumption for engines that
+    pad by a texel; a bound, not read from an engine).
+Overlap
+    Engines that pad or overlap cascades (``ogre-pssm``, ``bgfx``, ``unreal`` in
+    :mod:`aliasing.partitioning`) fit each map to :func:`aliasing.partitioning.partitions`
+    and use it on the split interval; ``overlap=p`` adds Bevy's overlap: cascade k's fit
+    range starts at (1 − p)·C_(k−1) (Bevy ``calculate_cascade_bounds`` /
+    ``overlap_proportion``).
+
+Example
+-------
+>>> r = evaluate("log", 1.0, 1000.0, 60.0, "overhead", k=3, fit="sphere")
+>>> t = evaluate("log", 1.0, 1000.0, 60.0, "overhead", k=3, fit="tight")
+>>> bool(r.S[0] > t.S[0])
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .. import _validation as check
+from .. import directional, geometry, partitioning
+
+Array = NDArray[np.float64]
+FITS = ("tight", "sphere", "diagonal", "body")
+SNAPS = ("none", "bevy", "pad")
+
+
+@dataclass(frozen=True)
+class StablePreset:
+    """An engine's stable cascade mode: fit, snap, overlap, its split preset and source."""
+
+    name: str
+    split: str
+    fit: str
+    snap: str
+    overlap: float
+    source: str
+    scene: bool = False
+
+
+# Only modes whose source was read in this session; others (Filament ``stable``, Godot 4,
+# Babylon.js ``stabilizeCascades``, Unity StableFit) are not shipped: their fit shape was
+# not verified, and the project does not invent defaults.
+PRESETS: dict[str, StablePreset] = {
+    "dxsdk-scene": StablePreset(
+        "dxsdk-scene",
+        "log",
+        "body",
+        "none",
+        0.0,
+        "DirectX SDK CascadedShadowMaps11 CascadedShadowsManager.cpp InitFrame, FIT_TO_SCENE + m_bMoveLightTexelSize (walbourn/directx-sdk-samples); "
+        "scene=True; split: the sample's partitions are user-set, the toolkit's log split stands in",
+        scene=True,
+    ),
+    "bevy": StablePreset(
+        "bevy",
+        "log",
+        "diagonal",
+        "bevy",
+        0.2,
+        "Bevy crates/bevy_pbr/src/light/mod.rs calculate_cascade (diameter = ceil(max(body, far-face diagonal)), centre floored to a texel); "
+        "overlap_proportion 0.2 from CascadeShadowConfigBuilder as recalled, not re-read; split: the toolkit's log split stands in for Bevy's bounds",
+    ),
+}
+
+
+@dataclass(frozen=True)
+class StableResult:
+    """Unit-resolution errors of a cascade set over N light directions and K maps."""
+
+    M_x: Array  # (N, K)
+    M_z: Array  # (N, K)
+    S: Array  # (N,)
+    width_x: Array  # (N, K) map sides [world units]
+    width_y: Array  # (N, K)
+    used: tuple[Array, Array]  # (u_k, v_k) [world units]
+    fit_range: tuple[Array, Array]  # (a_k, b_k)
+
+
+def sphere_radius(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
+    """Radius [world units] of the minimal sphere around a square frustum slice [a, b].
+
+    With t = tan(fov/2) the corners lie at depth a (radius √2·t·a from the axis) and b;
+    the centre on the axis equidistant from both rings is z_c = (a + b)(1 + 2t²)/2; if
+    z_c ≥ b the far ring alone decides: r = √2·t·b.  Otherwise
+    r² = (b − z_c)² + 2t²b².  Derived and tested in :mod:`aliasing.symbolic.engines`.
+
+    Example
+    -------
+    >>> float(sphere_radius(1.0, 3.0, 90.0))  # far ring decides: z_c = 6 > 3
+    4.242640687119285
+    """
+    a, b = check.frustum(a, b)
+    t2 = np.tan(np.radians(check.fov(fov)) / 2) ** 2
+    zc = (a + b) * (1 + 2 * t2) / 2
+    r_far = np.sqrt(2 * t2) * b
+    return np.where(zc >= b, r_far, np.sqrt((b - np.minimum(zc, b)) ** 2 + 2 * t2 * b**2))
+
+
+def diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
+    """Bevy's cascade diameter before rounding: max(body diagonal, far-face diagonal).
+
+    Body diagonal |c0 − c6| from a near corner to the opposite far corner:
+    √((b − a)² + 2t²(a + b)²); far face |c4 − c6|: 2√2·t·b (t = tan(fov/2)).
+
+    Example
+    -------
+    >>> round(float(diagonal(1.0, 2.0, 90.0)), 6)
+    5.656854
+    """
+    a, b = check.frustum(a, b)
+    t = np.tan(np.radians(check.fov(fov)) / 2)
+    body = np.sqrt((b - a) ** 2 + 2 * t**2 * (a + b) ** 2)
+    return np.maximum(body, 2 * np.sqrt(2) * t * b)
+
+
+def body_diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
+    """|c0 − c6| = √((b − a)² + 2t²(a + b)²) [world units], the DirectX SDK's cascade bound.
+
+    Example
+    -------
+    >>> round(float(body_diagonal(0.0 + 1e-9, 1.0, 90.0)), 6)
+    1.732051
+    """
+    a, b = check.frustum(a, b)
+    t = np.tan(np.radians(check.fov(fov)) / 2)
+    return np.sqrt((b - a) ** 2 + 2 * t**2 * (a + b) ** 2)
+
+
+def coverage(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "hemisphere:200", **options) -> float:
+    """Fraction of light directions for which every cascade's map covers its slice (tight extents ≤ sides).
+
+    Example
+    -------
+    >>> coverage("log", 0.1, 100.0, 60.0, "hemisphere:100", k=3, fit="diagonal")
+    1.0
+    """
+    fit_keys = {"fit", "snap", "resolution", "scene", "overlap"}
+    base = {key: v for key, v in options.items() if key not in fit_keys}
+    for key in ("scene", "overlap"):
+        if key in options:
+            base[key] = options[key]
+    tight = evaluate(split, near, far, fov, light, **base)  # same fit ranges, tight extents
+    other = evaluate(split, near, far, fov, light, **options)
+    ok = (other.width_x >= tight.width_x * (1 - 1e-12)) & (other.width_y >= tight.width_y * (1 - 1e-12))
+    return float(ok.all(axis=-1).mean())
+
+
+def cascade_ranges(split: str | ArrayLike, near: float, far: float, k: int | None = None, *, scene: bool = False, overlap: float = 0.0, **params: float) -> tuple[tuple[Array, Array], tuple[Array, Array]]:
+    """(fit ranges, used ranges) of a split preset or explicit split distances.
+
+    Example
+    -------
+    >>> (a, b), (u, v) = cascade_ranges("log", 1.0, 100.0, 2, scene=True)
+    >>> a.tolist(), u.tolist()
+    ([1.0, 1.0], [1.0, 10.0])
+    """
+    n, f = (float(x) for x in check.frustum(near, far))
+    if isinstance(split, tuple) and len(split) == 2:  # (near_i, far_i) of separate maps, e.g. SDSM's populated ranges
+        lo, hi = (check.as_float_array(x, "split").ravel() for x in split)
+        if lo.size == 0 or lo.shape != hi.shape or np.any(hi <= lo) or lo.min() < n * (1 - 1e-12) or hi.max() > f * (1 + 1e-12):
+            raise ValueError("split as (near_i, far_i) needs equal non-empty lengths, near_i < far_i, inside [near, far]")
+        return (lo.copy(), hi.copy()), (lo.copy(), hi.copy())
+    if isinstance(split, str):
+        edges = partitioning.split_distances(split, n, f, k, **params)
+        lo, hi = partitioning.partitions(split, n, f, k, **params)
+    else:
+        edges = check.as_float_array(split, "split").ravel()
+        if edges.size < 2 or np.any(np.diff(edges) <= 0) or not (np.isclose(edges[0], n) and np.isclose(edges[-1], f)):
+            raise ValueError("split distances must increase from near to far")
+        lo, hi = edges[:-1].copy(), edges[1:].copy()
+    p = float(check.closed_range(overlap, "overlap", 0.0, 0.99))
+    lo = lo.copy()
+    lo[1:] = np.minimum(lo[1:], (1 - p) * edges[1:-1])  # Bevy: near bound = (1 − p)·previous far bound
+    if scene:
+        lo = np.full_like(lo, n)
+    return (np.maximum(lo, n), hi), (edges[:-1], edges[1:])
+
+
+def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "overhead", *, k: int | None = None, fit: str = "tight", snap: str = "none", resolution: float = 2048.0, scene: bool = False, overlap: float = 0.0, **params: float) -> StableResult:
+    """M_x, M_z, S̄ (unit resolutions) of a cascade set with a given fit, per light direction.
+
+    Parameters
+    ----------
+    split : str, array_like or tuple
+        A split method of :mod:`aliasing.partitioning`, split distances near … far [world
+        units], or a pair (near_i, far_i) of separate maps' ranges (used where they are fitted).
+    near, far : float
+        Eye near and shadow distance [world units], 0 < near < far.
+    fov : float
+        Full field of view [deg].
+    light : str or array_like
+        Light spec (:data:`aliasing.geometry.LIGHT_SPEC`) or vectors ``(N, 3)``.
+    k : int, optional
+        Number of cascades (the preset's default when omitted).
+    fit : {"tight", "sphere", "diagonal"}
+    snap : {"none", "bevy", "pad"}
+    resolution : float
+        Texels per side of each map (only ``snap="pad"`` depends on it), ≥ 2.
+    scene : bool
+        Fit to scene: every fit range starts at ``near``.
+    overlap : float
+        Bevy's overlap proportion in [0, 0.99].
+    """
+    kind = check.choice(fit, "fit", FITS)
+    snapping = check.choice(snap, "snap", SNAPS)
+    res = float(check.closed_range(resolution, "resolution", 2.0, np.inf, " texels"))
+    (a, b), (u, v) = cascade_ranges(split, near, far, k, scene=scene, overlap=overlap, **params)
+    lv = geometry.lights(light)
+    t = np.tan(np.radians(float(check.fov(fov))) / 2)
+    if kind == "tight":
+        lf = directional.fit(geometry.frustum_vertices(a, b, fov), lv)
+        wx, wy = np.ptp(lf.x, axis=-1), lf.depth
+    else:
+        if kind == "sphere":
+            side = 2 * sphere_radius(a, b, fov)
+        elif kind == "diagonal":
+            side = np.ceil(diagonal(a, b, fov))  # Bevy rounds up to a whole unit
+        else:
+            side = body_diagonal(a, b, fov)
+        wx = wy = np.broadcast_to(side, (len(lv), len(a)))
+    if snapping == "pad":
+        wx, wy = wx * res / (res - 1), wy * res / (res - 1)  # one texel more, W′ = W + W′/R
+    M_x, M_z = wx / (2 * t * u), wy / (2 * t * u)  # eq. (2) with a uniform map, maximal at u_k
+    return StableResult(M_x, M_z, (M_x * M_z).sum(axis=-1), np.asarray(wx, float), np.asarray(wy, float), (u, v), (a, b))
+
+
+def cost(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "hemisphere:200", **options) -> dict[str, float]:
+    """Cost of a stable fit as ratios to the tight fit of the same cascades.
+
+    Returns per-direction ratios summarised over the given directions: ``S_ratio_min``,
+    ``S_ratio_max``, ``M_ratio_min``, ``M_ratio_max`` (M = max over maps of max(M_x, M_z)),
+    and ``S_ratio_mean_over_dirs`` (mean S̄ of the fit over mean S̄ of the tight fit).
+
+    Example
+    -------
+    >>> c = cost("log", 1.0, 1000.0, 60.0, "overhead", k=4, fit="sphere")
+    >>> c["S_ratio_min"] > 1.0
+    True
+    """
+    fit_keys = {"fit", "snap", "resolution", "scene", "overlap"}
+    params = {key: v for key, v in options.items() if key not in fit_keys}
+    tight = evaluate(split, near, far, fov, light, **params)  # today's fit: tight, no snap, no overlap
+    other = evaluate(split, near, far, fov, light, **options)
+    rs = other.S / tight.S
+    m_t = np.maximum(tight.M_x, tight.M_z).max(axis=-1)
+    m_o = np.maximum(other.M_x, other.M_z).max(axis=-1)
+    rm = m_o / m_t
+    return {
+        "S_ratio_min": float(rs.min()),
+        "S_ratio_max": float(rs.max()),
+        "M_ratio_min": float(rm.min()),
+        "M_ratio_max": float(rm.max()),
+        "S_ratio_mean_over_dirs": float(other.S.mean() / tight.S.mean()),
+    }

@@ -1,0 +1,234 @@
+"""Unreal Engine 5 virtual shadow-map clipmaps for a directional light.
+
+Read from ``Engine/Source/Runtime/Renderer/Private/VirtualShadowMaps/VirtualShadowMapClipmap.cpp``
+(the copy stored as unicorn2022/UE5.8.0, commit 5d9a05c1; Epic's repository is private):
+
+* level l has radius R_l = 2^(l+1) (``GetLevelRadius``) and a 16384² virtual map
+  (``VirtualMaxResolutionXY``) spanning 2·``HalfLevelDim`` = 4·R_l, so its texel is
+  t_l = 2^(l+3)/16384 = 2^(l−11) [cm; the engine's unit] and its page (128² texels) is
+  2^(l−4) wide;
+* ``LodScale = 0.5/ProjectionScale.X · 16384/ViewportWidth`` with ProjectionScale.X =
+  1/tan(θ) (θ = fov/2, the x half-angle); the resolution LOD bias is
+  B′ = max(0, bias + log2(LodScale)) (the clamp is the engine's);
+* a receiver at distance d_c from the camera takes level L = floor(log2 d_c + B′)
+  (``CalcAbsoluteClipmapLevel`` = log2 of the distance, read from a port that mirrors
+  ``VirtualShadowMapProjectionCommon.ush``; the shader itself was not stored), clamped to
+  [FirstLevel, LastLevel]; receivers beyond the last level's radius 2^(last+1) get no
+  virtual-shadow-map shadow;
+* defaults in this version: FirstLevel 6, LastLevel 22, ``ResolutionLodBiasDirectional``
+  0.0 (−0.5 in older 5.x copies, e.g. reza-shahriari/UnrealEngine-lite).
+
+Scalability: Epic's "Hillside sample" documentation quotes the Epic level's original
+``r.Shadow.Virtual.ResolutionLodBiasDirectional=-1.5``; the Low–High bias 0 and the pool
+sizes 512/512/2048/4096/8192 (Low…Cinematic) are the issue's list — ``BaseScalability.ini``
+was not stored, so they are marked as such in :data:`PRESETS`.
+
+Result derived here (not stated by the engine; :mod:`aliasing.symbolic.engines` derives it,
+the tests check it): with W eye pixels across and d_c = d (on the view axis), outside the
+clamps,
+
+    m(d) = t_L / (2 tanθ d / W) = 2^(1 + bias − φ),   φ = frac(log2 d + B′),
+
+so m saw-tooths between 2^bias (exclusive) and 2^(1+bias) once per octave of distance,
+independent of fov, W and the scene unit.  Off the axis d_c = d/cos ψ, so over the
+frustum M = 2^(1+bias)·√(1 + 2 tan²θ) (square image corners; a supremum).
+
+Example
+-------
+>>> c = Clipmap(fov=90.0, width=1920, bias=0.0)
+>>> round(float(m_axis(c, np.array([1000.0]))[0]), 6) <= 2.0
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .. import _validation as check
+from .. import directional, geometry
+
+Array = NDArray[np.float64]
+VIRTUAL_RES = 16384  # FVirtualShadowMap::VirtualMaxResolutionXY
+PAGE = 128  # texels per page side (VSM_PAGE_SIZE)
+LOAD_FACTOR = 0.85  # the issue's "engine's 0.85 load factor" (r.Shadow.Virtual.DynamicRes.MaxPagePoolLoadFactor; cvar not read here)
+CM_PER_UNIT = {"cm": 1.0, "m": 100.0, "mm": 0.1, "in": 2.54, "ft": 30.48}
+BIAS_RANGE = (-8.0, 8.0)  # the cvar is an unclamped float; the model accepts ±8 octaves
+
+
+@dataclass(frozen=True)
+class VSMPreset:
+    name: str
+    bias: float
+    pool: int
+    source: str
+
+
+PRESETS: dict[str, VSMPreset] = {
+    "low": VSMPreset("low", 0.0, 512, "bias and pool from the issue's list (BaseScalability.ini not stored)"),
+    "medium": VSMPreset("medium", 0.0, 512, "bias and pool from the issue's list (BaseScalability.ini not stored)"),
+    "high": VSMPreset("high", 0.0, 2048, "bias and pool from the issue's list (BaseScalability.ini not stored)"),
+    "epic": VSMPreset("epic", -1.5, 4096, "bias −1.5: Epic's Hillside sample docs ('Original' Epic value); pool from the issue's list"),
+    "cinematic": VSMPreset("cinematic", -1.5, 8192, "bias and pool from the issue's list (BaseScalability.ini not stored)"),
+    "default": VSMPreset("default", 0.0, 4096, "VirtualShadowMapClipmap.cpp UE 5.8 copy: bias 0.0; pool 4096 is r.Shadow.Virtual.MaxPhysicalPages as quoted in Epic's docs copies"),
+}
+
+
+@dataclass(frozen=True)
+class Clipmap:
+    """A directional light's clipmap as the engine configures it.
+
+    Parameters
+    ----------
+    fov : float
+        Full horizontal field of view [deg] (square pixels; the engine uses the x scale).
+    width : int
+        Viewport width [pixels], ≥ 1.
+    bias : float
+        ``r.Shadow.Virtual.ResolutionLodBiasDirectional`` [octaves], in [−8, 8].
+    first, last : int
+        ``Clipmap.FirstLevel`` / ``LastLevel``, first ≤ last.
+    unit : str
+        The scene's length unit (cm, m, mm, in, ft); lengths in and out are in it.
+    """
+
+    fov: float = 90.0
+    width: int = 1920
+    bias: float = 0.0
+    first: int = 6
+    last: int = 22
+    unit: str = "cm"
+
+    def __post_init__(self) -> None:
+        check.fov(self.fov)
+        if not (float(self.width) >= 1 and float(self.width).is_integer()):
+            raise ValueError(f"width (viewport pixels) must be a whole number >= 1, got {self.width!r}")
+        check.closed_range(self.bias, "bias", *BIAS_RANGE, " octaves")
+        if int(self.first) > int(self.last):
+            raise ValueError(f"first level must be <= last level, got first={self.first}, last={self.last}")
+        check.choice(self.unit, "unit", CM_PER_UNIT)
+
+    @property
+    def tan(self) -> float:
+        return float(np.tan(np.radians(self.fov) / 2))
+
+    @property
+    def lod_bias(self) -> float:
+        """B′ = max(0, bias + log2(0.5·tanθ·16384/W)) [octaves] (VirtualShadowMapClipmap.cpp)."""
+        lod_scale = 0.5 * self.tan * VIRTUAL_RES / self.width
+        return max(0.0, self.bias + float(np.log2(lod_scale)))
+
+    def to_cm(self, x: ArrayLike) -> Array:
+        return np.asarray(x, float) * CM_PER_UNIT[self.unit.lower()]
+
+
+def level(c: Clipmap, distance: ArrayLike) -> Array:
+    """Clipmap level of receivers at ``distance`` [scene units] from the camera (float; NaN beyond the last level).
+
+    Example
+    -------
+    >>> level(Clipmap(fov=90, width=2048, bias=0.0), [1.0, 1000.0]).tolist()
+    [6.0, 11.0]
+    """
+    d = check.positive(distance, "distance") * CM_PER_UNIT[c.unit.lower()]
+    raw = np.floor(np.log2(d) + c.lod_bias)  # CalcAbsoluteClipmapLevel + bias
+    lv = np.maximum(raw, c.first)  # clamp to the first level
+    return np.where(d < 2.0 ** (c.last + 1), np.minimum(lv, c.last), np.nan)
+
+
+def texel(c: Clipmap, lv: ArrayLike) -> Array:
+    """Texel size [scene units] of level ``lv``: 2^(l+3)/16384 cm."""
+    return 2.0 ** (np.asarray(lv, float) + 3) / VIRTUAL_RES / CM_PER_UNIT[c.unit.lower()]
+
+
+def m_at(c: Clipmap, depth: ArrayLike, distance: ArrayLike) -> Array:
+    """Error m = texel / pixel footprint at eye depth and camera distance [scene units]."""
+    d = check.positive(depth, "depth")
+    return texel(c, level(c, distance)) * c.width / (2 * c.tan * d)  # eq. (2) of Lloyd 2006 at W pixels
+
+
+def m_axis(c: Clipmap, depth: ArrayLike) -> Array:
+    """m along the view axis (distance = depth): the saw-tooth 2^(1 + bias − φ) between clamps."""
+    return m_at(c, depth, depth)
+
+
+def m_axis_range(c: Clipmap, near: float, far: float) -> tuple[float, float]:
+    """(inf, sup) of m on the axis over [near, far] [scene units], from the closed form.
+
+    Inside the unclamped levels m ∈ (2^(b′), 2^(1+b′)] with b′ = B′ − log2(0.5·tanθ·16384/W)
+    (= bias unless B′ was clamped at 0); at the first level's clamp m grows as 1/d towards
+    the camera.  Breakpoints d = 2^(L − B′) are evaluated from both sides.
+    """
+    n, f = (float(x) for x in check.frustum(near, far))
+    lo_cm, hi_cm = n * CM_PER_UNIT[c.unit.lower()], min(f * CM_PER_UNIT[c.unit.lower()], 2.0 ** (c.last + 1))
+    if lo_cm >= hi_cm:
+        return float("nan"), float("nan")
+    levels = np.arange(np.floor(np.log2(lo_cm) + c.lod_bias), np.floor(np.log2(hi_cm) + c.lod_bias) + 1)
+    breaks = 2.0 ** (levels[1:] - c.lod_bias)
+    pts = np.concatenate([[lo_cm, hi_cm], breaks * (1 + 1e-12), breaks * (1 - 1e-12)]) / CM_PER_UNIT[c.unit.lower()]  # both sides of each flip
+    pts = pts[(pts >= n) & (pts <= f)]
+    m = m_axis(c, pts)
+    return float(np.nanmin(m)), float(np.nanmax(m))
+
+
+def frustum_max(c: Clipmap, near: float, far: float, samples: int = 4096) -> float:
+    """Max m over the frustum (corner rays, where d_c/d = √(1 + 2tan²θ) is largest) [dimensionless]."""
+    n, f = (float(x) for x in check.frustum(near, far))
+    d = np.geomspace(n, f, samples)
+    k = np.sqrt(1 + 2 * c.tan**2)
+    br = 2.0 ** (np.arange(c.first, c.last + 1) - c.lod_bias) / CM_PER_UNIT[c.unit.lower()] / k  # level flips on the corner ray
+    d = np.sort(np.concatenate([d, br[(br > n) & (br < f)]]))
+    return float(np.nanmax(m_at(c, d, d * k)))
+
+
+def pages(c: Clipmap, near: float, far: float, light: str | ArrayLike = "overhead") -> Array:
+    """Pages (128² texels) the frustum can touch, an upper bound per light direction ``(N,)``.
+
+    For each level, the receivers using it have camera distance in [2^(L−B′), 2^(L+1−B′))
+    (the first level from 0, the last to its radius); they lie in the frustum slice with eye
+    depth in [d_lo·cos ψ_max, d_hi] (cos ψ_max = 1/√(1 + 2tan²θ)).  The slice's light-space
+    box (:func:`aliasing.directional.fit`) in pages, +1 per axis for its alignment to the page
+    grid, capped at 128 per axis, summed over levels.  Coarse pages (FirstCoarseLevel…) and
+    the page marking's dilation are not modelled (sources not read).
+    """
+    n, f = (float(x) for x in check.frustum(near, far))
+    scale = CM_PER_UNIT[c.unit.lower()]
+    cos_max = 1 / np.sqrt(1 + 2 * c.tan**2)
+    lv = np.arange(c.first, c.last + 1)
+    d_lo = np.where(lv == c.first, 0.0, 2.0 ** (lv - c.lod_bias)) / scale
+    d_hi = np.where(lv == c.last, 2.0 ** (c.last + 1), 2.0 ** (lv + 1 - c.lod_bias)) / scale
+    a, b = np.maximum(d_lo * cos_max, n), np.minimum(d_hi, f)
+    keep = a < b
+    lvk, a, b = lv[keep], a[keep], b[keep]
+    lights = geometry.lights(light)
+    if lvk.size == 0:
+        return np.zeros(len(lights))
+    lf = directional.fit(geometry.frustum_vertices(a, b, c.fov), lights)
+    page = PAGE * texel(c, lvk)
+    px = np.minimum(np.ceil(np.ptp(lf.x, axis=-1) / page) + 1, VIRTUAL_RES // PAGE)
+    py = np.minimum(np.ceil(lf.depth / page) + 1, VIRTUAL_RES // PAGE)
+    return (px * py).sum(axis=-1)
+
+
+def pool_check(c: Clipmap, near: float, far: float, light: str | ArrayLike, pool: int) -> dict[str, object]:
+    """Whether the frustum bound overflows ``pool`` pages at the 0.85 load factor, and the extra bias.
+
+    The extra bias is the smallest non-negative one (to 1/16 octave, bisection; pages fall
+    monotonically with bias) whose page bound fits 0.85·pool for the worst light direction.
+    The engine's own dynamic-resolution stepping was not read; this is the model's answer.
+    """
+    if not (float(pool) >= 1 and float(pool).is_integer()):
+        raise ValueError(f"pool (physical pages) must be a whole number >= 1, got {pool!r}")
+    budget = LOAD_FACTOR * pool
+    need = float(pages(c, near, far, light).max())
+    extra = 0.0
+    if need > budget:
+        lo, hi = 0.0, 16.0
+        while hi - lo > 1 / 16:
+            mid = (lo + hi) / 2
+            trial = Clipmap(c.fov, c.width, min(c.bias + mid, BIAS_RANGE[1]), c.first, c.last, c.unit)
+            lo, hi = (lo, mid) if pages(trial, near, far, light).max() <= budget else (mid, hi)
+        extra = hi
+    return {"pages": need, "budget": budget, "overflow": need > budget, "extra_bias": extra}

@@ -1,0 +1,237 @@
+"""Engine schemes (issue 18): stable fits, VSM clipmaps, limits, SDSM, the comparison and CLI."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from aliasing import cli, geometry, partitioning, schemes
+from aliasing.engines import compare, limits, sdsm, stable, vsm
+from aliasing.symbolic import engines as sym
+
+# --- closed forms (aliasing.symbolic.engines) against the numeric code -------------------
+
+
+def test_sphere_centre_is_equidistant_from_both_corner_rings():
+    zc = sym.sphere_centre()
+    near_sq = (zc - sym.a) ** 2 + 2 * sym.t**2 * sym.a**2
+    far_sq = (zc - sym.b) ** 2 + 2 * sym.t**2 * sym.b**2
+    assert sp.simplify(near_sq - far_sq) == 0
+    assert sp.simplify(zc - (sym.a + sym.b) * (1 + 2 * sym.t**2) / 2) == 0
+
+
+@pytest.mark.parametrize("a,b,fov", [(1.0, 100.0, 10.0), (5.0, 6.0, 30.0), (1.0, 3.0, 90.0), (10.0, 50.0, 60.0), (0.5, 0.6, 120.0)])
+def test_sphere_radius_matches_sympy_and_encloses_the_slice(a, b, fov):
+    t = np.tan(np.radians(fov) / 2)
+    r = float(stable.sphere_radius(a, b, fov))
+    zc = (a + b) * (1 + 2 * t**2) / 2
+    if zc < b:
+        expect = float(sym.sphere_radius().subs({sym.a: a, sym.b: b, sym.t: t}))
+    else:  # the far ring alone decides
+        expect, zc = np.sqrt(2) * t * b, b
+    assert r == pytest.approx(expect, rel=1e-12)
+    corners = geometry.frustum_vertices(a, b, fov)
+    dist = np.linalg.norm(corners - [0, 0, zc], axis=-1)
+    assert dist.max() == pytest.approx(r, rel=1e-12)  # every corner inside, the farthest on it: minimal
+
+
+def test_diagonal_square_covers_every_light_direction_and_is_at_most_the_sphere():
+    a, b, fov = 3.0, 40.0, 60.0
+    lf = __import__("aliasing.directional", fromlist=["fit"]).fit(geometry.frustum_vertices(a, b, fov), geometry.lights("sphere:400"))
+    d = float(stable.diagonal(a, b, fov))
+    assert np.ptp(lf.x, axis=-1).max() <= d * (1 + 1e-12)
+    assert lf.depth.max() <= d * (1 + 1e-12)
+    assert np.ptp(lf.x, axis=-1).max() > 0.95 * d  # and the bound is nearly reached
+    assert d <= 2 * float(stable.sphere_radius(a, b, fov)) * (1 + 1e-12)
+
+
+def test_vsm_axis_error_closed_form_and_sawtooth():
+    expr = sym.vsm_m_axis()
+    assert sp.simplify(expr - 2 ** (1 + sym.bias - sym.phi)) == 0
+    for fov, width, bias in [(90.0, 1920, 0.0), (60.0, 1280, -1.5), (40.0, 3840, -0.5), (100.0, 800, 1.0)]:
+        c = vsm.Clipmap(fov=fov, width=width, bias=bias, first=-40, last=40)  # no clamps in range
+        d = np.geomspace(30.0, 3e6, 5001)
+        m = vsm.m_axis(c, d)
+        phi = np.log2(d) + c.lod_bias - np.floor(np.log2(d) + c.lod_bias)
+        # the engine clamps B′ at 0: the effective bias is then larger than the cvar's
+        b_eff = c.lod_bias - np.log2(0.5 * np.tan(np.radians(fov) / 2) * 16384 / width)
+        assert b_eff == pytest.approx(bias) if bias + np.log2(0.5 * np.tan(np.radians(fov) / 2) * 16384 / width) >= 0 else b_eff > bias
+        np.testing.assert_allclose(m, 2.0 ** (1 + b_eff - phi), rtol=1e-9)
+        assert m.min() > 2.0**b_eff and m.max() <= 2.0 ** (1 + b_eff) * (1 + 1e-12)
+        lo, hi = vsm.m_axis_range(c, 30.0, 3e6)
+        assert lo == pytest.approx(2.0**b_eff, rel=1e-9) and hi == pytest.approx(2.0 ** (1 + b_eff), rel=1e-9)
+
+
+def test_vsm_levels_and_texels_follow_the_engine_constants():
+    c = vsm.Clipmap(fov=90.0, width=2048, bias=0.0)  # LodScale = 0.5·1·16384/2048 = 4: B′ = 2
+    assert c.lod_bias == pytest.approx(2.0)
+    assert vsm.level(c, [1.0, 16.0, 1000.0, 2.0**21]).tolist() == [6.0, 6.0, 11.0, 22.0]
+    assert np.isnan(vsm.level(c, [2.0**23 + 1])[0])  # beyond the last level's radius 2^23
+    assert float(vsm.texel(c, 11)) == 1.0  # 2^(11+3)/16384 cm
+    m = vsm.Clipmap(fov=90.0, width=2048, bias=0.0, unit="m")
+    assert float(vsm.texel(m, 11)) == pytest.approx(0.01)
+    assert vsm.level(m, [10.0])[0] == vsm.level(c, [1000.0])[0]
+    clamped = vsm.Clipmap(fov=10.0, width=8192, bias=-1.0)  # bias + log2(LodScale) < 0: clamped to 0
+    assert clamped.lod_bias == 0.0
+
+
+def test_vsm_frustum_max_is_the_corner_factor_times_the_axis_sup():
+    c = vsm.Clipmap(fov=60.0, width=1920, bias=-1.0, first=-40, last=40)
+    k = np.sqrt(1 + 2 * np.tan(np.radians(30.0)) ** 2)
+    assert vsm.frustum_max(c, 100.0, 1e5) == pytest.approx(2.0 ** (1 - 1.0) * k, rel=1e-9)
+
+
+def test_vsm_pages_bound_and_pool():
+    c = vsm.Clipmap(fov=60.0, width=1920, bias=0.0)
+    p = vsm.pages(c, 10.0, 1e5, "hemisphere:20")
+    assert p.shape == (20,) and (p > 0).all()
+    finer = vsm.pages(vsm.Clipmap(fov=60.0, width=1920, bias=-1.0), 10.0, 1e5, "hemisphere:20")
+    assert (finer >= p).all() and finer.sum() > 2 * p.sum()  # one octave finer: about 4x the texels per level
+    small = vsm.pool_check(c, 10.0, 1e5, "overhead", 64)
+    assert small["overflow"] and small["extra_bias"] > 0
+    relieved = vsm.Clipmap(fov=60.0, width=1920, bias=small["extra_bias"])
+    assert vsm.pages(relieved, 10.0, 1e5, "overhead").max() <= 0.85 * 64
+    assert not vsm.pool_check(c, 10.0, 1e5, "overhead", 10**7)["overflow"]
+
+
+# --- stable fits ---------------------------------------------------------------------------
+
+
+def test_tight_fit_equals_the_papers_standard_zp():
+    edges = partitioning.split_distances("practical", 1.0, 1000.0, 4)
+    r = stable.evaluate(edges, 1.0, 1000.0, 60.0, "hemisphere:64")
+    s = schemes.evaluate("Standard", 1.0, 1000.0, 60.0, "hemisphere:64", edges=edges)
+    np.testing.assert_allclose(r.M_x, s.M_x, rtol=1e-12)
+    np.testing.assert_allclose(r.M_z, s.M_z, rtol=1e-12)
+    np.testing.assert_allclose(r.S, s.S, rtol=1e-12)
+
+
+def test_stable_fits_cost_more_than_tight_and_do_not_depend_on_the_light():
+    lights = geometry.lights("hemisphere:100")
+    for fit in ("sphere", "diagonal"):
+        r = stable.evaluate("filament", 0.5, 500.0, 60.0, lights, fit=fit)
+        assert np.ptp(r.S) == 0.0  # rotation-invariant size
+        c = stable.cost("filament", 0.5, 500.0, 60.0, lights, fit=fit)
+        assert c["S_ratio_min"] >= 1.0 and c["M_ratio_min"] >= 1.0
+    pad = stable.evaluate("log", 1.0, 100.0, 60.0, "overhead", k=3, fit="sphere", snap="pad", resolution=1024)
+    plain = stable.evaluate("log", 1.0, 100.0, 60.0, "overhead", k=3, fit="sphere")
+    np.testing.assert_allclose(pad.M_x / plain.M_x, 1024 / 1023)
+
+
+def test_fit_to_scene_and_overlap_ranges():
+    (a, b), (u, v) = stable.cascade_ranges("log", 1.0, 1000.0, 3, scene=True)
+    assert a.tolist() == [1.0, 1.0, 1.0] and u.tolist() == pytest.approx([1.0, 10.0, 100.0])
+    (a, b), _ = stable.cascade_ranges("log", 1.0, 1000.0, 3, overlap=0.2)
+    assert a.tolist() == pytest.approx([1.0, 8.0, 80.0])
+    (a, b), (u, v) = stable.cascade_ranges("bgfx", 1.0, 1000.0)
+    assert (b[:-1] > v[:-1]).all()  # the engine's overlap: each map fitted past its split
+    tight = stable.evaluate("log", 1.0, 1000.0, 60.0, "overhead", k=3)
+    scene = stable.evaluate("log", 1.0, 1000.0, 60.0, "overhead", k=3, scene=True)
+    assert (scene.S >= tight.S).all()
+
+
+# --- limits, SDSM --------------------------------------------------------------------------
+
+
+def test_matched_texels_per_pixel():
+    assert sp.simplify(sym.matched_texels() - 3 / sp.log(4)) == 0
+    assert limits.MATCHED_TEXELS_PER_PIXEL == pytest.approx(float(3 / sp.log(4)), rel=1e-15)
+    phi = np.linspace(0, 1, 200001)
+    assert np.mean(4.0**phi) == pytest.approx(limits.MATCHED_TEXELS_PER_PIXEL, rel=1e-4)
+
+
+def test_sdsm_narrower_occupied_range_costs_less():
+    full = stable.evaluate(sdsm.log_partitions(1.0, 1000.0, 1.0, 1000.0, 4), 1.0, 1000.0, 60.0, "hemisphere:50")
+    occ = stable.evaluate(sdsm.log_partitions(1.0, 1000.0, 5.0, 200.0, 4), 5.0, 200.0, 60.0, "hemisphere:50")
+    assert (occ.S < full.S).all()
+
+
+@pytest.mark.parametrize(
+    "call, word",
+    [
+        (lambda: sdsm.log_partitions(1.0, 100.0, 0.5, 50.0, 2), "z_min"),
+        (lambda: sdsm.log_partitions(1.0, 100.0, 50.0, 50.0, 2), "occupied"),
+        (lambda: sdsm.log_partitions(1.0, 100.0, 2.0, 50.0, 0), "k"),
+        (lambda: vsm.Clipmap(bias=-9.0), "bias"),
+        (lambda: vsm.Clipmap(first=10, last=8), "first"),
+        (lambda: vsm.pool_check(vsm.Clipmap(), 10.0, 100.0, "overhead", 0), "pool"),
+        (lambda: stable.evaluate("log", 1.0, 10.0, 60.0, k=2, fit="cube"), "fit"),
+        (lambda: compare.compare(["nope"]), "family"),
+        (lambda: compare.compare(["vsm:ultra"]), "preset"),
+    ],
+)
+def test_bad_input_names_the_parameter(call, word):
+    with pytest.raises(ValueError, match=word):
+        call()
+
+
+# --- comparison and CLI --------------------------------------------------------------------
+
+
+def test_compare_rows_and_ratios():
+    rows = compare.compare(["csm:threejs-csm", "csm-stable:filament", "csm-stable:bevy", "sdsm:k=4", "vsm:high", "vsm:epic", "vsm:bias=-0.5", "matched", "exact"], near=10.0, far=1e5, lights="hemisphere:30")
+    by = {r["scheme"]: r for r in rows}
+    assert by["matched"]["storage_ratio"] == 1.0 and by["exact"]["storage_ratio"] == pytest.approx(1 / limits.MATCHED_TEXELS_PER_PIXEL)
+    assert by["csm-stable:filament"]["max_error"] == pytest.approx(by["csm-stable:filament"]["median_error"])  # stable: no light dependence
+    tight = compare.compare(["csm:filament"], near=10.0, far=1e5, lights="hemisphere:30")[0]
+    assert by["csm-stable:filament"]["max_error"] >= tight["max_error"] and by["csm-stable:filament"]["S_bar"] >= tight["S_bar"]
+    log_scale = np.log2(0.5 * np.tan(np.radians(30.0)) * 16384 / 1920)  # 1.30: Epic's −1.5 is clamped to B′ = 0 (−1.30)
+    assert by["vsm:epic"]["m_axis_min"] == pytest.approx(2.0 ** -log_scale, rel=1e-9)
+    assert by["vsm:high"]["m_axis_min"] == pytest.approx(1.0, rel=1e-9)
+    assert by["vsm:epic"]["pages"] > by["vsm:high"]["pages"]
+    for r in rows:
+        assert set(r) == set(compare.FIELDS)
+        assert r["max_error"] >= r["median_error"] > 0 and r["m_axis_max"] >= r["m_axis_min"] > 0
+
+
+def test_cli_engines_json_and_errors(capsys):
+    assert cli.main(["engines", "--schemes", "csm:log:k=4,vsm:epic,matched", "--light", "overhead,gamma:45", "--format", "json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert [r["scheme"] for r in rows] == ["csm:log:k=4", "vsm:epic", "matched"]
+    assert cli.main(["engines", "--schemes", "vsm:bias=0:first=9:last=3"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "first" in err
+    assert cli.main(["engines", "--list"]) == 0
+    assert "vsm:PRESET" in capsys.readouterr().out
+
+
+def test_dxsdk_body_diagonal_square_misses_corners_at_wide_fov():
+    # DirectX SDK FIT_TO_SCENE pads to the body diagonal only: below the far-face diagonal at fov 60
+    assert float(stable.body_diagonal(10.0, 1e4, 60.0)) < float(stable.diagonal(10.0, 1e4, 60.0))
+    assert stable.coverage("log", 10.0, 1e5, 60.0, "hemisphere:200", k=4, fit="body", scene=True) < 0.5
+    assert stable.coverage("log", 10.0, 1e5, 30.0, "hemisphere:200", k=4, fit="body", scene=True) == 1.0
+    for fit in ("diagonal", "sphere"):
+        assert stable.coverage("log", 10.0, 1e5, 90.0, "hemisphere:200", k=4, fit=fit, scene=True) == 1.0
+    rows = compare.compare(["csm-stable:dxsdk-scene", "csm-stable:bevy"], lights="hemisphere:100")
+    assert rows[0]["coverage"] < 0.5 and rows[1]["coverage"] == 1.0
+
+
+def test_sdsm_histogram_partitions():
+    e = np.geomspace(1.0, 1024.0, 11)
+    counts = [0, 0, 5, 5, 0, 0, 0, 0, 5, 5]
+    lo, hi = sdsm.adaptive_log(e, counts, 2)
+    assert lo.tolist() == [4.0, 256.0] and hi.tolist() == [16.0, 1024.0]  # the empty octaves get no map
+    lo, hi = sdsm.kmeans(e, counts, 2)
+    assert lo.tolist() == [4.0, 256.0] and hi.tolist() == [16.0, 1024.0]
+    one = sdsm.adaptive_log(e, counts, 1)
+    assert one[0].tolist() == [4.0] and one[1].tolist() == [1024.0]
+    gaps = stable.evaluate((lo, hi), 1.0, 1024.0, 60.0, "hemisphere:20")
+    whole = stable.evaluate(sdsm.log_partitions(1.0, 1024.0, 4.0, 1024.0, 2), 4.0, 1024.0, 60.0, "hemisphere:20")
+    assert (gaps.S < whole.S).all()  # fitting the populated ranges only costs less
+    with pytest.raises(ValueError, match="no samples"):
+        sdsm.kmeans(e, np.zeros(10), 2)
+    with pytest.raises(ValueError, match="k"):
+        sdsm.adaptive_log(e, counts, 0)
+
+
+def test_figure_data_shows_the_documented_ranges():
+    from aliasing.figures import engines_comparison as fig
+
+    cols = fig.data(samples=400, gammas=7)
+    assert ((cols["m_matched"] > 0.5) & (cols["m_matched"] <= 1.0)).all()
+    far = cols["d"] > 100.0  # beyond the first level's clamp (level 6 reaches 2^(6 − B′) cm)
+    assert cols["m_vsm_high"][far].max() <= 2.0 + 1e-9 and cols["m_vsm_high"][far].min() > 1.0
+    assert np.ptp(cols["S_csm_stable_filament"]) == 0.0 and (cols["S_csm_stable_filament"] >= cols["S_csm_filament"]).all()
