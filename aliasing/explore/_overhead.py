@@ -75,7 +75,7 @@ def compute(f_over_n: float, fov: float, rule: str, eta: float, n_prime: str, re
         "f_over_n": far, "fov": float(fov), "rule": rule, "n_prime": npr,
         "eta": float(warping.eta_from_n_prime(npr, near, far)) if npr >= near else float("nan"),
         "z": z, "m_x": error.m_x(z, near, far, npr), "m_z": error.m_z(z, near, far, fov, npr),
-        "eta_axis": eta_axis, "M_x_eta": mx_eta, "M_z_eta": mz_eta, "S_eta": mx_eta * mz_eta,
+        "eta_axis": eta_axis, "M_x_eta": mx_eta, "M_z_eta": mz_eta, "S_eta": error.storage_factor(near, far, fov, np_eta),
         "M_x": float(error.max_error_x(near, far, npr)), "M_z": float(error.max_error_z(near, far, fov, npr)),
         "S": float(error.storage_factor(near, far, fov, npr)), "res_s": float(res_s), "res_t": float(res_t),
     }

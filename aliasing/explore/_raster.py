@@ -24,6 +24,8 @@ from . import _widget as w
 BUDGETS = [(f"{s}²", s * s) for s in (64, 128, 256, 512)]
 #: Probe cells per side of the ratio measurement.
 PROBES = 8
+#: Smallest eye resolution of the ratio measurement [pixels] (8 probe cells need it).
+MIN_VALIDATE_RES = 64
 
 
 def compute(scheme: str, light: str, f_over_n: float, fov: float, image_res: int, budget: int, every: int) -> dict[str, Any]:
@@ -60,7 +62,7 @@ def compute(scheme: str, light: str, f_over_n: float, fov: float, image_res: int
     if isinstance(every, bool) or int(every) != every or every < 1:
         raise ValueError(f"every must be a whole number >= 1 (texels between grid lines), got {every!r}")
     v = pictures.view(1.0, float(f_over_n), fov, light, scheme, image_res=int(image_res), budget=int(budget))
-    val = validate(scheme, float(f_over_n), fov, light, res=max(int(image_res), 32), probes=PROBES)
+    val = validate(scheme, float(f_over_n), fov, light, res=max(int(image_res), MIN_VALIDATE_RES), probes=PROBES)
     return {
         "scheme": scheme, "light": light, "f_over_n": float(f_over_n), "fov": float(fov), "image_res": int(image_res),
         "budget": int(budget), "every": int(every), "map_res": int(v.map_res), "maps": len(v.maps),
