@@ -1,0 +1,134 @@
+"""Cascaded (z-partitioned) shadow maps: split methods and engine presets, budgets, allocations.
+
+The split distances come from :func:`aliasing.partitioning.partitions` (self-similar
+log splits, Lloyd et al. 2006 eqs. 15–16 / Lloyd et al. 2007 eqs. 80–82; the PSSM splits
+of Zhang et al. 2006; the engines' presets with their padding and overlaps), each
+partition's S̄ and, for a texel budget shared by an allocation (equal squares as engines
+ship, or Lloyd 2007 eq. 83's error-based shares), its resolution and worst error over
+light directions from :func:`aliasing.budgets.splits_report`.
+"""
+
+from __future__ import annotations
+
+import inspect
+from typing import Any
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from .. import budgets, partitioning
+from . import _widget as w
+
+#: Light directions the worst error is taken over (equal solid angle over the whole sphere).
+LIGHTS = "sphere:256"
+BUDGETS = [(f"{s}² ({s * s / 2**20:g} Mi)", s * s) for s in (512, 1024, 2048, 4096, 8192)]
+
+
+def method_takes_lambda(method: str) -> bool:
+    """Whether a split method has a λ parameter (``lam``)."""
+    entry = partitioning.SPLIT_METHODS[method.lower()]
+    return "lam" in inspect.signature(entry.func).parameters
+
+
+def compute(method: str, k: int, lam: float, near: float, far: float, fov: float, warp: str, budget: int, allocation: str, res_image: int) -> dict[str, Any]:
+    """Splits, per-partition S̄, resolution and worst error of a cascade setting.
+
+    Parameters
+    ----------
+    method : str
+        Split method or engine preset (:data:`aliasing.partitioning.SPLIT_METHODS`).
+    k : int
+        Number of partitions.
+    lam : float
+        λ of the practical split (used by the methods that take it), in [0, 1].
+    near, far : float
+        Eye near and far (shadow) distance [world units].
+    fov : float
+        Full field of view [deg].
+    warp : str
+        Warp inside each partition (``Standard``, ``P``, ``LogP``, a warping rule, …).
+    budget : int
+        Texels over all maps.
+    allocation : str
+        :data:`aliasing.budgets.ALLOCATIONS` name.
+    res_image : int
+        Image resolution [pixels per side].
+
+    Returns
+    -------
+    dict
+        ``rows`` (:func:`aliasing.budgets.splits_report`'s rows), ``near_i``, ``far_i``,
+        ``S_max`` (per partition), ``res_s``, ``res_t``, ``error`` (per partition) and
+        ``worst`` (the largest error over partitions and :data:`LIGHTS`) [texels per pixel].
+
+    Example
+    -------
+    >>> d = compute("log", 4, 0.5, 1.0, 1000.0, 60.0, "P", 4096**2, "error", 1024)
+    >>> d["far_i"].round(3).tolist()
+    [5.623, 31.623, 177.828, 1000.0]
+    """
+    params = {"lam": float(lam)} if method_takes_lambda(method) else {}
+    rows = budgets.splits_report(method, float(near), float(far), int(k), fov=float(fov), light=LIGHTS, warp=warp, budget=float(budget),
+                                 res_image=float(res_image), allocations=(allocation,), **params)
+    parts, total = rows[:-1], rows[-1]
+    col = lambda key: np.array([r[key] for r in parts], float)  # noqa: E731
+    return {
+        "method": method, "k": len(parts), "lam": float(lam) if params else None, "near": float(near), "far": float(far),
+        "fov": float(fov), "warp": warp, "budget": int(budget), "allocation": allocation, "res_image": int(res_image),
+        "rows": rows, "near_i": col("near"), "far_i": col("far"), "S_max": col("S_max"),
+        "res_s": col(f"res_s[{allocation}]"), "res_t": col(f"res_t[{allocation}]"), "error": col(f"max_error[{allocation}]"),
+        "worst": float(total[f"max_error[{allocation}]"]), "S_total": float(total["S_max"]),
+    }
+
+
+def draw(fig: Figure, d: dict[str, Any]) -> None:
+    """The partitions on the frustum (side view, log depth) and per-partition S̄, resolution, error."""
+    a, b = fig.subplots(1, 2)
+    t = np.tan(np.radians(d["fov"]) / 2)
+    z = np.geomspace(d["near"], d["far"], 100)
+    a.fill_between(z, -z * t, z * t, color="0.93")
+    for i, (lo, hi) in enumerate(zip(d["near_i"], d["far_i"])):
+        zz = np.geomspace(lo, hi, 30)
+        a.fill_between(zz, -zz * t, zz * t, color=f"C{i % 10}", alpha=0.45, lw=0)
+        a.axvline(hi, color=f"C{i % 10}", lw=0.8)
+    a.set_xscale("log")
+    a.set(xlabel="z [world units] (log)", ylabel="y", title="partitions on the frustum (side view)")
+    i = np.arange(1, d["k"] + 1)
+    b.bar(i, d["error"], color=[f"C{j % 10}" for j in range(d["k"])])
+    b.axhline(1.0, color="0.5", lw=0.8, ls="--")
+    b.set(xlabel="partition", ylabel="worst error [texels/pixel]", xticks=i)
+    for j in range(d["k"]):
+        b.text(i[j], d["error"][j], f"S̄ {d['S_max'][j]:.3g}\n{d['res_s'][j]:.0f}×{d['res_t'][j]:.0f}", ha="center", va="bottom", fontsize=7)
+    b.set_ylim(0, max(d["error"].max(), 1.0) * 1.35)
+    b.set_title(f"{d['allocation']}: worst {d['worst']:.3g} over {LIGHTS}", fontsize=10)
+    lam = f", λ = {d['lam']:g}" if d["lam"] is not None else ""
+    fig.suptitle(f"{d['method']} k = {d['k']}{lam}, [{d['near']:g}, {d['far']:g}], warp {d['warp']}, budget {d['budget']:,} texels, image {d['res_image']}",
+                 fontsize=10)
+    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.15, top=0.84, wspace=0.25)
+
+
+class CascadesExplorer(w.Explorer):
+    """Cascade settings → splits, per-partition S̄ and resolution, worst error over light directions."""
+
+    title = "Cascades (Lloyd et al. 2007 eqs. 80–83, Zhang et al. 2006, engine presets)"
+    figsize = (9.5, 3.8)
+
+    def make_controls(self) -> dict:
+        return {
+            "method": w.dropdown("split", sorted(partitioning.SPLIT_METHODS), "practical"),
+            "k": w.widgets.IntSlider(value=4, min=1, max=8, description="k", continuous_update=False),
+            "lam": w.slider("λ", 0.5, 0.0, 1.0, 0.05),
+            "near": w.widgets.BoundedFloatText(value=1.0, min=1e-6, max=1e9, description="near", style={"description_width": "initial"}),
+            "far": w.widgets.BoundedFloatText(value=1000.0, min=1e-6, max=1e12, description="far", style={"description_width": "initial"}),
+            "fov": w.slider("fov [deg]", 60.0, 5.0, 150.0),
+            "warp": w.text("warp", "Standard", "Standard, P, LogP, lispsm, …"),
+            "budget": w.dropdown("texel budget", BUDGETS, 4096 * 4096),
+            "allocation": w.dropdown("allocation", list(budgets.ALLOCATIONS), "equal"),
+            "res_image": w.widgets.IntText(value=1024, description="image res. [px]", style={"description_width": "initial"}),
+        }
+
+    def compute(self, **values: Any) -> dict:
+        return compute(**values)
+
+    def draw(self, fig: Figure, data: dict) -> None:
+        draw(fig, data)

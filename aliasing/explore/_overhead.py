@@ -1,0 +1,130 @@
+"""Overhead light: m_x, m_z along z (Lloyd et al. 2006 Fig. 5) and M_x, M_z, S̄ over η (Fig. 6).
+
+For a light overhead (γ = 90°) the shadow map's s axis runs across the view and t along
+z; a warp with centre of projection n′ before the near plane gives the errors of Lloyd
+2006 eqs. 7–8 (m_x, m_z at depth z), their maxima eqs. 9–10 and the storage factor
+S̄ = M_x·M_z (eq. 12), all from :mod:`aliasing.error`.  The warp is a rule (uniform, PSM,
+LiSPSM), a value of η ∈ [−1, 1] (eq. 11) or an n′ typed in.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from .. import error, warping
+from . import _widget as w
+
+RULES = {"uniform": "uniform", "PSM": "psm", "LiSPSM": "lispsm", "η (slider)": "eta", "n′ (typed)": "n_prime"}
+#: Samples along z and along η.
+Z_SAMPLES, ETA_SAMPLES = 200, 201
+
+
+def compute(f_over_n: float, fov: float, rule: str, eta: float, n_prime: str, res_image: int) -> dict[str, Any]:
+    """Curves of Figs. 5–6 and the critical resolution for near = 1, far = f/n.
+
+    Parameters
+    ----------
+    f_over_n : float
+        Depth ratio far/near (> 1).
+    fov : float
+        Full field of view [deg].
+    rule : {"uniform", "psm", "lispsm", "eta", "n_prime"}
+        How n′ is chosen.
+    eta : float
+        η for ``rule="eta"`` (Lloyd 2006 eq. 11), in [−1, 1].
+    n_prime : str
+        n′ [world units] for ``rule="n_prime"`` (a number or ``inf``).
+    res_image : int
+        Image resolution [pixels per side] for the critical shadow-map resolution.
+
+    Returns
+    -------
+    dict
+        ``z``, ``m_x``, ``m_z`` (along z), ``eta_axis``, ``M_x_eta``, ``M_z_eta``, ``S_eta``
+        (over η), and at the chosen warp ``n_prime``, ``eta``, ``M_x``, ``M_z``, ``S``,
+        ``res_s``, ``res_t`` (critical resolution [texels]).
+
+    Example
+    -------
+    >>> d = compute(100.0, 90.0, "lispsm", 0.0, "inf", 1024)
+    >>> round(float(d["S"]), 1)       # eq. (12) with n' = n + sqrt(nf)
+    49.5
+    """
+    near, far = 1.0, float(f_over_n)
+    if rule == "n_prime":
+        try:
+            npr = float(n_prime)
+        except ValueError:
+            raise ValueError(f"n′ must be a number > 0 or 'inf' [world units], got {n_prime!r}") from None
+        if not npr > 0:
+            raise ValueError(f"n′ must be > 0 (distance of the centre of projection before the near plane), got {n_prime!r}")
+    elif rule == "eta":
+        npr = float(warping.n_prime_from_eta(eta, near, far))
+    else:
+        npr = float(warping.warping_parameter(rule, near, far, gamma=90.0))
+    z = np.geomspace(near, far, Z_SAMPLES)
+    eta_axis = np.linspace(-1.0, 1.0, ETA_SAMPLES)
+    np_eta = warping.n_prime_from_eta(eta_axis, near, far)
+    mx_eta = error.max_error_x(near, far, np_eta)
+    mz_eta = error.max_error_z(near, far, fov, np_eta)
+    res_s, res_t = error.critical_resolution(near, far, fov, npr, res_image=res_image)
+    return {
+        "f_over_n": far, "fov": float(fov), "rule": rule, "n_prime": npr,
+        "eta": float(warping.eta_from_n_prime(npr, near, far)) if npr >= near else float("nan"),
+        "z": z, "m_x": error.m_x(z, near, far, npr), "m_z": error.m_z(z, near, far, fov, npr),
+        "eta_axis": eta_axis, "M_x_eta": mx_eta, "M_z_eta": mz_eta, "S_eta": error.storage_factor(near, far, fov, np_eta),
+        "M_x": float(error.max_error_x(near, far, npr)), "M_z": float(error.max_error_z(near, far, fov, npr)),
+        "S": float(error.storage_factor(near, far, fov, npr)), "res_s": float(res_s), "res_t": float(res_t),
+    }
+
+
+def draw(fig: Figure, d: dict[str, Any]) -> None:
+    """Fig. 5 (left) and Fig. 6 (right) with the chosen warp marked."""
+    a, b = fig.subplots(1, 2)
+    a.loglog(d["z"], d["m_x"], label="m_x")
+    a.loglog(d["z"], d["m_z"], label="m_z")
+    a.axhline(1.0, color="0.6", lw=0.8)
+    a.set(xlabel="z [world units]", ylabel="error [texels per pixel, unit res.]", title=f"Lloyd 2006 Fig. 5: n′ = {d['n_prime']:.4g}")
+    a.legend(fontsize=8)
+    b.semilogy(d["eta_axis"], d["M_x_eta"], label="M_x")
+    b.semilogy(d["eta_axis"], d["M_z_eta"], label="M_z")
+    b.semilogy(d["eta_axis"], d["S_eta"], label="S̄", color="k")
+    if np.isfinite(d["eta"]):
+        b.axvline(d["eta"], color="C3", lw=1, ls="--")
+    b.set(xlabel="η (−1 uniform, 0 LiSPSM, 1 PSM)", title=f"Fig. 6: S̄ = {d['S']:.4g}, crit. res. {d['res_s']:.0f}×{d['res_t']:.0f}")
+    b.legend(fontsize=8)
+    fig.suptitle(f"overhead light, f/n = {d['f_over_n']:.4g}, fov = {d['fov']:g}°, warp {d['rule']}", fontsize=10)
+    fig.subplots_adjust(left=0.08, right=0.98, bottom=0.15, top=0.84, wspace=0.22)
+
+
+class OverheadExplorer(w.Explorer):
+    """m_x, m_z and S̄ for an overhead light; controls f/n (log), fov, warp rule, η, n′, image resolution.
+
+    Example
+    -------
+    >>> from aliasing import explore
+    >>> e = explore.overhead(f_over_n=100.0, fov=90.0, rule="lispsm")   # doctest: +SKIP
+    >>> round(e.data["S"], 1)                                            # doctest: +SKIP
+    49.5
+    """
+
+    title = "Overhead light (Lloyd et al. 2006 Figs. 5–6)"
+
+    def make_controls(self) -> dict:
+        return {
+            "f_over_n": w.log_slider("f/n", 1000.0, 1.5, 1e5),
+            "fov": w.slider("fov [deg]", 60.0, 5.0, 150.0),
+            "rule": w.dropdown("warp", list(RULES.items()), "lispsm"),
+            "eta": w.slider("η", 0.0, -1.0, 1.0, 0.01),
+            "n_prime": w.text("n′ [world units]", "inf", "number > 0 or inf"),
+            "res_image": w.widgets.IntText(value=1024, description="image res. [px]", style={"description_width": "initial"}),
+        }
+
+    def compute(self, **values: Any) -> dict:
+        return compute(**values)
+
+    def draw(self, fig: Figure, data: dict) -> None:
+        draw(fig, data)
