@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from aliasing import cli, partitioning
-from aliasing.raster import camera, cascades, map_set, pictures, procedural, scenerender
+from aliasing.raster import camera, cascades, map_set, pictures, procedural, scene_validate, scenerender
 from aliasing.raster.scenes import Scene
 
 trimesh = pytest.importorskip("trimesh")
@@ -77,7 +77,7 @@ def test_budget_shares_and_measured_within_bound(glb):
         assert s["pixels_measured"] > 500 and 0 <= s["frac_le_1"] <= 1
         assert s["p50"] <= s["p90"] <= s["p99"] <= s["max"]
         # the measured perspective error stays within the analytic maximum of its maps (Lloyd 2006 eqs. 7-10)
-        assert s["max"] <= s["analytic_max"] * 1.02, r.label
+        assert s["max"] <= s["analytic_max"] * (1 + scene_validate.TOLERANCE), r.label  # finite differences: 1e-3 (as measure states)
         assert sum(c["side"] ** 2 for c in s["cascades"]) <= budget
     err = rs[-1]
     sides = np.array([c["side"] for c in err.stats["cascades"]], float)
