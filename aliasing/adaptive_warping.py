@@ -11,10 +11,12 @@ light is inside is decided by its vanishing point in the eye's image,
     (u, w) = (l_x, l_y)/(l_z tanθ),   t = max(|u|, |w|)   (t < 1: inside the pyramid),
 
 which depends on the azimuth of the light as well as on γ (t = tanγ·max(|sin φ|, |cos φ|)/tanθ).
-The rule is η = clip(t − 1, −1, 0): continuous in the light direction, no per-direction
-optimisation, two divisions and a max per direction.  Its log+perspective counterpart uses
-η = clip(t − 1, −1, 1): the same inside the pyramid, then a ramp to LogSopt's plateau η = 1
-(reached at t = 2) outside it.
+The rule is η = clip(t − 1, −1, 0), n′ from η by eq. 120, and a guard near the pyramid's
+boundary: n′ ≥ c·W_ly·max(0, 1 − |t − 1|/τ), c = 0.1, τ = 0.3 (there the S-optimal centre of
+projection sits about 0.1 W_ly before the near face, which η ≈ 0 cannot express at large f/n;
+docs/warping_rule.md §5).  Continuous in the light direction, no per-direction optimisation:
+a few divisions and two maxima per direction.  Its log+perspective counterpart uses
+η = clip(t − 1, −1, 1) (a ramp to LogSopt's plateau η = 1, reached at t = 2) and the same guard.
 
 What holds on the grid f/n ∈ 10…1e5, fov 20°…120° (docs/warping_rule.md): see
 :func:`grid_study` and the reproduce target ``warping-rule-grid``.
@@ -84,7 +86,38 @@ def eta_pyramid(light: ArrayLike, fov: ArrayLike, eta_outside: float = 0.0) -> A
     return np.clip(t - 1.0, -1.0, top)
 
 
-@register("pyramid", "new (this toolkit, docs/warping_rule.md): η from the light's vanishing point in the eye image", "eta = clip(max(|u|,|w|) - 1, -1, 0), (u, w) = light's image position / tan(theta); needs azimuth (default 0)")
+GUARD, GUARD_WIDTH = 0.1, 0.3  # c and τ of the boundary guard (docs/warping_rule.md §5)
+
+
+def pyramid_t(gamma: ArrayLike, azimuth: ArrayLike, fov: ArrayLike) -> Array:
+    """t = tanγ·max(|sin φ|, |cos φ|)/tanθ, γ folded to [0°, 90°] [deg in, dimensionless out]."""
+    g = check.closed_range(gamma, "gamma", 0.0, 180.0, " degrees")
+    g = np.minimum(g, 180.0 - g)
+    phi = np.radians(check.as_float_array(azimuth, "azimuth"))
+    tan = np.tan(np.radians(check.fov(fov)) / 2)
+    with np.errstate(over="ignore"):
+        return np.tan(np.radians(g)) * np.maximum(np.abs(np.sin(phi)), np.abs(np.cos(phi))) / tan
+
+
+def n_prime_pyramid(near: ArrayLike, far: ArrayLike, t: ArrayLike, depth: ArrayLike, eta_outside: float = 0.0) -> Array:
+    """n′ [world units] of the pyramid rule from t and the light-space depth W_ly [world units].
+
+    η = clip(t − 1, −1, η_out) through eq. 120, then n′ ≥ c·W_ly·max(0, 1 − |t − 1|/τ).
+
+    Example
+    -------
+    >>> float(n_prime_pyramid(1.0, 1000.0, 1.0, 999.0))  # at the boundary the guard binds: 0.1 W_ly
+    99.9
+    """
+    top = float(check.closed_range(eta_outside, "eta_outside", 0.0, 1.0))
+    tt = check.as_float_array(t, "t")
+    d = check.positive(depth, "depth")
+    npr = warping.n_prime_from_eta(np.clip(tt - 1.0, -1.0, top), near, far, d)
+    guard = GUARD * d * np.clip(1.0 - np.abs(tt - 1.0) / GUARD_WIDTH, 0.0, 1.0)  # NaN-free: t = inf gives 0
+    return np.maximum(npr, np.where(np.isfinite(tt), guard, 0.0))
+
+
+@register("pyramid", "new (this toolkit, docs/warping_rule.md): η from the light's vanishing point in the eye image", "eta = clip(t - 1, -1, 0), t = max(|u|,|w|) of the light's image position / tan(theta), n' >= 0.1 W_ly near t = 1; needs azimuth (default 0)")
 def _pyramid(near: ArrayLike, far: ArrayLike, *, fov: ArrayLike = 60.0, gamma: ArrayLike = 90.0, depth: ArrayLike | None = None, azimuth: ArrayLike = 0.0) -> Array:
     """n′ [world units] of the pyramid rule from γ and the light's azimuth [deg] (eq. 120's n_γ).
 
@@ -92,14 +125,9 @@ def _pyramid(near: ArrayLike, far: ArrayLike, *, fov: ArrayLike = 60.0, gamma: A
     (the view's vertical plane) because :func:`aliasing.schemes.evaluate` passes only γ and the
     depth; pass ``azimuth=`` per direction for the full rule (as :func:`grid_study` does).
     """
-    g = check.closed_range(gamma, "gamma", 0.0, 180.0, " degrees")
-    g = np.minimum(g, 180.0 - g)
-    phi = np.radians(check.as_float_array(azimuth, "azimuth"))
-    tan = np.tan(np.radians(check.fov(fov)) / 2)
-    with np.errstate(over="ignore"):
-        t = np.tan(np.radians(g)) * np.maximum(np.abs(np.sin(phi)), np.abs(np.cos(phi))) / tan
-    eta = np.clip(t - 1.0, -1.0, 0.0)
-    return warping.n_prime_from_eta(eta, near, far, depth)
+    n, f = check.frustum(near, far)
+    d = (f - n) if depth is None else depth
+    return n_prime_pyramid(n, f, pyramid_t(gamma, azimuth, fov), d)
 
 
 def evaluate(rule: str, near: float, far: float, fov: float, light: ArrayLike) -> Array:
@@ -109,8 +137,9 @@ def evaluate(rule: str, near: float, far: float, fov: float, light: ArrayLike) -
         return schemes.evaluate(rule, near, far, fov, lv).S
     n_i, f_i = np.array([float(near)]), np.array([float(far)])
     lf = directional.fit(geometry.frustum_vertices(n_i, f_i, fov), lv)
-    eta = eta_pyramid(lv, fov, 1.0 if rule == "pyramid-log" else 0.0)[:, None]
-    npr = warping.n_prime_from_eta(eta, n_i, f_i, lf.depth)
+    u, w = image_position(lv, fov)
+    t = np.maximum(np.abs(u), np.abs(w))[:, None]
+    npr = n_prime_pyramid(n_i, f_i, t, lf.depth, 1.0 if rule == "pyramid-log" else 0.0)
     mx, mz = directional.vertex_errors(lf, fov, npr, "logperspective" if rule == "pyramid-log" else "perspective")
     return (mx.max(-1) * mz.max(-1)).sum(-1)
 

@@ -195,6 +195,10 @@ def main(out_dir: Path, directions: int = DIRECTIONS) -> list[Path]:
         csv_lines.append(f"{name}," + ",".join(cells_csv) + f",{note}")
         md.append(f"| {name} | " + " | ".join(cells_md) + f" | {note} |")
     md += ["", "## Unexplained cells", ""] + (flagged or ["none"]) + ["", "## Explained cells", ""] + explained
+    md += ["", "## Beyond the paper: the pyramid rules (not in Lloyd et al. 2007; docs/warping_rule.md)", "",
+           "| row | S_min | S_max | S_max_over_min | S_mean | rel_mean | maps |", "|---|---|---|---|---|---|---|"]
+    for name, row in new_rows(directions, ours["FP+Log"]["S_mean"]).items():
+        md.append(f"| {name} | " + " | ".join(f"{row[c]:.4g}" for c in COLUMNS) + " |")
     md += ["", "Hypotheses tried for the means: docs/ERRATA.md L20 and `lloyd2007-table3-hypotheses.md` (written beside this table)."]
     csv_path, md_path = out / f"{NAME}.csv", out / f"{NAME}.md"
     csv_path.write_text("\n".join(csv_lines) + "\n")
@@ -202,6 +206,20 @@ def main(out_dir: Path, directions: int = DIRECTIONS) -> list[Path]:
     hyp_path = out / f"{NAME}-hypotheses.md"
     hyp_path.write_text(hypotheses_table(directions))
     return [csv_path, md_path, hyp_path]
+
+
+def new_rows(directions: int = DIRECTIONS, fp_log_mean: float | None = None) -> dict[str, dict[str, float]]:
+    """Table 3's statistics for the pyramid rules of :mod:`aliasing.adaptive_warping`, and the
+    S-optimal Sopt / LogSopt they aim at (same lights)."""
+    from aliasing import adaptive_warping
+
+    lv = lights(directions)
+    ref = fp_log_mean if fp_log_mean is not None else float(schemes.evaluate("FP+Log", 1.0, F_OVER_N, FOV, lv).S.mean())
+    out = {}
+    for name in ("pyramid", "pyramid-log", "Sopt", "LogSopt"):  # the S-optimal warps as the reference
+        s = adaptive_warping.evaluate(name, 1.0, F_OVER_N, FOV, lv)
+        out[name] = {"S_min": s.min(), "S_max": s.max(), "S_max_over_min": s.max() / s.min(), "S_mean": s.mean(), "rel_mean": s.mean() / ref, "maps": 1.0}
+    return out
 
 
 def hypotheses_table(directions: int = DIRECTIONS) -> str:

@@ -59,6 +59,8 @@ def main(out_dir: Path, light: str = LIGHT) -> list[Path]:
                 for b in range(fovs.size):
                     ok = v[a, b] <= goal * (1 + 1e-6)  # 1e-6: equal to Standard's max up to rounding
                     text = f"{v[a, b]:.3g}" if v[a, b] < 100 else f"{v[a, b]:.0e}".replace("e+0", "e").replace("e+", "e")
+                    if 0.995 < v[a, b] < 1.005:
+                        text = f"{v[a, b]:.4f}"  # so that 1.0029 (above Standard's max) does not read as 1
                     ax.text(b, a, text, ha="center", va="center", fontsize=5.5, fontweight="bold" if ok else "normal")
                     if ok:
                         ax.add_patch(Rectangle((b - 0.5, a - 0.5), 1, 1, fill=False, ec="white", lw=1.2))

@@ -215,7 +215,32 @@ QUOTES = [
     ("L20", "sampled 3.62e6", lambda: table3("Po", "max")),
     ("L20", "supremum 3.6546e6", lambda: in_plane_peak("Po")[0]),
     ("L20", "supremum is 158.49", lambda: _zp5p_sup()),
+    # W6 (Wimmer 2004 §4.4, Δz variant): n = 1, f = 100, fov 60°, γ = 30°
+    ("W6", "it is 16.3", lambda: warping.warping_parameter("lispsm-dz", 1.0, 100.0, gamma=30.0, depth=_zhang_depth(30.0))),
+    ("W6", "against 22.0", lambda: warping.warping_parameter("lispsm", 1.0, 100.0, gamma=30.0)),
+    # Z2, Z3 (Zhang 2007): n = 1, f = 100, φ = π/6
+    ("Z2", "0.070 per radian above φ", lambda: _lambda_slope(+1)),
+    ("Z2", "1.27 per radian below", lambda: _lambda_slope(-1)),
+    ("Z2", "θ0 = 27.69°", lambda: np.degrees(np.arctan(np.tan(np.pi / 6) * 100 / (100 + 10)))),
+    ("Z3", "θ1 = 28.95°", lambda: np.degrees(np.arctan(np.tan(np.pi / 6) * 100 / np.sqrt(99 * 110)))),
+    # P2 (Zhang 2006 eq. 3 vs eqs. 1–2): n = 1, f = 800, m = 3, γ = 2, δ = 10
+    ("P2", "C_2 is 410.5", lambda: __import__("aliasing.partitioning", fromlist=["x"]).split_distances("pssm", 1.0, 800.0, 3, ratio=2.0, bias=10.0)[2]),
+    ("P2", "but 420.5", lambda: 1 + 799 * 2.0 ** (2 - 3) + 2.0 ** (2 - 1) * 10),
 ]
+
+
+def _zhang_depth(gamma: float) -> float:
+    from aliasing import gmnpr
+
+    return float(gmnpr.light_space_depth(1.0, 100.0, 60.0, gamma))
+
+
+def _lambda_slope(side: int) -> float:
+    """dλ/dθ per radian of Zhang's eq. 4 just above (+1) or below (−1) θ = φ (finite difference)."""
+    from aliasing import gmnpr
+
+    g0, h = 30.0 + side * 1e-3, side * 1e-6
+    return float((gmnpr.lambda_optimal(1.0, 100.0, 60.0, g0 + np.degrees(h)) - gmnpr.lambda_optimal(1.0, 100.0, 60.0, g0)) / h)
 
 
 def _hyp(name: str, row: str) -> float:
