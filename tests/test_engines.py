@@ -235,3 +235,52 @@ def test_figure_data_shows_the_documented_ranges():
     far = cols["d"] > 100.0  # beyond the first level's clamp (level 6 reaches 2^(6 − B′) cm)
     assert cols["m_vsm_high"][far].max() <= 2.0 + 1e-9 and cols["m_vsm_high"][far].min() > 1.0
     assert np.ptp(cols["S_csm_stable_filament"]) == 0.0 and (cols["S_csm_stable_filament"] >= cols["S_csm_filament"]).all()
+
+
+def test_ground_area_against_monte_carlo():
+    rng = np.random.default_rng(7)
+    h, fov, R = 170.0, 60.0, 3000.0
+    t = np.tan(np.radians(30.0))
+    x, z = rng.uniform(-R, R, 400_000), rng.uniform(0, R, 400_000)
+    seen = (np.abs(x) <= z * t) & (h <= z * t)
+    for r in (320.0, 340.0, 1000.0, 3000.0):  # segment branch (z0 = 294 < r <= 340), wedge beyond
+        mc = (seen & (np.hypot(x, z) <= r)).mean() * 2 * R * R
+        assert float(vsm.ground_area(r, h, fov)) == pytest.approx(mc, rel=0.05, abs=2000.0)
+
+
+def test_ground_pages_against_a_page_count():
+    """Second method: enumerate the light-space pages that sampled ground points fall in."""
+    c = vsm.Clipmap(fov=60.0, width=1920, bias=0.0)
+    h, far = 170.0, 2e4
+    for light in ("overhead", "gamma:60@azimuth:30"):
+        lv = geometry.lights(light)[0]
+        basis = geometry.light_space(lv[None])[0]
+        estimate = float(vsm.ground_pages(c, h, far, light)[0])
+        pages = set()
+        t = np.tan(np.radians(30.0))
+        for L in range(c.first, c.last + 1):
+            p = vsm.PAGE * float(vsm.texel(c, L))
+            d_hi = min(2.0 ** (L + 1 - c.lod_bias), far)  # the level's ring only: a few thousand points
+            if d_hi < np.hypot(h, h / t):
+                continue
+            xs = np.arange(-d_hi, d_hi, p / 3)
+            zs = np.arange(h / t, d_hi, p / 3)
+            X, Z = np.meshgrid(xs, zs)
+            d = np.sqrt(X**2 + Z**2 + h**2)
+            keep = (np.abs(X) <= Z * t) & (d <= far) & (vsm.level(c, d) == L)
+            if not keep.any():
+                continue
+            pts = np.stack([X[keep], np.full(keep.sum(), -h), Z[keep]], axis=-1)
+            u, v = pts @ basis[0], pts @ basis[2]
+            pages |= set(zip([L] * len(u), np.floor(u / p).astype(int), np.floor(v / p).astype(int)))
+        assert estimate <= len(pages) <= 1.6 * estimate  # the area's worth, plus partial border pages
+
+
+def test_ground_plane_pages_in_the_comparison():
+    rows = compare.compare(["vsm:low", "vsm:epic"], lights="overhead", ground=170.0)
+    low, epic = rows
+    assert low["overflow"] and low["extra_bias"] > 0  # 512 pages: the ground to 1 km needs about 540
+    assert not epic["overflow"] and epic["pages"] > 4 * low["pages"]  # −1.30 octaves: 2^(2·1.30) ≈ 6x the pages
+    assert epic["pages"] == pytest.approx(float(vsm.ground_pages(vsm.Clipmap(60.0, 1920, -1.5), 170.0, 1e5, "overhead")[0]))
+    relieved = vsm.ground_pages(vsm.Clipmap(60.0, 1920, low["extra_bias"]), 170.0, 1e5, "overhead")[0]
+    assert relieved <= 0.85 * 512

@@ -17,7 +17,8 @@ texels per cascade): ``max_error`` (max over lights and receivers of max(m_x, m_
 ``median_error`` (median over lights of each light's max), ``m_axis_min``/``m_axis_max``
 (m_x along the view axis over [near, far], light overhead), ``storage_texels``, ``S_bar``
 (the papers' critical storage in image areas: Σ_maps texels·M_x·M_z / W², the maximum over
-lights; for VSM a bound: texels·M²/W²), ``pages`` (VSM: the frustum bound, worst light),
+lights; for VSM a bound: texels·M²/W²), ``pages`` (VSM: the frustum bound, or with ``ground``
+the ground plane's closed form; worst light),
 ``overflow`` and ``extra_bias`` (VSM pool), ``coverage`` (cascades: the fraction of light
 directions for which every map covers its slice; below 1 the row's error is not a valid
 bound, see :func:`aliasing.engines.stable.coverage`), ``storage_ratio`` and ``error_ratio`` to the
@@ -94,7 +95,7 @@ def _cascade_row(spec: str, res: stable.StableResult, axis: stable.StableResult,
     }
 
 
-def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | np.ndarray, image_res: int, shadow_res: int, unit: str) -> dict:
+def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | np.ndarray, image_res: int, shadow_res: int, unit: str, ground: float | None = None) -> dict:
     """The comparison row of one scheme spec (see the module docstring)."""
     text = str(spec).strip().lower()
     family, *parts = text.split(":")
@@ -121,7 +122,7 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
         c = vsm.Clipmap(fov, image_res, bias, int(first), int(last), unit)
         worst = vsm.frustum_max(c, near, far)
         lo, hi = vsm.m_axis_range(c, near, far)
-        pool_info = vsm.pool_check(c, near, far, lights, int(pool))
+        pool_info = vsm.pool_check(c, near, far, lights, int(pool), ground)
         texels = pool_info["pages"] * vsm.PAGE**2
         return {
             "scheme": spec,
@@ -176,7 +177,7 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
     return row
 
 
-def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, far: float = 100000.0, lights: str | np.ndarray = "hemisphere:200", image_res: int = 1920, shadow_res: int = 2048, unit: str = "cm") -> list[dict]:
+def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, far: float = 100000.0, lights: str | np.ndarray = "hemisphere:200", image_res: int = 1920, shadow_res: int = 2048, unit: str = "cm", ground: float | None = None) -> list[dict]:
     """Rows for ``schemes`` with their ratios to the matched limit.
 
     Parameters
@@ -195,6 +196,9 @@ def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, fa
         Texels per side of each cascade.
     unit : str
         The scene's unit (VSM's constants are in cm).
+    ground : float, optional
+        Camera height above a ground plane [scene units]: VSM pages, overflow and extra bias
+        from the ground plane's closed form instead of the frustum's upper bound.
     """
     check.fov(fov)
     check.frustum(near, far)
@@ -212,7 +216,7 @@ def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, fa
     rows = []
     for spec in schemes:
         row = {key: None for key in FIELDS}
-        row.update(scheme_row(spec, fov=float(fov), near=float(near), far=float(far), lights=lights, image_res=int(image_res), shadow_res=int(shadow_res), unit=unit))
+        row.update(scheme_row(spec, fov=float(fov), near=float(near), far=float(far), lights=lights, image_res=int(image_res), shadow_res=int(shadow_res), unit=unit, ground=ground))
         row["storage_ratio"] = row["storage_texels"] / ref["storage_texels"]
         row["error_ratio"] = row["max_error"] / ref["max_error"]
         rows.append(row)
@@ -261,7 +265,7 @@ def _run(args: argparse.Namespace) -> int:
         print(LISTING.format(splits=", ".join(partitioning.SPLIT_METHODS), stables=", ".join(f"{p.name} ({p.source})" for p in stable.PRESETS.values()), vsms=", ".join(f"{p.name} (bias {p.bias:g}, pool {p.pool})" for p in vsm.PRESETS.values())), end="")
         return 0
     schemes = [s for s in (args.schemes or "").split(",") if s.strip()]
-    rows = compare(schemes, fov=args.fov, near=args.near, far=args.far, lights=args.light, image_res=args.image_res, shadow_res=args.shadow_res, unit=args.unit)
+    rows = compare(schemes, fov=args.fov, near=args.near, far=args.far, lights=args.light, image_res=args.image_res, shadow_res=args.shadow_res, unit=args.unit, ground=args.ground)
     print(format_rows(rows, args.format), end="")
     return 0
 
@@ -287,6 +291,7 @@ def add_engines_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPars
     p.add_argument("--shadow-res", type=int, default=2048, help="texels per side of each cascade (default 2048)")
     p.add_argument("--unit", default="cm", help="scene length unit: cm (default, as the engine), m, mm, in, ft")
     p.add_argument("--light", default="hemisphere:200", help="light directions, the sweep's comma-separated specs (default hemisphere:200)")
+    p.add_argument("--ground", type=float, help="camera height above a ground plane in --unit: VSM pages from the plane's closed form (default: the frustum's upper bound)")
     p.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
     p.add_argument("--list", action="store_true", help="list the families and presets and exit")
     p.set_defaults(run=_run)

@@ -212,8 +212,9 @@ def pages(c: Clipmap, near: float, far: float, light: str | ArrayLike = "overhea
     return (px * py).sum(axis=-1)
 
 
-def pool_check(c: Clipmap, near: float, far: float, light: str | ArrayLike, pool: int) -> dict[str, object]:
-    """Whether the frustum bound overflows ``pool`` pages at the 0.85 load factor, and the extra bias.
+def pool_check(c: Clipmap, near: float, far: float, light: str | ArrayLike, pool: int, ground: float | None = None) -> dict[str, object]:
+    """Whether the frustum bound (or, with ``ground`` = camera height, the ground plane's
+    pages, :func:`ground_pages`) overflows ``pool`` pages at the 0.85 load factor, and the extra bias.
 
     The extra bias is the smallest non-negative one (to 1/16 octave, bisection; pages fall
     monotonically with bias) whose page bound fits 0.85·pool for the worst light direction.
@@ -222,13 +223,66 @@ def pool_check(c: Clipmap, near: float, far: float, light: str | ArrayLike, pool
     if not (float(pool) >= 1 and float(pool).is_integer()):
         raise ValueError(f"pool (physical pages) must be a whole number >= 1, got {pool!r}")
     budget = LOAD_FACTOR * pool
-    need = float(pages(c, near, far, light).max())
+
+    def count(clip: Clipmap) -> float:
+        return float((pages(clip, near, far, light) if ground is None else ground_pages(clip, ground, far, light)).max())
+
+    need = count(c)
     extra = 0.0
     if need > budget:
         lo, hi = 0.0, 16.0
         while hi - lo > 1 / 16:
             mid = (lo + hi) / 2
             trial = Clipmap(c.fov, c.width, min(c.bias + mid, BIAS_RANGE[1]), c.first, c.last, c.unit)
-            lo, hi = (lo, mid) if pages(trial, near, far, light).max() <= budget else (mid, hi)
+            lo, hi = (lo, mid) if count(trial) <= budget else (mid, hi)
         extra = hi
     return {"pages": need, "budget": budget, "overflow": need > budget, "extra_bias": extra}
+
+
+def ground_area(rho: ArrayLike, height: float, fov: float) -> Array:
+    """Visible ground area within horizontal distance ρ [scene units²], closed form.
+
+    Camera at ``height`` above a plane, looking horizontally (square image, half-angle θ):
+    the plane is seen from z₀ = h/tanθ on, inside the wedge |x| ≤ z tanθ.  Then
+    A(ρ) = 0 for ρ ≤ z₀; ρ² acos(z₀/ρ) − z₀√(ρ² − z₀²) (a circular segment) for
+    z₀ < ρ ≤ z₀/cosθ; θρ² − z₀² tanθ (the wedge minus its unseen triangle) beyond.
+    Derived here (issue 18); tested against a Monte Carlo count.
+
+    Example
+    -------
+    >>> round(float(ground_area(10.0, 1.0, 90.0)), 4)  # θ = 45°: z₀ = 1, wedge π/4·100 − 1
+    77.5398
+    """
+    r = np.asarray(check.as_float_array(rho, "rho"), float)
+    h = float(check.positive(height, "height"))
+    th = np.radians(float(check.fov(fov))) / 2
+    z0 = h / np.tan(th)
+    with np.errstate(invalid="ignore"):
+        seg = r**2 * np.arccos(np.clip(z0 / np.maximum(r, z0), -1, 1)) - z0 * np.sqrt(np.maximum(r**2 - z0**2, 0))
+    wedge = th * r**2 - z0**2 * np.tan(th)
+    return np.where(r <= z0, 0.0, np.where(r <= z0 / np.cos(th), seg, wedge))
+
+
+def ground_pages(c: Clipmap, height: float, far: float, light: str | ArrayLike = "overhead") -> Array:
+    """Pages a flat ground needs per light direction ``(N,)``: an area estimate in closed form.
+
+    Receivers on the ground at camera distance d_c = √(h² + ρ²) use level L (:func:`level`);
+    the ground between the level's distance bounds, seen within ``far``, has area
+    ΔA (:func:`ground_area`) and projects onto the light's image plane with area
+    ΔA·|l_y| (l the unit vector towards the light, y up); divided by the page area (128 t_L)².
+    Partial pages at the borders and the engine's coarse pages are not counted, so this is
+    the area's worth of pages, not an upper bound.  Lights below the horizon give 0.
+    """
+    h = float(check.positive(height, "height"))
+    f = float(check.positive(far, "far"))
+    lv = geometry.lights(light)
+    scale = CM_PER_UNIT[c.unit.lower()]
+    levels = np.arange(c.first, c.last + 1)
+    d_lo = np.where(levels == c.first, 0.0, 2.0 ** (levels - c.lod_bias)) / scale
+    d_hi = np.where(levels == c.last, 2.0 ** (c.last + 1), 2.0 ** (levels + 1 - c.lod_bias)) / scale
+    d_lo, d_hi = np.minimum(d_lo, f), np.minimum(d_hi, f)
+    rho = lambda d: np.sqrt(np.maximum(d**2 - h**2, 0.0))  # noqa: E731
+    area = ground_area(rho(d_hi), h, c.fov) - ground_area(rho(d_lo), h, c.fov)  # (L,)
+    page = PAGE * texel(c, levels)
+    cos_l = np.clip(lv[:, 1] / np.linalg.norm(lv, axis=-1), 0.0, None)  # projected area factor
+    return cos_l * (area / page**2).sum()
