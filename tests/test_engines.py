@@ -284,3 +284,15 @@ def test_ground_plane_pages_in_the_comparison():
     assert epic["pages"] == pytest.approx(float(vsm.ground_pages(vsm.Clipmap(60.0, 1920, -1.5), 170.0, 1e5, "overhead")[0]))
     relieved = vsm.ground_pages(vsm.Clipmap(60.0, 1920, low["extra_bias"]), 170.0, 1e5, "overhead")[0]
     assert relieved <= 0.85 * 512
+
+
+def test_slice_extent_closed_form_matches_the_vertex_fit():
+    from aliasing import directional
+
+    a, b = np.array([1.0, 10.0, 100.0]), np.array([10.0, 100.0, 1000.0])
+    lv = geometry.lights("sphere:300")
+    lf = directional.fit(geometry.frustum_vertices(a, b, 70.0), lv)
+    basis = geometry.light_space(lv)
+    t = np.tan(np.radians(35.0))
+    np.testing.assert_allclose(vsm.slice_extent(a, b, t, basis[:, 0]), np.ptp(lf.x, axis=-1), rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(vsm.slice_extent(a, b, t, basis[:, 2]), lf.depth, rtol=1e-12, atol=1e-9)

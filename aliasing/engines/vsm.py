@@ -48,7 +48,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
-from .. import directional, geometry
+from .. import geometry
 
 Array = NDArray[np.float64]
 VIRTUAL_RES = 16384  # FVirtualShadowMap::VirtualMaxResolutionXY
@@ -205,11 +205,25 @@ def pages(c: Clipmap, near: float, far: float, light: str | ArrayLike = "overhea
     lights = geometry.lights(light)
     if lvk.size == 0:
         return np.zeros(len(lights))
-    lf = directional.fit(geometry.frustum_vertices(a, b, c.fov), lights)
+    basis = geometry.light_space(lights)  # (N, 3, 3): rows x, −, y of the light image plane
     page = PAGE * texel(c, lvk)
-    px = np.minimum(np.ceil(np.ptp(lf.x, axis=-1) / page) + 1, VIRTUAL_RES // PAGE)
-    py = np.minimum(np.ceil(lf.depth / page) + 1, VIRTUAL_RES // PAGE)
+    px = np.minimum(np.ceil(slice_extent(a, b, c.tan, basis[:, 0]) / page) + 1, VIRTUAL_RES // PAGE)
+    py = np.minimum(np.ceil(slice_extent(a, b, c.tan, basis[:, 2]) / page) + 1, VIRTUAL_RES // PAGE)
     return (px * py).sum(axis=-1)
+
+
+def slice_extent(a: ArrayLike, b: ArrayLike, tan: float, axis: ArrayLike) -> Array:
+    """Extent [scene units] of square frustum slices [a, b] ``(K,)`` along unit axes ``(N, 3)``: ``(N, K)``.
+
+    A corner (±d·t, ±d·t, d) projects to d·(e_z ± t e_x ± t e_y), so with q = t(|e_x| + |e_y|)
+    the extent is max(a, b·(e_z + q)…) − min(…): max(a(e_z + q), b(e_z + q)) − min(a(e_z − q),
+    b(e_z − q)).  Closed form of :func:`aliasing.directional.fit`'s ptp (tested against it).
+    """
+    e = np.atleast_2d(np.asarray(axis, float))[:, None, :]
+    aa, bb = np.asarray(a, float)[None], np.asarray(b, float)[None]
+    q = tan * (np.abs(e[..., 0]) + np.abs(e[..., 1]))
+    hi, lo = e[..., 2] + q, e[..., 2] - q
+    return np.maximum(aa * hi, bb * hi) - np.minimum(aa * lo, bb * lo)
 
 
 def pool_check(c: Clipmap, near: float, far: float, light: str | ArrayLike, pool: int, ground: float | None = None) -> dict[str, object]:
@@ -223,19 +237,31 @@ def pool_check(c: Clipmap, near: float, far: float, light: str | ArrayLike, pool
     if not (float(pool) >= 1 and float(pool).is_integer()):
         raise ValueError(f"pool (physical pages) must be a whole number >= 1, got {pool!r}")
     budget = LOAD_FACTOR * pool
+    lights = geometry.lights(light)
 
-    def count(clip: Clipmap) -> float:
-        return float((pages(clip, near, far, light) if ground is None else ground_pages(clip, ground, far, light)).max())
+    def per_light(clip: Clipmap, lv: Array) -> Array:
+        return pages(clip, near, far, lv) if ground is None else ground_pages(clip, ground, far, lv)
 
-    need = count(c)
-    extra = 0.0
-    if need > budget:
+    def biased(extra: float) -> Clipmap:
+        return Clipmap(c.fov, c.width, min(c.bias + extra, BIAS_RANGE[1]), c.first, c.last, c.unit)
+
+    def bisect(lv: Array) -> float:
         lo, hi = 0.0, 16.0
         while hi - lo > 1 / 16:
             mid = (lo + hi) / 2
-            trial = Clipmap(c.fov, c.width, min(c.bias + mid, BIAS_RANGE[1]), c.first, c.last, c.unit)
-            lo, hi = (lo, mid) if count(trial) <= budget else (mid, hi)
-        extra = hi
+            lo, hi = (lo, mid) if per_light(biased(mid), lv).max() <= budget else (mid, hi)
+        return hi
+
+    first = per_light(c, lights)
+    need = float(first.max())
+    extra = 0.0
+    if need > budget:
+        # Bisect on the heaviest directions only: an infeasible bias for them is infeasible for
+        # all; the answer is then verified on every direction (else bisect on all of them).
+        heavy = lights[first >= 0.5 * need]
+        extra = bisect(heavy)
+        if per_light(biased(extra), lights).max() > budget:
+            extra = bisect(lights)
     return {"pages": need, "budget": budget, "overflow": need > budget, "extra_bias": extra}
 
 
