@@ -296,3 +296,12 @@ def test_slice_extent_closed_form_matches_the_vertex_fit():
     t = np.tan(np.radians(35.0))
     np.testing.assert_allclose(vsm.slice_extent(a, b, t, basis[:, 0]), np.ptp(lf.x, axis=-1), rtol=1e-12, atol=1e-9)
     np.testing.assert_allclose(vsm.slice_extent(a, b, t, basis[:, 2]), lf.depth, rtol=1e-12, atol=1e-9)
+
+
+def test_bevy_bounds_follow_the_source_defaults():
+    # CascadeShadowConfigBuilder::default: 4 cascades, minimum 0.1, maximum 1000, first bound 5
+    e = stable.bevy_bounds(0.1, 1000.0)
+    assert e[:2].tolist() == [0.1, 5.0] and e[-1] == 1000.0
+    np.testing.assert_allclose(np.diff(np.log(e[1:])), np.log(200.0) / 3)
+    with pytest.raises(ValueError, match="first"):
+        stable.bevy_bounds(10.0, 1000.0, 4, 5.0)

@@ -169,7 +169,10 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
         if "overlap" in opts:
             kw["overlap"] = _num(opts, "overlap", spec)
         kw["resolution"] = float(shadow_res)
-    check.choice(name, "split method", partitioning.SPLIT_METHODS)
+    if name == "bevy-bounds":  # Bevy's own split, its first bound 5 m in the scene's unit
+        name = stable.bevy_bounds(near, far, kw.pop("k") or 4, stable.BEVY_FIRST_BOUND_M * 100.0 / vsm.CM_PER_UNIT[unit.lower()])
+    else:
+        check.choice(name, "split method", partitioning.SPLIT_METHODS)
     res = stable.evaluate(name, near, far, fov, lights, **kw)
     axis = stable.evaluate(name, near, far, fov, "overhead", **kw)
     row = _cascade_row(spec, res, axis, t, image_res, shadow_res)

@@ -104,12 +104,13 @@ PRESETS: dict[str, StablePreset] = {
     ),
     "bevy": StablePreset(
         "bevy",
-        "log",
+        "bevy-bounds",
         "diagonal",
         "bevy",
         0.2,
-        "Bevy crates/bevy_pbr/src/light/mod.rs calculate_cascade (diameter = ceil(max(body, far-face diagonal)), centre floored to a texel); "
-        "overlap_proportion 0.2 from CascadeShadowConfigBuilder as recalled, not re-read; split: the toolkit's log split stands in for Bevy's bounds",
+        "Bevy crates/bevy_pbr/src/light/mod.rs (bevyengine/bevy as stored): calculate_cascade (diameter = ceil(max(body, far-face "
+        "diagonal)), centre floored to a texel), calculate_cascade_bounds (geometric from first_cascade_far_bound), "
+        "CascadeShadowConfigBuilder defaults 4 cascades, first bound 5 m, overlap_proportion 0.2",
     ),
 }
 
@@ -162,6 +163,33 @@ def diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
     t = np.tan(np.radians(check.fov(fov)) / 2)
     body = np.sqrt((b - a) ** 2 + 2 * t**2 * (a + b) ** 2)
     return np.maximum(body, 2 * np.sqrt(2) * t * b)
+
+
+BEVY_FIRST_BOUND_M = 5.0  # CascadeShadowConfigBuilder::default first_cascade_far_bound [m]
+
+
+def bevy_bounds(near: float, far: float, k: int = 4, first: float = BEVY_FIRST_BOUND_M) -> Array:
+    """Bevy's split distances: near, then C_i = first·(far/first)^((i−1)/(k−1)) for i = 1…k.
+
+    Bevy ``calculate_cascade_bounds``: the first cascade ends at ``first_cascade_far_bound``,
+    the others are geometric up to the maximum distance [world units].
+
+    Example
+    -------
+    >>> bevy_bounds(0.1, 1000.0, 4, 5.0).round(3).tolist()
+    [0.1, 5.0, 29.24, 170.998, 1000.0]
+    """
+    n, f = (float(x) for x in check.frustum(near, far))
+    if isinstance(k, bool) or int(k) != k or k < 1:
+        raise ValueError(f"k must be a whole number >= 1 (number of cascades), got {k!r}")
+    if int(k) == 1:
+        return np.array([n, f])
+    fb = float(check.as_float_array(first, "first"))
+    if not n < fb < f:
+        raise ValueError(f"first (Bevy's first_cascade_far_bound) must be in (near, far) = ({n:g}, {f:g}), got {fb:g}")
+    edges = np.concatenate([[n], fb * (f / fb) ** (np.arange(int(k)) / (int(k) - 1))])
+    edges[-1] = f
+    return edges
 
 
 def body_diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
