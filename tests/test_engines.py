@@ -305,3 +305,15 @@ def test_bevy_bounds_follow_the_source_defaults():
     np.testing.assert_allclose(np.diff(np.log(e[1:])), np.log(200.0) / 3)
     with pytest.raises(ValueError, match="first"):
         stable.bevy_bounds(10.0, 1000.0, 4, 5.0)
+
+
+def test_godot_centroid_sphere_contains_the_minimal_sphere():
+    for a, b, fov in [(1.0, 100.0, 10.0), (5.0, 6.0, 30.0), (1.0, 3.0, 90.0), (10.0, 50.0, 60.0)]:
+        r = float(stable.centroid_radius(a, b, fov))
+        corners = geometry.frustum_vertices(a, b, fov)
+        assert np.linalg.norm(corners - corners.mean(axis=0), axis=-1).max() == pytest.approx(r, rel=1e-12)
+        assert r >= float(stable.sphere_radius(a, b, fov)) * (1 - 1e-12)
+    g = stable.evaluate("godot", 10.0, 1e4, 60.0, "overhead", fit="centroid", snap="godot", resolution=4096)
+    c = stable.evaluate("godot", 10.0, 1e4, 60.0, "overhead", fit="centroid")
+    np.testing.assert_allclose(g.M_x / c.M_x, 4096 / 4094)
+    assert compare.compare(["csm-stable:godot"], lights="overhead")[0]["coverage"] == 1.0
