@@ -317,3 +317,12 @@ def test_godot_centroid_sphere_contains_the_minimal_sphere():
     c = stable.evaluate("godot", 10.0, 1e4, 60.0, "overhead", fit="centroid")
     np.testing.assert_allclose(g.M_x / c.M_x, 4096 / 4094)
     assert compare.compare(["csm-stable:godot"], lights="overhead")[0]["coverage"] == 1.0
+
+
+@pytest.mark.parametrize("light, bias, unit, near, far", [("overhead", 0.0, "cm", 100.0, 1e4), ("gamma:150@azimuth:40", -1.0, "cm", 100.0, 1e4), ("gamma:60", -0.5, "m", 1.0, 100.0)])
+def test_vsm_levels_in_the_rasterizer_reach_the_bound(light, bias, unit, near, far):
+    from aliasing.engines.validate import validate_vsm
+
+    r = validate_vsm(near, far, 60.0, light, bias=bias, resolution=256, cells=16, unit=unit)
+    assert r["levels"] >= 6 and r["pixels"] > 1000
+    assert 0.9 <= r["ratio"] <= 1.0 + r["tolerance"]  # measured max within the analytic bound and reaching it
