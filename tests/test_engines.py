@@ -326,3 +326,20 @@ def test_vsm_levels_in_the_rasterizer_reach_the_bound(light, bias, unit, near, f
     r = validate_vsm(near, far, 60.0, light, bias=bias, resolution=256, cells=16, unit=unit)
     assert r["levels"] >= 6 and r["pixels"] > 1000
     assert 0.9 <= r["ratio"] <= 1.0 + r["tolerance"]  # measured max within the analytic bound and reaching it
+
+
+@pytest.mark.parametrize("fit", ["tight", "sphere", "diagonal", "centroid"])
+def test_stable_fits_in_the_rasterizer(fit):
+    from aliasing.engines.validate import validate_stable
+
+    r = validate_stable("log", 10.0, 1e5, 60.0, "gamma:150@azimuth:40", k=4, fit=fit, resolution=256, cells=16)
+    assert all(0.9 <= x <= 1 + r["tolerance"] for x in r["ratio_x"] + r["ratio_z"])
+    assert r["inside"] == [1.0] * 4  # every pixel of a cascade falls inside its map
+
+
+def test_dxsdk_body_fit_misses_pixels_in_the_rasterizer():
+    from aliasing.engines.validate import validate_stable
+
+    r = validate_stable("log", 10.0, 1e5, 60.0, "gamma:20@azimuth:45", k=4, fit="body", scene=True, resolution=256, cells=16)
+    assert min(r["inside"]) < 0.95  # pixels outside the map: the shadow is lost there
+    assert stable.coverage("log", 10.0, 1e5, 60.0, "gamma:20@azimuth:45", k=4, fit="body", scene=True) == 0.0
