@@ -343,3 +343,23 @@ def test_dxsdk_body_fit_misses_pixels_in_the_rasterizer():
     r = validate_stable("log", 10.0, 1e5, 60.0, "gamma:20@azimuth:45", k=4, fit="body", scene=True, resolution=256, cells=16)
     assert min(r["inside"]) < 0.95  # pixels outside the map: the shadow is lost there
     assert stable.coverage("log", 10.0, 1e5, 60.0, "gamma:20@azimuth:45", k=4, fit="body", scene=True) == 0.0
+
+
+def test_sdsm_from_the_rasterizer_eye_pass_and_its_partitions_in_the_rasterizer():
+    from aliasing import raster
+    from aliasing.engines.validate import eye_histogram, validate_stable
+
+    sc = raster.ground_and_boxes(near=1.0, far=1000.0, boxes=30, seed=3)
+    e, c = eye_histogram(sc.triangles, 1.0, 1000.0, 60.0, resolution=96, bins=48)
+    filled = np.nonzero(c)[0]
+    for method in (sdsm.adaptive_log, sdsm.kmeans):
+        lo, hi = method(e, c, 4)
+        assert lo[0] == e[filled[0]] and hi[-1] == e[filled[-1] + 1]  # the occupied range, not [near, far]
+        assert (hi > lo).all() and (np.diff(lo) > 0).all()
+    lo, hi = sdsm.adaptive_log(e, c, 3)
+    full = stable.evaluate(sdsm.log_partitions(1.0, 1000.0, 1.0, 1000.0, 3), 1.0, 1000.0, 60.0, "gamma:60")
+    fitted = stable.evaluate((lo, hi), 1.0, 1000.0, 60.0, "gamma:60")
+    assert fitted.S[0] <= full.S[0]
+    occupied = sdsm.log_partitions(1.0, 1000.0, 5.0, 400.0, 3)
+    r = validate_stable(occupied, 5.0, 400.0, 60.0, "gamma:60", fit="tight", resolution=192, cells=12)
+    assert all(0.9 <= x <= 1 + r["tolerance"] for x in r["ratio_x"] + r["ratio_z"]) and r["inside"] == [1.0] * 3
