@@ -363,3 +363,25 @@ def test_sdsm_from_the_rasterizer_eye_pass_and_its_partitions_in_the_rasterizer(
     occupied = sdsm.log_partitions(1.0, 1000.0, 5.0, 400.0, 3)
     r = validate_stable(occupied, 5.0, 400.0, 60.0, "gamma:60", fit="tight", resolution=192, cells=12)
     assert all(0.9 <= x <= 1 + r["tolerance"] for x in r["ratio_x"] + r["ratio_z"]) and r["inside"] == [1.0] * 3
+
+
+def test_cli_sdsm_histogram(tmp_path, capsys):
+    e = np.geomspace(10.0, 1e5, 9)
+    path = tmp_path / "h.csv"
+    path.write_text("z_lo,z_hi,count\n" + "".join(f"{a},{b},{c}\n" for a, b, c in zip(e[:-1], e[1:], [0, 4, 9, 0, 0, 3, 1, 0])))
+    assert cli.main(["engines", "--schemes", "sdsm:method=adaptive:k=2,sdsm:method=kmeans:k=3", "--histogram", str(path), "--light", "overhead", "--format", "json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert [r["scheme"] for r in rows] == ["sdsm:method=adaptive:k=2", "sdsm:method=kmeans:k=3"] and all(r["max_error"] > 0 for r in rows)
+    empty = tmp_path / "empty.csv"
+    empty.write_text("z_lo,z_hi,count\n10,100,0\n100,1000,0\n")
+    assert cli.main(["engines", "--schemes", "sdsm:method=kmeans", "--histogram", str(empty)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "no samples" in err
+    assert cli.main(["engines", "--schemes", "sdsm:method=kmeans"]) == 2
+    assert "histogram" in capsys.readouterr().err
+
+
+def test_derive_lists_the_engine_closed_forms(capsys):
+    assert cli.main(["derive", "engines.vsm_m_axis", "engines.matched_texels"]) == 0
+    out = capsys.readouterr().out
+    assert "2**(bias - phi + 1)" in out and "log(2)" in out
