@@ -385,3 +385,14 @@ def test_derive_lists_the_engine_closed_forms(capsys):
     assert cli.main(["derive", "engines.vsm_m_axis", "engines.matched_texels"]) == 0
     out = capsys.readouterr().out
     assert "2**(bias - phi + 1)" in out and "log(2)" in out
+
+
+def test_scene_pages_of_a_ground_quad_against_the_closed_form():
+    from aliasing.engines.validate import scene_pages
+
+    h, far = 170.0, 1e5
+    quad = np.array([[[-far, -h, 1.0], [far, -h, 1.0], [far, -h, far]], [[-far, -h, 1.0], [far, -h, far], [-far, -h, far]]])
+    c = vsm.Clipmap(60.0, 512, -2.0)
+    for light, measured in (("overhead", 0.861), ("gamma:60@azimuth:30", 0.995)):  # the ratios the docstring reports
+        ratio = scene_pages(quad, c, light, resolution=512) / float(vsm.ground_pages(c, h, far, light)[0])
+        assert ratio == pytest.approx(measured, abs=0.005)

@@ -166,3 +166,40 @@ def eye_histogram(triangles: ArrayLike, near: float, far: float, fov: float, *, 
     edges = np.geomspace(n, f, int(bins) + 1)
     counts, _ = np.histogram(z[(z >= n) & (z <= f)], bins=edges)
     return edges, counts.astype(float)
+
+
+def scene_pages(triangles: ArrayLike, clipmap: vsm.Clipmap, light: str | ArrayLike, *, resolution: int = 512) -> int:
+    """VSM pages a scene marks: the distinct (level, page) of its visible pixels (eye pass).
+
+    Each visible point takes its level from its camera distance and its page from its
+    light-plane coordinates on a grid of 128·t_l (aligned at the camera; the engine snaps
+    the level's origin to the grid, which shifts pages but not their number by more than the
+    border).  ``resolution`` is the sampling image (a page spans tens of pixels at the
+    engine's width, so a few hundred pixels per side find every page); the levels use
+    ``clipmap.width``.  Sampled at the engine's own width this is what its page marking
+    marks (without its dilation).
+
+    Against :func:`vsm.ground_pages` (the ground's area in pages) on a ground quad, camera
+    170 cm up, 1 km, fov 60 (measured): width 1920, bias 0: 640 marked vs 545 (border pages,
+    ×1.18); width 512, bias −2: 532 vs 618 overhead (×0.86), 461 vs 463 at γ = 60°; bias −3:
+    ×0.67–0.75, as pages near the horizon shrink below the pixel spacing and no pixel marks
+    them.  The area estimate is therefore neither a bound nor exact for the engine's marking.
+
+    Example
+    -------
+    >>> quad = np.array([[[-1e4, -170.0, 1.0], [1e4, -170.0, 1.0], [1e4, -170.0, 1e5]], [[-1e4, -170.0, 1.0], [1e4, -170.0, 1e5], [-1e4, -170.0, 1e5]]])
+    >>> scene_pages(quad, vsm.Clipmap(60.0, 1920, 0.0), "overhead", resolution=64) > 0
+    True
+    """
+    lv = geometry.lights(light)
+    if len(lv) != 1:
+        raise ValueError(f"light must be one direction, got {len(lv)}")
+    eb = raster.eye_pass(triangles, clipmap.fov, resolution)
+    pos = eb.position[eb.triangle >= 0]
+    level = vsm.level(clipmap, np.linalg.norm(pos, axis=-1))
+    keep = ~np.isnan(level)
+    pos, level = pos[keep], level[keep]
+    page = vsm.PAGE * vsm.texel(clipmap, level)
+    basis = geometry.light_space(lv)[0]
+    ix, iy = np.floor(pos @ basis[0] / page), np.floor(pos @ basis[2] / page)
+    return len(np.unique(np.stack([level, ix, iy], axis=-1), axis=0))
