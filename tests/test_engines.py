@@ -396,3 +396,16 @@ def test_scene_pages_of_a_ground_quad_against_the_closed_form():
     for light, measured in (("overhead", 0.861), ("gamma:60@azimuth:30", 0.995)):  # the ratios the docstring reports
         ratio = scene_pages(quad, c, light, resolution=512) / float(vsm.ground_pages(c, h, far, light)[0])
         assert ratio == pytest.approx(measured, abs=0.005)
+
+
+def test_sdsm_occupancy_overhead_closed_form():
+    n, f, k, t = 10.0, 1e5, 4, np.tan(np.radians(30.0))
+    rows = sdsm.occupancy(n, f, 60.0, "overhead", k, [0.5, 0.1, 0.01])
+    for row in rows:
+        rho = ((n + row["q"] * (f - n)) / n) ** (1 / k)
+        assert row["S"] == pytest.approx(k * rho * (rho - 1) / (2 * t), rel=1e-9)
+        assert row["M"] == pytest.approx(max(rho, (rho - 1) / (2 * t)), rel=1e-9)
+    far_rows = sdsm.occupancy(n, f, 60.0, "hemisphere:50", k, [0.5, 0.1], anchor="far")
+    assert all(r["S_ratio"] < 0.05 for r in far_rows)  # nothing near the eye: the first partition no longer starts at near
+    with pytest.raises(ValueError, match="fractions"):
+        sdsm.occupancy(n, f, 60.0, "overhead", k, [0.0])
