@@ -11,10 +11,11 @@ Read from ``Engine/Source/Runtime/Renderer/Private/VirtualShadowMaps/VirtualShad
   1/tan(θ) (θ = fov/2, the x half-angle); the resolution LOD bias is
   B′ = max(0, bias + log2(LodScale)) (the clamp is the engine's);
 * a receiver at distance d_c from the camera takes level L = floor(log2 d_c + B′)
-  (``CalcAbsoluteClipmapLevel`` = log2 of the distance, read from a port that mirrors
-  ``VirtualShadowMapProjectionCommon.ush``; the shader itself was not stored), clamped to
-  [FirstLevel, LastLevel]; receivers beyond the last level's radius 2^(last+1) get no
-  virtual-shadow-map shadow;
+  (``VirtualShadowMapProjectionCommon.ush``, same copy: ``CalcAbsoluteClipmapLevel`` =
+  ½·log2 of the squared distance to the clipmap origin, the level index
+  max(0, level − FirstLevel), the bias added per level), clamped to [FirstLevel,
+  LastLevel]; receivers beyond the last level's radius 2^(last+1) get no virtual-shadow-map
+  shadow (the model's reading of ``ClipmapLevelCountRemaining``);
 * defaults in this version: FirstLevel 6, LastLevel 22, ``ResolutionLodBiasDirectional``
   0.0 (−0.5 in older 5.x copies, e.g. reza-shahriari/UnrealEngine-lite).
 
