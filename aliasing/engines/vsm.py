@@ -14,8 +14,12 @@ Read from ``Engine/Source/Runtime/Renderer/Private/VirtualShadowMaps/VirtualShad
   (``VirtualShadowMapProjectionCommon.ush``, same copy: ``CalcAbsoluteClipmapLevel`` =
   ½·log2 of the squared distance to the clipmap origin, the level index
   max(0, level − FirstLevel), the bias added per level), clamped to [FirstLevel,
-  LastLevel]; receivers beyond the last level's radius 2^(last+1) get no virtual-shadow-map
-  shadow (the model's reading of ``ClipmapLevelCountRemaining``);
+  LastLevel]; ``VirtualShadowMapPageMarking.ush`` (same copy) ``GetBiasedClipmapLevel``
+  floors log2 d + ResolutionLodBias + GlobalResolutionLodBias (the global bias is where
+  the dynamic resolution's extra bias goes) and ``MarkPageDirectional`` marks no page past
+  the last level (``ClipmapLevelCountRemaining``), so receivers beyond its radius
+  2^(last+1) get no virtual-shadow-map shadow.  Its optional page dilation (two more pages
+  at ±PageDilationOffset) is not modelled;
 * defaults in this version: FirstLevel 6, LastLevel 22, ``ResolutionLodBiasDirectional``
   0.0 (−0.5 in older 5.x copies, e.g. reza-shahriari/UnrealEngine-lite).
 
