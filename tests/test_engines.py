@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from aliasing import cli, geometry, partitioning, schemes
+from aliasing import cli, directional, geometry, partitioning, schemes
 from aliasing.engines import compare, limits, sdsm, stable, vsm
 from aliasing.symbolic import engines as sym
 
@@ -40,7 +40,7 @@ def test_sphere_radius_matches_sympy_and_encloses_the_slice(a, b, fov):
 
 def test_diagonal_square_covers_every_light_direction_and_is_at_most_the_sphere():
     a, b, fov = 3.0, 40.0, 60.0
-    lf = __import__("aliasing.directional", fromlist=["fit"]).fit(geometry.frustum_vertices(a, b, fov), geometry.lights("sphere:400"))
+    lf = directional.fit(geometry.frustum_vertices(a, b, fov), geometry.lights("sphere:400"))
     d = float(stable.diagonal(a, b, fov))
     assert np.ptp(lf.x, axis=-1).max() <= d * (1 + 1e-12)
     assert lf.depth.max() <= d * (1 + 1e-12)
@@ -287,8 +287,6 @@ def test_ground_plane_pages_in_the_comparison():
 
 
 def test_slice_extent_closed_form_matches_the_vertex_fit():
-    from aliasing import directional
-
     a, b = np.array([1.0, 10.0, 100.0]), np.array([10.0, 100.0, 1000.0])
     lv = geometry.lights("sphere:300")
     lf = directional.fit(geometry.frustum_vertices(a, b, 70.0), lv)
