@@ -208,7 +208,7 @@ def build_parser() -> argparse.ArgumentParser:
     from .raster.pictures import add_render_parser
 
     add_render_parser(sub)
-    __import__("aliasing.engines.compare", fromlist=["x"]).add_engines_parser(sub)  # issue 18: aliasing engines
+    __import__("aliasing.engines.compare", fromlist=["add_engines_parser"]).add_engines_parser(sub)  # issue 18: aliasing engines
     return parser
 
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from aliasing import cli, geometry, partitioning, schemes
+from aliasing import cli, directional, geometry, partitioning, schemes
 from aliasing.engines import compare, limits, sdsm, stable, vsm
 from aliasing.symbolic import engines as sym
 
@@ -40,7 +40,7 @@ def test_sphere_radius_matches_sympy_and_encloses_the_slice(a, b, fov):
 
 def test_diagonal_square_covers_every_light_direction_and_is_at_most_the_sphere():
     a, b, fov = 3.0, 40.0, 60.0
-    lf = __import__("aliasing.directional", fromlist=["fit"]).fit(geometry.frustum_vertices(a, b, fov), geometry.lights("sphere:400"))
+    lf = directional.fit(geometry.frustum_vertices(a, b, fov), geometry.lights("sphere:400"))
     d = float(stable.diagonal(a, b, fov))
     assert np.ptp(lf.x, axis=-1).max() <= d * (1 + 1e-12)
     assert lf.depth.max() <= d * (1 + 1e-12)
@@ -235,3 +235,175 @@ def test_figure_data_shows_the_documented_ranges():
     far = cols["d"] > 100.0  # beyond the first level's clamp (level 6 reaches 2^(6 − B′) cm)
     assert cols["m_vsm_high"][far].max() <= 2.0 + 1e-9 and cols["m_vsm_high"][far].min() > 1.0
     assert np.ptp(cols["S_csm_stable_filament"]) == 0.0 and (cols["S_csm_stable_filament"] >= cols["S_csm_filament"]).all()
+
+
+def test_ground_area_against_monte_carlo():
+    rng = np.random.default_rng(7)
+    h, fov, R = 170.0, 60.0, 3000.0
+    t = np.tan(np.radians(30.0))
+    x, z = rng.uniform(-R, R, 400_000), rng.uniform(0, R, 400_000)
+    seen = (np.abs(x) <= z * t) & (h <= z * t)
+    for r in (320.0, 340.0, 1000.0, 3000.0):  # segment branch (z0 = 294 < r <= 340), wedge beyond
+        mc = (seen & (np.hypot(x, z) <= r)).mean() * 2 * R * R
+        assert float(vsm.ground_area(r, h, fov)) == pytest.approx(mc, rel=0.05, abs=2000.0)
+
+
+def test_ground_pages_against_a_page_count():
+    """Second method: enumerate the light-space pages that sampled ground points fall in."""
+    c = vsm.Clipmap(fov=60.0, width=1920, bias=0.0)
+    h, far = 170.0, 2e4
+    for light in ("overhead", "gamma:60@azimuth:30"):
+        lv = geometry.lights(light)[0]
+        basis = geometry.light_space(lv[None])[0]
+        estimate = float(vsm.ground_pages(c, h, far, light)[0])
+        pages = set()
+        t = np.tan(np.radians(30.0))
+        for L in range(c.first, c.last + 1):
+            p = vsm.PAGE * float(vsm.texel(c, L))
+            d_hi = min(2.0 ** (L + 1 - c.lod_bias), far)  # the level's ring only: a few thousand points
+            if d_hi < np.hypot(h, h / t):
+                continue
+            xs = np.arange(-d_hi, d_hi, p / 3)
+            zs = np.arange(h / t, d_hi, p / 3)
+            X, Z = np.meshgrid(xs, zs)
+            d = np.sqrt(X**2 + Z**2 + h**2)
+            keep = (np.abs(X) <= Z * t) & (d <= far) & (vsm.level(c, d) == L)
+            if not keep.any():
+                continue
+            pts = np.stack([X[keep], np.full(keep.sum(), -h), Z[keep]], axis=-1)
+            u, v = pts @ basis[0], pts @ basis[2]
+            pages |= set(zip([L] * len(u), np.floor(u / p).astype(int), np.floor(v / p).astype(int)))
+        assert estimate <= len(pages) <= 1.6 * estimate  # the area's worth, plus partial border pages
+
+
+def test_ground_plane_pages_in_the_comparison():
+    rows = compare.compare(["vsm:low", "vsm:epic"], lights="overhead", ground=170.0)
+    low, epic = rows
+    assert low["overflow"] and low["extra_bias"] > 0  # 512 pages: the ground to 1 km needs about 540
+    assert not epic["overflow"] and epic["pages"] > 4 * low["pages"]  # −1.30 octaves: 2^(2·1.30) ≈ 6x the pages
+    assert epic["pages"] == pytest.approx(float(vsm.ground_pages(vsm.Clipmap(60.0, 1920, -1.5), 170.0, 1e5, "overhead")[0]))
+    relieved = vsm.ground_pages(vsm.Clipmap(60.0, 1920, low["extra_bias"]), 170.0, 1e5, "overhead")[0]
+    assert relieved <= 0.85 * 512
+
+
+def test_slice_extent_closed_form_matches_the_vertex_fit():
+    a, b = np.array([1.0, 10.0, 100.0]), np.array([10.0, 100.0, 1000.0])
+    lv = geometry.lights("sphere:300")
+    lf = directional.fit(geometry.frustum_vertices(a, b, 70.0), lv)
+    basis = geometry.light_space(lv)
+    t = np.tan(np.radians(35.0))
+    np.testing.assert_allclose(vsm.slice_extent(a, b, t, basis[:, 0]), np.ptp(lf.x, axis=-1), rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(vsm.slice_extent(a, b, t, basis[:, 2]), lf.depth, rtol=1e-12, atol=1e-9)
+
+
+def test_bevy_bounds_follow_the_source_defaults():
+    # CascadeShadowConfigBuilder::default: 4 cascades, minimum 0.1, maximum 1000, first bound 5
+    e = stable.bevy_bounds(0.1, 1000.0)
+    assert e[:2].tolist() == [0.1, 5.0] and e[-1] == 1000.0
+    np.testing.assert_allclose(np.diff(np.log(e[1:])), np.log(200.0) / 3)
+    with pytest.raises(ValueError, match="first"):
+        stable.bevy_bounds(10.0, 1000.0, 4, 5.0)
+
+
+def test_godot_centroid_sphere_contains_the_minimal_sphere():
+    for a, b, fov in [(1.0, 100.0, 10.0), (5.0, 6.0, 30.0), (1.0, 3.0, 90.0), (10.0, 50.0, 60.0)]:
+        r = float(stable.centroid_radius(a, b, fov))
+        corners = geometry.frustum_vertices(a, b, fov)
+        assert np.linalg.norm(corners - corners.mean(axis=0), axis=-1).max() == pytest.approx(r, rel=1e-12)
+        assert r >= float(stable.sphere_radius(a, b, fov)) * (1 - 1e-12)
+    g = stable.evaluate("godot", 10.0, 1e4, 60.0, "overhead", fit="centroid", snap="godot", resolution=4096)
+    c = stable.evaluate("godot", 10.0, 1e4, 60.0, "overhead", fit="centroid")
+    np.testing.assert_allclose(g.M_x / c.M_x, 4096 / 4094)
+    assert compare.compare(["csm-stable:godot"], lights="overhead")[0]["coverage"] == 1.0
+
+
+@pytest.mark.parametrize("light, bias, unit, near, far", [("overhead", 0.0, "cm", 100.0, 1e4), ("gamma:150@azimuth:40", -1.0, "cm", 100.0, 1e4), ("gamma:60", -0.5, "m", 1.0, 100.0)])
+def test_vsm_levels_in_the_rasterizer_reach_the_bound(light, bias, unit, near, far):
+    from aliasing.engines.validate import validate_vsm
+
+    r = validate_vsm(near, far, 60.0, light, bias=bias, resolution=256, cells=16, unit=unit)
+    assert r["levels"] >= 6 and r["pixels"] > 1000
+    assert 0.9 <= r["ratio"] <= 1.0 + r["tolerance"]  # measured max within the analytic bound and reaching it
+
+
+@pytest.mark.parametrize("fit", ["tight", "sphere", "diagonal", "centroid"])
+def test_stable_fits_in_the_rasterizer(fit):
+    from aliasing.engines.validate import validate_stable
+
+    r = validate_stable("log", 10.0, 1e5, 60.0, "gamma:150@azimuth:40", k=4, fit=fit, resolution=256, cells=16)
+    assert all(0.9 <= x <= 1 + r["tolerance"] for x in r["ratio_x"] + r["ratio_z"])
+    assert r["inside"] == [1.0] * 4  # every pixel of a cascade falls inside its map
+
+
+def test_dxsdk_body_fit_misses_pixels_in_the_rasterizer():
+    from aliasing.engines.validate import validate_stable
+
+    r = validate_stable("log", 10.0, 1e5, 60.0, "gamma:20@azimuth:45", k=4, fit="body", scene=True, resolution=256, cells=16)
+    assert min(r["inside"]) < 0.95  # pixels outside the map: the shadow is lost there
+    assert stable.coverage("log", 10.0, 1e5, 60.0, "gamma:20@azimuth:45", k=4, fit="body", scene=True) == 0.0
+
+
+def test_sdsm_from_the_rasterizer_eye_pass_and_its_partitions_in_the_rasterizer():
+    from aliasing import raster
+    from aliasing.engines.validate import eye_histogram, validate_stable
+
+    sc = raster.ground_and_boxes(near=1.0, far=1000.0, boxes=30, seed=3)
+    e, c = eye_histogram(sc.triangles, 1.0, 1000.0, 60.0, resolution=96, bins=48)
+    filled = np.nonzero(c)[0]
+    for method in (sdsm.adaptive_log, sdsm.kmeans):
+        lo, hi = method(e, c, 4)
+        assert lo[0] == e[filled[0]] and hi[-1] == e[filled[-1] + 1]  # the occupied range, not [near, far]
+        assert (hi > lo).all() and (np.diff(lo) > 0).all()
+    lo, hi = sdsm.adaptive_log(e, c, 3)
+    full = stable.evaluate(sdsm.log_partitions(1.0, 1000.0, 1.0, 1000.0, 3), 1.0, 1000.0, 60.0, "gamma:60")
+    fitted = stable.evaluate((lo, hi), 1.0, 1000.0, 60.0, "gamma:60")
+    assert fitted.S[0] <= full.S[0]
+    occupied = sdsm.log_partitions(1.0, 1000.0, 5.0, 400.0, 3)
+    r = validate_stable(occupied, 5.0, 400.0, 60.0, "gamma:60", fit="tight", resolution=192, cells=12)
+    assert all(0.9 <= x <= 1 + r["tolerance"] for x in r["ratio_x"] + r["ratio_z"]) and r["inside"] == [1.0] * 3
+
+
+def test_cli_sdsm_histogram(tmp_path, capsys):
+    e = np.geomspace(10.0, 1e5, 9)
+    path = tmp_path / "h.csv"
+    path.write_text("z_lo,z_hi,count\n" + "".join(f"{a},{b},{c}\n" for a, b, c in zip(e[:-1], e[1:], [0, 4, 9, 0, 0, 3, 1, 0])))
+    assert cli.main(["engines", "--schemes", "sdsm:method=adaptive:k=2,sdsm:method=kmeans:k=3", "--histogram", str(path), "--light", "overhead", "--format", "json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert [r["scheme"] for r in rows] == ["sdsm:method=adaptive:k=2", "sdsm:method=kmeans:k=3"] and all(r["max_error"] > 0 for r in rows)
+    empty = tmp_path / "empty.csv"
+    empty.write_text("z_lo,z_hi,count\n10,100,0\n100,1000,0\n")
+    assert cli.main(["engines", "--schemes", "sdsm:method=kmeans", "--histogram", str(empty)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "no samples" in err
+    assert cli.main(["engines", "--schemes", "sdsm:method=kmeans"]) == 2
+    assert "histogram" in capsys.readouterr().err
+
+
+def test_derive_lists_the_engine_closed_forms(capsys):
+    assert cli.main(["derive", "engines.vsm_m_axis", "engines.matched_texels"]) == 0
+    out = capsys.readouterr().out
+    assert "2**(bias - phi + 1)" in out and "log(2)" in out
+
+
+def test_scene_pages_of_a_ground_quad_against_the_closed_form():
+    from aliasing.engines.validate import scene_pages
+
+    h, far = 170.0, 1e5
+    quad = np.array([[[-far, -h, 1.0], [far, -h, 1.0], [far, -h, far]], [[-far, -h, 1.0], [far, -h, far], [-far, -h, far]]])
+    c = vsm.Clipmap(60.0, 512, -2.0)
+    for light, measured in (("overhead", 0.861), ("gamma:60@azimuth:30", 0.995)):  # the ratios the docstring reports
+        ratio = scene_pages(quad, c, light, resolution=512) / float(vsm.ground_pages(c, h, far, light)[0])
+        assert ratio == pytest.approx(measured, abs=0.005)
+
+
+def test_sdsm_occupancy_overhead_closed_form():
+    n, f, k, t = 10.0, 1e5, 4, np.tan(np.radians(30.0))
+    rows = sdsm.occupancy(n, f, 60.0, "overhead", k, [0.5, 0.1, 0.01])
+    for row in rows:
+        rho = ((n + row["q"] * (f - n)) / n) ** (1 / k)
+        assert row["S"] == pytest.approx(k * rho * (rho - 1) / (2 * t), rel=1e-9)
+        assert row["M"] == pytest.approx(max(rho, (rho - 1) / (2 * t)), rel=1e-9)
+    far_rows = sdsm.occupancy(n, f, 60.0, "hemisphere:50", k, [0.5, 0.1], anchor="far")
+    assert all(r["S_ratio"] < 0.05 for r in far_rows)  # nothing near the eye: the first partition no longer starts at near
+    with pytest.raises(ValueError, match="fractions"):
+        sdsm.occupancy(n, f, 60.0, "overhead", k, [0.0])

@@ -5,6 +5,7 @@ Scheme specs (``:``-separated options, case-insensitive)::
     csm:SPLIT[:k=N]                          tight fit (the papers'), a split of aliasing.partitioning
     csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body][:snap=none|bevy|pad][:scene=1][:overlap=P]
     sdsm[:k=N][:zmin=Z][:zmax=Z]             log partitions of the occupied range (default [near, far], k = 4)
+    sdsm:method=adaptive|kmeans[:k=N]        from a depth histogram (``histogram=``; CLI ``--histogram``)
     vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P]
     matched | exact
 
@@ -17,7 +18,8 @@ texels per cascade): ``max_error`` (max over lights and receivers of max(m_x, m_
 ``median_error`` (median over lights of each light's max), ``m_axis_min``/``m_axis_max``
 (m_x along the view axis over [near, far], light overhead), ``storage_texels``, ``S_bar``
 (the papers' critical storage in image areas: Σ_maps texels·M_x·M_z / W², the maximum over
-lights; for VSM a bound: texels·M²/W²), ``pages`` (VSM: the frustum bound, worst light),
+lights; for VSM a bound: texels·M²/W²), ``pages`` (VSM: the frustum bound, or with ``ground``
+the ground plane's closed form; worst light),
 ``overflow`` and ``extra_bias`` (VSM pool), ``coverage`` (cascades: the fraction of light
 directions for which every map covers its slice; below 1 the row's error is not a valid
 bound, see :func:`aliasing.engines.stable.coverage`), ``storage_ratio`` and ``error_ratio`` to the
@@ -94,7 +96,7 @@ def _cascade_row(spec: str, res: stable.StableResult, axis: stable.StableResult,
     }
 
 
-def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | np.ndarray, image_res: int, shadow_res: int, unit: str) -> dict:
+def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | np.ndarray, image_res: int, shadow_res: int, unit: str, ground: float | None = None, histogram: tuple | None = None) -> dict:
     """The comparison row of one scheme spec (see the module docstring)."""
     text = str(spec).strip().lower()
     family, *parts = text.split(":")
@@ -121,7 +123,7 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
         c = vsm.Clipmap(fov, image_res, bias, int(first), int(last), unit)
         worst = vsm.frustum_max(c, near, far)
         lo, hi = vsm.m_axis_range(c, near, far)
-        pool_info = vsm.pool_check(c, near, far, lights, int(pool))
+        pool_info = vsm.pool_check(c, near, far, lights, int(pool), ground)
         texels = pool_info["pages"] * vsm.PAGE**2
         return {
             "scheme": spec,
@@ -136,12 +138,20 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
             "extra_bias": pool_info["extra_bias"],
         }
     if family == "sdsm":
-        opts = _options(parts, spec, {"k", "zmin", "zmax"})
+        opts = _options(parts, spec, {"k", "zmin", "zmax", "method"})
         k = _k(opts, spec, 4)
-        lo, hi = sdsm.occupied(near, far, _num(opts, "zmin", spec, near), _num(opts, "zmax", spec, far))
-        edges = sdsm.log_partitions(near, far, lo, hi, k)
-        res = stable.evaluate(edges, lo, hi, fov, lights)
-        axis = stable.evaluate(edges, lo, hi, fov, "overhead")
+        method = check.choice(opts.get("method", "log"), "sdsm method", ("log", "adaptive", "kmeans"))
+        if method == "log":
+            lo, hi = sdsm.occupied(near, far, _num(opts, "zmin", spec, near), _num(opts, "zmax", spec, far))
+            split, n_fit, f_fit = sdsm.log_partitions(near, far, lo, hi, k), lo, hi
+        else:
+            if histogram is None:
+                raise ValueError(f"scheme {spec!r}: method={method} needs a depth histogram (--histogram CSV: z_lo,z_hi,count)")
+            parts_lo, parts_hi = (sdsm.adaptive_log if method == "adaptive" else sdsm.kmeans)(histogram[0], histogram[1], k)
+            sdsm.occupied(near, far, parts_lo[0], parts_hi[-1])  # the histogram must lie in [near, far]
+            split, n_fit, f_fit = (parts_lo, parts_hi), near, far
+        res = stable.evaluate(split, n_fit, f_fit, fov, lights)
+        axis = stable.evaluate(split, n_fit, f_fit, fov, "overhead")
         return _cascade_row(spec, res, axis, t, image_res, shadow_res)
         return _cascade_row(spec, res, axis, t, image_res, shadow_res)
     if not parts:
@@ -168,7 +178,10 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
         if "overlap" in opts:
             kw["overlap"] = _num(opts, "overlap", spec)
         kw["resolution"] = float(shadow_res)
-    check.choice(name, "split method", partitioning.SPLIT_METHODS)
+    if name == "bevy-bounds":  # Bevy's own split, its first bound 5 m in the scene's unit
+        name = stable.bevy_bounds(near, far, kw.pop("k") or 4, stable.BEVY_FIRST_BOUND_M * 100.0 / vsm.CM_PER_UNIT[unit.lower()])
+    else:
+        check.choice(name, "split method", partitioning.SPLIT_METHODS)
     res = stable.evaluate(name, near, far, fov, lights, **kw)
     axis = stable.evaluate(name, near, far, fov, "overhead", **kw)
     row = _cascade_row(spec, res, axis, t, image_res, shadow_res)
@@ -176,7 +189,7 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
     return row
 
 
-def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, far: float = 100000.0, lights: str | np.ndarray = "hemisphere:200", image_res: int = 1920, shadow_res: int = 2048, unit: str = "cm") -> list[dict]:
+def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, far: float = 100000.0, lights: str | np.ndarray = "hemisphere:200", image_res: int = 1920, shadow_res: int = 2048, unit: str = "cm", ground: float | None = None, histogram: tuple | None = None) -> list[dict]:
     """Rows for ``schemes`` with their ratios to the matched limit.
 
     Parameters
@@ -195,6 +208,11 @@ def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, fa
         Texels per side of each cascade.
     unit : str
         The scene's unit (VSM's constants are in cm).
+    ground : float, optional
+        Camera height above a ground plane [scene units]: VSM pages, overflow and extra bias
+        from the ground plane's closed form instead of the frustum's upper bound.
+    histogram : (edges, counts), optional
+        A depth histogram for ``sdsm:method=adaptive|kmeans`` (:func:`aliasing.engines.sdsm.histogram`).
     """
     check.fov(fov)
     check.frustum(near, far)
@@ -212,7 +230,7 @@ def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, fa
     rows = []
     for spec in schemes:
         row = {key: None for key in FIELDS}
-        row.update(scheme_row(spec, fov=float(fov), near=float(near), far=float(far), lights=lights, image_res=int(image_res), shadow_res=int(shadow_res), unit=unit))
+        row.update(scheme_row(spec, fov=float(fov), near=float(near), far=float(far), lights=lights, image_res=int(image_res), shadow_res=int(shadow_res), unit=unit, ground=ground, histogram=histogram))
         row["storage_ratio"] = row["storage_texels"] / ref["storage_texels"]
         row["error_ratio"] = row["max_error"] / ref["max_error"]
         rows.append(row)
@@ -249,6 +267,7 @@ LISTING = """families and presets:
   csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body][:snap=none|bevy|pad][:scene=1][:overlap=P]
                                   stable presets: {stables}
   sdsm[:k=N][:zmin=Z][:zmax=Z]    log partitions of the occupied range (Lauritzen et al. 2011)
+  sdsm:method=adaptive|kmeans[:k=N]  from --histogram (Intel's SDSM sample)
   vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P]
                                   presets: {vsms}
   matched                         resolution-matched, power-of-two levels (Lefohn et al. 2007)
@@ -261,9 +280,21 @@ def _run(args: argparse.Namespace) -> int:
         print(LISTING.format(splits=", ".join(partitioning.SPLIT_METHODS), stables=", ".join(f"{p.name} ({p.source})" for p in stable.PRESETS.values()), vsms=", ".join(f"{p.name} (bias {p.bias:g}, pool {p.pool})" for p in vsm.PRESETS.values())), end="")
         return 0
     schemes = [s for s in (args.schemes or "").split(",") if s.strip()]
-    rows = compare(schemes, fov=args.fov, near=args.near, far=args.far, lights=args.light, image_res=args.image_res, shadow_res=args.shadow_res, unit=args.unit)
+    histogram = _read_histogram(args.histogram) if args.histogram else None
+    rows = compare(schemes, fov=args.fov, near=args.near, far=args.far, lights=args.light, image_res=args.image_res, shadow_res=args.shadow_res, unit=args.unit, ground=args.ground, histogram=histogram)
     print(format_rows(rows, args.format), end="")
     return 0
+
+
+def _read_histogram(path: str) -> tuple[np.ndarray, np.ndarray]:
+    """A CSV of contiguous depth bins ``z_lo,z_hi,count`` (one header line) → (edges, counts)."""
+    try:
+        table = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    except (OSError, ValueError) as exc:
+        raise ValueError(f"--histogram {path!r}: cannot read a CSV of z_lo,z_hi,count ({exc})") from None
+    if table.shape[1] != 3 or np.any(table[1:, 0] != table[:-1, 1]):
+        raise ValueError(f"--histogram {path!r}: needs columns z_lo,z_hi,count with contiguous bins (z_lo of a bin = z_hi of the previous)")
+    return sdsm.histogram(np.append(table[:, 0], table[-1, 1]), table[:, 2])
 
 
 def add_engines_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
@@ -287,6 +318,8 @@ def add_engines_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPars
     p.add_argument("--shadow-res", type=int, default=2048, help="texels per side of each cascade (default 2048)")
     p.add_argument("--unit", default="cm", help="scene length unit: cm (default, as the engine), m, mm, in, ft")
     p.add_argument("--light", default="hemisphere:200", help="light directions, the sweep's comma-separated specs (default hemisphere:200)")
+    p.add_argument("--ground", type=float, help="camera height above a ground plane in --unit: VSM pages from the plane's closed form (default: the frustum's upper bound)")
+    p.add_argument("--histogram", metavar="CSV", help="depth histogram for sdsm:method=adaptive|kmeans: columns z_lo,z_hi,count, one header line")
     p.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
     p.add_argument("--list", action="store_true", help="list the families and presets and exit")
     p.set_defaults(run=_run)

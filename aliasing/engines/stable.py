@@ -36,6 +36,11 @@ Fits
     far face's diagonal 2√2·t·b is longer than the body diagonal (wide fov or a slice
     starting near the eye, as fit to scene always does) this square does **not** cover the
     slice for every light direction; :func:`coverage` measures it.  Bevy's max() fixes it.
+``centroid``
+    A square of side 2r, r the largest distance from the corners' average (on the axis at
+    (a + b)/2) to a corner: r = √(((b − a)/2)² + 2t²b²) (Godot 4
+    ``servers/rendering/renderer_scene_cull.cpp`` ``_light_instance_setup_directional_shadow``,
+    a Godot 4 copy in the index); never smaller than the minimal sphere.
 Fit to scene (``scene=True``)
     Every cascade's fit range starts at the near plane: [near, b_k] (DirectX SDK
     FIT_TO_SCENE, same source: "interval 1 is covered by cascades 1 to 8").
@@ -44,7 +49,9 @@ Texel snapping (``snap``)
     Bevy keeps the side D (so up to one texel at one border may be uncovered) —
     the size is unchanged.  ``"pad"``: a coverage-preserving snap: the side grows by one
     texel, W′ = W·R/(R − 1) at R texels per side (the model's assumption for engines that
-    pad by a texel; a bound, not read from an engine).
+    pad by a texel; a bound, not read from an engine).  ``"godot"``: Godot's
+    ``radius *= R/(R − 2)`` ("add a texel by each side"), then both ends snapped to
+    4r/R (the size is kept to within one snap unit, not modelled).
 Overlap
     Engines that pad or overlap cascades (``ogre-pssm``, ``bgfx``, ``unreal`` in
     :mod:`aliasing.partitioning`) fit each map to :func:`aliasing.partitioning.partitions`
@@ -71,8 +78,8 @@ from .. import _validation as check
 from .. import directional, geometry, partitioning
 
 Array = NDArray[np.float64]
-FITS = ("tight", "sphere", "diagonal", "body")
-SNAPS = ("none", "bevy", "pad")
+FITS = ("tight", "sphere", "diagonal", "body", "centroid")
+SNAPS = ("none", "bevy", "pad", "godot")
 
 
 @dataclass(frozen=True)
@@ -92,6 +99,15 @@ class StablePreset:
 # Babylon.js ``stabilizeCascades``, Unity StableFit) are not shipped: their fit shape was
 # not verified, and the project does not invent defaults.
 PRESETS: dict[str, StablePreset] = {
+    "godot": StablePreset(
+        "godot",
+        "godot",
+        "centroid",
+        "godot",
+        0.0,
+        "Godot 4 renderer_scene_cull.cpp _light_instance_setup_directional_shadow (a Godot 4 copy in the index): sphere around the "
+        "corners' average, radius × R/(R − 2), ends snapped to 4r/R; split: the toolkit's godot preset; blend_splits off",
+    ),
     "dxsdk-scene": StablePreset(
         "dxsdk-scene",
         "log",
@@ -104,12 +120,13 @@ PRESETS: dict[str, StablePreset] = {
     ),
     "bevy": StablePreset(
         "bevy",
-        "log",
+        "bevy-bounds",
         "diagonal",
         "bevy",
         0.2,
-        "Bevy crates/bevy_pbr/src/light/mod.rs calculate_cascade (diameter = ceil(max(body, far-face diagonal)), centre floored to a texel); "
-        "overlap_proportion 0.2 from CascadeShadowConfigBuilder as recalled, not re-read; split: the toolkit's log split stands in for Bevy's bounds",
+        "Bevy crates/bevy_pbr/src/light/mod.rs (bevyengine/bevy as stored): calculate_cascade (diameter = ceil(max(body, far-face "
+        "diagonal)), centre floored to a texel), calculate_cascade_bounds (geometric from first_cascade_far_bound), "
+        "CascadeShadowConfigBuilder defaults 4 cascades, first bound 5 m, overlap_proportion 0.2",
     ),
 }
 
@@ -147,6 +164,22 @@ def sphere_radius(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
     return np.where(zc >= b, r_far, np.sqrt((b - np.minimum(zc, b)) ** 2 + 2 * t2 * b**2))
 
 
+def centroid_radius(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
+    """Largest distance from the corners' average to a corner of the slice [a, b] [world units].
+
+    The average lies on the axis at (a + b)/2, so the far corners are farthest:
+    r = √(((b − a)/2)² + 2t²b²) (Godot 4's stable fit, before its texel padding).
+
+    Example
+    -------
+    >>> round(float(centroid_radius(1.0, 3.0, 90.0)), 6)
+    4.358899
+    """
+    a, b = check.frustum(a, b)
+    t = np.tan(np.radians(check.fov(fov)) / 2)
+    return np.sqrt(((b - a) / 2) ** 2 + 2 * t**2 * b**2)
+
+
 def diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
     """Bevy's cascade diameter before rounding: max(body diagonal, far-face diagonal).
 
@@ -162,6 +195,33 @@ def diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
     t = np.tan(np.radians(check.fov(fov)) / 2)
     body = np.sqrt((b - a) ** 2 + 2 * t**2 * (a + b) ** 2)
     return np.maximum(body, 2 * np.sqrt(2) * t * b)
+
+
+BEVY_FIRST_BOUND_M = 5.0  # CascadeShadowConfigBuilder::default first_cascade_far_bound [m]
+
+
+def bevy_bounds(near: float, far: float, k: int = 4, first: float = BEVY_FIRST_BOUND_M) -> Array:
+    """Bevy's split distances: near, then C_i = first·(far/first)^((i−1)/(k−1)) for i = 1…k.
+
+    Bevy ``calculate_cascade_bounds``: the first cascade ends at ``first_cascade_far_bound``,
+    the others are geometric up to the maximum distance [world units].
+
+    Example
+    -------
+    >>> bevy_bounds(0.1, 1000.0, 4, 5.0).round(3).tolist()
+    [0.1, 5.0, 29.24, 170.998, 1000.0]
+    """
+    n, f = (float(x) for x in check.frustum(near, far))
+    if isinstance(k, bool) or int(k) != k or k < 1:
+        raise ValueError(f"k must be a whole number >= 1 (number of cascades), got {k!r}")
+    if int(k) == 1:
+        return np.array([n, f])
+    fb = float(check.as_float_array(first, "first"))
+    if not n < fb < f:
+        raise ValueError(f"first (Bevy's first_cascade_far_bound) must be in (near, far) = ({n:g}, {f:g}), got {fb:g}")
+    edges = np.concatenate([[n], fb * (f / fb) ** (np.arange(int(k)) / (int(k) - 1))])
+    edges[-1] = f
+    return edges
 
 
 def body_diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
@@ -264,6 +324,8 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
     else:
         if kind == "sphere":
             side = 2 * sphere_radius(a, b, fov)
+        elif kind == "centroid":
+            side = 2 * centroid_radius(a, b, fov)
         elif kind == "diagonal":
             side = np.ceil(diagonal(a, b, fov))  # Bevy rounds up to a whole unit
         else:
@@ -271,6 +333,8 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
         wx = wy = np.broadcast_to(side, (len(lv), len(a)))
     if snapping == "pad":
         wx, wy = wx * res / (res - 1), wy * res / (res - 1)  # one texel more, W′ = W + W′/R
+    elif snapping == "godot":
+        wx, wy = wx * res / (res - 2), wy * res / (res - 2)  # Godot: a texel on each side
     M_x, M_z = wx / (2 * t * u), wy / (2 * t * u)  # eq. (2) with a uniform map, maximal at u_k
     return StableResult(M_x, M_z, (M_x * M_z).sum(axis=-1), np.asarray(wx, float), np.asarray(wy, float), (u, v), (a, b))
 

@@ -11,10 +11,15 @@ Read from ``Engine/Source/Runtime/Renderer/Private/VirtualShadowMaps/VirtualShad
   1/tan(θ) (θ = fov/2, the x half-angle); the resolution LOD bias is
   B′ = max(0, bias + log2(LodScale)) (the clamp is the engine's);
 * a receiver at distance d_c from the camera takes level L = floor(log2 d_c + B′)
-  (``CalcAbsoluteClipmapLevel`` = log2 of the distance, read from a port that mirrors
-  ``VirtualShadowMapProjectionCommon.ush``; the shader itself was not stored), clamped to
-  [FirstLevel, LastLevel]; receivers beyond the last level's radius 2^(last+1) get no
-  virtual-shadow-map shadow;
+  (``VirtualShadowMapProjectionCommon.ush``, same copy: ``CalcAbsoluteClipmapLevel`` =
+  ½·log2 of the squared distance to the clipmap origin, the level index
+  max(0, level − FirstLevel), the bias added per level), clamped to [FirstLevel,
+  LastLevel]; ``VirtualShadowMapPageMarking.ush`` (same copy) ``GetBiasedClipmapLevel``
+  floors log2 d + ResolutionLodBias + GlobalResolutionLodBias (the global bias is where
+  the dynamic resolution's extra bias goes) and ``MarkPageDirectional`` marks no page past
+  the last level (``ClipmapLevelCountRemaining``), so receivers beyond its radius
+  2^(last+1) get no virtual-shadow-map shadow.  Its optional page dilation (two more pages
+  at ±PageDilationOffset) is not modelled;
 * defaults in this version: FirstLevel 6, LastLevel 22, ``ResolutionLodBiasDirectional``
   0.0 (−0.5 in older 5.x copies, e.g. reza-shahriari/UnrealEngine-lite).
 
@@ -48,7 +53,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
-from .. import directional, geometry
+from .. import geometry
 
 Array = NDArray[np.float64]
 VIRTUAL_RES = 16384  # FVirtualShadowMap::VirtualMaxResolutionXY
@@ -205,15 +210,30 @@ def pages(c: Clipmap, near: float, far: float, light: str | ArrayLike = "overhea
     lights = geometry.lights(light)
     if lvk.size == 0:
         return np.zeros(len(lights))
-    lf = directional.fit(geometry.frustum_vertices(a, b, c.fov), lights)
+    basis = geometry.light_space(lights)  # (N, 3, 3): rows x, −, y of the light image plane
     page = PAGE * texel(c, lvk)
-    px = np.minimum(np.ceil(np.ptp(lf.x, axis=-1) / page) + 1, VIRTUAL_RES // PAGE)
-    py = np.minimum(np.ceil(lf.depth / page) + 1, VIRTUAL_RES // PAGE)
+    px = np.minimum(np.ceil(slice_extent(a, b, c.tan, basis[:, 0]) / page) + 1, VIRTUAL_RES // PAGE)
+    py = np.minimum(np.ceil(slice_extent(a, b, c.tan, basis[:, 2]) / page) + 1, VIRTUAL_RES // PAGE)
     return (px * py).sum(axis=-1)
 
 
-def pool_check(c: Clipmap, near: float, far: float, light: str | ArrayLike, pool: int) -> dict[str, object]:
-    """Whether the frustum bound overflows ``pool`` pages at the 0.85 load factor, and the extra bias.
+def slice_extent(a: ArrayLike, b: ArrayLike, tan: float, axis: ArrayLike) -> Array:
+    """Extent [scene units] of square frustum slices [a, b] ``(K,)`` along unit axes ``(N, 3)``: ``(N, K)``.
+
+    A corner (±d·t, ±d·t, d) projects to d·(e_z ± t e_x ± t e_y), so with q = t(|e_x| + |e_y|)
+    the extent is max(a, b·(e_z + q)…) − min(…): max(a(e_z + q), b(e_z + q)) − min(a(e_z − q),
+    b(e_z − q)).  Closed form of :func:`aliasing.directional.fit`'s ptp (tested against it).
+    """
+    e = np.atleast_2d(np.asarray(axis, float))[:, None, :]
+    aa, bb = np.asarray(a, float)[None], np.asarray(b, float)[None]
+    q = tan * (np.abs(e[..., 0]) + np.abs(e[..., 1]))
+    hi, lo = e[..., 2] + q, e[..., 2] - q
+    return np.maximum(aa * hi, bb * hi) - np.minimum(aa * lo, bb * lo)
+
+
+def pool_check(c: Clipmap, near: float, far: float, light: str | ArrayLike, pool: int, ground: float | None = None) -> dict[str, object]:
+    """Whether the frustum bound (or, with ``ground`` = camera height, the ground plane's
+    pages, :func:`ground_pages`) overflows ``pool`` pages at the 0.85 load factor, and the extra bias.
 
     The extra bias is the smallest non-negative one (to 1/16 octave, bisection; pages fall
     monotonically with bias) whose page bound fits 0.85·pool for the worst light direction.
@@ -222,13 +242,78 @@ def pool_check(c: Clipmap, near: float, far: float, light: str | ArrayLike, pool
     if not (float(pool) >= 1 and float(pool).is_integer()):
         raise ValueError(f"pool (physical pages) must be a whole number >= 1, got {pool!r}")
     budget = LOAD_FACTOR * pool
-    need = float(pages(c, near, far, light).max())
-    extra = 0.0
-    if need > budget:
+    lights = geometry.lights(light)
+
+    def per_light(clip: Clipmap, lv: Array) -> Array:
+        return pages(clip, near, far, lv) if ground is None else ground_pages(clip, ground, far, lv)
+
+    def biased(extra: float) -> Clipmap:
+        return Clipmap(c.fov, c.width, min(c.bias + extra, BIAS_RANGE[1]), c.first, c.last, c.unit)
+
+    def bisect(lv: Array) -> float:
         lo, hi = 0.0, 16.0
         while hi - lo > 1 / 16:
             mid = (lo + hi) / 2
-            trial = Clipmap(c.fov, c.width, min(c.bias + mid, BIAS_RANGE[1]), c.first, c.last, c.unit)
-            lo, hi = (lo, mid) if pages(trial, near, far, light).max() <= budget else (mid, hi)
-        extra = hi
+            lo, hi = (lo, mid) if per_light(biased(mid), lv).max() <= budget else (mid, hi)
+        return hi
+
+    first = per_light(c, lights)
+    need = float(first.max())
+    extra = 0.0
+    if need > budget:
+        # Bisect on the heaviest directions only: an infeasible bias for them is infeasible for
+        # all; the answer is then verified on every direction (else bisect on all of them).
+        heavy = lights[first >= 0.5 * need]
+        extra = bisect(heavy)
+        if per_light(biased(extra), lights).max() > budget:
+            extra = bisect(lights)
     return {"pages": need, "budget": budget, "overflow": need > budget, "extra_bias": extra}
+
+
+def ground_area(rho: ArrayLike, height: float, fov: float) -> Array:
+    """Visible ground area within horizontal distance ρ [scene units²], closed form.
+
+    Camera at ``height`` above a plane, looking horizontally (square image, half-angle θ):
+    the plane is seen from z₀ = h/tanθ on, inside the wedge |x| ≤ z tanθ.  Then
+    A(ρ) = 0 for ρ ≤ z₀; ρ² acos(z₀/ρ) − z₀√(ρ² − z₀²) (a circular segment) for
+    z₀ < ρ ≤ z₀/cosθ; θρ² − z₀² tanθ (the wedge minus its unseen triangle) beyond.
+    Derived here (issue 18); tested against a Monte Carlo count.
+
+    Example
+    -------
+    >>> round(float(ground_area(10.0, 1.0, 90.0)), 4)  # θ = 45°: z₀ = 1, wedge π/4·100 − 1
+    77.5398
+    """
+    r = np.asarray(check.as_float_array(rho, "rho"), float)
+    h = float(check.positive(height, "height"))
+    th = np.radians(float(check.fov(fov))) / 2
+    z0 = h / np.tan(th)
+    with np.errstate(invalid="ignore"):
+        seg = r**2 * np.arccos(np.clip(z0 / np.maximum(r, z0), -1, 1)) - z0 * np.sqrt(np.maximum(r**2 - z0**2, 0))
+    wedge = th * r**2 - z0**2 * np.tan(th)
+    return np.where(r <= z0, 0.0, np.where(r <= z0 / np.cos(th), seg, wedge))
+
+
+def ground_pages(c: Clipmap, height: float, far: float, light: str | ArrayLike = "overhead") -> Array:
+    """Pages a flat ground needs per light direction ``(N,)``: an area estimate in closed form.
+
+    Receivers on the ground at camera distance d_c = √(h² + ρ²) use level L (:func:`level`);
+    the ground between the level's distance bounds, seen within ``far``, has area
+    ΔA (:func:`ground_area`) and projects onto the light's image plane with area
+    ΔA·|l_y| (l the unit vector towards the light, y up); divided by the page area (128 t_L)².
+    Partial pages at the borders and the engine's coarse pages are not counted, so this is
+    the area's worth of pages, not an upper bound.  Lights below the horizon give 0.
+    """
+    h = float(check.positive(height, "height"))
+    f = float(check.positive(far, "far"))
+    lv = geometry.lights(light)
+    scale = CM_PER_UNIT[c.unit.lower()]
+    levels = np.arange(c.first, c.last + 1)
+    d_lo = np.where(levels == c.first, 0.0, 2.0 ** (levels - c.lod_bias)) / scale
+    d_hi = np.where(levels == c.last, 2.0 ** (c.last + 1), 2.0 ** (levels + 1 - c.lod_bias)) / scale
+    d_lo, d_hi = np.minimum(d_lo, f), np.minimum(d_hi, f)
+    rho = lambda d: np.sqrt(np.maximum(d**2 - h**2, 0.0))  # noqa: E731
+    area = ground_area(rho(d_hi), h, c.fov) - ground_area(rho(d_lo), h, c.fov)  # (L,)
+    page = PAGE * texel(c, levels)
+    cos_l = np.clip(lv[:, 1] / np.linalg.norm(lv, axis=-1), 0.0, None)  # projected area factor
+    return cos_l * (area / page**2).sum()
