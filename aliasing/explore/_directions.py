@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
+from matplotlib.ticker import FormatStrFormatter, LogLocator
 
 from .. import geometry, schemes
 from . import _widget as w
@@ -85,7 +86,8 @@ def draw(fig: Figure, d: dict[str, Any]) -> None:
     finite = d["S_map"][np.isfinite(d["S_map"])]
     lo, hi = float(finite.min()), float(finite.max())
     im = a.pcolormesh(d["u"], d["v"], d["S_map"], norm=LogNorm(lo, hi if hi > lo else lo * 1.001), cmap="viridis", shading="auto")
-    fig.colorbar(im, ax=a, fraction=0.05, pad=0.02)
+    cb = fig.colorbar(im, ax=a, fraction=0.05, pad=0.02)
+    cb.set_ticks(np.geomspace(lo, hi, 5) if hi > lo else [lo], labels=[f"{x:.3g}" for x in (np.geomspace(lo, hi, 5) if hi > lo else [lo])])
     if d["light"][1] >= 0:
         a.plot(*map_position(d["light"]), "o", mfc="none", mec="r", ms=10, mew=2)
     a.set(aspect="equal", xlabel="← light behind      light in front →", yticks=[], title="S̄ over the hemisphere (colour, log)")
@@ -94,6 +96,8 @@ def draw(fig: Figure, d: dict[str, Any]) -> None:
     b.bar(k[used] - 0.2, d["M_x"][used], 0.4, label="M_x")
     b.bar(k[used] + 0.2, d["M_z"][used], 0.4, label="M_z")
     b.set_yscale("log")
+    b.yaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    b.yaxis.set_major_formatter(FormatStrFormatter("%g"))
     b.set(xlabel="map", ylabel="max. error (unit res.)", xticks=k[used])
     b.legend(fontsize=8, loc="upper left")
     npr = ", ".join("—" if not np.isfinite(x) else f"{x:.3g}" for x in d["n_prime"][used][:4])

@@ -130,9 +130,37 @@ class Explorer(widgets.VBox):
         self.updates += 1
         return True
 
+    def snapshot(self, path: str, dpi: float = 110.0) -> str:
+        """Save the current picture with the controls' values written above it (a PNG for docs).
+
+        Returns ``path``.  The controls are listed as ``description = value``.
+        """
+        if self.data is None:
+            raise ValueError("nothing to save: no successful update yet")
+        fig = self.figure
+        values = "   ".join(f"{w.description} = {_shown(w)}" for w in self.controls.values())
+        fig.subplots_adjust(top=fig.subplotpars.top - 0.06)
+        label = fig.text(0.01, 0.985, f"{self.title}\n{values}", ha="left", va="top", fontsize=7.5, family="monospace",
+                         bbox={"fc": "#eef2f7", "ec": "#9aa7b8", "boxstyle": "round,pad=0.4"})
+        try:
+            fig.savefig(path, dpi=dpi)
+        finally:
+            label.remove()
+            fig.subplots_adjust(top=fig.subplotpars.top + 0.06)
+        return path
+
     def png(self) -> bytes:
         """The PNG currently shown."""
         return bytes(self.image.value)
+
+
+def _shown(widget: widgets.ValueWidget) -> str:
+    """A control's value as its label shows it (the option's label for dropdowns)."""
+    label = getattr(widget, "label", None)
+    if label is not None:
+        return str(label)
+    value = widget.value
+    return f"{value:.4g}" if isinstance(value, float) else str(value)
 
 
 def _rows(items: list, n: int) -> list[list]:
