@@ -34,9 +34,10 @@ __all__ = ["EXTRA_MESSAGE", "available", "cascades", "directions", "faces", "ove
 def available() -> bool:
     """True when ipywidgets (the ``explore`` extra) can be imported."""
     try:
-        return importlib.util.find_spec("ipywidgets") is not None and __import__("ipywidgets") is not None
+        import ipywidgets  # noqa: F401
     except ImportError:
         return False
+    return True
 
 
 def _module(name: str):
