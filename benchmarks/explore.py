@@ -33,6 +33,7 @@ CASES = [
     ("overhead", "f_over_n", (1000.0, 100.0)),
     ("directions", "f_over_n", (1000.0, 100.0)),
     ("cascades", "k", (4, 3)),
+    ("cascades", "lam", (0.5, 0.3)),
     ("faces", "gamma", (60.0, 50.0)),
     ("raster", "fov", (60.0, 50.0)),
 ]

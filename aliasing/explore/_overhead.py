@@ -87,7 +87,7 @@ def draw(fig: Figure, d: dict[str, Any]) -> dict:
     a.loglog(d["z"], d["m_x"], label="m_x")
     a.loglog(d["z"], d["m_z"], label="m_z")
     a.axhline(1.0, color="0.6", lw=0.8)
-    a.set(xlabel="z [world units]", ylabel="error [texels per pixel, unit res.]")
+    a.set(xlabel="z [world units]", ylabel="m (texel/pixel width, unit res.)")
     a.legend(fontsize=8)
     b.semilogy(d["eta_axis"], d["M_x_eta"], label="M_x")
     b.semilogy(d["eta_axis"], d["M_z_eta"], label="M_z")
