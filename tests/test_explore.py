@@ -192,3 +192,14 @@ def test_without_the_extra_import_works_and_explorers_say_which_extra():
     assert out.returncode == 0, out.stderr
     lines = out.stdout.strip().splitlines()
     assert len(lines) == 1 and "pip install 'aliasing[explore]'" in lines[0]
+
+
+@pytest.mark.parametrize("name, change", [("overhead", {"f_over_n": 300.0}), ("directions", {"f_over_n": 300.0, "resolution": 24}),
+                                          ("faces", {"gamma": 58.0}), ("cascades", {"lam": 0.3, "allocation": "error"})])
+def test_redraw_in_place_gives_the_picture_of_a_fresh_explorer(name, change):
+    make = getattr(explore, name)
+    e = make(**({"resolution": 24} if name == "directions" else {}))
+    artists = e._artists
+    assert e.set_state(change)
+    assert e._artists is artists  # updated in place, not drawn anew
+    assert e.png() == make(**e.state()).png()

@@ -18,13 +18,18 @@ without it ``import aliasing`` works and calling an explorer says which extra to
 Example
 -------
 >>> from aliasing import explore
->>> w = explore.overhead()                      # doctest: +SKIP
->>> w.set_state({"f_over_n": 1000.0, "rule": "lispsm"})  # doctest: +SKIP
+>>> w = explore.overhead()
+>>> w.set_state({"f_over_n": 1000.0, "rule": "lispsm"}), round(w.data["S"], 1)
+(True, 865.2)
 """
 
 from __future__ import annotations
 
-import importlib.util
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # the widget base needs ipywidgets (the explore extra)
+    from ._widget import Explorer
 
 EXTRA_MESSAGE = "aliasing.explore needs the 'explore' extra: pip install 'aliasing[explore]' (ipywidgets>=8, ipympl, jupyterlab)"
 
@@ -34,9 +39,10 @@ __all__ = ["EXTRA_MESSAGE", "available", "cascades", "directions", "faces", "ove
 def available() -> bool:
     """True when ipywidgets (the ``explore`` extra) can be imported."""
     try:
-        return importlib.util.find_spec("ipywidgets") is not None and __import__("ipywidgets") is not None
+        import ipywidgets  # noqa: F401
     except ImportError:
         return False
+    return True
 
 
 def _module(name: str):
@@ -45,26 +51,117 @@ def _module(name: str):
     return importlib.import_module(f"{__name__}.{name}")
 
 
-def overhead(**values):
-    """Overhead-light explorer (Lloyd et al. 2006 Figs. 5–6); see :mod:`aliasing.explore._overhead`."""
+def overhead(**values: Any) -> Explorer:
+    """Overhead-light explorer: m_x, m_z along z and M_x, M_z, S̄ over η (Lloyd et al. 2006 Figs. 5–6).
+
+    Parameters
+    ----------
+    **values
+        Initial control values: ``f_over_n`` (log slider, 1.5–10⁵), ``fov`` [deg], ``rule``
+        (``uniform``, ``psm``, ``lispsm``, ``eta``, ``n_prime``), ``eta`` (−1…1), ``n_prime``
+        (text [world units] or ``inf``), ``res_image`` [pixels]; ``debounce`` [s].
+
+    Returns
+    -------
+    Explorer
+        An ipywidgets VBox; ``.data`` holds :func:`aliasing.explore._overhead.compute`'s result.
+
+    Example
+    -------
+    >>> e = overhead(f_over_n=100.0, fov=90.0, rule="lispsm")
+    >>> round(e.data["S"], 1), e.error
+    (49.5, None)
+    """
     return _module("_overhead").OverheadExplorer(**values)
 
 
-def directions(**values):
-    """Light-direction explorer (Lloyd 2006 Fig. 7, Lloyd 2007 Table 3); see :mod:`aliasing.explore._directions`."""
+def directions(**values: Any) -> Explorer:
+    """Light-direction explorer: S̄ over the hemisphere (Lloyd 2006 Fig. 7) and Lloyd 2007 Table 3's statistics.
+
+    Parameters
+    ----------
+    **values
+        ``scheme`` (text, :data:`aliasing.schemes.GRAMMAR`), ``f_over_n``, ``fov`` [deg],
+        ``gamma``, ``azimuth`` [deg] (the chosen direction), ``resolution`` (map cells per side).
+
+    Returns
+    -------
+    Explorer
+        ``.pick(u, v)`` chooses the direction at a map position.
+
+    Example
+    -------
+    >>> e = directions(scheme="LogP", gamma=90.0, azimuth=0.0, resolution=16)
+    >>> round(e.data["S"], 3)
+    5.982
+    >>> e.set_state({"scheme": "nonsense"}), e.data["scheme"]   # the message is shown, the last picture kept
+    (False, 'LogP')
+    """
     return _module("_directions").DirectionsExplorer(**values)
 
 
-def cascades(**values):
-    """Cascade/split explorer (Lloyd 2007 eqs. 80–83, Zhang 2006, engine presets); see :mod:`aliasing.explore._cascades`."""
+def cascades(**values: Any) -> Explorer:
+    """Cascade explorer: splits (Lloyd 2006 eqs. 15–16, Zhang 2006, engine presets), budgets, allocations (Lloyd 2007 eq. 83).
+
+    Parameters
+    ----------
+    **values
+        ``method`` (split method or engine preset), ``k``, ``lam`` (λ), ``near``, ``far``
+        [world units], ``fov`` [deg], ``warp`` (text), ``budget`` [texels], ``allocation``,
+        ``res_image`` [pixels].
+
+    Returns
+    -------
+    Explorer
+
+    Example
+    -------
+    >>> e = cascades(method="log", k=4, warp="P", allocation="error")
+    >>> e.data["far_i"].round(3).tolist()
+    [5.623, 31.623, 177.828, 1000.0]
+    """
     return _module("_cascades").CascadesExplorer(**values)
 
 
-def faces(**values):
-    """Face-partition explorer (Lloyd 2007 §6.1.3, §6.5); see :mod:`aliasing.explore._faces`."""
+def faces(**values: Any) -> Explorer:
+    """Face-partition explorer: chosen faces (Lloyd 2007 eq. 54), frames and per-map S of FP, FPc, FPcs (§6.1.3, §6.5).
+
+    Parameters
+    ----------
+    **values
+        ``variant`` (``fp``, ``fpc``, ``fpcs``), ``parameterization`` of the side faces,
+        ``f_over_n``, ``fov`` [deg], ``gamma``, ``azimuth`` [deg].
+
+    Returns
+    -------
+    Explorer
+
+    Example
+    -------
+    >>> e = faces(variant="fp", gamma=90.0, azimuth=0.0, f_over_n=1000.0)
+    >>> e.data["maps"], round(e.data["S"], 3)     # overhead: the bottom face only
+    (1, 5.982)
+    """
     return _module("_faces").FacesExplorer(**values)
 
 
-def raster(**values):
-    """Rasterizer explorer (shadows, texel grid, per-pixel error); see :mod:`aliasing.explore._raster`."""
+def raster(**values: Any) -> Explorer:
+    """Rasterizer explorer: shadows, texel grid, per-pixel error and measured/bound ratios.
+
+    Parameters
+    ----------
+    **values
+        ``scheme`` (text), ``light`` (text, one direction), ``f_over_n``, ``fov`` [deg],
+        ``image_res`` [pixels], ``budget`` [texels over all maps], ``every`` [texels between grid lines].
+
+    Returns
+    -------
+    Explorer
+
+    Example
+    -------
+    >>> e = raster(scheme="P", light="gamma:60", image_res=32, budget=64 * 64)
+    >>> e.data["map_res"], e.error
+    (64, None)
+    """
     return _module("_raster").RasterExplorer(**values)

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.patches import Polygon
 
 from .. import budgets, partitioning
 from . import _widget as w
@@ -81,30 +82,58 @@ def compute(method: str, k: int, lam: float, near: float, far: float, fov: float
     }
 
 
-def draw(fig: Figure, d: dict[str, Any]) -> None:
-    """The partitions on the frustum (side view, log depth) and per-partition S̄, resolution, error."""
+def _band(lo: float, hi: float, tan: float) -> np.ndarray:
+    """Outline (60, 2) of the frustum between depths lo and hi in the side view (z, y)."""
+    z = np.geomspace(lo, hi, 30)
+    return np.column_stack([np.concatenate([z, z[::-1]]), np.concatenate([-z * tan, (z * tan)[::-1]])])
+
+
+def draw(fig: Figure, d: dict[str, Any]) -> dict:
+    """The partitions on the frustum (side view, log depth) and per-partition S̄, resolution, error.
+
+    Returns the artists for :func:`redraw`.
+    """
     a, b = fig.subplots(1, 2)
-    t = np.tan(np.radians(d["fov"]) / 2)
-    z = np.geomspace(d["near"], d["far"], 100)
-    a.fill_between(z, -z * t, z * t, color="0.93")
-    for i, (lo, hi) in enumerate(zip(d["near_i"], d["far_i"])):
-        zz = np.geomspace(lo, hi, 30)
-        a.fill_between(zz, -zz * t, zz * t, color=f"C{i % 10}", alpha=0.45, lw=0)
-        a.axvline(hi, color=f"C{i % 10}", lw=0.8)
+    k = d["k"]
+    frustum = a.add_patch(Polygon(np.zeros((3, 2)), closed=True, fc="0.93", ec="none"))
+    bands = [a.add_patch(Polygon(np.zeros((3, 2)), closed=True, fc=f"C{i % 10}", alpha=0.45, lw=0)) for i in range(k)]
+    planes = [a.axvline(1.0, color=f"C{i % 10}", lw=0.8) for i in range(k)]
     a.set_xscale("log")
     a.set(xlabel="z [world units] (log)", ylabel="y", title="partitions on the frustum (side view)")
-    i = np.arange(1, d["k"] + 1)
-    b.bar(i, d["error"], color=[f"C{j % 10}" for j in range(d["k"])])
+    i = np.arange(1, k + 1)
+    bars = b.bar(i, np.ones(k), color=[f"C{j % 10}" for j in range(k)])
     b.axhline(1.0, color="0.5", lw=0.8, ls="--")
-    b.set(xlabel="partition", ylabel="worst error [texels/pixel]", xticks=i)
-    for j in range(d["k"]):
-        b.text(i[j], d["error"][j], f"S̄ {d['S_max'][j]:.3g}\n{d['res_s'][j]:.0f}×{d['res_t'][j]:.0f}", ha="center", va="bottom", fontsize=7)
+    b.set(xlabel="partition", ylabel="worst error m (texel/pixel width)", xticks=i)
+    texts = [b.text(i[j], 0.0, "", ha="center", va="bottom", fontsize=7) for j in range(k)]
+    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.15, top=0.84, wspace=0.25)
+    artists = {"a": a, "b": b, "frustum": frustum, "bands": bands, "planes": planes, "bars": bars, "texts": texts, "k": k,
+               "suptitle": fig.suptitle("", fontsize=10)}
+    redraw(artists, d)
+    return artists
+
+
+def redraw(artists: dict, d: dict[str, Any]) -> bool:
+    """New data into :func:`draw`'s artists; False (draw anew) when k changes."""
+    if d["k"] != artists["k"]:
+        return False
+    a, b = artists["a"], artists["b"]
+    t = np.tan(np.radians(d["fov"]) / 2)
+    artists["frustum"].set_xy(_band(d["near"], d["far"], t))
+    for band, plane, lo, hi in zip(artists["bands"], artists["planes"], d["near_i"], d["far_i"]):
+        band.set_xy(_band(lo, hi, t))
+        plane.set_xdata([hi, hi])
+    a.set_xlim(d["near"], d["far"] * 1.05)
+    a.set_ylim(-d["far"] * t * 1.05, d["far"] * t * 1.05)
+    for j, (bar, text) in enumerate(zip(artists["bars"], artists["texts"])):
+        bar.set_height(d["error"][j])
+        text.set_position((j + 1, d["error"][j]))
+        text.set_text(f"S̄ {d['S_max'][j]:.3g}\n{d['res_s'][j]:.0f}×{d['res_t'][j]:.0f}")
     b.set_ylim(0, max(d["error"].max(), 1.0) * 1.35)
     b.set_title(f"{d['allocation']}: worst {d['worst']:.3g} over {LIGHTS}", fontsize=10)
     lam = f", λ = {d['lam']:g}" if d["lam"] is not None else ""
-    fig.suptitle(f"{d['method']} k = {d['k']}{lam}, [{d['near']:g}, {d['far']:g}], warp {d['warp']}, budget {d['budget']:,} texels, image {d['res_image']}",
-                 fontsize=10)
-    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.15, top=0.84, wspace=0.25)
+    artists["suptitle"].set_text(f"{d['method']} k = {d['k']}{lam}, [{d['near']:g}, {d['far']:g}], warp {d['warp']}, "
+                                 f"budget {d['budget']:,} texels, image {d['res_image']}")
+    return True
 
 
 class CascadesExplorer(w.Explorer):
@@ -130,5 +159,8 @@ class CascadesExplorer(w.Explorer):
     def compute(self, **values: Any) -> dict:
         return compute(**values)
 
-    def draw(self, fig: Figure, data: dict) -> None:
-        draw(fig, data)
+    def draw(self, fig: Figure, data: dict) -> dict:
+        return draw(fig, data)
+
+    def redraw(self, artists: dict, data: dict) -> bool:
+        return redraw(artists, data)

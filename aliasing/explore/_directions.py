@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
+from matplotlib.ticker import FormatStrFormatter, LogLocator
 
 from .. import geometry, schemes
 from . import _widget as w
@@ -79,32 +80,62 @@ def map_position(light: np.ndarray) -> tuple[float, float]:
     return float(light[2]), float(light[0])
 
 
-def draw(fig: Figure, d: dict[str, Any]) -> None:
-    """The S̄ map with the chosen direction, and its per-map errors with Table 3's statistics."""
+def draw(fig: Figure, d: dict[str, Any]) -> dict:
+    """The S̄ map with the chosen direction, and its per-map errors with Table 3's statistics.
+
+    Returns the artists for :func:`redraw`.
+    """
     a, b = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.0, 1.25]})
-    finite = d["S_map"][np.isfinite(d["S_map"])]
-    lo, hi = float(finite.min()), float(finite.max())
-    im = a.pcolormesh(d["u"], d["v"], d["S_map"], norm=LogNorm(lo, hi if hi > lo else lo * 1.001), cmap="viridis", shading="auto")
-    fig.colorbar(im, ax=a, fraction=0.05, pad=0.02)
-    if d["light"][1] >= 0:
-        a.plot(*map_position(d["light"]), "o", mfc="none", mec="r", ms=10, mew=2)
+    im = a.pcolormesh(d["u"], d["v"], d["S_map"], norm=LogNorm(1.0, 2.0), cmap="viridis", shading="auto")
+    cb = fig.colorbar(im, ax=a, fraction=0.05, pad=0.02)
+    marker, = a.plot([0.0], [0.0], "o", mfc="none", mec="r", ms=10, mew=2)
     a.set(aspect="equal", xlabel="← light behind      light in front →", yticks=[], title="S̄ over the hemisphere (colour, log)")
     k = np.arange(1, len(d["M_x"]) + 1)
     used = d["M_x"] > 0
-    b.bar(k[used] - 0.2, d["M_x"][used], 0.4, label="M_x")
-    b.bar(k[used] + 0.2, d["M_z"][used], 0.4, label="M_z")
+    bx = b.bar(k[used] - 0.2, d["M_x"][used], 0.4, label="M_x")
+    bz = b.bar(k[used] + 0.2, d["M_z"][used], 0.4, label="M_z")
     b.set_yscale("log")
+    b.yaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    b.yaxis.set_major_formatter(FormatStrFormatter("%g"))
     b.set(xlabel="map", ylabel="max. error (unit res.)", xticks=k[used])
     b.legend(fontsize=8, loc="upper left")
+    text = b.text(0.98, 0.97, "", transform=b.transAxes, ha="right", va="top", fontsize=8, bbox={"fc": "white", "ec": "0.7"})
+    fig.subplots_adjust(left=0.04, right=0.98, bottom=0.15, top=0.84, wspace=0.4)
+    artists = {"a": a, "b": b, "im": im, "cb": cb, "marker": marker, "bx": bx, "bz": bz, "text": text, "used": used,
+               "shape": d["S_map"].shape, "suptitle": fig.suptitle("", fontsize=10)}
+    redraw(artists, d)
+    return artists
+
+
+def redraw(artists: dict, d: dict[str, Any]) -> bool:
+    """New data into :func:`draw`'s artists; False (draw anew) when the map size or the maps used change."""
+    used = d["M_x"] > 0
+    if d["S_map"].shape != artists["shape"] or not np.array_equal(used, artists["used"]):
+        return False
+    finite = d["S_map"][np.isfinite(d["S_map"])]
+    lo, hi = float(finite.min()), float(finite.max())
+    hi = hi if hi > lo else lo * 1.001
+    artists["im"].set_array(d["S_map"])
+    artists["im"].set_clim(lo, hi)
+    ticks = np.geomspace(lo, hi, 5)
+    artists["cb"].set_ticks(ticks, labels=[f"{x:.3g}" for x in ticks])
+    artists["cb"].minorticks_off()
+    artists["marker"].set_data(*([v] for v in map_position(d["light"])))
+    artists["marker"].set_visible(bool(d["light"][1] >= 0))
+    for bars, key in ((artists["bx"], "M_x"), (artists["bz"], "M_z")):
+        for rect, height in zip(bars, d[key][used]):
+            rect.set_height(height)
+    b = artists["b"]
+    heights = np.concatenate([d["M_x"][used], d["M_z"][used]])
+    b.set_ylim(heights.min() / 1.5, heights.max() * 2.5)  # log axis: room for the legend and the statistics
     npr = ", ".join("—" if not np.isfinite(x) else f"{x:.3g}" for x in d["n_prime"][used][:4])
     eta = ", ".join("—" if not np.isfinite(x) else f"{x:.2f}" for x in d["eta"][used][:4])
     warp = f"n′: {npr}\nη: {eta}\n" if np.isfinite(d["n_prime"][used]).any() else ""
     b.set_title(f"γ = {d['gamma']:g}°, az = {d['azimuth']:g}°: S̄ = {d['S']:.4g}, {d['maps']} map(s)", fontsize=10)
-    b.text(0.98, 0.97, f"{warp}Table 3 over {STAT_DIRECTIONS} dirs:\nmin {d['S_min']:.4g}  max {d['S_max']:.4g}\n"
-           f"mean {d['S_mean']:.4g}  maps {d['maps_min']}–{d['maps_max']}", transform=b.transAxes, ha="right", va="top", fontsize=8,
-           bbox={"fc": "white", "ec": "0.7"})
-    fig.suptitle(f"{d['scheme']}, f/n = {d['f_over_n']:.4g}, fov = {d['fov']:g}°", fontsize=10)
-    fig.subplots_adjust(left=0.04, right=0.98, bottom=0.15, top=0.84, wspace=0.4)
+    artists["text"].set_text(f"{warp}Table 3 over {STAT_DIRECTIONS} dirs:\nmin {d['S_min']:.4g}  max {d['S_max']:.4g}\n"
+                             f"mean {d['S_mean']:.4g}  maps {d['maps_min']}–{d['maps_max']}")
+    artists["suptitle"].set_text(f"{d['scheme']}, f/n = {d['f_over_n']:.4g}, fov = {d['fov']:g}°")
+    return True
 
 
 class DirectionsExplorer(w.Explorer):
@@ -126,8 +157,11 @@ class DirectionsExplorer(w.Explorer):
     def compute(self, **values: Any) -> dict:
         return compute(**values)
 
-    def draw(self, fig: Figure, data: dict) -> None:
-        draw(fig, data)
+    def draw(self, fig: Figure, data: dict) -> dict:
+        return draw(fig, data)
+
+    def redraw(self, artists: dict, data: dict) -> bool:
+        return redraw(artists, data)
 
     def pick(self, u: float, v: float) -> bool:
         """Choose the direction at map position (u, v) (e.g. a click on the map)."""

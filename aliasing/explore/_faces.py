@@ -75,34 +75,59 @@ def compute(variant: str, parameterization: str, f_over_n: float, fov: float, ga
     }
 
 
-def draw(fig: Figure, d: dict[str, Any]) -> None:
-    """The frustum from the light with the chosen faces filled and frames drawn; per-slot S."""
+def draw(fig: Figure, d: dict[str, Any]) -> dict:
+    """The frustum from the light with the chosen faces filled and frames drawn; per-slot S.
+
+    Returns the artists for :func:`redraw`.
+    """
     a, b = fig.subplots(1, 2)
-    c = d["corners"]
-    for i, (name, idx) in enumerate(zip(FACE_NAMES, FACE_CORNERS)):
+    polygons = []
+    for i, name in enumerate(FACE_NAMES):
         chosen = bool(d["chosen"][i])
-        a.add_patch(Polygon(c[list(idx)], closed=True, fc=f"C{i}" if chosen else "none", alpha=0.35 if chosen else 1.0,
-                            ec=f"C{i}" if chosen else "0.6", lw=1.5 if chosen else 0.6, label=name if chosen else None))
-    a.plot(*c[[4, 5, 6, 7, 4]].T, color="0.3", lw=0.8, ls="--")
-    span = np.ptp(c, axis=0).max()
-    for label, axis, length in d["axes"]:
-        a.annotate("", xy=axis * length * 0.85, xytext=(0, 0), arrowprops={"arrowstyle": "->", "color": "k", "lw": 1}, annotation_clip=False)
-        a.text(*(axis * length * 0.87), label, fontsize=7)
+        polygons.append(a.add_patch(Polygon(np.zeros((4, 2)), closed=True, fc=f"C{i}" if chosen else "none", alpha=0.35 if chosen else 1.0,
+                                            ec=f"C{i}" if chosen else "0.6", lw=1.5 if chosen else 0.6, label=name if chosen else None)))
+    far, = a.plot([], [], color="0.3", lw=0.8, ls="--")
+    arrows = [(a.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops={"arrowstyle": "->", "color": "k", "lw": 1}, annotation_clip=False),
+               a.text(0, 0, label, fontsize=7)) for label, _, _ in d["axes"]]
     a.plot(0, 0, "k.", ms=6)
-    a.set_xlim(c[:, 0].min() - 0.05 * span, c[:, 0].max() + 0.05 * span)
-    a.set_ylim(c[:, 1].min() - 0.05 * span, c[:, 1].max() + 0.05 * span)
     a.set(aspect="equal", xticks=[], yticks=[], title="seen from the light (arrows: map axes)")
     a.legend(fontsize=7, loc="best")
     used = d["M_x"] > 0
     x = np.arange(used.sum())
-    b.bar(x, d["S_i"][used], color="C7")
+    bars = b.bar(x, d["S_i"][used], color="C7")
     b.set_xticks(x, [lab for lab, u in zip(d["labels"], used) if u], fontsize=8)
     b.set(ylabel="S = M_x·M_z (unit res.)")
+    fig.subplots_adjust(left=0.03, right=0.98, bottom=0.12, top=0.84, wspace=0.2)
+    artists = {"a": a, "b": b, "polygons": polygons, "far": far, "arrows": arrows, "bars": bars, "used": used,
+               "chosen": d["chosen"].copy(), "labels": [lab for lab, _, _ in d["axes"]], "suptitle": fig.suptitle("", fontsize=10)}
+    redraw(artists, d)
+    return artists
+
+
+def redraw(artists: dict, d: dict[str, Any]) -> bool:
+    """New data into :func:`draw`'s artists; False (draw anew) when the chosen faces, maps or frames change."""
+    used = d["M_x"] > 0
+    if (not np.array_equal(used, artists["used"]) or not np.array_equal(d["chosen"], artists["chosen"])
+            or [lab for lab, _, _ in d["axes"]] != artists["labels"]):
+        return False
+    a, b, c = artists["a"], artists["b"], d["corners"]
+    for poly, idx in zip(artists["polygons"], FACE_CORNERS):
+        poly.set_xy(c[list(idx)])
+    artists["far"].set_data(*c[[4, 5, 6, 7, 4]].T)
+    for (arrow, text), (_, axis, length) in zip(artists["arrows"], d["axes"]):
+        arrow.xy = tuple(axis * length * 0.85)
+        text.set_position(tuple(axis * length * 0.87))
+    span = np.ptp(c, axis=0).max()
+    a.set_xlim(c[:, 0].min() - 0.05 * span, c[:, 0].max() + 0.05 * span)
+    a.set_ylim(c[:, 1].min() - 0.05 * span, c[:, 1].max() + 0.05 * span)
+    for rect, height in zip(artists["bars"], d["S_i"][used]):
+        rect.set_height(height)
+    b.set_ylim(0.0, d["S_i"][used].max() * 1.08)
     taus = ", ".join(f"{n} {t:.0f}°" for n, t in zip(faces.SIDES, d["tau"]) if np.isfinite(t))
     b.set_title(f"S̄ = {d['S']:.4g} over {d['maps']} map(s); τ: {taus or '—'}", fontsize=9)
-    fig.suptitle(f"{d['variant'].upper()}+{d['parameterization']}, γ = {d['gamma']:g}°, azimuth = {d['azimuth']:g}°, "
-                 f"f/n = {d['f_over_n']:.4g}, fov = {d['fov']:g}°", fontsize=10)
-    fig.subplots_adjust(left=0.03, right=0.98, bottom=0.12, top=0.84, wspace=0.2)
+    artists["suptitle"].set_text(f"{d['variant'].upper()}+{d['parameterization']}, γ = {d['gamma']:g}°, azimuth = {d['azimuth']:g}°, "
+                                 f"f/n = {d['f_over_n']:.4g}, fov = {d['fov']:g}°")
+    return True
 
 
 class FacesExplorer(w.Explorer):
@@ -124,5 +149,8 @@ class FacesExplorer(w.Explorer):
     def compute(self, **values: Any) -> dict:
         return compute(**values)
 
-    def draw(self, fig: Figure, data: dict) -> None:
-        draw(fig, data)
+    def draw(self, fig: Figure, data: dict) -> dict:
+        return draw(fig, data)
+
+    def redraw(self, artists: dict, data: dict) -> bool:
+        return redraw(artists, data)

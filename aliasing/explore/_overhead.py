@@ -81,23 +81,42 @@ def compute(f_over_n: float, fov: float, rule: str, eta: float, n_prime: str, re
     }
 
 
-def draw(fig: Figure, d: dict[str, Any]) -> None:
-    """Fig. 5 (left) and Fig. 6 (right) with the chosen warp marked."""
+def draw(fig: Figure, d: dict[str, Any]) -> dict:
+    """Fig. 5 (left) and Fig. 6 (right) with the chosen warp marked; returns the artists for :func:`redraw`."""
     a, b = fig.subplots(1, 2)
     a.loglog(d["z"], d["m_x"], label="m_x")
     a.loglog(d["z"], d["m_z"], label="m_z")
     a.axhline(1.0, color="0.6", lw=0.8)
-    a.set(xlabel="z [world units]", ylabel="error [texels per pixel, unit res.]", title=f"Lloyd 2006 Fig. 5: n′ = {d['n_prime']:.4g}")
+    a.set(xlabel="z [world units]", ylabel="m (texel/pixel width, unit res.)")
     a.legend(fontsize=8)
     b.semilogy(d["eta_axis"], d["M_x_eta"], label="M_x")
     b.semilogy(d["eta_axis"], d["M_z_eta"], label="M_z")
     b.semilogy(d["eta_axis"], d["S_eta"], label="S̄", color="k")
-    if np.isfinite(d["eta"]):
-        b.axvline(d["eta"], color="C3", lw=1, ls="--")
-    b.set(xlabel="η (−1 uniform, 0 LiSPSM, 1 PSM)", title=f"Fig. 6: S̄ = {d['S']:.4g}, crit. res. {d['res_s']:.0f}×{d['res_t']:.0f}")
+    marker = b.axvline(0.0, color="C3", lw=1, ls="--")
+    b.set(xlabel="η (−1 uniform, 0 LiSPSM, 1 PSM)")
     b.legend(fontsize=8)
-    fig.suptitle(f"overhead light, f/n = {d['f_over_n']:.4g}, fov = {d['fov']:g}°, warp {d['rule']}", fontsize=10)
     fig.subplots_adjust(left=0.08, right=0.98, bottom=0.15, top=0.84, wspace=0.22)
+    artists = {"a": a, "b": b, "marker": marker, "suptitle": fig.suptitle("", fontsize=10)}
+    redraw(artists, d)
+    return artists
+
+
+def redraw(artists: dict, d: dict[str, Any]) -> bool:
+    """Put new data into the artists of :func:`draw` (the same lines; limits, titles, marker)."""
+    a, b = artists["a"], artists["b"]
+    a.lines[0].set_data(d["z"], d["m_x"])
+    a.lines[1].set_data(d["z"], d["m_z"])
+    for line, key in zip(b.lines[:3], ("M_x_eta", "M_z_eta", "S_eta")):
+        line.set_data(d["eta_axis"], d[key])
+    for ax in (a, b):
+        ax.relim()
+        ax.autoscale_view()
+    artists["marker"].set_xdata([d["eta"]] * 2 if np.isfinite(d["eta"]) else [0.0, 0.0])
+    artists["marker"].set_visible(bool(np.isfinite(d["eta"])))
+    a.set_title(f"Lloyd 2006 Fig. 5: n′ = {d['n_prime']:.4g}")
+    b.set_title(f"Fig. 6: S̄ = {d['S']:.4g}, critical res. {d['res_s']:.4g} × {d['res_t']:.4g}", fontsize=9)
+    artists["suptitle"].set_text(f"overhead light, f/n = {d['f_over_n']:.4g}, fov = {d['fov']:g}°, warp {d['rule']}")
+    return True
 
 
 class OverheadExplorer(w.Explorer):
@@ -126,5 +145,8 @@ class OverheadExplorer(w.Explorer):
     def compute(self, **values: Any) -> dict:
         return compute(**values)
 
-    def draw(self, fig: Figure, data: dict) -> None:
-        draw(fig, data)
+    def draw(self, fig: Figure, data: dict) -> dict:
+        return draw(fig, data)
+
+    def redraw(self, artists: dict, data: dict) -> bool:
+        return redraw(artists, data)

@@ -25,7 +25,8 @@ DEBOUNCE = 0.15
 
 
 class Explorer(widgets.VBox):
-    """Base of the explorers: subclasses define ``controls()``, ``compute(**values)``, ``draw(fig, data)``.
+    """Base of the explorers: subclasses define ``make_controls()``, ``compute(**values)``, ``draw(fig, data)``
+    and optionally ``redraw(artists, data)``.
 
     Attributes
     ----------
@@ -51,6 +52,7 @@ class Explorer(widgets.VBox):
         self.updates = 0
         self._pending: asyncio.TimerHandle | None = None
         self._hold = False
+        self._artists: dict | None = None
         self.message = widgets.HTML(value="")
         self.image = widgets.Image(format="png")
         self.figure = Figure(figsize=self.figsize, dpi=self.dpi)
@@ -68,8 +70,16 @@ class Explorer(widgets.VBox):
     def compute(self, **values: Any) -> dict:  # pragma: no cover - abstract
         raise NotImplementedError
 
-    def draw(self, fig: Figure, data: dict) -> None:  # pragma: no cover - abstract
+    def draw(self, fig: Figure, data: dict) -> dict | None:  # pragma: no cover - abstract
+        """Draw ``data`` on the cleared ``fig``; may return its artists for :meth:`redraw`."""
         raise NotImplementedError
+
+    def redraw(self, artists: dict, data: dict) -> bool:
+        """Update the artists :meth:`draw` returned in place (half the time of a new figure).
+
+        Returns False when the picture must be drawn anew (the default).
+        """
+        return False
 
     # -- state ---------------------------------------------------------------------------
     def state(self) -> dict[str, Any]:
@@ -113,11 +123,13 @@ class Explorer(widgets.VBox):
             with np.errstate(all="ignore"):
                 data = self.compute(**self.state())
                 fig = self.figure
-                fig.clear()
-                self.draw(fig, data)
+                if self._artists is None or not self.redraw(self._artists, data):
+                    fig.clear()
+                    self._artists = None
+                    self._artists = self.draw(fig, data)
+                    for ax in fig.axes:  # log axes' minor ticks cost most of a redraw
+                        ax.minorticks_off()
                 buf = io.BytesIO()
-                for ax in fig.axes:  # log axes' minor ticks cost most of a redraw
-                    ax.minorticks_off()
                 fig.savefig(buf, format="png", dpi=self.dpi, pil_kwargs={"compress_level": 1})
         except Exception as exc:  # shown in the widget, never a traceback in the notebook
             text = str(exc) if isinstance(exc, ValueError) else f"{type(exc).__name__}: {exc}"
@@ -130,9 +142,37 @@ class Explorer(widgets.VBox):
         self.updates += 1
         return True
 
+    def snapshot(self, path: str, dpi: float = 110.0) -> str:
+        """Save the current picture with the controls' values written above it (a PNG for docs).
+
+        Returns ``path``.  The controls are listed as ``description = value``.
+        """
+        if self.data is None:
+            raise ValueError("nothing to save: no successful update yet")
+        fig = self.figure
+        values = "   ".join(f"{w.description} = {_shown(w)}" for w in self.controls.values())
+        fig.subplots_adjust(top=fig.subplotpars.top - 0.06)
+        label = fig.text(0.01, 0.985, f"{self.title}\n{values}", ha="left", va="top", fontsize=7.5, family="monospace",
+                         bbox={"fc": "#eef2f7", "ec": "#9aa7b8", "boxstyle": "round,pad=0.4"})
+        try:
+            fig.savefig(path, dpi=dpi)
+        finally:
+            label.remove()
+            fig.subplots_adjust(top=fig.subplotpars.top + 0.06)
+        return path
+
     def png(self) -> bytes:
         """The PNG currently shown."""
         return bytes(self.image.value)
+
+
+def _shown(widget: widgets.ValueWidget) -> str:
+    """A control's value as its label shows it (the option's label for dropdowns)."""
+    label = getattr(widget, "label", None)
+    if label is not None:
+        return str(label)
+    value = widget.value
+    return f"{value:.4g}" if isinstance(value, float) else str(value)
 
 
 def _rows(items: list, n: int) -> list[list]:

@@ -1,0 +1,80 @@
+"""Benchmark of the Jupyter explorers' update time (aliasing.explore); run by hand, not under pytest.
+
+Issue 13's target: at default sizes each analytic explorer (overhead, directions, cascades,
+faces) recomputes and redraws within 100 ms of a change, the rasterizer one within 1 s.  An
+update is what a slider change triggers once the debounce has elapsed: ``compute`` (the
+toolkit's numbers), ``draw`` (a fresh matplotlib figure) and the PNG the widget shows.
+Each explorer is built with its defaults; one control is toggled between two values and
+each toggle's full update is timed (``Explorer.update`` through ``set_state``,
+time.perf_counter), median and best of ``--repeats``.  The plain baseline, timed side by
+side in the same run and the same way, is ``compute`` alone (the API call, no drawing):
+the ratio update/compute is the cost of drawing.  The CPU time of the update (this
+process, time.process_time) is printed too: on a loaded machine it shows what an update
+costs on a free core (numpy and the PNG encoder run on one thread here).  The 1-minute load average (``uptime``)
+is printed before and after; on this 2-core machine other jobs may be running.
+
+Usage::
+
+    python benchmarks/explore.py                # 15 updates each
+    python benchmarks/explore.py --repeats 30
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import time
+
+from aliasing import explore
+
+#: (explorer, control toggled, two values); defaults everywhere else.
+CASES = [
+    ("overhead", "f_over_n", (1000.0, 100.0)),
+    ("directions", "f_over_n", (1000.0, 100.0)),
+    ("cascades", "k", (4, 3)),
+    ("cascades", "lam", (0.5, 0.3)),
+    ("faces", "gamma", (60.0, 50.0)),
+    ("raster", "fov", (60.0, 50.0)),
+]
+TARGET_MS = {"raster": 1000.0}
+
+
+def _time(fn, repeats: int) -> tuple[list[float], list[float]]:
+    """Wall-clock and CPU (this process) times [ms] of ``repeats`` calls."""
+    wall, cpu = [], []
+    for i in range(repeats):
+        t, c = time.perf_counter(), time.process_time()
+        fn(i)
+        wall.append((time.perf_counter() - t) * 1e3)
+        cpu.append((time.process_time() - c) * 1e3)
+    return wall, cpu
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeats", type=int, default=15)
+    args = ap.parse_args()
+    print(f"load average before: {os.getloadavg()[0]:.2f} (cores: {os.cpu_count()})")
+    print(f"{'explorer':11s} {'control':9s} {'update med':>11s} {'best':>7s} {'CPU med':>8s} {'compute med':>12s} {'ratio':>6s} {'target':>7s}")
+    for name, control, values in CASES:
+        e = getattr(explore, name)()
+        state = e.state()
+
+        def update(i, e=e, control=control, values=values):
+            assert e.set_state({control: values[(i + 1) % 2]}), e.error
+
+        def compute(i, e=e, control=control, values=values, state=state):
+            e.compute(**{**state, control: values[(i + 1) % 2]})
+
+        up, up_cpu = _time(update, args.repeats)
+        co, _ = _time(compute, args.repeats)
+        med, cmed, cpu = statistics.median(up), statistics.median(co), statistics.median(up_cpu)
+        target = TARGET_MS.get(name, 100.0)
+        print(f"{name:11s} {control:9s} {med:9.0f}ms {min(up):5.0f}ms {cpu:6.0f}ms {cmed:10.1f}ms {med / cmed:6.1f} {target:5.0f}ms"
+              f"{'' if med <= target else '  (over)'}")
+    print(f"load average after: {os.getloadavg()[0]:.2f}")
+
+
+if __name__ == "__main__":
+    main()
