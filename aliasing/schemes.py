@@ -267,6 +267,8 @@ def _explicit_partitions(edges: ArrayLike | tuple[ArrayLike, ArrayLike], near: f
 
 
 def _eta_or_nan(npr: Array, n_i: Array, f_i: Array, depth: Array) -> Array:
+    if np.isinf(npr).all():  # uniform maps: eq. 120 inverted gives exactly −1 (n′/f′ = 1)
+        return np.full(np.broadcast(npr, depth).shape, -1.0)
     ng = depth * n_i / (f_i - n_i)
     inside = npr >= ng * (1 - 1e-12)
     return np.where(inside, warping.eta_checked(np.where(inside, npr, ng), n_i, f_i, ng), np.nan)
