@@ -24,6 +24,11 @@ with Y the vertex's distance from the nearest one along y.  w_i = 2 tanθ·d at 
 (Lloyd 2006 eq. 2, corrected).  At an overhead light these reduce to Lloyd 2006 eqs. 7–12
 (tested).
 
+Speed (issue 12): :func:`light_frame` rotates the view's 4 corner rays into every direction's
+light frame once; :func:`slice_fit` and :func:`slice_errors` fit and evaluate the maps of any
+z-slices from those coordinates scaled by depth, ``(K, N)`` arrays with directions innermost,
+giving the same numbers as :func:`fit` + :func:`vertex_errors` on the slices' vertices.
+
 Example
 -------
 >>> import numpy as np

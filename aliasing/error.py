@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
-from .view import half_angle
+from .view import View, half_angle, split_view
 from .parameterizations import _depths
 
 __all__ = [
@@ -47,6 +47,13 @@ Array = NDArray[np.float64]
 def _half_tan(fov: ArrayLike) -> Array:
     """tan θ for the full field of view ``fov`` [deg]."""
     return np.tan(half_angle(fov))
+
+
+def _unpack(near: ArrayLike | View, far: ArrayLike | None, fov: ArrayLike | None, n_prime: ArrayLike | None) -> tuple[ArrayLike, ArrayLike, ArrayLike, ArrayLike]:
+    """(near, far, fov, n′) from the numbers or from a :class:`aliasing.View` in ``near``
+    (then ``f(view, n_prime)``: the arguments after it move up one place)."""
+    view, npr = split_view(near, far, fov, n_prime, (None, None, None, np.inf))
+    return view.near, view.far, view.fov, npr
 
 
 def _frustum_warp(near: ArrayLike, far: ArrayLike, n_prime: ArrayLike) -> tuple[Array, Array, Array]:
@@ -151,7 +158,7 @@ def max_error_x(near: ArrayLike, far: ArrayLike, n_prime: ArrayLike = np.inf, *,
 
 
 @check.public
-def max_error_z(near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime: ArrayLike = np.inf, *, res_image: ArrayLike = 1.0, res_t: ArrayLike = 1.0) -> Array:
+def max_error_z(near: ArrayLike | View, far: ArrayLike | None = None, fov: ArrayLike | None = None, n_prime: ArrayLike | None = None, *, res_image: ArrayLike = 1.0, res_t: ArrayLike = 1.0) -> Array:
     """M_z = max over z of m_z (Lloyd et al. 2006 eq. 10, corrected: docs/ERRATA.md E3).
 
     At the far plane for n′ ≤ n′_LiSPSM = n + √(fn), (res_i/res_t)(f − n)/(2 tanθ)·f′/(f n′);
@@ -162,6 +169,7 @@ def max_error_z(near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime: ArrayL
     >>> max_error_z(1.0, 100.0, 90.0, [np.inf, 11.0, 1.0])
     array([49.5 ,  4.95, 49.5 ])
     """
+    near, far, fov, n_prime = _unpack(near, far, fov, n_prime)
     n, f, npr = _frustum_warp(near, far, n_prime)
     ri = check.positive(res_image, "res_image")
     rt = check.positive(res_t, "res_t")
@@ -174,17 +182,21 @@ def max_error_z(near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime: ArrayL
 
 
 @check.public
-def storage_factor(near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime: ArrayLike = np.inf) -> Array:
+def storage_factor(near: ArrayLike | View, far: ArrayLike | None = None, fov: ArrayLike | None = None, n_prime: ArrayLike | None = None) -> Array:
     """Storage factor S̄ = M_x·M_z at unit resolutions (Lloyd et al. 2006 eq. 12).
 
     The critical-resolution shadow map needs S̄·res_i² texels.  S̄ is minimal,
-    (f/n − 1)/(2 tanθ), for every n′ ≤ n + √(fn).
+    (f/n − 1)/(2 tanθ), for every n′ ≤ n + √(fn).  ``near`` may be a
+    :class:`aliasing.View`, followed by ``n_prime``; n′ defaults to ∞ (uniform).
 
     Example
     -------
     >>> storage_factor(1.0, 100.0, 90.0, [1.0, 11.0, np.inf])
     array([  49.5,   49.5, 4950. ])
+    >>> float(storage_factor(View(1.0, 100.0, 90.0), 11.0))
+    49.5
     """
+    near, far, fov, n_prime = _unpack(near, far, fov, n_prime)
     n, f, npr = _frustum_warp(near, far, n_prime)
     base = (f - n) / n / (2 * _half_tan(fov))  # (f/n − 1), without cancellation as f/n → 1
     n_l = n + np.sqrt(f * n)
@@ -193,7 +205,7 @@ def storage_factor(near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime: Arr
 
 
 @check.public
-def storage_factor_optimal(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> Array:
+def storage_factor_optimal(near: ArrayLike | View, far: ArrayLike | None = None, fov: ArrayLike | None = None) -> Array:
     """S̄ of the logarithmic parameterization, ln(f/n)/(2 tanθ) (Lloyd et al. 2006 App. C).
 
     Example
@@ -201,12 +213,15 @@ def storage_factor_optimal(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> A
     >>> round(float(storage_factor_optimal(1.0, 100.0, 90.0)), 6)
     2.302585
     """
+    if isinstance(near, View) and (far is not None or fov is not None):
+        raise ValueError("pass either a View or near, far, fov, not both")
+    near, far, fov, _ = _unpack(near, far, fov, None)
     n, f = check.frustum(near, far)
     return np.log1p((f - n) / n) / (2 * _half_tan(fov))  # App. C; log1p keeps f/n → 1 accurate
 
 
 @check.public
-def critical_resolution(near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime: ArrayLike = np.inf, *, res_image: ArrayLike = 1.0) -> tuple[Array, Array]:
+def critical_resolution(near: ArrayLike | View, far: ArrayLike | None = None, fov: ArrayLike | None = None, n_prime: ArrayLike | None = None, *, res_image: ArrayLike = 1.0) -> tuple[Array, Array]:
     """Critical resolutions (res*_s, res*_t) [texels] at which M_x = M_z = 1 (Lloyd 2006 §4.2).
 
     Their product is the critical storage S* = res_i²·S̄ (eq. 12).
@@ -217,6 +232,7 @@ def critical_resolution(near: ArrayLike, far: ArrayLike, fov: ArrayLike, n_prime
     >>> float(rs), float(rt)
     (10240.0, 5068.8)
     """
+    near, far, fov, n_prime = _unpack(near, far, fov, n_prime)
     rs = max_error_x(near, far, n_prime, res_image=res_image)
     rt = max_error_z(near, far, fov, n_prime, res_image=res_image)
     return rs, rt

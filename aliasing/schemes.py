@@ -202,7 +202,7 @@ def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = Non
     groups: dict[int, list[int]] = {}
     for i, sch in enumerate(parsed):
         if sch.faces:
-            results[i] = _evaluate_faces(sch, view, lv, edges, **options)
+            results[i] = _evaluate_faces(sch, view, lv, edges, chunk, **options)
         else:
             groups.setdefault(-1 if edges is not None else sch.k, []).append(i)
     parts = {k: (n_e, f_e) if k == -1 else z_partitions(view.near, view.far, k) for k in groups}
@@ -239,16 +239,19 @@ def _maps(sch: Scheme, sf: directional.SliceFit, gamma: Array, options: dict) ->
     return M_x, M_z, npr, _eta_or_nan(npr, n_i, f_i, sf.depth)
 
 
-def _evaluate_faces(sch: Scheme, view: View, light: Array, edges: ArrayLike | None, **options: ArrayLike) -> Result:
+def _evaluate_faces(sch: Scheme, view: View, light: Array, edges: ArrayLike | None, chunk: int = CHUNK, **options: ArrayLike) -> Result:
     """Face partitioning through :func:`aliasing.faces.face_errors` (options: tau0, tau1)."""
     if edges is not None:
         raise ValueError(f"edges apply to z-partitions, not to the face partitions of {sch.name}")
     unknown = set(options) - {"tau0", "tau1"}
     if unknown:
         raise ValueError(f"unknown options for {sch.name}: {', '.join(sorted(unknown))}; face partitions take tau0, tau1")
-    r = faces.face_errors(sch.faces, sch.parameterization, view, light, k=sch.k, **{k: float(v) for k, v in options.items()})
-    nan = np.full(r.M_x.shape, np.nan)
-    return Result(sch, r.M_x, r.M_z, r.S, nan, nan, r.M_x.shape[1])
+    opts = {k: float(v) for k, v in options.items()}
+    # blocks of directions bound the (N, 4, H, k, 4, 3) vertex temporaries of the face frames
+    parts = [faces.face_errors(sch.faces, sch.parameterization, view, light[s : s + chunk], k=sch.k, **opts) for s in range(0, len(light), chunk)]
+    M_x, M_z, S = (np.concatenate([getattr(r, a) for r in parts]) for a in ("M_x", "M_z", "S"))
+    nan = np.full(M_x.shape, np.nan)
+    return Result(sch, M_x, M_z, S, nan, nan, M_x.shape[1])
 
 
 def _explicit_partitions(edges: ArrayLike | tuple[ArrayLike, ArrayLike], near: float, far: float) -> tuple[Array, Array]:
@@ -268,6 +271,8 @@ def _explicit_partitions(edges: ArrayLike | tuple[ArrayLike, ArrayLike], near: f
 
 
 def _eta_or_nan(npr: Array, n_i: Array, f_i: Array, depth: Array) -> Array:
+    if np.isinf(npr).all():  # uniform maps: eq. 120 inverted gives exactly −1 (n′/f′ = 1)
+        return np.full(np.broadcast(npr, depth).shape, -1.0)
     ng = depth * n_i / (f_i - n_i)
     inside = npr >= ng * (1 - 1e-12)
     return np.where(inside, warping.eta_checked(np.where(inside, npr, ng), n_i, f_i, ng), np.nan)

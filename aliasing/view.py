@@ -102,7 +102,7 @@ class View:
     @property
     def theta_deg(self) -> float | Array:
         """Half field of view θ [deg] (exactly fov/2)."""
-        return self.fov / 2 if self.shape == () else np.asarray(self.fov) / 2
+        return self.fov / 2
 
     @property
     def tan_theta(self) -> float | Array:

@@ -181,3 +181,19 @@ def test_slice_errors_equal_the_vertex_maxima_exactly():
     np.testing.assert_allclose(lf.x, ref.x, rtol=0, atol=1e-12 * 1000)
     np.testing.assert_allclose(lf.y, ref.y, rtol=0, atol=1e-12 * 1000)
     np.testing.assert_array_equal(lf.eye_depth, ref.eye_depth)
+
+
+def test_error_closed_forms_accept_a_view():
+    from aliasing import error
+
+    v = View([1.0, 2.0], 100.0, 90.0)
+    np.testing.assert_array_equal(error.storage_factor(v, 11.0), error.storage_factor([1.0, 2.0], 100.0, 90.0, 11.0))
+    np.testing.assert_array_equal(error.storage_factor(v), error.storage_factor([1.0, 2.0], 100.0, 90.0))
+    np.testing.assert_array_equal(error.max_error_z(v, n_prime=11.0), error.max_error_z([1.0, 2.0], 100.0, 90.0, 11.0))
+    np.testing.assert_array_equal(error.storage_factor_optimal(v), error.storage_factor_optimal([1.0, 2.0], 100.0, 90.0))
+    for a, b in zip(error.critical_resolution(v, 11.0, res_image=1024), error.critical_resolution([1.0, 2.0], 100.0, 90.0, 11.0, res_image=1024)):
+        np.testing.assert_array_equal(a, b)
+    with pytest.raises(ValueError, match="View"):
+        error.storage_factor_optimal(v, 100.0)
+    with pytest.raises(ValueError, match="fov"):
+        error.storage_factor(1.0, 100.0)
