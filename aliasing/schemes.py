@@ -211,11 +211,12 @@ def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = Non
         block = lv[start : start + chunk]
         frame = directional.light_frame(view, block)
         gamma = directional.folded_gamma(block)[None]
+        azimuth = geometry.direction_angles(block)[1][None]  # for rules of the full geometry (warping.CONTEXT)
         for k, ids in groups.items():
             n_i, f_i = parts[k]
             sf = directional.slice_fit(frame, n_i, f_i)
             for i in ids:
-                out[i][:, :, start : start + chunk] = _maps(parsed[i], sf, gamma, options)
+                out[i][:, :, start : start + chunk] = _maps(parsed[i], sf, gamma, azimuth, options)
     for k, ids in groups.items():
         n_i, _ = parts[k]
         for i in ids:
@@ -228,13 +229,13 @@ def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = Non
     return results  # type: ignore[return-value]
 
 
-def _maps(sch: Scheme, sf: directional.SliceFit, gamma: Array, options: dict) -> tuple[Array, ...]:
+def _maps(sch: Scheme, sf: directional.SliceFit, gamma: Array, azimuth: Array, options: dict) -> tuple[Array, ...]:
     """M_x, M_z, n′, η ``(K, N)`` of one scheme's maps on fitted slices."""
     n_i, f_i, fov = sf.near, sf.far, sf.frame.view.fov
     if sch.rule == "sopt":
         npr = _s_optimal(sf, sch.parameterization)
     else:
-        npr = np.broadcast_to(warping.warping_parameter(sch.rule, n_i, f_i, fov=fov, gamma=gamma, depth=sf.depth, **options), sf.depth.shape)
+        npr = np.broadcast_to(warping.warping_parameter(sch.rule, n_i, f_i, fov=fov, gamma=gamma, depth=sf.depth, azimuth=azimuth, **options), sf.depth.shape)
     M_x, M_z = directional.slice_errors(sf, npr, sch.parameterization)
     return M_x, M_z, npr, _eta_or_nan(npr, n_i, f_i, sf.depth)
 

@@ -53,10 +53,12 @@ def register(name: str, source: str, summary: str) -> Callable:
     return wrap
 
 
-CONTEXT = ("fov", "gamma", "depth")
+CONTEXT = ("fov", "gamma", "depth", "azimuth")
 """Geometry a rule may take besides near and far: the full field of view [deg], the angle
-γ between view direction and direction to the light [deg], and the light-space depth D
-[world units] of the body the warping frustum is fitted to (f − n for an overhead light)."""
+γ between view direction and direction to the light [deg], the light-space depth D
+[world units] of the body the warping frustum is fitted to (f − n for an overhead light),
+and the light's azimuth around the view direction [deg] (:func:`aliasing.geometry.direction_angles`),
+for rules that use the direction's full geometry rather than γ alone."""
 
 
 def warping_parameter(method: str, near: ArrayLike, far: ArrayLike, **options: ArrayLike) -> NDArray[np.float64]:
@@ -70,7 +72,7 @@ def warping_parameter(method: str, near: ArrayLike, far: ArrayLike, **options: A
     near, far : array_like
         Eye near and far plane distances [world units], ``0 < near < far``.
     **options
-        The geometry of :data:`CONTEXT` (``fov``, ``gamma``, ``depth``), passed on only to
+        The geometry of :data:`CONTEXT` (``fov``, ``gamma``, ``depth``, ``azimuth``), passed on only to
         rules that use it, and rule-specific parameters (``eta`` for the η rule), which
         are an error for rules that do not take them.
 
