@@ -108,7 +108,8 @@ def _differences(a: Array, same: NDArray[np.bool_], axis: int, spacing: float) -
     """Central difference of a along an image axis (1 = u, 0 = v); NaN where not ``same``."""
     fwd = np.roll(a, -1, axis=axis)
     bwd = np.roll(a, 1, axis=axis)
-    d = np.where(same[(...,) + (None,) * (a.ndim - same.ndim)], (fwd - bwd) / (2 * spacing), np.nan)
+    with np.errstate(invalid="ignore"):  # inf − inf off the map's partition: masked below
+        d = np.where(same[(...,) + (None,) * (a.ndim - same.ndim)], (fwd - bwd) / (2 * spacing), np.nan)
     return d
 
 

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from .core import CHUNK, MAX_RESOLUTION, DepthMap, _triangles, check_resolution, clip_near, rasterize
 from .eye import EyeBuffer, eye_pass, project
-from .facemaps import MapSet, frame_map, map_set, near_face_map
+from .facemaps import MapSet, fixed_face_map, frame_map, map_set, near_face_map
 from .lightmap import LightMap, _unit_vector, light_map, light_maps
 from .shadow import log_row_centres, shadow_map
 
@@ -33,5 +33,5 @@ _clip_near = clip_near  # the former private name
 
 __all__ = [
     "CHUNK", "MAX_RESOLUTION", "DepthMap", "EyeBuffer", "LightMap", "MapSet", "check_resolution", "clip_near", "eye_pass",
-    "frame_map", "light_map", "light_maps", "log_row_centres", "map_set", "near_face_map", "project", "rasterize", "shadow_map",
+    "fixed_face_map", "frame_map", "light_map", "light_maps", "log_row_centres", "map_set", "near_face_map", "project", "rasterize", "shadow_map",
 ]
