@@ -1,14 +1,16 @@
 """Occlusion culling for scenes with much overdraw (the eye pass): the same z-buffer, less work.
 
 Triangles are rasterized nearest first (sorted by their nearest corner's depth), in groups
-of growing size.  Before a group is rasterized, a triangle is skipped when its nearest
-corner lies beyond the farthest depth stored in every :data:`TILE`² tile its bounding box
-touches; a triangle's depth is a weighted mean of its corners' (weights b/w ≥ 0), so none of
+of at most :data:`GROUP`·R rows.  Before a group is rasterized, a triangle is skipped when its
+nearest corner lies beyond the farthest depth stored in every tile (:data:`TILE` rows ×
+:data:`BLOCK` columns) its bounding box touches; a triangle's depth is a weighted mean of its corners' (weights b/w ≥ 0), so none of
 its texels could win.  Before each batch of texels is generated, every covered span is cut at blocks of
 :data:`BLOCK` columns, and a piece is skipped when its nearest depth lies beyond the
 farthest depth already stored in its block: every texel of the piece would lose the depth
 test.  Depth along a span is monotone (a ratio of affine functions with a positive
-denominator), so a piece's nearest depth is at one of its ends, less a rounding margin.
+denominator), so a piece's nearest depth is at one of its ends.  Both tests keep a
+rounding margin of :data:`MARGIN` times the triangle's largest corner depth (interpolation
+rounds relative to it), so no texel that could win is ever skipped.
 
 The merge is order-independent, so the result does not depend on the drawing order: each
 texel keeps the minimum depth and, among the triangles reaching it exactly, the highest
@@ -40,7 +42,7 @@ BLOCK = 16
 GROUP = 4
 #: Tile side [texels] of the triangle test: a triangle is skipped when its box lies behind its tiles.
 TILE = 16
-#: Relative margin on a piece's nearest depth for rounding (never skip a texel that could win).
+#: Rounding margin of the tests, relative to the triangle's depth scale (never skip a texel that could win).
 MARGIN = 1e-9
 
 
@@ -54,7 +56,8 @@ def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv
     """
     order = np.argsort(dep[idx].min(axis=1), kind="stable")
     idx, x0, x1, y0, height = idx[order], x0[order], x1[order], y0[order], height[order]
-    near = dep[idx].min(axis=1)  # a triangle's depth is a weighted mean of its corners': never nearer
+    scale = np.abs(dep).max(axis=1)  # per triangle: interpolated depths round relative to it
+    near = dep[idx].min(axis=1) - MARGIN * scale[idx]  # a weighted mean of the corners' depths is never nearer
     y1 = y0 + height - 1
     cum = np.cumsum(height)
     far = _block_far(depth, res)
@@ -67,7 +70,7 @@ def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv
         a = b
         if sel.size:
             sp = row_spans(idx[sel], x0[sel], x1[sel], y0[sel], height[sel], sx, ty, row_coord, dep, inv_w, area2, res)
-            merge_visible(sp, res, chunk, depth, ident, far)
+            merge_visible(sp, res, chunk, depth, ident, far, scale)
 
 
 def _block_far(depth: Array, res: int) -> Array:
@@ -97,13 +100,14 @@ def _visible_boxes(near: Array, x0, x1, y0, y1, res: int, far: Array) -> NDArray
     box, k = expand(count)
     tiles = tiles_far[ty0[box] + k // nx[box], tx0[box] + k % nx[box]]
     box_far = np.maximum.reduceat(tiles, np.cumsum(count) - count)
-    return ~(near - MARGIN * np.abs(near) > box_far)
+    return ~(near > box_far)
 
 
-def merge_visible(sp: Spans, res: int, chunk: int, depth: Array, ident: NDArray[np.int64], far: Array) -> None:
+def merge_visible(sp: Spans, res: int, chunk: int, depth: Array, ident: NDArray[np.int64], far: Array, scale: Array) -> None:
     """Merge spans into the z-buffer (min depth, then highest triangle index), skipping hidden pieces.
 
-    ``far``: :func:`_block_far` of ``depth``, refreshed here where texels are drawn.
+    ``far``: :func:`_block_far` of ``depth``, refreshed here where texels are drawn;
+    ``scale``: each triangle's largest absolute corner depth (for the rounding margin).
     """
     col_hi = sp.col_lo + sp.width - 1
     b_lo = sp.col_lo // BLOCK
@@ -117,7 +121,7 @@ def merge_visible(sp: Spans, res: int, chunk: int, depth: Array, ident: NDArray[
         c0 = np.maximum(sp.col_lo[span], blk * BLOCK)
         c1 = np.minimum(col_hi[span], blk * BLOCK + BLOCK - 1)
         near = np.minimum(sp.depth_at(span, c0 + 0.5), sp.depth_at(span, c1 + 0.5))
-        live = ~(near - MARGIN * np.abs(near) > far[row, blk])
+        live = ~(near - MARGIN * scale[sp.t_id[span]] > far[row, blk])
         span, c0, row, blk = span[live], c0[live], row[live], blk[live]
         which, kk = expand(c1[live] - c0 + 1)
         s = span[which]

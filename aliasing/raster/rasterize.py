@@ -10,6 +10,8 @@ helpers other modules of the package use), so ``aliasing.raster.rasterize.X`` ke
 * :mod:`.facemaps`: face-partition maps (:func:`frame_map`, :func:`near_face_map`,
   :func:`fixed_face_map`) and :func:`map_set`;
 * :mod:`.shadow`: :func:`shadow_map` and the logarithmic rasterization (:func:`log_row_centres`);
+* :mod:`.occlusion`: front-to-back occlusion culling with an order-independent merge (the
+  same buffers as :func:`rasterize`), used by the eye pass;
 * :mod:`.eye`: the eye pass (:func:`eye_pass`, :func:`project`).
 
 Example
