@@ -54,9 +54,33 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
 
     The eye is at the origin looking along +z, x right, y up, square image of full field of
     view ``fov`` [deg]; triangles are clipped at z = ``near`` [world units].  Visibility is
-    a z-buffer on 1/z (affine in the image for planar triangles); each visible pixel's
-    position is recomputed exactly as the intersection of its pixel-centre ray with the
-    triangle's plane.  A scene wholly behind the eye gives an empty buffer (all −1 / NaN).
+    a z-buffer on 1/z (affine in the image for planar triangles), rasterized nearest first
+    with occlusion culling (:mod:`.occlusion`: the buffers of the plain z-buffer, ties to
+    the highest triangle index); each visible pixel's position is recomputed exactly as the
+    intersection of its pixel-centre ray with the triangle's plane.  A scene wholly behind
+    the eye gives an empty buffer (all −1 / NaN).
+
+    Parameters
+    ----------
+    triangles : array_like, shape (T, 3, 3)
+        Eye-space triangles [world units].
+    fov : float
+        Full field of view [deg], in (0, 180).
+    resolution : int
+        R, pixels per side, 1 ≤ R ≤ :data:`~aliasing.raster.MAX_RESOLUTION`.
+    near : float
+        Clipping distance [world units], > 0.
+    chunk : int
+        Rows, or texels, per vectorized step (bounds the temporaries), ≥ 1.
+
+    Returns
+    -------
+    EyeBuffer
+
+    Raises
+    ------
+    ValueError
+        Malformed ``triangles``, or a parameter outside its range (named in the message).
 
     Example
     -------

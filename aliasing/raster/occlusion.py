@@ -66,7 +66,7 @@ def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv
         b = max(int(np.searchsorted(cum, (cum[a - 1] if a else 0) + min(GROUP * res, chunk), side="right")), a + 1)
         sel = np.arange(a, b)
         if a:  # skip triangles whose bounding box lies wholly behind the stored depths
-            sel = sel[_visible_boxes(near[a:b], x0[a:b], x1[a:b], y0[a:b], y1[a:b], res, far)]
+            sel = sel[_visible_boxes(near[a:b], x0[a:b], x1[a:b], y0[a:b], y1[a:b], res, far, chunk)]
         a = b
         if sel.size:
             sp = row_spans(idx[sel], x0[sel], x1[sel], y0[sel], height[sel], sx, ty, row_coord, dep, inv_w, area2, res)
@@ -91,15 +91,22 @@ def _refresh(far: Array, depth: Array, res: int, row: NDArray[np.int64], blk: ND
     far[row, blk] = m[:, 0]
 
 
-def _visible_boxes(near: Array, x0, x1, y0, y1, res: int, far: Array) -> NDArray[np.bool_]:
-    """False for a bounding box whose every tile's farthest stored depth is nearer than ``near``."""
+def _visible_boxes(near: Array, x0, x1, y0, y1, res: int, far: Array, chunk: int) -> NDArray[np.bool_]:
+    """False for a bounding box whose every tile's farthest stored depth is nearer than ``near``.
+
+    Tiles are expanded per box in groups of at most ``chunk`` tiles (bounded memory).
+    """
     tiles_far = np.maximum.reduceat(far, np.arange(0, res, TILE), axis=0)  # (tiles, blocks): TILE rows × BLOCK columns
     tx0, tx1, ty0, ty1 = x0 // BLOCK, x1 // BLOCK, y0 // TILE, y1 // TILE
     nx = tx1 - tx0 + 1
     count = nx * (ty1 - ty0 + 1)
-    box, k = expand(count)
-    tiles = tiles_far[ty0[box] + k // nx[box], tx0[box] + k % nx[box]]
-    box_far = np.maximum.reduceat(tiles, np.cumsum(count) - count)
+    box_far = np.empty(near.size)
+    bounds = chunk_bounds(count, chunk).tolist()
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        box, k = expand(count[a:b])
+        box += a
+        tiles = tiles_far[ty0[box] + k // nx[box], tx0[box] + k % nx[box]]
+        box_far[a:b] = np.maximum.reduceat(tiles, np.cumsum(count[a:b]) - count[a:b])
     return ~(near > box_far)
 
 
