@@ -121,7 +121,7 @@ def fixed_face_map(near: float, far: float, fov: float, light: ArrayLike, face: 
     kind = check.choice(parameterization, "parameterization", faces.FACE_PARAMETERIZATIONS)
     lv = _unit_vector(light, "light")
     normal, centre, across, _ = faces.side_frames(fv)
-    if abs(lv @ normal[j]) < 1e-9:
+    if not abs(lv @ normal[j]) > 1e-12:  # the edge-on test of aliasing.faces.chosen_faces
         raise ValueError(f"light must not lie in the {face} face's plane (the face is then edge-on, no map), got {lv!r}")
     x_l, z_l = np.cross(lv, centre[j]), np.cross(across[j], lv)
     x_l, z_l = x_l / np.linalg.norm(x_l), z_l / np.linalg.norm(z_l)
