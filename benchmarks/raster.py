@@ -10,8 +10,14 @@ orthographic ray per texel through its centre mapped back to the light plane, BV
 included) is timed the same way; the script prints raster / ray-cast time and the fraction of
 texels whose depths agree (:func:`aliasing.raster.raycast.agreement`).  Without embreex
 (``pip install 'aliasing[bench]'``) it says so on one line and skips that part.
-Then, once per resolution and outside the timings, the peak of traced allocations
-(tracemalloc) of one LogP map.  Pin one core with e.g. ``taskset -c 0`` and
+The eye pass (occlusion-culled, :mod:`aliasing.raster.occlusion`) is timed interleaved with
+the three depth maps (one round = each map, then the eye pass, then the plain reference eye
+pass of before issue 12 — :func:`reference_eye_pass`, the plain z-buffer in triangle order
+and masked positions — so that load changes hit all alike); the script prints eye pass /
+depth map for each map, the speed-up over the reference, whether the buffers are identical,
+wall-clock (best of the rounds) and CPU time (process_time, best of the rounds), and the
+load average (os.getloadavg) before and after.  Then, once per resolution and outside the
+timings, the peak of traced allocations (tracemalloc) of one LogP map.  Pin one core with e.g. ``taskset -c 0`` and
 ``OMP_NUM_THREADS=1``; the rasterizer itself does not use threads, and Embree's threads
 (TBB, BVH build only) are held to the pinned core.
 
@@ -19,7 +25,8 @@ Usage::
 
     python benchmarks/raster.py                       # 2048², best of 3
     python benchmarks/raster.py --res 2048 4096 --repeats 5
-    python benchmarks/raster.py --no-raycast          # without the reference
+    python benchmarks/raster.py --no-raycast          # without the ray-casting reference
+    python benchmarks/raster.py --no-reference        # without the plain (pre-issue-12) eye pass
 """
 
 from __future__ import annotations
@@ -36,6 +43,7 @@ import numpy as np  # noqa: E402
 
 from aliasing import raster  # noqa: E402
 from aliasing.raster import raycast  # noqa: E402
+from aliasing.raster.rasterize import clip_near, project  # noqa: E402
 
 NEAR, FAR, FOV, LIGHT = 1.0, 1000.0, 60.0, "gamma:60@azimuth:20"
 
@@ -49,6 +57,43 @@ def best_of(fn, repeats: int) -> tuple[float, object]:
     return best, out
 
 
+def rounds(fns: dict, repeats: int) -> tuple[dict, dict, dict]:
+    """Interleaved timing: ``repeats`` rounds of every function; best wall and CPU time [s] and the last outputs."""
+    wall = {k: float("inf") for k in fns}
+    cpu = dict(wall)
+    out = {}
+    for _ in range(repeats):
+        for k, fn in fns.items():
+            w0, c0 = time.perf_counter(), time.process_time()
+            out[k] = fn()
+            wall[k] = min(wall[k], time.perf_counter() - w0)
+            cpu[k] = min(cpu[k], time.process_time() - c0)
+    return wall, cpu, out
+
+
+def reference_eye_pass(triangles, fov: float, res: int, near: float = 1e-3):
+    """The eye pass before issue 12 (plain z-buffer in triangle order, masked positions): the reference."""
+    tri = np.asarray(triangles, float)
+    clipped, src = clip_near(tri, near)
+    u, v, z = project(clipped, fov)
+    dm = raster.rasterize(np.stack([u, v, -1.0 / z], axis=-1), res)
+    ident = np.where(dm.triangle >= 0, src[np.maximum(dm.triangle, 0)], -1)
+    t = np.tan(np.radians(fov) / 2)
+    c = (np.arange(res) + 0.5) / res
+    ray = np.stack(np.broadcast_arrays(((2 * c[None, :] - 1) * t), ((2 * c[:, None] - 1) * t), np.ones((res, 1))), axis=-1)
+    a, b, cc = tri[:, 0], tri[:, 1], tri[:, 2]
+    nrm = np.cross(b - a, cc - a)
+    nrm /= np.linalg.norm(nrm, axis=-1, keepdims=True)
+    hit = ident >= 0
+    n_px, a_px, r_px = nrm[ident[hit]], a[ident[hit]], ray[hit]
+    lam = (n_px * a_px).sum(-1) / (n_px * r_px).sum(-1)
+    position = np.full((res, res, 3), np.nan)
+    normal = np.full((res, res, 3), np.nan)
+    position[hit] = r_px * lam[:, None]
+    normal[hit] = np.where(((n_px * r_px).sum(-1) > 0)[:, None], -n_px, n_px)
+    return position, normal, ident
+
+
 def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--res", type=int, nargs="+", default=[2048])
@@ -56,6 +101,7 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--no-memory", action="store_true", help="skip the tracemalloc peak")
     ap.add_argument("--no-raycast", action="store_true", help="skip the ray-casting reference")
+    ap.add_argument("--no-reference", action="store_true", help="skip the plain (pre-issue-12) eye pass")
     args = ap.parse_args(argv)
     cast = not args.no_raycast and raycast.available()
     if not args.no_raycast and not cast:
@@ -79,8 +125,25 @@ def main(argv: list[str] | None = None) -> None:
         # LogP's map covers more of the scene than Standard's (it fits the frustum tighter in t):
         # LogP / P compares the logarithmic rasterization with the same map rasterized straight
         print(f"{res}² LogP / P {times['LogP'] / times['P']:.2f}, LogP / Standard {times['LogP'] / times['Standard']:.2f}, P / Standard {times['P'] / times['Standard']:.2f}")
-        sec, eb = best_of(lambda: raster.eye_pass(scene.triangles, FOV, res), args.repeats)
-        print(f"{res}² eye pass          {sec:7.3f} s   covered {float((eb.triangle >= 0).mean()):6.1%}")
+        # the eye pass against the depth maps, interleaved rounds
+        fns = {name: (lambda lm=lm: raster.shadow_map(scene.triangles, lm, res)) for name, lm in maps.items()}
+        fns["eye"] = lambda: raster.eye_pass(scene.triangles, FOV, res)
+        if not args.no_reference:
+            fns["reference"] = lambda: reference_eye_pass(scene.triangles, FOV, res)
+        load0 = os.getloadavg()[0]
+        wall, cpu, out = rounds(fns, args.repeats)
+        load1 = os.getloadavg()[0]
+        eb = out["eye"]
+        print(f"{res}² eye pass          {wall['eye']:7.3f} s (CPU {cpu['eye']:.3f} s)   covered {float((eb.triangle >= 0).mean()):6.1%}   "
+              f"load average {load0:.2f} before, {load1:.2f} after")
+        for name in maps:
+            print(f"{res}² eye pass / {name:8s} depth map: wall {wall['eye'] / wall[name]:.2f} (map {wall[name]:.3f} s), "
+                  f"CPU {cpu['eye'] / cpu[name]:.2f} (map {cpu[name]:.3f} s)")
+        if "reference" in out:
+            pos, nrm, ident = out["reference"]
+            same = np.array_equal(eb.triangle, ident) and np.array_equal(eb.position, pos, equal_nan=True) and np.array_equal(eb.normal, nrm, equal_nan=True)
+            print(f"{res}² reference eye pass {wall['reference']:7.3f} s (CPU {cpu['reference']:.3f} s)   reference / eye pass {wall['reference'] / wall['eye']:.2f} "
+                  f"(CPU {cpu['reference'] / cpu['eye']:.2f}), reference / Standard {wall['reference'] / wall['Standard']:.2f}; identical buffers: {same}")
         if not args.no_memory:
             tracemalloc.start()
             raster.shadow_map(scene.triangles, maps["LogP"], res)

@@ -4,8 +4,9 @@
   :mod:`.core` (validation, clipping, the vectorized z-buffer :func:`rasterize` for (s, t,
   depth) triangles), :mod:`.coverage` (covered spans and depths), :mod:`.lightmap` (maps
   through the toolkit's parameterizations), :mod:`.facemaps` (face-partition maps, map
-  sets), :mod:`.shadow` (shadow maps; log+perspective by logarithmic rasterization) and
-  :mod:`.eye` (the eye pass: visible position and normal per pixel);
+  sets; face-fixed FP, FPc, FPcs), :mod:`.shadow` (shadow maps; log+perspective by logarithmic rasterization) and
+  :mod:`.eye` (the eye pass: visible position and normal per pixel, its z-buffer culled by
+  :mod:`.occlusion`);
 * :mod:`.scenes`: seeded procedural scenes (ground, boxes, probe planes) and an ASCII
   OBJ/PLY loader;
 * :mod:`.measure`: perspective aliasing measured from sampled positions by finite
@@ -31,6 +32,7 @@ from .rasterize import (
     LightMap,
     MapSet,
     eye_pass,
+    fixed_face_map,
     frame_map,
     light_map,
     light_maps,
@@ -54,6 +56,7 @@ __all__ = [
     "Measurement",
     "Scene",
     "eye_pass",
+    "fixed_face_map",
     "frame_map",
     "ground_and_boxes",
     "light_map",

@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
+from . import occlusion
 from .coverage import chunk_bounds, rasterize_rows
 
 Array = NDArray[np.float64]
@@ -74,6 +75,13 @@ def check_resolution(resolution: int, name: str = "resolution") -> int:
     if r < 1 or r > MAX_RESOLUTION:
         raise ValueError(f"{name} must be in [1, {MAX_RESOLUTION}] (larger maps do not fit in memory), got {r}")
     return r
+
+
+def check_chunk(chunk: int) -> int:
+    """Validate a chunk size: a whole number >= 1."""
+    if isinstance(chunk, bool) or int(chunk) < 1:
+        raise ValueError(f"chunk must be a whole number >= 1, got {chunk!r}")
+    return int(chunk)
 
 
 def _triangles(triangles: ArrayLike, name: str = "triangles") -> Array:
@@ -124,9 +132,7 @@ def rasterize(triangles: ArrayLike, resolution: int, *, w: ArrayLike | None = No
     """
     tri = _triangles(triangles)
     res = check_resolution(resolution)
-    if isinstance(chunk, bool) or int(chunk) < 1:
-        raise ValueError(f"chunk must be a whole number >= 1, got {chunk!r}")
-    chunk = int(chunk)
+    chunk = check_chunk(chunk)
     n_tri = tri.shape[0]
     if w is None:
         inv_w = np.ones((n_tri, 3))
@@ -146,6 +152,15 @@ def rasterize(triangles: ArrayLike, resolution: int, *, w: ArrayLike | None = No
             raise ValueError(f"row_centres must be {res} increasing values (one per row)")
         uniform_rows = False
 
+    return zbuffer(tri, res, inv_w, rows, uniform_rows, chunk)
+
+
+def zbuffer(tri: Array, res: int, inv_w: Array, rows: Array, uniform_rows: bool, chunk: int, *, front_to_back: bool = False) -> DepthMap:
+    """:func:`rasterize` on checked arguments (``inv_w`` = 1/w, ``rows`` the row centres).
+
+    ``front_to_back``: rasterize the triangles nearest first and skip, block by block, the
+    spans already hidden (:mod:`.occlusion`); the same buffers, for scenes with much overdraw.
+    """
     # texel units for s (and t when rows are uniform): keeps edge functions well scaled
     sx = tri[:, :, 0] * res
     ty = tri[:, :, 1] * res if uniform_rows else tri[:, :, 1]
@@ -154,7 +169,7 @@ def rasterize(triangles: ArrayLike, resolution: int, *, w: ArrayLike | None = No
     finite = np.isfinite(tri).all(axis=(1, 2)) & np.isfinite(inv_w).all(axis=1)
     good = finite & (area2 != 0) & np.isfinite(area2)
     good &= np.abs(area2) > 1e-12 * (np.ptp(sx, axis=1) * np.ptp(ty, axis=1) + 1e-300)
-    degenerate = int(n_tri - good.sum())
+    degenerate = int(tri.shape[0] - good.sum())
 
     depth = np.full(res * res, np.inf)
     ident = np.full(res * res, -1, dtype=np.int64)
@@ -170,12 +185,14 @@ def rasterize(triangles: ArrayLike, resolution: int, *, w: ArrayLike | None = No
     if idx.size:
         height = y1 - y0 + 1
         dep = tri[:, :, 2]
-        # groups of triangles with at most `chunk` rows in all (a tall triangle alone may exceed it)
-        bounds = chunk_bounds(height, chunk)
-        for a, b in zip(bounds[:-1], bounds[1:]):
-            rasterize_rows(idx[a:b], x0[a:b], x1[a:b], y0[a:b], height[a:b], sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident)
+        if front_to_back:
+            occlusion.rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident)
+        else:
+            # groups of triangles with at most `chunk` rows in all (a tall triangle alone may exceed it)
+            bounds = chunk_bounds(height, chunk)
+            for a, b in zip(bounds[:-1], bounds[1:]):
+                rasterize_rows(idx[a:b], x0[a:b], x1[a:b], y0[a:b], height[a:b], sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident)
     return DepthMap(depth.reshape(res, res), ident.reshape(res, res), res, int(good.sum()), degenerate)
-
 
 
 def clip_near(tri: Array, z_clip: float) -> tuple[Array, NDArray[np.int64]]:

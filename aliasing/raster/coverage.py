@@ -13,6 +13,8 @@ size, and the work is the covered area plus a few tests per row.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -31,7 +33,7 @@ def chunk_bounds(size: NDArray[np.int64], chunk: int) -> NDArray[np.int64]:
     return np.asarray(bounds)
 
 
-def _expand(counts: NDArray[np.int64]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+def expand(counts: NDArray[np.int64]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
     """(owner, k) for k in range(counts[owner]), for every owner: the vectorized double loop."""
     owner = np.repeat(np.arange(counts.size), counts)
     first = np.cumsum(counts) - counts
@@ -57,14 +59,38 @@ def _inside(edges, px: Array, py: Array) -> NDArray[np.bool_]:
     return ok
 
 
+class Spans(NamedTuple):
+    """The non-empty covered spans of (triangle, row) pairs: texels col_lo … col_lo + width − 1
+    of ``row`` belong to triangle ``t_id``; along the row d/w = n0 + n1·px and 1/w = m0 + m1·px
+    (px the texel centre's column coordinate), so the depth is their ratio."""
+
+    row: NDArray[np.int64]
+    t_id: NDArray[np.int64]
+    col_lo: NDArray[np.int64]
+    width: NDArray[np.int64]
+    n0: Array
+    n1: Array
+    m0: Array
+    m1: Array
+
+    def depth_at(self, span: NDArray[np.int64], px: Array) -> Array:
+        """Interpolated depth of span ``span`` at column coordinate ``px`` (the one formula)."""
+        return (self.n0[span] + self.n1[span] * px) / (self.m0[span] + self.m1[span] * px)
+
+
 def rasterize_rows(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident) -> None:
-    """Exact covered span of every (triangle, row), then depth on the span's texels.
+    """Rasterize a group of triangles: their spans (:func:`row_spans`) merged into the z-buffer."""
+    merge(row_spans(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res), res, chunk, depth, ident)
+
+
+def row_spans(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res) -> Spans:
+    """Exact covered span of every (triangle, row) and the depth along it.
 
     Each edge function is monotone along a row (also in rounded arithmetic), so the covered
     texels of a row are an interval; its ends are estimated from the edges' intersections
     with the row's centre line and settled by the exact predicate at the estimate ± 1.
     """
-    owner, k = _expand(height)
+    owner, k = expand(height)
     row = y0[owner] + k
     y = row_coord[row]
     t_id = idx[owner]
@@ -116,15 +142,22 @@ def rasterize_rows(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2
     live = width > 0
     row, t_id, col_lo, width = row[live], t_id[live], col_lo[live], width[live]
     n0, n1, m0, m1 = n0[live], n1[live], m0[live], m1[live]
-    bounds = chunk_bounds(width, chunk)
+    return Spans(row, t_id, col_lo, width, n0, n1, m0, m1)
+
+
+def merge(sp: Spans, res: int, chunk: int, depth: Array, ident: NDArray[np.int64]) -> None:
+    """Expand spans into texels, in chunks of at most ``chunk``, and merge them into the z-buffer.
+
+    ``depth`` keeps the minimum; ``ident`` the triangle of the last texel drawn at that
+    minimum: spans come in increasing triangle order, so ties go to the highest index.
+    """
+    bounds = chunk_bounds(sp.width, chunk)
     for a, b in zip(bounds[:-1], bounds[1:]):
-        span, kk = _expand(width[a:b])
+        span, kk = expand(sp.width[a:b])
         span += a
-        col = col_lo[span] + kk
-        px = col + 0.5
-        z = (n0[span] + n1[span] * px) / (m0[span] + m1[span] * px)
-        pix = row[span] * res + col
+        col = sp.col_lo[span] + kk
+        z = sp.depth_at(span, col + 0.5)
+        pix = sp.row[span] * res + col
         np.minimum.at(depth, pix, z)
         win = z <= depth[pix]
-        ident[pix[win]] = t_id[span[win]]
-
+        ident[pix[win]] = sp.t_id[span[win]]

@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
-from .core import CHUNK, _triangles, check_resolution, clip_near, rasterize
+from .core import CHUNK, _triangles, check_chunk, check_resolution, clip_near, zbuffer
 
 Array = NDArray[np.float64]
 
@@ -54,9 +54,33 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
 
     The eye is at the origin looking along +z, x right, y up, square image of full field of
     view ``fov`` [deg]; triangles are clipped at z = ``near`` [world units].  Visibility is
-    a z-buffer on 1/z (affine in the image for planar triangles); each visible pixel's
-    position is recomputed exactly as the intersection of its pixel-centre ray with the
-    triangle's plane.  A scene wholly behind the eye gives an empty buffer (all −1 / NaN).
+    a z-buffer on 1/z (affine in the image for planar triangles), rasterized nearest first
+    with occlusion culling (:mod:`.occlusion`: the buffers of the plain z-buffer, ties to
+    the highest triangle index); each visible pixel's position is recomputed exactly as the
+    intersection of its pixel-centre ray with the triangle's plane.  A scene wholly behind
+    the eye gives an empty buffer (all −1 / NaN).
+
+    Parameters
+    ----------
+    triangles : array_like, shape (T, 3, 3)
+        Eye-space triangles [world units].
+    fov : float
+        Full field of view [deg], in (0, 180).
+    resolution : int
+        R, pixels per side, 1 ≤ R ≤ :data:`~aliasing.raster.MAX_RESOLUTION`.
+    near : float
+        Clipping distance [world units], > 0.
+    chunk : int
+        Rows, or texels, per vectorized step (bounds the temporaries), ≥ 1.
+
+    Returns
+    -------
+    EyeBuffer
+
+    Raises
+    ------
+    ValueError
+        Malformed ``triangles``, or a parameter outside its range (named in the message).
 
     Example
     -------
@@ -69,29 +93,37 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     res = check_resolution(resolution)
     fv = float(check.fov(fov))
     zc = float(check.positive(near, "near"))
+    chunk = check_chunk(chunk)
     clipped, src = clip_near(tri, zc)
     if clipped.shape[0] == 0:
         empty = np.full((res, res, 3), np.nan)
         return EyeBuffer(empty, empty.copy(), np.full((res, res), -1, np.int64), res, fv)
     u, v, z = project(clipped, fv)
-    # depth key: -1/z is affine in (u, v) over a plane and increases with z
-    dm = rasterize(np.stack([u, v, -1.0 / z], axis=-1), res, chunk=chunk)
-    ident = np.where(dm.triangle >= 0, src[np.maximum(dm.triangle, 0)], -1)
-    # exact positions: ray through pixel centre ∩ plane of the source triangle
+    # depth key: -1/z is affine in (u, v) over a plane and increases with z; the eye sees
+    # much overdraw, so hidden triangles and pieces of spans are culled (front_to_back)
+    key = np.stack([u, v, -1.0 / z], axis=-1)
+    dm = zbuffer(key, res, np.ones((key.shape[0], 3)), (np.arange(res) + 0.5) / res, True, chunk, front_to_back=True)
+    ident = np.append(src, -1).take(dm.triangle)  # -1 (empty) picks the appended -1
+    # exact positions: the ray (X, Y, 1) through the pixel centre ∩ the source triangle's
+    # plane n·p = n·a, so p = λ(X, Y, 1) with λ = n·a / (n_x X + n_y Y + n_z).  Per-triangle
+    # tables end in a NaN row, which empty pixels (ident −1) pick: no masks over the image.
     t = np.tan(np.radians(fv) / 2)
     c = (np.arange(res) + 0.5) / res
-    ray = np.stack(np.broadcast_arrays(((2 * c[None, :] - 1) * t), ((2 * c[:, None] - 1) * t), np.ones((res, 1))), axis=-1)
+    X, Y = (2 * c - 1) * t, (2 * c[:, None] - 1) * t
     a, b, cc = tri[:, 0], tri[:, 1], tri[:, 2]
     nrm = np.cross(b - a, cc - a)
     nrm /= np.linalg.norm(nrm, axis=-1, keepdims=True)
-    hit = ident >= 0
-    n_px = nrm[ident[hit]]
-    a_px = a[ident[hit]]
-    r_px = ray[hit]
-    lam = (n_px * a_px).sum(-1) / (n_px * r_px).sum(-1)
-    position = np.full((res, res, 3), np.nan)
-    normal = np.full((res, res, 3), np.nan)
-    position[hit] = r_px * lam[:, None]
-    facing = np.where(((n_px * r_px).sum(-1) > 0)[:, None], -n_px, n_px)
-    normal[hit] = facing
+    rows = np.ascontiguousarray(np.vstack([nrm, np.full((1, 3), np.nan)])).view(np.dtype((np.void, 24))).ravel()
+    normal = rows.take(ident).view(np.float64).reshape(res, res, 3)  # whole rows at once: one gather
+    den = normal[..., 0] * X
+    den += normal[..., 1] * Y
+    den += normal[..., 2]  # n·(X, Y, 1), summed in a dot product's order
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lam = np.append((nrm * a).sum(-1), np.nan).take(ident)
+        lam /= den
+    position = np.empty((res, res, 3))
+    np.multiply(X, lam, out=position[..., 0])
+    np.multiply(Y, lam, out=position[..., 1])
+    position[..., 2] = lam
+    np.negative(normal, out=normal, where=(den > 0)[..., None])  # face the eye: −n where n·ray > 0
     return EyeBuffer(position, normal, ident, res, fv)

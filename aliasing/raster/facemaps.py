@@ -1,7 +1,7 @@
 """Face-partition maps (Lloyd 2007 §6.1.3, §6.5) and the map set of any scheme for one light.
 
-:func:`frame_map` builds an FPc / FPcs side face's adjusted frame, :func:`near_face_map` the
-near face's uniform map, and :func:`map_set` the maps of any scheme with which map shades
+:func:`frame_map` builds an FPc / FPcs side face's adjusted frame, :func:`fixed_face_map` an
+FP side face's map in the face's own plane, :func:`near_face_map` the near face's uniform map, and :func:`map_set` the maps of any scheme with which map shades
 which point.
 """
 
@@ -78,6 +78,68 @@ def frame_map(light: ArrayLike, axis: ArrayLike, y0: float, y1: float, a: float,
     return LightMap(np.stack([np.cross(lv, ax), lv, ax]), lo, wf, kind, float(npr))
 
 
+def fixed_face_map(near: float, far: float, fov: float, light: ArrayLike, face: str, parameterization: str) -> LightMap:
+    """A side face's face-fixed map (FP, Lloyd 2007 §6.1.3, Fig. 5), as a light-plane map.
+
+    The map's image plane is the face itself: a point's light ray is followed to the face's
+    plane (an oblique projection along l̂) and parameterized in the face's own frame, y along
+    its centre line from the eye over [y0, y1] = [n, f]/cosθ, x across it.  s ∝ x/(y + a)
+    over the face's width at y1 and t is F_p along y with a = √(y0 y1) for
+    ``perspective`` (eqs. 75–76; LiSPSM's parameter, §7), F_lp with a = 0 for
+    ``logperspective`` (eqs. 77–78; App. A), or uniform — as :func:`aliasing.faces.face_errors`
+    ("fp") models it.
+
+    As a :class:`~aliasing.raster.LightMap`: light-plane axes x_L ∝ l̂ × ŷ_f and
+    z_L ∝ x̂_f × l̂ (unit, ⟂ l̂, not orthogonal), so X = x cos φ_lx and Y = y cos φ_ly for the
+    ray meeting the face at (x, y) — the light-beam widths of eqs. 55, 61–62 — and the
+    warping frustum of (x, y) scaled by those factors.
+
+    Parameters
+    ----------
+    near, far : float
+        The face's eye-depth range [world units], 0 < near < far (a depth range's ends for
+        ``FP+ZP<k>``).
+    fov : float
+        Full field of view [deg].
+    light : array_like, shape (3,)
+        Direction towards the light; not in the face's plane (the face is then edge-on).
+    face : {"bottom", "top", "left", "right"}
+    parameterization : {"uniform", "perspective", "logperspective"}
+
+    Example
+    -------
+    >>> lm = fixed_face_map(1.0, 100.0, 60.0, [0.0, 1.0, 0.0], "bottom", "logperspective")
+    >>> s, t, _, _ = lm.coordinates(geometry.frustum_vertices(1.0, 100.0, 60.0)[[0, 1, 4, 5]])   # the face's corners
+    >>> np.round(s, 12).tolist(), np.round(t, 12).tolist()   # LogP's a = 0: s spans the face's wedge at every y
+    ([1.0, 0.0, 1.0, 0.0], [0.0, 0.0, 1.0, 1.0])
+
+    (s runs along x̂_f = n̂ × ŷ_f, which is −x on the bottom face.)
+    """
+    n, f = (float(v) for v in check.frustum(near, far))
+    fv = float(check.fov(fov))
+    j = faces.SIDES.index(check.choice(face, "face", faces.SIDES))
+    kind = check.choice(parameterization, "parameterization", faces.FACE_PARAMETERIZATIONS)
+    lv = _unit_vector(light, "light")
+    normal, centre, across, _ = faces.side_frames(fv)
+    if not abs(lv @ normal[j]) > 1e-12:  # the edge-on test of aliasing.faces.chosen_faces
+        raise ValueError(f"light must not lie in the {face} face's plane (the face is then edge-on, no map), got {lv!r}")
+    x_l, z_l = np.cross(lv, centre[j]), np.cross(across[j], lv)
+    x_l, z_l = x_l / np.linalg.norm(x_l), z_l / np.linalg.norm(z_l)
+    x_l, z_l = x_l * np.sign(x_l @ across[j]), z_l * np.sign(z_l @ centre[j])  # s grows with x, t with y
+    cx, cy = float(x_l @ across[j]), float(z_l @ centre[j])  # cos φ_lx, cos φ_ly (eqs. 55, 61–62)
+    th = np.radians(fv) / 2
+    y0, y1 = n / np.cos(th), f / np.cos(th)  # Fig. 5: the face's ends along its centre line
+    half = y1 * np.sin(th)  # the face's half-width at y1
+    if kind == "uniform":
+        a, npr, x_hi = np.inf, np.inf, cx * half
+    else:
+        a = np.sqrt(y0 * y1) if kind == "perspective" else 0.0  # eq. (76): LiSPSM's a; App. A: a = 0 for LogP
+        npr = cy * (y0 + a)  # the centre of projection at y = −a, in light-plane units
+        x_hi = npr * cx * half / (cy * (y1 + a))  # n′·max X/(Y + a cos φ_ly) over the face
+    wf = directional.WarpingFrustum(n_prime=np.array([[npr]]), depth=np.array([[cy * (y1 - y0)]]), x_lo=np.array([[-x_hi]]), x_hi=np.array([[x_hi]]))
+    return LightMap(np.stack([x_l, lv, z_l]), cy * y0, wf, kind, float(npr))
+
+
 def near_face_map(near: float, fov: float, light: ArrayLike) -> LightMap:
     """The near face's uniform map (face-fixed, Lloyd 2007 §6.1.3), as a light-plane map.
 
@@ -134,14 +196,14 @@ class MapSet:
         Depth split points: z-partitions' C_0 … C_k, or a face's k depth ranges
         (eye depth of the face point a light ray meets) [world units].
     faces : str
-        "" (z-partitions), "fpc" or "fpcs".
+        "" (z-partitions), "fp", "fpc" or "fpcs".
     near, far, fov : float
         The view frustum [world units, deg].
     light : ndarray (3,)
         Unit vector towards the light.
     frames : FaceFrames or None
         The side faces' frames (:func:`aliasing.faces.face_frames`, for this one light) of
-        face partitions; None for z-partitions.
+        FPc / FPcs partitions; None for z-partitions and face-fixed FP.
     """
 
     maps: list[LightMap]
@@ -169,8 +231,9 @@ class MapSet:
             return np.clip(np.searchsorted(self.edges, p[..., 2], side="right") - 1, 0, k - 1)
         face = faces.partition_of(p, self.near, self.far, self.fov, self.light)
         fr = self.frames
-        if fr is None:
+        if fr is None and self.faces != "fp":
             raise ValueError(f"frames must be the face frames of the {self.faces} partitions (see map_set), got None")
+        halves = 1 if fr is None else fr.used.shape[2]
         normal, *_ = faces.side_frames(self.fov)
         lv = self.light
         travel = -lv if lv[2] >= 0 else lv  # eq. (54), as in partition_of
@@ -180,14 +243,14 @@ class MapSet:
             hit = p - ((p * nj).sum(-1) / (nj @ travel))[..., None] * travel  # on the side face's plane
         rng = np.clip(np.searchsorted(self.edges, hit[..., 2], side="right") - 1, 0, k - 1)
         half = np.zeros(face.shape, int)
-        if fr.used.shape[2] == 2:  # FPcs: the side of the split ray (half 0's second edge) holding the point
+        if halves == 2:  # FPcs: the side of the split ray (half 0's second edge) holding the point
             split = fr.edges[0, j, 0, 1]  # (..., 3)
             first = fr.edges[0, j, 0, 0]
             side = np.cross(split, p) @ lv
             ref = np.cross(split, first) @ lv
             half = np.where(fr.used[0, j, 1] & (side * ref < 0), 1, 0)
-        slot = np.where(face == 0, 0, 1 + (j * fr.used.shape[2] + half) * k + rng)
-        lookup = np.full(1 + 4 * fr.used.shape[2] * k, -1)
+        slot = np.where(face == 0, 0, 1 + (j * halves + half) * k + rng)
+        lookup = np.full(1 + 4 * halves * k, -1)
         lookup[self.slots] = np.arange(len(self.maps))
         return lookup[slot]
 
@@ -199,8 +262,9 @@ def map_set(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     ``FPcs+…`` (options ``tau0``, ``tau1``; also with ``+ZP<k>``): the near face's uniform
     map (:func:`near_face_map`) if chosen and each used side-face slot's adjusted frame
     (:func:`aliasing.faces.face_frames`, through :func:`frame_map`) — the same frames
-    :func:`aliasing.faces.face_errors` evaluates.  Face-fixed ``FP+…`` (a projective map
-    in each side face's own plane) is not built: it raises ``ValueError``.
+    :func:`aliasing.faces.face_errors` evaluates.  Face-fixed ``FP+…`` (also ``FP+ZP<k>+…``):
+    the near face's map and each chosen side face's map in its own plane
+    (:func:`fixed_face_map`), per depth range.
 
     Parameters
     ----------
@@ -208,7 +272,7 @@ def map_set(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
         The view frustum (0 < near < far [world units], full field of view [deg]) and one
         light direction, as for :func:`light_map`.
     scheme : str
-        Any scheme of :mod:`aliasing.schemes` except ``FP+…``.
+        Any scheme of :mod:`aliasing.schemes`.
     **options
         Warping-rule options, or ``tau0``, ``tau1`` for face partitions.
 
@@ -229,17 +293,27 @@ def map_set(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     if not sch.faces:
         maps, edges = light_maps(n, f, fv, lv, sch.name, **options)
         return MapSet(maps, np.arange(len(maps)), edges, "", n, f, fv, lv[0])
-    if sch.faces == "fp":
-        raise ValueError(f"scheme {sch.name!r}: face-fixed FP maps (projective in each face's plane) are not rasterized; use FPc or FPcs")
     unknown = set(options) - {"tau0", "tau1"}
     if unknown:
         raise ValueError(f"unknown options for {sch.name}: {', '.join(sorted(unknown))}; face partitions take tau0, tau1")
-    fr = faces.face_frames(sch.faces, sch.parameterization, n, f, fv, lv, k=sch.k, **{key: float(v) for key, v in options.items()})
     maps, slots = [], []
-    if faces.chosen_faces(lv, fv)[0, 0]:
+    chosen = faces.chosen_faces(lv, fv)[0]
+    if chosen[0]:
         maps.append(near_face_map(n, fv, lv[0]))
         slots.append(0)
-    halves, k = fr.used.shape[2], sch.k
+    k = sch.k
+    if sch.faces == "fp":
+        faces.face_errors("fp", sch.parameterization, n, f, fv, lv, k=k, **{key: float(v) for key, v in options.items()})  # validates tau0, tau1
+        depth = n * (f / n) ** (np.arange(k + 1) / k)  # the depth ranges of face_errors
+        depth[-1] = f
+        for j, side in enumerate(faces.SIDES):
+            if chosen[1 + j]:
+                for i in range(k):
+                    maps.append(fixed_face_map(depth[i], depth[i + 1], fv, lv[0], side, sch.parameterization))
+                    slots.append(1 + j * k + i)
+        return MapSet(maps, np.asarray(slots), depth, sch.faces, n, f, fv, lv[0], None)
+    fr = faces.face_frames(sch.faces, sch.parameterization, n, f, fv, lv, k=k, **{key: float(v) for key, v in options.items()})
+    halves = fr.used.shape[2]
     for j in range(4):  # ≤ 4 faces × 2 halves × k ranges
         for h in range(halves):
             if not fr.used[0, j, h]:

@@ -85,7 +85,8 @@ class LightMap:
         weight z′/n′ (1 if uniform).
         """
         x, y, h = self.light_plane(points)
-        s, t, w = self.map_plane(x, y)
+        with np.errstate(divide="ignore", invalid="ignore"):  # at the centre of projection (y = −n′): inf
+            s, t, w = self.map_plane(x, y)
         if self.parameterization == "logperspective" and np.isfinite(self.n_prime):
             with np.errstate(invalid="ignore", divide="ignore"):  # behind the centre of projection: NaN
                 t = np.log1p(y / self.n_prime) / np.log1p(float(self.frustum.depth[0, 0]) / self.n_prime)

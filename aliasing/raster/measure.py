@@ -23,7 +23,7 @@ spans the image, one texel the map, as in :mod:`aliasing.directional`):
 
 Their maxima over dense probes are compared with :func:`aliasing.schemes.evaluate`'s M_x,
 M_z for the same light and parameterization; with ``ZP<k>+…`` schemes each pixel uses the
-map of the z-partition holding its eye depth, with face partitions (``FPc+…``, ``FPcs+…``)
+map of the z-partition holding its eye depth, with face partitions (``FP+…``, ``FPc+…``, ``FPcs+…``)
 the map of its face partition (:meth:`~aliasing.raster.MapSet.assign`), and each map is
 compared with its own bound (:func:`aliasing.faces.face_errors`' per-map M_x, M_z).
 
@@ -108,7 +108,8 @@ def _differences(a: Array, same: NDArray[np.bool_], axis: int, spacing: float) -
     """Central difference of a along an image axis (1 = u, 0 = v); NaN where not ``same``."""
     fwd = np.roll(a, -1, axis=axis)
     bwd = np.roll(a, 1, axis=axis)
-    d = np.where(same[(...,) + (None,) * (a.ndim - same.ndim)], (fwd - bwd) / (2 * spacing), np.nan)
+    with np.errstate(invalid="ignore"):  # inf − inf off the map's partition: masked below
+        d = np.where(same[(...,) + (None,) * (a.ndim - same.ndim)], (fwd - bwd) / (2 * spacing), np.nan)
     return d
 
 
@@ -125,7 +126,7 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
         One light direction (spec or vector towards the light).
     scheme : str
         Scheme (Standard, P, LogP, a warping rule, each alone or after ``ZP<k>+``; or
-        ``FPc+…``, ``FPcs+…``): each pixel is measured in the map of its z- or face partition.
+        ``FP+…``, ``FPc+…``, ``FPcs+…``): each pixel is measured in the map of its z- or face partition.
     resolution : int
         Image resolution R_i [pixels per side].
     cells : int

@@ -10,6 +10,8 @@ helpers other modules of the package use), so ``aliasing.raster.rasterize.X`` ke
 * :mod:`.facemaps`: face-partition maps (:func:`frame_map`, :func:`near_face_map`,
   :func:`fixed_face_map`) and :func:`map_set`;
 * :mod:`.shadow`: :func:`shadow_map` and the logarithmic rasterization (:func:`log_row_centres`);
+* :mod:`.occlusion`: front-to-back occlusion culling with an order-independent merge (the
+  same buffers as :func:`rasterize`), used by the eye pass;
 * :mod:`.eye`: the eye pass (:func:`eye_pass`, :func:`project`).
 
 Example
@@ -25,7 +27,7 @@ from __future__ import annotations
 
 from .core import CHUNK, MAX_RESOLUTION, DepthMap, _triangles, check_resolution, clip_near, rasterize
 from .eye import EyeBuffer, eye_pass, project
-from .facemaps import MapSet, frame_map, map_set, near_face_map
+from .facemaps import MapSet, fixed_face_map, frame_map, map_set, near_face_map
 from .lightmap import LightMap, _unit_vector, light_map, light_maps
 from .shadow import log_row_centres, shadow_map
 
@@ -33,5 +35,5 @@ _clip_near = clip_near  # the former private name
 
 __all__ = [
     "CHUNK", "MAX_RESOLUTION", "DepthMap", "EyeBuffer", "LightMap", "MapSet", "check_resolution", "clip_near", "eye_pass",
-    "frame_map", "light_map", "light_maps", "log_row_centres", "map_set", "near_face_map", "project", "rasterize", "shadow_map",
+    "fixed_face_map", "frame_map", "light_map", "light_maps", "log_row_centres", "map_set", "near_face_map", "project", "rasterize", "shadow_map",
 ]

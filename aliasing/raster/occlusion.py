@@ -1,0 +1,144 @@
+"""Occlusion culling for scenes with much overdraw (the eye pass): the same z-buffer, less work.
+
+Triangles are rasterized nearest first (sorted by their nearest corner's depth), in groups
+of at most :data:`GROUP`·R rows.  Before a group is rasterized, a triangle is skipped when its
+nearest corner lies beyond the farthest depth stored in every tile (:data:`TILE` rows ×
+:data:`BLOCK` columns) its bounding box touches; a triangle's depth is a weighted mean of its corners' (weights b/w ≥ 0), so none of
+its texels could win.  Before each batch of texels is generated, every covered span is cut at blocks of
+:data:`BLOCK` columns, and a piece is skipped when its nearest depth lies beyond the
+farthest depth already stored in its block: every texel of the piece would lose the depth
+test.  Depth along a span is monotone (a ratio of affine functions with a positive
+denominator), so a piece's nearest depth is at one of its ends.  Both tests keep a
+rounding margin of :data:`MARGIN` times the triangle's largest corner depth (interpolation
+rounds relative to it), so no texel that could win is ever skipped.
+
+The merge is order-independent, so the result does not depend on the drawing order: each
+texel keeps the minimum depth and, among the triangles reaching it exactly, the highest
+index, which is what :func:`aliasing.raster.coverage.merge` gives when triangles are drawn in
+index order (the plain :func:`aliasing.raster.rasterize`).
+
+Example
+-------
+>>> import numpy as np
+>>> from aliasing.raster import core
+>>> tri = np.array([[[0, 0, 2.0], [1, 0, 2.0], [0, 1, 2.0]], [[0, 0, 1.0], [1, 0, 1.0], [0, 1, 1.0]]])
+>>> a = core.zbuffer(tri, 8, np.ones((2, 3)), (np.arange(8) + 0.5) / 8, True, 1 << 20, front_to_back=True)
+>>> sorted(np.unique(a.triangle).tolist()), float(a.depth[0, 0])   # the far triangle is hidden
+([-1, 1], 1.0)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .coverage import Spans, chunk_bounds, expand, row_spans
+
+Array = NDArray[np.float64]
+
+#: Columns per culling block (a power of 2): a piece is skipped when wholly behind its block's farthest depth.
+BLOCK = 16
+#: Rows per group of triangles, in units of R: the buffer is culled against between groups.
+GROUP = 4
+#: Tile side [texels] of the triangle test: a triangle is skipped when its box lies behind its tiles.
+TILE = 16
+#: Rounding margin of the tests, relative to the triangle's depth scale (never skip a texel that could win).
+MARGIN = 1e-9
+
+
+def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident) -> None:
+    """Rasterize triangles ``idx`` nearest first, skipping hidden ones and hidden pieces (module docstring).
+
+    Groups of at most :data:`GROUP`·R rows (and ``chunk``): each is culled against the
+    buffer the nearer groups left.  ``far`` (farthest stored depth per row and block of
+    :data:`BLOCK` columns) is kept up to date only where texels were drawn: depths only
+    decrease, so elsewhere it stays exact.
+    """
+    order = np.argsort(dep[idx].min(axis=1), kind="stable")
+    idx, x0, x1, y0, height = idx[order], x0[order], x1[order], y0[order], height[order]
+    scale = np.abs(dep).max(axis=1)  # per triangle: interpolated depths round relative to it
+    near = dep[idx].min(axis=1) - MARGIN * scale[idx]  # a weighted mean of the corners' depths is never nearer
+    y1 = y0 + height - 1
+    cum = np.cumsum(height)
+    far = _block_far(depth, res)
+    a = 0
+    while a < idx.size:
+        b = max(int(np.searchsorted(cum, (cum[a - 1] if a else 0) + min(GROUP * res, chunk), side="right")), a + 1)
+        sel = np.arange(a, b)
+        if a:  # skip triangles whose bounding box lies wholly behind the stored depths
+            sel = sel[_visible_boxes(near[a:b], x0[a:b], x1[a:b], y0[a:b], y1[a:b], res, far, chunk)]
+        a = b
+        if sel.size:
+            sp = row_spans(idx[sel], x0[sel], x1[sel], y0[sel], height[sel], sx, ty, row_coord, dep, inv_w, area2, res)
+            merge_visible(sp, res, chunk, depth, ident, far, scale)
+
+
+def _block_far(depth: Array, res: int) -> Array:
+    """Farthest stored depth per row and block of :data:`BLOCK` columns, (R, ⌈R/BLOCK⌉); inf if a texel is empty."""
+    return np.maximum.reduceat(depth.reshape(res, res), np.arange(0, res, BLOCK), axis=1)
+
+
+def _refresh(far: Array, depth: Array, res: int, row: NDArray[np.int64], blk: NDArray[np.int64]) -> None:
+    """Recompute ``far`` at blocks (row, blk) (repeats allowed) from the current depths."""
+    touched = np.zeros(far.size, bool)
+    touched[row * far.shape[1] + blk] = True
+    row, blk = np.divmod(np.flatnonzero(touched), far.shape[1])
+    cols = np.minimum(blk[:, None] * BLOCK + np.arange(BLOCK), res - 1)  # a partial last block repeats its last texel
+    m = depth[row[:, None] * res + cols]
+    while m.shape[1] > 1:  # halving (BLOCK is a power of 2): faster than a reduction over a short last axis
+        h = m.shape[1] // 2
+        m = np.maximum(m[:, :h], m[:, h:])
+    far[row, blk] = m[:, 0]
+
+
+def _visible_boxes(near: Array, x0, x1, y0, y1, res: int, far: Array, chunk: int) -> NDArray[np.bool_]:
+    """False for a bounding box whose every tile's farthest stored depth is nearer than ``near``.
+
+    Tiles are expanded per box in groups of at most ``chunk`` tiles (bounded memory).
+    """
+    tiles_far = np.maximum.reduceat(far, np.arange(0, res, TILE), axis=0)  # (tiles, blocks): TILE rows × BLOCK columns
+    tx0, tx1, ty0, ty1 = x0 // BLOCK, x1 // BLOCK, y0 // TILE, y1 // TILE
+    nx = tx1 - tx0 + 1
+    count = nx * (ty1 - ty0 + 1)
+    box_far = np.empty(near.size)
+    bounds = chunk_bounds(count, chunk).tolist()
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        box, k = expand(count[a:b])
+        box += a
+        tiles = tiles_far[ty0[box] + k // nx[box], tx0[box] + k % nx[box]]
+        box_far[a:b] = np.maximum.reduceat(tiles, np.cumsum(count[a:b]) - count[a:b])
+    return ~(near > box_far)
+
+
+def merge_visible(sp: Spans, res: int, chunk: int, depth: Array, ident: NDArray[np.int64], far: Array, scale: Array) -> None:
+    """Merge spans into the z-buffer (min depth, then highest triangle index), skipping hidden pieces.
+
+    ``far``: :func:`_block_far` of ``depth``, refreshed here where texels are drawn;
+    ``scale``: each triangle's largest absolute corner depth (for the rounding margin).
+    """
+    col_hi = sp.col_lo + sp.width - 1
+    b_lo = sp.col_lo // BLOCK
+    pieces = col_hi // BLOCK - b_lo + 1
+    bounds = chunk_bounds(sp.width, chunk).tolist()
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        span, k = expand(pieces[a:b])
+        span += a
+        blk = b_lo[span] + k
+        row = sp.row[span]
+        c0 = np.maximum(sp.col_lo[span], blk * BLOCK)
+        c1 = np.minimum(col_hi[span], blk * BLOCK + BLOCK - 1)
+        near = np.minimum(sp.depth_at(span, c0 + 0.5), sp.depth_at(span, c1 + 0.5))
+        live = ~(near - MARGIN * scale[sp.t_id[span]] > far[row, blk])
+        span, c0, row, blk = span[live], c0[live], row[live], blk[live]
+        which, kk = expand(c1[live] - c0 + 1)
+        s = span[which]
+        col = c0[which] + kk
+        z = sp.depth_at(s, col + 0.5)
+        pix = row[which] * res + col
+        before = depth[pix]
+        np.minimum.at(depth, pix, z)
+        after = depth[pix]
+        ident[pix[after < before]] = -1  # a nearer triangle arrived: forget the old ties
+        win = z == after
+        np.maximum.at(ident, pix[win], sp.t_id[s[win]])
+        _refresh(far, depth, res, row, blk)

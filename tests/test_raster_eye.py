@@ -1,0 +1,99 @@
+"""The eye pass with occlusion culling gives the buffers of the plain z-buffer (issue 12 item 5)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from aliasing import raster
+from aliasing.raster import core, occlusion
+from aliasing.raster.rasterize import clip_near, project
+
+
+def reference_eye_pass(triangles, fov, res, near=1e-3):
+    """The eye pass before issue 12 (plain z-buffer in triangle order, masked positions), kept as the reference."""
+    tri = np.asarray(triangles, float)
+    clipped, src = clip_near(tri, near)
+    u, v, z = project(clipped, fov)
+    dm = raster.rasterize(np.stack([u, v, -1.0 / z], axis=-1), res)
+    ident = np.where(dm.triangle >= 0, src[np.maximum(dm.triangle, 0)], -1)
+    t = np.tan(np.radians(fov) / 2)
+    c = (np.arange(res) + 0.5) / res
+    ray = np.stack(np.broadcast_arrays(((2 * c[None, :] - 1) * t), ((2 * c[:, None] - 1) * t), np.ones((res, 1))), axis=-1)
+    a, b, cc = tri[:, 0], tri[:, 1], tri[:, 2]
+    nrm = np.cross(b - a, cc - a)
+    nrm /= np.linalg.norm(nrm, axis=-1, keepdims=True)
+    hit = ident >= 0
+    n_px, a_px, r_px = nrm[ident[hit]], a[ident[hit]], ray[hit]
+    lam = (n_px * a_px).sum(-1) / (n_px * r_px).sum(-1)
+    position = np.full((res, res, 3), np.nan)
+    normal = np.full((res, res, 3), np.nan)
+    position[hit] = r_px * lam[:, None]
+    normal[hit] = np.where(((n_px * r_px).sum(-1) > 0)[:, None], -n_px, n_px)
+    return position, normal, ident
+
+
+def assert_same(eb, ref):
+    position, normal, ident = ref
+    np.testing.assert_array_equal(eb.triangle, ident)
+    np.testing.assert_array_equal(eb.position, position)  # bit for bit (NaN where empty)
+    np.testing.assert_array_equal(eb.normal, normal)
+
+
+@pytest.mark.parametrize("res, chunk", [(256, core.CHUNK), (250, 5000)])
+def test_eye_pass_identical_to_the_plain_z_buffer_on_a_seeded_scene(res, chunk):
+    # the benchmark's kind of scene (ground grid plus boxes over f/n = 1000): much overdraw;
+    # 250 is not a multiple of the culling block, and chunk = 5000 forces many groups and batches
+    sc = raster.ground_and_boxes(1.0, 1000.0, 60.0, boxes=120, ground_cells=20, seed=3)
+    eb = raster.eye_pass(sc.triangles, 60.0, res, chunk=chunk)
+    assert_same(eb, reference_eye_pass(sc.triangles, 60.0, res))
+    assert 0.3 < (eb.triangle >= 0).mean() < 1
+
+
+def test_eye_pass_identical_with_ties_and_near_clipping():
+    # coplanar duplicates (exact depth ties: the highest index must win, as in triangle order),
+    # interpenetrating random triangles and triangles crossing the near plane
+    rng = np.random.default_rng(7)
+    centre = np.column_stack([rng.uniform(-3, 3, (300, 2)), rng.uniform(3, 9, 300)])
+    tri = centre[:, None, :] + rng.uniform(-1, 1, (300, 3, 3))
+    crossing = np.column_stack([rng.uniform(-0.05, 0.05, (10, 2)), np.full(10, 0.05)])[:, None, :] + rng.uniform(-0.1, 0.1, (10, 3, 3))
+    tri = np.concatenate([tri, crossing, tri[:50], tri[10:20][:, ::-1]])  # 310 + 50 exact duplicates + 10 reversed
+    eb = raster.eye_pass(tri, 70.0, 128)
+    assert_same(eb, reference_eye_pass(tri, 70.0, 128))
+    seen = set(np.unique(eb.triangle).tolist())
+    assert seen & set(range(300, 310)) and seen & set(range(310, 360)) and not seen & set(range(50))
+
+
+def test_culled_z_buffer_matches_plain_one_for_perspective_and_log_rows():
+    # the culling bounds are exact for perspective-correct depth (weights w) and uneven rows too
+    rng = np.random.default_rng(11)
+    tri = rng.uniform(0, 1, (400, 3, 3))
+    w = rng.uniform(0.2, 3.0, (400, 3))
+    rows = np.sort(rng.uniform(0, 1, 96))
+    plain = raster.rasterize(tri, 96, w=w, row_centres=rows, chunk=3000)
+    culled = core.zbuffer(tri, 96, 1.0 / w, rows, False, 3000, front_to_back=True)
+    np.testing.assert_array_equal(culled.depth, plain.depth)
+    np.testing.assert_array_equal(culled.triangle, plain.triangle)
+    assert (culled.rasterized, culled.degenerate) == (plain.rasterized, plain.degenerate)
+
+
+def test_culling_skips_hidden_work():
+    # a near wall hides a far grid: the culled pass draws far fewer texels than the plain one
+    wall = np.array([[[-9, -9, 2], [9, -9, 2], [0, 9, 2]], [[-9, 9, 2], [9, 9, 2], [9, -9, 2]]], float)
+    g = np.linspace(-5, 5, 21)
+    far = np.array([[[x, y, 50], [x + 0.5, y, 50], [x, y + 0.5, 50]] for x in g for y in g])
+    tri = np.concatenate([far, wall])
+    counts = []
+    real = occlusion.expand
+    try:
+        occlusion.expand = lambda c: (counts.append(int(np.sum(c))), real(c))[1]
+        eb = raster.eye_pass(tri, 60.0, 64)
+    finally:
+        occlusion.expand = real
+    assert set(np.unique(eb.triangle).tolist()) <= {len(far), len(far) + 1}
+    assert sum(counts) < 2 * 64 * 64  # without culling: ≥ 64² wall texels plus 441 triangles' worth
+
+
+def test_eye_pass_bad_chunk():
+    with pytest.raises(ValueError, match="chunk must be"):
+        raster.eye_pass(np.zeros((1, 3, 3)) + [[0, 0, 1], [1, 0, 1], [0, 1, 1]], 60.0, 8, chunk=0)
