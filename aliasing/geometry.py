@@ -163,11 +163,16 @@ def _unit(light: ArrayLike) -> Array:
     lv = check.finite(light, "light")  # an infinite vector has no direction
     if lv.shape[-1:] != (3,):
         raise ValueError(f"light must have shape (..., 3), got {lv.shape}")
-    scale = np.abs(lv).max(axis=-1, keepdims=True)
-    if (scale == 0).any():
+    with np.errstate(over="ignore", under="ignore"):
+        norm = np.linalg.norm(lv, axis=-1, keepdims=True)
+    if (norm == 0).any() and (np.abs(lv).max(axis=-1) == 0).any():
         raise ValueError("light must be a non-zero vector")
-    lv = lv / scale  # scaled first: |v| of a vector near 1e308 or 1e-320 would overflow or lose digits
-    return lv / np.linalg.norm(lv, axis=-1, keepdims=True)
+    extreme = ~np.isfinite(norm) | (norm < 1e-150)
+    if extreme.any():  # |v| near 1e308 or 1e-320 overflows or loses digits: scale such vectors first
+        scale = np.abs(lv).max(axis=-1, keepdims=True)
+        lv = np.where(extreme, lv / np.where(extreme, scale, 1.0), lv)
+        norm = np.where(extreme, np.linalg.norm(lv, axis=-1, keepdims=True), norm)
+    return lv / norm  # plain v/|v| otherwise: the same bits as before the scaling was added
 
 
 # Most directions a spec or count may ask for: (N, 3) float64 is 240 MB at 10^7.
