@@ -18,7 +18,8 @@ def _blocks(lang: str) -> list[str]:
 
 
 def _commands() -> list[str]:
-    lines = [line.split("#")[0].strip() for block in _blocks("sh") for line in block.splitlines()]
+    # a shell line ending in a backslash continues on the next one, as in a terminal
+    lines = [line.split("#")[0].strip() for block in _blocks("sh") for line in block.replace("\\\n", " ").splitlines()]
     return [line for line in lines if line.startswith("aliasing ")]
 
 
