@@ -102,8 +102,8 @@ def _sweep_options(args: argparse.Namespace, cfg: dict) -> dict:
     block = _whole(pick("block", DEFAULT_BLOCK), "--block", 1, 10**9, "light directions per chunk")
     max_memory = limits.parse_memory(args.max_memory, "--max-memory") if args.max_memory is not None else limits.DEFAULT_MAX_MEMORY
     fmt = pick("format", "csv")
-    if fmt not in ("csv", "json", "netcdf"):
-        raise ValueError(f"--format must be one of csv, json, netcdf, got {fmt!r}")
+    if fmt not in ("csv", "json", "netcdf", "parquet"):
+        raise ValueError(f"--format must be one of csv, json, netcdf, parquet, got {fmt!r}")
     out = pick("out", None)
     dask = pick("dask", None)
     return {"near": near, "jobs": jobs, "block": block, "max_memory": max_memory, "format": fmt, "out": out, "dask": dask}
@@ -240,7 +240,7 @@ def build_parser() -> argparse.ArgumentParser:
     swp.add_argument("--light", help="light directions, comma-separated specs (default overhead)")
     swp.add_argument("--near", help="near distance (default 1; results depend on f/n only)")
     swp.add_argument("--summary", action="store_true", help="min, max, max/min and mean of S over the directions (Lloyd 2007 Table 3 layout)")
-    swp.add_argument("--format", choices=["csv", "json", "netcdf"], help="output format (default csv; netcdf needs --out and the xarray extra)")
+    swp.add_argument("--format", choices=["csv", "json", "netcdf", "parquet"], help="output format (default csv; netcdf and parquet need --out and the xarray or parquet extra)")
     swp.add_argument("--out", help="output file (default or '-': standard output); written atomically (through a symbolic link: its target), never truncated by a failed run; devices, FIFOs and sockets are refused")
     swp.add_argument("--jobs", help="local worker processes (default 1; at most 4 x cores, and never more than chunks); the output does not depend on it")
     swp.add_argument("--dask", metavar="ADDRESS", help="compute the chunks on a running Dask scheduler, e.g. tcp://host:8786 (dask extra)")

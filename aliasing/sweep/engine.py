@@ -16,7 +16,7 @@ from . import limits
 from .grid import DEFAULT_BLOCK, plan
 from .runner import Plan, Progress, _duration, _run_chunks, check_jobs, collect
 from .store import WorkDir, _check_out, _open_workdir, _write_netcdf, _write_text_stream, resolve_out
-from .tables import SweepTable, import_xarray
+from .tables import SweepTable, import_pyarrow, import_xarray, write_parquet
 
 
 def execute(
@@ -47,7 +47,8 @@ def execute(
     grid : Plan
         From :func:`plan`, or a validation grid from :func:`aliasing.raster.validate.plan`.
     fmt : str
-        Output format, one of ``grid.formats``: csv, json, netcdf (needs ``out`` and the
+        Output format, one of ``grid.formats``: csv, json, parquet (needs ``out`` and the
+        ``parquet`` extra; a row group per chunk, streamed), netcdf (needs ``out`` and the
         ``xarray`` extra); validation grids also write a text table.
     out : path, optional
         Output file; without it the text is returned (no work directory, no resume); ``-``
@@ -93,12 +94,14 @@ def execute(
     stream = out is not None and resolve_out(out) is None
     if stream:
         out = None
-    if kind == "netcdf" and out is None:
-        raise ValueError("format netcdf needs an output file (--out)")
+    if kind in ("netcdf", "parquet") and out is None:
+        raise ValueError(f"format {kind} needs an output file (--out)")
     if resume and out is None:
         raise ValueError("resume needs an output file (--out): the work directory sits beside it")
     if kind == "netcdf":
         import_xarray()
+    if kind == "parquet":
+        import_pyarrow()
     payload_kind = grid.payload_kind(kind)
     total = grid.chunks
     results: dict[int, object] = {}
@@ -148,7 +151,9 @@ def execute(
         return "-"
     if target is None:
         return "".join(str(part) for part in grid.assemble(payload_kind, kind, payloads))
-    if kind == "netcdf":
+    if kind == "parquet":
+        write_parquet(grid, payloads, target)  # type: ignore[arg-type]
+    elif kind == "netcdf":
         _write_netcdf(grid.table(payloads, command or grid.command(kind)), target)  # type: ignore[arg-type]
     else:
         _write_text_stream(grid.assemble(payload_kind, kind, payloads), target)

@@ -31,7 +31,7 @@ if TYPE_CHECKING:
 
 
 RANGE = "START:STOP:lin|log:COUNT"
-OUTPUT_FORMATS = ("csv", "json", "netcdf")
+OUTPUT_FORMATS = ("csv", "json", "netcdf", "parquet")
 MAX_COUNT = 100_000_000
 """Most values one range may give (800 MB of float64), whatever the memory limit."""
 DEFAULT_BLOCK = 20_000
@@ -415,7 +415,7 @@ class Grid:
 
     def payload_kind(self, fmt: str) -> str:
         """How chunks are kept for output ``fmt``: CSV or JSON text, or arrays (summaries, NetCDF)."""
-        return "arrays" if self.summary or fmt == "netcdf" else fmt
+        return "arrays" if self.summary or fmt in ("netcdf", "parquet") else fmt
 
     def assemble(self, payload_kind: str, fmt: str, payloads: Iterable[object]) -> Iterator[str | bytes]:
         """The output text in pieces, from every chunk's payload in order."""
@@ -540,13 +540,7 @@ def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
 
 
 def _csv_fragment(task: _Task, gamma: np.ndarray, azimuth: np.ndarray, r: schemes.Result) -> str:
-    """CSV lines of the per-direction rows, byte-identical to :func:`format_rows`.
-
-    One %-format per chunk (``'%.10g' % x`` is ``f"{x:.10g}"``), about 1.5x faster than
-    formatting value by value.
-    """
-    head = _csv_cells([r.scheme.name, *task.cells, float(task.ratio), float(task.fov)]).replace("%", "%%")
-    cols = [_column(c) for c in (gamma, azimuth, r.M_x, r.M_z, r.S)] + [("%d", r.maps_used.tolist())] + [_column(c) for c in (r.n_prime, r.eta)]
-    f = [c[0] for c in cols]
-    line = f"{head},{f[0]},{f[1]},{f[2]},{f[3]},{f[4]},{f[5]},{f[6]},{f[7]}\n"
-    return "".join([line % row for row in zip(*(c[1] for c in cols))])
+    """CSV lines of the per-direction rows, byte-identical to :func:`format_rows`, built column by column."""
+    head = _csv_cells([r.scheme.name, *task.cells, float(task.ratio), float(task.fov)]).replace("{", "{{").replace("}", "}}")
+    cols = [_column(c) for c in (gamma, azimuth, r.M_x, r.M_z, r.S)] + [list(map(str, r.maps_used.tolist()))] + [_column(c) for c in (r.n_prime, r.eta)]
+    return "".join(map((head + ",{},{},{},{},{},{},{},{}\n").format, *cols))
