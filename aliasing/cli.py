@@ -15,11 +15,16 @@ from collections.abc import Sequence
 import sympy as sp
 
 
+def _one_line(text: str) -> str:
+    """``text`` with line breaks and other control characters escaped (user input is echoed in messages)."""
+    return "".join(ch if ch.isprintable() else ch.encode("unicode_escape").decode() for ch in text)
+
+
 class _Parser(argparse.ArgumentParser):
     """ArgumentParser whose usage errors are one line on stderr, exit status 2."""
 
     def error(self, message: str) -> None:  # type: ignore[override]
-        self.exit(2, f"{self.prog}: error: {message}\n")
+        self.exit(2, _one_line(f"{self.prog}: error: {message}") + "\n")
 
 
 def _reproduce(args: argparse.Namespace) -> int:
@@ -297,7 +302,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         message = f"{exc.filename!r}: {exc.strerror}" if exc.filename else str(exc.strerror or exc)
     except (OverflowError, RecursionError, UnicodeError, MemoryError) as exc:
         message = f"{type(exc).__name__}: {exc}"
-    print(f"aliasing {args.command}: error: {message}".splitlines()[0], file=sys.stderr)
+    print(_one_line(f"aliasing {args.command}: error: {message}"), file=sys.stderr)
     return 2
 
 

@@ -75,3 +75,19 @@ def interrupt_after(n):
         return progress
 
     return progress_bar
+
+
+# Hypothesis profiles (the sweep CLI fuzz test; another suite may register the same names):
+# "ci" (default) is deterministic; ALIASING_HYPOTHESIS=long runs many more examples locally.
+try:
+    from hypothesis import settings as _hyp_settings
+except ImportError:  # the test extra is not installed: the fuzz tests skip themselves
+    _hyp_settings = None
+if _hyp_settings is not None:
+    import os as _os
+
+    if "ci" not in _hyp_settings._profiles:
+        _hyp_settings.register_profile("ci", derandomize=True, deadline=None)
+    if "long" not in _hyp_settings._profiles:
+        _hyp_settings.register_profile("long", max_examples=20_000, deadline=None)
+    _hyp_settings.load_profile("long" if _os.environ.get("ALIASING_HYPOTHESIS") == "long" else "ci")
