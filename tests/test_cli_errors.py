@@ -193,3 +193,7 @@ def test_render_out_symlink_and_readonly(tmp_path, capsys):
         _one_line(["render", "--res", "32", "--image-res", "32", "--out", str(ro / "y.png")], capsys, "cannot be written")
     finally:
         os.chmod(ro, 0o755)
+
+
+def test_validate_grid_empty_scheme_item_is_one_line(capsys):
+    _one_line(["validate", "--grid", "--scheme", ",uniform", "--f-over-n", "10", "--light", "gamma:60"], capsys, "schemes has an empty item in ',uniform'")
