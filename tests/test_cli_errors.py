@@ -197,3 +197,20 @@ def test_render_out_symlink_and_readonly(tmp_path, capsys):
 
 def test_validate_grid_empty_scheme_item_is_one_line(capsys):
     _one_line(["validate", "--grid", "--scheme", ",uniform", "--f-over-n", "10", "--light", "gamma:60"], capsys, "schemes has an empty item in ',uniform'")
+
+
+def test_render_out_permission_errors_are_one_line(tmp_path, capsys, monkeypatch):
+    """A read-only file or folder (simulated: the suite may run as root, who may write anyway)."""
+    from aliasing.sweep import store
+
+    argv = ["render", "--res", "32", "--image-res", "32", "--out", str(tmp_path / "x.png")]
+    monkeypatch.setattr(store.os, "access", lambda path, mode: False)
+    _one_line(argv, capsys, "cannot be written (permission denied)")
+    monkeypatch.undo()
+
+    def denied(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(store.tempfile, "mkstemp", denied)
+    _one_line(argv, capsys, "cannot be written: Permission denied")
+    assert not (tmp_path / "x.png").exists()
