@@ -214,3 +214,33 @@ def test_render_out_permission_errors_are_one_line(tmp_path, capsys, monkeypatch
     monkeypatch.setattr(store.tempfile, "mkstemp", denied)
     _one_line(argv, capsys, "cannot be written: Permission denied")
     assert not (tmp_path / "x.png").exists()
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["sweep", "--schemes", "P", "--fov", "60:60:log:100000000000"],
+        ["sweep", "--schemes", "P", "--light", "sphere:100000000000"],
+        ["sweep", "--schemes", "ZP99999999+P"],
+        ["splits", "--near", "1", "--far", "1000", "-k", "100000000"],
+        ["sweep", "--config", "FIFO"],
+    ],
+    ids=["fov-count", "light-count", "zp-k", "splits-k", "config-fifo"],
+)
+def test_absurd_requests_in_a_subprocess_with_limits(argv, tmp_path):
+    """As a user runs them: a separate process under a 2 GiB address-space limit and a time limit;
+    one line and exit 2, never a kill (the kernel's answer before) or a hang."""
+    import resource
+    import subprocess
+    import sys
+
+    if "FIFO" in argv:
+        os.mkfifo(tmp_path / "cfg.toml")
+        argv = [a.replace("FIFO", str(tmp_path / "cfg.toml")) for a in argv]
+
+    def limit():
+        resource.setrlimit(resource.RLIMIT_AS, (2 << 30, 2 << 30))
+
+    proc = subprocess.run([sys.executable, "-c", "import sys; from aliasing.cli import main; sys.exit(main(sys.argv[1:]))", *argv],
+                          capture_output=True, text=True, timeout=120, preexec_fn=limit)
+    assert proc.returncode == 2 and proc.stdout == "" and len(proc.stderr.strip().splitlines()) == 1, proc.stderr
