@@ -7,17 +7,24 @@ stderr and exit with status 2.
 from __future__ import annotations
 
 import argparse
+import math
 import sys
+import warnings
 from collections.abc import Sequence
 
 import sympy as sp
+
+
+def _one_line(text: str) -> str:
+    """``text`` with line breaks and other control characters escaped (user input is echoed in messages)."""
+    return "".join(ch if ch.isprintable() else ch.encode("unicode_escape").decode() for ch in text)
 
 
 class _Parser(argparse.ArgumentParser):
     """ArgumentParser whose usage errors are one line on stderr, exit status 2."""
 
     def error(self, message: str) -> None:  # type: ignore[override]
-        self.exit(2, f"{self.prog}: error: {message}\n")
+        self.exit(2, _one_line(f"{self.prog}: error: {message}") + "\n")
 
 
 def _reproduce(args: argparse.Namespace) -> int:
@@ -49,16 +56,74 @@ def _derive(args: argparse.Namespace) -> int:
     return 0
 
 
-def _sweep(args: argparse.Namespace) -> int:
-    from . import sweep
+def _finite(value: object, flag: str) -> float:
+    """A finite number from an option's text or a config value; ±inf and NaN refused by their names."""
+    if isinstance(value, bool):
+        raise ValueError(f"{flag} must be a number, got {value!r}")
+    try:
+        number = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{flag} must be a number, got {value!r}") from None
+    if not math.isfinite(number):
+        raise ValueError(f"{flag} must be finite, got {number}")
+    return number
 
-    cfg = sweep.read_config(args.config) if args.config else {}
+
+def _whole(value: object, flag: str, low: int, high: int, what: str) -> int:
+    """A whole number in [low, high] from an option's text or a config value."""
+    if isinstance(value, str):
+        text = value.strip()
+        try:
+            number: object = int(text)
+        except ValueError:
+            number = _finite(text, flag)
+    elif isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ValueError(f"{flag} must be a whole number >= {low} and <= {high} ({what}), got {value!r}")
+    else:
+        number = value if isinstance(value, int) else _finite(value, flag)
+    if isinstance(number, float):
+        if not number.is_integer():
+            raise ValueError(f"{flag} must be a whole number >= {low} and <= {high} ({what}), got {value!r}")
+        number = int(number)
+    if not low <= number <= high:  # type: ignore[operator]
+        raise ValueError(f"{flag} must be a whole number >= {low} and <= {high} ({what}), got {value!r}")
+    return number  # type: ignore[return-value]
+
+
+def _sweep_options(args: argparse.Namespace, cfg: dict) -> dict:
+    """Every scalar option of ``aliasing sweep``, from the command line or the config, parsed and checked once."""
+    from .sweep import limits, runner
+    from .sweep.grid import DEFAULT_BLOCK
 
     def pick(name: str, default: object) -> object:
         value = getattr(args, name)
         return value if value is not None else cfg.get(name, default)
 
-    schemes = pick("schemes", None)
+    near = _finite(pick("near", 1.0), "--near")
+    if not near > 0:
+        raise ValueError(f"--near must be > 0 (a distance), got {near:g}")
+    cap = runner.max_jobs()
+    jobs = _whole(pick("jobs", 1), "--jobs", 1, cap, f"local processes, at most 4 x {runner.cores()} cores")
+    block = _whole(pick("block", DEFAULT_BLOCK), "--block", 1, 10**9, "light directions per chunk")
+    max_memory = limits.parse_memory(args.max_memory, "--max-memory") if args.max_memory is not None else limits.DEFAULT_MAX_MEMORY
+    fmt = pick("format", "csv")
+    if fmt not in ("csv", "json", "netcdf", "parquet"):
+        raise ValueError(f"--format must be one of csv, json, netcdf, parquet, got {fmt!r}")
+    out = pick("out", None)
+    dask = pick("dask", None)
+    return {"near": near, "jobs": jobs, "block": block, "max_memory": max_memory, "format": fmt, "out": out, "dask": dask}
+
+
+def _sweep(args: argparse.Namespace) -> int:
+    from . import sweep
+    from .sweep import limits
+
+    cfg = sweep.read_config(args.config) if args.config else {}
+    opts = _sweep_options(args, cfg)
+    fmt, out, jobs = opts["format"], opts["out"], opts["jobs"]
+    if out is not None:
+        sweep.store.resolve_out(out, "--out")  # refuse a device, FIFO or unwritable file before any work
+    schemes = args.schemes if args.schemes is not None else cfg.get("schemes")
     if schemes is None:
         raise ValueError("sweep needs --schemes (or a --config file with schemes)")
     params = dict(cfg.get("params", {}))
@@ -70,28 +135,32 @@ def _sweep(args: argparse.Namespace) -> int:
     axes = {}
     for name, flag, default in (("f_over_n", "--f-over-n", "1000"), ("fov", "--fov", "60")):
         given = getattr(args, name)
-        axes[name] = sweep.grid_values(given, flag) if given is not None else cfg.get(name, default)
-    fmt = str(pick("format", "csv"))
-    jobs = pick("jobs", 1)
+        axes[name] = given if given is not None else cfg.get(name, default)
+    light = args.light if args.light is not None else cfg.get("light", "overhead")
+    k = args.k if args.k is not None else cfg.get("k")
+    summary = args.summary or cfg.get("summary", False)
+    held = out is None or summary or fmt == "netcdf" or sweep.store.resolve_out(out) is None
+    limits.check_request(schemes, axes["f_over_n"], axes["fov"], light, k=k, params=params, block=opts["block"], jobs=jobs, in_memory=held, limit=opts["max_memory"])
+    for name, flag in (("f_over_n", "--f-over-n"), ("fov", "--fov")):
+        if getattr(args, name) is not None:
+            axes[name] = sweep.grid_values(axes[name], flag)
     grid = sweep.plan(
-        schemes,  # type: ignore[arg-type]
+        schemes,
         axes["f_over_n"],
         axes["fov"],
-        pick("light", "overhead"),  # type: ignore[arg-type]
-        k=pick("k", None),  # type: ignore[arg-type]
+        light,
+        k=k,
         params=params,
-        near=pick("near", 1.0),  # type: ignore[arg-type]
-        summary=args.summary or cfg.get("summary", False),
-        block=pick("block", sweep.DEFAULT_BLOCK),  # type: ignore[arg-type]
+        near=opts["near"],
+        summary=summary,
+        block=opts["block"],
+        max_memory=opts["max_memory"],
     )
     if args.dry_run:
-        sys.stdout.write(sweep.dry_run(grid, fmt, jobs))  # type: ignore[arg-type]
+        sys.stdout.write(sweep.dry_run(grid, fmt, jobs, in_memory=held, max_memory=opts["max_memory"]))
         return 0
-    out = pick("out", None)
-    if out is not None:
-        sweep.store.resolve_out(out)  # refuse a device, FIFO or unwritable file before any work
     command = grid.command(fmt) + (f"  # from --config {args.config}" if args.config else "")
-    return sweep.run_command(grid, fmt, out, name="sweep", jobs=jobs, dask=pick("dask", None), resume=args.resume, command=command)  # type: ignore[arg-type]
+    return sweep.run_command(grid, fmt, out, name="sweep", jobs=jobs, dask=opts["dask"], resume=args.resume, command=command)
 
 
 def _splits(args: argparse.Namespace) -> int:
@@ -105,6 +174,12 @@ def _splits(args: argparse.Namespace) -> int:
     missing = [flag for flag, value in (("--near", args.near), ("--far", args.far)) if value is None]
     if missing:
         raise ValueError(f"splits needs {', '.join(missing)} (or --list)")
+    from .sweep import limits
+
+    limit = limits.parse_memory(args.max_memory, "--max-memory") if args.max_memory is not None else None
+    if args.k is not None and args.k >= 1:  # k maps over the light directions: refuse before allocating
+        size, _ = limits.estimate_bytes(1, 1, 1, limits.light_count(args.light), args.k, 20_000)
+        limits.check_bytes(size, "-k", limit)
     params = {} if args.lam is None else {"lam": args.lam}
     for item in args.param:
         key, sep, value = item.partition("=")
@@ -168,15 +243,16 @@ def build_parser() -> argparse.ArgumentParser:
     swp.add_argument("--f-over-n", help="depth ratios far/near: list or range (default 1000)")
     swp.add_argument("--fov", help="FULL fields of view in degrees, list or range (the papers' θ is half: θ = 30° is --fov 60; default 60)")
     swp.add_argument("--light", help="light directions, comma-separated specs (default overhead)")
-    swp.add_argument("--near", type=float, help="near distance (default 1; results depend on f/n only)")
+    swp.add_argument("--near", help="near distance (default 1; results depend on f/n only)")
     swp.add_argument("--summary", action="store_true", help="min, max, max/min and mean of S over the directions (Lloyd 2007 Table 3 layout)")
-    swp.add_argument("--format", choices=["csv", "json", "netcdf"], help="output format (default csv; netcdf needs --out and the xarray extra)")
-    swp.add_argument("--out", help="output file (default: standard output); written atomically, never truncated by a failed run")
-    swp.add_argument("--jobs", type=int, help="local worker processes (default 1); the output does not depend on it")
+    swp.add_argument("--format", choices=["csv", "json", "netcdf", "parquet"], help="output format (default csv; netcdf and parquet need --out and the xarray or parquet extra)")
+    swp.add_argument("--out", help="output file (default or '-': standard output); written atomically (through a symbolic link: its target), never truncated by a failed run; devices, FIFOs and sockets are refused")
+    swp.add_argument("--jobs", help="local worker processes (default 1; at most 4 x cores, and never more than chunks); the output does not depend on it")
     swp.add_argument("--dask", metavar="ADDRESS", help="compute the chunks on a running Dask scheduler, e.g. tcp://host:8786 (dask extra)")
-    swp.add_argument("--block", type=int, help="light directions per chunk (default 20000)")
+    swp.add_argument("--block", help="light directions per chunk (default 20000)")
     swp.add_argument("--resume", action="store_true", help="continue an interrupted sweep from <out>.parts without recomputing finished chunks")
-    swp.add_argument("--dry-run", action="store_true", help="print the grid size and an estimated time, compute nothing")
+    swp.add_argument("--dry-run", action="store_true", help="print the grid size, an estimated time and memory, compute nothing")
+    swp.add_argument("--max-memory", metavar="SIZE", help="refuse a request estimated to need more memory than this, e.g. 8G (default 4G); checked before anything is allocated")
     swp.set_defaults(run=_sweep)
 
     spl = sub.add_parser(
@@ -199,6 +275,7 @@ def build_parser() -> argparse.ArgumentParser:
     spl.add_argument("--image-res", type=float, help="image resolution in pixels per side (with --budget)")
     spl.add_argument("--allocations", default="error,equal", help="allocations to compare (default error,equal)")
     spl.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
+    spl.add_argument("--max-memory", metavar="SIZE", help="refuse a -k estimated to need more memory than this, e.g. 8G (default 4G)")
     spl.set_defaults(run=_splits)
 
     from .raster.validate import add_validate_parser
@@ -217,10 +294,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        return args.run(args)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # numpy's warning text never precedes the one error line
+            return args.run(args)
     except ValueError as exc:
-        print(f"aliasing {args.command}: error: {exc}", file=sys.stderr)
-        return 2
+        message = str(exc)
+    except OSError as exc:
+        message = f"{exc.filename!r}: {exc.strerror}" if exc.filename else str(exc.strerror or exc)
+    except (OverflowError, RecursionError, UnicodeError, MemoryError) as exc:
+        message = f"{type(exc).__name__}: {exc}"
+    print(_one_line(f"aliasing {args.command}: error: {message}"), file=sys.stderr)
+    return 2
 
 
 if __name__ == "__main__":

@@ -20,6 +20,12 @@ What it times (wall clock, ``time.perf_counter``, best of ``--repeats``):
    chunk, so the evaluation itself is negligible) on a ``distributed.LocalCluster`` of 2
    single-threaded worker processes, minus the same chunks run in-process (jobs 1), divided
    by the number of chunks.  Cluster start-up is not included.
+3. ``--output`` (only this part): output at scale, issue 12 item 4.  A sweep of 10^6
+   per-direction rows (``ZP3+LogP,P,LogP,FPc+P`` over ``--directions`` hemisphere directions)
+   with ``jobs 2`` written as the per-direction CSV and as Parquet, against the summary run of
+   the same sweep (the same evaluations, a tiny output: the baseline), timed side by side;
+   and the CSV formatting of one 20,000-direction ZP3+LogP chunk, column by column (today's
+   writer) against row by row (the previous writer, kept here as the baseline).
 """
 
 from __future__ import annotations
@@ -48,13 +54,66 @@ def best(func, repeats: int) -> float:
     return min(times)
 
 
+def _rowwise_fragment(task, gamma, azimuth, r) -> str:
+    """The previous CSV writer (one %-format per row), the baseline of the column-wise one."""
+    from aliasing.sweep.rows import _csv_cells
+
+    def column(a):
+        if a.ndim == 2 and a.shape[1] == 1:
+            a = a[:, 0]
+        if a.ndim == 1:
+            return "%.10g", a.tolist()
+        return "%s", [";".join(f"{x:.10g}" for x in row) for row in a.tolist()]
+
+    head = _csv_cells([r.scheme.name, *task.cells, float(task.ratio), float(task.fov)]).replace("%", "%%")
+    cols = [column(c) for c in (gamma, azimuth, r.M_x, r.M_z, r.S)] + [("%d", r.maps_used.tolist())] + [column(c) for c in (r.n_prime, r.eta)]
+    line = head + "," + ",".join(c[0] for c in cols) + "\n"
+    return "".join([line % row for row in zip(*(c[1] for c in cols))])
+
+
+def output(args) -> None:
+    from aliasing import geometry, schemes
+    from aliasing.sweep.grid import _csv_fragment
+
+    load = os.getloadavg()
+    print(f"python {platform.python_version()}, numpy {np.__version__}, {os.cpu_count()} CPUs, {platform.machine()}, load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f} at start")
+    names = "ZP3+LogP,P,LogP,FPc+P"
+    light = f"hemisphere:{args.directions}"
+    with tempfile.TemporaryDirectory() as tmp:
+        times, sizes = {}, {}
+        for label, fmt, summary in (("summary (baseline)", "csv", True), ("per-direction CSV", "csv", False), ("Parquet", "parquet", False)):
+            grid = S.plan(names, f_over_n=1000, fov=60, light=light, summary=summary)
+            out = Path(tmp) / f"out.{fmt}"
+            times[label] = best(lambda: S.execute(grid, fmt, out, jobs=2), args.repeats)
+            sizes[label] = out.stat().st_size / 1e6
+        base = times["summary (baseline)"]
+        rows = S.plan(names, f_over_n=1000, fov=60, light=light).size
+        for label, t in times.items():
+            print(f"{label:20s} {rows:,} rows, jobs 2: {t:.2f} s, {sizes[label]:.1f} MB, {t / base:.2f}x the summary run")
+        grid = S.plan("ZP3+LogP", f_over_n=1000, fov=60, light="hemisphere:20000")
+        task = grid.chunk(0, "csv")
+        r = schemes.evaluate(task.name, task.near, task.near * task.ratio, task.fov, task.light)
+        gamma, azimuth = geometry.direction_angles(task.light)
+        assert _csv_fragment(task, gamma, azimuth, r) == _rowwise_fragment(task, gamma, azimuth, r)
+        col = best(lambda: _csv_fragment(task, gamma, azimuth, r), args.repeats)
+        row = best(lambda: _rowwise_fragment(task, gamma, azimuth, r), args.repeats)
+        ev = best(lambda: schemes.evaluate(task.name, task.near, task.near * task.ratio, task.fov, task.light), args.repeats)
+        print(f"one ZP3+LogP chunk of 20,000 rows: evaluate {ev * 1e3:.0f} ms, CSV column-wise {col * 1e3:.0f} ms, row-wise (baseline) {row * 1e3:.0f} ms: {row / col:.2f}x")
+    load = os.getloadavg()
+    print(f"load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f} at end")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--directions", type=int, default=250_000, help="directions per scheme (default 250,000: 10^6 evaluations)")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--dask-chunks", type=int, default=400, help="chunks for the Dask overhead measurement")
     parser.add_argument("--no-dask", action="store_true")
+    parser.add_argument("--output", action="store_true", help="only part 3: 10^6 rows as CSV and Parquet vs the summary run")
     args = parser.parse_args()
+    if args.output:
+        output(args)
+        return
 
     print(f"python {platform.python_version()}, numpy {np.__version__}, {os.cpu_count()} CPUs, {platform.machine()}")
     light = f"hemisphere:{args.directions}"

@@ -79,7 +79,9 @@ def test_light_specs_lists_and_gamma_ranges():
 
 
 def test_split_lights_keeps_gamma_lists_together():
-    assert S.split_lights("gamma:30,60@azimuth:0,90,behind, ,sphere:4") == ["gamma:30,60@azimuth:0,90", "behind", "sphere:4"]
+    assert S.split_lights("gamma:30,60@azimuth:0,90,behind,sphere:4") == ["gamma:30,60@azimuth:0,90", "behind", "sphere:4"]
+    with pytest.raises(ValueError, match="light has an empty item"):  # issue 19: an empty item is an error, not dropped
+        S.split_lights("gamma:30,60@azimuth:0,90,behind, ,sphere:4")
     with pytest.raises(ValueError, match="light must be text"):
         S.split_lights(["overhead"])
 

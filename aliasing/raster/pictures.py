@@ -529,8 +529,17 @@ def _render(args: argparse.Namespace) -> int:
         img = grid_image(1.0, f_over_n, fov, args.light, args.scheme, every=args.every, **kw)
     else:
         img, _ = error_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    plt.imsave(out, img, metadata={"Software": None})
+    from ..sweep import store  # the sweep's safe writer: atomic, symlinks followed, devices refused, one-line errors
+
+    try:
+        out.parent.mkdir(parents=True, exist_ok=True)
+        target = store.resolve_out(out, "--out")
+        if target is None:
+            raise ValueError("--out must be a .png file, not standard output")
+        with store.atomic_target(target) as tmp:
+            plt.imsave(tmp, img, format="png", metadata={"Software": None})
+    except OSError as exc:
+        raise ValueError(f"--out {args.out!r} cannot be written: {exc.strerror}") from None
     print(out)
     return 0
 

@@ -240,6 +240,8 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
 
 def _names(value: str | Iterable[str], name: str) -> list[str]:
     items = value.split(",") if isinstance(value, str) else list(value)
+    if any(str(s).strip() for s in items) and not all(str(s).strip() for s in items):
+        raise ValueError(f"{name} has an empty item in {value!r} (two commas, or a comma at an end)")  # as aliasing sweep
     out = [str(s).strip() for s in items if str(s).strip()]
     if not out:
         raise ValueError(f"{name} is empty: the validation grid has no points")

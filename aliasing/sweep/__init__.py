@@ -4,9 +4,10 @@ A package with one concern per module, lower modules never importing higher ones
 
 - :mod:`~aliasing.sweep.rows`: :func:`sweep` (rows as dicts) and :func:`format_rows` (CSV/JSON text);
 - :mod:`~aliasing.sweep.grid`: axes, ranges, scheme variants, light specs, :class:`Grid`, :func:`plan`, chunks;
+- :mod:`~aliasing.sweep.limits`: memory estimates from a request's counts, refused before allocating;
 - :mod:`~aliasing.sweep.store`: atomic writes, the output target, the work directory and its manifest;
 - :mod:`~aliasing.sweep.runner`: the runner (in-process, local processes or Dask), :func:`collect`, progress;
-- :mod:`~aliasing.sweep.tables`: :class:`SweepTable` and the assembled output;
+- :mod:`~aliasing.sweep.tables`: :class:`SweepTable`, the assembled output, Parquet;
 - :mod:`~aliasing.sweep.engine`: :func:`execute` (resumable output files), :func:`table`, estimates;
 - :mod:`~aliasing.sweep.config`: TOML configs (:func:`read_config`);
 - :mod:`~aliasing.sweep.command`: the command-line glue (:func:`run_command`).
@@ -25,7 +26,7 @@ from __future__ import annotations
 import sys
 import types
 
-from . import command, config, engine, grid, rows, runner, store, tables
+from . import command, config, engine, grid, limits, rows, runner, store, tables
 from .command import run_command
 from .config import CONFIG_KEYS, read_config
 from .engine import dry_run, estimate, execute, table
@@ -45,15 +46,15 @@ from .grid import (
     spread,
 )
 from .rows import FORMATS, ROW_FIELDS, SUMMARY_FIELDS, format_rows, sweep
-from .runner import DASK_TIMEOUT, Plan, Progress, Task, collect, progress_bar, run_task
+from .runner import DASK_TIMEOUT, Plan, Progress, Task, check_jobs, collect, cores, max_jobs, progress_bar, run_task
 from .store import write
 from .tables import SweepTable, import_xarray
 
-_MODULES = (rows, grid, store, runner, tables, engine, config, command)
+_MODULES = (rows, grid, limits, store, runner, tables, engine, config, command)
 
 __all__ = [
     "CONFIG_KEYS", "DASK_TIMEOUT", "DEFAULT_BLOCK", "FORMATS", "OUTPUT_FORMATS", "RANGE", "ROW_FIELDS", "SUMMARY_FIELDS",
-    "Grid", "Plan", "Progress", "SweepTable", "Task", "Variant", "collect", "compute_chunk", "dry_run", "estimate",
+    "Grid", "Plan", "Progress", "SweepTable", "Task", "Variant", "check_jobs", "collect", "cores", "max_jobs", "compute_chunk", "dry_run", "estimate",
     "execute", "expand_lights", "expand_schemes", "format_rows", "grid_values", "import_xarray", "parameters_digest",
     "plan", "progress_bar", "read_config", "run_command", "run_task", "split_lights", "spread", "sweep", "table", "write",
 ]

@@ -3,23 +3,39 @@
 from __future__ import annotations
 
 import os
+import stat
+
+
+MAX_CONFIG_BYTES = 1 << 20
+"""Largest config file read [bytes]: a sweep's parameters fit in a few hundred."""
 
 
 def _load_toml(path: str | os.PathLike) -> dict:
     try:
         import tomllib
-    except ImportError:  # Python 3.10
-        try:
-            import tomli as tomllib  # type: ignore[no-redef]
-        except ImportError:
-            raise ValueError(f"config {str(path)!r}: reading TOML needs Python >= 3.11 (or: pip install tomli)") from None
+    except ImportError:  # Python 3.10: the tomli dependency
+        import tomli as tomllib  # type: ignore[no-redef]
+    where = f"config {str(path)!r}"
     try:
+        st = os.stat(path)
+        if not stat.S_ISREG(st.st_mode):  # a FIFO would block open() forever, a device never end
+            raise ValueError(f"{where} is not a regular file")
+        if st.st_size > MAX_CONFIG_BYTES:
+            raise ValueError(f"{where} is {st.st_size:,} bytes; a config is at most {MAX_CONFIG_BYTES:,}")
         with open(path, "rb") as handle:
-            return tomllib.load(handle)
+            data = handle.read(MAX_CONFIG_BYTES + 1)
     except OSError as exc:
-        raise ValueError(f"config {str(path)!r} cannot be read: {exc.strerror}") from None
+        raise ValueError(f"{where} cannot be read: {exc.strerror}") from None
+    if len(data) > MAX_CONFIG_BYTES:
+        raise ValueError(f"{where} is larger than {MAX_CONFIG_BYTES:,} bytes")
+    try:
+        return tomllib.loads(data.decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{where} is not UTF-8 text (byte {exc.start}: {exc.reason})") from None
+    except RecursionError:
+        raise ValueError(f"{where} is nested too deeply") from None
     except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"config {str(path)!r} is not valid TOML: {exc}".splitlines()[0]) from None
+        raise ValueError(f"{where} is not valid TOML: {exc}".splitlines()[0]) from None
 
 
 _NUM = "a number, a list of numbers or a range string"

@@ -12,10 +12,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .. import _validation as check
+from . import limits
 from .grid import DEFAULT_BLOCK, plan
-from .runner import Plan, Progress, _duration, _run_chunks, collect
+from .runner import Plan, Progress, _duration, _run_chunks, check_jobs, collect
 from .store import WorkDir, _check_out, _open_workdir, _write_netcdf, _write_text_stream, resolve_out
-from .tables import SweepTable, import_xarray
+from .tables import SweepTable, import_pyarrow, import_xarray, write_parquet
 
 
 def execute(
@@ -46,7 +47,8 @@ def execute(
     grid : Plan
         From :func:`plan`, or a validation grid from :func:`aliasing.raster.validate.plan`.
     fmt : str
-        Output format, one of ``grid.formats``: csv, json, netcdf (needs ``out`` and the
+        Output format, one of ``grid.formats``: csv, json, parquet (needs ``out`` and the
+        ``parquet`` extra; a row group per chunk, streamed), netcdf (needs ``out`` and the
         ``xarray`` extra); validation grids also write a text table.
     out : path, optional
         Output file; without it the text is returned (no work directory, no resume); ``-``
@@ -88,16 +90,18 @@ def execute(
     P,100,60,180,0,100,100,10000,1,inf,-1
     """
     kind = check.choice(fmt, "format", grid.formats)
-    jobs = check.jobs(jobs)
+    jobs = check_jobs(jobs)
     stream = out is not None and resolve_out(out) is None
     if stream:
         out = None
-    if kind == "netcdf" and out is None:
-        raise ValueError("format netcdf needs an output file (--out)")
+    if kind in ("netcdf", "parquet") and out is None:
+        raise ValueError(f"format {kind} needs an output file (--out)")
     if resume and out is None:
         raise ValueError("resume needs an output file (--out): the work directory sits beside it")
     if kind == "netcdf":
         import_xarray()
+    if kind == "parquet":
+        import_pyarrow()
     payload_kind = grid.payload_kind(kind)
     total = grid.chunks
     results: dict[int, object] = {}
@@ -147,7 +151,9 @@ def execute(
         return "-"
     if target is None:
         return "".join(str(part) for part in grid.assemble(payload_kind, kind, payloads))
-    if kind == "netcdf":
+    if kind == "parquet":
+        write_parquet(grid, payloads, target)  # type: ignore[arg-type]
+    elif kind == "netcdf":
         _write_netcdf(grid.table(payloads, command or grid.command(kind)), target)  # type: ignore[arg-type]
     else:
         _write_text_stream(grid.assemble(payload_kind, kind, payloads), target)
@@ -179,7 +185,7 @@ def estimate(grid: Plan, fmt: str = "csv", jobs: int = 1, sample: int = 500) -> 
 def _estimate(grid: Plan, fmt: str, jobs: int, sample: int = 500) -> tuple[float, str]:
     import time
 
-    jobs = check.jobs(jobs)
+    jobs = check_jobs(jobs)
     kind = grid.payload_kind(check.choice(fmt, "format", grid.formats))
     if isinstance(sample, bool) or not isinstance(sample, (int, np.integer)) or sample < 1:
         raise ValueError(f"sample must be a whole number >= 1 (directions timed per scheme), got {sample!r}")
@@ -194,7 +200,7 @@ def _estimate(grid: Plan, fmt: str, jobs: int, sample: int = 500) -> tuple[float
     return per_eval * grid.size / min(jobs, grid.chunks), note
 
 
-def dry_run(grid: Plan, fmt: str = "csv", jobs: int = 1) -> str:
+def dry_run(grid: Plan, fmt: str = "csv", jobs: int = 1, in_memory: bool | None = None, max_memory: int | None = None) -> str:
     """The grid size and a time estimate, as printed by ``aliasing sweep --dry-run``.
 
     Example
@@ -203,7 +209,13 @@ def dry_run(grid: Plan, fmt: str = "csv", jobs: int = 1) -> str:
     grid: 2 schemes × 1 f/n × 1 fov × 1000 directions = 2,000 evaluations in 2 chunks
     """
     seconds, note = _estimate(grid, fmt, jobs)
-    return f"{grid.describe()}\nestimated time: {_duration(seconds)} with {jobs} job{'s' if jobs > 1 else ''} ({note})\n"
+    text = f"{grid.describe()}\nestimated time: {_duration(seconds)} with {jobs} job{'s' if jobs > 1 else ''} ({note})\n"
+    held = grid.payload_kind(fmt) == "arrays" if in_memory is None else in_memory
+    size = limits.grid_bytes(grid, jobs, held)
+    if size is not None:
+        cap = limits.DEFAULT_MAX_MEMORY if max_memory is None else max_memory
+        text += f"estimated memory: {limits.human(size[0])} (limit {limits.human(cap)}, --max-memory)\n"
+    return text
 
 
 def table(
@@ -220,11 +232,13 @@ def table(
     jobs: int = 1,
     dask: str | None = None,
     progress: Progress | None = None,
+    max_memory: int | str | None = None,
 ) -> SweepTable:
     """Run a sweep grid in memory and return a :class:`SweepTable` (``.to_pandas()``, ``.to_xarray()``).
 
     Parameters are those of :func:`plan` (every axis a number, list or range text) and
-    of :func:`execute` (``jobs``, ``dask``, ``progress``).  Also callable as
+    of :func:`execute` (``jobs``, ``dask``, ``progress``); ``max_memory`` as in :func:`plan`
+    (here counting the table held in memory).  Also callable as
     ``aliasing.sweep(...)``.
 
     Example
@@ -234,5 +248,7 @@ def table(
     >>> [(r["scheme"], r["f_over_n"], round(r["S_min"], 2)) for r in t.rows()][-1]
     ('ZP5+LogP', 1000.0, 5.98)
     """
-    grid = plan(schemes, f_over_n, fov, light, k=k, params=params, near=near, summary=summary, block=block)
+    limit = None if max_memory is None else limits.parse_memory(max_memory)
+    limits.check_request(schemes, f_over_n, fov, light, k=k, params=params, block=block, jobs=jobs, in_memory=True, limit=limit)
+    grid = plan(schemes, f_over_n, fov, light, k=k, params=params, near=near, summary=summary, block=block, max_memory=max_memory)
     return grid.table(collect(grid, "arrays", jobs=jobs, dask=dask, progress=progress))

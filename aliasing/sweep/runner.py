@@ -7,9 +7,13 @@
 from __future__ import annotations
 
 import itertools
+import math
+import os
 import sys
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from typing import TYPE_CHECKING, Any, ClassVar, Protocol, TextIO
+
+import numpy as np
 
 from .. import _validation as check
 from .store import _EXT
@@ -54,6 +58,39 @@ class Plan(Protocol):
     def timing(self, kind: str, sample: int = 500) -> tuple[list[tuple[Task, int]], str]: ...
 
 
+def cores() -> int:
+    """CPU cores this process may use (its affinity mask where the OS has one)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return max(1, os.cpu_count() or 1)
+
+
+def max_jobs() -> int:
+    """The most local worker processes a run may ask for: 4 × :func:`cores`."""
+    return 4 * cores()
+
+
+def check_jobs(value: object, name: str = "jobs") -> int:
+    """``value`` as a whole number of local processes in [1, :func:`max_jobs`]; ValueError naming ``name`` otherwise.
+
+    Example
+    -------
+    >>> check_jobs(2)
+    2
+    >>> check_jobs(99999999999999999999999)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ValueError: jobs must be a whole number >= 1 (local processes) and <= ... (4 x ... cores), got 99999999999999999999999
+    """
+    cap = max_jobs()
+    whole = isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
+    if isinstance(value, (float, np.floating)) and math.isfinite(value) and float(value).is_integer():
+        whole, value = True, int(value)
+    if not (whole and 1 <= int(value) <= cap):  # type: ignore[arg-type]
+        raise ValueError(f"{name} must be a whole number >= 1 (local processes) and <= {cap} (4 x {cores()} cores), got {value!r}")
+    return int(value)  # type: ignore[arg-type]
+
+
 def run_task(task: Task) -> Any:
     """``task.compute()``: the function sent to worker processes and Dask workers."""
     return task.compute()
@@ -72,6 +109,7 @@ def _run_chunks(grid: Plan, kind: str, todo: Sequence[int], done: Callable[[int,
 
     pending: dict = {}
     queue = iter(todo)
+    jobs = min(check_jobs(jobs), len(todo))  # never more processes than chunks
     ex = ProcessPoolExecutor(max_workers=jobs)
     try:
         while True:
@@ -156,7 +194,7 @@ def collect(grid: Plan, kind: str, *, jobs: int = 1, dask: str | None = None, pr
     >>> len(payloads), sorted(payloads[0])
     (2, ['M_x', 'M_z', 'S', 'eta', 'n_prime'])
     """
-    jobs = check.jobs(jobs)
+    jobs = check_jobs(jobs)
     kind = check.choice(kind, "payload kind", _EXT)
     payloads: dict[int, object] = {}
     total = grid.chunks

@@ -149,3 +149,74 @@ class SweepTable:
                 padded[i, ..., : d[key].shape[-1]] = d[key]
             data[key] = (dims, padded)
         return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def import_pyarrow() -> types.ModuleType:
+    """The ``pyarrow`` module (with ``pyarrow.parquet``); ValueError naming the optional extra if it is missing."""
+    try:
+        import pyarrow
+        import pyarrow.parquet  # noqa: F401
+    except ImportError:
+        raise ValueError("format parquet needs the optional extra: pip install 'aliasing[parquet]'") from None
+    return pyarrow
+
+
+def _parquet_schema(pa: types.ModuleType, grid: Grid, listed: bool):
+    per_map = pa.list_(pa.float64()) if listed else pa.float64()
+    fields = [("scheme", pa.string())] + [(c, pa.float64()) for c in grid.columns]
+    fields += [("f_over_n", pa.float64()), ("fov", pa.float64()), ("gamma", pa.float64()), ("azimuth", pa.float64())]
+    fields += [("M_x", per_map), ("M_z", per_map), ("S", pa.float64()), ("maps", pa.int64()), ("n_prime", per_map), ("eta", per_map)]
+    return pa.schema(fields)
+
+
+def parquet_batches(grid: Grid, payloads: Iterable[object]) -> Iterator:
+    """``pyarrow.RecordBatch`` es of the per-direction rows, one per chunk, in order.
+
+    The columns of :data:`~aliasing.sweep.rows.ROW_FIELDS` (with ``param_<name>`` after
+    ``scheme``); per-map quantities are ``list<double>`` when some scheme has more than one
+    map, else ``double``.
+    """
+    pa = import_pyarrow()
+    listed = any(schemes.parse(v.name).k > 1 or schemes.parse(v.name).faces for v in grid.variants)
+    schema = _parquet_schema(pa, grid, listed)
+    for i, payload in enumerate(payloads):
+        task = grid.chunk(i, "arrays")
+        d: dict = payload  # type: ignore[assignment]
+        n = len(d["S"])
+        gamma, azimuth = geometry.direction_angles(task.light)
+
+        def per_map(a: np.ndarray):
+            a = np.asarray(a, dtype=float).reshape(n, -1)
+            if not listed:
+                return pa.array(a[:, 0])
+            return pa.ListArray.from_arrays(pa.array(np.arange(0, a.size + 1, a.shape[1], dtype=np.int32)), pa.array(a.ravel()))
+
+        cells = [pa.nulls(n, pa.float64()) if c is None else pa.array(np.full(n, float(c))) for c in task.cells]
+        columns = [pa.array([task.name] * n, pa.string()), *cells, pa.array(np.full(n, float(task.ratio))), pa.array(np.full(n, float(task.fov))), pa.array(gamma), pa.array(azimuth)]
+        columns += [per_map(d["M_x"]), per_map(d["M_z"]), pa.array(np.asarray(d["S"], dtype=float)), pa.array(np.count_nonzero(np.asarray(d["M_x"]).reshape(n, -1) > 0, axis=-1).astype(np.int64))]
+        columns += [per_map(d["n_prime"]), per_map(d["eta"])]
+        yield pa.RecordBatch.from_arrays(columns, schema=schema)
+
+
+def write_parquet(grid: Grid, payloads: Iterable[object], target) -> None:
+    """Write a grid's ``arrays`` payloads as Parquet at ``target`` (atomically; a row group per chunk, streamed).
+
+    Summaries are one row per scheme, f/n and fov (:data:`~aliasing.sweep.rows.SUMMARY_FIELDS`).
+    """
+    from .store import atomic_target
+
+    pa = import_pyarrow()
+    pq = pa.parquet
+    with atomic_target(target) as tmp:
+        if grid.summary:
+            pq.write_table(pa.Table.from_pylist(SweepTable._from_payloads(grid, list(payloads)).rows()), tmp)
+            return
+        writer = None
+        try:
+            for batch in parquet_batches(grid, payloads):
+                if writer is None:
+                    writer = pq.ParquetWriter(tmp, batch.schema)
+                writer.write_batch(batch)
+        finally:
+            if writer is not None:
+                writer.close()
