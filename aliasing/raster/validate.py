@@ -680,7 +680,7 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
         "kept in <out>.parts until the output is complete (--resume continues an interrupted grid); the output does not "
         "depend on how it ran. Reports include the projection factor cos(psi_e)/cos(psi_l) measured from the normals on "
         "the probes (about 1 by construction).",
-        epilog="schemes: Standard | P | Po | LogP (Log) | Sopt | LogSopt | <warping rule> | ZP<k> | ZP<k>+<any> | FPc|FPcs[+ZP<k>]+P|LogP|Standard (face-fixed FP is not rasterized).  "
+        epilog="schemes: Standard | P | Po | LogP (Log) | Sopt | LogSopt | <warping rule> | ZP<k> | ZP<k>+<any> | FP|FPc|FPcs[+ZP<k>]+P|LogP|Standard.  "
         "light: overhead | behind | front | gamma:DEG[@azimuth:DEG] (one direction; with --grid comma-separated, gamma and azimuth take lists and ranges).",
     )
     p.add_argument("--scheme", required=True, help="scheme name, e.g. P or ZP4+LogP (with --grid: comma list)")

@@ -64,11 +64,13 @@ def sweep(scheme_names: Iterable[str], f_over_n: ArrayLike = (1000.0,), fov: Arr
     fovs = np.atleast_1d(check.fov(fov))
     lv = geometry.lights(light)
     gamma, azimuth = geometry.direction_angles(lv)
+    # every scheme of a (f/n, fov) cell shares its directions' light frames (schemes.evaluate_many)
+    cells = {(i, j): schemes.evaluate_many(parsed, near, near * ratio, fv, lv, **options) for i, ratio in enumerate(ratios) for j, fv in enumerate(fovs)}
     rows: list[dict] = []
-    for sch in parsed:
-        for ratio in ratios:
-            for fv in fovs:
-                r = schemes.evaluate(sch, near, near * ratio, fv, lv, **options)
+    for s, sch in enumerate(parsed):
+        for i, ratio in enumerate(ratios):
+            for j, fv in enumerate(fovs):
+                r = cells[i, j][s]
                 if summary:
                     rows.append(_summary_row(sch.name, ratio, fv, r))
                 else:
