@@ -70,6 +70,13 @@ def whole(value: object, name: str, lo: int = 1, hi: int | None = None, what: st
     return int(value)  # type: ignore[arg-type]
 
 
+def flag(value: object, name: str) -> bool:
+    """A True/False switch (a Python or numpy bool, nothing else)."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False, got {_repr(value)}")
+    return bool(value)
+
+
 def instance(value: object, name: str, kind: type | tuple[type, ...]) -> None:
     """Require an object of a given class (a Camera, a LightMap, …), naming the parameter."""
     if not isinstance(value, kind):

@@ -184,6 +184,7 @@ def splits_report(
         raise ValueError(f"allocations must be a tuple of allocation names ({', '.join(ALLOCATIONS)}), got {allocations!r:.60}")
     for name in allocations:
         check.choice(name, "allocations entry", ALLOCATIONS)
+    check.instance(warp, "warp", str)
     n_i, f_i = partitioning.partitions(method, near, far, k, **params)
     r = schemes.evaluate(warp, near, far, fov, light, edges=(n_i, f_i))
     s = r.M_x * r.M_z  # (N, K)

@@ -169,7 +169,7 @@ def _cos_phi(coord: Array, l_c: ArrayLike, l_z: ArrayLike, directional: bool = F
     For a directional light (l_c, l_z) is the direction towards it, projected on the plane
     of the face's normal and the coordinate axis: cos φ_l = l_z/√(l_c² + l_z²), constant.
     """
-    if directional:
+    if check.flag(directional, "directional"):
         lz = check.positive(l_z, "lz")
         lc = check.as_float_array(l_c, "lx/ly (light coordinate)")
         if np.isinf(lc).any():
