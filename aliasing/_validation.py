@@ -160,6 +160,9 @@ def frustum(near: ArrayLike, far: ArrayLike) -> tuple[NDArray[np.float64], NDArr
     broadcast(near=n, far=f)
     if (f <= n).any():
         raise ValueError(f"far must be greater than near (far/near in (1, inf)), got near={_show(n)}, far={_show(f)}")
+    with np.errstate(over="ignore"):
+        if np.isinf(f / n).any():
+            raise ValueError(f"far/near must be at most 1.8e308 (a float), got near={_show(n)}, far={_show(f)}")
     return n, f
 
 
@@ -171,11 +174,18 @@ def depth_ratio(f_over_n: ArrayLike, name: str = "f_over_n") -> NDArray[np.float
     return a
 
 
+# Narrowest full field of view [deg] the closed forms accept: below about 1e-300° tan θ and
+# the face widths underflow and ratios of them become 0/0 (found by the API fuzz suite).
+FOV_MIN = 1e-6
+
+
 def fov(value: ArrayLike, name: str = "fov") -> NDArray[np.float64]:
     """Full field of view in degrees, require ``0 < fov < 180``; returns degrees."""
     arr = as_float_array(value, name)
     if ((arr <= 0) | (arr >= 180)).any():
         raise ValueError(f"{name} (full field of view) must be in (0, 180) degrees, got {_show(arr)}")
+    if (arr < FOV_MIN).any():
+        raise ValueError(f"{name} (full field of view) must be at least {FOV_MIN:g} degrees (narrower views underflow the closed forms), got {_show(arr)}")
     return arr
 
 

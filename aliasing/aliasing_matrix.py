@@ -300,7 +300,11 @@ def spacing_eye(point: ArrayLike, normal: ArrayLike, eye: Camera, light: Camera)
     array([[0.5, 0. ],
            [0. , 0.5]])
     """
-    return np.linalg.inv(_chain(_factors(point, normal, eye, light)))  # eq. (40)
+    chain = _chain(_factors(point, normal, eye, light))
+    try:
+        return np.linalg.inv(chain)  # eq. (40)
+    except np.linalg.LinAlgError:
+        raise ValueError("point and normal give a singular ∂i/∂s (the surface is seen edge-on, or the point is beyond float precision)") from None
 
 
 @check.public

@@ -55,7 +55,7 @@ def frustum_vertices(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> Array:
     """
     n, f = check.frustum(near, far)
     t = np.tan(np.radians(check.fov(fov)) / 2)
-    n, f, t = np.broadcast_arrays(n, f, t)
+    n, f, t = check.broadcast(near=n, far=f, fov=t)
     signs = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], dtype=float)
     depth = np.stack([n] * 4 + [f] * 4, axis=-1)  # (..., 8)
     sx = np.concatenate([signs[:, 0], signs[:, 0]])

@@ -318,6 +318,8 @@ def zeta_bound(kind: str, coord: ArrayLike, near: ArrayLike, far: ArrayLike, fov
         yy = y0 + (y1 - y0) * _unit_coordinate(v, "v")
         xx = We * y1 / y0 * (cc - 0.5)
         return y0 / (We * ct) * lz_ / yy * np.arcsinh((xx - lx_) / lz_)  # eq. (67), C_b,s = y0/(W_e cosθ)
+    if (lz_ < 1e-150 * y0).any():  # lz² underflows below this and eq. (68) becomes 0/0 (issue 19)
+        raise ValueError(f"lz must be at least 1e-150·near for the side face (lower is the face's plane), got {check._show(lz_)}")
     yy = y0 + (y1 - y0) * cc
     L = np.sqrt(ly_**2 + lz_**2)
     inv_cos = np.sqrt((yy - ly_) ** 2 + lz_**2) / lz_
@@ -369,6 +371,13 @@ def _ab(a: ArrayLike, b: ArrayLike, y0: Array, y1: Array) -> tuple[Array, Array]
     return aa, bb
 
 
+def _log_ratio(x: Array, x0: Array) -> Array:
+    """ln(x/x0), also where x/x0 overflows (near → 0): then ln x − ln x0, which loses nothing there."""
+    with np.errstate(over="ignore"):
+        ratio = x / x0
+    return np.where(np.isinf(ratio), np.log(x) - np.log(x0), np.log(np.where(np.isinf(ratio), 1.0, ratio)))
+
+
 @check.public
 def parameterization(kind: str, v: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, a: ArrayLike = 0.0, b: ArrayLike = np.inf, u: ArrayLike = 0.5) -> Array:
     """A side-face parameterization in s or t, Lloyd et al. 2007, eqs. 74–78, 106–110.
@@ -418,11 +427,11 @@ def parameterization(kind: str, v: ArrayLike, near: ArrayLike, far: ArrayLike, f
             t = (y1 + aa) * (yy - y0) / ((y1 - y0) * (yy + aa))  # eqs. (75)-(76): p2 + p3/(y + a)
         return np.where(np.isinf(aa), vv, t)
     if key == "log_t":
-        return np.log((yy + aa) / (y0 + aa)) / np.log((y1 + aa) / (y0 + aa))  # eq. (77)
+        return _log_ratio(yy + aa, y0 + aa) / _log_ratio(y1 + aa, y0 + aa)  # eq. (77)
     # logp_t: c0 log((y0+a)(y+b)/((y0+b)(y+a))), eqs. (106)-(110); b = inf gives eq. (78)
     with np.errstate(invalid="ignore", divide="ignore"):
         finite = np.log((y0 + aa) * (yy + bb) / ((y0 + bb) * (yy + aa))) / np.log((y0 + aa) * (y1 + bb) / ((y0 + bb) * (y1 + aa)))  # eq. (110)
-    return np.where(np.isinf(bb), np.log((yy + aa) / (y0 + aa)) / np.log((y1 + aa) / (y0 + aa)), finite)
+    return np.where(np.isinf(bb), _log_ratio(yy + aa, y0 + aa) / _log_ratio(y1 + aa, y0 + aa), finite)
 
 
 @check.public

@@ -80,7 +80,7 @@ def interrupt_after(n):
 # Hypothesis profiles (the API fuzz suite, tests/test_fuzz_api.py): "ci" is the default,
 # derandomized so a run is reproducible; "long" runs many more cases locally
 # (ALIASING_HYPOTHESIS=long, or pytest --hypothesis-profile=long).  Registered only if no
-# other conftest registered the same names first.
+# other conftest registered the same names first with at least as many examples.
 try:
     import os as _os
 
@@ -92,8 +92,10 @@ if _hsettings is not None:
         "ci": dict(max_examples=2400, derandomize=True, deadline=None, print_blob=True),
         "long": dict(max_examples=50_000, derandomize=False, deadline=None, print_blob=True),
     }.items():
-        try:
-            _hsettings.get_profile(_name)
+        try:  # Hypothesis ships a "ci" profile of 100 examples; keep a registered one only if it runs more
+            _keep = _hsettings.get_profile(_name).max_examples >= _kwargs["max_examples"]
         except Exception:  # not registered yet
+            _keep = False
+        if not _keep:
             _hsettings.register_profile(_name, **_kwargs)
     _hsettings.load_profile(_os.environ.get("ALIASING_HYPOTHESIS", "ci"))

@@ -72,11 +72,14 @@ EXCLUDED = {
     "aliasing.faces.face_errors",
     "aliasing.faces.face_frames",
     "aliasing.faces.partition_of",
+    "aliasing.faces.side_frames",
+    "aliasing.faces.chosen_faces",  # and a light vector near 1e308 overflows  # and an array fov: numpy's broadcast error as it is
     # raster: complex, strings and 10**400 reach float()/int() (TypeError, OverflowError,
     # ComplexWarning); a non-LightMap ``lm`` or non-Scheme ``scheme`` is an AttributeError;
     # 0-d ``points`` an IndexError; wrong light shapes an einsum error
     "aliasing.raster.measure.measure",
     "aliasing.raster.rasterize.eye_pass",
+    "aliasing.raster.rasterize.frame_map",
     "aliasing.raster.rasterize.light_map",
     "aliasing.raster.rasterize.log_row_centres",
     "aliasing.raster.rasterize.map_set",
@@ -320,7 +323,7 @@ def test_base_calls_succeed(key):
     assert func.__name__ in NAN_BY_CONTRACT or not _has_nan(result)
 
 
-@settings(suppress_health_check=list(HealthCheck), deadline=None)
+@settings(max_examples=max(settings.default.max_examples, CI_CALLS), suppress_health_check=list(HealthCheck), deadline=None)
 @given(call=calls())
 def test_public_functions_fail_cleanly(call):
     key, kwargs = call
