@@ -358,7 +358,9 @@ def optimal_factors(kind: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, 
     def value(tau):
         return face_factors(key, near, far, fov, lx=lx, ly=ly, lz=lz, directional=directional, a=y0 * np.expm1(tau), b=b, samples=samples)[target]
 
-    shape = np.broadcast(np.asarray(near), np.asarray(far), np.asarray(fov), np.asarray(lx), np.asarray(ly), np.asarray(lz), np.asarray(b)).shape
+    _light(lx, ly, lz, directional)  # checked before the shapes are taken
+    shape = np.broadcast(*check.broadcast(near=check.as_float_array(near, "near"), far=check.as_float_array(far, "far"), fov=check.as_float_array(fov, "fov"),
+                                          lx=lx, ly=ly, lz=lz, b=check.as_float_array(b, "b"))).shape
     tau, _ = _extremum(value, np.zeros(shape), np.zeros(shape) + tau_max, 49, sign=-1.0, iterations=40)
     a_opt = y0 * np.expm1(tau)
     out = face_factors(key, near, far, fov, lx=lx, ly=ly, lz=lz, directional=directional, a=a_opt, b=b, samples=samples)

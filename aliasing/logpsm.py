@@ -309,6 +309,8 @@ def zeta_bound(kind: str, coord: ArrayLike, near: ArrayLike, far: ArrayLike, fov
     n, f = check.frustum(near, far)
     lz_ = check.positive(lz, "lz")
     lx_, ly_ = check.as_float_array(lx, "lx"), check.as_float_array(ly, "ly")
+    if (np.abs(lx_) > _BIG).any() or (np.abs(ly_) > _BIG).any():
+        raise ValueError(f"lx and ly must be within [-{_BIG:g}, {_BIG:g}] (a light farther away is lz = inf), got lx={check._show(lx_)}, ly={check._show(ly_)}")
     if key == "end":
         de = {"near": n, "far": f}[check.choice(face, "face", ["near", "far"])]
         width = We * de / n
@@ -368,7 +370,13 @@ def _ab(a: ArrayLike, b: ArrayLike, y0: Array, y1: Array) -> tuple[Array, Array]
         raise ValueError(f"b must be > −y0 or < −y1 (the root −b of δ_lp,t, eq. 106, must lie off the face [y0, y1]), got b={check._show(bb)}")
     if (bb == aa).any():
         raise ValueError("b must differ from a (b = a makes eq. 110's logarithm 0); use b = inf for eq. 78")
+    # issue 19: beyond 1e150 the products (y + a)(y + b) of eq. 110 overflow to inf/inf
+    if (np.isinf(aa) & np.isfinite(bb)).any() or (np.isfinite(bb) & (np.abs(bb) > _BIG)).any() or (np.isfinite(aa) & (aa > _BIG)).any():
+        raise ValueError(f"a and b must each be inf or within [-{_BIG:g}, {_BIG:g}], and a = inf needs b = inf; got a={check._show(aa)}, b={check._show(bb)}")
     return aa, bb
+
+
+_BIG = 1e150  # largest finite a, b, lx, ly for which the closed forms stay inside float64
 
 
 def _log_ratio(x: Array, x0: Array) -> Array:
