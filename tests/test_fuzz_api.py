@@ -81,6 +81,7 @@ EXCLUDED = {
     "aliasing.raster.rasterize.eye_pass",
     "aliasing.raster.rasterize.frame_map",
     "aliasing.raster.rasterize.light_map",
+    "aliasing.raster.rasterize.light_maps",
     "aliasing.raster.rasterize.log_row_centres",
     "aliasing.raster.rasterize.map_set",
     "aliasing.raster.rasterize.near_face_map",
