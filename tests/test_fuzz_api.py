@@ -289,7 +289,7 @@ def calls(draw):
     var_kw = any(p.kind is p.VAR_KEYWORD for p in inspect.signature(func).parameters.values())
     if var_kw:
         params.append("unknown_option")
-    chosen = draw(st.lists(st.sampled_from(params), min_size=1, max_size=3, unique=True))
+    chosen = draw(st.lists(st.sampled_from(params), min_size=1, max_size=min(3, len(params)), unique=True))
     for name in chosen:
         kwargs[name] = draw(values)
     return key, kwargs
