@@ -128,6 +128,21 @@ def public(func: Callable) -> Callable:
     return functools.wraps(func)(wrapper)
 
 
+def unit_rows(v: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Non-zero finite vectors (..., n) divided by their length.
+
+    Vectors whose length overflows or underflows (components near 1e308 or 1e-300) are first
+    divided by their largest component; all others take the plain v/|v|, bit for bit.
+    """
+    with np.errstate(over="ignore", under="ignore"):
+        norm = np.linalg.norm(v, axis=-1, keepdims=True)
+    odd = ~np.isfinite(norm) | (norm < 1e-150)
+    if odd.any():
+        v = np.where(odd, v / np.abs(v).max(axis=-1, keepdims=True), v)
+        norm = np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / norm
+
+
 def _shaped(value: object) -> bool:
     try:
         return np.ndim(value) > 0

@@ -72,11 +72,9 @@ def _vectors(value: ArrayLike, name: str, size: int = 3) -> Array:
 
 def _unit(value: ArrayLike, name: str) -> Array:
     arr = _vectors(value, name)
-    scale = np.abs(arr).max(axis=-1, keepdims=True) if arr.size else np.ones(arr.shape[:-1] + (1,))
-    if (scale == 0).any():
+    if (np.abs(arr).max(axis=-1, initial=0.0) == 0).any():
         raise ValueError(f"{name} must be a non-zero vector")
-    arr = arr / scale  # first to the largest component: |v| itself may overflow or underflow
-    return arr / np.linalg.norm(arr, axis=-1, keepdims=True)
+    return check.unit_rows(arr)
 
 
 def _dot(a: Array, b: Array) -> Array:

@@ -169,11 +169,9 @@ def _unit(light: ArrayLike) -> Array:
     lv = check.finite(light, "light")  # an infinite vector has no direction
     if lv.shape[-1:] != (3,):
         raise ValueError(f"light must have shape (..., 3), got {lv.shape}")
-    scale = np.abs(lv).max(axis=-1, keepdims=True)
-    if (scale == 0).any():
+    if (np.abs(lv).max(axis=-1, initial=0.0) == 0).any():
         raise ValueError("light must be a non-zero vector")
-    lv = lv / scale  # scaled first: |v| of a vector near 1e308 or 1e-320 would overflow or lose digits
-    return lv / np.linalg.norm(lv, axis=-1, keepdims=True)
+    return check.unit_rows(lv)
 
 
 # Most directions a spec or count may ask for: (N, 3) float64 is 240 MB at 10^7.

@@ -40,11 +40,13 @@ def _ratio(n_prime: Array, u: ArrayLike, v: ArrayLike) -> Array:
     """(n′ + u)/(n′ + v), with its limit 1 at n′ = ∞."""
     n_prime, u, v = np.broadcast_arrays(n_prime, np.asarray(u, float), np.asarray(v, float))
     finite = np.isfinite(n_prime)
-    # divided by the largest term first, so that sums near 1.8e308 do not overflow to inf/inf
-    scale = np.maximum(np.where(finite, np.abs(n_prime), 0.0), np.maximum(np.abs(u), np.abs(v)))
-    scale = np.where(scale > 0, scale, 1.0)
-    with np.errstate(invalid="ignore", divide="ignore", under="ignore"):
-        r = (n_prime / scale + u / scale) / (n_prime / scale + v / scale)
+    with np.errstate(invalid="ignore", over="ignore"):
+        r = (n_prime + u) / (n_prime + v)
+        big = finite & ~np.isfinite(n_prime + v)
+        if big.any():  # sums beyond 1.8e308: divide by the largest term first (elsewhere bit for bit as before)
+            s = np.maximum(np.abs(n_prime), np.maximum(np.abs(u), np.abs(v)))
+            with np.errstate(under="ignore", divide="ignore"):
+                r = np.where(big, (n_prime / s + u / s) / (n_prime / s + v / s), r)
     return np.where(finite, r, 1.0)
 
 
