@@ -185,6 +185,8 @@ def splits_report(
     for name in allocations:
         check.choice(name, "allocations entry", ALLOCATIONS)
     check.instance(warp, "warp", str)
+    if budget is not None:
+        budget, res_image = check.scalar(budget, "budget"), check.scalar(res_image, "res_image")
     n_i, f_i = partitioning.partitions(method, near, far, k, **params)
     r = schemes.evaluate(warp, near, far, fov, light, edges=(n_i, f_i))
     s = r.M_x * r.M_z  # (N, K)
