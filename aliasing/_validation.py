@@ -70,6 +70,13 @@ def whole(value: object, name: str, lo: int = 1, hi: int | None = None, what: st
     return int(value)  # type: ignore[arg-type]
 
 
+def flag(value: object, name: str) -> bool:
+    """A True/False switch (a Python or numpy bool, nothing else)."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False, got {_repr(value)}")
+    return bool(value)
+
+
 def instance(value: object, name: str, kind: type | tuple[type, ...]) -> None:
     """Require an object of a given class (a Camera, a LightMap, …), naming the parameter."""
     if not isinstance(value, kind):
@@ -121,6 +128,21 @@ def public(func: Callable) -> Callable:
     return functools.wraps(func)(wrapper)
 
 
+def unit_rows(v: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Non-zero finite vectors (..., n) divided by their length.
+
+    Vectors whose length overflows or underflows (components near 1e308 or 1e-300) are first
+    divided by their largest component; all others take the plain v/|v|, bit for bit.
+    """
+    with np.errstate(over="ignore", under="ignore"):
+        norm = np.linalg.norm(v, axis=-1, keepdims=True)
+    odd = ~np.isfinite(norm) | (norm < 1e-150)
+    if odd.any():
+        v = np.where(odd, v / np.abs(v).max(axis=-1, keepdims=True), v)
+        norm = np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / norm
+
+
 def _shaped(value: object) -> bool:
     try:
         return np.ndim(value) > 0
@@ -153,6 +175,9 @@ def frustum(near: ArrayLike, far: ArrayLike) -> tuple[NDArray[np.float64], NDArr
     broadcast(near=n, far=f)
     if (f <= n).any():
         raise ValueError(f"far must be greater than near (far/near in (1, inf)), got near={_show(n)}, far={_show(f)}")
+    with np.errstate(over="ignore"):
+        if np.isinf(f / n).any():
+            raise ValueError(f"far/near must be at most 1.8e308 (a float), got near={_show(n)}, far={_show(f)}")
     return n, f
 
 
@@ -164,11 +189,18 @@ def depth_ratio(f_over_n: ArrayLike, name: str = "f_over_n") -> NDArray[np.float
     return a
 
 
+# Narrowest full field of view [deg] the closed forms accept: below about 1e-300° tan θ and
+# the face widths underflow and ratios of them become 0/0 (found by the API fuzz suite).
+FOV_MIN = 1e-6
+
+
 def fov(value: ArrayLike, name: str = "fov") -> NDArray[np.float64]:
     """Full field of view in degrees, require ``0 < fov < 180``; returns degrees."""
     arr = as_float_array(value, name)
     if ((arr <= 0) | (arr >= 180)).any():
         raise ValueError(f"{name} (full field of view) must be in (0, 180) degrees, got {_show(arr)}")
+    if (arr < FOV_MIN).any():
+        raise ValueError(f"{name} (full field of view) must be at least {FOV_MIN:g} degrees (narrower views underflow the closed forms), got {_show(arr)}")
     return arr
 
 

@@ -72,11 +72,9 @@ def _vectors(value: ArrayLike, name: str, size: int = 3) -> Array:
 
 def _unit(value: ArrayLike, name: str) -> Array:
     arr = _vectors(value, name)
-    scale = np.abs(arr).max(axis=-1, keepdims=True) if arr.size else np.ones(arr.shape[:-1] + (1,))
-    if (scale == 0).any():
+    if (np.abs(arr).max(axis=-1, initial=0.0) == 0).any():
         raise ValueError(f"{name} must be a non-zero vector")
-    arr = arr / scale  # first to the largest component: |v| itself may overflow or underflow
-    return arr / np.linalg.norm(arr, axis=-1, keepdims=True)
+    return check.unit_rows(arr)
 
 
 def _dot(a: Array, b: Array) -> Array:
@@ -300,7 +298,11 @@ def spacing_eye(point: ArrayLike, normal: ArrayLike, eye: Camera, light: Camera)
     array([[0.5, 0. ],
            [0. , 0.5]])
     """
-    return np.linalg.inv(_chain(_factors(point, normal, eye, light)))  # eq. (40)
+    chain = _chain(_factors(point, normal, eye, light))
+    try:
+        return np.linalg.inv(chain)  # eq. (40)
+    except np.linalg.LinAlgError:
+        raise ValueError("point and normal give a singular ∂i/∂s (the surface is seen edge-on, or the point is beyond float precision)") from None
 
 
 @check.public

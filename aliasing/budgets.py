@@ -103,7 +103,7 @@ def allocate(method: str, M_x: ArrayLike, M_z: ArrayLike, budget: ArrayLike) -> 
         raise ValueError(f"budget must be at least one texel per map ({mx.shape[-1]} maps), got {check._show(t)}")
     tt = np.asarray(t)[..., None] if np.ndim(t) else t
     check.broadcast(M_x=mx, budget=tt)
-    with np.errstate(over="ignore", under="ignore"):
+    with np.errstate(over="ignore", under="ignore", invalid="ignore"):  # anything not finite is refused below
         res_s, res_t = ALLOCATIONS[key][0](mx, mz, tt)
     if not (np.isfinite(res_s).all() and np.isfinite(res_t).all() and (res_s > 0).all() and (res_t > 0).all()):
         raise ValueError(f"M_x, M_z and budget give resolutions outside the float range; keep M_x, M_z and budget within [{_LO:g}, {_HI:g}]")
@@ -184,6 +184,9 @@ def splits_report(
         raise ValueError(f"allocations must be a tuple of allocation names ({', '.join(ALLOCATIONS)}), got {allocations!r:.60}")
     for name in allocations:
         check.choice(name, "allocations entry", ALLOCATIONS)
+    check.instance(warp, "warp", str)
+    if budget is not None:
+        budget, res_image = check.scalar(budget, "budget"), check.scalar(res_image, "res_image")
     n_i, f_i = partitioning.partitions(method, near, far, k, **params)
     r = schemes.evaluate(warp, near, far, fov, light, edges=(n_i, f_i))
     s = r.M_x * r.M_z  # (N, K)

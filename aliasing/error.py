@@ -27,7 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 from .view import View, half_angle, split_view
-from .parameterizations import _depths
+from .parameterizations import _depths, _ratio
 
 __all__ = [
     "critical_resolution",
@@ -59,18 +59,6 @@ def _unpack(near: ArrayLike | View, far: ArrayLike | None, fov: ArrayLike | None
 def _frustum_warp(near: ArrayLike, far: ArrayLike, n_prime: ArrayLike) -> tuple[Array, Array, Array]:
     n, f = check.frustum(near, far)
     return n, f, check.n_prime(n_prime, n)
-
-
-def _ratio(n_prime: Array, u: ArrayLike, v: ArrayLike) -> Array:
-    """(n′ + u)/(n′ + v), with its limit 1 at n′ = ∞."""
-    n_prime, u, v = np.broadcast_arrays(n_prime, np.asarray(u, float), np.asarray(v, float))
-    finite = np.isfinite(n_prime)
-    # divided by the largest term first, so that sums near 1.8e308 do not overflow to inf/inf
-    scale = np.maximum(np.where(finite, np.abs(n_prime), 0.0), np.maximum(np.abs(u), np.abs(v)))
-    scale = np.where(scale > 0, scale, 1.0)
-    with np.errstate(invalid="ignore", divide="ignore", under="ignore"):
-        r = (n_prime / scale + u / scale) / (n_prime / scale + v / scale)
-    return np.where(finite, r, 1.0)
 
 
 @check.public

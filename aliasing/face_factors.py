@@ -115,7 +115,7 @@ def _light(lx: ArrayLike, ly: ArrayLike, lz: ArrayLike, directional: bool) -> tu
     ly_ = check.as_float_array(ly, "ly")
     if np.isinf(lx_).any() or np.isinf(ly_).any():
         raise ValueError("lx and ly must be finite (a light far away is lz = inf or directional=True)")
-    if directional:
+    if check.flag(directional, "directional"):
         lz_ = check.positive(lz, "lz")
     else:
         lz_ = check.closed_range(lz, "lz", 0.0, np.inf, " (0: the light in the face's plane, inf: overhead)")
@@ -197,6 +197,9 @@ class _Setup:
 
 # Most samples per face coordinate (each holds one float per light position and sample).
 MAX_SAMPLES = 100_000
+# Largest f/n the face factors accept: found by sweeping f/n to 1e308, the golden-section
+# searches of optimal_root and optimal_factors meet inf/inf from about f/n = 1e160 on.
+MAX_DEPTH_RATIO = 1e100
 
 
 def _setup(kind, near, far, fov, lx, ly, lz, directional, face, samples) -> _Setup:
@@ -204,6 +207,8 @@ def _setup(kind, near, far, fov, lx, ly, lz, directional, face, samples) -> _Set
     lx_, ly_, lz_ = _light(lx, ly, lz, directional)
     samples = check.whole(samples, "samples", 3, MAX_SAMPLES)
     near_, far_ = check.frustum(near, far)
+    if (far_ / near_ > MAX_DEPTH_RATIO).any():  # the optimisations' ratios overflow float64 beyond (issue 19)
+        raise ValueError(f"far/near must be at most {MAX_DEPTH_RATIO:g} for the face factors, got near={check._show(near_)}, far={check._show(far_)}")
     in_plane = np.zeros(lz_.shape, bool) if directional else lz_ == 0
     return _Setup(key, fkey, near_, far_, check.fov(fov), lx_, ly_, np.where(in_plane, 1.0, lz_), in_plane, directional, int(samples))
 
@@ -353,7 +358,9 @@ def optimal_factors(kind: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, 
     def value(tau):
         return face_factors(key, near, far, fov, lx=lx, ly=ly, lz=lz, directional=directional, a=y0 * np.expm1(tau), b=b, samples=samples)[target]
 
-    shape = np.broadcast(np.asarray(near), np.asarray(far), np.asarray(fov), np.asarray(lx), np.asarray(ly), np.asarray(lz), np.asarray(b)).shape
+    _light(lx, ly, lz, directional)  # checked before the shapes are taken
+    shape = np.broadcast(*check.broadcast(near=check.as_float_array(near, "near"), far=check.as_float_array(far, "far"), fov=check.as_float_array(fov, "fov"),
+                                          lx=lx, ly=ly, lz=lz, b=check.as_float_array(b, "b"))).shape
     tau, _ = _extremum(value, np.zeros(shape), np.zeros(shape) + tau_max, 49, sign=-1.0, iterations=40)
     a_opt = y0 * np.expm1(tau)
     out = face_factors(key, near, far, fov, lx=lx, ly=ly, lz=lz, directional=directional, a=a_opt, b=b, samples=samples)
@@ -435,4 +442,7 @@ def max_over_lights(factors: dict[str, Array], axis: int | tuple[int, ...] | Non
     missing = {"R_s", "R_t", "S"} - set(factors)
     if missing:
         raise ValueError(f"factors must hold R_s, R_t and S (the output of face_factors), missing {sorted(missing)}")
-    return {k: np.max(np.asarray(factors[k], float), axis=axis) for k in ("R_s", "R_t", "S")}
+    try:
+        return {k: np.max(np.asarray(factors[k], float), axis=axis) for k in ("R_s", "R_t", "S")}
+    except (TypeError, ValueError, OverflowError, IndexError) as exc:  # numpy's AxisError is a ValueError and IndexError
+        raise ValueError(f"axis must be None, an axis or a tuple of axes of the factors, got {axis!r:.60}; factors R_s, R_t, S must be real arrays ({exc})") from None

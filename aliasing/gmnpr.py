@@ -284,8 +284,11 @@ def generalized_error(lam: ArrayLike, near: ArrayLike, far: ArrayLike, fov: Arra
     # written without cancellation in each regime
     q = np.where(g.regime1, (zz - g.n) * g.sin_t + g.n * g.tan_p * g.cos_t, zz * g.sin_t + g.f * np.sin(g.phi - g.theta) / np.cos(g.phi))
     # eq. (2): ψ(z + ϕ)²/z = z′²/(tanφ D sinθ z λ(λ+1)), z′ = λD + q; divided through by λ²
-    with np.errstate(divide="ignore"):
-        return (g.depth + q * r) ** 2 / ((1 + r) * g.tan_p * g.depth * g.sin_t * zz)  # eq. (2)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        den = (1 + r) * g.tan_p * g.sin_t * zz
+        err = (g.depth + q * r) ** 2 / ((1 + r) * g.tan_p * g.depth * g.sin_t * zz)  # eq. (2)
+        # where D or its square overflow (far near 1e308) that is inf/inf: the same as (D + qr)(1 + qr/D)/den
+        return np.where(np.isnan(err), (g.depth + q * r) * (1 + q * r / g.depth) / den, err)
 
 
 def _n_prime(lam: Array, near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLike, depth: ArrayLike | None) -> Array:

@@ -169,7 +169,7 @@ def _cos_phi(coord: Array, l_c: ArrayLike, l_z: ArrayLike, directional: bool = F
     For a directional light (l_c, l_z) is the direction towards it, projected on the plane
     of the face's normal and the coordinate axis: cos φ_l = l_z/√(l_c² + l_z²), constant.
     """
-    if directional:
+    if check.flag(directional, "directional"):
         lz = check.positive(l_z, "lz")
         lc = check.as_float_array(l_c, "lx/ly (light coordinate)")
         if np.isinf(lc).any():
@@ -309,6 +309,10 @@ def zeta_bound(kind: str, coord: ArrayLike, near: ArrayLike, far: ArrayLike, fov
     n, f = check.frustum(near, far)
     lz_ = check.positive(lz, "lz")
     lx_, ly_ = check.as_float_array(lx, "lx"), check.as_float_array(ly, "ly")
+    if (lz_ > _BIG).any():
+        raise ValueError(f"lz must be at most {_BIG:g} here (its square overflows beyond), got {check._show(lz_)}")
+    if (np.abs(lx_) > _BIG).any() or (np.abs(ly_) > _BIG).any():
+        raise ValueError(f"lx and ly must be within [-{_BIG:g}, {_BIG:g}] (a light farther away is lz = inf), got lx={check._show(lx_)}, ly={check._show(ly_)}")
     if key == "end":
         de = {"near": n, "far": f}[check.choice(face, "face", ["near", "far"])]
         width = We * de / n
@@ -318,6 +322,8 @@ def zeta_bound(kind: str, coord: ArrayLike, near: ArrayLike, far: ArrayLike, fov
         yy = y0 + (y1 - y0) * _unit_coordinate(v, "v")
         xx = We * y1 / y0 * (cc - 0.5)
         return y0 / (We * ct) * lz_ / yy * np.arcsinh((xx - lx_) / lz_)  # eq. (67), C_b,s = y0/(W_e cosθ)
+    if (lz_ < 1e-150 * y0).any():  # lz² underflows below this and eq. (68) becomes 0/0 (issue 19)
+        raise ValueError(f"lz must be at least 1e-150·near for the side face (lower is the face's plane), got {check._show(lz_)}")
     yy = y0 + (y1 - y0) * cc
     L = np.sqrt(ly_**2 + lz_**2)
     inv_cos = np.sqrt((yy - ly_) ** 2 + lz_**2) / lz_
@@ -364,9 +370,23 @@ def _ab(a: ArrayLike, b: ArrayLike, y0: Array, y1: Array) -> tuple[Array, Array]
     bb = check.as_float_array(b, "b")
     if ((-bb >= y0) & (-bb <= y1)).any():
         raise ValueError(f"b must be > −y0 or < −y1 (the root −b of δ_lp,t, eq. 106, must lie off the face [y0, y1]), got b={check._show(bb)}")
-    if (bb == aa).any():
-        raise ValueError("b must differ from a (b = a makes eq. 110's logarithm 0); use b = inf for eq. 78")
+    if (np.abs(bb - aa) <= 1e-9 * (aa + y0)).any():  # eq. 110 is 0/0 at b = a, and all rounding near it
+        raise ValueError(f"b must differ from a by more than 1e-9·(a + y0) (b = a makes eq. 110's logarithm 0); use b = inf for eq. 78; got a={check._show(aa)}, b={check._show(bb)}")
+    # issue 19: beyond 1e150 the products (y + a)(y + b) of eq. 110 overflow to inf/inf
+    if (np.isinf(aa) & np.isfinite(bb)).any() or (np.isfinite(bb) & (np.abs(bb) > _BIG)).any() or (np.isfinite(aa) & (aa > _BIG)).any():
+        raise ValueError(f"a and b must each be inf or within [-{_BIG:g}, {_BIG:g}], and a = inf needs b = inf; got a={check._show(aa)}, b={check._show(bb)}")
     return aa, bb
+
+
+_BIG = 1e150  # largest finite a, b, lx, ly for which the closed forms stay inside float64
+
+
+def _log_ratio(dx: Array, x0: Array) -> Array:
+    """ln((x0 + dx)/x0) for x0 > 0, dx ≥ 0: log1p(dx/x0), exact also as the ratio → 1 (a ≫ y: the
+    map tends to uniform); where dx/x0 overflows (near → 0), ln(x0 + dx) − ln x0, which loses nothing there."""
+    with np.errstate(over="ignore"):
+        step = dx / x0
+    return np.where(np.isinf(step), np.log(x0 + dx) - np.log(x0), np.log1p(np.where(np.isinf(step), 0.0, step)))
 
 
 @check.public
@@ -418,11 +438,11 @@ def parameterization(kind: str, v: ArrayLike, near: ArrayLike, far: ArrayLike, f
             t = (y1 + aa) * (yy - y0) / ((y1 - y0) * (yy + aa))  # eqs. (75)-(76): p2 + p3/(y + a)
         return np.where(np.isinf(aa), vv, t)
     if key == "log_t":
-        return np.log((yy + aa) / (y0 + aa)) / np.log((y1 + aa) / (y0 + aa))  # eq. (77)
+        return _log_ratio(yy - y0, y0 + aa) / _log_ratio(y1 - y0, y0 + aa)  # eq. (77)
     # logp_t: c0 log((y0+a)(y+b)/((y0+b)(y+a))), eqs. (106)-(110); b = inf gives eq. (78)
     with np.errstate(invalid="ignore", divide="ignore"):
         finite = np.log((y0 + aa) * (yy + bb) / ((y0 + bb) * (yy + aa))) / np.log((y0 + aa) * (y1 + bb) / ((y0 + bb) * (y1 + aa)))  # eq. (110)
-    return np.where(np.isinf(bb), np.log((yy + aa) / (y0 + aa)) / np.log((y1 + aa) / (y0 + aa)), finite)
+    return np.where(np.isinf(bb), _log_ratio(yy - y0, y0 + aa) / _log_ratio(y1 - y0, y0 + aa), finite)
 
 
 @check.public

@@ -36,6 +36,20 @@ def _depths(z: ArrayLike, near: ArrayLike, far: ArrayLike):
     return zz, n, f
 
 
+def _ratio(n_prime: Array, u: ArrayLike, v: ArrayLike) -> Array:
+    """(n′ + u)/(n′ + v), with its limit 1 at n′ = ∞."""
+    n_prime, u, v = np.broadcast_arrays(n_prime, np.asarray(u, float), np.asarray(v, float))
+    finite = np.isfinite(n_prime)
+    with np.errstate(invalid="ignore", over="ignore"):
+        r = (n_prime + u) / (n_prime + v)
+        big = finite & ~np.isfinite(n_prime + v)
+        if big.any():  # sums beyond 1.8e308: divide by the largest term first (elsewhere bit for bit as before)
+            s = np.maximum(np.abs(n_prime), np.maximum(np.abs(u), np.abs(v)))
+            with np.errstate(under="ignore", divide="ignore"):
+                r = np.where(big, (n_prime / s + u / s) / (n_prime / s + v / s), r)
+    return np.where(finite, r, 1.0)
+
+
 @check.public
 def t_perspective(z: ArrayLike, near: ArrayLike, far: ArrayLike, n_prime: ArrayLike) -> NDArray[np.float64]:
     """t(z) of a perspective warping frustum, Lloyd et al. 2006 eq. 6 (sign corrected).
@@ -80,9 +94,7 @@ def spacing_perspective(z: ArrayLike, near: ArrayLike, far: ArrayLike, n_prime: 
     zz, n, f = _depths(z, near, far)
     npr = check.n_prime(n_prime, n)
     zp_over_np = 1.0 + (zz - n) / npr  # z′/n′
-    with np.errstate(invalid="ignore"):
-        zp_over_fp = (npr + zz - n) / (npr + f - n)  # z′/f′
-    zp_over_fp = np.where(np.isinf(npr), 1.0, zp_over_fp)
+    zp_over_fp = _ratio(npr, zz - n, f - n)  # z′/f′
     return (f - n) * zp_over_np * zp_over_fp
 
 

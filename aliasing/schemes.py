@@ -108,7 +108,7 @@ def parse(name: str) -> Scheme:
     elif key in warping.WARPING_RULES:
         rule, param = key, "perspective"
     else:
-        raise ValueError(f"unknown scheme {name!r}; grammar: {GRAMMAR}; rules: {', '.join(warping.WARPING_RULES)}")
+        raise ValueError(f"unknown scheme name {name!r}; grammar: {GRAMMAR}; rules: {', '.join(warping.WARPING_RULES)}")
     label = {"uniform": "Standard", "p": "P", "po": "Po", "logp": "LogP"}.get(rule, rule.upper() if rule != "sopt" else "Sopt")
     if rule == "sopt" and param == "logperspective":
         label = "LogSopt"
