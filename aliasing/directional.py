@@ -232,6 +232,7 @@ def light_frame(view: View, light: ArrayLike) -> LightFrame:
     >>> fr.Y[:, 0].tolist(), fr.X[:, 0].tolist()    # along the view: 1 at every corner
     ([1.0, 1.0, 1.0, 1.0], [-1.0, 1.0, 1.0, -1.0])
     """
+    check.instance(view, "view", View)
     if view.shape != ():
         raise ValueError(f"a light frame needs one view (scalar near, far, fov), got fields of shape {view.shape}")
     basis = light_space(np.atleast_2d(check.as_float_array(light, "light")))  # (N, 3, 3)
@@ -294,8 +295,13 @@ def slice_fit(frame: LightFrame, near: ArrayLike, far: ArrayLike) -> SliceFit:
     >>> slice_fit(fr, [1.0, 10.0], [10.0, 100.0]).depth.tolist()   # (K, N): f_i − n_i overhead
     [[9.0], [90.0]]
     """
-    n = np.asarray(near, float).reshape(-1, 1)
-    f = np.asarray(far, float).reshape(-1, 1)
+    check.instance(frame, "frame", LightFrame)
+    n = check.positive(near, "near").reshape(-1, 1)
+    f = check.positive(far, "far").reshape(-1, 1)
+    if n.shape != f.shape or n.size == 0:
+        raise ValueError(f"near and far must list the same number (>= 1) of slices, got {n.size} and {f.size}")
+    if (f <= n).any():
+        raise ValueError("far must be greater than near for every slice")
     ymin, ymax = frame.y_min[None], frame.y_max[None]
     lo = np.minimum(n * ymin, f * ymin)
     y_near, y_far = n * ymax - lo, f * ymax - lo
@@ -318,8 +324,13 @@ def slice_errors(sf: SliceFit, n_prime: ArrayLike = np.inf, parameterization: st
     [10.0, 4.95]
     """
     kind = check.choice(parameterization, "parameterization", PARAMETERIZATIONS)
+    check.instance(sf, "sf", SliceFit)
     fr = sf.frame
-    npr = np.broadcast_to(np.asarray(n_prime, float), sf.depth.shape)
+    npr = check.as_float_array(n_prime, "n_prime")
+    try:
+        npr = np.broadcast_to(npr, sf.depth.shape)
+    except ValueError:
+        raise ValueError(f"n_prime of shape {npr.shape} does not broadcast to the slices' shape {sf.depth.shape} (K, N)") from None
     if (npr <= 0).any() or np.isnan(npr).any():
         raise ValueError("n_prime must be in (0, inf]")
     n, f = sf.near, sf.far

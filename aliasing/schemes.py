@@ -160,8 +160,9 @@ def evaluate(scheme: str | Scheme | Sequence[str | Scheme], near: float | View |
     **options
         Passed to the warping rule (e.g. ``c_fraction`` for P/LogP, ``focus`` for TSM).
     """
-    if not isinstance(scheme, (str, Scheme)):
+    if isinstance(scheme, (list, tuple)):
         return evaluate_many(scheme, near, far, fov, light, edges=edges, **options)
+    check.instance(scheme, "scheme", (str, Scheme))
     return evaluate_many([scheme], near, far, fov, light, edges=edges, **options)[0]
 
 
@@ -185,6 +186,7 @@ def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = Non
     """
     if isinstance(names, (str, Scheme)):
         raise ValueError("names must be a list of scheme names (use evaluate for one)")
+    check.instance(names, "names", (list, tuple))
     parsed = [parse(s) if isinstance(s, str) else s for s in names]
     for sch in parsed:
         check.instance(sch, "scheme", Scheme)  # a name or a parsed Scheme, nothing else (issue 19)

@@ -56,6 +56,8 @@ EXCLUDED = {
     # registry decorators: they take a name and return a decorator; fuzzing them would
     # register garbage in the process-wide tables
     "aliasing.warping.register",
+    # an unchecked inner-loop kernel by contract (its docstring): schemes validates at its edge
+    "aliasing.warping.eta_checked",
     "aliasing.partitioning.register",
     # reads a file path: covered by the file scenarios of tests/test_raster.py
     "aliasing.raster.scenes.load_mesh",
@@ -78,16 +80,17 @@ EXCLUDED = {
     # ComplexWarning); a non-LightMap ``lm`` or non-Scheme ``scheme`` is an AttributeError;
     # 0-d ``points`` an IndexError; wrong light shapes an einsum error
     "aliasing.raster.measure.measure",
-    "aliasing.raster.rasterize.eye_pass",
-    "aliasing.raster.rasterize.frame_map",
-    "aliasing.raster.rasterize.light_map",
-    "aliasing.raster.rasterize.light_maps",
-    "aliasing.raster.rasterize.log_row_centres",
-    "aliasing.raster.rasterize.map_set",
-    "aliasing.raster.rasterize.near_face_map",
-    "aliasing.raster.rasterize.project",
-    "aliasing.raster.rasterize.rasterize",
-    "aliasing.raster.rasterize.shadow_map",
+    "aliasing.raster.eye.eye_pass",
+    "aliasing.raster.facemaps.frame_map",
+    "aliasing.raster.lightmap.light_map",
+    "aliasing.raster.lightmap.light_maps",
+    "aliasing.raster.shadow.log_row_centres",
+    "aliasing.raster.facemaps.map_set",
+    "aliasing.raster.facemaps.near_face_map",
+    "aliasing.raster.facemaps.fixed_face_map",
+    "aliasing.raster.eye.project",
+    "aliasing.raster.core.rasterize",
+    "aliasing.raster.shadow.shadow_map",
     "aliasing.raster.scenes.ground_and_boxes",
     "aliasing.raster.scenes.probes",
 }
@@ -112,6 +115,8 @@ def _lazy(make: Callable[[], object]) -> Callable[[], object]:
 
 _LM = _lazy(lambda: aliasing.raster.light_map(1.0, 50.0, 60.0, "gamma:60", "P"))
 _FIT = _lazy(lambda: aliasing.directional.fit(aliasing.geometry.frustum_vertices(1.0, 10.0, 60.0), [0.0, 1.0, 0.3]))
+_FRAME = _lazy(lambda: aliasing.directional.light_frame(aliasing.View(1.0, 100.0, 60.0), [[0.0, 1.0, 0.3], [0.2, 0.5, -0.8]]))
+_SLICES = _lazy(lambda: aliasing.directional.slice_fit(_FRAME(), [1.0, 10.0], [10.0, 100.0]))
 _FACTORS = _lazy(lambda: aliasing.face_factors.face_factors("logp", 1.0, 10.0, 60.0, ly=[0.5, 1.0], lz=1.0, samples=9))
 
 # A valid value per parameter name; BASE overrides it per function.
@@ -176,7 +181,18 @@ BASE: dict[str, dict[str, object]] = {
     "rasterize": {"triangles": TRI, "resolution": 8},
     "shadow_map": {"resolution": 8},
     "log_row_centres": {"resolution": 8},
-    "side_frames": {}, "storage_factor": {"n_prime": 5.0},
+    "side_frames": {}, "storage_factor": {"far": 100.0, "fov": 60.0, "n_prime": 5.0},
+    # near may be a View (issue 11), so far and fov have defaults: give them
+    "storage_factor_optimal": {"far": 100.0, "fov": 60.0},
+    "max_error_z": {"far": 100.0, "fov": 60.0, "n_prime": 5.0},
+    "critical_resolution": {"far": 100.0, "fov": 60.0, "n_prime": 5.0},
+    "frustum_vertices": {"far": 100.0, "fov": 60.0},
+    # the shared light frames of schemes.evaluate_many (issue 12)
+    "light_frame": {"view": aliasing.View(1.0, 100.0, 60.0), "light": [[0.0, 1.0, 0.3], [0.2, 0.5, -0.8]]},
+    "slice_fit": {"frame": _FRAME, "near": [1.0, 10.0], "far": [10.0, 100.0]},
+    "slice_errors": {"sf": _SLICES, "n_prime": 5.0},
+    "evaluate_many": {"names": ["P", "ZP2+LogP"], "light": "sphere:4"},
+    "fixed_face_map": {"far": 50.0, "light": [0.0, 1.0, 0.3], "face": "bottom", "parameterization": "perspective"},
 }
 # Results that may hold NaN by contract (documented in the function's docstring).
 NAN_BY_CONTRACT = {"lambda_glpr", "hemisphere_map", "splits_report", "eye_pass", "measure", "face_errors", "face_frames"}
