@@ -81,10 +81,7 @@ class View:
     def __post_init__(self) -> None:
         n, f = check.frustum(self.near, self.far)
         a = check.fov(self.fov)
-        try:
-            n, f, a = np.broadcast_arrays(n, f, a)
-        except ValueError:
-            raise ValueError(f"near, far and fov must broadcast together, got shapes {np.shape(n)}, {np.shape(f)}, {np.shape(a)}") from None
+        n, f, a = check.broadcast(near=n, far=f, fov=a)  # a shape error names the three and their shapes
         theta = half_angle(a)
         for name, value in (("near", n), ("far", f), ("fov", a), ("_theta", theta)):
             object.__setattr__(self, name, _store(value))

@@ -52,7 +52,7 @@ ISSUE_19 = [
     (lambda: geometry.lights("sphere:100000000000"), ValueError, r"N must be a whole number in \[1, 10000000\]"),
     (lambda: budgets.allocate("pow2", 180, 180, 180), ValueError, r"M_x and M_z must have the same shape \(\.\.\., K\)"),
     (lambda: budgets.allocate(1.5, [[1.0]], [[1.0]], 10), ValueError, r"allocation method must be a string"),
-    (lambda: schemes.evaluate(None, 0.01, 10.5, 0.5, "overhead"), TypeError, r"scheme must be a Scheme, got NoneType"),
+    (lambda: schemes.evaluate(None, 0.01, 10.5, 0.5, "overhead"), TypeError, r"scheme must be a str or Scheme, got NoneType"),
     (lambda: schemes.parse(None), TypeError, r"name \(scheme name\) must be a str"),
     (lambda: warping.shaping_eta(10**400, "nan"), ValueError, r"gamma is outside the float range"),
     (lambda: warping.shaping_eta(30.0, "nan"), ValueError, r"fov must be a real number"),
