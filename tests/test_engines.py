@@ -407,3 +407,71 @@ def test_sdsm_occupancy_overhead_closed_form():
     assert all(r["S_ratio"] < 0.05 for r in far_rows)  # nothing near the eye: the first partition no longer starts at near
     with pytest.raises(ValueError, match="fractions"):
         sdsm.occupancy(n, f, 60.0, "overhead", k, [0.0])
+
+
+# --- second pass: engine stable presets read from source (Filament, Babylon.js) -----------
+
+
+def test_filament_stable_preset_is_the_corner_centroid_sphere_with_a_texel_border():
+    # ShadowMap.cpp computeBoundingSphere: centre = mean of the 8 slice corners, radius = max distance
+    near, far, fov, res = 10.0, 1e5, 60.0, 2048
+    (a, b), _ = stable.cascade_ranges("filament", near, far, 4)
+    for ai, bi in zip(a, b):
+        corners = geometry.frustum_vertices(ai, bi, fov)
+        r = np.linalg.norm(corners - corners.mean(axis=0), axis=-1).max()
+        assert float(stable.centroid_radius(ai, bi, fov)) == pytest.approx(r, rel=1e-12)
+    p = stable.PRESETS["filament"]
+    assert (p.split, p.fit, p.snap, p.overlap, p.scene) == ("filament", "centroid", "border", 0.0, False)
+    got = stable.evaluate("filament", near, far, fov, "hemisphere:30", k=4, fit="centroid", snap="border", resolution=res)
+    bare = stable.evaluate("filament", near, far, fov, "hemisphere:30", k=4, fit="centroid")
+    np.testing.assert_allclose(got.M_x / bare.M_x, res / (res - 2))  # shadowDimension = mapSize − 2
+    np.testing.assert_allclose(got.width_x, np.broadcast_to(2 * stable.centroid_radius(a, b, fov) * res / (res - 2), got.width_x.shape))
+    row = compare.compare(["csm-stable:filament"], near=near, far=far, fov=fov, lights="hemisphere:30", shadow_res=res)[0]
+    assert row["coverage"] == 1.0
+    assert row["max_error"] == pytest.approx(float(np.maximum(got.M_x, got.M_z).max()) * 1920 / res, rel=1e-12)
+
+
+def test_filament_shadowfar_sphere_misses_the_far_corners():
+    # shadowFar > 0: every cascade gets the sphere {camera, shadowFar}; the far corners lie at far·√(1 + 2t²)
+    near, far, fov = 10.0, 1e5, 60.0
+    r = stable.evaluate("filament", near, far, fov, "overhead", k=4, fit="far")
+    np.testing.assert_allclose(r.width_x, 2 * far)  # all cascades alike: the first is as coarse as the last
+    assert stable.coverage("filament", near, far, fov, "overhead", k=4, fit="far") == 1.0  # overhead: |x|, |z| <= far
+    assert stable.coverage("filament", near, far, fov, "hemisphere:200", k=4, fit="far") < 0.5
+    # x along (1, 0, −1)/√2 reaches (t + 1)·far/√2 > far at the corner (−t far, ·, far)
+    assert (np.tan(np.radians(30.0)) + 1) / np.sqrt(2) > 1.0
+
+
+def test_babylon_stable_preset_rounds_the_centroid_radius_to_sixteenths():
+    near, far, fov = 1.0, 100.0, 60.0
+    p = stable.PRESETS["babylon"]
+    assert (p.split, p.fit, p.snap) == ("babylon", "centroid16", "origin")
+    (a, b), _ = stable.cascade_ranges("babylon", near, far, 4)
+    r = stable.centroid_radius(a, b, fov)
+    got = stable.evaluate("babylon", near, far, fov, "gamma:60", k=4, fit="centroid16", snap="origin")
+    side = got.width_x[0]
+    np.testing.assert_allclose(side * 8, np.round(side * 8))  # 2·(whole sixteenths)
+    assert (side >= 2 * r).all() and (side < 2 * r + 2 / 16).all()
+    same = stable.evaluate("babylon", near, far, fov, "gamma:60", k=4, fit="centroid16", snap="none")
+    np.testing.assert_array_equal(got.M_x, same.M_x)  # the origin snap keeps the size
+    assert compare.compare(["csm-stable:babylon"], near=near, far=far, lights="hemisphere:50")[0]["coverage"] == 1.0
+
+
+def test_no_unity_stable_preset_is_invented():
+    assert not any(name.startswith("unity") for name in stable.PRESETS)  # StableFit is in Unity's closed native code
+
+
+@pytest.mark.parametrize("fit, snap", [("centroid16", "origin"), ("centroid", "border")])
+def test_engine_stable_fits_in_the_rasterizer(fit, snap):
+    from aliasing.engines.validate import validate_stable
+
+    r = validate_stable("babylon", 10.0, 1e4, 60.0, "gamma:150@azimuth:40", k=4, fit=fit, snap=snap, resolution=192, cells=12)
+    assert all(0.9 <= x <= 1 + r["tolerance"] for x in r["ratio_x"] + r["ratio_z"])
+    assert r["inside"] == [1.0] * 4
+
+
+def test_filament_shadowfar_loses_pixels_in_the_rasterizer():
+    from aliasing.engines.validate import validate_stable
+
+    r = validate_stable("filament", 10.0, 1e4, 60.0, "gamma:120@azimuth:45", k=4, fit="far", resolution=128, cells=8)
+    assert min(r["inside"]) < 1.0 and max(r["ratio_x"]) <= 1 + r["tolerance"]

@@ -3,7 +3,7 @@
 Scheme specs (``:``-separated options, case-insensitive)::
 
     csm:SPLIT[:k=N]                          tight fit (the papers'), a split of aliasing.partitioning
-    csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body][:snap=none|bevy|pad][:scene=1][:overlap=P]
+    csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body|centroid|centroid16|far][:snap=none|origin|border|bevy|pad|godot][:scene=1][:overlap=P]
     sdsm[:k=N][:zmin=Z][:zmax=Z]             log partitions of the occupied range (default [near, far], k = 4)
     sdsm:method=adaptive|kmeans[:k=N]        from a depth histogram (``histogram=``; CLI ``--histogram``)
     vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P]
@@ -264,7 +264,7 @@ def _cell(v: object) -> str:
 
 LISTING = """families and presets:
   csm:SPLIT[:k=N]                 split methods: {splits}
-  csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body][:snap=none|bevy|pad][:scene=1][:overlap=P]
+  csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body|centroid|centroid16|far][:snap=none|origin|border|bevy|pad|godot][:scene=1][:overlap=P]
                                   stable presets: {stables}
   sdsm[:k=N][:zmin=Z][:zmax=Z]    log partitions of the occupied range (Lauritzen et al. 2011)
   sdsm:method=adaptive|kmeans[:k=N]  from --histogram (Intel's SDSM sample)
