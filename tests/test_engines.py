@@ -475,3 +475,53 @@ def test_filament_shadowfar_loses_pixels_in_the_rasterizer():
 
     r = validate_stable("filament", 10.0, 1e4, 60.0, "gamma:120@azimuth:45", k=4, fit="far", resolution=128, cells=8)
     assert min(r["inside"]) < 1.0 and max(r["ratio_x"]) <= 1 + r["tolerance"]
+
+
+# --- second pass: Intel's SDSM sample's border, dilation and power-of-two quantisation ----
+
+
+def _intel_scale(lo, hi, border, dilation, quantize):
+    """ComputePartitionDataFromBounds step by step, in the light's [0, 1] texture space (second method)."""
+    lo, hi = lo - border, hi + border
+    scale = 1.0 / (hi - lo)
+    bias = -lo * scale
+    f = 1.0 - 2.0 * dilation
+    scale, bias = scale * f, dilation + f * bias
+    target = max(1.0, 2.0 ** np.floor(np.log2(scale))) if quantize else scale
+    bias = (target / scale) * (bias - 0.5) + 0.5
+    return target, bias
+
+
+@pytest.mark.parametrize("lo, hi, border, dilation, quantize", [(0.1, 0.13, 0.0, 10 / 1024, False), (0.1, 0.13, 0.0, 10 / 1024, True), (0.3, 0.9, 0.02, 0.01, True), (0.0, 0.99, 0.01, 0.01, True), (0.42, 0.4201, 0.0, 0.0, True)])
+def test_sdsm_sample_bounds_follow_the_hlsl_steps(lo, hi, border, dilation, quantize):
+    L = 250.0  # world units of the light's texture space
+    scale, bias = _intel_scale(lo, hi, border, dilation, quantize)
+    side = float(sdsm.sample_bounds((hi - lo) * L, L, border=border * L, dilation=dilation, quantize=quantize))
+    assert side == pytest.approx(L / scale, rel=1e-12)
+    # the samples [lo, hi] land inside [0, 1] of the partition's map unless quantising clamps the scale at 1
+    u_lo, u_hi = lo * scale + bias, hi * scale + bias
+    if L / side * (hi - lo + 2 * border) / (1 - 2 * dilation) <= 1 + 1e-12:
+        assert -1e-12 <= u_lo and u_hi <= 1 + 1e-12
+    if quantize:
+        exact = float(sdsm.sample_bounds((hi - lo) * L, L, border=border * L, dilation=dilation))
+        assert np.log2(L / side) == pytest.approx(round(np.log2(L / side)))  # a power-of-two fraction of L
+        assert (exact <= side * (1 + 1e-12) < 2 * exact) or side == pytest.approx(L)  # at most L: scale >= 1
+
+
+def test_sdsm_sample_bounds_bad_input():
+    with pytest.raises(ValueError, match="dilation"):
+        sdsm.sample_bounds(1.0, 10.0, dilation=0.5)
+    with pytest.raises(ValueError, match="border"):
+        sdsm.sample_bounds(1.0, 10.0, border=-1.0)
+    assert cli.main(["engines", "--schemes", "sdsm:k=2:dilation=0.7"]) == 2
+
+
+def test_sdsm_sample_options_in_the_comparison_and_the_rasterizer():
+    from aliasing.engines.validate import validate_stable
+
+    base, dil, quant = compare.compare(["sdsm:k=3:zmin=100:zmax=5000", "sdsm:k=3:zmin=100:zmax=5000:dilation=0.01", "sdsm:k=3:zmin=100:zmax=5000:dilation=0.01:quantize=1"], lights="hemisphere:40")
+    assert dil["max_error"] == pytest.approx(base["max_error"] / 0.98, rel=1e-12)  # W/(1 − 2δ)
+    assert dil["max_error"] <= quant["max_error"] < 2 * dil["max_error"]
+    edges = sdsm.log_partitions(10.0, 1e4, 100.0, 5000.0, 3)
+    r = validate_stable(edges, 100.0, 5000.0, 60.0, "gamma:60@azimuth:20", fit="tight", dilation=0.01, quantize=True, resolution=192, cells=12)
+    assert all(0.9 <= x <= 1 + r["tolerance"] for x in r["ratio_x"] + r["ratio_z"]) and r["inside"] == [1.0] * 3

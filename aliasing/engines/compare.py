@@ -6,6 +6,8 @@ Scheme specs (``:``-separated options, case-insensitive)::
     csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body|centroid|centroid16|far][:snap=none|origin|border|bevy|pad|godot][:scene=1][:overlap=P]
     sdsm[:k=N][:zmin=Z][:zmax=Z]             log partitions of the occupied range (default [near, far], k = 4)
     sdsm:method=adaptive|kmeans[:k=N]        from a depth histogram (``histogram=``; CLI ``--histogram``)
+        both with [:border=B][:dilation=D][:quantize=1]: Intel's sample's partition border [units],
+        dilation (fraction per side; the sample's 10/R) and power-of-two quantisation (default off)
     vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P]
     matched | exact
 
@@ -138,21 +140,22 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
             "extra_bias": pool_info["extra_bias"],
         }
     if family == "sdsm":
-        opts = _options(parts, spec, {"k", "zmin", "zmax", "method"})
+        opts = _options(parts, spec, {"k", "zmin", "zmax", "method", "border", "dilation", "quantize"})
         k = _k(opts, spec, 4)
         method = check.choice(opts.get("method", "log"), "sdsm method", ("log", "adaptive", "kmeans"))
+        sample = {"border": _num(opts, "border", spec, 0.0), "dilation": _num(opts, "dilation", spec, 0.0), "quantize": opts.get("quantize", "0") not in ("0", "false", "no")}
         if method == "log":
             lo, hi = sdsm.occupied(near, far, _num(opts, "zmin", spec, near), _num(opts, "zmax", spec, far))
-            split, n_fit, f_fit = sdsm.log_partitions(near, far, lo, hi, k), lo, hi
+            edges = sdsm.log_partitions(near, far, lo, hi, k)
+            split, n_fit, f_fit = (edges[:-1], edges[1:]), near, far  # separate maps; the light space spans [near, far]
         else:
             if histogram is None:
                 raise ValueError(f"scheme {spec!r}: method={method} needs a depth histogram (--histogram CSV: z_lo,z_hi,count)")
             parts_lo, parts_hi = (sdsm.adaptive_log if method == "adaptive" else sdsm.kmeans)(histogram[0], histogram[1], k)
             sdsm.occupied(near, far, parts_lo[0], parts_hi[-1])  # the histogram must lie in [near, far]
             split, n_fit, f_fit = (parts_lo, parts_hi), near, far
-        res = stable.evaluate(split, n_fit, f_fit, fov, lights)
-        axis = stable.evaluate(split, n_fit, f_fit, fov, "overhead")
-        return _cascade_row(spec, res, axis, t, image_res, shadow_res)
+        res = stable.evaluate(split, n_fit, f_fit, fov, lights, **sample)
+        axis = stable.evaluate(split, n_fit, f_fit, fov, "overhead", **sample)
         return _cascade_row(spec, res, axis, t, image_res, shadow_res)
     if not parts:
         raise ValueError(f"scheme {spec!r}: {family} needs a split method or preset (see aliasing splits --list)")
@@ -268,6 +271,7 @@ LISTING = """families and presets:
                                   stable presets: {stables}
   sdsm[:k=N][:zmin=Z][:zmax=Z]    log partitions of the occupied range (Lauritzen et al. 2011)
   sdsm:method=adaptive|kmeans[:k=N]  from --histogram (Intel's SDSM sample)
+    sdsm options [:border=B][:dilation=D][:quantize=1]: the sample's partition border, dilation, power-of-two quantisation
   vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P]
                                   presets: {vsms}
   matched                         resolution-matched, power-of-two levels (Lefohn et al. 2007)

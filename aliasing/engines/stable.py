@@ -298,7 +298,7 @@ def coverage(split: str | ArrayLike, near: float, far: float, fov: float, light:
     >>> coverage("log", 0.1, 100.0, 60.0, "hemisphere:100", k=3, fit="diagonal")
     1.0
     """
-    fit_keys = {"fit", "snap", "resolution", "scene", "overlap"}
+    fit_keys = {"fit", "snap", "resolution", "scene", "overlap", "border", "dilation", "quantize"}
     base = {key: v for key, v in options.items() if key not in fit_keys}
     for key in ("scene", "overlap"):
         if key in options:
@@ -347,7 +347,7 @@ def cascade_ranges(split: str | ArrayLike, near: float, far: float, k: int | Non
     return (np.maximum(lo, n), hi), (edges[:-1], edges[1:])
 
 
-def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "overhead", *, k: int | None = None, fit: str = "tight", snap: str = "none", resolution: float = 2048.0, scene: bool = False, overlap: float = 0.0, **params: float) -> StableResult:
+def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "overhead", *, k: int | None = None, fit: str = "tight", snap: str = "none", resolution: float = 2048.0, scene: bool = False, overlap: float = 0.0, border: float = 0.0, dilation: float = 0.0, quantize: bool = False, **params: float) -> StableResult:
     """M_x, M_z, S̄ (unit resolutions) of a cascade set with a given fit, per light direction.
 
     Parameters
@@ -371,6 +371,10 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
         Fit to scene: every fit range starts at ``near``.
     overlap : float
         Bevy's overlap proportion in [0, 0.99].
+    border, dilation, quantize
+        Intel's SDSM sample's partition border [world units], dilation (fraction per side)
+        and power-of-two quantisation (:func:`aliasing.engines.sdsm.sample_bounds`), applied
+        after the fit, the light space L being the tight box of the whole [near, far].
     """
     kind = check.choice(fit, "fit", FITS)
     snapping = check.choice(snap, "snap", SNAPS)
@@ -399,6 +403,12 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
         wx, wy = wx * res / (res - 1), wy * res / (res - 1)  # one texel more, W′ = W + W′/R
     elif snapping in ("godot", "border"):
         wx, wy = wx * res / (res - 2), wy * res / (res - 2)  # a texel on each side: W spans R − 2 texels
+    if border or dilation or quantize:
+        from .sdsm import sample_bounds
+
+        whole = directional.fit(geometry.frustum_vertices(np.array([float(near)]), np.array([float(far)]), fov), lv)  # App.cpp: the view's extents
+        wx = sample_bounds(wx, np.ptp(whole.x, axis=-1), border=border, dilation=dilation, quantize=quantize)
+        wy = sample_bounds(wy, whole.depth, border=border, dilation=dilation, quantize=quantize)
     M_x, M_z = wx / (2 * t * u), wy / (2 * t * u)  # eq. (2) with a uniform map, maximal at u_k
     return StableResult(M_x, M_z, (M_x * M_z).sum(axis=-1), np.asarray(wx, float), np.asarray(wy, float), (u, v), (a, b))
 
@@ -416,7 +426,7 @@ def cost(split: str | ArrayLike, near: float, far: float, fov: float, light: str
     >>> c["S_ratio_min"] > 1.0
     True
     """
-    fit_keys = {"fit", "snap", "resolution", "scene", "overlap"}
+    fit_keys = {"fit", "snap", "resolution", "scene", "overlap", "border", "dilation", "quantize"}
     params = {key: v for key, v in options.items() if key not in fit_keys}
     tight = evaluate(split, near, far, fov, light, **params)  # today's fit: tight, no snap, no overlap
     other = evaluate(split, near, far, fov, light, **options)
