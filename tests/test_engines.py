@@ -90,10 +90,11 @@ def test_vsm_pages_bound_and_pool():
     assert p.shape == (20,) and (p > 0).all()
     finer = vsm.pages(vsm.Clipmap(fov=60.0, width=1920, bias=-1.0), 10.0, 1e5, "hemisphere:20")
     assert (finer >= p).all() and finer.sum() > 2 * p.sum()  # one octave finer: about 4x the texels per level
-    small = vsm.pool_check(c, 10.0, 1e5, "overhead", 64)
+    small = vsm.pool_check(c, 10.0, 1e5, "overhead", 128)
     assert small["overflow"] and small["extra_bias"] > 0
     relieved = vsm.Clipmap(fov=60.0, width=1920, bias=small["extra_bias"])
-    assert vsm.pages(relieved, 10.0, 1e5, "overhead").max() <= 0.85 * 64
+    assert vsm.pages(relieved, 10.0, 1e5, "overhead").max() <= 0.85 * 128
+    assert vsm.pool_check(c, 10.0, 1e5, "overhead", 32)["extra_bias"] == float("inf")  # 16 coarse pages + 1 per level > 27
     assert not vsm.pool_check(c, 10.0, 1e5, "overhead", 10**7)["overflow"]
 
 
@@ -390,10 +391,12 @@ def test_scene_pages_of_a_ground_quad_against_the_closed_form():
 
     h, far = 170.0, 1e5
     quad = np.array([[[-far, -h, 1.0], [far, -h, 1.0], [far, -h, far]], [[-far, -h, 1.0], [far, -h, far], [-far, -h, far]]])
-    c = vsm.Clipmap(60.0, 512, -2.0)
-    for light, measured in (("overhead", 0.861), ("gamma:60@azimuth:30", 0.995)):  # the ratios the docstring reports
+    engine, bare = vsm.Clipmap(60.0, 512, -2.0), vsm.Clipmap(60.0, 512, -2.0, dilation=0.0, coarse=None)
+    for c, light, measured in ((engine, "overhead", 0.887), (engine, "gamma:60@azimuth:30", 1.046), (bare, "overhead", 0.861), (bare, "gamma:60@azimuth:30", 0.995)):  # the docstring's ratios
         ratio = scene_pages(quad, c, light, resolution=512) / float(vsm.ground_pages(c, h, far, light)[0])
         assert ratio == pytest.approx(measured, abs=0.005)
+    for light in ("overhead", "gamma:60@azimuth:30"):  # dilation and coarse pages only add pages
+        assert scene_pages(quad, bare, light, resolution=256) + 16 <= scene_pages(quad, engine, light, resolution=256)
 
 
 def test_sdsm_occupancy_overhead_closed_form():
@@ -525,3 +528,30 @@ def test_sdsm_sample_options_in_the_comparison_and_the_rasterizer():
     edges = sdsm.log_partitions(10.0, 1e4, 100.0, 5000.0, 3)
     r = validate_stable(edges, 100.0, 5000.0, 60.0, "gamma:60@azimuth:20", fit="tight", dilation=0.01, quantize=True, resolution=192, cells=12)
     assert all(0.9 <= x <= 1 + r["tolerance"] for x in r["ratio_x"] + r["ratio_z"]) and r["inside"] == [1.0] * 3
+
+
+# --- second pass: VSM page-marking dilation and coarse pages ------------------------------
+
+
+def test_vsm_coarse_pages_and_dilation_in_the_frustum_bound():
+    c = vsm.Clipmap(60.0, 1920, 0.0)
+    assert vsm.coarse_pages(c) == 16  # levels 15…18, 4 pages each
+    assert vsm.coarse_pages(vsm.Clipmap(60.0, 1920, 0.0, first=17)) == 8 and vsm.coarse_pages(vsm.Clipmap(last=14)) == 0
+    bare = vsm.Clipmap(60.0, 1920, 0.0, dilation=0.0, coarse=None)
+    only_coarse = vsm.Clipmap(60.0, 1920, 0.0, dilation=0.0)
+    lights = "hemisphere:30"
+    np.testing.assert_array_equal(vsm.pages(only_coarse, 10.0, 1e5, lights), vsm.pages(bare, 10.0, 1e5, lights) + 16)
+    assert (vsm.pages(c, 10.0, 1e5, lights) >= vsm.pages(only_coarse, 10.0, 1e5, lights)).all()
+    # the dilated box of extent E pages touches at most ceil(E + 2δ) + 1 pages per axis: check on a slice
+    a, b, tan = np.array([100.0]), np.array([200.0]), np.tan(np.radians(30.0))
+    basis = geometry.light_space(geometry.lights("overhead"))
+    page = vsm.PAGE * float(vsm.texel(c, 8))
+    ext = vsm.slice_extent(a, b, tan, basis[:, 0])[0, 0] / page
+    rng = np.random.default_rng(3)
+    for shift in rng.uniform(0, 1, 50):  # any placement of the box on the page grid
+        lo, hi = shift - 0.05, shift + ext + 0.05
+        assert np.floor(hi) - np.floor(lo) + 1 <= np.ceil(ext + 0.1) + 1
+    with pytest.raises(ValueError, match="dilation"):
+        vsm.Clipmap(dilation=0.7)
+    with pytest.raises(ValueError, match="coarse"):
+        vsm.Clipmap(coarse=(18, 15))
