@@ -555,3 +555,57 @@ def test_vsm_coarse_pages_and_dilation_in_the_frustum_bound():
         vsm.Clipmap(dilation=0.7)
     with pytest.raises(ValueError, match="coarse"):
         vsm.Clipmap(coarse=(18, 15))
+
+
+# --- second pass: the engine schemes on a loaded scene (the procedural city) --------------
+
+
+@pytest.fixture(scope="module")
+def city_setup():
+    from aliasing.raster import procedural, scenerender
+
+    return scenerender.setup(procedural.city(2000, seed=1, size=60.0), eye="-40,6,-35", target="0,0,0", near=0.5, far=90.0, light_dir="-1,0.8,0.3")
+
+
+def _dense_checks(r):
+    live = [i for i, p in enumerate(r["pixels"]) if p]
+    assert r["passed"] and r["max_ratio"] <= 1 + r["tolerance"]  # within the analytic bound on every map
+    assert all(abs(r["reach_x"][i] - 1) <= r["tolerance"] and abs(r["reach_z"][i] - 1) <= r["tolerance"] for i in live)  # reached where sampled
+    assert all(1 - r["tolerance"] <= r["pointwise_min"][i] <= r["pointwise_max"][i] <= 1 + r["tolerance"] for i in live)
+    assert all(r["inside"][i] == 1.0 for i in live)
+
+
+@pytest.mark.parametrize("preset", ["filament", "babylon", "godot", "bevy", "dxsdk-scene"])
+def test_stable_presets_on_the_city(city_setup, preset):
+    from aliasing.engines.scene import cascades_on_scene
+
+    p = stable.PRESETS[preset]
+    split = stable.bevy_bounds(0.5, 90.0, 4, 5.0) if p.split == "bevy-bounds" else p.split
+    r = cascades_on_scene(city_setup, split, k=None if p.split == "bevy-bounds" else 4, fit=p.fit, snap=p.snap, overlap=p.overlap, scene=p.scene, resolution=1024, res=128)
+    _dense_checks(r)
+
+
+@pytest.mark.parametrize("method, options", [("log", {}), ("adaptive", {}), ("kmeans", {}), ("adaptive", {"dilation": 10 / 1024, "quantize": True}), ("kmeans", {"border": 0.5})])
+def test_sdsm_partitions_on_the_city(city_setup, method, options):
+    from aliasing.engines.scene import sdsm_on_scene
+
+    r = sdsm_on_scene(city_setup, method, 4, res=128, **options)
+    z_min, z_max = r["occupied"]
+    assert 0.5 < z_min < z_max < 90.0  # the city occupies part of [near, far]
+    assert r["near_i"][0] >= z_min * (1 - 1e-12) and r["far_i"][-1] <= z_max * (1 + 1e-12)
+    _dense_checks(r)
+    # the first partition starts at the first populated bin's lower edge: its nearest sample is
+    # at most one log bin (ratio (far/near)^(1/64)) deeper, so the bound is reached to that factor
+    assert min(r["ratio_x"][0], r["ratio_z"][0]) >= (90.0 / 0.5) ** (-1 / 64)
+
+
+@pytest.mark.parametrize("bias", [0.0, -1.0, -2.0])
+def test_vsm_levels_on_the_city(city_setup, bias):
+    from aliasing.engines.scene import vsm_on_scene
+
+    r = vsm_on_scene(city_setup, bias=bias, res=128, unit="m")
+    assert len(r["levels"]) >= 2 and r["bound"] == pytest.approx(vsm.frustum_max(vsm.Clipmap(60.0, 128, bias, unit="m"), 0.5, 90.0))
+    live = range(len(r["levels"]))
+    assert r["passed"] and r["max_ratio"] <= 1 + r["tolerance"]
+    assert all(abs(r["reach_x"][i] - 1) <= r["tolerance"] for i in live)
+    assert all(1 - r["tolerance"] <= r["pointwise_min"][i] <= r["pointwise_max"][i] <= 1 + r["tolerance"] for i in live)
