@@ -169,7 +169,7 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
             p = stable.PRESETS[name]
             name, kw = p.split, {"fit": p.fit, "snap": p.snap, "overlap": p.overlap, "scene": p.scene}
             if "k" not in opts:
-                opts["k"] = "4"  # Bevy's default cascade count (CascadeShadowConfigBuilder, as recalled); the DX sample's default 4 levels likewise not re-read
+                opts["k"] = str(p.k)  # the preset's cascade count (see its source)
         else:
             kw = {"fit": "sphere"}
         kw["k"] = _k(opts, spec, None)

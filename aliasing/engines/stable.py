@@ -114,6 +114,7 @@ class StablePreset:
     overlap: float
     source: str
     scene: bool = False
+    k: int = 4  # cascades evaluated when the spec gives no k
 
 
 # Only modes whose source was read.  Unity's StableFit/CloseFit (QualitySettings.shadowProjection;
@@ -149,7 +150,8 @@ PRESETS: dict[str, StablePreset] = {
         "Filament ShadowOptions::stable (default false) in filament/src/ShadowMap.cpp computeFocusParams/computeBoundingSphere/"
         "snapLightFrustum (google/filament commit 0362f36e) and ShadowMapManager.cpp updateCascadeShadowMaps (commit 003e5005): "
         "per cascade the sphere around its 8 corners' average, origin snapped to even texels, shadowDimension = mapSize - 2 "
-        "(1-texel border); LiSPSM off in stable mode; shadowFar = 0; split: cascadeSplitPositions {0.125, 0.25, 0.5}",
+        "(1-texel border); LiSPSM off in stable mode; ShadowOptions defaults (LightManager.h): shadowFar = 0, mapSize 1024, "
+        "cascadeSplitPositions {0.125, 0.25, 0.5}, shadowCascades = 1 (the preset evaluates 4 cascades, the split's; k=1 is the engine default)",
     ),
     "filament-shadowfar": StablePreset(
         "filament-shadowfar",
@@ -168,7 +170,7 @@ PRESETS: dict[str, StablePreset] = {
         0.0,
         "Babylon.js CascadedShadowGenerator stabilizeCascades (default false), cascadedShadowGenerator.ts "
         "_computeCascadeFrustum/_computeMatrices (BabylonJS/Babylon.js commit 043d0bd0): sphere around the slice corners' "
-        "centroid, radius ceil to 1/16 unit, projected origin rounded to a texel; split: practical lambda 0.5, 4 cascades, "
+        "centroid, radius ceil to 1/16 unit, projected origin rounded to a texel; split: practical lambda 0.5, DEFAULT_CASCADES_COUNT 4, "
         "cascadeBlendPercentage 0.1 blends in the shader (no fit overlap)",
     ),
     "bevy": StablePreset(
