@@ -609,3 +609,16 @@ def test_vsm_levels_on_the_city(city_setup, bias):
     assert r["passed"] and r["max_ratio"] <= 1 + r["tolerance"]
     assert all(abs(r["reach_x"][i] - 1) <= r["tolerance"] for i in live)
     assert all(1 - r["tolerance"] <= r["pointwise_min"][i] <= r["pointwise_max"][i] <= 1 + r["tolerance"] for i in live)
+
+
+def test_centroid_sphere_and_far_corner_closed_forms():
+    r = sym.centroid_radius()
+    near_sq = ((sym.b - sym.a) / 2) ** 2 + 2 * sym.t**2 * sym.a**2
+    assert sp.expand(r**2 - near_sq - 2 * sym.t**2 * (sym.b**2 - sym.a**2)) == 0  # the far corners are farthest (b > a)
+    assert sp.simplify(r**2 - (((sym.b - sym.a) / 2) ** 2 + 2 * sym.t**2 * sym.b**2)) == 0
+    for a, b, fov in [(1.0, 3.0, 90.0), (10.0, 50.0, 60.0), (0.5, 0.6, 120.0)]:
+        t = np.tan(np.radians(fov) / 2)
+        assert float(stable.centroid_radius(a, b, fov)) == pytest.approx(float(r.subs({sym.a: a, sym.b: b, sym.t: t})), rel=1e-12)
+    f = sp.Symbol("f", positive=True)
+    dist = sym.far_corner_distance()
+    assert sp.simplify(dist - f * sp.sqrt(1 + 2 * sym.t**2)) == 0 and sp.simplify(dist**2 - f**2) == 2 * sym.t**2 * f**2
