@@ -622,3 +622,11 @@ def test_centroid_sphere_and_far_corner_closed_forms():
     f = sp.Symbol("f", positive=True)
     dist = sym.far_corner_distance()
     assert sp.simplify(dist - f * sp.sqrt(1 + 2 * sym.t**2)) == 0 and sp.simplify(dist**2 - f**2) == 2 * sym.t**2 * f**2
+
+
+def test_cli_vsm_dilation_and_coarse_options(capsys):
+    assert cli.main(["engines", "--schemes", "vsm:high,vsm:high:dilation=0:coarse=0", "--light", "overhead", "--format", "json"]) == 0
+    full, bare = json.loads(capsys.readouterr().out)
+    assert full["pages"] >= bare["pages"] + 16
+    assert cli.main(["engines", "--schemes", "vsm:high:dilation=0.9"]) == 2
+    assert "dilation" in capsys.readouterr().err

@@ -8,7 +8,8 @@ Scheme specs (``:``-separated options, case-insensitive)::
     sdsm:method=adaptive|kmeans[:k=N]        from a depth histogram (``histogram=``; CLI ``--histogram``)
         both with [:border=B][:dilation=D][:quantize=1]: Intel's sample's partition border [units],
         dilation (fraction per side; the sample's 10/R) and power-of-two quantisation (default off)
-    vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P]
+    vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P][:dilation=D][:coarse=0]
+        (page-marking dilation D pages, default 0.05; coarse=0 drops the coarse pages of levels 15–18)
     matched | exact
 
 ``csm-stable`` takes a stable preset (:data:`aliasing.engines.stable.PRESETS`) or a split
@@ -114,15 +115,16 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
         if "=" not in parts[0]:
             preset = check.choice(parts[0], "vsm preset", vsm.PRESETS)
             base = vsm.PRESETS[preset]
-            opts = _options(parts[1:], spec, {"first", "last", "pool"})
+            opts = _options(parts[1:], spec, {"first", "last", "pool", "dilation", "coarse"})
         else:
             base = vsm.PRESETS["default"]
-            opts = _options(parts, spec, {"bias", "first", "last", "pool"})
+            opts = _options(parts, spec, {"bias", "first", "last", "pool", "dilation", "coarse"})
         bias = _num(opts, "bias", spec, base.bias)
         first, last, pool = (_num(opts, key, spec, d) for key, d in (("first", 6), ("last", 22), ("pool", base.pool)))
         if pool is None or pool < 1:
             raise ValueError(f"scheme {spec!r}: pool (physical pages) must be a whole number >= 1, got {pool:g}")
-        c = vsm.Clipmap(fov, image_res, bias, int(first), int(last), unit)
+        coarse = None if opts.get("coarse", "1") in ("0", "false", "no") else vsm.COARSE_LEVELS
+        c = vsm.Clipmap(fov, image_res, bias, int(first), int(last), unit, _num(opts, "dilation", spec, vsm.DILATION), coarse)
         worst = vsm.frustum_max(c, near, far)
         lo, hi = vsm.m_axis_range(c, near, far)
         pool_info = vsm.pool_check(c, near, far, lights, int(pool), ground)
@@ -272,7 +274,7 @@ LISTING = """families and presets:
   sdsm[:k=N][:zmin=Z][:zmax=Z]    log partitions of the occupied range (Lauritzen et al. 2011)
   sdsm:method=adaptive|kmeans[:k=N]  from --histogram (Intel's SDSM sample)
     sdsm options [:border=B][:dilation=D][:quantize=1]: the sample's partition border, dilation, power-of-two quantisation
-  vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P]
+  vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P][:dilation=D][:coarse=0]
                                   presets: {vsms}
   matched                         resolution-matched, power-of-two levels (Lefohn et al. 2007)
   exact                           irregular z-buffer / ray-traced shadows
