@@ -130,7 +130,7 @@ def validate_stable(split: str | ArrayLike, near: float, far: float, fov: float,
         corners = geometry.frustum_vertices(a_fit[i], b_fit[i], fov)
         xc = 0.5 * (np.min(corners @ frame[0]) + np.max(corners @ frame[0]))  # centred on the slice's box
         yc = 0.5 * (np.min(corners @ frame[2]) + np.max(corners @ frame[2]))
-        if options.get("fit", fit) == "far" or fit == "far":  # Filament shadowFar: centred on the camera
+        if fit == "far":  # Filament shadowFar: centred on the camera
             xc = yc = 0.0
         lm = raster.frame_map(lv[0], basis[2], yc - wy / 2, yc + wy / 2, np.inf, xc - wx / 2, xc + wx / 2, "uniform")
         mine = (g >= 0) & (cascade == i)
