@@ -167,8 +167,10 @@ def adaptive_log(edges: ArrayLike, counts: ArrayLike, k: int) -> tuple[Array, Ar
     return _ranges(e, c, bins)
 
 
-def kmeans(edges: ArrayLike, counts: ArrayLike, k: int, iterations: int = 10) -> tuple[Array, Array]:
+def kmeans(edges: ArrayLike, counts: ArrayLike, k: int, iterations: int = 32) -> tuple[Array, Array]:
     """(near_i, far_i) of k-means partitions (Intel SDSM sample, KMeansPartitions.hlsl).
+
+    ``iterations``: the sample's default ``lloydIterations`` = 32 (``main.cpp``).
 
     Example
     -------
