@@ -5,7 +5,8 @@ Not a paper figure.  Setting (ours): near 10 cm, shadow distance 1 km (10⁵ cm)
 (azimuth 0) for panel (b).
 
 (a) m_x along the view axis [image pixels per texel; 1 = critical]: Filament's split with
-the tight fit (``csm:filament``) and with a minimal-sphere stable fit, SDSM log partitions
+the tight fit (``csm:filament``) and with Filament's own stable mode (``csm-stable:filament``:
+the sphere around each slice's corner centroid, a one-texel border), SDSM log partitions
 on the whole range, UE5 virtual shadow maps at High (bias 0) and Epic (bias −1.5, clamped by
 the engine to an effective −1.30 at this width and fov), the resolution-matched limit with
 power-of-two levels (a saw-tooth in (1/2, 1]) and exact sampling (1).
@@ -46,7 +47,7 @@ def data(samples: int = 4000, gammas: int = 91) -> dict[str, np.ndarray]:
     lights = geometry.light_direction(g, 0.0)
     fits = {
         "csm_filament": dict(split="filament", fit="tight"),
-        "csm_stable_filament": dict(split="filament", fit="sphere"),
+        "csm_stable_filament": dict(split="filament", fit="centroid", snap="border", resolution=RES),  # stable.PRESETS["filament"]
         "sdsm_k4": dict(split=sdsm.log_partitions(NEAR, FAR, NEAR, FAR, 4), fit="tight"),
     }
     cols: dict[str, np.ndarray] = {"d": d, "gamma": g}
@@ -66,7 +67,7 @@ def data(samples: int = 4000, gammas: int = 91) -> dict[str, np.ndarray]:
 
 LABELS = {
     "csm_filament": "csm:filament (tight)",
-    "csm_stable_filament": "csm-stable:filament (sphere)",
+    "csm_stable_filament": "csm-stable:filament (Filament's stable)",
     "sdsm_k4": "sdsm:k=4 (whole range)",
     "vsm_high": "vsm:high (bias 0)",
     "vsm_epic": "vsm:epic (bias −1.5)",

@@ -90,10 +90,11 @@ def test_vsm_pages_bound_and_pool():
     assert p.shape == (20,) and (p > 0).all()
     finer = vsm.pages(vsm.Clipmap(fov=60.0, width=1920, bias=-1.0), 10.0, 1e5, "hemisphere:20")
     assert (finer >= p).all() and finer.sum() > 2 * p.sum()  # one octave finer: about 4x the texels per level
-    small = vsm.pool_check(c, 10.0, 1e5, "overhead", 64)
+    small = vsm.pool_check(c, 10.0, 1e5, "overhead", 128)
     assert small["overflow"] and small["extra_bias"] > 0
     relieved = vsm.Clipmap(fov=60.0, width=1920, bias=small["extra_bias"])
-    assert vsm.pages(relieved, 10.0, 1e5, "overhead").max() <= 0.85 * 64
+    assert vsm.pages(relieved, 10.0, 1e5, "overhead").max() <= 0.85 * 128
+    assert vsm.pool_check(c, 10.0, 1e5, "overhead", 32)["extra_bias"] == float("inf")  # 16 coarse pages + 1 per level > 27
     assert not vsm.pool_check(c, 10.0, 1e5, "overhead", 10**7)["overflow"]
 
 
@@ -390,10 +391,12 @@ def test_scene_pages_of_a_ground_quad_against_the_closed_form():
 
     h, far = 170.0, 1e5
     quad = np.array([[[-far, -h, 1.0], [far, -h, 1.0], [far, -h, far]], [[-far, -h, 1.0], [far, -h, far], [-far, -h, far]]])
-    c = vsm.Clipmap(60.0, 512, -2.0)
-    for light, measured in (("overhead", 0.861), ("gamma:60@azimuth:30", 0.995)):  # the ratios the docstring reports
+    engine, bare = vsm.Clipmap(60.0, 512, -2.0), vsm.Clipmap(60.0, 512, -2.0, dilation=0.0, coarse=None)
+    for c, light, measured in ((engine, "overhead", 0.887), (engine, "gamma:60@azimuth:30", 1.046), (bare, "overhead", 0.861), (bare, "gamma:60@azimuth:30", 0.995)):  # the docstring's ratios
         ratio = scene_pages(quad, c, light, resolution=512) / float(vsm.ground_pages(c, h, far, light)[0])
         assert ratio == pytest.approx(measured, abs=0.005)
+    for light in ("overhead", "gamma:60@azimuth:30"):  # dilation and coarse pages only add pages
+        assert scene_pages(quad, bare, light, resolution=256) + 16 <= scene_pages(quad, engine, light, resolution=256)
 
 
 def test_sdsm_occupancy_overhead_closed_form():
@@ -407,3 +410,223 @@ def test_sdsm_occupancy_overhead_closed_form():
     assert all(r["S_ratio"] < 0.05 for r in far_rows)  # nothing near the eye: the first partition no longer starts at near
     with pytest.raises(ValueError, match="fractions"):
         sdsm.occupancy(n, f, 60.0, "overhead", k, [0.0])
+
+
+# --- second pass: engine stable presets read from source (Filament, Babylon.js) -----------
+
+
+def test_filament_stable_preset_is_the_corner_centroid_sphere_with_a_texel_border():
+    # ShadowMap.cpp computeBoundingSphere: centre = mean of the 8 slice corners, radius = max distance
+    near, far, fov, res = 10.0, 1e5, 60.0, 2048
+    (a, b), _ = stable.cascade_ranges("filament", near, far, 4)
+    for ai, bi in zip(a, b):
+        corners = geometry.frustum_vertices(ai, bi, fov)
+        r = np.linalg.norm(corners - corners.mean(axis=0), axis=-1).max()
+        assert float(stable.centroid_radius(ai, bi, fov)) == pytest.approx(r, rel=1e-12)
+    p = stable.PRESETS["filament"]
+    assert (p.split, p.fit, p.snap, p.overlap, p.scene) == ("filament", "centroid", "border", 0.0, False)
+    got = stable.evaluate("filament", near, far, fov, "hemisphere:30", k=4, fit="centroid", snap="border", resolution=res)
+    bare = stable.evaluate("filament", near, far, fov, "hemisphere:30", k=4, fit="centroid")
+    np.testing.assert_allclose(got.M_x / bare.M_x, res / (res - 2))  # shadowDimension = mapSize − 2
+    np.testing.assert_allclose(got.width_x, np.broadcast_to(2 * stable.centroid_radius(a, b, fov) * res / (res - 2), got.width_x.shape))
+    row = compare.compare(["csm-stable:filament"], near=near, far=far, fov=fov, lights="hemisphere:30", shadow_res=res)[0]
+    assert row["coverage"] == 1.0
+    assert row["max_error"] == pytest.approx(float(np.maximum(got.M_x, got.M_z).max()) * 1920 / res, rel=1e-12)
+
+
+def test_filament_shadowfar_sphere_misses_the_far_corners():
+    # shadowFar > 0: every cascade gets the sphere {camera, shadowFar}; the far corners lie at far·√(1 + 2t²)
+    near, far, fov = 10.0, 1e5, 60.0
+    r = stable.evaluate("filament", near, far, fov, "overhead", k=4, fit="far")
+    np.testing.assert_allclose(r.width_x, 2 * far)  # all cascades alike: the first is as coarse as the last
+    assert stable.coverage("filament", near, far, fov, "overhead", k=4, fit="far") == 1.0  # overhead: |x|, |z| <= far
+    assert stable.coverage("filament", near, far, fov, "hemisphere:200", k=4, fit="far") < 0.5
+    # x along (1, 0, −1)/√2 reaches (t + 1)·far/√2 > far at the corner (−t far, ·, far)
+    assert (np.tan(np.radians(30.0)) + 1) / np.sqrt(2) > 1.0
+
+
+def test_babylon_stable_preset_rounds_the_centroid_radius_to_sixteenths():
+    near, far, fov = 1.0, 100.0, 60.0
+    p = stable.PRESETS["babylon"]
+    assert (p.split, p.fit, p.snap) == ("babylon", "centroid16", "origin")
+    (a, b), _ = stable.cascade_ranges("babylon", near, far, 4)
+    r = stable.centroid_radius(a, b, fov)
+    got = stable.evaluate("babylon", near, far, fov, "gamma:60", k=4, fit="centroid16", snap="origin")
+    side = got.width_x[0]
+    np.testing.assert_allclose(side * 8, np.round(side * 8))  # 2·(whole sixteenths)
+    assert (side >= 2 * r).all() and (side < 2 * r + 2 / 16).all()
+    same = stable.evaluate("babylon", near, far, fov, "gamma:60", k=4, fit="centroid16", snap="none")
+    np.testing.assert_array_equal(got.M_x, same.M_x)  # the origin snap keeps the size
+    assert compare.compare(["csm-stable:babylon"], near=near, far=far, lights="hemisphere:50")[0]["coverage"] == 1.0
+
+
+def test_no_unity_stable_preset_is_invented():
+    assert not any(name.startswith("unity") for name in stable.PRESETS)  # StableFit is in Unity's closed native code
+
+
+@pytest.mark.parametrize("fit, snap", [("centroid16", "origin"), ("centroid", "border")])
+def test_engine_stable_fits_in_the_rasterizer(fit, snap):
+    from aliasing.engines.validate import validate_stable
+
+    r = validate_stable("babylon", 10.0, 1e4, 60.0, "gamma:150@azimuth:40", k=4, fit=fit, snap=snap, resolution=192, cells=12)
+    assert all(0.9 <= x <= 1 + r["tolerance"] for x in r["ratio_x"] + r["ratio_z"])
+    assert r["inside"] == [1.0] * 4
+
+
+def test_filament_shadowfar_loses_pixels_in_the_rasterizer():
+    from aliasing.engines.validate import validate_stable
+
+    r = validate_stable("filament", 10.0, 1e4, 60.0, "gamma:120@azimuth:45", k=4, fit="far", resolution=128, cells=8)
+    assert min(r["inside"]) < 1.0 and max(r["ratio_x"]) <= 1 + r["tolerance"]
+
+
+# --- second pass: Intel's SDSM sample's border, dilation and power-of-two quantisation ----
+
+
+def _intel_scale(lo, hi, border, dilation, quantize):
+    """ComputePartitionDataFromBounds step by step, in the light's [0, 1] texture space (second method)."""
+    lo, hi = lo - border, hi + border
+    scale = 1.0 / (hi - lo)
+    bias = -lo * scale
+    f = 1.0 - 2.0 * dilation
+    scale, bias = scale * f, dilation + f * bias
+    target = max(1.0, 2.0 ** np.floor(np.log2(scale))) if quantize else scale
+    bias = (target / scale) * (bias - 0.5) + 0.5
+    return target, bias
+
+
+@pytest.mark.parametrize("lo, hi, border, dilation, quantize", [(0.1, 0.13, 0.0, 10 / 1024, False), (0.1, 0.13, 0.0, 10 / 1024, True), (0.3, 0.9, 0.02, 0.01, True), (0.0, 0.99, 0.01, 0.01, True), (0.42, 0.4201, 0.0, 0.0, True)])
+def test_sdsm_sample_bounds_follow_the_hlsl_steps(lo, hi, border, dilation, quantize):
+    L = 250.0  # world units of the light's texture space
+    scale, bias = _intel_scale(lo, hi, border, dilation, quantize)
+    side = float(sdsm.sample_bounds((hi - lo) * L, L, border=border * L, dilation=dilation, quantize=quantize))
+    assert side == pytest.approx(L / scale, rel=1e-12)
+    # the samples [lo, hi] land inside [0, 1] of the partition's map unless quantising clamps the scale at 1
+    u_lo, u_hi = lo * scale + bias, hi * scale + bias
+    if L / side * (hi - lo + 2 * border) / (1 - 2 * dilation) <= 1 + 1e-12:
+        assert -1e-12 <= u_lo and u_hi <= 1 + 1e-12
+    if quantize:
+        exact = float(sdsm.sample_bounds((hi - lo) * L, L, border=border * L, dilation=dilation))
+        assert np.log2(L / side) == pytest.approx(round(np.log2(L / side)))  # a power-of-two fraction of L
+        assert (exact <= side * (1 + 1e-12) < 2 * exact) or side == pytest.approx(L)  # at most L: scale >= 1
+
+
+def test_sdsm_sample_bounds_bad_input():
+    with pytest.raises(ValueError, match="dilation"):
+        sdsm.sample_bounds(1.0, 10.0, dilation=0.5)
+    with pytest.raises(ValueError, match="border"):
+        sdsm.sample_bounds(1.0, 10.0, border=-1.0)
+    assert cli.main(["engines", "--schemes", "sdsm:k=2:dilation=0.7"]) == 2
+
+
+def test_sdsm_sample_options_in_the_comparison_and_the_rasterizer():
+    from aliasing.engines.validate import validate_stable
+
+    base, dil, quant = compare.compare(["sdsm:k=3:zmin=100:zmax=5000", "sdsm:k=3:zmin=100:zmax=5000:dilation=0.01", "sdsm:k=3:zmin=100:zmax=5000:dilation=0.01:quantize=1"], lights="hemisphere:40")
+    assert dil["max_error"] == pytest.approx(base["max_error"] / 0.98, rel=1e-12)  # W/(1 − 2δ)
+    assert dil["max_error"] <= quant["max_error"] < 2 * dil["max_error"]
+    edges = sdsm.log_partitions(10.0, 1e4, 100.0, 5000.0, 3)
+    r = validate_stable(edges, 100.0, 5000.0, 60.0, "gamma:60@azimuth:20", fit="tight", dilation=0.01, quantize=True, resolution=192, cells=12)
+    assert all(0.9 <= x <= 1 + r["tolerance"] for x in r["ratio_x"] + r["ratio_z"]) and r["inside"] == [1.0] * 3
+
+
+# --- second pass: VSM page-marking dilation and coarse pages ------------------------------
+
+
+def test_vsm_coarse_pages_and_dilation_in_the_frustum_bound():
+    c = vsm.Clipmap(60.0, 1920, 0.0)
+    assert vsm.coarse_pages(c) == 16  # levels 15…18, 4 pages each
+    assert vsm.coarse_pages(vsm.Clipmap(60.0, 1920, 0.0, first=17)) == 8 and vsm.coarse_pages(vsm.Clipmap(last=14)) == 0
+    bare = vsm.Clipmap(60.0, 1920, 0.0, dilation=0.0, coarse=None)
+    only_coarse = vsm.Clipmap(60.0, 1920, 0.0, dilation=0.0)
+    lights = "hemisphere:30"
+    np.testing.assert_array_equal(vsm.pages(only_coarse, 10.0, 1e5, lights), vsm.pages(bare, 10.0, 1e5, lights) + 16)
+    assert (vsm.pages(c, 10.0, 1e5, lights) >= vsm.pages(only_coarse, 10.0, 1e5, lights)).all()
+    # the dilated box of extent E pages touches at most ceil(E + 2δ) + 1 pages per axis: check on a slice
+    a, b, tan = np.array([100.0]), np.array([200.0]), np.tan(np.radians(30.0))
+    basis = geometry.light_space(geometry.lights("overhead"))
+    page = vsm.PAGE * float(vsm.texel(c, 8))
+    ext = vsm.slice_extent(a, b, tan, basis[:, 0])[0, 0] / page
+    rng = np.random.default_rng(3)
+    for shift in rng.uniform(0, 1, 50):  # any placement of the box on the page grid
+        lo, hi = shift - 0.05, shift + ext + 0.05
+        assert np.floor(hi) - np.floor(lo) + 1 <= np.ceil(ext + 0.1) + 1
+    with pytest.raises(ValueError, match="dilation"):
+        vsm.Clipmap(dilation=0.7)
+    with pytest.raises(ValueError, match="coarse"):
+        vsm.Clipmap(coarse=(18, 15))
+
+
+# --- second pass: the engine schemes on a loaded scene (the procedural city) --------------
+
+
+@pytest.fixture(scope="module")
+def city_setup():
+    from aliasing.raster import procedural, scenerender
+
+    return scenerender.setup(procedural.city(2000, seed=1, size=60.0), eye="-40,6,-35", target="0,0,0", near=0.5, far=90.0, light_dir="-1,0.8,0.3")
+
+
+def _dense_checks(r):
+    live = [i for i, p in enumerate(r["pixels"]) if p]
+    assert r["passed"] and r["max_ratio"] <= 1 + r["tolerance"]  # within the analytic bound on every map
+    assert all(abs(r["reach_x"][i] - 1) <= r["tolerance"] and abs(r["reach_z"][i] - 1) <= r["tolerance"] for i in live)  # reached where sampled
+    assert all(1 - r["tolerance"] <= r["pointwise_min"][i] <= r["pointwise_max"][i] <= 1 + r["tolerance"] for i in live)
+    assert all(r["inside"][i] == 1.0 for i in live)
+
+
+@pytest.mark.parametrize("preset", ["filament", "babylon", "godot", "bevy", "dxsdk-scene"])
+def test_stable_presets_on_the_city(city_setup, preset):
+    from aliasing.engines.scene import cascades_on_scene
+
+    p = stable.PRESETS[preset]
+    split = stable.bevy_bounds(0.5, 90.0, 4, 5.0) if p.split == "bevy-bounds" else p.split
+    r = cascades_on_scene(city_setup, split, k=None if p.split == "bevy-bounds" else 4, fit=p.fit, snap=p.snap, overlap=p.overlap, scene=p.scene, resolution=1024, res=128)
+    _dense_checks(r)
+
+
+@pytest.mark.parametrize("method, options", [("log", {}), ("adaptive", {}), ("kmeans", {}), ("adaptive", {"dilation": 10 / 1024, "quantize": True}), ("kmeans", {"border": 0.5})])
+def test_sdsm_partitions_on_the_city(city_setup, method, options):
+    from aliasing.engines.scene import sdsm_on_scene
+
+    r = sdsm_on_scene(city_setup, method, 4, res=128, **options)
+    z_min, z_max = r["occupied"]
+    assert 0.5 < z_min < z_max < 90.0  # the city occupies part of [near, far]
+    assert r["near_i"][0] >= z_min * (1 - 1e-12) and r["far_i"][-1] <= z_max * (1 + 1e-12)
+    _dense_checks(r)
+    # the first partition starts at the first populated bin's lower edge: its nearest sample is
+    # at most one log bin (ratio (far/near)^(1/64)) deeper, so the bound is reached to that factor
+    assert min(r["ratio_x"][0], r["ratio_z"][0]) >= (90.0 / 0.5) ** (-1 / 64)
+
+
+@pytest.mark.parametrize("bias", [0.0, -1.0, -2.0])
+def test_vsm_levels_on_the_city(city_setup, bias):
+    from aliasing.engines.scene import vsm_on_scene
+
+    r = vsm_on_scene(city_setup, bias=bias, res=128, unit="m")
+    assert len(r["levels"]) >= 2 and r["bound"] == pytest.approx(vsm.frustum_max(vsm.Clipmap(60.0, 128, bias, unit="m"), 0.5, 90.0))
+    live = range(len(r["levels"]))
+    assert r["passed"] and r["max_ratio"] <= 1 + r["tolerance"]
+    assert all(abs(r["reach_x"][i] - 1) <= r["tolerance"] for i in live)
+    assert all(1 - r["tolerance"] <= r["pointwise_min"][i] <= r["pointwise_max"][i] <= 1 + r["tolerance"] for i in live)
+
+
+def test_centroid_sphere_and_far_corner_closed_forms():
+    r = sym.centroid_radius()
+    near_sq = ((sym.b - sym.a) / 2) ** 2 + 2 * sym.t**2 * sym.a**2
+    assert sp.expand(r**2 - near_sq - 2 * sym.t**2 * (sym.b**2 - sym.a**2)) == 0  # the far corners are farthest (b > a)
+    assert sp.simplify(r**2 - (((sym.b - sym.a) / 2) ** 2 + 2 * sym.t**2 * sym.b**2)) == 0
+    for a, b, fov in [(1.0, 3.0, 90.0), (10.0, 50.0, 60.0), (0.5, 0.6, 120.0)]:
+        t = np.tan(np.radians(fov) / 2)
+        assert float(stable.centroid_radius(a, b, fov)) == pytest.approx(float(r.subs({sym.a: a, sym.b: b, sym.t: t})), rel=1e-12)
+    f = sp.Symbol("f", positive=True)
+    dist = sym.far_corner_distance()
+    assert sp.simplify(dist - f * sp.sqrt(1 + 2 * sym.t**2)) == 0 and sp.simplify(dist**2 - f**2) == 2 * sym.t**2 * f**2
+
+
+def test_cli_vsm_dilation_and_coarse_options(capsys):
+    assert cli.main(["engines", "--schemes", "vsm:high,vsm:high:dilation=0:coarse=0", "--light", "overhead", "--format", "json"]) == 0
+    full, bare = json.loads(capsys.readouterr().out)
+    assert full["pages"] >= bare["pages"] + 16
+    assert cli.main(["engines", "--schemes", "vsm:high:dilation=0.9"]) == 2
+    assert "dilation" in capsys.readouterr().err

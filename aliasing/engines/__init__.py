@@ -18,6 +18,9 @@ compare
 validate
     The rasterizer as witness: VSM clipmap levels and stable/SDSM cascades rendered on the
     probes, measured error against the analytic bounds; depth histograms from the eye pass.
+scene
+    The same on a loaded scene (a glTF file, the procedural city): stable presets, SDSM
+    partitions from the scene's own depth histogram, VSM levels.
 
 Every module works in the scene's length unit; the VSM model's constants are the
 engine's, which works in centimetres.

@@ -3,10 +3,13 @@
 Scheme specs (``:``-separated options, case-insensitive)::
 
     csm:SPLIT[:k=N]                          tight fit (the papers'), a split of aliasing.partitioning
-    csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body][:snap=none|bevy|pad][:scene=1][:overlap=P]
+    csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body|centroid|centroid16|far][:snap=none|origin|border|bevy|pad|godot][:scene=1][:overlap=P]
     sdsm[:k=N][:zmin=Z][:zmax=Z]             log partitions of the occupied range (default [near, far], k = 4)
     sdsm:method=adaptive|kmeans[:k=N]        from a depth histogram (``histogram=``; CLI ``--histogram``)
-    vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P]
+        both with [:border=B][:dilation=D][:quantize=1]: Intel's sample's partition border [units],
+        dilation (fraction per side; the sample's 10/R) and power-of-two quantisation (default off)
+    vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P][:dilation=D][:coarse=0]
+        (page-marking dilation D pages, default 0.05; coarse=0 drops the coarse pages of levels 15–18)
     matched | exact
 
 ``csm-stable`` takes a stable preset (:data:`aliasing.engines.stable.PRESETS`) or a split
@@ -112,15 +115,16 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
         if "=" not in parts[0]:
             preset = check.choice(parts[0], "vsm preset", vsm.PRESETS)
             base = vsm.PRESETS[preset]
-            opts = _options(parts[1:], spec, {"first", "last", "pool"})
+            opts = _options(parts[1:], spec, {"first", "last", "pool", "dilation", "coarse"})
         else:
             base = vsm.PRESETS["default"]
-            opts = _options(parts, spec, {"bias", "first", "last", "pool"})
+            opts = _options(parts, spec, {"bias", "first", "last", "pool", "dilation", "coarse"})
         bias = _num(opts, "bias", spec, base.bias)
         first, last, pool = (_num(opts, key, spec, d) for key, d in (("first", 6), ("last", 22), ("pool", base.pool)))
         if pool is None or pool < 1:
             raise ValueError(f"scheme {spec!r}: pool (physical pages) must be a whole number >= 1, got {pool:g}")
-        c = vsm.Clipmap(fov, image_res, bias, int(first), int(last), unit)
+        coarse = None if opts.get("coarse", "1") in ("0", "false", "no") else vsm.COARSE_LEVELS
+        c = vsm.Clipmap(fov, image_res, bias, int(first), int(last), unit, _num(opts, "dilation", spec, vsm.DILATION), coarse)
         worst = vsm.frustum_max(c, near, far)
         lo, hi = vsm.m_axis_range(c, near, far)
         pool_info = vsm.pool_check(c, near, far, lights, int(pool), ground)
@@ -138,21 +142,22 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
             "extra_bias": pool_info["extra_bias"],
         }
     if family == "sdsm":
-        opts = _options(parts, spec, {"k", "zmin", "zmax", "method"})
+        opts = _options(parts, spec, {"k", "zmin", "zmax", "method", "border", "dilation", "quantize"})
         k = _k(opts, spec, 4)
         method = check.choice(opts.get("method", "log"), "sdsm method", ("log", "adaptive", "kmeans"))
+        sample = {"border": _num(opts, "border", spec, 0.0), "dilation": _num(opts, "dilation", spec, 0.0), "quantize": opts.get("quantize", "0") not in ("0", "false", "no")}
         if method == "log":
             lo, hi = sdsm.occupied(near, far, _num(opts, "zmin", spec, near), _num(opts, "zmax", spec, far))
-            split, n_fit, f_fit = sdsm.log_partitions(near, far, lo, hi, k), lo, hi
+            edges = sdsm.log_partitions(near, far, lo, hi, k)
+            split, n_fit, f_fit = (edges[:-1], edges[1:]), near, far  # separate maps; the light space spans [near, far]
         else:
             if histogram is None:
                 raise ValueError(f"scheme {spec!r}: method={method} needs a depth histogram (--histogram CSV: z_lo,z_hi,count)")
             parts_lo, parts_hi = (sdsm.adaptive_log if method == "adaptive" else sdsm.kmeans)(histogram[0], histogram[1], k)
             sdsm.occupied(near, far, parts_lo[0], parts_hi[-1])  # the histogram must lie in [near, far]
             split, n_fit, f_fit = (parts_lo, parts_hi), near, far
-        res = stable.evaluate(split, n_fit, f_fit, fov, lights)
-        axis = stable.evaluate(split, n_fit, f_fit, fov, "overhead")
-        return _cascade_row(spec, res, axis, t, image_res, shadow_res)
+        res = stable.evaluate(split, n_fit, f_fit, fov, lights, **sample)
+        axis = stable.evaluate(split, n_fit, f_fit, fov, "overhead", **sample)
         return _cascade_row(spec, res, axis, t, image_res, shadow_res)
     if not parts:
         raise ValueError(f"scheme {spec!r}: {family} needs a split method or preset (see aliasing splits --list)")
@@ -166,7 +171,7 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
             p = stable.PRESETS[name]
             name, kw = p.split, {"fit": p.fit, "snap": p.snap, "overlap": p.overlap, "scene": p.scene}
             if "k" not in opts:
-                opts["k"] = "4"  # Bevy's default cascade count (CascadeShadowConfigBuilder, as recalled); the DX sample's default 4 levels likewise not re-read
+                opts["k"] = str(p.k)  # the preset's cascade count (see its source)
         else:
             kw = {"fit": "sphere"}
         kw["k"] = _k(opts, spec, None)
@@ -264,11 +269,12 @@ def _cell(v: object) -> str:
 
 LISTING = """families and presets:
   csm:SPLIT[:k=N]                 split methods: {splits}
-  csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body][:snap=none|bevy|pad][:scene=1][:overlap=P]
+  csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body|centroid|centroid16|far][:snap=none|origin|border|bevy|pad|godot][:scene=1][:overlap=P]
                                   stable presets: {stables}
   sdsm[:k=N][:zmin=Z][:zmax=Z]    log partitions of the occupied range (Lauritzen et al. 2011)
   sdsm:method=adaptive|kmeans[:k=N]  from --histogram (Intel's SDSM sample)
-  vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P]
+    sdsm options [:border=B][:dilation=D][:quantize=1]: the sample's partition border, dilation, power-of-two quantisation
+  vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P][:dilation=D][:coarse=0]
                                   presets: {vsms}
   matched                         resolution-matched, power-of-two levels (Lefohn et al. 2007)
   exact                           irregular z-buffer / ray-traced shadows

@@ -40,12 +40,33 @@ Fits
     A square of side 2r, r the largest distance from the corners' average (on the axis at
     (a + b)/2) to a corner: r = √(((b − a)/2)² + 2t²b²) (Godot 4
     ``servers/rendering/renderer_scene_cull.cpp`` ``_light_instance_setup_directional_shadow``,
-    a Godot 4 copy in the index); never smaller than the minimal sphere.
+    a Godot 4 copy in the index); never smaller than the minimal sphere.  Filament's stable
+    mode uses the same sphere (``filament/src/ShadowMap.cpp``, google/filament commit
+    0362f36e: ``computeFocusParams`` with ``stable``, ``computeBoundingSphere`` = the 8
+    corners' average and the largest distance to it, scale s = 1/r on NDC [−1, 1]).
+``centroid16``
+    The ``centroid`` sphere with r rounded up to 1/16 of a world unit (Babylon.js
+    ``packages/dev/core/src/Lights/Shadows/cascadedShadowGenerator.ts``
+    ``_computeCascadeFrustum`` with ``stabilizeCascades``, BabylonJS/Babylon.js commit
+    043d0bd0: ``sphereRadius = Math.ceil(sphereRadius * 16) / 16``).
+``far``
+    A square of side 2·far for every cascade: Filament's stable mode when the light's
+    ``shadowFar`` > 0 takes the sphere {camera position, shadowFar} for each cascade
+    (same ``computeFocusParams``), so every cascade covers the whole shadow range.  Finding:
+    all cascades then have the last one's texel size, and the sphere (radius far, on the
+    camera) does not contain the far corners at distance far·√(1 + 2t²): :func:`coverage`
+    below 1 for grazing lights.
 Fit to scene (``scene=True``)
     Every cascade's fit range starts at the near plane: [near, b_k] (DirectX SDK
     FIT_TO_SCENE, same source: "interval 1 is covered by cascades 1 to 8").
 Texel snapping (``snap``)
-    ``"none"``: sizes unchanged.  ``"bevy"``: the map centre is floored to a texel;
+    ``"none"``: sizes unchanged.  ``"origin"``: the map's origin is moved to a whole texel
+    (Babylon.js rounds the projected world origin to a texel; Filament's
+    ``snapLightFrustum`` to an even texel): the size is unchanged.  ``"border"``: the map
+    keeps a one-texel border on each side, so the fit's side spans R − 2 of its R texels,
+    W′ = W·R/(R − 2) (Filament ``ShadowMapManager.cpp`` ``shadowDimension = mapSize − 2``,
+    commit 003e5005; its ``snapLightFrustum`` then moves the origin only).
+    ``"bevy"``: the map centre is floored to a texel;
     Bevy keeps the side D (so up to one texel at one border may be uncovered) —
     the size is unchanged.  ``"pad"``: a coverage-preserving snap: the side grows by one
     texel, W′ = W·R/(R − 1) at R texels per side (the model's assumption for engines that
@@ -78,8 +99,8 @@ from .. import _validation as check
 from .. import directional, geometry, partitioning
 
 Array = NDArray[np.float64]
-FITS = ("tight", "sphere", "diagonal", "body", "centroid")
-SNAPS = ("none", "bevy", "pad", "godot")
+FITS = ("tight", "sphere", "diagonal", "body", "centroid", "centroid16", "far")
+SNAPS = ("none", "origin", "border", "bevy", "pad", "godot")
 
 
 @dataclass(frozen=True)
@@ -93,11 +114,13 @@ class StablePreset:
     overlap: float
     source: str
     scene: bool = False
+    k: int = 4  # cascades evaluated when the spec gives no k
 
 
-# Only modes whose source was read in this session; others (Filament ``stable``, Godot 4,
-# Babylon.js ``stabilizeCascades``, Unity StableFit) are not shipped: their fit shape was
-# not verified, and the project does not invent defaults.
+# Only modes whose source was read.  Unity's StableFit/CloseFit (QualitySettings.shadowProjection;
+# URP ShadowUtils.cs calls the native CullingResults.ComputeDirectionalShadowMatricesAndCullingPrimitives)
+# are computed in the engine's closed C++ source: its public docs say only "Stable shadow maps with
+# spherical fadeout", so no Unity preset is shipped (the project does not invent a fit).
 PRESETS: dict[str, StablePreset] = {
     "godot": StablePreset(
         "godot",
@@ -117,6 +140,38 @@ PRESETS: dict[str, StablePreset] = {
         "DirectX SDK CascadedShadowMaps11 CascadedShadowsManager.cpp InitFrame, FIT_TO_SCENE + m_bMoveLightTexelSize (walbourn/directx-sdk-samples); "
         "scene=True; split: the sample's partitions are user-set, the toolkit's log split stands in",
         scene=True,
+    ),
+    "filament": StablePreset(
+        "filament",
+        "filament",
+        "centroid",
+        "border",
+        0.0,
+        "Filament ShadowOptions::stable (default false) in filament/src/ShadowMap.cpp computeFocusParams/computeBoundingSphere/"
+        "snapLightFrustum (google/filament commit 0362f36e) and ShadowMapManager.cpp updateCascadeShadowMaps (commit 003e5005): "
+        "per cascade the sphere around its 8 corners' average, origin snapped to even texels, shadowDimension = mapSize - 2 "
+        "(1-texel border); LiSPSM off in stable mode; ShadowOptions defaults (LightManager.h): shadowFar = 0, mapSize 1024, "
+        "cascadeSplitPositions {0.125, 0.25, 0.5}, shadowCascades = 1 (the preset evaluates 4 cascades, the split's; k=1 is the engine default)",
+    ),
+    "filament-shadowfar": StablePreset(
+        "filament-shadowfar",
+        "filament",
+        "far",
+        "border",
+        0.0,
+        "as filament, with ShadowOptions::shadowFar > 0 (= the shadow distance): computeFocusParams takes the sphere "
+        "{camera position, shadowFar} for every cascade (google/filament ShadowMap.cpp commit 0362f36e)",
+    ),
+    "babylon": StablePreset(
+        "babylon",
+        "babylon",
+        "centroid16",
+        "origin",
+        0.0,
+        "Babylon.js CascadedShadowGenerator stabilizeCascades (default false), cascadedShadowGenerator.ts "
+        "_computeCascadeFrustum/_computeMatrices (BabylonJS/Babylon.js commit 043d0bd0): sphere around the slice corners' "
+        "centroid, radius ceil to 1/16 unit, projected origin rounded to a texel; split: practical lambda 0.5, DEFAULT_CASCADES_COUNT 4, "
+        "cascadeBlendPercentage 0.1 blends in the shader (no fit overlap)",
     ),
     "bevy": StablePreset(
         "bevy",
@@ -245,7 +300,7 @@ def coverage(split: str | ArrayLike, near: float, far: float, fov: float, light:
     >>> coverage("log", 0.1, 100.0, 60.0, "hemisphere:100", k=3, fit="diagonal")
     1.0
     """
-    fit_keys = {"fit", "snap", "resolution", "scene", "overlap"}
+    fit_keys = {"fit", "snap", "resolution", "scene", "overlap", "border", "dilation", "quantize"}
     base = {key: v for key, v in options.items() if key not in fit_keys}
     for key in ("scene", "overlap"):
         if key in options:
@@ -253,6 +308,13 @@ def coverage(split: str | ArrayLike, near: float, far: float, fov: float, light:
     tight = evaluate(split, near, far, fov, light, **base)  # same fit ranges, tight extents
     other = evaluate(split, near, far, fov, light, **options)
     ok = (other.width_x >= tight.width_x * (1 - 1e-12)) & (other.width_y >= tight.width_y * (1 - 1e-12))
+    if options.get("fit") == "far":  # centred on the camera, not on the slice: every corner within ±side/2
+        a, b = tight.fit_range
+        corners = geometry.frustum_vertices(a, b, fov)  # (K, 8, 3), camera at the origin
+        basis = geometry.light_space(geometry.lights(light))  # (N, 3, 3)
+        half_x = np.abs(np.einsum("kvj,nj->nkv", corners, basis[:, 0])).max(axis=-1)
+        half_y = np.abs(np.einsum("kvj,nj->nkv", corners, basis[:, 2])).max(axis=-1)
+        ok &= (half_x <= other.width_x / 2 * (1 + 1e-12)) & (half_y <= other.width_y / 2 * (1 + 1e-12))
     return float(ok.all(axis=-1).mean())
 
 
@@ -287,7 +349,7 @@ def cascade_ranges(split: str | ArrayLike, near: float, far: float, k: int | Non
     return (np.maximum(lo, n), hi), (edges[:-1], edges[1:])
 
 
-def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "overhead", *, k: int | None = None, fit: str = "tight", snap: str = "none", resolution: float = 2048.0, scene: bool = False, overlap: float = 0.0, **params: float) -> StableResult:
+def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "overhead", *, k: int | None = None, fit: str = "tight", snap: str = "none", resolution: float = 2048.0, scene: bool = False, overlap: float = 0.0, border: float = 0.0, dilation: float = 0.0, quantize: bool = False, **params: float) -> StableResult:
     """M_x, M_z, S̄ (unit resolutions) of a cascade set with a given fit, per light direction.
 
     Parameters
@@ -303,18 +365,22 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
         Light spec (:data:`aliasing.geometry.LIGHT_SPEC`) or vectors ``(N, 3)``.
     k : int, optional
         Number of cascades (the preset's default when omitted).
-    fit : {"tight", "sphere", "diagonal"}
-    snap : {"none", "bevy", "pad"}
+    fit : {"tight", "sphere", "diagonal", "body", "centroid", "centroid16", "far"}
+    snap : {"none", "origin", "border", "bevy", "pad", "godot"}
     resolution : float
-        Texels per side of each map (only ``snap="pad"`` depends on it), ≥ 2.
+        Texels per side of each map (``snap`` "pad", "border", "godot" depend on it), > 2.
     scene : bool
         Fit to scene: every fit range starts at ``near``.
     overlap : float
         Bevy's overlap proportion in [0, 0.99].
+    border, dilation, quantize
+        Intel's SDSM sample's partition border [world units], dilation (fraction per side)
+        and power-of-two quantisation (:func:`aliasing.engines.sdsm.sample_bounds`), applied
+        after the fit, the light space L being the tight box of the whole [near, far].
     """
     kind = check.choice(fit, "fit", FITS)
     snapping = check.choice(snap, "snap", SNAPS)
-    res = float(check.closed_range(resolution, "resolution", 2.0, np.inf, " texels"))
+    res = float(check.closed_range(resolution, "resolution", 3.0, np.inf, " texels"))
     (a, b), (u, v) = cascade_ranges(split, near, far, k, scene=scene, overlap=overlap, **params)
     lv = geometry.lights(light)
     t = np.tan(np.radians(float(check.fov(fov))) / 2)
@@ -326,6 +392,10 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
             side = 2 * sphere_radius(a, b, fov)
         elif kind == "centroid":
             side = 2 * centroid_radius(a, b, fov)
+        elif kind == "centroid16":
+            side = 2 * np.ceil(centroid_radius(a, b, fov) * 16) / 16  # Babylon.js: ceil(r·16)/16
+        elif kind == "far":
+            side = np.full_like(a, 2 * float(far))  # Filament shadowFar: sphere {camera, shadowFar}
         elif kind == "diagonal":
             side = np.ceil(diagonal(a, b, fov))  # Bevy rounds up to a whole unit
         else:
@@ -333,8 +403,14 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
         wx = wy = np.broadcast_to(side, (len(lv), len(a)))
     if snapping == "pad":
         wx, wy = wx * res / (res - 1), wy * res / (res - 1)  # one texel more, W′ = W + W′/R
-    elif snapping == "godot":
-        wx, wy = wx * res / (res - 2), wy * res / (res - 2)  # Godot: a texel on each side
+    elif snapping in ("godot", "border"):
+        wx, wy = wx * res / (res - 2), wy * res / (res - 2)  # a texel on each side: W spans R − 2 texels
+    if border or dilation or quantize:
+        from .sdsm import sample_bounds
+
+        whole = directional.fit(geometry.frustum_vertices(np.array([float(near)]), np.array([float(far)]), fov), lv)  # App.cpp: the view's extents
+        wx = sample_bounds(wx, np.ptp(whole.x, axis=-1), border=border, dilation=dilation, quantize=quantize)
+        wy = sample_bounds(wy, whole.depth, border=border, dilation=dilation, quantize=quantize)
     M_x, M_z = wx / (2 * t * u), wy / (2 * t * u)  # eq. (2) with a uniform map, maximal at u_k
     return StableResult(M_x, M_z, (M_x * M_z).sum(axis=-1), np.asarray(wx, float), np.asarray(wy, float), (u, v), (a, b))
 
@@ -352,7 +428,7 @@ def cost(split: str | ArrayLike, near: float, far: float, fov: float, light: str
     >>> c["S_ratio_min"] > 1.0
     True
     """
-    fit_keys = {"fit", "snap", "resolution", "scene", "overlap"}
+    fit_keys = {"fit", "snap", "resolution", "scene", "overlap", "border", "dilation", "quantize"}
     params = {key: v for key, v in options.items() if key not in fit_keys}
     tight = evaluate(split, near, far, fov, light, **params)  # today's fit: tight, no snap, no overlap
     other = evaluate(split, near, far, fov, light, **options)

@@ -18,8 +18,17 @@ Read from ``Engine/Source/Runtime/Renderer/Private/VirtualShadowMaps/VirtualShad
   floors log2 d + ResolutionLodBias + GlobalResolutionLodBias (the global bias is where
   the dynamic resolution's extra bias goes) and ``MarkPageDirectional`` marks no page past
   the last level (``ClipmapLevelCountRemaining``), so receivers beyond its radius
-  2^(last+1) get no virtual-shadow-map shadow.  Its optional page dilation (two more pages
-  at ±PageDilationOffset) is not modelled;
+  2^(last+1) get no virtual-shadow-map shadow;
+* page-marking dilation (``MarkPage``, same file): a pixel also marks the pages at
+  floor(p ± δ·d) in page units, d = (±1, ±1) a per-pixel dither of one diagonal
+  (``VirtualShadowMapPageMarking.usf`` ``PageDilationDither`` from the thread index), δ =
+  ``r.Shadow.Virtual.PageDilationBorderSizeDirectional`` = 0.05 (``VirtualShadowMapArray.cpp``
+  copies in the index): the marked region grows by δ page on every side;
+* coarse pages (``MarkCoarsePages`` in ``VirtualShadowMapPageMarking.usf``, same copy): for
+  every coarse level (``r.Shadow.Virtual.Clipmap.FirstCoarseLevel`` 15 …
+  ``LastCoarseLevel`` 18, ``VirtualShadowMapClipmap.cpp`` copies;
+  ``r.Shadow.Virtual.MarkCoarsePagesDirectional`` = 1) the 4 pages around the clipmap's
+  origin, floor/ceil(p − ½), are marked whatever the receivers: at most 4 per coarse level;
 * defaults in this version: FirstLevel 6, LastLevel 22, ``ResolutionLodBiasDirectional``
   0.0 (−0.5 in older 5.x copies, e.g. reza-shahriari/UnrealEngine-lite).
 
@@ -47,6 +56,7 @@ True
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -61,6 +71,9 @@ PAGE = 128  # texels per page side (VSM_PAGE_SIZE)
 LOAD_FACTOR = 0.85  # the issue's "engine's 0.85 load factor" (r.Shadow.Virtual.DynamicRes.MaxPagePoolLoadFactor; cvar not read here)
 CM_PER_UNIT = {"cm": 1.0, "m": 100.0, "mm": 0.1, "in": 2.54, "ft": 30.48}
 BIAS_RANGE = (-8.0, 8.0)  # the cvar is an unclamped float; the model accepts ±8 octaves
+DILATION = 0.05  # r.Shadow.Virtual.PageDilationBorderSizeDirectional [pages]
+COARSE_LEVELS = (15, 18)  # r.Shadow.Virtual.Clipmap.FirstCoarseLevel, LastCoarseLevel
+COARSE_PAGES_PER_LEVEL = 4  # MarkCoarsePages: floor/ceil of the origin's page address − ½ in x and y
 
 
 @dataclass(frozen=True)
@@ -97,6 +110,10 @@ class Clipmap:
         ``Clipmap.FirstLevel`` / ``LastLevel``, first ≤ last.
     unit : str
         The scene's length unit (cm, m, mm, in, ft); lengths in and out are in it.
+    dilation : float
+        Page-marking dilation δ [pages], in [0, 0.5] (0.05: the engine's).
+    coarse : tuple of int or None
+        (first, last) coarse level whose 4 central pages are always marked; None: no coarse pages.
     """
 
     fov: float = 90.0
@@ -105,8 +122,13 @@ class Clipmap:
     first: int = 6
     last: int = 22
     unit: str = "cm"
+    dilation: float = DILATION
+    coarse: tuple[int, int] | None = COARSE_LEVELS
 
     def __post_init__(self) -> None:
+        check.closed_range(self.dilation, "dilation", 0.0, 0.5, " pages")
+        if self.coarse is not None and (len(self.coarse) != 2 or int(self.coarse[0]) > int(self.coarse[1])):
+            raise ValueError(f"coarse must be (first coarse level, last coarse level) with first <= last, or None, got {self.coarse!r}")
         check.fov(self.fov)
         if not (float(self.width) >= 1 and float(self.width).is_integer()):
             raise ValueError(f"width (viewport pixels) must be a whole number >= 1, got {self.width!r}")
@@ -188,15 +210,29 @@ def frustum_max(c: Clipmap, near: float, far: float, samples: int = 4096) -> flo
     return float(np.nanmax(m_at(c, d, d * k)))
 
 
+def coarse_pages(c: Clipmap) -> int:
+    """Pages ``MarkCoarsePages`` marks whatever the receivers: 4 per coarse level inside [first, last].
+
+    Example
+    -------
+    >>> coarse_pages(Clipmap()), coarse_pages(Clipmap(coarse=None)), coarse_pages(Clipmap(last=16))
+    (16, 0, 8)
+    """
+    if c.coarse is None:
+        return 0
+    lo, hi = max(int(c.coarse[0]), int(c.first)), min(int(c.coarse[1]), int(c.last))
+    return COARSE_PAGES_PER_LEVEL * max(0, hi - lo + 1)
+
+
 def pages(c: Clipmap, near: float, far: float, light: str | ArrayLike = "overhead") -> Array:
     """Pages (128² texels) the frustum can touch, an upper bound per light direction ``(N,)``.
 
     For each level, the receivers using it have camera distance in [2^(L−B′), 2^(L+1−B′))
     (the first level from 0, the last to its radius); they lie in the frustum slice with eye
     depth in [d_lo·cos ψ_max, d_hi] (cos ψ_max = 1/√(1 + 2tan²θ)).  The slice's light-space
-    box (:func:`aliasing.directional.fit`) in pages, +1 per axis for its alignment to the page
-    grid, capped at 128 per axis, summed over levels.  Coarse pages (FirstCoarseLevel…) and
-    the page marking's dilation are not modelled (sources not read).
+    box (:func:`aliasing.directional.fit`) in pages, grown by the marking's dilation δ page on
+    each side, +1 per axis for its alignment to the page grid, capped at 128 per axis, summed
+    over levels; plus the coarse pages (:func:`coarse_pages`; counted apart, so a bound).
     """
     n, f = (float(x) for x in check.frustum(near, far))
     scale = CM_PER_UNIT[c.unit.lower()]
@@ -209,12 +245,13 @@ def pages(c: Clipmap, near: float, far: float, light: str | ArrayLike = "overhea
     lvk, a, b = lv[keep], a[keep], b[keep]
     lights = geometry.lights(light)
     if lvk.size == 0:
-        return np.zeros(len(lights))
+        return np.full(len(lights), float(coarse_pages(c)))
     basis = geometry.light_space(lights)  # (N, 3, 3): rows x, −, y of the light image plane
     page = PAGE * texel(c, lvk)
-    px = np.minimum(np.ceil(slice_extent(a, b, c.tan, basis[:, 0]) / page) + 1, VIRTUAL_RES // PAGE)
-    py = np.minimum(np.ceil(slice_extent(a, b, c.tan, basis[:, 2]) / page) + 1, VIRTUAL_RES // PAGE)
-    return (px * py).sum(axis=-1)
+    grow = 2 * c.dilation  # MarkPage: ± δ page around every marked point
+    px = np.minimum(np.ceil(slice_extent(a, b, c.tan, basis[:, 0]) / page + grow) + 1, VIRTUAL_RES // PAGE)
+    py = np.minimum(np.ceil(slice_extent(a, b, c.tan, basis[:, 2]) / page + grow) + 1, VIRTUAL_RES // PAGE)
+    return (px * py).sum(axis=-1) + coarse_pages(c)
 
 
 def slice_extent(a: ArrayLike, b: ArrayLike, tan: float, axis: ArrayLike) -> Array:
@@ -236,7 +273,9 @@ def pool_check(c: Clipmap, near: float, far: float, light: str | ArrayLike, pool
     pages, :func:`ground_pages`) overflows ``pool`` pages at the 0.85 load factor, and the extra bias.
 
     The extra bias is the smallest non-negative one (to 1/16 octave, bisection; pages fall
-    monotonically with bias) whose page bound fits 0.85·pool for the worst light direction.
+    monotonically with bias) whose page bound fits 0.85·pool for the worst light direction;
+    ``inf`` when none up to the model's bias limit does (the coarse pages alone may exceed a
+    tiny pool).
     The engine's own dynamic-resolution stepping was not read; this is the model's answer.
     """
     if not (float(pool) >= 1 and float(pool).is_integer()):
@@ -248,10 +287,14 @@ def pool_check(c: Clipmap, near: float, far: float, light: str | ArrayLike, pool
         return pages(clip, near, far, lv) if ground is None else ground_pages(clip, ground, far, lv)
 
     def biased(extra: float) -> Clipmap:
-        return Clipmap(c.fov, c.width, min(c.bias + extra, BIAS_RANGE[1]), c.first, c.last, c.unit)
+        return dataclasses.replace(c, bias=min(c.bias + extra, BIAS_RANGE[1]))
+
+    top = BIAS_RANGE[1] - c.bias  # the model's largest bias
 
     def bisect(lv: Array) -> float:
-        lo, hi = 0.0, 16.0
+        if per_light(biased(top), lv).max() > budget:
+            return float("inf")  # no bias fits: the coarse pages and one page per level exceed the pool
+        lo, hi = 0.0, top
         while hi - lo > 1 / 16:
             mid = (lo + hi) / 2
             lo, hi = (lo, mid) if per_light(biased(mid), lv).max() <= budget else (mid, hi)
@@ -265,7 +308,7 @@ def pool_check(c: Clipmap, near: float, far: float, light: str | ArrayLike, pool
         # all; the answer is then verified on every direction (else bisect on all of them).
         heavy = lights[first >= 0.5 * need]
         extra = bisect(heavy)
-        if per_light(biased(extra), lights).max() > budget:
+        if np.isfinite(extra) and per_light(biased(extra), lights).max() > budget:
             extra = bisect(lights)
     return {"pages": need, "budget": budget, "overflow": need > budget, "extra_bias": extra}
 
@@ -300,9 +343,10 @@ def ground_pages(c: Clipmap, height: float, far: float, light: str | ArrayLike =
     Receivers on the ground at camera distance d_c = √(h² + ρ²) use level L (:func:`level`);
     the ground between the level's distance bounds, seen within ``far``, has area
     ΔA (:func:`ground_area`) and projects onto the light's image plane with area
-    ΔA·|l_y| (l the unit vector towards the light, y up); divided by the page area (128 t_L)².
-    Partial pages at the borders and the engine's coarse pages are not counted, so this is
-    the area's worth of pages, not an upper bound.  Lights below the horizon give 0.
+    ΔA·|l_y| (l the unit vector towards the light, y up); divided by the page area (128 t_L)²;
+    plus the coarse pages (:func:`coarse_pages`).  Partial pages at the borders and the
+    marking's dilation are not counted, so this is the area's worth of pages, not an upper
+    bound.  Lights below the horizon give the coarse pages only.
     """
     h = float(check.positive(height, "height"))
     f = float(check.positive(far, "far"))
@@ -316,4 +360,4 @@ def ground_pages(c: Clipmap, height: float, far: float, light: str | ArrayLike =
     area = ground_area(rho(d_hi), h, c.fov) - ground_area(rho(d_lo), h, c.fov)  # (L,)
     page = PAGE * texel(c, levels)
     cos_l = np.clip(lv[:, 1] / np.linalg.norm(lv, axis=-1), 0.0, None)  # projected area factor
-    return cos_l * (area / page**2).sum()
+    return cos_l * (area / page**2).sum() + coarse_pages(c)

@@ -6,6 +6,12 @@ code in :mod:`aliasing.engines` is tested against it.
 * ``engines.sphere_centre`` / ``engines.sphere_radius``: the minimal sphere through both
   corner rings of a square frustum slice [a, b] (t = tan θ): the centre on the axis
   equidistant from a near corner (√2·t·a off the axis, depth a) and a far corner.
+* ``engines.centroid_radius``: the sphere Filament's ``stable`` mode, Babylon.js'
+  ``stabilizeCascades`` and Godot 4 fit: centred on the 8 corners' average (on the axis at
+  (a + b)/2), radius the largest corner distance, a far corner's:
+  r² = ((b − a)/2)² + 2t²b².
+* ``engines.far_corner_distance``: a far corner of [near, f] lies at f·√(1 + 2t²) from the
+  camera, beyond Filament's ``shadowFar`` sphere {camera, f} for every t > 0.
 * ``engines.vsm_m_axis``: the UE5 clipmap's error on the view axis.  Level
   L = floor(log2 d + B′), texel 2^(L+3)/16384, pixel footprint 2 t d/W,
   B′ = bias + log2(0.5·t·16384/W) (VirtualShadowMapClipmap.cpp).  Writing
@@ -57,3 +63,18 @@ def vsm_m_axis() -> sp.Expr:
 @derivation("engines.matched_texels", "issue 18 (derived)", "mean texels per pixel of power-of-two resolution matching, 3/ln 4")
 def matched_texels() -> sp.Expr:
     return sp.simplify(sp.integrate(4**phi, (phi, 0, 1)))
+
+
+@derivation("engines.centroid_radius", "Filament ShadowMap.cpp computeBoundingSphere, Babylon.js _computeCascadeFrustum, Godot 4 + issue 18 (derived)", "radius of the sphere around the 8 corners' average of a frustum slice [a, b]")
+def centroid_radius() -> sp.Expr:
+    corners = [(sx * t * d, sy * t * d, d) for d in (a, b) for sx in (-1, 1) for sy in (-1, 1)]
+    centre = [sp.Rational(1, 8) * sum(c[i] for c in corners) for i in range(3)]  # (0, 0, (a + b)/2)
+    dist_sq = [sp.expand(sum((c[i] - centre[i]) ** 2 for i in range(3))) for c in corners]
+    far_sq = dist_sq[-1]  # near corners: far_sq − near_sq = 2t²(b² − a²) ≥ 0 for b > a (tested)
+    return sp.sqrt(sp.factor(far_sq))
+
+
+@derivation("engines.far_corner_distance", "Filament ShadowMap.cpp computeFocusParams (shadowFar > 0) + issue 18 (derived)", "distance from the camera to a far corner of the view frustum at depth f")
+def far_corner_distance() -> sp.Expr:
+    f = sp.Symbol("f", positive=True)
+    return sp.sqrt(sp.factor((t * f) ** 2 + (t * f) ** 2 + f**2))
