@@ -18,7 +18,9 @@ boundary: n′ ≥ c·W_ly·max(0, 1 − |t − 1|/τ), c = 0.1, τ = 0.3 (there
 projection sits about 0.1 W_ly before the near face, which η ≈ 0 cannot express at large f/n;
 docs/warping_rule.md §5).  Continuous in the light direction, no per-direction optimisation:
 a few divisions and two maxima per direction.  Its log+perspective counterpart (scheme
-``pyramid-log``) uses the plateau η = 1 (reached at t = 2) and the same guard.
+``pyramid-log``) also uses how diagonal the light's image position is, r = min(|u|, |w|)/t:
+inside, η = min((1 − r)(min(t, 2t²) − 1) − r(1 − t)⁵, 3t² − 1); outside a ramp to LogSopt's
+plateau η = 1 at t = 2; the same guard (docs/warping_rule.md §6).
 
 What holds on the grid f/n ∈ 10…1e5, fov 20°…120° (docs/warping_rule.md): see
 :func:`grid_study` and the reproduce target ``warping-rule-grid``.
@@ -71,6 +73,7 @@ def image_position(light: ArrayLike, fov: ArrayLike) -> tuple[Array, Array]:
 
 AXIS_SLOPE = 2.0  # η + 1 = min(t, 2t²) inside: quadratic near the view axis (docs/warping_rule.md §5)
 GUARD, GUARD_WIDTH = 0.1, 0.3  # c and τ of the boundary guard (docs/warping_rule.md §5)
+LOG_DIAGONAL_POWER, LOG_AXIS_SLOPE = 5.0, 3.0  # pyramid-log's inside shape (docs/warping_rule.md §6)
 
 
 def _eta_of_t(t: Array, top: ArrayLike) -> Array:
@@ -78,6 +81,49 @@ def _eta_of_t(t: Array, top: ArrayLike) -> Array:
     with np.errstate(over="ignore", invalid="ignore"):
         inside = np.minimum(t, AXIS_SLOPE * t * t)
     return np.clip(inside - 1.0, -1.0, top)
+
+
+def _eta_log_of(t: Array, r: Array) -> Array:
+    """pyramid-log's η from t and r = min(|u|, |w|)/max(|u|, |w|) (0 in the view's vertical plane, 1 on the diagonal).
+
+    Inside: a blend, by r, of the perspective shape min(t, 2t²) − 1 and the diagonal's
+    −(1 − t)⁵, capped by 3t² − 1 near the view axis; outside: a ramp to η = 1 at t = 2.
+    Both inside terms tend to −1 as t → 0 and to 0 as t → 1, so η is continuous.
+    """
+    with np.errstate(over="ignore", invalid="ignore"):
+        tc = np.minimum(t, 1.0)
+        blend = (1.0 - r) * (np.minimum(tc, AXIS_SLOPE * tc * tc) - 1.0) - r * (1.0 - tc) ** LOG_DIAGONAL_POWER
+        inside = np.minimum(blend, LOG_AXIS_SLOPE * tc * tc - 1.0)
+        return np.where(t < 1.0, inside, np.clip(t - 1.0, 0.0, 1.0))
+
+
+def _t_and_r(a: Array, b: Array) -> tuple[Array, Array]:
+    """t = max(a, b) and r = min(a, b)/max(a, b) (0 where t is 0 or infinite) of |u|, |w|."""
+    t = np.maximum(a, b)
+    ok = np.isfinite(t) & (t > 0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        r = np.where(ok, np.minimum(a, b) / np.where(ok, t, 1.0), 0.0)
+    return t, r
+
+
+def eta_pyramid_log(light: ArrayLike, fov: ArrayLike) -> Array:
+    """η of pyramid-log (log+perspective), from the light's image position (docs/warping_rule.md §6).
+
+    Parameters
+    ----------
+    light : array_like
+        Directions towards the light ``(N, 3)``.
+    fov : array_like
+        Full field of view [deg].
+
+    Example
+    -------
+    >>> from aliasing.geometry import light_direction
+    >>> eta_pyramid_log(light_direction([20.0, 20.0, 45.0], [0.0, 45.0, 0.0]), 60.0).round(3)  # vertical plane, diagonal, outside
+    array([-0.37 , -0.404,  0.732])
+    """
+    u, w = image_position(light, fov)
+    return _eta_log_of(*_t_and_r(np.abs(u), np.abs(w)))
 
 
 def eta_pyramid(light: ArrayLike, fov: ArrayLike, eta_outside: float = 0.0) -> Array:
@@ -106,19 +152,26 @@ def eta_pyramid(light: ArrayLike, fov: ArrayLike, eta_outside: float = 0.0) -> A
 
 def pyramid_t(gamma: ArrayLike, azimuth: ArrayLike, fov: ArrayLike) -> Array:
     """t = tanγ·max(|sin φ|, |cos φ|)/tanθ, γ folded to [0°, 90°] [deg in, dimensionless out]."""
+    return pyramid_t_r(gamma, azimuth, fov)[0]
+
+
+def pyramid_t_r(gamma: ArrayLike, azimuth: ArrayLike, fov: ArrayLike) -> tuple[Array, Array]:
+    """(t, r): t as :func:`pyramid_t`, r = min(|sin φ|, |cos φ|)/max(|sin φ|, |cos φ|) [dimensionless]."""
     g = check.closed_range(gamma, "gamma", 0.0, 180.0, " degrees")
     g = np.minimum(g, 180.0 - g)
     phi = np.radians(check.as_float_array(azimuth, "azimuth"))
     tan = np.tan(np.radians(check.fov(fov)) / 2)
     with np.errstate(over="ignore"):
-        return np.tan(np.radians(g)) * np.maximum(np.abs(np.sin(phi)), np.abs(np.cos(phi))) / tan
+        scale = np.tan(np.radians(g)) / tan
+        return _t_and_r(scale * np.abs(np.sin(phi)), scale * np.abs(np.cos(phi)))
 
 
-def n_prime_pyramid(near: ArrayLike, far: ArrayLike, t: ArrayLike, depth: ArrayLike, eta_outside: ArrayLike | None = None) -> Array:
-    """n′ [world units] of the pyramid rule from t and the light-space depth W_ly [world units].
+def n_prime_pyramid(near: ArrayLike, far: ArrayLike, t: ArrayLike, depth: ArrayLike, eta_outside: ArrayLike | None = None, r: ArrayLike | None = None) -> Array:
+    """n′ [world units] of the pyramid rules from t and the light-space depth W_ly [world units].
 
     η = clip(min(t, 2t²) − 1, −1, η_out) through eq. 120 (η_out = n/f by default, the
-    perspective plateau n′ = n_γ√(f/n)), then n′ ≥ c·W_ly·max(0, 1 − |t − 1|/τ).
+    perspective plateau n′ = n_γ√(f/n)); with ``r`` given, pyramid-log's η of t and r
+    instead (:func:`eta_pyramid_log`); then n′ ≥ c·W_ly·max(0, 1 − |t − 1|/τ).
 
     Example
     -------
@@ -131,7 +184,8 @@ def n_prime_pyramid(near: ArrayLike, far: ArrayLike, t: ArrayLike, depth: ArrayL
     top = n / f if eta_outside is None else check.closed_range(eta_outside, "eta_outside", 0.0, 1.0)
     tt = check.as_float_array(t, "t")
     d = check.positive(depth, "depth")
-    npr = warping.n_prime_from_eta(_eta_of_t(tt, top), n, f, d)
+    eta = _eta_of_t(tt, top) if r is None else _eta_log_of(tt, check.as_float_array(r, "r"))
+    npr = warping.n_prime_from_eta(eta, n, f, d)
     guard = GUARD * d * np.clip(1.0 - np.abs(tt - 1.0) / GUARD_WIDTH, 0.0, 1.0)  # NaN-free: t = inf gives 0
     return np.maximum(npr, np.where(np.isfinite(tt), guard, 0.0))
 
@@ -148,12 +202,13 @@ def _pyramid(near: ArrayLike, far: ArrayLike, *, fov: ArrayLike = 60.0, gamma: A
     return n_prime_pyramid(n, f, pyramid_t(gamma, azimuth, fov), d)
 
 
-@register("pyramid-log", "new (this toolkit, docs/warping_rule.md): the pyramid rule for the log+perspective map", "as pyramid, with plateau eta = 1 outside (reached at t = 2); the scheme 'pyramid-log' uses it with the log+perspective parameterization")
+@register("pyramid-log", "new (this toolkit, docs/warping_rule.md): the pyramid rule for the log+perspective map", "inside: blend by r = min/max(|u|,|w|) of min(t, 2t^2) - 1 and -(1 - t)^5, capped by 3t^2 - 1; outside: ramp to eta = 1 at t = 2; guard as pyramid; the scheme 'pyramid-log' uses it with the log+perspective parameterization")
 def _pyramid_log(near: ArrayLike, far: ArrayLike, *, fov: ArrayLike = 60.0, gamma: ArrayLike = 90.0, depth: ArrayLike | None = None, azimuth: ArrayLike = 0.0) -> Array:
-    """n′ [world units] of pyramid-log: η = clip(min(t, 2t²) − 1, −1, 1) and the same guard."""
+    """n′ [world units] of pyramid-log: η of :func:`eta_pyramid_log` through eq. 120 and the same guard."""
     n, f = check.frustum(near, far)
     d = (f - n) if depth is None else depth
-    return n_prime_pyramid(n, f, pyramid_t(gamma, azimuth, fov), d, 1.0)
+    t, r = pyramid_t_r(gamma, azimuth, fov)
+    return n_prime_pyramid(n, f, t, d, r=r)
 
 
 def evaluate(rule: str, near: float, far: float, fov: float, light: ArrayLike) -> Array:
