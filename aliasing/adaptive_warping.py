@@ -20,7 +20,7 @@ docs/warping_rule.md §5).  Continuous in the light direction, no per-direction 
 a few divisions and two maxima per direction.  Its log+perspective counterpart (scheme
 ``pyramid-log``) also uses how diagonal the light's image position is, r = min(|u|, |w|)/t:
 inside, η = min((1 − r)(min(t, 2t²) − 1) − r(1 − t)⁵, 3t² − 1); outside a ramp to LogSopt's
-plateau η = 1 at t = 2; the same guard (docs/warping_rule.md §6).
+plateau η = 1 at t = 1.3, where the guard ends; the same guard (docs/warping_rule.md §6).
 
 What holds on the grid f/n ∈ 10…1e5, fov 20°…120° (docs/warping_rule.md): see
 :func:`grid_study` and the reproduce target ``warping-rule-grid``.
@@ -87,14 +87,15 @@ def _eta_log_of(t: Array, r: Array) -> Array:
     """pyramid-log's η from t and r = min(|u|, |w|)/max(|u|, |w|) (0 in the view's vertical plane, 1 on the diagonal).
 
     Inside: a blend, by r, of the perspective shape min(t, 2t²) − 1 and the diagonal's
-    −(1 − t)⁵, capped by 3t² − 1 near the view axis; outside: a ramp to η = 1 at t = 2.
+    −(1 − t)⁵, capped by 3t² − 1 near the view axis; outside: a ramp to η = 1 at t = 1 + τ
+    (τ = 0.3, where the guard ends).
     Both inside terms tend to −1 as t → 0 and to 0 as t → 1, so η is continuous.
     """
     with np.errstate(over="ignore", invalid="ignore"):
         tc = np.minimum(t, 1.0)
         blend = (1.0 - r) * (np.minimum(tc, AXIS_SLOPE * tc * tc) - 1.0) - r * (1.0 - tc) ** LOG_DIAGONAL_POWER
         inside = np.minimum(blend, LOG_AXIS_SLOPE * tc * tc - 1.0)
-        return np.where(t < 1.0, inside, np.clip(t - 1.0, 0.0, 1.0))
+        return np.where(t < 1.0, inside, np.clip((t - 1.0) / GUARD_WIDTH, 0.0, 1.0))  # plateau where the guard ends
 
 
 def _t_and_r(a: Array, b: Array) -> tuple[Array, Array]:
@@ -119,8 +120,8 @@ def eta_pyramid_log(light: ArrayLike, fov: ArrayLike) -> Array:
     Example
     -------
     >>> from aliasing.geometry import light_direction
-    >>> eta_pyramid_log(light_direction([20.0, 20.0, 45.0], [0.0, 45.0, 0.0]), 60.0).round(3)  # vertical plane, diagonal, outside
-    array([-0.37 , -0.404,  0.732])
+    >>> eta_pyramid_log(light_direction([20.0, 20.0, 32.0], [0.0, 45.0, 0.0]), 60.0).round(3)  # vertical plane, diagonal, outside
+    array([-0.37 , -0.404,  0.274])
     """
     u, w = image_position(light, fov)
     return _eta_log_of(*_t_and_r(np.abs(u), np.abs(w)))
@@ -137,7 +138,7 @@ def eta_pyramid(light: ArrayLike, fov: ArrayLike, eta_outside: float = 0.0) -> A
         Full field of view [deg].
     eta_outside : float
         The plateau η for lights outside the view pyramid, in [0, 1]: n/f for perspective
-        (n′ = n_γ√(f/n), the S-optimal plateau), 1 for log+perspective (reached at t = 2).
+        (n′ = n_γ√(f/n), the S-optimal plateau); larger values ramp to it over 1 ≤ t ≤ 1 + η_out.
 
     Example
     -------
@@ -202,7 +203,7 @@ def _pyramid(near: ArrayLike, far: ArrayLike, *, fov: ArrayLike = 60.0, gamma: A
     return n_prime_pyramid(n, f, pyramid_t(gamma, azimuth, fov), d)
 
 
-@register("pyramid-log", "new (this toolkit, docs/warping_rule.md): the pyramid rule for the log+perspective map", "inside: blend by r = min/max(|u|,|w|) of min(t, 2t^2) - 1 and -(1 - t)^5, capped by 3t^2 - 1; outside: ramp to eta = 1 at t = 2; guard as pyramid; the scheme 'pyramid-log' uses it with the log+perspective parameterization")
+@register("pyramid-log", "new (this toolkit, docs/warping_rule.md): the pyramid rule for the log+perspective map", "inside: blend by r = min/max(|u|,|w|) of min(t, 2t^2) - 1 and -(1 - t)^5, capped by 3t^2 - 1; outside: ramp to eta = 1 at t = 1.3; guard as pyramid; the scheme 'pyramid-log' uses it with the log+perspective parameterization")
 def _pyramid_log(near: ArrayLike, far: ArrayLike, *, fov: ArrayLike = 60.0, gamma: ArrayLike = 90.0, depth: ArrayLike | None = None, azimuth: ArrayLike = 0.0) -> Array:
     """n′ [world units] of pyramid-log: η of :func:`eta_pyramid_log` through eq. 120 and the same guard."""
     n, f = check.frustum(near, far)
