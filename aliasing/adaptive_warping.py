@@ -186,7 +186,7 @@ def n_prime_pyramid(near: ArrayLike, far: ArrayLike, t: ArrayLike, depth: ArrayL
     tt = check.as_float_array(t, "t")
     d = check.positive(depth, "depth")
     eta = _eta_of_t(tt, top) if r is None else _eta_log_of(tt, check.as_float_array(r, "r"))
-    npr = warping.n_prime_from_eta(eta, n, f, d)
+    npr = warping.n_prime_from_eta(eta, n, f, d)  # eq. (120), Lloyd et al. 2007
     guard = GUARD * d * np.clip(1.0 - np.abs(tt - 1.0) / GUARD_WIDTH, 0.0, 1.0)  # NaN-free: t = inf gives 0
     return np.maximum(npr, np.where(np.isfinite(tt), guard, 0.0))
 
