@@ -50,6 +50,7 @@ _BASES = {
     "log": ("logp", "logperspective"),
     "sopt": ("sopt", "perspective"),
     "logsopt": ("sopt", "logperspective"),
+    "pyramid-log": ("pyramid-log", "logperspective"),  # issue 15: the registered rule's log+perspective form
 }
 
 
