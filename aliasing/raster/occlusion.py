@@ -46,14 +46,16 @@ TILE = 16
 MARGIN = 1e-9
 
 
-def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident) -> None:
+def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident, merge=None) -> None:
     """Rasterize triangles ``idx`` nearest first, skipping hidden ones and hidden pieces (module docstring).
 
     Groups of at most :data:`GROUP`·R rows (and ``chunk``): each is culled against the
     buffer the nearer groups left.  ``far`` (farthest stored depth per row and block of
     :data:`BLOCK` columns) is kept up to date only where texels were drawn: depths only
-    decrease, so elsewhere it stays exact.
+    decrease, so elsewhere it stays exact.  ``merge``: the merge of a group's spans,
+    :func:`merge_visible` by default (:func:`.compiled.merge` has its signature).
     """
+    merge = merge_visible if merge is None else merge
     order = np.argsort(dep[idx].min(axis=1), kind="stable")
     idx, x0, x1, y0, height = idx[order], x0[order], x1[order], y0[order], height[order]
     scale = np.abs(dep).max(axis=1)  # per triangle: interpolated depths round relative to it
@@ -70,7 +72,7 @@ def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv
         a = b
         if sel.size:
             sp = row_spans(idx[sel], x0[sel], x1[sel], y0[sel], height[sel], sx, ty, row_coord, dep, inv_w, area2, res)
-            merge_visible(sp, res, chunk, depth, ident, far, scale)
+            merge(sp, res, chunk, depth, ident, far, scale)
 
 
 def _block_far(depth: Array, res: int) -> Array:
