@@ -62,13 +62,15 @@ def _jit(fn: Callable) -> Callable:
 
 
 @_jit
-def merge_spans(row, t_id, col_lo, width, n0, n1, m0, m1, res, depth, ident, far, block):  # pragma: no cover - compiled
+def merge_spans(row, t_id, col_lo, width, n0, n1, m0, m1, res, depth, ident, far, block, margin):  # pragma: no cover - compiled
     """Merge spans into the z-buffer texel by texel; refresh ``far`` (R × blocks) where depths dropped.
 
     The depth of a texel is (n0 + n1·px)/(m0 + m1·px), px = column + ½, as
     :meth:`.coverage.Spans.depth_at`.  A nearer depth takes the texel; an equal one keeps the
     higher triangle index; a NaN depth is stored (as ``np.minimum`` would) and then nothing
-    changes that texel: the merge of :func:`.occlusion.merge_visible`, in any order.
+    changes that texel: the merge of :func:`.occlusion.merge_visible`, in any order.  As
+    there, a piece of a span within one block of ``block`` columns is skipped when its
+    nearest end, less ``margin`` (per triangle), lies beyond the block's ``far``.
     """
     nblk = far.shape[1]
     dirty = np.zeros(far.shape[0] * nblk, np.bool_)
@@ -76,25 +78,33 @@ def merge_spans(row, t_id, col_lo, width, n0, n1, m0, m1, res, depth, ident, far
         base = row[s] * res
         t = t_id[s]
         a0, a1, b0, b1 = n0[s], n1[s], m0[s], m1[s]
-        c0 = col_lo[s]
-        lowered = False
-        for c in range(c0, c0 + width[s]):
-            px = c + 0.5
-            z = (a0 + a1 * px) / (b0 + b1 * px)
-            p = base + c
-            d = depth[p]
-            if z < d:
-                depth[p] = z
-                ident[p] = t
-                lowered = True
-            elif z == d:
-                if t > ident[p]:
+        c0, c1 = col_lo[s], col_lo[s] + width[s] - 1
+        fr = far[row[s]]
+        for b in range(c0 // block, c1 // block + 1):
+            lo, hi = max(c0, b * block), min(c1, b * block + block - 1)
+            # the piece test of merge_visible (far may be stale: only ever too far, so safe)
+            za = (a0 + a1 * (lo + 0.5)) / (b0 + b1 * (lo + 0.5))
+            zb = (a0 + a1 * (hi + 0.5)) / (b0 + b1 * (hi + 0.5))
+            zn = za if za < zb or za != za else zb  # np.minimum: NaN wins, and NaN never skips
+            if zn - margin[t] > fr[b]:
+                continue
+            lowered = False
+            for c in range(lo, hi + 1):
+                px = c + 0.5
+                z = (a0 + a1 * px) / (b0 + b1 * px)
+                p = base + c
+                d = depth[p]
+                if z < d:
+                    depth[p] = z
                     ident[p] = t
-            elif z != z and d == d:
-                depth[p] = z
-                lowered = True
-        if lowered:
-            for b in range(c0 // block, (c0 + width[s] - 1) // block + 1):
+                    lowered = True
+                elif z == d:
+                    if t > ident[p]:
+                        ident[p] = t
+                elif z != z and d == d:
+                    depth[p] = z
+                    lowered = True
+            if lowered:
                 dirty[row[s] * nblk + b] = True
     for k in range(dirty.size):
         if dirty[k]:
@@ -112,9 +122,9 @@ def merge_spans(row, t_id, col_lo, width, n0, n1, m0, m1, res, depth, ident, far
 
 def merge(sp, res: int, chunk: int, depth, ident, far, scale) -> None:
     """:func:`.occlusion.merge_visible`'s signature on :func:`merge_spans` (no chunks or margins needed)."""
-    from .occlusion import BLOCK
+    from .occlusion import BLOCK, MARGIN
 
-    merge_spans(sp.row, sp.t_id, sp.col_lo, sp.width, sp.n0, sp.n1, sp.m0, sp.m1, res, depth, ident, far, BLOCK)
+    merge_spans(sp.row, sp.t_id, sp.col_lo, sp.width, sp.n0, sp.n1, sp.m0, sp.m1, res, depth, ident, far, BLOCK, MARGIN * scale)
 
 
 @_jit
