@@ -78,8 +78,8 @@ def test_culled_z_buffer_matches_plain_one_for_perspective_and_log_rows(backend)
     w = rng.uniform(0.2, 3.0, (400, 3))
     rows = np.sort(rng.uniform(0, 1, 96))
     plain = raster.rasterize(tri, 96, w=w, row_centres=rows, chunk=3000)
-    merge = eye.BACKENDS[backend]()[0]
-    culled = core.zbuffer(tri, 96, 1.0 / w, rows, False, 3000, front_to_back=True, merge=merge)
+    draw = eye.BACKENDS[backend]()[0]
+    culled = core.zbuffer(tri, 96, 1.0 / w, rows, False, 3000, front_to_back=True, draw=draw)
     np.testing.assert_array_equal(culled.depth, plain.depth)
     np.testing.assert_array_equal(culled.triangle, plain.triangle)
     assert (culled.rasterized, culled.degenerate) == (plain.rasterized, plain.degenerate)

@@ -102,7 +102,7 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     chunk = check_chunk(chunk)
     if backend not in BACKENDS:
         raise ValueError(f"backend must be one of {sorted(BACKENDS)}, got {backend!r}")
-    merge, outputs = BACKENDS[backend]()
+    draw, outputs = BACKENDS[backend]()
     clipped, src = clip_near(tri, zc)
     if clipped.shape[0] == 0:
         empty = np.full((res, res, 3), np.nan)
@@ -111,7 +111,7 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     # depth key: -1/z is affine in (u, v) over a plane and increases with z; the eye sees
     # much overdraw, so hidden triangles and pieces of spans are culled (front_to_back)
     key = np.stack([u, v, -1.0 / z], axis=-1)
-    dm = zbuffer(key, res, np.ones((key.shape[0], 3)), (np.arange(res) + 0.5) / res, True, chunk, front_to_back=True, merge=merge)
+    dm = zbuffer(key, res, np.ones((key.shape[0], 3)), (np.arange(res) + 0.5) / res, True, chunk, front_to_back=True, draw=draw)
     # exact positions: the ray (X, Y, 1) through the pixel centre ∩ the source triangle's
     # plane n·p = n·a, so p = λ(X, Y, 1) with λ = n·a / (n_x X + n_y Y + n_z)
     t = np.tan(np.radians(fv) / 2)
@@ -157,13 +157,13 @@ def _outputs_numba(tri_id: NDArray[np.int64], src: NDArray[np.int64], X: Array, 
 
 
 def _numpy():
-    return occlusion.merge_visible, _outputs_numpy
+    return occlusion.draw_visible, _outputs_numpy
 
 
 def _numba():
     compiled.require()
-    return compiled.merge, _outputs_numba
+    return compiled.draw, _outputs_numba
 
 
-#: Backends of :func:`eye_pass`: name → loader of (span merge, per-pixel outputs).
+#: Backends of :func:`eye_pass`: name → loader of (how a group of triangles is drawn, per-pixel outputs).
 BACKENDS = {"numpy": _numpy, "numba": _numba}

@@ -46,16 +46,16 @@ TILE = 16
 MARGIN = 1e-9
 
 
-def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident, merge=None) -> None:
+def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident, draw=None) -> None:
     """Rasterize triangles ``idx`` nearest first, skipping hidden ones and hidden pieces (module docstring).
 
     Groups of at most :data:`GROUP`·R rows (and ``chunk``): each is culled against the
     buffer the nearer groups left.  ``far`` (farthest stored depth per row and block of
     :data:`BLOCK` columns) is kept up to date only where texels were drawn: depths only
-    decrease, so elsewhere it stays exact.  ``merge``: the merge of a group's spans,
-    :func:`merge_visible` by default (:func:`.compiled.merge` has its signature).
+    decrease, so elsewhere it stays exact.  ``draw``: how a group of triangles is
+    drawn, :func:`draw_visible` by default (:func:`.compiled.draw` has its signature).
     """
-    merge = merge_visible if merge is None else merge
+    draw = draw_visible if draw is None else draw
     order = np.argsort(dep[idx].min(axis=1), kind="stable")
     idx, x0, x1, y0, height = idx[order], x0[order], x1[order], y0[order], height[order]
     scale = np.abs(dep).max(axis=1)  # per triangle: interpolated depths round relative to it
@@ -71,8 +71,13 @@ def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv
             sel = sel[_visible_boxes(near[a:b], x0[a:b], x1[a:b], y0[a:b], y1[a:b], res, far, chunk)]
         a = b
         if sel.size:
-            sp = row_spans(idx[sel], x0[sel], x1[sel], y0[sel], height[sel], sx, ty, row_coord, dep, inv_w, area2, res)
-            merge(sp, res, chunk, depth, ident, far, scale)
+            draw(idx[sel], x0[sel], x1[sel], y0[sel], height[sel], sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident, far, scale)
+
+
+def draw_visible(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident, far, scale) -> None:
+    """Draw a group of triangles: their spans (:func:`.coverage.row_spans`) merged by :func:`merge_visible`."""
+    sp = row_spans(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res)
+    merge_visible(sp, res, chunk, depth, ident, far, scale)
 
 
 def _block_far(depth: Array, res: int) -> Array:
