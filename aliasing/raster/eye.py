@@ -119,7 +119,8 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     X = (2 * c - 1) * t
     a, b, cc = tri[:, 0], tri[:, 1], tri[:, 2]
     nrm = np.cross(b - a, cc - a)
-    nrm /= np.linalg.norm(nrm, axis=-1, keepdims=True)
+    with np.errstate(divide="ignore", invalid="ignore"):  # a zero-area triangle (never drawn) gets a NaN normal
+        nrm /= np.linalg.norm(nrm, axis=-1, keepdims=True)
     ident, position, normal = outputs(dm.triangle.ravel(), src, X, nrm, (nrm * a).sum(-1), res)
     return EyeBuffer(position, normal, ident, res, fv)
 
