@@ -12,6 +12,10 @@ projection, triangle order and culling) stays the numpy code:
   are refreshed (:mod:`.occlusion`);
 * :func:`eye_outputs` — triangle id, position and normal of every pixel in one pass.
 
+:func:`merge` (on :func:`merge_spans`) is the compiled drop-in for
+:func:`.occlusion.merge_visible` on given spans.  numba caches the compiled kernels on disk
+(``cache=True``): about 2 s to compile once, well under a second to load afterwards.
+
 Both evaluate the numpy path's expressions in the same order, without fast-math, with
 numpy's floating-point error model (division by zero gives inf/NaN), so the results are
 identical (tests/test_raster_eye.py compares them bit for bit).  Without numba
@@ -208,7 +212,7 @@ def draw(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chu
 
 
 def merge(sp, res: int, chunk: int, depth, ident, far, scale) -> None:
-    """:func:`.occlusion.merge_visible`'s signature on :func:`merge_spans` (no chunks or margins needed)."""
+    """:func:`.occlusion.merge_visible`'s signature on :func:`merge_spans`: the compiled merge of given spans."""
     from .occlusion import BLOCK, MARGIN
 
     merge_spans(sp.row, sp.t_id, sp.col_lo, sp.width, sp.n0, sp.n1, sp.m0, sp.m1, res, depth, ident, far, BLOCK, MARGIN * scale)
