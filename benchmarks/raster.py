@@ -11,11 +11,12 @@ included) is timed the same way; the script prints raster / ray-cast time and th
 texels whose depths agree (:func:`aliasing.raster.raycast.agreement`).  Without embreex
 (``pip install 'aliasing[bench]'``) it says so on one line and skips that part.
 The eye pass (occlusion-culled, :mod:`aliasing.raster.occlusion`) is timed interleaved with
-the three depth maps (one round = each map, then the eye pass, then the plain reference eye
+the three depth maps (one round = each map, then the eye pass, then the compiled eye pass
+``backend="numba"`` when numba is installed, then the plain reference eye
 pass of before issue 12 — :func:`reference_eye_pass`, the plain z-buffer in triangle order
 and masked positions — so that load changes hit all alike); the script prints eye pass /
-depth map for each map, the speed-up over the reference, whether the buffers are identical,
-wall-clock (best of the rounds) and CPU time (process_time, best of the rounds), and the
+depth map for each map and each eye pass, the speed-up over the reference, whether the buffers are identical,
+wall-clock and CPU time (process_time), best of the rounds or with ``--median`` their median, and the
 load average (os.getloadavg) before and after.  Then, once per resolution and outside the
 timings, the peak of traced allocations (tracemalloc) of one LogP map.  Pin one core with e.g. ``taskset -c 0`` and
 ``OMP_NUM_THREADS=1``; the rasterizer itself does not use threads, and Embree's threads
@@ -27,6 +28,7 @@ Usage::
     python benchmarks/raster.py --res 2048 4096 --repeats 5
     python benchmarks/raster.py --no-raycast          # without the ray-casting reference
     python benchmarks/raster.py --no-reference        # without the plain (pre-issue-12) eye pass
+    python benchmarks/raster.py --no-raycast --median --repeats 7   # the eye-pass ratios of issue 12
 """
 
 from __future__ import annotations
@@ -42,7 +44,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 from aliasing import raster  # noqa: E402
-from aliasing.raster import raycast  # noqa: E402
+from aliasing.raster import compiled, raycast  # noqa: E402
 from aliasing.raster.rasterize import clip_near, project  # noqa: E402
 
 NEAR, FAR, FOV, LIGHT = 1.0, 1000.0, 60.0, "gamma:60@azimuth:20"
@@ -57,18 +59,19 @@ def best_of(fn, repeats: int) -> tuple[float, object]:
     return best, out
 
 
-def rounds(fns: dict, repeats: int) -> tuple[dict, dict, dict]:
-    """Interleaved timing: ``repeats`` rounds of every function; best wall and CPU time [s] and the last outputs."""
-    wall = {k: float("inf") for k in fns}
-    cpu = dict(wall)
+def rounds(fns: dict, repeats: int, stat=min) -> tuple[dict, dict, dict]:
+    """Interleaved timing: ``repeats`` rounds of every function; ``stat`` (best, or median) of the
+    wall and CPU times [s] and the last outputs."""
+    walls = {k: [] for k in fns}
+    cpus = {k: [] for k in fns}
     out = {}
     for _ in range(repeats):
         for k, fn in fns.items():
             w0, c0 = time.perf_counter(), time.process_time()
             out[k] = fn()
-            wall[k] = min(wall[k], time.perf_counter() - w0)
-            cpu[k] = min(cpu[k], time.process_time() - c0)
-    return wall, cpu, out
+            walls[k].append(time.perf_counter() - w0)
+            cpus[k].append(time.process_time() - c0)
+    return {k: float(stat(v)) for k, v in walls.items()}, {k: float(stat(v)) for k, v in cpus.items()}, out
 
 
 def reference_eye_pass(triangles, fov: float, res: int, near: float = 1e-3):
@@ -102,7 +105,14 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--no-memory", action="store_true", help="skip the tracemalloc peak")
     ap.add_argument("--no-raycast", action="store_true", help="skip the ray-casting reference")
     ap.add_argument("--no-reference", action="store_true", help="skip the plain (pre-issue-12) eye pass")
+    ap.add_argument("--no-numba", action="store_true", help="skip the compiled eye pass (backend='numba', the fast extra)")
+    ap.add_argument("--median", action="store_true", help="median of the interleaved rounds instead of the best")
     args = ap.parse_args(argv)
+    numba_eye = not args.no_numba and compiled.available()
+    if not args.no_numba and not numba_eye:
+        print("compiled eye pass skipped: numba is not installed (pip install 'aliasing[fast]')")
+    if numba_eye:  # compile (or load the cached kernels) outside the timings
+        raster.eye_pass(raster.ground_and_boxes(NEAR, FAR, FOV, boxes=3, ground_cells=2, seed=0).triangles, FOV, 16, backend="numba")
     cast = not args.no_raycast and raycast.available()
     if not args.no_raycast and not cast:
         print("ray-casting reference skipped: embreex is not installed (pip install 'aliasing[bench]')")
@@ -128,17 +138,25 @@ def main(argv: list[str] | None = None) -> None:
         # the eye pass against the depth maps, interleaved rounds
         fns = {name: (lambda lm=lm: raster.shadow_map(scene.triangles, lm, res)) for name, lm in maps.items()}
         fns["eye"] = lambda: raster.eye_pass(scene.triangles, FOV, res)
+        if numba_eye:
+            fns["eye numba"] = lambda: raster.eye_pass(scene.triangles, FOV, res, backend="numba")
         if not args.no_reference:
             fns["reference"] = lambda: reference_eye_pass(scene.triangles, FOV, res)
         load0 = os.getloadavg()[0]
-        wall, cpu, out = rounds(fns, args.repeats)
+        wall, cpu, out = rounds(fns, args.repeats, stat=np.median if args.median else min)
         load1 = os.getloadavg()[0]
         eb = out["eye"]
-        print(f"{res}² eye pass          {wall['eye']:7.3f} s (CPU {cpu['eye']:.3f} s)   covered {float((eb.triangle >= 0).mean()):6.1%}   "
-              f"load average {load0:.2f} before, {load1:.2f} after")
-        for name in maps:
-            print(f"{res}² eye pass / {name:8s} depth map: wall {wall['eye'] / wall[name]:.2f} (map {wall[name]:.3f} s), "
-                  f"CPU {cpu['eye'] / cpu[name]:.2f} (map {cpu[name]:.3f} s)")
+        stat = "median" if args.median else "best"
+        print(f"{res}² eye pass          {wall['eye']:7.3f} s (CPU {cpu['eye']:.3f} s; {stat} of {args.repeats} rounds)   "
+              f"covered {float((eb.triangle >= 0).mean()):6.1%}   load average {load0:.2f} before, {load1:.2f} after")
+        for eye in [k for k in ("eye", "eye numba") if k in out]:
+            for name in maps:
+                print(f"{res}² {eye:9s} / {name:8s} depth map: wall {wall[eye] / wall[name]:.2f} (eye {wall[eye]:.3f} s, map {wall[name]:.3f} s), "
+                      f"CPU {cpu[eye] / cpu[name]:.2f} (eye {cpu[eye]:.3f} s, map {cpu[name]:.3f} s)")
+        if "eye numba" in out:
+            nb = out["eye numba"]
+            same = np.array_equal(eb.triangle, nb.triangle) and np.array_equal(eb.position, nb.position, equal_nan=True) and np.array_equal(eb.normal, nb.normal, equal_nan=True)
+            print(f"{res}² numpy / numba eye pass: wall {wall['eye'] / wall['eye numba']:.2f}, CPU {cpu['eye'] / cpu['eye numba']:.2f}; identical buffers: {same}")
         if "reference" in out:
             pos, nrm, ident = out["reference"]
             same = np.array_equal(eb.triangle, ident) and np.array_equal(eb.position, pos, equal_nan=True) and np.array_equal(eb.normal, nrm, equal_nan=True)

@@ -155,11 +155,12 @@ def rasterize(triangles: ArrayLike, resolution: int, *, w: ArrayLike | None = No
     return zbuffer(tri, res, inv_w, rows, uniform_rows, chunk)
 
 
-def zbuffer(tri: Array, res: int, inv_w: Array, rows: Array, uniform_rows: bool, chunk: int, *, front_to_back: bool = False) -> DepthMap:
+def zbuffer(tri: Array, res: int, inv_w: Array, rows: Array, uniform_rows: bool, chunk: int, *, front_to_back: bool = False, draw=None) -> DepthMap:
     """:func:`rasterize` on checked arguments (``inv_w`` = 1/w, ``rows`` the row centres).
 
     ``front_to_back``: rasterize the triangles nearest first and skip, block by block, the
     spans already hidden (:mod:`.occlusion`); the same buffers, for scenes with much overdraw.
+    ``draw``: how that pass draws a group of triangles (default :func:`.occlusion.draw_visible`).
     """
     # texel units for s (and t when rows are uniform): keeps edge functions well scaled
     sx = tri[:, :, 0] * res
@@ -186,7 +187,7 @@ def zbuffer(tri: Array, res: int, inv_w: Array, rows: Array, uniform_rows: bool,
         height = y1 - y0 + 1
         dep = tri[:, :, 2]
         if front_to_back:
-            occlusion.rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident)
+            occlusion.rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident, draw)
         else:
             # groups of triangles with at most `chunk` rows in all (a tall triangle alone may exceed it)
             bounds = chunk_bounds(height, chunk)

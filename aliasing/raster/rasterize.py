@@ -12,7 +12,8 @@ helpers other modules of the package use), so ``aliasing.raster.rasterize.X`` ke
 * :mod:`.shadow`: :func:`shadow_map` and the logarithmic rasterization (:func:`log_row_centres`);
 * :mod:`.occlusion`: front-to-back occlusion culling with an order-independent merge (the
   same buffers as :func:`rasterize`), used by the eye pass;
-* :mod:`.eye`: the eye pass (:func:`eye_pass`, :func:`project`).
+* :mod:`.eye`: the eye pass (:func:`eye_pass`, :func:`project`);
+* :mod:`.compiled`: the eye pass's optional numba kernels (``eye_pass(..., backend="numba")``).
 
 Example
 -------
