@@ -38,6 +38,7 @@ extensions = [
     "cli_reference",  # docs/_ext: the argparse parser of aliasing.cli as pages
     "gallery_targets",  # docs/_ext: gallery examples generated from aliasing.reproduce.TARGETS
     "api_pages",  # docs/_ext: one API page per public module
+    "docstring_text",  # docs/_ext: "Example" headings and |x| in docstrings, read as intended
     "xref_resolve",  # docs/_ext: public import paths (aliasing.View) -> defining module
 ]
 
@@ -150,15 +151,3 @@ plot_html_show_source_link = False
 plot_html_show_formats = False
 plot_formats = [("png", 130)]
 plot_basedir = str(HERE)
-
-
-# -- numpydoc reads "Examples"; the package's docstrings head that section "Example" ---------
-def _example_heading(app, what, name, obj, options, lines):
-    for i in range(len(lines) - 1):
-        if lines[i].strip() == "Example" and set(lines[i + 1].strip()) == {"-"}:
-            indent = lines[i][: len(lines[i]) - len(lines[i].lstrip())]
-            lines[i], lines[i + 1] = indent + "Examples", indent + "--------"
-
-
-def setup(app):
-    app.connect("autodoc-process-docstring", _example_heading, priority=100)  # before numpydoc (500)

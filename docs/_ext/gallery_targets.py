@@ -16,6 +16,7 @@ import re
 import shutil
 from pathlib import Path
 
+from docstring_text import escape_pipes
 from sphinx.application import Sphinx
 
 HEADER = """\
@@ -59,7 +60,7 @@ def _body(mod) -> str:
     """The script's docstring after its title line; roles naming the script's own helpers (which
     have no API page: the scripts are documented here) become plain code."""
     lines = (mod.__doc__ or "").strip().splitlines()[1:]
-    text = "\n".join(lines).strip().replace('"""', "'''")
+    text = "\n".join(escape_pipes(lines)).strip().replace('"""', "'''").replace("\\", "\\\\")
     own = lambda m: f"``{m.group(1)}``" if hasattr(mod, m.group(1).lstrip("~.")) else m.group(0)
     return re.sub(r":(?:func|class|data|obj):`([^`<>]+)`", own, text)
 

@@ -88,10 +88,12 @@ def resolve(app: Sphinx, env, node, contnode):
 def _by_suffix(app, env, node, contnode, target, domain):
     """A name documented exactly once under this short name (``CONFIG_KEYS``, ``Class.attr``)."""
     short = target.lstrip("~.")
-    hits = [k for k in domain.objects if k == short or k.endswith("." + short)]
-    if len(hits) > 1:  # the same object bound in several modules: keep the one that imports as it
-        wanted = next((o for c in _candidates(short, node.get("py:module")) if (o := _lookup(c)) is not None), None)
-        hits = [k for k in hits if wanted is not None and _lookup(k) is wanted][:1] if wanted is not None else hits
+    wanted = next((o for c in _candidates(short, node.get("py:module")) if (o := _lookup(c)) is not None), None)
+    if wanted is not None:  # it imports: the documented binding of that very object
+        last = short.rsplit(".", 1)[-1]
+        hits = [k for k in domain.objects if k.rsplit(".", 1)[-1] == last and _lookup(k) is wanted][:1]
+    else:
+        hits = [k for k in domain.objects if k == short or k.endswith("." + short)]
     if len(hits) == 1:
         return domain.resolve_xref(env, node["refdoc"], app.builder, "obj", hits[0], node, contnode)
     if "." in short or node.get("py:class"):  # an attribute described in its class's "Attributes"
