@@ -151,3 +151,9 @@ plot_html_show_source_link = False
 plot_html_show_formats = False
 plot_formats = [("png", 130)]
 plot_basedir = str(HERE)
+
+# numpydoc's signature hook re-reads raw docstrings and warns about their "Example" heading;
+# the rendered docstrings get it renamed to "Examples" by docs/_ext/docstring_text.py.
+import warnings  # noqa: E402
+
+warnings.filterwarnings("ignore", message="Unknown section Example", category=UserWarning)
