@@ -94,6 +94,7 @@ html_theme_options = {
     "header_links_before_dropdown": 8,
     "navbar_end": ["theme-switcher", "navbar-icon-links"],
 }
+html_context = {"default_mode": "auto"}  # empty by default: the theme then logs a console error
 html_show_sourcelink = False
 html_copy_source = False
 html_last_updated_fmt = None

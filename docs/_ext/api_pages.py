@@ -15,6 +15,7 @@ import inspect
 import pkgutil
 from pathlib import Path
 
+from docstring_text import escape_pipes
 from sphinx.application import Sphinx
 
 SKIP = ("aliasing.figures",)
@@ -66,6 +67,13 @@ def members(mod) -> tuple[list[str], list[str], list[str]]:
     return own, reexported, data
 
 
+def _summary(obj) -> str:
+    """The docstring's first paragraph on one line (reST as written, bars escaped)."""
+    doc = inspect.getdoc(obj) or ""
+    para = " ".join(doc.split("\n\n", 1)[0].split())
+    return escape_pipes([para])[0] or "—"
+
+
 def _rel(target: str, modname: str) -> str:
     """autosummary wants names relative to the current module."""
     return target[len(modname) + 1:] if target.startswith(modname + ".") else target
@@ -75,9 +83,13 @@ def page(modname: str) -> str:
     mod = importlib.import_module(modname)
     own, rex, data = members(mod)
     lines = [modname, "=" * len(modname), "", f".. automodule:: {modname}", "   :no-members:", ""]
-    if own:
-        lines += ["**Contents**", "", ".. autosummary::", "   :nosignatures:", ""]
-        lines += [f"   {n}" for n in own] + [""]
+    if own:  # a table of our own: autosummary cuts summaries at "eq." (it ends a sentence there)
+        lines += ["**Contents**", "", ".. list-table::", "   :widths: 30 70", ""]
+        for n in own:
+            obj = getattr(mod, n)
+            role = "class" if inspect.isclass(obj) else "func"
+            lines += [f"   * - :{role}:`~{modname}.{n}`", f"     - {_summary(obj)}"]
+        lines.append("")
     if rex:
         lines += ["**Re-exported here** (documented where they are defined)", "", ".. autosummary::",
                   "   :nosignatures:", ""]

@@ -56,6 +56,16 @@ def _reference(description: str) -> str:
     return head if re.search(r"(19|20)\d\d|Table|Fig", head) else f"{head} (new figure, no paper counterpart)"
 
 
+def _title(description: str) -> str:
+    """"Lloyd 2006 Fig. 5" from "Lloyd 2006 Fig. 5: m_x, ..."; "Rasterizer: shadowed renders" from
+    "Rasterizer: shadowed renders, Standard/...": short, and distinct between targets."""
+    head, _, rest = description.partition(":")
+    if (re.search(r"(19|20)\d\d", head) and len(head) <= 40) or len(head) >= 20:
+        return head
+    text = head if not rest else f"{head}: {rest.strip()}"
+    return re.split(r",| \(", text, maxsplit=1)[0]
+
+
 def _body(mod) -> str:
     """The script's docstring after its title line; roles naming the script's own helpers (which
     have no API page: the scripts are documented here) become plain code."""
@@ -74,7 +84,7 @@ def write_examples(src: Path) -> None:
     (src / "GALLERY_HEADER.rst").write_text(HEADER)
     for target in TARGETS.values():
         mod = importlib.import_module(f"aliasing.figures.{target.module}")
-        title = target.description.split(":", 1)[0]
+        title = _title(target.description)
         outputs = ["csv"] + (["md"] if target.module == "lloyd2007_table3" else [])
         downloads = ", ".join(f":download:`{target.name}.{ext} <data/{target.name}.{ext}>`" for ext in outputs)
         extra = ""
