@@ -33,7 +33,8 @@ ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
 HTML = DOCS / "_build" / "html"
 SHOTS = DOCS / "_build" / "screenshots"
-PAGES = ["index.html", "auto_gallery/index.html", "api/aliasing.error.html", "guide/overhead.html"]
+PAGES = ["index.html", "auto_gallery/index.html", "api/aliasing.error.html", "guide/overhead.html", "getting-started.html",
+         "auto_gallery/plot_lloyd2006_fig5.html", "notebooks/01_overhead_light.html", "cli.html"]
 DOCS_MODULES = ["sphinx", "pydata_sphinx_theme", "numpydoc", "sphinx_gallery", "myst_nb", "websocket"]
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
