@@ -8,6 +8,7 @@ drift from the parser.
 from __future__ import annotations
 
 import argparse
+import re
 
 from docutils import nodes
 from docutils.statemachine import StringList
@@ -17,6 +18,14 @@ from sphinx.util.docutils import SphinxDirective
 
 def _esc(text: str) -> str:
     return text.replace("\\", "\\\\").replace("*", "\\*").replace("`", "\\`").replace("|", "\\|").replace("_", "\\_")
+
+
+_FLAG = re.compile(r"(?<![\w`-])(--?[a-zA-Z][\w-]*)")
+
+
+def _text(text: str) -> str:
+    """Help text as reST: escaped, with option names as code (else smart quotes turn -- into –)."""
+    return _FLAG.sub(r"``\1``", _esc(" ".join(text.split())))
 
 
 def _rows(parser: argparse.ArgumentParser) -> list[tuple[str, str]]:
@@ -47,15 +56,15 @@ def cli_rst(parser: argparse.ArgumentParser) -> list[str]:
         title = f"aliasing {name}"
         lines += [f".. _cli-{name}:", "", title, "-" * len(title), ""]
         if helps.get(name):
-            lines += [f"*{_esc(helps[name])}*", ""]
+            lines += [_text(helps[name]), ""]
         lines += ["::", ""] + ["   " + u for u in p.format_usage().strip().splitlines()] + [""]
         for block in (p.description, p.epilog):
             if block:
-                lines += [_esc(" ".join(block.split())), ""]
+                lines += [_text(block), ""]
         lines += [".. list-table::", "   :header-rows: 1", "   :widths: 30 70", "",
                   "   * - argument", "     - meaning"]
         for flag, text in _rows(p):
-            lines += [f"   * - ``{flag}``", f"     - {_esc(' '.join(text.split())) or '—'}"]
+            lines += [f"   * - ``{flag}``", f"     - {_text(text) or '—'}"]
         lines.append("")
     return lines
 
@@ -77,4 +86,7 @@ class AliasingCli(SphinxDirective):
 
 def setup(app: Sphinx) -> dict:
     app.add_directive("aliasing-cli", AliasingCli)
+    # the parser lives in several modules: re-read the pages using the directive on every build
+    app.connect("env-get-outdated", lambda app, env, added, changed, removed:
+                [d for d in env.found_docs if d == "cli"])
     return {"parallel_read_safe": True, "version": "1"}
