@@ -25,7 +25,7 @@ _FLAG = re.compile(r"(?<![\w`-])(--?[a-zA-Z][\w-]*)")
 
 def _text(text: str) -> str:
     """Help text as reST: escaped, with option names as code (else smart quotes turn -- into –)."""
-    return _FLAG.sub(r"``\1``", _esc(" ".join(text.split())))
+    return _FLAG.sub(r"\\ ``\1``\\ ", _esc(" ".join(text.split())))  # "\ ": literals may touch text
 
 
 def _rows(parser: argparse.ArgumentParser) -> list[tuple[str, str]]:
