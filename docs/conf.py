@@ -113,7 +113,7 @@ sphinx_gallery_conf = {
     "reset_modules": (),
     "remove_config_comments": True,
     "show_signature": False,
-    "within_subsection_order": "FileNameSortKey",
+    "within_subsection_order": "gallery_targets.TargetOrder",  # the order of aliasing.reproduce.TARGETS
     "matplotlib_animations": False,
     "min_reported_time": 10**6,
     "write_computation_times": False,

@@ -115,3 +115,15 @@ def setup(app: Sphinx) -> dict:
     write_examples(Path(app.srcdir) / "_gallery_src")
     (Path(app.srcdir) / "auto_gallery" / "data").mkdir(parents=True, exist_ok=True)
     return {"parallel_read_safe": True, "version": "1"}
+
+
+class TargetOrder:
+    """sphinx-gallery sort key: the examples in the order of ``TARGETS`` (paper by paper)."""
+
+    def __init__(self, src_dir) -> None:
+        from aliasing.reproduce import TARGETS
+
+        self.order = {f"plot_{t.module}.py": i for i, t in enumerate(TARGETS.values())}
+
+    def __call__(self, filename: str) -> tuple[int, str]:
+        return self.order.get(Path(filename).name, len(self.order)), filename
