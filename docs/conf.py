@@ -150,7 +150,7 @@ _more_pages()
 plot_include_source = False
 plot_html_show_source_link = False
 plot_html_show_formats = False
-plot_formats = [("png", 130)]
+plot_formats = [("png", 150)]
 plot_basedir = str(HERE)
 
 # numpydoc's signature hook re-reads raw docstrings and warns about their "Example" heading;

@@ -10,7 +10,7 @@ theta = np.radians(30.0)  # θ = fov/2 for fov = 60°
 gamma = np.radians(60.0)  # γ: view direction to the direction towards the light
 n, f, n_prime = 1.6, 9.0, 2.4
 
-fig, ax = plt.subplots(figsize=(8.4, 6.0))
+fig, ax = plt.subplots(figsize=(7.0, 5.0))
 t = np.tan(theta)
 # view frustum (side view: z along the view direction, y up)
 ax.fill([n, f, f, n], [n * t, f * t, -f * t, -n * t], color="#cfe3f6", zorder=0)
