@@ -208,7 +208,7 @@ def face_frames(variant: str, parameterization: str, near: float | View, far: fl
     """The adjusted light-plane frames of FPc or FPcs side-face maps (module docstring).
 
     The one definition of the FPc / FPcs side maps: :func:`face_errors` evaluates its
-    errors on them and :func:`aliasing.raster.face_maps` rasterizes through them.
+    errors on them and :func:`aliasing.raster.map_set` rasterizes through them.
 
     Parameters
     ----------

@@ -157,7 +157,7 @@ def evaluate_row(row: str, light: Array, *, points: int = 0, frame: str = "wimme
     light : ndarray
         Directions ``(N, 3)``.
     points : int
-        0: the 8 vertices (the default model); else ``points``³ points per partition.
+        0: the 8 vertices (the default model); else ``points`` cubed points per partition.
     frame : {"wimmer", "symmetric", "min-area"}
         Wimmer's light space (default); the warping frustum widened to be symmetric about the
         eye's x; the light-plane axes rotated to the minimal-area bounding rectangle.

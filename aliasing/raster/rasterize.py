@@ -7,8 +7,8 @@ helpers other modules of the package use), so ``aliasing.raster.rasterize.X`` ke
   :func:`rasterize` (bounding boxes, chunking);
 * :mod:`.coverage`: the exact covered span of each (triangle, row) and its depths;
 * :mod:`.lightmap`: :class:`LightMap` (warped maps) and :func:`light_map`, :func:`light_maps`;
-* :mod:`.facemaps`: face-partition maps (:func:`frame_map`, :func:`near_face_map`,
-  :func:`fixed_face_map`) and :func:`map_set`;
+* :mod:`.facemaps`: face-partition maps (:func:`frame_map`, :func:`near_face_map`)
+  and :func:`map_set`;
 * :mod:`.shadow`: :func:`shadow_map` and the logarithmic rasterization (:func:`log_row_centres`);
 * :mod:`.occlusion`: front-to-back occlusion culling with an order-independent merge (the
   same buffers as :func:`rasterize`), used by the eye pass;

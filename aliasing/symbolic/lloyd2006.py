@@ -5,16 +5,16 @@ Appendices A–C.
 
 Symbol map (paper → here → numeric API):
 
-=====================  ==============  ==========================================
-paper                  sympy symbol    numeric API (:mod:`aliasing.error`)
-=====================  ==============  ==========================================
-θ (half field of view) ``theta``       ``fov`` = 2θ in degrees
-n, f (eye near, far)   ``n``, ``f``    ``near``, ``far``
-n′ (warp parameter)    ``n_p``         ``n_prime`` (``inf`` = uniform map)
-η ∈ [−1, 1]            ``eta``         ``eta``
-a = f/n                ``a``           ``far / near``
-res_i, res_s, res_t    same            ``res_image``, ``res_s``, ``res_t``
-=====================  ==============  ==========================================
+=======================  ==============  ==========================================
+paper                    sympy symbol    numeric API (:mod:`aliasing.error`)
+=======================  ==============  ==========================================
+θ (half field of view)   ``theta``       ``fov`` = 2θ in degrees
+n, f (eye near, far)     ``n``, ``f``    ``near``, ``far``
+n′ (warp parameter)      ``n_p``         ``n_prime`` (``inf`` = uniform map)
+η ∈ [−1, 1]              ``eta``         ``eta``
+a = f/n                  ``a``           ``far / near``
+res_i, res_s, res_t      same            ``res_image``, ``res_s``, ``res_t``
+=======================  ==============  ==========================================
 
 The light is overhead: it shines along −y of light space, perpendicular to the view
 direction (γ = 90° in the package convention).  The warping frustum has its centre of

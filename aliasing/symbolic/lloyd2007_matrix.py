@@ -15,11 +15,11 @@ Symbol map (paper → here → numeric API :mod:`aliasing.aliasing_matrix`):
 ==========================  =========================  ==================================
 paper                       sympy                      numeric
 ==========================  =========================  ==================================
-e, x̂_e, ŷ_e, ẑ_e           ``e``, ``x_e`` …           ``Camera(position, axes)``
-l (point), l̂ (directional)  ``l``, ``l_hat``           ``Camera(position=…)``, ``direction=…``
+e, x̂_e, ŷ_e, ẑ_e              ``e``, ``x_e`` …           ``Camera(position, axes)``
+l (point), l̂ (directional)   ``l``, ``l_hat``           ``Camera(position=…)``, ``direction=…``
 n_e, n_l                    ``n_e``, ``n_l``           ``Camera.near``
 W_ex, W_ey, W_lx, W_ly      same                       ``Camera.width``
-π = (n̂ᵀ, −D), p on π       ``N``, ``p`` (D = n̂·p)     ``point``, ``normal``
+π = (n̂ᵀ, −D), p on π        ``N``, ``p`` (D = n̂·p)      ``point``, ``normal``
 ∂G/∂s (eq. 38)              ``g11 … g22``              ``delta_l``
 r_i, r_j, r_s, r_t          same                       ``res_image``, ``res_map``
 ==========================  =========================  ==================================

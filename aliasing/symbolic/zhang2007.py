@@ -7,18 +7,18 @@ GLPR's λ (F ∝ z, no formula printed).
 
 Symbol map (paper → here → numeric API, :mod:`aliasing.gmnpr`):
 
-==========================================  ===============  ==================================
-paper                                       sympy symbol     numeric API
-==========================================  ===============  ==================================
-θ (angle between light and view direction)  ``theta``        ``gamma`` [deg], folded by symmetry:
-                                                             θ = min(γ, 180° − γ) ∈ [0°, 90°]
-φ (half field of view)                      ``phi``          ``fov`` = 2φ [deg]
-n, f (eye near, far)                        ``n``, ``f``     ``near``, ``far``
-z (eye depth of a point on the view ray)    ``z``            ``z``
-λ = P_n/(P_f − P_n)                         ``lam``          ``lam``; n′ = λ·D [world units]
-P_f − P_n (light-space depth of P)          ``D``            :func:`aliasing.gmnpr.light_space_depth`
-ψ(λ, θ), ϕ(λ, θ) of eq. 2                   ``psi``, ``varphi``  (inside ``generalized_error``)
-==========================================  ===============  ==================================
+==========================================  =====================  ==================================
+paper                                       sympy symbol           numeric API
+==========================================  =====================  ==================================
+θ (angle between light and view direction)  ``theta``              ``gamma`` [deg], folded by symmetry:
+                                                                   θ = min(γ, 180° − γ) ∈ [0°, 90°]
+φ (half field of view)                      ``phi``                ``fov`` = 2φ [deg]
+n, f (eye near, far)                        ``n``, ``f``           ``near``, ``far``
+z (eye depth of a point on the view ray)    ``z``                  ``z``
+λ = P_n/(P_f − P_n)                         ``lam``                ``lam``; n′ = λ·D [world units]
+P_f − P_n (light-space depth of P)          ``D``                  :func:`aliasing.gmnpr.light_space_depth`
+ψ(λ, θ), ϕ(λ, θ) of eq. 2                   ``psi``, ``varphi``    (inside ``generalized_error``)
+==========================================  =====================  ==================================
 
 λ is dimensionless: P's near-plane distance P_n measured in units of P's own depth
 D = P_f − P_n ("P with a normalized depth range", text after eq. 8).  In world units the
