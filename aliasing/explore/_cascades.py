@@ -156,11 +156,7 @@ class CascadesExplorer(w.Explorer):
             "res_image": w.widgets.IntText(value=1024, description="image res. [px]", style={"description_width": "initial"}),
         }
 
-    def compute(self, **values: Any) -> dict:
-        return compute(**values)
-
-    def draw(self, fig: Figure, data: dict) -> dict:
-        return draw(fig, data)
-
-    def redraw(self, artists: dict, data: dict) -> bool:
-        return redraw(artists, data)
+    # the module's functions, so that tests and notebooks can call them without a widget
+    compute = staticmethod(compute)
+    draw = staticmethod(draw)
+    redraw = staticmethod(redraw)

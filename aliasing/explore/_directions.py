@@ -154,14 +154,10 @@ class DirectionsExplorer(w.Explorer):
             "resolution": w.widgets.IntSlider(value=64, min=8, max=256, description="map cells", continuous_update=False),
         }
 
-    def compute(self, **values: Any) -> dict:
-        return compute(**values)
-
-    def draw(self, fig: Figure, data: dict) -> dict:
-        return draw(fig, data)
-
-    def redraw(self, artists: dict, data: dict) -> bool:
-        return redraw(artists, data)
+    # the module's functions, so that tests and notebooks can call them without a widget
+    compute = staticmethod(compute)
+    draw = staticmethod(draw)
+    redraw = staticmethod(redraw)
 
     def pick(self, u: float, v: float) -> bool:
         """Choose the direction at map position (u, v) (e.g. a click on the map)."""

@@ -146,11 +146,7 @@ class FacesExplorer(w.Explorer):
             "azimuth": w.slider("azimuth [deg]", 30.0, -180.0, 180.0),
         }
 
-    def compute(self, **values: Any) -> dict:
-        return compute(**values)
-
-    def draw(self, fig: Figure, data: dict) -> dict:
-        return draw(fig, data)
-
-    def redraw(self, artists: dict, data: dict) -> bool:
-        return redraw(artists, data)
+    # the module's functions, so that tests and notebooks can call them without a widget
+    compute = staticmethod(compute)
+    draw = staticmethod(draw)
+    redraw = staticmethod(redraw)
