@@ -57,3 +57,20 @@ def columns(x_name: str, x: np.ndarray, blocks: dict[str, np.ndarray], sigmas=SI
         for sigma, row in zip(sigmas, rows):
             cols[f"{name}[sigma={sigma_key(sigma)}]"] = row
     return cols
+
+
+def panel_figure(cols: dict[str, np.ndarray], panels, title: str):
+    """Figs. 21–23's layout: one panel per ``(name, label, _, band, xlabel)``, a curve per σ.
+
+    ``cols`` holds ``kappa[name]`` and ``name[sigma=…]`` columns (:func:`columns`).
+    """
+    from aliasing.plotting import subplots
+
+    fig, axes = subplots(len(panels), width=3.6, height=3.2)
+    for ax, (name, label, _, band, xlabel) in zip(axes, panels):
+        shade(ax, *band)
+        draw_curves(ax, cols[f"kappa[{name}]"], np.array([cols[f"{name}[sigma={sigma_key(s)}]"] for s in SIGMAS]))
+        ax.set(xlabel=xlabel, ylim=(0, None), title=label)
+    axes[0].legend(fontsize=7)
+    fig.suptitle(title, fontsize=10)
+    return fig

@@ -27,7 +27,7 @@ import numpy as np
 
 from aliasing.face_factors import face_factors
 from aliasing.figures import _lloyd2007_appendix_a as A
-from aliasing.plotting import save, subplots
+from aliasing.plotting import save
 
 NAME = "lloyd2007-fig22"
 END_HALF = A.W_E * A.FAR / A.NEAR / 2 / A.SPAN  # the far face's half width, in units of y1 − y0
@@ -59,13 +59,7 @@ def data(count: int = 121) -> dict[str, np.ndarray]:
 
 def main(out_dir: Path) -> list[Path]:
     cols = data()
-    fig, axes = subplots(3, width=3.6, height=3.2)
-    for ax, (name, label, _, band, xlabel) in zip(axes, PANELS):
-        A.shade(ax, *band)
-        A.draw_curves(ax, cols[f"kappa[{name}]"], np.array([cols[f"{name}[sigma={A.sigma_key(s)}]"] for s in A.SIGMAS]))
-        ax.set(xlabel=xlabel, ylim=(0, None), title=label)
-    axes[0].legend(fontsize=7)
-    fig.suptitle("Lloyd et al. 2007 Fig. 22: R of the uniform parameterization vs light position (θ = 45°, n = 1, f = 1000, $l_z$ = σ($y_1-y_0$))", fontsize=10)
+    fig = A.panel_figure(cols, PANELS, "Lloyd et al. 2007 Fig. 22: R of the uniform parameterization vs light position (θ = 45°, n = 1, f = 1000, $l_z$ = σ($y_1-y_0$))")
     return save(fig, out_dir, NAME, cols)
 
 

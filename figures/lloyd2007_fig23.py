@@ -24,7 +24,7 @@ import numpy as np
 
 from aliasing.face_factors import optimal_factors
 from aliasing.figures import _lloyd2007_appendix_a as A
-from aliasing.plotting import save, subplots
+from aliasing.plotting import save
 
 NAME = "lloyd2007-fig23"
 END_HALF = A.W_E * A.FAR / A.NEAR / 2 / A.SPAN
@@ -57,13 +57,7 @@ def data(count: int = 61, samples: int = 65) -> dict[str, np.ndarray]:
 
 def main(out_dir: Path) -> list[Path]:
     cols = data()
-    fig, axes = subplots(3, width=3.6, height=3.2)
-    for ax, (name, label, _, band, xlabel) in zip(axes, PANELS):
-        A.shade(ax, *band)
-        A.draw_curves(ax, cols[f"kappa[{name}]"], np.array([cols[f"{name}[sigma={A.sigma_key(s)}]"] for s in A.SIGMAS]))
-        ax.set(xlabel=xlabel, ylim=(0, None), title=label)
-    axes[0].legend(fontsize=7)
-    fig.suptitle("Lloyd et al. 2007 Fig. 23: optimal R and S of the perspective parameterization vs light position (θ = 45°, n = 1, f = 1000)", fontsize=10)
+    fig = A.panel_figure(cols, PANELS, "Lloyd et al. 2007 Fig. 23: optimal R and S of the perspective parameterization vs light position (θ = 45°, n = 1, f = 1000)")
     return save(fig, out_dir, NAME, cols)
 
 
