@@ -35,6 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 from . import _validation as check
 from .parameterizations import _depths
 from .warping import register
+from .view import half_angle
 
 __all__ = [
     "generalized_error",
@@ -70,7 +71,7 @@ def _geometry(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLike)
     g = check.closed_range(gamma, "gamma", 0.0, 180.0, " degrees")
     theta_deg = np.minimum(g, 180.0 - g)  # symmetry (§2): only 0 ≤ θ ≤ 90° matters
     regime1 = theta_deg >= fov_deg / 2  # compared in degrees, so θ = φ is exact
-    theta, phi = np.radians(theta_deg), np.radians(fov_deg) / 2
+    theta, phi = np.radians(theta_deg), half_angle(fov_deg)
     sin_t, cos_t, tan_p, cos_p = np.sin(theta), np.cos(theta), np.tan(phi), np.cos(phi)
     # smallest corner z_L: (n, −n tanφ) in regime 1, (f, −f tanφ) in regime 2; x·sin(θ−φ)/cosφ
     z_min = np.where(regime1, n, f) * np.sin(theta - phi) / cos_p

@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
+from .view import half_angle
 
 __all__ = [
     "aliasing_error",
@@ -154,7 +155,7 @@ def side_face(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> tuple[Array, A
     [1.4142, 2.8284, 2.0, 0.7071]
     """
     n, f = check.frustum(near, far)
-    half = np.radians(check.fov(fov)) / 2
+    half = half_angle(fov)
     ct = np.cos(half)
     return n / ct, f / ct, 2 * n * np.tan(half), ct
 
@@ -556,7 +557,7 @@ def critical_factors(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> dict[st
     99.0
     """
     n, f = check.frustum(near, far)
-    half = np.radians(check.fov(fov)) / 2
+    half = half_angle(fov)
     ct, s2 = np.cos(half), np.sin(2 * half)
     r = f / n
     return {

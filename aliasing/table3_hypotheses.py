@@ -41,6 +41,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from . import directional, geometry, schemes, warping
+from .view import half_angle
 
 Array = NDArray[np.float64]
 F_OVER_N, FOV = 1000.0, 60.0
@@ -124,7 +125,7 @@ def _frustum_points(n_i: Array, f_i: Array, fov: float, per_axis: int) -> Array:
     """``per_axis``³ points filling each partition (vertices included): ``(K, P, 3)``."""
     u = np.linspace(-1.0, 1.0, per_axis)
     w = np.linspace(0.0, 1.0, per_axis)
-    tan = np.tan(np.radians(fov / 2))
+    tan = np.tan(half_angle(fov))
     xs, ys, ws = np.meshgrid(u, u, w, indexing="ij")
     d = n_i[:, None] + (f_i - n_i)[:, None] * ws.ravel()[None]  # (K, P)
     return np.stack([xs.ravel() * tan * d, ys.ravel() * tan * d, d], axis=-1)

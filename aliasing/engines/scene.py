@@ -42,6 +42,7 @@ from ..raster.measure import pixel_errors
 from ..raster.rasterize import check_resolution, eye_pass
 from ..raster.scenerender import MIN_COS_LIGHT, SceneSetup
 from . import sdsm, stable, vsm
+from ..view import half_angle
 
 #: Relative tolerance of the finite differences (:data:`aliasing.raster.scene_validate.TOLERANCE`).
 TOLERANCE = 1e-3
@@ -121,7 +122,7 @@ def cascades_on_scene(st: SceneSetup, split: str | ArrayLike | tuple, *, res: in
 
     pos, part, ok = _pixels(st, r, assign)
     basis = geometry.light_space(lv)[0]
-    t = np.tan(np.radians(cam.fov) / 2)
+    t = np.tan(half_angle(cam.fov))
     rows = []
     for i in range(len(v)):
         wx, wy = float(fit_result.width_x[0, i]), float(fit_result.width_y[0, i])
@@ -207,7 +208,7 @@ def vsm_on_scene(st: SceneSetup, *, bias: float = 0.0, res: int = 128, first: in
     pos, level, ok = _pixels(st, r, assign)
     basis = geometry.light_space(st.light[None])[0]
     bound = vsm.frustum_max(c, cam.near, cam.far)
-    t = np.tan(np.radians(cam.fov) / 2)
+    t = np.tan(half_angle(cam.fov))
     rows, seen = [], []
     for L in np.unique(level[ok]):
         side = float(vsm.texel(c, L)) * vsm.VIRTUAL_RES  # 4·R_l, centred on the camera

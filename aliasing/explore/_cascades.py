@@ -19,6 +19,7 @@ from matplotlib.patches import Polygon
 
 from .. import budgets, partitioning
 from . import _widget as w
+from ..view import half_angle
 
 #: Light directions the worst error is taken over (equal solid angle over the whole sphere).
 LIGHTS = "sphere:256"
@@ -117,7 +118,7 @@ def redraw(artists: dict, d: dict[str, Any]) -> bool:
     if d["k"] != artists["k"]:
         return False
     a, b = artists["a"], artists["b"]
-    t = np.tan(np.radians(d["fov"]) / 2)
+    t = np.tan(half_angle(d["fov"]))
     artists["frustum"].set_xy(_band(d["near"], d["far"], t))
     for band, plane, lo, hi in zip(artists["bands"], artists["planes"], d["near_i"], d["far_i"]):
         band.set_xy(_band(lo, hi, t))

@@ -10,6 +10,7 @@ from numpy.typing import ArrayLike, NDArray
 from .. import _validation as check
 from . import compiled, occlusion
 from .core import CHUNK, _triangles, check_chunk, check_resolution, clip_near, zbuffer
+from ..view import half_angle
 
 Array = NDArray[np.float64]
 
@@ -45,7 +46,7 @@ def project(points: ArrayLike, fov: float) -> tuple[Array, Array, Array]:
     u = ½ + x/(2 z tanθ), v = ½ + y/(2 z tanθ), θ = fov/2.
     """
     p = np.asarray(points, float)
-    t = np.tan(np.radians(float(check.fov(fov))) / 2)
+    t = np.tan(float(half_angle(fov)))
     z = p[..., 2]
     return 0.5 + p[..., 0] / (2 * z * t), 0.5 + p[..., 1] / (2 * z * t), z
 
@@ -114,7 +115,7 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     dm = zbuffer(key, res, np.ones((key.shape[0], 3)), (np.arange(res) + 0.5) / res, True, chunk, front_to_back=True, draw=draw)
     # exact positions: the ray (X, Y, 1) through the pixel centre ∩ the source triangle's
     # plane n·p = n·a, so p = λ(X, Y, 1) with λ = n·a / (n_x X + n_y Y + n_z)
-    t = np.tan(np.radians(fv) / 2)
+    t = np.tan(half_angle(fv))
     c = (np.arange(res) + 0.5) / res
     X = (2 * c - 1) * t
     a, b, cc = tri[:, 0], tri[:, 1], tri[:, 2]

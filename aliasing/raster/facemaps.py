@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike, NDArray
 from .. import _validation as check
 from .. import directional, faces, geometry, schemes
 from .lightmap import LightMap, _unit_vector, light_maps
+from ..view import half_angle
 
 Array = NDArray[np.float64]
 
@@ -166,7 +167,7 @@ def near_face_map(near: float, fov: float, light: ArrayLike) -> LightMap:
     ([0.0, 1.0, 0.5], [0.0, 1.0, 0.5])
     """
     n = float(check.positive(near, "near"))
-    h = n * np.tan(np.radians(float(check.fov(fov))) / 2)
+    h = n * np.tan(float(half_angle(fov)))
     lv = _unit_vector(light, "light")
     if abs(lv[2]) < 1e-9:
         raise ValueError(f"light must not be parallel to the near plane (the near face is then edge-on, no map), got {lv!r}")

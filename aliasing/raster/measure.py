@@ -57,6 +57,7 @@ from .facemaps import map_set
 from .lightmap import LightMap
 from .shadow import shadow_map
 from .scenes import Scene, probes
+from ..view import half_angle
 
 Array = NDArray[np.float64]
 
@@ -332,7 +333,7 @@ def _errors(lm: LightMap, pos: Array, ok: NDArray[np.bool_], res: int, fov: floa
     x_u, x_v = np.where(ok[..., None], x_u, 0.0), np.where(ok[..., None], x_v, 0.0)
     dX_ds = x_u * u_s[..., None] + x_v * v_s[..., None]
     dX_dt = x_u * u_t[..., None] + x_v * v_t[..., None]
-    w_i = 2 * np.tan(np.radians(fov) / 2) * pos[..., 2]
+    w_i = 2 * np.tan(half_angle(fov)) * pos[..., 2]
     return {
         "s": s, "t": t,
         "m_s": np.hypot(u_s, v_s) * fill, "m_t": np.hypot(u_t, v_t) * fill,

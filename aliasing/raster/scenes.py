@@ -28,6 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import geometry
+from ..view import half_angle
 
 Array = NDArray[np.float64]
 
@@ -105,7 +106,7 @@ def ground_and_boxes(near: float = 1.0, far: float = 1000.0, fov: float = 60.0, 
     (44, 3, 3)
     """
     n, f = (float(a) for a in check.frustum(near, far))
-    tan = np.tan(np.radians(float(check.fov(fov))) / 2)
+    tan = np.tan(float(half_angle(fov)))
     h = float(check.positive(height, "height"))
     nb = _count(boxes, "boxes", 0)
     gc = _count(ground_cells, "ground_cells", 1)
@@ -164,7 +165,7 @@ def probes(near: float, far: float, fov: float, light: str | ArrayLike, *, cells
     True
     """
     n, f = (float(a) for a in check.frustum(near, far))
-    tan = np.tan(np.radians(float(check.fov(fov))) / 2)
+    tan = np.tan(float(half_angle(fov)))
     k = _count(cells, "cells", 2)
     fl = float(check.as_float_array(fill, "fill"))
     if not 0 < fl <= 1:
