@@ -21,4 +21,4 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
 
 # aliasing/explore/ imports ipywidgets (the explore extra) at import time: without it, its
 # modules' doctests are not collected (tests/test_explore.py skips itself).
-collect_ignore_glob = [] if importlib.util.find_spec("ipywidgets") is not None else ["aliasing/explore/_*.py"]
+collect_ignore_glob = [] if importlib.util.find_spec("ipywidgets") is not None else ["aliasing/explore/_*.py", "aliasing/explore/widget.py"]

@@ -55,8 +55,11 @@ nitpicky = True
 # (no network at build time), so they cannot resolve; the project's own names are never here.
 nitpick_ignore_regex = [
     (r"py:.*", r"(functools|types|numpy|np|npt|numpy\.typing|sympy|sp|scipy|matplotlib|plt|mpl|pandas|pd|xarray|xr|dask|distributed|ipywidgets|trimesh|embreex|argparse|collections|pathlib|os|typing|typing_extensions|dataclasses|enum|concurrent|tqdm)(\..*)?"),
+    # traitlets/ipywidgets annotate with ``import typing as t`` (the explorers' base class, a VBox)
+    (r"py:.*", r"t\.\w+"),
     # numpy.typing.ArrayLike and friends as they appear unqualified in rendered signatures
-    (r"py:.*", r"(ArrayLike|NDArray|DTypeLike|Path|Sequence|Mapping|Iterable|Iterator|Callable|Any|Literal|Self|Figure|Axes|Expr|Symbol|Matrix|Number|Integral|Real)"),
+    # (``Array`` is the modules' alias of numpy.typing.NDArray[np.float64], unevaluated in some signatures)
+    (r"py:.*", r"(Array|ArrayLike|NDArray|DTypeLike|Path|Sequence|Mapping|Iterable|Iterator|Callable|Any|Literal|Self|Figure|Axes|Expr|Symbol|Matrix|Number|Integral|Real)"),
     # Python builtins and the type words numpydoc reads in "Parameters" lines
     (r"py:.*", r"(int|float|str|bool|complex|bytes|dict|list|tuple|set|frozenset|object|type|None|callable|optional|array_like|array-like|ndarray|default|of|or|shape|sequence|mapping|iterable)"),
 ]

@@ -57,7 +57,6 @@ True
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -77,7 +76,7 @@ COARSE_LEVELS = (15, 18)  # r.Shadow.Virtual.Clipmap.FirstCoarseLevel, LastCoars
 COARSE_PAGES_PER_LEVEL = 4  # MarkCoarsePages: floor/ceil of the origin's page address − ½ in x and y
 
 
-@dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True)
 class VSMPreset:
     name: str
     bias: float
@@ -95,7 +94,7 @@ PRESETS: dict[str, VSMPreset] = {
 }
 
 
-@dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True)
 class Clipmap:
     """A directional light's clipmap as the engine configures it.
 

@@ -1,7 +1,7 @@
 """Interactive explorers for Jupyter: drag a parameter, watch the papers' quantities change.
 
 Each explorer is a function returning a displayable ipywidgets container (an
-:class:`~aliasing.explore._widget.Explorer`): controls, a message line and the figure.
+:class:`~aliasing.explore.widget.Explorer`): controls, a message line and the figure.
 
 * :func:`overhead`: m_x, m_z along z and M_x, M_z, S̄ over η (Lloyd et al. 2006 Figs. 5–6);
 * :func:`directions`: S̄ over the hemisphere of light directions (Lloyd 2006 Fig. 7 style)
@@ -29,11 +29,19 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # the widget base needs ipywidgets (the explore extra)
-    from ._widget import Explorer
+    from .widget import Explorer
 
 EXTRA_MESSAGE = "aliasing.explore needs the 'explore' extra: pip install 'aliasing[explore]' (ipywidgets>=8, ipympl, jupyterlab)"
 
 __all__ = ["EXTRA_MESSAGE", "available", "cascades", "directions", "faces", "overhead", "raster"]
+
+
+def __getattr__(name: str) -> Any:
+    if name == "Explorer":  # the widget base class, imported on first use (it needs ipywidgets)
+        from .widget import Explorer
+
+        return Explorer
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def available() -> bool:

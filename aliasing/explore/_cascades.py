@@ -18,7 +18,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Polygon
 
 from .. import budgets, partitioning
-from . import _widget as w
+from . import widget as w
 from ..view import half_angle
 
 #: Light directions the worst error is taken over (equal solid angle over the whole sphere).

@@ -18,7 +18,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FormatStrFormatter, LogLocator
 
 from .. import geometry, schemes
-from . import _widget as w
+from . import widget as w
 
 #: Directions of the Table 3 statistics (equal solid angle, upper hemisphere).
 STAT_DIRECTIONS = 1024

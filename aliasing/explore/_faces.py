@@ -16,7 +16,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Polygon
 
 from .. import faces, geometry
-from . import _widget as w
+from . import widget as w
 
 FACE_NAMES = ("near", "bottom", "top", "left", "right")
 #: Corner indices (:func:`aliasing.geometry.frustum_vertices`) of each face, in FACE_NAMES order.

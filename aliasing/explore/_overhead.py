@@ -15,7 +15,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from .. import error, warping
-from . import _widget as w
+from . import widget as w
 
 RULES = {"uniform": "uniform", "PSM": "psm", "LiSPSM": "lispsm", "η (slider)": "eta", "n′ (typed)": "n_prime"}
 #: Samples along z and along η.

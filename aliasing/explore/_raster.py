@@ -19,7 +19,7 @@ from matplotlib.figure import Figure
 
 from ..raster import pictures
 from ..raster.validate import validate
-from . import _widget as w
+from . import widget as w
 
 BUDGETS = [(f"{s}²", s * s) for s in (64, 128, 256, 512)]
 #: Probe cells per side of the ratio measurement.

@@ -6,13 +6,13 @@ arrays and merges them with ``np.minimum.at``, and the outputs take several pass
 232 MB.  Loops compiled with numba replace those stages; the rest (near clipping,
 projection, triangle order and culling) stays the numpy code:
 
-* :func:`draw_rows` — the covered span of every (triangle, row) (:func:`.coverage.row_spans`)
+* ``draw_rows`` — the covered span of every (triangle, row) (:func:`.coverage.row_spans`)
   and the z-test of its texels (minimum depth, ties to the highest triangle index, NaN
   sticks as with ``np.minimum``), skipping hidden pieces; then the culling blocks it lowered
   are refreshed (:mod:`.occlusion`);
-* :func:`eye_outputs` — triangle id, position and normal of every pixel in one pass.
+* ``eye_outputs`` — triangle id, position and normal of every pixel in one pass.
 
-:func:`merge` (on :func:`merge_spans`) is the compiled drop-in for
+:func:`merge` (on ``merge_spans``) is the compiled drop-in for
 :func:`.occlusion.merge_visible` on given spans.  numba caches the compiled kernels on disk
 (``cache=True``): about 2 s to compile once, well under a second to load afterwards.
 
@@ -148,7 +148,7 @@ def _inside(ex0, ey0, ox0, oy0, ex1, ey1, ox1, oy1, ex2, ey2, ox2, oy2, px, py):
 
 @_jit
 def draw_rows(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, depth, ident, far, block, margin):  # pragma: no cover - compiled
-    """:func:`.coverage.row_spans` and :func:`merge_spans` fused, one (triangle, row) at a time.
+    """:func:`.coverage.row_spans` and ``merge_spans`` fused, one (triangle, row) at a time.
 
     The span ends and the depth coefficients are :func:`.coverage.row_spans`'s expressions,
     evaluated in the same order.
@@ -204,7 +204,7 @@ def draw_rows(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res
 
 
 def draw(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident, far, scale) -> None:
-    """:func:`.occlusion.draw_visible`'s signature on :func:`draw_rows` (no chunks: no temporaries)."""
+    """:func:`.occlusion.draw_visible`'s signature on ``draw_rows`` (no chunks: no temporaries)."""
     from .occlusion import BLOCK, MARGIN
 
     c = np.ascontiguousarray
@@ -212,7 +212,7 @@ def draw(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chu
 
 
 def merge(sp, res: int, chunk: int, depth, ident, far, scale) -> None:
-    """:func:`.occlusion.merge_visible`'s signature on :func:`merge_spans`: the compiled merge of given spans."""
+    """:func:`.occlusion.merge_visible`'s signature on ``merge_spans``: the compiled merge of given spans."""
     from .occlusion import BLOCK, MARGIN
 
     merge_spans(sp.row, sp.t_id, sp.col_lo, sp.width, sp.n0, sp.n1, sp.m0, sp.m1, res, depth, ident, far, BLOCK, MARGIN * scale)
