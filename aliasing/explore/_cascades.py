@@ -22,6 +22,7 @@ from . import widget as w
 from ..view import half_angle
 
 #: Light directions the worst error is taken over (equal solid angle over the whole sphere).
+SLOTS = 8  # partitions drawn without a new layout (the k slider's maximum)
 LIGHTS = "sphere:256"
 BUDGETS = [(f"{s}² ({s * s / 2**20:g} Mi)", s * s) for s in (512, 1024, 2048, 4096, 8192)]
 
@@ -92,43 +93,54 @@ def _band(lo: float, hi: float, tan: float) -> np.ndarray:
 def draw(fig: Figure, d: dict[str, Any]) -> dict:
     """The partitions on the frustum (side view, log depth) and per-partition S̄, resolution, error.
 
-    Returns the artists for :func:`redraw`.
+    Artists for ``SLOTS`` partitions (more if k is larger) are made once and the unused
+    ones hidden, so that changing k is an update in place, not a new layout.  Returns the
+    artists for :func:`redraw`.
     """
     a, b = fig.subplots(1, 2)
-    k = d["k"]
+    slots = max(d["k"], SLOTS)
     frustum = a.add_patch(Polygon(np.zeros((3, 2)), closed=True, fc="0.93", ec="none"))
-    bands = [a.add_patch(Polygon(np.zeros((3, 2)), closed=True, fc=f"C{i % 10}", alpha=0.45, lw=0)) for i in range(k)]
-    planes = [a.axvline(1.0, color=f"C{i % 10}", lw=0.8) for i in range(k)]
+    bands = [a.add_patch(Polygon(np.zeros((3, 2)), closed=True, fc=f"C{i % 10}", alpha=0.45, lw=0)) for i in range(slots)]
+    planes = [a.axvline(1.0, color=f"C{i % 10}", lw=0.8) for i in range(slots)]
     a.set_xscale("log")
     a.set(xlabel="z [world units] (log)", ylabel="y", title="partitions on the frustum (side view)")
-    i = np.arange(1, k + 1)
-    bars = b.bar(i, np.ones(k), color=[f"C{j % 10}" for j in range(k)])
+    i = np.arange(1, slots + 1)
+    bars = b.bar(i, np.ones(slots), color=[f"C{j % 10}" for j in range(slots)])
     b.axhline(1.0, color="0.5", lw=0.8, ls="--")
-    b.set(xlabel="partition", ylabel="worst error m (texel/pixel width)", xticks=i)
-    texts = [b.text(i[j], 0.0, "", ha="center", va="bottom", fontsize=7) for j in range(k)]
+    b.set(xlabel="partition", ylabel="worst error m (texel/pixel width)")
+    texts = [b.text(i[j], 0.0, "", ha="center", va="bottom", fontsize=7) for j in range(slots)]
     fig.subplots_adjust(left=0.07, right=0.98, bottom=0.15, top=0.84, wspace=0.25)
-    artists = {"a": a, "b": b, "frustum": frustum, "bands": bands, "planes": planes, "bars": bars, "texts": texts, "k": k,
+    artists = {"a": a, "b": b, "frustum": frustum, "bands": bands, "planes": planes, "bars": bars, "texts": texts, "slots": slots,
                "suptitle": fig.suptitle("", fontsize=10)}
     redraw(artists, d)
     return artists
 
 
 def redraw(artists: dict, d: dict[str, Any]) -> bool:
-    """New data into :func:`draw`'s artists; False (draw anew) when k changes."""
-    if d["k"] != artists["k"]:
+    """New data into :func:`draw`'s artists; False (draw anew) when k exceeds their slots."""
+    k = d["k"]
+    if k > artists["slots"]:
         return False
     a, b = artists["a"], artists["b"]
     t = np.tan(half_angle(d["fov"]))
     artists["frustum"].set_xy(_band(d["near"], d["far"], t))
-    for band, plane, lo, hi in zip(artists["bands"], artists["planes"], d["near_i"], d["far_i"]):
-        band.set_xy(_band(lo, hi, t))
-        plane.set_xdata([hi, hi])
+    for j, (band, plane) in enumerate(zip(artists["bands"], artists["planes"])):
+        band.set_visible(j < k)
+        plane.set_visible(j < k)
+        if j < k:
+            band.set_xy(_band(d["near_i"][j], d["far_i"][j], t))
+            plane.set_xdata([d["far_i"][j]] * 2)
     a.set_xlim(d["near"], d["far"] * 1.05)
     a.set_ylim(-d["far"] * t * 1.05, d["far"] * t * 1.05)
     for j, (bar, text) in enumerate(zip(artists["bars"], artists["texts"])):
-        bar.set_height(d["error"][j])
-        text.set_position((j + 1, d["error"][j]))
-        text.set_text(f"S̄ {d['S_max'][j]:.3g}\n{d['res_s'][j]:.0f}×{d['res_t'][j]:.0f}")
+        bar.set_visible(j < k)
+        text.set_visible(j < k)
+        if j < k:
+            bar.set_height(d["error"][j])
+            text.set_position((j + 1, d["error"][j]))
+            text.set_text(f"S̄ {d['S_max'][j]:.3g}\n{d['res_s'][j]:.0f}×{d['res_t'][j]:.0f}")
+    b.set_xlim(0.4, k + 0.6)  # as a bar chart of k bars autoscales, whatever the hidden slots
+    b.set_xticks(np.arange(1, k + 1))
     b.set_ylim(0, max(d["error"].max(), 1.0) * 1.35)
     b.set_title(f"{d['allocation']}: worst {d['worst']:.3g} over {LIGHTS}", fontsize=10)
     lam = f", λ = {d['lam']:g}" if d["lam"] is not None else ""
