@@ -64,9 +64,12 @@ def _num(opts: dict[str, str], key: str, spec: str, default: float | None = None
     if key not in opts:
         return default
     try:
-        return float(opts[key])
+        value = float(opts[key])
     except ValueError:
         raise ValueError(f"scheme {spec!r}: {key} must be a number, got {opts[key]!r}") from None
+    if not np.isfinite(value):  # refused by name before int() overflows or NaN reaches arithmetic
+        raise ValueError(f"scheme {spec!r}: {key} must be finite, got {opts[key]!r}")
+    return value
 
 
 def _k(opts: dict[str, str], spec: str, default: int | None) -> int | None:
@@ -118,8 +121,11 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
             opts = _options(parts, spec, {"bias", "first", "last", "pool"})
         bias = _num(opts, "bias", spec, base.bias)
         first, last, pool = (_num(opts, key, spec, d) for key, d in (("first", 6), ("last", 22), ("pool", base.pool)))
-        if pool is None or pool < 1:
+        if pool is None or pool < 1 or not float(pool).is_integer():
             raise ValueError(f"scheme {spec!r}: pool (physical pages) must be a whole number >= 1, got {pool:g}")
+        for key, level in (("first", first), ("last", last)):
+            if not float(level).is_integer():  # type: ignore[arg-type]
+                raise ValueError(f"scheme {spec!r}: {key} (clipmap level) must be a whole number, got {level:g}")
         c = vsm.Clipmap(fov, image_res, bias, int(first), int(last), unit)
         worst = vsm.frustum_max(c, near, far)
         lo, hi = vsm.m_axis_range(c, near, far)
