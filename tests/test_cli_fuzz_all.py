@@ -307,3 +307,24 @@ def test_absurd_requests_in_a_limited_subprocess(argv, tmp_path):
     proc = subprocess.run([sys.executable, "-m", "aliasing.cli", *argv], capture_output=True, text=True, timeout=60, preexec_fn=_limits, cwd=tmp_path, env=env)
     assert proc.returncode == 2, (argv, proc.returncode, proc.stderr[-2000:])
     assert len(proc.stderr.strip().splitlines()) == 1 and "Traceback" not in proc.stderr, proc.stderr[-2000:]
+
+
+# --------------------------------------------------------------------------- file scenarios found by the fuzz
+
+FILES = [
+    (["engines", "--light", "sphere:3", "--schemes", "sdsm:method=adaptive", "--histogram", "fifo.csv"], "not a regular file"),  # hung forever
+    (["engines", "--light", "sphere:3", "--schemes", "sdsm:method=adaptive", "--histogram", "header.csv"], "no bins"),  # numpy's UserWarning first
+    (["render", "--scene", "fifo.obj", "--eye", "0,3,-8", "--target", "0,0,0", "--format", "json"], "not a regular file"),  # said "does not exist"
+    (["validate", "--scheme", "P", "--scene", "fifo.obj", "--eye", "0,3,-8", "--target", "0,0,0"], "not a regular file"),
+    (["engines", "--light", "sphere:3", "--schemes", "vsm:pool=1e400"], "pool must be finite"),  # OverflowError, no parameter named
+    (["engines", "--light", "sphere:3", "--schemes", "vsm:high:first=1.5"], "first (clipmap level) must be a whole number"),  # silently truncated
+]
+
+
+@pytest.mark.parametrize("argv, message", FILES, ids=lambda a: " ".join(a)[:50] if isinstance(a, list) else None)
+def test_file_scenarios_are_one_line(argv, message, tmp_path):
+    os.mkfifo(tmp_path / "fifo.csv")
+    os.mkfifo(tmp_path / "fifo.obj")
+    (tmp_path / "header.csv").write_text("z_lo,z_hi,count\n")
+    proc = subprocess.run([sys.executable, "-m", "aliasing.cli", *argv], capture_output=True, text=True, timeout=60, cwd=tmp_path)
+    assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1 and message in proc.stderr, proc.stderr

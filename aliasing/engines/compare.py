@@ -38,6 +38,9 @@ import argparse
 import csv
 import io
 import json
+import os
+import stat
+import warnings
 from collections.abc import Sequence
 
 import numpy as np
@@ -292,12 +295,29 @@ def _run(args: argparse.Namespace) -> int:
     return 0
 
 
+MAX_HISTOGRAM_BYTES = 16 << 20
+"""Largest --histogram file read [bytes]."""
+
+
 def _read_histogram(path: str) -> tuple[np.ndarray, np.ndarray]:
     """A CSV of contiguous depth bins ``z_lo,z_hi,count`` (one header line) → (edges, counts)."""
     try:
-        table = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    except (OSError, ValueError) as exc:
+        st = os.stat(path)
+        if not stat.S_ISREG(st.st_mode):  # a FIFO would block forever, a device never end
+            raise ValueError(f"--histogram {path!r}: not a regular file")
+        if st.st_size > MAX_HISTOGRAM_BYTES:
+            raise ValueError(f"--histogram {path!r}: {st.st_size:,} bytes; a histogram CSV is at most {MAX_HISTOGRAM_BYTES:,}")
+        with open(path, encoding="utf-8") as handle:
+            text = handle.read(MAX_HISTOGRAM_BYTES + 1)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # "input contained no data": refused below, in one line
+            table = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=1, ndmin=2)
+    except (OSError, ValueError, UnicodeError) as exc:
+        if str(exc).startswith("--histogram"):
+            raise
         raise ValueError(f"--histogram {path!r}: cannot read a CSV of z_lo,z_hi,count ({exc})") from None
+    if table.shape[0] == 0:
+        raise ValueError(f"--histogram {path!r}: no bins (needs rows z_lo,z_hi,count after the header line)")
     if table.shape[1] != 3 or np.any(table[1:, 0] != table[:-1, 1]):
         raise ValueError(f"--histogram {path!r}: needs columns z_lo,z_hi,count with contiguous bins (z_lo of a bin = z_hi of the previous)")
     return sdsm.histogram(np.append(table[:, 0], table[-1, 1]), table[:, 2])
