@@ -11,7 +11,8 @@ stdout, nothing on stderr).
 Kept cheap: resolutions, probe and direction counts in the vocabulary are small (a valid run
 takes well under a second), ``reproduce`` only gets ``--list`` or an unknown target, ``derive``
 only ``--list`` or quick derivations.  Deterministic (profile "ci" in conftest.py);
-``ALIASING_HYPOTHESIS=long`` scales every count up.
+``ALIASING_HYPOTHESIS=long`` scales every count up (and is not derandomized); ``FUZZ_DEBUG=1``
+prints every command line and its stderr line (for reading what the fuzz reaches).
 """
 
 from __future__ import annotations
@@ -281,6 +282,18 @@ def test_engines_fuzz(folder, capsysbinary):
     ]
     argv = _argv(options).map(lambda a: ["engines", "--light", "sphere:5", *a])  # few directions by default
     _fuzz(argv, capsysbinary, _scale(200))
+
+
+# --------------------------------------------------------------------------- the command itself
+
+
+def test_top_level_fuzz(capsysbinary):
+    words = ["reproduce", "derive", "splits", "validate", "render", "engines", "spl", "Sweep", "", "-h", "--help", "--bogus", "--fo", "--version"]
+    # a subcommand word followed only by help/garbage: parsing errors, help text, never a computation
+    argv = st.lists(st.one_of(st.sampled_from(words), _garbage(digits=False)), max_size=3).filter(
+        lambda a: not a or a[0] not in words[:6] or any(w in ("-h", "--help") for w in a) or len(a) > 1)
+    argv = argv.filter(lambda a: "--" not in a and not (a and a[0] == "derive" and all(w in ("derive", "--latex") for w in a)))  # "--": every target/derivation
+    _fuzz(argv, capsysbinary, _scale(50))
 
 
 # --------------------------------------------------------------------------- a sample in a subprocess
