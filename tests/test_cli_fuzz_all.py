@@ -341,3 +341,19 @@ def test_file_scenarios_are_one_line(argv, message, tmp_path):
     (tmp_path / "header.csv").write_text("z_lo,z_hi,count\n")
     proc = subprocess.run([sys.executable, "-m", "aliasing.cli", *argv], capture_output=True, text=True, timeout=60, cwd=tmp_path)
     assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1 and message in proc.stderr, proc.stderr
+
+
+EXTREMES = [  # found by probing the edges of the documented ranges: (argv, exit code, text on stderr or in stdout)
+    (["engines", "--light", "sphere:3", "--ground", "1e308"], 0, "vsm:high"),  # OverflowError (h**2) before
+    (["engines", "--light", "sphere:3", "--fov", "1e-300", "--format", "csv"], 0, ",inf,"),  # OverflowError (worst**2) before; S_bar is inf
+    (["engines", "--light", "sphere:3", "--schemes", "vsm:high:first=-99999:last=99999"], 2, "first (clipmap level) must be a whole number in [-64, 64]"),  # OverflowError
+    (["render", "--f-over-n", "abc", "--format", "json"], 2, "--f-over-n must be a number"),  # "could not convert string to float"
+    (["render", "--seed", "-1", "--format", "json"], 2, "--seed must be a whole number >= 0"),  # numpy's "expected non-negative integer"
+]
+
+
+@pytest.mark.parametrize("argv, code, text", EXTREMES, ids=lambda a: " ".join(a)[-40:] if isinstance(a, list) else None)
+def test_extremes(argv, code, text, capsys):
+    assert main(argv) == code
+    out, err = capsys.readouterr()
+    assert text in (err if code else out) and "nan" not in out.lower() and len(err.strip().splitlines()) == code // 2, (out, err)

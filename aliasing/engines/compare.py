@@ -141,7 +141,7 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
             "m_axis_min": lo,
             "m_axis_max": hi,
             "storage_texels": float(texels),
-            "S_bar": float(texels * worst**2 / image_res**2),
+            "S_bar": float(np.float64(texels) * np.float64(worst) ** 2 / image_res**2) if texels else 0.0,  # inf for a vanishing fov; no pages: no storage
             "pages": pool_info["pages"],
             "overflow": bool(pool_info["overflow"]),
             "extra_bias": pool_info["extra_bias"],

@@ -501,6 +501,12 @@ def error_cdf(schemes_: list[str], near: float = 1.0, far: float = 1000.0, fov: 
 
 
 def _render(args: argparse.Namespace) -> int:
+    try:  # parsed once here, for both paths below (float() alone named no option)
+        args.f_over_n = float(args.f_over_n)
+    except ValueError:
+        raise ValueError(f"--f-over-n must be a number, got {args.f_over_n!r}") from None
+    if args.seed < 0:
+        raise ValueError(f"--seed must be a whole number >= 0, got {args.seed}")
     if args.scene is not None or "," in args.scheme or args.splits is not None or args.what == "cdf" or args.format != "text" \
             or any(v is not None for v in (args.eye, args.target, args.camera, args.light_dir, args.k, args.lam, args.near, args.far)) or args.param:
         from .scenerender import run
