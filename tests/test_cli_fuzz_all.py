@@ -349,6 +349,10 @@ EXTREMES = [  # found by probing the edges of the documented ranges: (argv, exit
     (["engines", "--light", "sphere:3", "--schemes", "vsm:high:first=-99999:last=99999"], 2, "first (clipmap level) must be a whole number in [-64, 64]"),  # OverflowError
     (["render", "--f-over-n", "abc", "--format", "json"], 2, "--f-over-n must be a number"),  # "could not convert string to float"
     (["render", "--seed", "-1", "--format", "json"], 2, "--seed must be a whole number >= 0"),  # numpy's "expected non-negative integer"
+    (["render", "--f-over-n", "1e300", "--scheme", "LogP", "--format", "json"], 2, "far/near must be <= 1e+15 for the rasterizer"),  # "points must not be NaN"
+    (["validate", "--scheme", "LogP", "--f-over-n", "1e30", "--res", "32", "--probes", "4"], 2, "far/near must be <= 1e+15"),  # "row_centres must be 32 increasing values"
+    (["validate", "--scheme", "P", "--f-over-n", "100", "--fov", "1e-300", "--res", "32", "--probes", "4"], 2, "fov must be >= 1e-06 degrees"),  # "points must not be NaN"
+    (["validate", "--scheme", "P", "--scene", "s.obj", "--eye", "0,3,-8", "--target", "0,0,0", "--fov", "abc"], 2, "--fov must be a number"),  # float()'s message
 ]
 
 

@@ -58,6 +58,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import geometry, schemes
+from .camera import check_raster_frustum
 from .measure import measure, pixel_errors
 from .rasterize import DepthMap, LightMap, MapSet, check_resolution, eye_pass, map_set, shadow_map
 from .scenes import Scene, ground_and_boxes
@@ -529,6 +530,7 @@ def _render(args: argparse.Namespace) -> int:
         raise ValueError(f"--out must be a file, but {args.out!r} is a folder")
     kw = dict(image_res=args.image_res, budget=args.res**2, seed=args.seed)
     fov = 60.0 if args.fov is None else args.fov
+    check_raster_frustum(1.0, f_over_n, float(check.fov(fov)))
     if args.what == "shadows":
         img = shadow_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
     elif args.what == "grid":

@@ -22,6 +22,7 @@ import numpy as np
 
 from .. import _validation as check
 from .. import geometry, schemes, sweep
+from .camera import check_raster_frustum
 from .measure import measure
 from .rasterize import map_set
 from .scenes import probes as probe_scene
@@ -72,6 +73,7 @@ def _check(scheme: str, f_over_n: float, fov: float, light: object, res: int, im
     sch = schemes.parse(scheme)
     ratio = float(check.depth_ratio(f_over_n, "f_over_n"))
     fv = float(check.fov(fov))
+    check_raster_frustum(1.0, ratio, fv)
     label, lv = _light(light)
     r = _whole(res, "res", MIN_RES, MAX_RES, " pixels per side (larger does not fit in memory)")
     ri = r if image_res is None else _whole(image_res, "image_res", 1, 1 << 20, " pixels per side")
