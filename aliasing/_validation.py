@@ -153,6 +153,9 @@ def frustum(near: ArrayLike, far: ArrayLike) -> tuple[NDArray[np.float64], NDArr
     broadcast(near=n, far=f)
     if (f <= n).any():
         raise ValueError(f"far must be greater than near (far/near in (1, inf)), got near={_show(n)}, far={_show(f)}")
+    with np.errstate(over="ignore"):
+        if not np.isfinite(f / n).all():  # every formula works with f/n: an overflowing ratio is refused here, by name
+            raise ValueError(f"far/near must be finite (far/near in (1, inf)), got near={_show(n)}, far={_show(f)}: the ratio overflows")
     return n, f
 
 

@@ -352,6 +352,7 @@ EXTREMES = [  # found by probing the edges of the documented ranges: (argv, exit
     (["render", "--f-over-n", "1e300", "--scheme", "LogP", "--format", "json"], 2, "far/near must be <= 1e+15 for the rasterizer"),  # "points must not be NaN"
     (["validate", "--scheme", "LogP", "--f-over-n", "1e30", "--res", "32", "--probes", "4"], 2, "far/near must be <= 1e+15"),  # "row_centres must be 32 increasing values"
     (["validate", "--scheme", "P", "--f-over-n", "100", "--fov", "1e-300", "--res", "32", "--probes", "4"], 2, "fov must be >= 1e-06 degrees"),  # "points must not be NaN"
+    (["splits", "--near", "1e-300", "--far", "1e300", "-k", "3"], 2, "far/near must be finite"),  # "edges as (near_i, far_i) need equal lengths ..."
     (["validate", "--scheme", "P", "--scene", "s.obj", "--eye", "0,3,-8", "--target", "0,0,0", "--fov", "abc"], 2, "--fov must be a number"),  # float()'s message
 ]
 
