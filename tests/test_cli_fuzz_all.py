@@ -21,6 +21,7 @@ import os
 import resource
 import subprocess
 import sys
+import warnings
 
 import pytest
 
@@ -70,13 +71,16 @@ def _scale(n: int) -> int:
 
 
 def _run(argv, capsysbinary, ok_fail: bool = False) -> int:
-    try:
-        code = main(argv)
-    except SystemExit as exc:  # argparse usage errors and --help
-        code = exc.code
+    with warnings.catch_warnings(record=True) as caught:  # pytest would swallow them: a real run prints them on stderr
+        warnings.simplefilter("always")
+        try:
+            code = main(argv)
+        except SystemExit as exc:  # argparse usage errors and --help
+            code = exc.code
     out, err = capsysbinary.readouterr()
     text = err.decode(errors="replace")
     assert "Traceback" not in text and "Warning" not in text, (argv, text)
+    assert not caught, (argv, [f"{w.category.__name__}: {w.message}" for w in caught])
     if ok_fail and code == 1:  # validate: a FAIL verdict, reported on stdout or in --out
         assert text == "", (argv, text)
         return code
