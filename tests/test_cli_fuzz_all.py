@@ -366,3 +366,26 @@ def test_extremes(argv, code, text, capsys):
     assert main(argv) == code
     out, err = capsys.readouterr()
     assert text in (err if code else out) and "nan" not in out.lower() and len(err.strip().splitlines()) == code // 2, (out, err)
+
+
+def test_dask_address_of_a_server_that_never_answers_is_one_line(capsys, monkeypatch):
+    """--dask at a port that accepts but never speaks Dask (e.g. an HTTP server) waited forever."""
+    pytest.importorskip("distributed")
+    import socket
+    import threading
+
+    from aliasing.sweep import runner
+
+    monkeypatch.setattr(runner, "DASK_TIMEOUT", 1.0)
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen()
+    held = []
+    threading.Thread(target=lambda: held.append(server.accept()), daemon=True).start()
+    try:
+        argv = ["validate", "--grid", "--scheme", "P", "--f-over-n", "100", "--res", "32", "--probes", "4", "--dask", f"tcp://127.0.0.1:{server.getsockname()[1]}"]
+        assert main(argv) == 2
+    finally:
+        server.close()
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "cannot reach a Dask scheduler" in err and "is it a Dask scheduler?" in err, err
