@@ -8,6 +8,8 @@ examples; ``ALIASING_HYPOTHESIS=long`` runs the "long" profile's count instead.
 
 from __future__ import annotations
 
+import warnings
+
 import pytest
 
 hypothesis = pytest.importorskip("hypothesis")
@@ -76,13 +78,16 @@ def test_sweep_command_line_fuzz(folder, capsysbinary):
     @given(st.lists(_option(folder), min_size=0, max_size=5))
     def run(options):
         argv = ["sweep", *(part for option in options for part in option)]
-        try:
-            code = main(argv)
-        except SystemExit as exc:  # argparse: usage errors
-            code = exc.code
+        with warnings.catch_warnings(record=True) as caught:  # pytest would swallow them: a real run prints them on stderr
+            warnings.simplefilter("always")
+            try:
+                code = main(argv)
+            except SystemExit as exc:  # argparse: usage errors
+                code = exc.code
         out, err = capsysbinary.readouterr()
         text = err.decode(errors="replace")
         assert "Traceback" not in text and "Warning" not in text, (argv, text)
+        assert not caught, (argv, [f"{w.category.__name__}: {w.message}" for w in caught])
         assert code in (0, 2), (argv, code, text)
         if code == 2:
             assert len(text.strip().splitlines()) == 1, (argv, text)

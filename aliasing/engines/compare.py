@@ -41,6 +41,9 @@ import argparse
 import csv
 import io
 import json
+import os
+import stat
+import warnings
 from collections.abc import Sequence
 
 import numpy as np
@@ -68,9 +71,12 @@ def _num(opts: dict[str, str], key: str, spec: str, default: float | None = None
     if key not in opts:
         return default
     try:
-        return float(opts[key])
+        value = float(opts[key])
     except ValueError:
         raise ValueError(f"scheme {spec!r}: {key} must be a number, got {opts[key]!r}") from None
+    if not np.isfinite(value):  # refused by name before int() overflows or NaN reaches arithmetic
+        raise ValueError(f"scheme {spec!r}: {key} must be finite, got {opts[key]!r}")
+    return value
 
 
 def _k(opts: dict[str, str], spec: str, default: int | None) -> int | None:
@@ -122,8 +128,11 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
             opts = _options(parts, spec, {"bias", "first", "last", "pool", "dilation", "coarse"})
         bias = _num(opts, "bias", spec, base.bias)
         first, last, pool = (_num(opts, key, spec, d) for key, d in (("first", 6), ("last", 22), ("pool", base.pool)))
-        if pool is None or pool < 1:
+        if pool is None or pool < 1 or not float(pool).is_integer():
             raise ValueError(f"scheme {spec!r}: pool (physical pages) must be a whole number >= 1, got {pool:g}")
+        for key, level in (("first", first), ("last", last)):
+            if not float(level).is_integer():  # type: ignore[arg-type]
+                raise ValueError(f"scheme {spec!r}: {key} (clipmap level) must be a whole number, got {level:g}")
         coarse = None if opts.get("coarse", "1") in ("0", "false", "no") else vsm.COARSE_LEVELS
         c = vsm.Clipmap(fov, image_res, bias, int(first), int(last), unit, _num(opts, "dilation", spec, vsm.DILATION), coarse)
         worst = vsm.frustum_max(c, near, far)
@@ -137,7 +146,7 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
             "m_axis_min": lo,
             "m_axis_max": hi,
             "storage_texels": float(texels),
-            "S_bar": float(texels * worst**2 / image_res**2),
+            "S_bar": float(np.float64(texels) * np.float64(worst) ** 2 / image_res**2) if texels else 0.0,  # inf for a vanishing fov; no pages: no storage
             "pages": pool_info["pages"],
             "overflow": bool(pool_info["overflow"]),
             "extra_bias": pool_info["extra_bias"],
@@ -293,12 +302,29 @@ def _run(args: argparse.Namespace) -> int:
     return 0
 
 
+MAX_HISTOGRAM_BYTES = 16 << 20
+"""Largest --histogram file read [bytes]."""
+
+
 def _read_histogram(path: str) -> tuple[np.ndarray, np.ndarray]:
     """A CSV of contiguous depth bins ``z_lo,z_hi,count`` (one header line) → (edges, counts)."""
     try:
-        table = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    except (OSError, ValueError) as exc:
+        st = os.stat(path)
+        if not stat.S_ISREG(st.st_mode):  # a FIFO would block forever, a device never end
+            raise ValueError(f"--histogram {path!r}: not a regular file")
+        if st.st_size > MAX_HISTOGRAM_BYTES:
+            raise ValueError(f"--histogram {path!r}: {st.st_size:,} bytes; a histogram CSV is at most {MAX_HISTOGRAM_BYTES:,}")
+        with open(path, encoding="utf-8") as handle:
+            text = handle.read(MAX_HISTOGRAM_BYTES + 1)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # "input contained no data": refused below, in one line
+            table = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=1, ndmin=2)
+    except (OSError, ValueError, UnicodeError) as exc:
+        if str(exc).startswith("--histogram"):
+            raise
         raise ValueError(f"--histogram {path!r}: cannot read a CSV of z_lo,z_hi,count ({exc})") from None
+    if table.shape[0] == 0:
+        raise ValueError(f"--histogram {path!r}: no bins (needs rows z_lo,z_hi,count after the header line)")
     if table.shape[1] != 3 or np.any(table[1:, 0] != table[:-1, 1]):
         raise ValueError(f"--histogram {path!r}: needs columns z_lo,z_hi,count with contiguous bins (z_lo of a bin = z_hi of the previous)")
     return sdsm.histogram(np.append(table[:, 0], table[-1, 1]), table[:, 2])

@@ -74,6 +74,7 @@ BIAS_RANGE = (-8.0, 8.0)  # the cvar is an unclamped float; the model accepts ±
 DILATION = 0.05  # r.Shadow.Virtual.PageDilationBorderSizeDirectional [pages]
 COARSE_LEVELS = (15, 18)  # r.Shadow.Virtual.Clipmap.FirstCoarseLevel, LastCoarseLevel
 COARSE_PAGES_PER_LEVEL = 4  # MarkCoarsePages: floor/ceil of the origin's page address − ½ in x and y
+LEVEL_RANGE = (-64, 64)  # clipmap levels (the engine's default 6..22); level L spans 2^L cm, 2^64 cm ≈ 1.8e17 km
 
 
 @dataclasses.dataclass(frozen=True)
@@ -133,6 +134,9 @@ class Clipmap:
         if not (float(self.width) >= 1 and float(self.width).is_integer()):
             raise ValueError(f"width (viewport pixels) must be a whole number >= 1, got {self.width!r}")
         check.closed_range(self.bias, "bias", *BIAS_RANGE, " octaves")
+        for name, level in (("first", self.first), ("last", self.last)):  # 2^level stays a finite float
+            if isinstance(level, bool) or not (LEVEL_RANGE[0] <= float(level) <= LEVEL_RANGE[1] and float(level).is_integer()):
+                raise ValueError(f"{name} (clipmap level) must be a whole number in [{LEVEL_RANGE[0]}, {LEVEL_RANGE[1]}], got {level!r}")
         if int(self.first) > int(self.last):
             raise ValueError(f"first level must be <= last level, got first={self.first}, last={self.last}")
         check.choice(self.unit, "unit", CM_PER_UNIT)
@@ -356,7 +360,7 @@ def ground_pages(c: Clipmap, height: float, far: float, light: str | ArrayLike =
     d_lo = np.where(levels == c.first, 0.0, 2.0 ** (levels - c.lod_bias)) / scale
     d_hi = np.where(levels == c.last, 2.0 ** (c.last + 1), 2.0 ** (levels + 1 - c.lod_bias)) / scale
     d_lo, d_hi = np.minimum(d_lo, f), np.minimum(d_hi, f)
-    rho = lambda d: np.sqrt(np.maximum(d**2 - h**2, 0.0))  # noqa: E731
+    rho = lambda d: np.sqrt(np.maximum((d - h) * (d + h), 0.0))  # noqa: E731  (d**2 - h**2 overflowed for a huge h)
     area = ground_area(rho(d_hi), h, c.fov) - ground_area(rho(d_lo), h, c.fov)  # (L,)
     page = PAGE * texel(c, levels)
     cos_l = np.clip(lv[:, 1] / np.linalg.norm(lv, axis=-1), 0.0, None)  # projected area factor

@@ -152,3 +152,30 @@ def from_matrix(matrix: ArrayLike, *, near: float, far: float, fov: float, name:
     rot = frame(-m[:3, 2], m[:3, 1])
     n, f = (float(v) for v in check.frustum(near, far))
     return Camera(m[:3, 3].copy(), rot, n, f, float(check.fov(fov)), name)
+
+
+MAX_F_OVER_N = 1e15
+"""Largest depth ratio far/near the rasterizer measures: beyond ~1e17 the rows of a LogP map
+(log-spaced in float64) stop increasing, and ~1e300 overflows to NaN."""
+MIN_FOV = 1e-6
+"""Smallest full field of view [deg] the rasterizer measures (at ~1e-300 the eye rays underflow)."""
+
+
+def check_raster_frustum(near: float, far: float, fov: float) -> None:
+    """Refuse a frustum outside the rasterizer's float64 range (ValueError naming the range).
+
+    The analytic functions take any far/near > 1 and fov in (0, 180); the rasterizer measures
+    in float64 and is checked here before anything is rasterized.
+
+    Example
+    -------
+    >>> check_raster_frustum(1.0, 1e20, 60.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: far/near must be <= 1e+15 for the rasterizer (float64 rows and depths), got 1e+20
+    """
+    ratio = float(far) / float(near)
+    if ratio > MAX_F_OVER_N:
+        raise ValueError(f"far/near must be <= {MAX_F_OVER_N:g} for the rasterizer (float64 rows and depths), got {ratio:g}")
+    if float(fov) < MIN_FOV:
+        raise ValueError(f"fov must be >= {MIN_FOV:g} degrees for the rasterizer (float64 eye rays), got {float(fov):g}")

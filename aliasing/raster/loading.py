@@ -110,8 +110,10 @@ def load_scene(path: str | os.PathLike) -> WorldScene:
     ext = os.path.splitext(name)[1].lower()
     if ext not in FORMATS:
         raise ValueError(f"scene file must end in {', '.join(FORMATS)}, got {name!r}")
-    if not os.path.isfile(name):
+    if not os.path.exists(name):
         raise ValueError(f"scene file {name!r} does not exist")
+    if not os.path.isfile(name):  # a folder, FIFO or device (a FIFO would block the read)
+        raise ValueError(f"scene file {name!r} is not a regular file")
     if os.path.getsize(name) == 0:
         raise ValueError(f"scene file {name!r} is empty")
     tm = _trimesh()

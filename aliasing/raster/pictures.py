@@ -58,6 +58,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import geometry, schemes
+from .camera import check_raster_frustum
 from .measure import measure, pixel_errors
 from .rasterize import DepthMap, LightMap, MapSet, check_resolution, eye_pass, map_set, shadow_map
 from .scenes import Scene, ground_and_boxes
@@ -501,6 +502,12 @@ def error_cdf(schemes_: list[str], near: float = 1.0, far: float = 1000.0, fov: 
 
 
 def _render(args: argparse.Namespace) -> int:
+    try:  # parsed once here, for both paths below (float() alone named no option)
+        args.f_over_n = float(args.f_over_n)
+    except ValueError:
+        raise ValueError(f"--f-over-n must be a number, got {args.f_over_n!r}") from None
+    if args.seed < 0:
+        raise ValueError(f"--seed must be a whole number >= 0, got {args.seed}")
     if args.scene is not None or "," in args.scheme or args.splits is not None or args.what == "cdf" or args.format != "text" \
             or any(v is not None for v in (args.eye, args.target, args.camera, args.light_dir, args.k, args.lam, args.near, args.far)) or args.param:
         from .scenerender import run
@@ -523,6 +530,7 @@ def _render(args: argparse.Namespace) -> int:
         raise ValueError(f"--out must be a file, but {args.out!r} is a folder")
     kw = dict(image_res=args.image_res, budget=args.res**2, seed=args.seed)
     fov = 60.0 if args.fov is None else args.fov
+    check_raster_frustum(1.0, f_over_n, float(check.fov(fov)))
     if args.what == "shadows":
         img = shadow_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
     elif args.what == "grid":

@@ -168,7 +168,10 @@ def add_scene_options(p: argparse.ArgumentParser) -> None:
         fmt = args.format or "text"
         if fmt not in ("text", "json"):
             raise ValueError(f"--format with --scene must be text or json, got {fmt!r}")
-        fov = None if args.fov == "60" and args.camera else float(args.fov)
+        try:
+            fov = None if args.fov == "60" and args.camera else float(args.fov)
+        except ValueError:
+            raise ValueError(f"--fov must be a number, got {args.fov!r}") from None
         light = None if args.light_dir is not None else args.light
         st = setup(args.scene, eye=args.eye, target=args.target, up=args.up, camera=args.camera, near=args.near, far=args.far, fov=fov,
                    light_dir=args.light_dir, light=light)

@@ -34,7 +34,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import geometry
-from .camera import Camera, look_at, vector
+from .camera import Camera, check_raster_frustum, look_at, vector
 from .cascades import CascadeSet, budget_shares, cascade_set
 from .loading import WorldScene, load_scene
 from .pictures import BIAS, View, error_field, render_view
@@ -150,6 +150,7 @@ def setup(scene: str | WorldScene | ArrayLike, *, eye: ArrayLike | str | None = 
             raise ValueError(f"light must be a single direction, got {ls.shape[0]}")
         lv = ls[0]
     sc = ws.in_eye_space(cam)
+    check_raster_frustum(cam.near, cam.far, cam.fov)
     return SceneSetup(sc, plane_ids(sc.triangles), cam, lv, ws.degenerate, ws.source)
 
 
@@ -339,6 +340,7 @@ def run(args) -> int:
         f = float(args.f_over_n) if args.far is None else float(args.far)
         n = 1.0 if args.near is None else float(args.near)
         fv = 60.0 if args.fov is None else float(args.fov)
+        check_raster_frustum(*check.frustum(n, f), check.fov(fv))  # before the scene is built
         sc = ground_and_boxes(n, f, fv, seed=args.seed, boxes=40, ground_cells=16)
         cam = Camera(np.zeros(3), np.eye(3), *(float(x) for x in check.frustum(n, f)), float(check.fov(fv)), "eye space")
         ls = geometry.lights(light)

@@ -128,6 +128,33 @@ DASK_TIMEOUT = 10.0
 """Seconds to wait for a Dask scheduler before giving up."""
 
 
+def _probe_dask(address: str) -> None:
+    """Connect once, with a hard time limit, before making a Client.
+
+    distributed's own timeout does not cover a peer that accepts the connection but never
+    answers the handshake (an HTTP server: the Client waited forever), and a peer that
+    answers garbage left a half-made Client whose clean-up printed a traceback at exit.
+    Run in a thread of its own, so that a caller's running event loop does not matter.
+    """
+    import asyncio
+    from concurrent.futures import ThreadPoolExecutor
+
+    from distributed.comm import connect
+
+    async def once() -> None:
+        comm = await connect(address, timeout=DASK_TIMEOUT)
+        await comm.close()
+
+    with ThreadPoolExecutor(1) as pool:
+        try:
+            pool.submit(asyncio.run, asyncio.wait_for(once(), DASK_TIMEOUT + 1)).result()
+        except Exception as exc:  # noqa: BLE001 - anything a wrong peer makes distributed raise
+            detail = str(exc).splitlines()[0] if str(exc) else f"no answer within {DASK_TIMEOUT + 1:g} s"
+            if not isinstance(exc, OSError) or not str(exc):  # connected, but no Dask answer (wait_for's bare TimeoutError)
+                detail += " (is it a Dask scheduler?)"
+            raise ValueError(f"dask: cannot reach a Dask scheduler at {address!r}: {detail}") from None
+
+
 def _run_dask(grid: Plan, kind: str, todo: Sequence[int], done: Callable[[int, object], None], address: str) -> None:
     try:
         from distributed import Client, as_completed
@@ -141,6 +168,7 @@ def _run_dask(grid: Plan, kind: str, todo: Sequence[int], done: Callable[[int, o
             parse_host_port(location)
     except (ValueError, TypeError) as exc:
         raise ValueError(f"dask: malformed scheduler address {address!r} ({exc}); expected e.g. tcp://host:8786") from None
+    _probe_dask(address)
     try:
         client = Client(address, timeout=DASK_TIMEOUT, set_as_default=False)
     except (OSError, TimeoutError, ValueError) as exc:
