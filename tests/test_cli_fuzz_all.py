@@ -349,14 +349,14 @@ def test_file_scenarios_are_one_line(argv, message, tmp_path):
 
 EXTREMES = [  # found by probing the edges of the documented ranges: (argv, exit code, text on stderr or in stdout)
     (["engines", "--light", "sphere:3", "--ground", "1e308"], 0, "vsm:high"),  # OverflowError (h**2) before
-    (["engines", "--light", "sphere:3", "--fov", "1e-300", "--format", "csv"], 0, ",inf,"),  # OverflowError (worst**2) before; S_bar is inf
+    (["engines", "--light", "sphere:3", "--fov", "1e-300", "--format", "csv"], 2, "must be at least 1e-06 degrees"),  # OverflowError (worst**2) before; now refused by the shared fov check
     (["engines", "--light", "sphere:3", "--schemes", "vsm:high:first=-99999:last=99999"], 2, "first (clipmap level) must be a whole number in [-64, 64]"),  # OverflowError
     (["render", "--f-over-n", "abc", "--format", "json"], 2, "--f-over-n must be a number"),  # "could not convert string to float"
     (["render", "--seed", "-1", "--format", "json"], 2, "--seed must be a whole number >= 0"),  # numpy's "expected non-negative integer"
     (["render", "--f-over-n", "1e300", "--scheme", "LogP", "--format", "json"], 2, "far/near must be <= 1e+15 for the rasterizer"),  # "points must not be NaN"
     (["validate", "--scheme", "LogP", "--f-over-n", "1e30", "--res", "32", "--probes", "4"], 2, "far/near must be <= 1e+15"),  # "row_centres must be 32 increasing values"
-    (["validate", "--scheme", "P", "--f-over-n", "100", "--fov", "1e-300", "--res", "32", "--probes", "4"], 2, "fov must be >= 1e-06 degrees"),  # "points must not be NaN"
-    (["splits", "--near", "1e-300", "--far", "1e300", "-k", "3"], 2, "far/near must be finite"),  # "edges as (near_i, far_i) need equal lengths ..."
+    (["validate", "--scheme", "P", "--f-over-n", "100", "--fov", "1e-300", "--res", "32", "--probes", "4"], 2, "must be at least 1e-06 degrees"),  # "points must not be NaN"
+    (["splits", "--near", "1e-300", "--far", "1e300", "-k", "3"], 2, "far/near must be at most 1.8e308"),  # "edges as (near_i, far_i) need equal lengths ..."
     (["validate", "--scheme", "P", "--scene", "s.obj", "--eye", "0,3,-8", "--target", "0,0,0", "--fov", "abc"], 2, "--fov must be a number"),  # float()'s message
 ]
 
