@@ -114,6 +114,7 @@ def chosen_faces(light: ArrayLike, fov: float) -> Array:
     return side * (lv @ normals.T) < -_EDGE_ON
 
 
+@check.public
 def partition_of(points: ArrayLike, near: float, far: float, fov: float, light: ArrayLike) -> NDArray[np.int_]:
     """The face partition (0 near, 1 bottom, 2 top, 3 left, 4 right) of eye-space points.
 

@@ -63,12 +63,6 @@ EXCLUDED = {
     "aliasing.raster.scenes.load_mesh",
     # Open problems in modules owned by other work (issue 19 item 4; each needs more than a
     # one-line input check, so they are left out here until fixed, not marked xfail):
-    # faces: an array or a string for near/far/fov/k is a TypeError from float()/int()
-    "aliasing.faces.face_errors",
-    "aliasing.faces.face_frames",
-    "aliasing.faces.partition_of",
-    "aliasing.faces.side_frames",
-    "aliasing.faces.chosen_faces",  # and a light vector near 1e308 overflows  # and an array fov: numpy's broadcast error as it is
     # raster: complex, strings and 10**400 reach float()/int() (TypeError, OverflowError,
     # ComplexWarning); a non-LightMap ``lm`` or non-Scheme ``scheme`` is an AttributeError;
     # 0-d ``points`` an IndexError; wrong light shapes an einsum error
