@@ -72,8 +72,6 @@ class LightFit:
 
 # Largest |coordinate| of a vertex: projections and their differences then stay below 1.8e308.
 VERTEX_MAX = 1e150
-# Smallest n′ [world units]: y/n′ (z′/n′ − 1) stays finite for vertices within VERTEX_MAX.
-N_PRIME_MIN = 1e-150
 
 
 @check.public
@@ -171,9 +169,13 @@ def vertex_errors(lf: LightFit, fov: ArrayLike, n_prime: ArrayLike = np.inf, par
     kind = check.choice(parameterization, "parameterization", PARAMETERIZATIONS)
     check.instance(lf, "lf", LightFit)
     if (lf.eye_depth <= 0).any():
-        raise ValueError("lf: every vertex must lie in front of the eye (eye depth > 0)")
+        raise ValueError("lf's vertices must lie in front of the eye (eye depth z > 0)")
     w_i = 2 * _tan_theta(fov) * lf.eye_depth  # eq. (2), corrected
-    npr = _n_prime(n_prime, lf)[..., None]
+    npr = _n_prime(n_prime, lf)
+    with np.errstate(over="ignore"):
+        if not np.isfinite(lf.depth / npr).all():  # z′/n′ would overflow, and inf·0 give NaN
+            raise ValueError(f"n_prime is too small for the maps' depth W_ly: W_ly/n_prime exceeds 1.8e308, got n_prime={check._show(npr)}")
+    npr = npr[..., None]
     if kind == "uniform":
         npr = np.full_like(npr, np.inf)
     y, depth = lf.y, lf.depth[..., None]
@@ -226,14 +228,14 @@ def _lights(light: ArrayLike) -> Array:
 
 
 def _n_prime(n_prime: ArrayLike, lf: LightFit) -> Array:
-    """n′ broadcast to the maps ``(N, K)``, in [N_PRIME_MIN, inf]."""
+    """n′ broadcast to the maps ``(N, K)``, in (0, inf]."""
     npr = check.as_float_array(n_prime, "n_prime")
     try:
         npr = np.broadcast_to(npr, lf.depth.shape)
     except ValueError:
         raise ValueError(f"n_prime of shape {npr.shape} does not broadcast to the maps' shape {lf.depth.shape} (N, K)") from None
-    if (npr < N_PRIME_MIN).any():
-        raise ValueError(f"n_prime must be in [{N_PRIME_MIN:g}, inf] (inf is a uniform map), got {check._show(npr)}")
+    if (npr <= 0).any():
+        raise ValueError(f"n_prime must be in (0, inf] (inf is a uniform map), got {check._show(npr)}")
     return npr
 
 

@@ -61,25 +61,6 @@ EXCLUDED = {
     "aliasing.partitioning.register",
     # reads a file path: covered by the file scenarios of tests/test_raster.py
     "aliasing.raster.scenes.load_mesh",
-    # Open problems in modules owned by other work (issue 19 item 4; each needs more than a
-    # one-line input check, so they are left out here until fixed, not marked xfail):
-    # raster: complex, strings and 10**400 reach float()/int() (TypeError, OverflowError,
-    # ComplexWarning); a non-LightMap ``lm`` or non-Scheme ``scheme`` is an AttributeError;
-    # 0-d ``points`` an IndexError; wrong light shapes an einsum error
-    "aliasing.raster.measure.measure",
-    "aliasing.raster.eye.eye_pass",
-    "aliasing.raster.facemaps.frame_map",
-    "aliasing.raster.lightmap.light_map",
-    "aliasing.raster.lightmap.light_maps",
-    "aliasing.raster.shadow.log_row_centres",
-    "aliasing.raster.facemaps.map_set",
-    "aliasing.raster.facemaps.near_face_map",
-    "aliasing.raster.facemaps.fixed_face_map",
-    "aliasing.raster.eye.project",
-    "aliasing.raster.core.rasterize",
-    "aliasing.raster.shadow.shadow_map",
-    "aliasing.raster.scenes.ground_and_boxes",
-    "aliasing.raster.scenes.probes",
 }
 
 EYE = Camera(axes=np.eye(3), position=[0.0, 0.0, 5.0])

@@ -152,6 +152,8 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     """
     res = check_resolution(resolution)
     rm = check_resolution(map_resolution, "map_resolution")
+    if scene is not None:
+        check.instance(scene, "scene", Scene)
     ms = map_set(near, far, fov, light, scheme, **options)
     maps, edges = ms.maps, ms.edges
     analytic = schemes.evaluate(scheme, near, far, fov, geometry.lights(light), **options)
