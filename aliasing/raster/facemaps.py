@@ -136,7 +136,10 @@ def fixed_face_map(near: float, far: float, fov: float, light: ArrayLike, face: 
     else:
         a = np.sqrt(y0 * y1) if kind == "perspective" else 0.0  # eq. (76): LiSPSM's a; App. A: a = 0 for LogP
         npr = cy * (y0 + a)  # the centre of projection at y = −a, in light-plane units
-        x_hi = npr * cx * half / (cy * (y1 + a))  # n′·max X/(Y + a cos φ_ly) over the face
+        with np.errstate(over="ignore"):
+            x_hi = npr * cx * half / (cy * (y1 + a))  # n′·max X/(Y + a cos φ_ly) over the face
+    if not np.isfinite(x_hi):
+        raise ValueError(f"near and far give a face map whose extent exceeds 1.8e308 [world units], got near={n:g}, far={f:g}")
     wf = directional.WarpingFrustum(n_prime=np.array([[npr]]), depth=np.array([[cy * (y1 - y0)]]), x_lo=np.array([[-x_hi]]), x_hi=np.array([[x_hi]]))
     return LightMap(np.stack([x_l, lv, z_l]), cy * y0, wf, kind, float(npr))
 

@@ -188,6 +188,8 @@ def light_map(near: float, far: float, fov: float, light: str | ArrayLike, schem
     res = schemes.evaluate(sch, near, far, fov, lv, **options)
     npr = float(res.n_prime[0, 0])
     verts = geometry.frustum_vertices(near, far, fov)
+    if np.abs(verts).max() > directional.VERTEX_MAX:  # the light-space fit would overflow
+        raise ValueError(f"far must keep the view frustum within |coordinate| <= {directional.VERTEX_MAX:g} [world units], got far={check._repr(far)}")
     basis = geometry.light_space(lv)[0]
     lf = directional.fit(verts, lv)
     wf = directional.warping_frustum(lf, npr if sch.parameterization != "uniform" else np.inf)
