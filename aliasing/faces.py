@@ -64,6 +64,8 @@ FACES = ("near", *SIDES)  # the far face is never chosen (eq. 54, see the module
 TAU0, TAU1 = 120.0, 150.0  # [deg] our defaults; §6.5 only requires τ0 > 90°
 _EDGE_ON = 1e-12
 K_MAX = 1024  # most depth ranges per face (the bound of schemes.parse's k); bounds the arrays
+# Largest far [world units]: eq. (97)'s (y + a)²(y1 − y0) is a cube of depths and overflows above ~5e102.
+FAR_MAX = 1e100
 
 
 @dataclass(frozen=True)
@@ -199,6 +201,8 @@ def _arguments(variant: str, parameterization: str, near: float | View, far: flo
     view, light = split_view(near, far, fov, light, (None, None, None, None))
     if view.shape != ():
         raise ValueError(f"near, far and fov must be scalars here, got shape {view.shape}")
+    if view.far > FAR_MAX:
+        raise ValueError(f"far must be at most {FAR_MAX:g} [world units] here (the face closed forms cube depths), got {view.far:g}")
     k = check.whole(k, "k", 1, K_MAX, " (depth ranges per face)")
     if not 90.0 < check.scalar(tau0, "tau0") <= check.scalar(tau1, "tau1") <= 180.0:
         raise ValueError(f"tau0 and tau1 must satisfy 90 < tau0 <= tau1 <= 180 [deg], got {tau0!r}, {tau1!r}")
@@ -338,8 +342,8 @@ def face_errors(variant: str, parameterization: str, near: float | View, far: fl
 
 def _unit(light: ArrayLike) -> Array:
     lv = np.atleast_2d(check.finite(light, "light"))  # an infinite vector has no direction
-    if lv.shape[-1] != 3 or lv.ndim != 2:
-        raise ValueError(f"light must be vectors of shape (N, 3) or (3,), got shape {lv.shape}")
+    if lv.shape[-1] != 3 or lv.ndim != 2 or lv.shape[0] == 0:
+        raise ValueError(f"light must be vectors of shape (N, 3) with N >= 1 or (3,), got shape {lv.shape}")
     if np.any(np.abs(lv).max(axis=-1) == 0):
         raise ValueError("light directions must be non-zero vectors")
     return check.unit_rows(lv)  # plain v/|v|, except for lengths that over- or underflow
