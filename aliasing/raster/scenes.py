@@ -196,7 +196,7 @@ def probes(near: float, far: float, fov: float, light: str | ArrayLike, *, cells
     # half size per unit depth: fill/2 of a cell's width (2 tan θ z / k) over the ray length
     half = fl / 2 * 2 * tan / k / np.linalg.norm(ray, axis=-1)
     dz = half * (np.abs(e1[:, 2]) + np.abs(e2[:, 2]))  # corner depth offset per unit depth
-    edges = np.array([n, f]) if splits is None else check.as_float_array(splits, "splits").ravel()
+    edges = np.array([n, f]) if splits is None else check.finite(splits, "splits").ravel()
     if edges.size < 2 or np.any(np.diff(edges) <= 0) or not (np.isclose(edges[0], n) and np.isclose(edges[-1], f)):
         raise ValueError(f"splits must increase from near ({n:g}) to far ({f:g})")
     q = np.random.default_rng(_seed(seed)).permutation(k * k) / (k * k - 1)
