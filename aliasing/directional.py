@@ -70,15 +70,24 @@ class LightFit:
     eye_depth: Array
 
 
+# Largest |coordinate| of a vertex: projections and their differences then stay below 1.8e308.
+VERTEX_MAX = 1e150
+
+
+@check.public
 def fit(vertices: ArrayLike, light: ArrayLike) -> LightFit:
     """Project frusta ``(K, V, 3)`` (or ``(V, 3)``) for lights ``(N, 3)`` (or ``(3,)``).
 
     Returns coordinates of shape ``(N, K, V)``; the x origin is the eye's x.
     """
-    verts = check.as_float_array(vertices, "vertices")
+    verts = check.finite(vertices, "vertices")
+    if verts.ndim not in (2, 3) or verts.shape[-1] != 3 or verts.shape[-2] == 0:
+        raise ValueError(f"vertices must have shape (V, 3) or (K, V, 3) with V >= 1, got {verts.shape}")
+    if (np.abs(verts) > VERTEX_MAX).any():
+        raise ValueError(f"vertices must have coordinates in [-{VERTEX_MAX:g}, {VERTEX_MAX:g}] (their projections must stay finite)")
     if verts.ndim == 2:
         verts = verts[None]
-    basis = light_space(np.atleast_2d(check.as_float_array(light, "light")))  # (N, 3, 3)
+    basis = light_space(np.atleast_2d(_lights(light)))  # (N, 3, 3)
     x = np.einsum("nj,kvj->nkv", basis[:, 0], verts)
     y = np.einsum("nj,kvj->nkv", basis[:, 2], verts)
     y = y - y.min(axis=-1, keepdims=True)
@@ -115,6 +124,7 @@ class WarpingFrustum:
         return s, t
 
 
+@check.public
 def warping_frustum(lf: LightFit, n_prime: ArrayLike = np.inf) -> WarpingFrustum:
     """Fit P (or, for n′ = ∞, the tight orthographic map) to the projected vertices.
 
@@ -126,7 +136,8 @@ def warping_frustum(lf: LightFit, n_prime: ArrayLike = np.inf) -> WarpingFrustum
     >>> [float(c.min()) for c in p.coordinates(lf.x, lf.y)], [float(c.max()) for c in p.coordinates(lf.x, lf.y)]
     ([0.0, 0.0], [1.0, 1.0])
     """
-    npr = np.broadcast_to(check.as_float_array(n_prime, "n_prime"), lf.depth.shape)
+    check.instance(lf, "lf", LightFit)
+    npr = _n_prime(n_prime, lf)
     with np.errstate(invalid="ignore"):
         zp_np = np.where(np.isinf(npr)[..., None], 1.0, 1.0 + lf.y / npr[..., None])
     near_x = lf.x / zp_np
@@ -140,6 +151,7 @@ def _ratio_to_far(n_prime: Array, y: Array, depth: Array) -> Array:
     return np.where(np.isinf(n_prime), 1.0, r)
 
 
+@check.public
 def vertex_errors(lf: LightFit, fov: ArrayLike, n_prime: ArrayLike = np.inf, parameterization: str = "perspective") -> tuple[Array, Array]:
     """m_x, m_z [dimensionless] at every vertex, unit resolutions; shape ``(N, K, V)``.
 
@@ -155,10 +167,15 @@ def vertex_errors(lf: LightFit, fov: ArrayLike, n_prime: ArrayLike = np.inf, par
     parameterization : {"uniform", "perspective", "logperspective"}
     """
     kind = check.choice(parameterization, "parameterization", PARAMETERIZATIONS)
+    check.instance(lf, "lf", LightFit)
+    if (lf.eye_depth <= 0).any():
+        raise ValueError("lf's vertices must lie in front of the eye (eye depth z > 0)")
     w_i = 2 * _tan_theta(fov) * lf.eye_depth  # eq. (2), corrected
-    npr = np.broadcast_to(check.as_float_array(n_prime, "n_prime"), lf.depth.shape)[..., None]
-    if (npr <= 0).any():
-        raise ValueError("n_prime must be in (0, inf]")
+    npr = _n_prime(n_prime, lf)
+    with np.errstate(over="ignore"):
+        if not np.isfinite(lf.depth / npr).all():  # z′/n′ would overflow, and inf·0 give NaN
+            raise ValueError(f"n_prime is too small for the maps' depth W_ly: W_ly/n_prime exceeds 1.8e308, got n_prime={check._show(npr)}")
+    npr = npr[..., None]
     if kind == "uniform":
         npr = np.full_like(npr, np.inf)
     y, depth = lf.y, lf.depth[..., None]
@@ -175,6 +192,7 @@ def vertex_errors(lf: LightFit, fov: ArrayLike, n_prime: ArrayLike = np.inf, par
     return w_lx / w_i, w_lz / w_i
 
 
+@check.public
 def max_errors(vertices: ArrayLike, light: ArrayLike, fov: ArrayLike, n_prime: ArrayLike = np.inf, parameterization: str = "perspective") -> tuple[Array, Array]:
     """M_x, M_z: the maxima of m_x, m_z over the vertices, shape ``(N, K)``.
 
@@ -186,9 +204,39 @@ def max_errors(vertices: ArrayLike, light: ArrayLike, fov: ArrayLike, n_prime: A
 
 def folded_gamma(light: ArrayLike) -> Array:
     """γ [deg] between view direction and light, folded to [0°, 90°] (l and −l alike)."""
-    lv = np.atleast_2d(check.as_float_array(light, "light"))
-    cos = np.abs(lv @ VIEW) / np.linalg.norm(lv, axis=-1)
+    lv = np.atleast_2d(_lights(light))
+    with np.errstate(over="ignore", under="ignore"):
+        norm = np.linalg.norm(lv, axis=-1)
+    odd = ~np.isfinite(norm) | (norm < 1e-150)
+    if odd.any():  # |l| overflows or underflows: scale those vectors by their largest component
+        lv = np.where(odd[:, None], lv / np.abs(lv).max(axis=-1, keepdims=True), lv)
+        norm = np.linalg.norm(lv, axis=-1)
+    cos = np.abs(lv @ VIEW) / norm
     return np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
+
+
+def _lights(light: ArrayLike) -> Array:
+    """Light vectors ``(..., 3)``: finite, non-zero (one pass, at the public entry)."""
+    lv = check.finite(light, "light")
+    if lv.shape[-1:] != (3,):
+        raise ValueError(f"light must have shape (3,) or (N, 3), got {lv.shape}")
+    if lv.ndim > 2:
+        raise ValueError(f"light must have shape (3,) or (N, 3), got {lv.shape}")
+    if (np.abs(lv).max(axis=-1) == 0).any():
+        raise ValueError("light must be a non-zero vector")
+    return lv
+
+
+def _n_prime(n_prime: ArrayLike, lf: LightFit) -> Array:
+    """n′ broadcast to the maps ``(N, K)``, in (0, inf]."""
+    npr = check.as_float_array(n_prime, "n_prime")
+    try:
+        npr = np.broadcast_to(npr, lf.depth.shape)
+    except ValueError:
+        raise ValueError(f"n_prime of shape {npr.shape} does not broadcast to the maps' shape {lf.depth.shape} (N, K)") from None
+    if (npr <= 0).any():
+        raise ValueError(f"n_prime must be in (0, inf] (inf is a uniform map), got {check._show(npr)}")
+    return npr
 
 
 def _tan_theta(fov: ArrayLike | View) -> Array | float:

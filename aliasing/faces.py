@@ -63,6 +63,9 @@ SIDES = ("bottom", "top", "left", "right")
 FACES = ("near", *SIDES)  # the far face is never chosen (eq. 54, see the module docstring)
 TAU0, TAU1 = 120.0, 150.0  # [deg] our defaults; §6.5 only requires τ0 > 90°
 _EDGE_ON = 1e-12
+K_MAX = 1024  # most depth ranges per face (the bound of schemes.parse's k); bounds the arrays
+# Largest far [world units]: eq. (97)'s (y + a)²(y1 − y0) is a cube of depths and overflows above ~5e102.
+FAR_MAX = 1e100
 
 
 @dataclass(frozen=True)
@@ -89,7 +92,7 @@ def side_frames(fov: float) -> tuple[Array, Array, Array, Array]:
     line and z along its normal.  Returns ``normal (4, 3)``, ``centre (4, 3)``,
     ``across (4, 3)`` and the side edges ``(4, 2, 3)`` scaled to unit eye depth.
     """
-    th = half_angle(fov)
+    th = half_angle(check.scalar(fov, "fov"))
     c, s, t = np.cos(th), np.sin(th), np.tan(th)
     out = np.array([[0, -1, 0], [0, 1, 0], [-1, 0, 0], [1, 0, 0]], float)  # bottom, top, left, right
     normal = out * c - VIEW * s
@@ -113,6 +116,7 @@ def chosen_faces(light: ArrayLike, fov: float) -> Array:
     return side * (lv @ normals.T) < -_EDGE_ON
 
 
+@check.public
 def partition_of(points: ArrayLike, near: float, far: float, fov: float, light: ArrayLike) -> NDArray[np.int_]:
     """The face partition (0 near, 1 bottom, 2 top, 3 left, 4 right) of eye-space points.
 
@@ -126,8 +130,8 @@ def partition_of(points: ArrayLike, near: float, far: float, fov: float, light: 
     >>> int(partition_of([0.0, 0.0, 500.0], 1.0, 1000.0, 60.0, [0.0, 1.0, 0.0]))  # overhead → bottom
     1
     """
-    n, f = (float(v) for v in check.frustum(near, far))
-    pts = check.as_float_array(points, "points")
+    n, f = (float(v) for v in check.frustum(check.scalar(near, "near"), check.scalar(far, "far")))
+    pts = check.finite(points, "points")
     if pts.shape[-1:] != (3,):
         raise ValueError(f"points must have shape (..., 3), got {pts.shape}")
     lv = _unit(light)
@@ -197,9 +201,10 @@ def _arguments(variant: str, parameterization: str, near: float | View, far: flo
     view, light = split_view(near, far, fov, light, (None, None, None, None))
     if view.shape != ():
         raise ValueError(f"near, far and fov must be scalars here, got shape {view.shape}")
-    if isinstance(k, bool) or int(k) != k or k < 1:
-        raise ValueError(f"k must be a whole number >= 1 (depth ranges per face), got {k!r}")
-    if not 90.0 < float(tau0) <= float(tau1) <= 180.0:
+    if view.far > FAR_MAX:
+        raise ValueError(f"far must be at most {FAR_MAX:g} [world units] here (the face closed forms cube depths), got {view.far:g}")
+    k = check.whole(k, "k", 1, K_MAX, " (depth ranges per face)")
+    if not 90.0 < check.scalar(tau0, "tau0") <= check.scalar(tau1, "tau1") <= 180.0:
         raise ValueError(f"tau0 and tau1 must satisfy 90 < tau0 <= tau1 <= 180 [deg], got {tau0!r}, {tau1!r}")
     return var, kind, view, _unit(light), int(k)
 
@@ -336,13 +341,12 @@ def face_errors(variant: str, parameterization: str, near: float | View, far: fl
 
 
 def _unit(light: ArrayLike) -> Array:
-    lv = np.atleast_2d(check.as_float_array(light, "light"))
-    if lv.shape[-1] != 3 or lv.ndim != 2:
-        raise ValueError(f"light must be vectors of shape (N, 3) or (3,), got shape {lv.shape}")
-    norm = np.linalg.norm(lv, axis=-1, keepdims=True)
-    if np.any(norm == 0):
+    lv = np.atleast_2d(check.finite(light, "light"))  # an infinite vector has no direction
+    if lv.shape[-1] != 3 or lv.ndim != 2 or lv.shape[0] == 0:
+        raise ValueError(f"light must be vectors of shape (N, 3) with N >= 1 or (3,), got shape {lv.shape}")
+    if np.any(np.abs(lv).max(axis=-1) == 0):
         raise ValueError("light directions must be non-zero vectors")
-    return lv / norm
+    return check.unit_rows(lv)  # plain v/|v|, except for lengths that over- or underflow
 
 
 def _normalize(v: Array) -> Array:

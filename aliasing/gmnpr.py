@@ -279,7 +279,8 @@ def generalized_error(lam: ArrayLike, near: ArrayLike, far: ArrayLike, fov: Arra
     array([18.186,  6.012, 18.186])
     """
     zz, n, f = _depths(z, near, far)
-    r = 1.0 / check.positive(lam, "lam", allow_inf=True)  # r = 1/λ, 0 for a uniform map
+    lam_ = check.positive(lam, "lam", allow_inf=True)
+    r = 1.0 / lam_  # r = 1/λ, 0 for a uniform map
     g = _geometry(n, f, fov, gamma)
     # q = z sinθ − z_L,min ≥ 0, the view-ray point's light-space distance from P's near plane,
     # written without cancellation in each regime
@@ -289,7 +290,9 @@ def generalized_error(lam: ArrayLike, near: ArrayLike, far: ArrayLike, fov: Arra
         den = (1 + r) * g.tan_p * g.sin_t * zz
         err = (g.depth + q * r) ** 2 / ((1 + r) * g.tan_p * g.depth * g.sin_t * zz)  # eq. (2)
         # where D or its square overflow (far near 1e308) that is inf/inf: the same as (D + qr)(1 + qr/D)/den
-        return np.where(np.isnan(err), (g.depth + q * r) * (1 + q * r / g.depth) / den, err)
+        err = np.where(np.isnan(err), (g.depth + q * r) * (1 + q * r / g.depth) / den, err)
+        # where r = 1/λ itself overflows those products (λ near 1e-308): eq. (2) undivided
+        return np.where(np.isnan(err), (lam_ * g.depth + q) ** 2 / (lam_ * (lam_ + 1) * g.tan_p * g.depth * g.sin_t * zz), err)
 
 
 def _n_prime(lam: Array, near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLike, depth: ArrayLike | None) -> Array:

@@ -69,8 +69,8 @@ class DepthMap:
 
 def check_resolution(resolution: int, name: str = "resolution") -> int:
     """Validate a resolution: a whole number in [1, MAX_RESOLUTION]."""
-    if isinstance(resolution, bool) or not isinstance(resolution, (int, np.integer)) and not (isinstance(resolution, float) and resolution.is_integer()):
-        raise ValueError(f"{name} must be a whole number in [1, {MAX_RESOLUTION}], got {resolution!r}")
+    if isinstance(resolution, (bool, np.bool_)) or not isinstance(resolution, (int, np.integer)) and not (isinstance(resolution, (float, np.floating)) and np.isfinite(resolution) and float(resolution).is_integer()):
+        raise ValueError(f"{name} must be a whole number in [1, {MAX_RESOLUTION}], got {check._repr(resolution)}")
     r = int(resolution)
     if r < 1 or r > MAX_RESOLUTION:
         raise ValueError(f"{name} must be in [1, {MAX_RESOLUTION}] (larger maps do not fit in memory), got {r}")
@@ -79,13 +79,17 @@ def check_resolution(resolution: int, name: str = "resolution") -> int:
 
 def check_chunk(chunk: int) -> int:
     """Validate a chunk size: a whole number >= 1."""
-    if isinstance(chunk, bool) or int(chunk) < 1:
-        raise ValueError(f"chunk must be a whole number >= 1, got {chunk!r}")
-    return int(chunk)
+    return check.whole(chunk, "chunk", 1)
 
 
 def _triangles(triangles: ArrayLike, name: str = "triangles") -> Array:
-    tri = np.asarray(triangles, dtype=float) if not isinstance(triangles, np.ndarray) else triangles.astype(float, copy=False)
+    try:
+        raw = np.asarray(triangles)
+    except (TypeError, ValueError):
+        raw = None
+    if raw is None or raw.dtype.kind not in "biuf":  # strings, complex, None, ragged, 10**400: refused by name
+        raw = check.as_float_array(triangles, name)
+    tri = raw.astype(float, copy=False)  # NaN or inf corners stay: degenerate triangles, skipped and counted
     if tri.ndim != 3 or tri.shape[1:] != (3, 3):
         raise ValueError(f"{name} must have shape (T, 3, 3) (T triangles, 3 corners, 3 coordinates), got {tri.shape}")
     if tri.shape[0] == 0:

@@ -40,13 +40,18 @@ class EyeBuffer:
     fov: float
 
 
+@check.public
 def project(points: ArrayLike, fov: float) -> tuple[Array, Array, Array]:
     """Image coordinates (u, v) ∈ [0, 1]² and depth z of eye-space points (square image).
 
     u = ½ + x/(2 z tanθ), v = ½ + y/(2 z tanθ), θ = fov/2.
     """
-    p = np.asarray(points, float)
-    t = np.tan(float(half_angle(fov)))
+    p = check.finite(points, "points")
+    if p.shape[-1:] != (3,):
+        raise ValueError(f"points must have shape (..., 3), got {p.shape}")
+    if (p[..., 2] <= 0).any():
+        raise ValueError("points must lie in front of the eye (depth z > 0)")
+    t = np.tan(float(half_angle(check.scalar(fov, "fov"))))
     z = p[..., 2]
     return 0.5 + p[..., 0] / (2 * z * t), 0.5 + p[..., 1] / (2 * z * t), z
 
@@ -98,10 +103,10 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     """
     tri = _triangles(triangles)
     res = check_resolution(resolution)
-    fv = float(check.fov(fov))
-    zc = float(check.positive(near, "near"))
+    fv = float(check.fov(check.scalar(fov, "fov")))
+    zc = float(check.positive(check.scalar(near, "near"), "near"))
     chunk = check_chunk(chunk)
-    if backend not in BACKENDS:
+    if not isinstance(backend, str) or backend not in BACKENDS:
         raise ValueError(f"backend must be one of {sorted(BACKENDS)}, got {backend!r}")
     draw, outputs = BACKENDS[backend]()
     clipped, src = clip_near(tri, zc)

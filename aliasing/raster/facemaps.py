@@ -58,13 +58,13 @@ def frame_map(light: ArrayLike, axis: ArrayLike, y0: float, y1: float, a: float,
     """
     kind = check.choice(parameterization, "parameterization", faces.FACE_PARAMETERIZATIONS)
     lv = _unit_vector(light, "light")
-    ax = check.as_float_array(axis, "axis")
-    if ax.shape != (3,) or not np.linalg.norm(ax) > 0 or abs(ax @ lv) > 1e-9 * np.linalg.norm(ax):
-        raise ValueError(f"axis must be a non-zero vector (3,) perpendicular to light, got {ax!r}")
-    ax = ax / np.linalg.norm(ax)
-    lo, hi, lo_s, hi_s = (float(check.as_float_array(v, n)) for v, n in ((y0, "y0"), (y1, "y1"), (s_lo, "s_lo"), (s_hi, "s_hi")))
-    off = float(check.as_float_array(a, "a"))
-    if not np.isfinite(lo) or not hi > lo or not np.isfinite(hi):
+    ax = check.finite(axis, "axis")
+    if ax.shape != (3,) or not np.abs(ax).max() > 0 or abs(check.unit_rows(ax) @ lv) > 1e-9:
+        raise ValueError(f"axis must be a non-zero vector (3,) perpendicular to light, got {check._repr(ax)}")
+    ax = check.unit_rows(ax)  # plain ax/|ax| unless |ax| over- or underflows
+    lo, hi, lo_s, hi_s = (check.scalar(v, n) for v, n in ((y0, "y0"), (y1, "y1"), (s_lo, "s_lo"), (s_hi, "s_hi")))
+    off = check.scalar(a, "a")
+    if not np.isfinite(lo) or not hi > lo or not np.isfinite(hi) or not np.isfinite(hi - lo):
         raise ValueError(f"y0 and y1 must be finite with y1 > y0 [world units], got {lo!r}, {hi!r}")
     if not lo_s < hi_s or not np.isfinite(hi_s - lo_s):
         raise ValueError(f"s_lo and s_hi must be finite with s_lo < s_hi, got {lo_s!r}, {hi_s!r}")
@@ -116,8 +116,8 @@ def fixed_face_map(near: float, far: float, fov: float, light: ArrayLike, face: 
 
     (s runs along x̂_f = n̂ × ŷ_f, which is −x on the bottom face.)
     """
-    n, f = (float(v) for v in check.frustum(near, far))
-    fv = float(check.fov(fov))
+    n, f = (float(v) for v in check.frustum(check.scalar(near, "near"), check.scalar(far, "far")))
+    fv = float(check.fov(check.scalar(fov, "fov")))
     j = faces.SIDES.index(check.choice(face, "face", faces.SIDES))
     kind = check.choice(parameterization, "parameterization", faces.FACE_PARAMETERIZATIONS)
     lv = _unit_vector(light, "light")
@@ -136,7 +136,10 @@ def fixed_face_map(near: float, far: float, fov: float, light: ArrayLike, face: 
     else:
         a = np.sqrt(y0 * y1) if kind == "perspective" else 0.0  # eq. (76): LiSPSM's a; App. A: a = 0 for LogP
         npr = cy * (y0 + a)  # the centre of projection at y = −a, in light-plane units
-        x_hi = npr * cx * half / (cy * (y1 + a))  # n′·max X/(Y + a cos φ_ly) over the face
+        with np.errstate(over="ignore"):
+            x_hi = npr * cx * half / (cy * (y1 + a))  # n′·max X/(Y + a cos φ_ly) over the face
+    if not np.isfinite(x_hi):
+        raise ValueError(f"near and far give a face map whose extent exceeds 1.8e308 [world units], got near={n:g}, far={f:g}")
     wf = directional.WarpingFrustum(n_prime=np.array([[npr]]), depth=np.array([[cy * (y1 - y0)]]), x_lo=np.array([[-x_hi]]), x_hi=np.array([[x_hi]]))
     return LightMap(np.stack([x_l, lv, z_l]), cy * y0, wf, kind, float(npr))
 
@@ -166,8 +169,8 @@ def near_face_map(near: float, fov: float, light: ArrayLike) -> LightMap:
     >>> np.round(s, 12).tolist(), np.round(t, 12).tolist()
     ([0.0, 1.0, 0.5], [0.0, 1.0, 0.5])
     """
-    n = float(check.positive(near, "near"))
-    h = n * np.tan(float(half_angle(fov)))
+    n = float(check.positive(check.scalar(near, "near"), "near"))
+    h = n * np.tan(float(half_angle(check.scalar(fov, "fov"))))
     lv = _unit_vector(light, "light")
     if abs(lv[2]) < 1e-9:
         raise ValueError(f"light must not be parallel to the near plane (the near face is then edge-on, no map), got {lv!r}")
@@ -256,6 +259,7 @@ class MapSet:
         return lookup[slot]
 
 
+@check.public
 def map_set(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", **options: ArrayLike) -> MapSet:
     """The maps of any scheme for one light: single, z-partitioned or face-partitioned.
 
@@ -285,9 +289,10 @@ def map_set(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     >>> ms.assign([[0.0, -20.0, 50.0], [-25.0, 20.0, 50.0], [0.0, 0.0, 1.0]]).tolist()   # bottom, left, near
     [1, 2, 0]
     """
+    check.instance(scheme, "scheme", (str, schemes.Scheme))
     sch = schemes.parse(scheme) if isinstance(scheme, str) else scheme
-    n, f = (float(v) for v in check.frustum(near, far))
-    fv = float(check.fov(fov))
+    n, f = (float(v) for v in check.frustum(check.scalar(near, "near"), check.scalar(far, "far")))
+    fv = float(check.fov(check.scalar(fov, "fov")))
     lv = geometry.lights(light)
     if lv.shape[0] != 1:
         raise ValueError(f"light must be a single direction, got {lv.shape[0]}")

@@ -154,6 +154,7 @@ class LightMap:
         return self.inverse(c[None, :], c[:, None])
 
 
+@check.public
 def light_map(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str | schemes.Scheme = "Standard", **options: ArrayLike) -> LightMap:
     """Fit the map of a single-map ``scheme`` (Standard, P, LogP, any rule) for one light.
 
@@ -177,6 +178,7 @@ def light_map(near: float, far: float, fov: float, light: str | ArrayLike, schem
     >>> float(s.min()), float(t.min()), round(float(s.max()), 12), round(float(t.max()), 12)
     (0.0, 0.0, 1.0, 1.0)
     """
+    check.instance(scheme, "scheme", (str, schemes.Scheme))
     sch = schemes.parse(scheme) if isinstance(scheme, str) else scheme
     if sch.k != 1:
         raise ValueError(f"scheme must have a single map (no ZP<k> with k > 1; see light_maps), got {sch.name!r}")
@@ -186,6 +188,8 @@ def light_map(near: float, far: float, fov: float, light: str | ArrayLike, schem
     res = schemes.evaluate(sch, near, far, fov, lv, **options)
     npr = float(res.n_prime[0, 0])
     verts = geometry.frustum_vertices(near, far, fov)
+    if np.abs(verts).max() > directional.VERTEX_MAX:  # the light-space fit would overflow
+        raise ValueError(f"far must keep the view frustum within |coordinate| <= {directional.VERTEX_MAX:g} [world units], got far={check._repr(far)}")
     basis = geometry.light_space(lv)[0]
     lf = directional.fit(verts, lv)
     wf = directional.warping_frustum(lf, npr if sch.parameterization != "uniform" else np.inf)
@@ -194,6 +198,7 @@ def light_map(near: float, far: float, fov: float, light: str | ArrayLike, schem
     return LightMap(basis, y_off, wf, param, npr if param != "uniform" else float("inf"))
 
 
+@check.public
 def light_maps(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", **options: ArrayLike) -> tuple[list[LightMap], Array]:
     """The maps of a scheme with k z-partitions (``ZP<k>+…``; k = 1 otherwise) and the split depths.
 
@@ -222,7 +227,7 @@ def light_maps(near: float, far: float, fov: float, light: str | ArrayLike, sche
 
 def _unit_vector(value: ArrayLike, name: str) -> Array:
     v = check.as_float_array(value, name)
-    if v.shape != (3,) or not np.isfinite(v).all() or not np.linalg.norm(v) > 0:
-        raise ValueError(f"{name} must be a finite non-zero vector of shape (3,), got {value!r}")
-    return v / np.linalg.norm(v)
+    if v.shape != (3,) or not np.isfinite(v).all() or not np.abs(v).max() > 0:
+        raise ValueError(f"{name} must be a finite non-zero vector of shape (3,), got {check._repr(value)}")
+    return check.unit_rows(v)  # plain v/|v| unless |v| over- or underflows
 

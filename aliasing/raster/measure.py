@@ -114,6 +114,7 @@ def _differences(a: Array, same: NDArray[np.bool_], axis: int, spacing: float) -
     return d
 
 
+@check.public
 def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, resolution: int = 512, cells: int = 32, scene: Scene | None = None, map_resolution: int = 512, **options: ArrayLike) -> Measurement:
     """Measure the aliasing error of a scheme's maps on probes and compare with their bounds.
 
@@ -152,6 +153,8 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     """
     res = check_resolution(resolution)
     rm = check_resolution(map_resolution, "map_resolution")
+    if scene is not None:
+        check.instance(scene, "scene", Scene)
     ms = map_set(near, far, fov, light, scheme, **options)
     maps, edges = ms.maps, ms.edges
     analytic = schemes.evaluate(scheme, near, far, fov, geometry.lights(light), **options)

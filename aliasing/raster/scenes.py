@@ -61,10 +61,16 @@ class Scene:
         return Scene(np.concatenate([self.triangles, other.triangles]), np.concatenate([self.group, g]), np.concatenate([self.normals, other.normals]))
 
 
+# Largest counts of the generated scenes: they bound the triangle arrays (~2e6 triangles).
+MAX_COUNT = {"boxes": 100_000, "ground_cells": 1024, "cells": 1024}
+
+
 def _count(value: int, name: str, lo: int) -> int:
-    if isinstance(value, bool) or int(value) != value or value < lo:
-        raise ValueError(f"{name} must be a whole number >= {lo}, got {value!r}")
-    return int(value)
+    return check.whole(value, name, lo, MAX_COUNT[name], " (scene size; bounds memory)")
+
+
+def _seed(seed: int) -> int:
+    return check.whole(seed, "seed", 0, what=" (random seed)")
 
 
 def _box(centre: Array, half: Array) -> Array:
@@ -105,12 +111,12 @@ def ground_and_boxes(near: float = 1.0, far: float = 1000.0, fov: float = 60.0, 
     >>> ground_and_boxes(1.0, 50.0, boxes=3, ground_cells=2).triangles.shape
     (44, 3, 3)
     """
-    n, f = (float(a) for a in check.frustum(near, far))
-    tan = np.tan(float(half_angle(fov)))
-    h = float(check.positive(height, "height"))
+    n, f = (float(a) for a in check.frustum(check.scalar(near, "near"), check.scalar(far, "far")))
+    tan = np.tan(float(half_angle(check.scalar(fov, "fov"))))
+    h = float(check.positive(check.scalar(height, "height"), "height"))
     nb = _count(boxes, "boxes", 0)
     gc = _count(ground_cells, "ground_cells", 1)
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(_seed(seed))
     z = np.geomspace(0.5 * n, 1.05 * f, gc + 1)
     xs = np.linspace(-1.0, 1.0, gc + 1)
     zz, xx = np.meshgrid(z, xs, indexing="ij")
@@ -164,10 +170,10 @@ def probes(near: float, far: float, fov: float, light: str | ArrayLike, *, cells
     >>> bool(np.all((sc.triangles[..., 2] >= 1.0) & (sc.triangles[..., 2] <= 10.0)))
     True
     """
-    n, f = (float(a) for a in check.frustum(near, far))
-    tan = np.tan(float(half_angle(fov)))
+    n, f = (float(a) for a in check.frustum(check.scalar(near, "near"), check.scalar(far, "far")))
+    tan = np.tan(float(half_angle(check.scalar(fov, "fov"))))
     k = _count(cells, "cells", 2)
-    fl = float(check.as_float_array(fill, "fill"))
+    fl = check.scalar(fill, "fill")
     if not 0 < fl <= 1:
         raise ValueError(f"fill must be in (0, 1], got {fl:g}")
     lv = geometry.lights(light)
@@ -190,10 +196,10 @@ def probes(near: float, far: float, fov: float, light: str | ArrayLike, *, cells
     # half size per unit depth: fill/2 of a cell's width (2 tan θ z / k) over the ray length
     half = fl / 2 * 2 * tan / k / np.linalg.norm(ray, axis=-1)
     dz = half * (np.abs(e1[:, 2]) + np.abs(e2[:, 2]))  # corner depth offset per unit depth
-    edges = np.array([n, f]) if splits is None else check.as_float_array(splits, "splits").ravel()
+    edges = np.array([n, f]) if splits is None else check.finite(splits, "splits").ravel()
     if edges.size < 2 or np.any(np.diff(edges) <= 0) or not (np.isclose(edges[0], n) and np.isclose(edges[-1], f)):
         raise ValueError(f"splits must increase from near ({n:g}) to far ({f:g})")
-    q = np.random.default_rng(seed).permutation(k * k) / (k * k - 1)
+    q = np.random.default_rng(_seed(seed)).permutation(k * k) / (k * k - 1)
     depth = n * (f / n) ** q
     part = np.clip(np.searchsorted(edges, depth, side="right") - 1, 0, edges.size - 2)
     # the cells nearest each image corner take the partitions' ends

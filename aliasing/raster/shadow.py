@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .. import _validation as check
 from .core import CHUNK, DepthMap, _triangles, check_resolution, clip_near, rasterize
 from .lightmap import LightMap, light_map
 
@@ -36,6 +37,7 @@ def log_row_centres(lm: LightMap, resolution: int) -> Array:
     >>> bool((np.diff(c) > 0).all() and 0 < c[0] < c[-1] < 1)
     True
     """
+    check.instance(lm, "lm", LightMap)
     res = check_resolution(resolution)
     return lm.perspective_t((np.arange(res) + 0.5) / res)
 
@@ -59,6 +61,7 @@ def shadow_map(triangles: ArrayLike, lm: LightMap, resolution: int, *, chunk: in
     1.0
     """
     tri = _triangles(triangles)
+    check.instance(lm, "lm", LightMap)
     x, y, h = lm.light_plane(tri)
     src = None
     if np.isfinite(lm.n_prime):
