@@ -171,6 +171,7 @@ CHUNK = 4096
 """Directions per block in :func:`evaluate_many`: keeps each ``(N, K)`` temporary in cache."""
 
 
+@check.public  # overflow at extreme frusta gives inf (not a warning); broadcast errors name the parameters
 def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = None, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, *, edges: ArrayLike | None = None, chunk: int = CHUNK, **options: ArrayLike) -> list[Result]:
     """:func:`evaluate` for several schemes on the same directions: one Result per name.
 
@@ -190,7 +191,7 @@ def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = Non
     check.instance(names, "names", (list, tuple))
     parsed = [parse(s) if isinstance(s, str) else s for s in names]
     for sch in parsed:
-        check.instance(sch, "names entries", Scheme)  # a name or a parsed Scheme, nothing else (issue 19)
+        check.instance(sch, "names entry (a scheme)", Scheme)  # a name or a parsed Scheme, nothing else (issue 19)
     if not parsed:
         raise ValueError("names must list at least one scheme")
     if isinstance(chunk, bool) or not isinstance(chunk, (int, np.integer)) or chunk < 1:
