@@ -127,7 +127,7 @@ def redraw(artists: dict, d: dict[str, Any]) -> bool:
             rect.set_height(height)
     b = artists["b"]
     heights = np.concatenate([d["M_x"][used], d["M_z"][used]])
-    b.set_ylim(heights.min() / 1.5, heights.max() * 2.5)  # log axis: room for the legend and the statistics
+    b.set_ylim(heights.min() / 1.5, heights.max() * 6.0)  # log axis: room for the legend and the statistics
     npr = ", ".join("—" if not np.isfinite(x) else f"{x:.3g}" for x in d["n_prime"][used][:4])
     eta = ", ".join("—" if not np.isfinite(x) else f"{x:.2f}" for x in d["eta"][used][:4])
     warp = f"n′: {npr}\nη: {eta}\n" if np.isfinite(d["n_prime"][used]).any() else ""
