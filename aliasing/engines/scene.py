@@ -39,8 +39,9 @@ from numpy.typing import ArrayLike
 from .. import _validation as check
 from .. import geometry, raster
 from ..raster.measure import pixel_errors
-from ..raster.rasterize import check_resolution, eye_pass
-from ..raster.scenerender import MIN_COS_LIGHT, SceneSetup
+from ..raster.rasterize import check_resolution
+from ..raster.scene_validate import measurable_pixels
+from ..raster.scenerender import SceneSetup
 from . import sdsm, stable, vsm
 from ..view import half_angle
 
@@ -49,24 +50,9 @@ TOLERANCE = 1e-3
 
 
 def _pixels(st: SceneSetup, res: int, assign) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Eye pass; (position, map index per pixel, measurable mask) with ``assign(pos, hit)`` → map index."""
-    cam = st.camera
-    eb = eye_pass(st.scene.triangles, cam.fov, res)
-    hit = eb.triangle >= 0
-    if not hit.any():
-        raise ValueError("no triangles in front of the camera: the image is empty")
-    face = np.where(hit, st.faces[np.maximum(eb.triangle, 0)], -1)
-    pos = np.where(hit[..., None], eb.position, 0.0)
-    pos[~hit] = [0.0, 0.0, 1.0]
-    part = np.where(hit, assign(pos, hit), -1)
-    depth = pos[..., 2]
-    ok = (face >= 0) & (part >= 0) & (depth >= cam.near) & (depth <= cam.far) & (np.nan_to_num(eb.normal) @ st.light > MIN_COS_LIGHT)
-    for a in (face, part):
-        for axis in (0, 1):
-            ok &= (np.roll(a, 1, axis) == a) & (np.roll(a, -1, axis) == a)
-    ok[[0, -1], :] = False
-    ok[:, [0, -1]] = False
-    return pos, part, ok
+    """Measurable pixels of the scene (:func:`aliasing.raster.scene_validate.measurable_pixels`), also not before near."""
+    eb, pos, part, ok = measurable_pixels(st, res, assign)
+    return pos, part, ok & (part >= 0) & (pos[..., 2] >= st.camera.near)
 
 
 def _summary(rows: list[dict], extra: dict) -> dict:

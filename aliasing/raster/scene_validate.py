@@ -29,16 +29,44 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from collections.abc import Callable
 
 import numpy as np
 
 from .cascades import cascade_set
 from .measure import pixel_errors, projection_factors
-from .rasterize import check_resolution, eye_pass
+from .rasterize import EyeBuffer, check_resolution, eye_pass
 from .scenerender import MIN_COS_LIGHT, SceneSetup, _finite, params_of, setup
 
 #: Relative tolerance of the finite differences (as :func:`aliasing.raster.measure.measure` states it).
 TOLERANCE = 1e-3
+
+
+def measurable_pixels(st: SceneSetup, res: int, assign: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> tuple[EyeBuffer, np.ndarray, np.ndarray, np.ndarray]:
+    """The eye pass of a scene and the pixels whose error can be measured there.
+
+    ``assign(pos, hit)`` gives each pixel's map index.  Returns the eye buffer, the eye-space
+    positions ``(res, res, 3)`` (a placeholder ahead of the eye where nothing is hit), the map
+    index per pixel (−1 where nothing is hit) and the mask of measurable pixels: lit
+    (n·l > ``MIN_COS_LIGHT``), not beyond far, and with the same face and map on all four
+    neighbours (the finite differences stay on one plane and one map), border excluded.
+    """
+    cam = st.camera
+    eb = eye_pass(st.scene.triangles, cam.fov, res)
+    hit = eb.triangle >= 0
+    if not hit.any():
+        raise ValueError("no triangles in front of the camera: the image is empty")
+    face = np.where(hit, st.faces[np.maximum(eb.triangle, 0)], -1)
+    pos = np.where(hit[..., None], eb.position, 0.0)
+    pos[~hit] = [0.0, 0.0, 1.0]
+    part = np.where(hit, assign(pos, hit), -1)
+    ok = (face >= 0) & (pos[..., 2] <= cam.far) & (np.nan_to_num(eb.normal) @ st.light > MIN_COS_LIGHT)
+    for a in (face, part):
+        for axis in (0, 1):
+            ok &= (np.roll(a, 1, axis) == a) & (np.roll(a, -1, axis) == a)
+    ok[[0, -1], :] = False
+    ok[:, [0, -1]] = False
+    return eb, pos, part, ok
 
 
 def validate_scene(st: SceneSetup, scheme: str, *, res: int = 384, splits: str | None = None, k: int | None = None, **params: float) -> dict:
@@ -68,20 +96,7 @@ def validate_scene(st: SceneSetup, scheme: str, *, res: int = 384, splits: str |
     r = check_resolution(res, "res")
     cam = st.camera
     cs = cascade_set(cam.near, cam.far, cam.fov, st.light, scheme, splits=splits, k=k, **params)
-    eb = eye_pass(st.scene.triangles, cam.fov, r)
-    hit = eb.triangle >= 0
-    if not hit.any():
-        raise ValueError("no triangles in front of the camera: the image is empty")
-    face = np.where(hit, st.faces[np.maximum(eb.triangle, 0)], -1)
-    pos = np.where(hit[..., None], eb.position, 0.0)
-    pos[~hit] = [0.0, 0.0, 1.0]
-    part = np.where(hit, cs.maps.assign(pos), -1)
-    ok = (face >= 0) & (pos[..., 2] <= cam.far) & (np.nan_to_num(eb.normal) @ st.light > MIN_COS_LIGHT)
-    for a in (face, part):
-        for axis in (0, 1):
-            ok &= (np.roll(a, 1, axis) == a) & (np.roll(a, -1, axis) == a)
-    ok[[0, -1], :] = False
-    ok[:, [0, -1]] = False
+    eb, pos, part, ok = measurable_pixels(st, r, lambda pos, hit: cs.maps.assign(pos))
     k_maps = len(cs.maps.maps)
     mx, mz, ms_, mt_, count = (np.full(k_maps, np.nan) for _ in range(5))
     for i, lm in enumerate(cs.maps.maps):
