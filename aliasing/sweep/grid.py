@@ -23,8 +23,8 @@ from numpy.typing import ArrayLike
 
 from .. import _validation as check
 from .. import geometry, schemes, warping
-from . import limits
-from .rows import _column, _csv_cells, _direction_rows, _json_value, _with_cells
+from . import formats, limits
+from .rows import _csv_cells, _direction_rows, _json_value, _with_cells
 
 if TYPE_CHECKING:
     from .tables import SweepTable
@@ -540,7 +540,6 @@ def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
 
 
 def _csv_fragment(task: _Task, gamma: np.ndarray, azimuth: np.ndarray, r: schemes.Result) -> str:
-    """CSV lines of the per-direction rows, byte-identical to :func:`format_rows`, built column by column."""
-    head = _csv_cells([r.scheme.name, *task.cells, float(task.ratio), float(task.fov)]).replace("{", "{{").replace("}", "}}")
-    cols = [_column(c) for c in (gamma, azimuth, r.M_x, r.M_z, r.S)] + [list(map(str, r.maps_used.tolist()))] + [_column(c) for c in (r.n_prime, r.eta)]
-    return "".join(map((head + ",{},{},{},{},{},{},{},{}\n").format, *cols))
+    """CSV lines of the per-direction rows, byte-identical to :func:`format_rows`, built a whole column at a time (:mod:`.formats`)."""
+    head = _csv_cells([r.scheme.name, *task.cells, float(task.ratio), float(task.fov)])
+    return formats.csv_lines(head, [gamma, azimuth, r.M_x, r.M_z, r.S, r.maps_used, r.n_prime, r.eta])
