@@ -24,8 +24,11 @@ What it times (wall clock, ``time.perf_counter``, best of ``--repeats``):
    per-direction rows (``ZP3+LogP,P,LogP,FPc+P`` over ``--directions`` hemisphere directions)
    with ``jobs 2`` written as the per-direction CSV and as Parquet, against the summary run of
    the same sweep (the same evaluations, a tiny output: the baseline), timed side by side;
-   and the CSV formatting of one 20,000-direction ZP3+LogP chunk, column by column (today's
-   writer) against row by row (the previous writer, kept here as the baseline).
+   the CSV text of one 20,000-direction ZP3+LogP chunk (:mod:`aliasing.sweep.formats`, whole
+   columns at once) against one %-format per row (the first writer, kept here as the baseline);
+   and the four schemes of one block evaluated one by one against one batch (``evaluate_many``,
+   as ``aliasing sweep`` runs a batch of chunks).  Wall time (median of interleaved rounds)
+   and the CPU time of the parent and its workers (``getrusage``) are printed.
 """
 
 from __future__ import annotations
@@ -81,7 +84,9 @@ def _rowwise_fragment(task, gamma, azimuth, r) -> str:
 
 def output(args) -> None:
     from aliasing import geometry, schemes
-    from aliasing.sweep.grid import _csv_fragment
+    import dataclasses
+
+    from aliasing.sweep.chunks import compute_chunk
 
     load = os.getloadavg()
     print(f"python {platform.python_version()}, numpy {np.__version__}, {os.cpu_count()} CPUs, {platform.machine()}, load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f} at start")
@@ -114,11 +119,17 @@ def output(args) -> None:
         task = grid.chunk(0, "csv")
         r = schemes.evaluate(task.name, task.near, task.near * task.ratio, task.fov, task.light)
         gamma, azimuth = geometry.direction_angles(task.light)
-        assert _csv_fragment(task, gamma, azimuth, r) == _rowwise_fragment(task, gamma, azimuth, r)
-        col = best(lambda: _csv_fragment(task, gamma, azimuth, r), args.repeats)
+        ready = dataclasses.replace(task, shared={"result": r, "angles": (gamma, azimuth)})  # the text alone
+        assert compute_chunk(ready) == _rowwise_fragment(task, gamma, azimuth, r)
+        col = best(lambda: compute_chunk(ready), args.repeats)
         row = best(lambda: _rowwise_fragment(task, gamma, azimuth, r), args.repeats)
         ev = best(lambda: schemes.evaluate(task.name, task.near, task.near * task.ratio, task.fov, task.light), args.repeats)
         print(f"one ZP3+LogP chunk of 20,000 rows: evaluate {ev * 1e3:.0f} ms, CSV vectorized {col * 1e3:.0f} ms, row-wise %-format (baseline) {row * 1e3:.0f} ms: {row / col:.2f}x")
+        many = names.split(",")
+        lv = task.light
+        one = best(lambda: [schemes.evaluate(n, 1.0, 1000.0, 60.0, lv) for n in many], args.repeats)
+        shared = best(lambda: schemes.evaluate_many(many, 1.0, 1000.0, 60.0, lv), args.repeats)
+        print(f"the four schemes on one block of 20,000 directions: one evaluate each {one * 1e3:.0f} ms, one evaluate_many (a batch) {shared * 1e3:.0f} ms: {one / shared:.2f}x")
     load = os.getloadavg()
     print(f"load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f} at end")
 

@@ -3,7 +3,9 @@
 A package with one concern per module, lower modules never importing higher ones:
 
 - :mod:`~aliasing.sweep.rows`: :func:`sweep` (rows as dicts) and :func:`format_rows` (CSV/JSON text);
-- :mod:`~aliasing.sweep.grid`: axes, ranges, scheme variants, light specs, :class:`Grid`, :func:`plan`, chunks;
+- :mod:`~aliasing.sweep.formats`: CSV text of whole columns (exact ``'%.10g'``, vectorized);
+- :mod:`~aliasing.sweep.chunks`: the work of one chunk, or of a batch of chunks sharing light frames;
+- :mod:`~aliasing.sweep.grid`: axes, ranges, scheme variants, light specs, :class:`Grid`, :func:`plan`, chunks and batches;
 - :mod:`~aliasing.sweep.limits`: memory estimates from a request's counts, refused before allocating;
 - :mod:`~aliasing.sweep.store`: atomic writes, the output target, the work directory and its manifest;
 - :mod:`~aliasing.sweep.runner`: the runner (in-process, local processes or Dask), :func:`collect`, progress;
@@ -26,7 +28,7 @@ from __future__ import annotations
 import sys
 import types
 
-from . import command, config, engine, grid, limits, rows, runner, store, tables
+from . import chunks, command, config, engine, formats, grid, limits, rows, runner, store, tables
 from .command import run_command
 from .config import CONFIG_KEYS, read_config
 from .engine import dry_run, estimate, execute, table
@@ -50,7 +52,7 @@ from .runner import DASK_TIMEOUT, Plan, Progress, Task, check_jobs, collect, cor
 from .store import write
 from .tables import SweepTable, import_xarray
 
-_MODULES = (rows, grid, limits, store, runner, tables, engine, config, command)
+_MODULES = (rows, formats, chunks, grid, limits, store, runner, tables, engine, config, command)
 
 __all__ = [
     "CONFIG_KEYS", "DASK_TIMEOUT", "DEFAULT_BLOCK", "FORMATS", "OUTPUT_FORMATS", "RANGE", "ROW_FIELDS", "SUMMARY_FIELDS",

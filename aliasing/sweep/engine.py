@@ -139,7 +139,7 @@ def execute(
             return results[i]
         return work.load(i)
 
-    payloads: Iterable[object] = (load(i) for i in range(total))
+    payloads: Iterable[object] = (load(i) for i in _output_order(grid))
     if on_payloads is not None or kind == "netcdf":
         payloads = list(payloads)
         if on_payloads is not None:
@@ -159,6 +159,12 @@ def execute(
         _write_text_stream(grid.assemble(payload_kind, kind, payloads), target)
     shutil.rmtree(work.path)  # type: ignore[union-attr]
     return target
+
+
+def _output_order(grid: Plan) -> Sequence[int]:
+    """Chunk indices in output order (:meth:`Grid.output_order`; chunk order for plans without one)."""
+    order = getattr(grid, "output_order", None)
+    return order() if order is not None else range(grid.chunks)
 
 
 def _stderr_notice(line: str) -> None:

@@ -23,8 +23,8 @@ from numpy.typing import ArrayLike
 
 from .. import _validation as check
 from .. import geometry, schemes, warping
-from . import formats, limits
-from .rows import _csv_cells, _direction_rows, _json_value, _with_cells
+from . import limits
+from .chunks import _Batch, _Task, compute_chunk  # noqa: F401 - compute_chunk: part of this module's API before the split
 
 if TYPE_CHECKING:
     from .tables import SweepTable
@@ -321,7 +321,9 @@ class Grid:
     """A planned sweep: the product scheme variants × f/n × fov × light directions.
 
     Build it with :func:`plan`; it is split into chunks of one variant, one f/n, one fov
-    and a block of at most ``block`` directions, in that (row) order.
+    and a block of at most ``block`` directions.  Chunks are numbered by f/n, fov, block and
+    then variant, so that the chunks of the same directions are neighbours (a batch,
+    :meth:`batches`); the output is in row order, variant first (:meth:`output_order`).
     """
 
     variants: tuple[Variant, ...]
@@ -373,15 +375,57 @@ class Grid:
 
     def chunk(self, index: int, kind: str) -> _Task:
         """The work of chunk ``index`` (0 ≤ index < :attr:`chunks`) for a payload ``kind``."""
-        v, rest = divmod(index, len(self.f_over_n) * len(self.fov) * self.blocks)
-        r, rest = divmod(rest, len(self.fov) * self.blocks)
+        cell, v = divmod(index, len(self.variants))
+        r, rest = divmod(cell, len(self.fov) * self.blocks)
         f, b = divmod(rest, self.blocks)
         var = self.variants[v]
         return _Task(index, kind, var.name, var.options, self.columns, self._cells(var), self.near, self.f_over_n[r], self.fov[f], self.directions[b * self.block : (b + 1) * self.block])
 
+    def batches(self, todo: Sequence[int], workers: int = 1) -> list[list[int]]:
+        """The chunks ``todo`` grouped into batches that share f/n, fov, direction block and rule options.
+
+        A batch is evaluated at once (:func:`~aliasing.sweep.chunks.compute_batch`: light
+        frames shared by its schemes).  With several ``workers``, batches are halved until there
+        are at least two per worker (or single chunks), so that every worker has work.
+
+        Example
+        -------
+        >>> g = plan("P,LogP,ZP3", light="hemisphere:30", block=10)
+        >>> g.batches(range(g.chunks))
+        [[0, 1, 2], [3, 4, 5], [6, 7, 8]]
+        >>> g.batches([1, 2, 4], workers=2)
+        [[1], [2], [4]]
+        """
+        groups: dict[tuple, list[int]] = {}
+        for i in todo:
+            cell, v = divmod(int(i), len(self.variants))
+            groups.setdefault((cell, self.variants[v].options), []).append(int(i))
+        out = sorted(groups.values())
+        while len(out) < 2 * workers and any(len(b) > 1 for b in out):
+            big = max(range(len(out)), key=lambda j: len(out[j]))
+            half = len(out[big]) // 2
+            out[big : big + 1] = [out[big][:half], out[big][half:]]
+        return out
+
+    def output_order(self) -> list[int]:
+        """Chunk indices in the order of the output rows: variant, f/n, fov, block.
+
+        Example
+        -------
+        >>> plan("P,LogP", light="hemisphere:30", block=10).output_order()
+        [0, 2, 4, 1, 3, 5]
+        """
+        cells = self.chunks // len(self.variants)
+        return [cell * len(self.variants) + v for v in range(len(self.variants)) for cell in range(cells)]
+
+    def batch(self, indices: Sequence[int], kind: str) -> _Batch:
+        """The work of the chunks ``indices`` (one batch of :meth:`batches`) for a payload ``kind``."""
+        return _Batch(tuple(self.chunk(i, kind) for i in indices))
+
     def parameters(self) -> dict:
         """Every parameter of the sweep, JSON-ready (what the manifest's hash covers)."""
         return {
+            "chunk_order": "f_over_n,fov,block,variant",  # the numbering of chunk files (work directories of other numberings are refused)
             "schemes": [v.name for v in self.variants],
             "options": [dict(v.options) for v in self.variants],
             "f_over_n": list(self.f_over_n),
@@ -492,54 +536,3 @@ def plan(
     if isinstance(block, bool) or int(block) != block or block < 1:
         raise ValueError(f"block must be a whole number >= 1 (directions per chunk), got {block!r}")
     return Grid(variants, ratios, fovs, specs, lv, near, bool(summary), int(block))
-
-
-@dataclass(frozen=True)
-class _Task:
-    """One chunk's work, small and picklable (sent to processes or Dask workers)."""
-
-    index: int
-    kind: str  # "csv" | "json" text fragments, or "arrays"
-    name: str
-    options: tuple[tuple[str, float], ...]
-    columns: tuple[str, ...]  # param_<option> columns of the whole grid
-    cells: tuple[float | None, ...]  # this variant's values in them (None: not taken)
-    near: float
-    ratio: float
-    fov: float
-    light: np.ndarray
-
-    def compute(self) -> str | dict[str, np.ndarray]:
-        """This chunk's payload (:func:`compute_chunk`)."""
-        return compute_chunk(self)
-
-
-def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
-    """Evaluate one chunk (vectorized over its directions); the payload of its kind.
-
-    CSV or JSON text of its rows (no header), or the arrays S, M_x, M_z, n′, η.
-
-    Example
-    -------
-    >>> g = plan("ZP2+P", light="overhead,front")
-    >>> print(compute_chunk(g.chunk(0, "csv")), end="")
-    ZP2+P,1000,60,90,0,5.623413252;5.623413252,4.716015218;4.716015218,53.04020494,2,6.623413252;209.4507176,0;0
-    ZP2+P,1000,60,0,0,31.6227766;31.6227766,31.6227766;31.6227766,2000,2,inf;inf,-1;-1
-    >>> compute_chunk(g.chunk(0, "arrays"))["M_x"].shape
-    (2, 2)
-    """
-    r = schemes.evaluate(task.name, task.near, task.near * task.ratio, task.fov, task.light, **dict(task.options))
-    if task.kind == "arrays":
-        return {"S": r.S, "M_x": r.M_x, "M_z": r.M_z, "n_prime": r.n_prime, "eta": r.eta}
-    gamma, azimuth = geometry.direction_angles(task.light)
-    if task.kind == "json":
-        rows = _direction_rows(r.scheme.name, task.ratio, task.fov, gamma, azimuth, r)
-        rows = [_with_cells(row, task) for row in rows]
-        return ",\n".join(" " + json.dumps({k: _json_value(v) for k, v in row.items()}, indent=1).replace("\n", "\n ") for row in rows)
-    return _csv_fragment(task, gamma, azimuth, r)
-
-
-def _csv_fragment(task: _Task, gamma: np.ndarray, azimuth: np.ndarray, r: schemes.Result) -> str:
-    """CSV lines of the per-direction rows, byte-identical to :func:`format_rows`, built a whole column at a time (:mod:`.formats`)."""
-    head = _csv_cells([r.scheme.name, *task.cells, float(task.ratio), float(task.fov)])
-    return formats.csv_lines(head, [gamma, azimuth, r.M_x, r.M_z, r.S, r.maps_used, r.n_prime, r.eta])

@@ -96,30 +96,51 @@ def run_task(task: Task) -> Any:
     return task.compute()
 
 
+def _units(grid: Plan, kind: str, todo: Sequence[int], workers: int) -> list[tuple[list[int], Any]]:
+    """The work to hand out: batches of chunks when the plan makes them (:meth:`Grid.batches`), else single chunks."""
+    batches = getattr(grid, "batches", None)
+    if batches is None:
+        return [([i], _One(grid.chunk(i, kind))) for i in todo]
+    return [(b, grid.batch(b, kind)) for b in batches(todo, workers)]  # type: ignore[attr-defined]
+
+
+class _One:
+    """A single chunk as a unit of work: its payload in a list (the shape of a batch's)."""
+
+    def __init__(self, task: Task) -> None:
+        self.task = task
+
+    def compute(self) -> list:
+        return [self.task.compute()]
+
+
 def _run_chunks(grid: Plan, kind: str, todo: Sequence[int], done: Callable[[int, object], None], jobs: int, dask: str | None) -> None:
     """Compute the chunks ``todo`` in-process, in ``jobs`` processes or on Dask; ``done`` each."""
     if dask:
         _run_dask(grid, kind, todo, done, dask)
         return
     if jobs == 1 or len(todo) <= 1:
-        for i in todo:
-            done(i, grid.chunk(i, kind).compute())
+        for indices, unit in _units(grid, kind, todo, 1):
+            for i, payload in zip(indices, unit.compute()):
+                done(i, payload)
         return
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
+    units = _units(grid, kind, todo, jobs)
     pending: dict = {}
-    queue = iter(todo)
-    jobs = min(check_jobs(jobs), len(todo))  # never more processes than chunks
+    queue = iter(units)
+    jobs = min(check_jobs(jobs), len(units))  # never more processes than units of work
     ex = ProcessPoolExecutor(max_workers=jobs)
     try:
         while True:
-            for i in itertools.islice(queue, 2 * jobs - len(pending)):
-                pending[ex.submit(run_task, grid.chunk(i, kind))] = i
+            for indices, unit in itertools.islice(queue, 2 * jobs - len(pending)):
+                pending[ex.submit(run_task, unit)] = indices
             if not pending:
                 break
             finished, _ = wait(pending, return_when=FIRST_COMPLETED)
-            for fut in sorted(finished, key=pending.__getitem__):
-                done(pending.pop(fut), fut.result())
+            for fut in sorted(finished, key=lambda f: pending[f][0]):
+                for i, payload in zip(pending.pop(fut), fut.result()):
+                    done(i, payload)
     finally:
         ex.shutdown(wait=True, cancel_futures=True)
 
@@ -175,18 +196,18 @@ def _run_dask(grid: Plan, kind: str, todo: Sequence[int], done: Callable[[int, o
         raise ValueError(f"dask: cannot reach a Dask scheduler at {address!r}: {exc}".splitlines()[0]) from None
     try:
         workers = max(1, sum(client.nthreads().values()))
-        queue = iter(todo)
+        queue = iter(_units(grid, kind, todo, workers))
         index: dict = {}
 
-        def submit(i: int):
-            fut = client.submit(run_task, grid.chunk(i, kind), pure=False)
-            index[fut.key] = i
+        def submit(unit: tuple[list[int], Any]):
+            fut = client.submit(run_task, unit[1], pure=False)
+            index[fut.key] = unit[0]
             return fut
 
-        stream = as_completed([submit(i) for i in itertools.islice(queue, 2 * workers)], loop=client.loop)
+        stream = as_completed([submit(u) for u in itertools.islice(queue, 2 * workers)], loop=client.loop)
         for fut in stream:
-            i = index.pop(fut.key)
-            done(i, fut.result())
+            for i, payload in zip(index.pop(fut.key), fut.result()):
+                done(i, payload)
             fut.release()
             nxt = next(queue, None)
             if nxt is not None:
@@ -204,7 +225,7 @@ def _duration(seconds: float) -> str:
 
 
 def collect(grid: Plan, kind: str, *, jobs: int = 1, dask: str | None = None, progress: Progress | None = None) -> list:
-    """Every chunk's payload of ``kind``, in order, computed in memory (no work directory).
+    """Every chunk's payload of ``kind``, in output order, computed in memory (no work directory).
 
     Parameters
     ----------
@@ -233,7 +254,8 @@ def collect(grid: Plan, kind: str, *, jobs: int = 1, dask: str | None = None, pr
             progress(len(payloads), total)
 
     _run_chunks(grid, kind, list(range(total)), done, jobs, dask)
-    return [payloads[i] for i in range(total)]
+    order = getattr(grid, "output_order", None)
+    return [payloads[i] for i in (order() if order is not None else range(total))]
 
 
 def progress_bar(stream: TextIO | None = None) -> Progress | None:

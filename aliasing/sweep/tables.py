@@ -179,7 +179,7 @@ def parquet_batches(grid: Grid, payloads: Iterable[object]) -> Iterator:
     pa = import_pyarrow()
     listed = any(schemes.parse(v.name).k > 1 or schemes.parse(v.name).faces for v in grid.variants)
     schema = _parquet_schema(pa, grid, listed)
-    for i, payload in enumerate(payloads):
+    for i, payload in zip(grid.output_order(), payloads):
         task = grid.chunk(i, "arrays")
         d: dict = payload  # type: ignore[assignment]
         n = len(d["S"])
