@@ -139,7 +139,7 @@ def lambda_optimal(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: Array
     array([ 0.11111,  0.05   , -0.5    ])
     """
     g = _geometry(near, far, fov, gamma)
-    root = np.sqrt(g.f * g.n)
+    root = np.sqrt(g.f) * np.sqrt(g.n)  # √(fn) without under- or overflow of f·n
     # λ1 of eq. 4 multiplied through by sinθ: (√(fn) sinθ + n sinθ(1 − tanφ/tanθ))/D
     lam1 = (root * g.sin_t + g.z_min) / g.depth  # eq. (4), λ1
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -174,7 +174,7 @@ def lambda_gmnpr(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLi
     array([0.11111, 0.05   , 0.1866 ])
     """
     g = _geometry(near, far, fov, gamma)
-    root = np.sqrt(g.f * g.n)
+    root = np.sqrt(g.f) * np.sqrt(g.n)  # √(fn) without under- or overflow of f·n
     lam1 = (root * g.sin_t + g.z_min) / g.depth  # eq. (8) = eq. (4), λ1
     with np.errstate(divide="ignore"):
         lam2_star = root / (2 * g.f) / np.tan(np.pi * g.theta / (4 * g.phi))  # eq. (7): λ1(φ)/tan(πθ/(4φ))
@@ -209,7 +209,7 @@ def lambda_lispsm(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayL
     """
     g = _geometry(near, far, fov, gamma)
     with np.errstate(divide="ignore"):
-        return (g.n + np.sqrt(g.f * g.n)) / (g.sin_t * g.depth)  # eq. (9)
+        return (g.n + np.sqrt(g.f) * np.sqrt(g.n)) / g.depth / g.sin_t  # eq. (9); sinθ·D would underflow for tiny θ and D
 
 
 @check.public
