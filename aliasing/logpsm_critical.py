@@ -94,7 +94,7 @@ def critical_factor_side(kind: str, direction: str, near: ArrayLike, far: ArrayL
 
     ``direction`` is ``"s"`` (δ_b,s; maximum over v, with u irrelevant) or ``"t"``.  The
     ratio is monotone or convex for every parameterization here, so its maximum lies at
-    v = 0 or v = 1 and the samples only confirm it.  Parameters as in :func:`spacing`.
+    v = 0 or v = 1 and the samples only confirm it.  Parameters as in :func:`aliasing.logpsm.spacing`.
 
     Returns
     -------
@@ -106,7 +106,7 @@ def critical_factor_side(kind: str, direction: str, near: ArrayLike, far: ArrayL
     >>> round(float(critical_factor_side("uniform", "t", 1.0, 100.0, 90.0)), 6)
     99.0
     """
-    from .logpsm import delta_bound_side_s, delta_bound_side_t, spacing  # here: logpsm re-exports this module
+    from .logpsm import delta_bound_side_s, delta_bound_side_t, spacing  # not at the top: logpsm imports this module to re-export it
 
     key = check.choice(direction, "direction", ["s", "t"])
     samples = check.whole(samples, "samples", 2, 100_000)  # bounded: one float per sample and frustum
