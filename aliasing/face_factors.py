@@ -12,7 +12,7 @@ The paper's claim below eq. 73, that 𝐑 and 𝐒 are those of a light at infin
 the face, follows from cos φ_l ≤ 1: δ_b is smallest, pointwise, when cos φ_l = 1 everywhere,
 so every ratio δ_l/δ_b, every ρ_b = ∫1/δ_b and every minimum over a parameter of them is
 largest there.  The closed forms at that light are eqs. 87–103
-(:func:`aliasing.logpsm.critical_factors`).
+(:func:`aliasing.logpsm_critical.critical_factors`).
 
 Parameterizations (``kind``; a is the perspective parameter, the centre of projection at
 y = −a; b the second root of δ_lp,t):
