@@ -109,3 +109,9 @@ def test_output_order_is_row_order_and_old_work_directories_are_refused():
     params = g.parameters()
     assert params.pop("chunk_order") == "f_over_n,fov,block,variant"
     assert S.parameters_digest(params, "csv") != S.parameters_digest(g.parameters(), "csv")
+
+
+@pytest.mark.parametrize("bad", [np.array(["1"]), np.array([1 + 2j]), np.array([None, 1.0], dtype=object)])
+def test_g10_refuses_what_is_not_real_numbers(bad):
+    with pytest.raises(ValueError, match="x must be an array of real numbers"):
+        formats.g10(bad)

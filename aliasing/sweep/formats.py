@@ -183,7 +183,10 @@ def g10(x: NDArray[np.float64]) -> NDArray[np.str_]:
     >>> g10(np.array([[1.0, 1e-4], [123456.78901234, -0.0]])).tolist()
     [['1', '0.0001'], ['123456.789', '-0']]
     """
-    a = np.asarray(x, dtype=np.float64)
+    a = np.asarray(x)
+    if a.dtype.kind not in "iuf":
+        raise ValueError(f"x must be an array of real numbers, got dtype {a.dtype}")
+    a = a.astype(np.float64)
     words = _slots(a)
     words[:, 0] |= np.uint64(ord("\n"))  # one value per line
     text = _text(words)
