@@ -20,6 +20,8 @@ from .. import geometry, schemes
 from . import formats
 from .rows import _csv_cells, _direction_rows, _json_value, _with_cells
 
+__all__ = ["compute_batch", "compute_chunk"]
+
 
 @dataclass(frozen=True)
 class _Task:

@@ -38,6 +38,8 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+__all__ = ["AMBIGUOUS", "BLOCK", "EXPONENTS", "SLOT", "cells", "csv_lines", "g10", "lines"]
+
 #: How close to ½ the fraction of the scaled value may come before Python formats the number (see the module docstring).
 AMBIGUOUS = 1e-5
 #: Exponents (of 10) formatted here; the rest (subnormals, |x| > 1e290) go to Python.
