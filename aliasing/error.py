@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
+from ._stable import sqrt_product
 from .view import View, half_angle, split_view
 from .parameterizations import _depths, _ratio
 
@@ -162,7 +163,7 @@ def max_error_z(near: ArrayLike | View, far: ArrayLike | None = None, fov: Array
     ri = check.positive(res_image, "res_image")
     rt = check.positive(res_t, "res_t")
     scale = ri / rt * (f - n) / (2 * _half_tan(fov))
-    n_l = n + np.sqrt(f) * np.sqrt(n)  # √f·√n: f·n underflows for tiny frusta (n′_LiSPSM, the branch point)
+    n_l = n + sqrt_product(f, n)  # √(fn), n′_LiSPSM (the branch point), without under- or overflow of f·n
     with np.errstate(divide="ignore"):
         far_plane = (1.0 + (f - n) / npr) / f  # f′/(f n′)
     near_plane = _ratio(npr, 0.0, f - n) / n  # n′/(n f′)
@@ -187,7 +188,7 @@ def storage_factor(near: ArrayLike | View, far: ArrayLike | None = None, fov: Ar
     near, far, fov, n_prime = _unpack(near, far, fov, n_prime)
     n, f, npr = _frustum_warp(near, far, n_prime)
     base = (f - n) / n / (2 * _half_tan(fov))  # (f/n − 1), without cancellation as f/n → 1
-    n_l = n + np.sqrt(f) * np.sqrt(n)  # √f·√n: f·n underflows for tiny frusta (n′_LiSPSM, the branch point)
+    n_l = n + sqrt_product(f, n)  # √(fn), n′_LiSPSM (the branch point), without under- or overflow of f·n
     np_over_fp = _ratio(npr, 0.0, f - n)
     return base * np.where(npr <= n_l, 1.0, np_over_fp**2 * f / n)  # eq. (12)
 

@@ -33,6 +33,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
+from ._stable import sqrt_product
 from .parameterizations import _depths
 from .warping import register
 from .view import half_angle
@@ -139,7 +140,7 @@ def lambda_optimal(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: Array
     array([ 0.11111,  0.05   , -0.5    ])
     """
     g = _geometry(near, far, fov, gamma)
-    root = np.sqrt(g.f) * np.sqrt(g.n)  # √(fn) without under- or overflow of f·n
+    root = sqrt_product(g.f, g.n)  # √(fn) without under- or overflow of f·n
     # λ1 of eq. 4 multiplied through by sinθ: (√(fn) sinθ + n sinθ(1 − tanφ/tanθ))/D
     lam1 = (root * g.sin_t + g.z_min) / g.depth  # eq. (4), λ1
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -174,7 +175,7 @@ def lambda_gmnpr(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLi
     array([0.11111, 0.05   , 0.1866 ])
     """
     g = _geometry(near, far, fov, gamma)
-    root = np.sqrt(g.f) * np.sqrt(g.n)  # √(fn) without under- or overflow of f·n
+    root = sqrt_product(g.f, g.n)  # √(fn) without under- or overflow of f·n
     lam1 = (root * g.sin_t + g.z_min) / g.depth  # eq. (8) = eq. (4), λ1
     with np.errstate(divide="ignore"):
         lam2_star = root / (2 * g.f) / np.tan(np.pi * g.theta / (4 * g.phi))  # eq. (7): λ1(φ)/tan(πθ/(4φ))
@@ -209,7 +210,9 @@ def lambda_lispsm(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayL
     """
     g = _geometry(near, far, fov, gamma)
     with np.errstate(divide="ignore"):
-        return (g.n + np.sqrt(g.f) * np.sqrt(g.n)) / g.depth / g.sin_t  # eq. (9); sinθ·D would underflow for tiny θ and D
+        den = g.sin_t * g.depth
+        num = g.n + sqrt_product(g.f, g.n)
+        return np.where(np.isfinite(den) & (den >= np.finfo(float).tiny), num / den, num / g.depth / g.sin_t)  # eq. (9); sinθ·D underflows for tiny θ and D
 
 
 @check.public
@@ -284,17 +287,23 @@ def generalized_error(lam: ArrayLike, near: ArrayLike, far: ArrayLike, fov: Arra
     # q = z sinθ − z_L,min ≥ 0, the view-ray point's light-space distance from P's near plane,
     # written without cancellation in each regime
     q = np.where(g.regime1, (zz - g.n) * g.sin_t + g.n * g.tan_p * g.cos_t, zz * g.sin_t + g.f * np.sin(g.phi - g.theta) / np.cos(g.phi))
-    # eq. (2): ψ(z + ϕ)²/z = z′²/(tanφ D sinθ z λ(λ+1)), z′ = λD + q, in dimensionless factors:
-    # F = (a/λ)·(a/(1 + λ))·(D/z)/(tanφ sinθ), a = z′/D = λ + q/D ∈ [λ, λ + 1].  No square and
-    # no 1/λ: (q/λ)² overflowed for λ < 1e-154 although F ~ 1/λ is finite there.
+    # eq. (2): ψ(z + ϕ)²/z = z′²/(tanφ D sinθ z λ(λ+1)), z′ = λD + q; divided through by λ²
     with np.errstate(divide="ignore", invalid="ignore", over="ignore", under="ignore"):
+        r = 1.0 / lam_  # r = 1/λ, 0 for a uniform map
+        den = (1 + r) * g.tan_p * g.sin_t * zz
+        err = (g.depth + q * r) ** 2 / ((1 + r) * g.tan_p * g.depth * g.sin_t * zz)  # eq. (2)
+        # where D or its square overflow (far near 1e308) that is inf/inf: the same as (D + qr)(1 + qr/D)/den
+        err = np.where(np.isnan(err), (g.depth + q * r) * (1 + q * r / g.depth) / den, err)
+        # where r = 1/λ itself overflows those products (λ near 1e-308): eq. (2) undivided
+        err = np.where(np.isnan(err), (lam_ * g.depth + q) ** 2 / (lam_ * (lam_ + 1) * g.tan_p * g.depth * g.sin_t * zz), err)
+        # where (q/λ)² overflowed although F ~ 1/λ is finite (λ < 1e-154): eq. (2) in dimensionless factors,
+        # F = (a/λ)·(a/(1 + λ))·(D/z)/(tanφ sinθ), a = z′/D = λ + q/D ∈ [λ, λ + 1]; elsewhere the form above, bit for bit
         a = lam_ + q / g.depth
         uniform = np.isinf(lam_)  # λ = ∞: both ratios are 1 (F = D/(tanφ sinθ z))
         per_step = np.where(uniform, 1.0, a / (1 + lam_)) * (g.depth / zz) / g.tan_p / g.sin_t  # F·λ/a
         growth = np.where(uniform, 1.0, a / lam_)  # ≥ 1; inf only for subnormal λ
-        err = np.where(np.isinf(growth), per_step * a / np.where(uniform, 1.0, lam_), per_step * growth)  # eq. (2)
-        # where D overflows (far near 1e308) F is taken as inf, as before
-        return np.where(np.isinf(g.depth), np.inf, err)
+        factored = np.where(np.isinf(growth), per_step * a / np.where(uniform, 1.0, lam_), per_step * growth)
+        return np.where(np.isfinite(err) | np.isinf(g.depth), err, factored)  # where D overflows (far near 1e308) F stays inf
 
 
 def _n_prime(lam: Array, near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLike, depth: ArrayLike | None) -> Array:

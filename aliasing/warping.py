@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
+from ._stable import product_ratio, sqrt_product
 
 
 @dataclass(frozen=True)
@@ -117,7 +118,7 @@ def n_prime_lispsm(near: ArrayLike, far: ArrayLike) -> NDArray[np.float64]:
     11.0
     """
     n, f = check.frustum(near, far)
-    return n + np.sqrt(f) * np.sqrt(n)  # √f·√n: f·n under- or overflows for near below 1e-154 or above 1e154
+    return n + sqrt_product(f, n)  # √(fn); f·n under- or overflows for near below 1e-154 or above 1e154
 
 
 def _n_gamma(near: NDArray[np.float64], far: NDArray[np.float64], depth: ArrayLike | None) -> NDArray[np.float64]:
@@ -125,7 +126,7 @@ def _n_gamma(near: NDArray[np.float64], far: NDArray[np.float64], depth: ArrayLi
     if depth is None:
         return near
     d = check.positive(depth, "depth")
-    return d * (near / (far - near))  # W_ly/(α − 1), α = f/n; d·near first would underflow for tiny frusta
+    return product_ratio(d, near, far - near)  # W_ly/(α − 1), α = f/n; d·near under- or overflows for extreme frusta
 
 
 @check.public  # issue 19: broadcast errors name the parameters
@@ -285,7 +286,7 @@ def _lispsm_dz(near: ArrayLike, far: ArrayLike, gamma: ArrayLike = 90.0, depth: 
     n, f = check.frustum(near, far)
     d = f - n if depth is None else check.positive(depth, "depth")
     dz = d * _sin_gamma(gamma)  # Δz = (f − n) sin γ in Wimmer's P-notation: f − n is P's depth
-    return _over_sin(n + np.sqrt(n) * np.sqrt(n + dz), gamma)  # √n·√(n + Δz): no under- or overflow of the product
+    return _over_sin(n + sqrt_product(n, n + dz), gamma)  # √(n(n + Δz)) without under- or overflow of the product
 
 
 @register("po", "Lloyd et al. 2007 §6.1.1, in light-plane units (eq. 120's n_γ)", "LiSPSM's 1/sin γ rule as Lloyd 2007 Table 3 evaluates it: n_γ(1 + √(f/n))/sin γ")

@@ -115,3 +115,12 @@ def test_output_order_is_row_order_and_old_work_directories_are_refused():
 def test_g10_refuses_what_is_not_real_numbers(bad):
     with pytest.raises(ValueError, match="x must be an array of real numbers"):
         formats.g10(bad)
+
+
+def test_batches_hold_at_most_max_batch_chunks():
+    from aliasing.sweep.grid import MAX_BATCH
+
+    g = S.plan("P,LogP,Po,Standard,ZP2,ZP3,ZP2+P,ZP3+P,ZP2+LogP", light="sphere:20", block=10)
+    batches = g.batches(range(g.chunks))
+    assert max(len(b) for b in batches) == MAX_BATCH and sorted(i for b in batches for i in b) == list(range(g.chunks))
+    assert S.execute(g, "csv") == S.table("P,LogP,Po,Standard,ZP2,ZP3,ZP2+P,ZP3+P,ZP2+LogP", light="sphere:20", block=10).format("csv")

@@ -39,6 +39,13 @@ DEFAULT_BLOCK = 20_000
 the (N, k, 8) arrays of ZP schemes stay in cache-friendly sizes (see benchmarks/README.md)."""
 
 
+MAX_BATCH = 4
+"""Most chunks evaluated together (one ``evaluate_many``).  Four keep a batch's peak memory
+within :mod:`~aliasing.sweep.limits`' model of one chunk (measured with tracemalloc: four
+ZP8+P schemes on 20,000 directions 30.5 MiB against the model's 78 MiB for one; four single
+maps 4.9 against 9.8 MiB), so the refusal before allocating stays sound."""
+
+
 def grid_values(value: str | float | Sequence, name: str) -> tuple[float, ...]:
     """Numbers of one grid axis from a number, a list, or text with numbers and ranges.
 
@@ -385,7 +392,7 @@ class Grid:
         """The chunks ``todo`` grouped into batches that share f/n, fov, direction block and rule options.
 
         A batch is evaluated at once (:func:`~aliasing.sweep.chunks.compute_batch`: light
-        frames shared by its schemes).  With several ``workers``, batches are halved until there
+        frames shared by its schemes), at most :data:`MAX_BATCH` chunks.  With several ``workers``, batches are halved until there
         are at least two per worker (or single chunks), so that every worker has work.
 
         Example
@@ -400,7 +407,7 @@ class Grid:
         for i in todo:
             cell, v = divmod(int(i), len(self.variants))
             groups.setdefault((cell, self.variants[v].options), []).append(int(i))
-        out = sorted(groups.values())
+        out = sorted(group[i : i + MAX_BATCH] for group in groups.values() for i in range(0, len(group), MAX_BATCH))
         while len(out) < 2 * workers and any(len(b) > 1 for b in out):
             big = max(range(len(out)), key=lambda j: len(out[j]))
             half = len(out[big]) // 2

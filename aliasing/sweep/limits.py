@@ -6,7 +6,8 @@ ZP99999999+P`` are refused with one line instead of being killed by the kernel.
 
 The model (bytes): every direction's vector (3 float64, held twice: the grid and a chunk),
 every axis value (a Python float in a tuple, ~40 bytes), and per worker one chunk's
-evaluation: directions per chunk × maps × :data:`ARRAYS_PER_MAP` float64.  Results kept in
+evaluation: directions per chunk × maps × :data:`ARRAYS_PER_MAP` float64 (a batch of up to
+:data:`aliasing.sweep.grid.MAX_BATCH` chunks evaluated together stays within it, measured).  Results kept in
 memory (no ``--out``, summaries, NetCDF, :func:`aliasing.sweep.table`) add 5 float64 per
 row × map.
 """
