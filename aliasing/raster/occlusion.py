@@ -42,6 +42,9 @@ BLOCK = 16
 GROUP = 4
 #: Tile side [texels] of the triangle test: a triangle is skipped when its box lies behind its tiles.
 TILE = 16
+#: Texels per merge step at most (and ``chunk``): the temporaries stay in cache, and ``far`` is
+#: refreshed between steps, so later spans of a group are culled against earlier ones.
+BATCH = 1 << 16
 #: Rounding margin of the tests, relative to the triangle's depth scale (never skip a texel that could win).
 MARGIN = 1e-9
 
@@ -85,17 +88,22 @@ def _block_far(depth: Array, res: int) -> Array:
     return np.maximum.reduceat(depth.reshape(res, res), np.arange(0, res, BLOCK), axis=1)
 
 
-def _refresh(far: Array, depth: Array, res: int, row: NDArray[np.int64], blk: NDArray[np.int64]) -> None:
-    """Recompute ``far`` at blocks (row, blk) (repeats allowed) from the current depths."""
-    touched = np.zeros(far.size, bool)
-    touched[row * far.shape[1] + blk] = True
-    row, blk = np.divmod(np.flatnonzero(touched), far.shape[1])
-    cols = np.minimum(blk[:, None] * BLOCK + np.arange(BLOCK), res - 1)  # a partial last block repeats its last texel
-    m = depth[row[:, None] * res + cols]
+def _refresh(far_flat: Array, depth: Array, res: int, fb: NDArray[np.int64]) -> None:
+    """Recompute the farthest depth of blocks ``fb`` (flat indices into ``far``; repeats allowed).
+
+    A block is BLOCK consecutive texels of ``depth`` unless the last block of a row is partial
+    (R not a multiple of :data:`BLOCK`), which repeats its row's last texel.
+    """
+    if res % BLOCK == 0:
+        m = depth.reshape(-1, BLOCK)[fb]
+    else:
+        nb = -(-res // BLOCK)
+        row, blk = np.divmod(fb, nb)
+        m = depth[row[:, None] * res + np.minimum(blk[:, None] * BLOCK + np.arange(BLOCK), res - 1)]
     while m.shape[1] > 1:  # halving (BLOCK is a power of 2): faster than a reduction over a short last axis
         h = m.shape[1] // 2
         m = np.maximum(m[:, :h], m[:, h:])
-    far[row, blk] = m[:, 0]
+    far_flat[fb] = m[:, 0]
 
 
 def _tile_far(far: Array, res: int) -> Array:
@@ -127,32 +135,48 @@ def _visible_boxes(near: Array, x0, x1, y0, y1, res: int, far: Array, chunk: int
 def merge_visible(sp: Spans, res: int, chunk: int, depth: Array, ident: NDArray[np.int64], far: Array, scale: Array) -> None:
     """Merge spans into the z-buffer (min depth, then highest triangle index), skipping hidden pieces.
 
-    ``far``: :func:`_block_far` of ``depth``, refreshed here where texels are drawn;
-    ``scale``: each triangle's largest absolute corner depth (for the rounding margin).
+    ``far``: :func:`_block_far` of ``depth`` (C-contiguous), refreshed here where texels are
+    drawn; ``scale``: each triangle's largest absolute corner depth (for the rounding margin).
+    Spans go in steps of at most ``min(chunk, BATCH)`` texels (:data:`BATCH`).
     """
+    nb = far.shape[1]
+    far_flat = far.reshape(-1)  # a view: far is C-contiguous
     col_hi = sp.col_lo + sp.width - 1
     b_lo = sp.col_lo // BLOCK
     pieces = col_hi // BLOCK - b_lo + 1
-    bounds = chunk_bounds(sp.width, chunk).tolist()
+    margin = MARGIN * scale[sp.t_id]
+    first = sp.row * nb + b_lo  # far_flat index of each span's first block
+    bounds = chunk_bounds(sp.width, min(chunk, BATCH)).tolist()
     for a, b in zip(bounds[:-1], bounds[1:]):
         span, k = expand(pieces[a:b])
         span += a
-        blk = b_lo[span] + k
-        row = sp.row[span]
-        c0 = np.maximum(sp.col_lo[span], blk * BLOCK)
-        c1 = np.minimum(col_hi[span], blk * BLOCK + BLOCK - 1)
-        near = np.minimum(sp.depth_at(span, c0 + 0.5), sp.depth_at(span, c1 + 0.5))
-        live = ~(near - MARGIN * scale[sp.t_id[span]] > far[row, blk])
-        span, c0, row, blk = span[live], c0[live], row[live], blk[live]
-        which, kk = expand(c1[live] - c0 + 1)
-        s = span[which]
-        col = c0[which] + kk
-        z = sp.depth_at(s, col + 0.5)
-        pix = row[which] * res + col
-        before = depth[pix]
+        blk = b_lo.take(span) + k
+        c0 = np.maximum(sp.col_lo.take(span), blk * BLOCK)
+        c1 = np.minimum(col_hi.take(span), blk * BLOCK + (BLOCK - 1))
+        n0, n1, m0, m1 = sp.n0.take(span), sp.n1.take(span), sp.m0.take(span), sp.m1.take(span)
+        p0, p1 = c0 + 0.5, c1 + 0.5
+        near = np.minimum((n0 + n1 * p0) / (m0 + m1 * p0), (n0 + n1 * p1) / (m0 + m1 * p1))  # Spans.depth_at at both ends
+        fb = first.take(span) + k
+        live = np.flatnonzero(~(near - margin.take(span) > far_flat.take(fb)))
+        # texels of the live pieces: per-piece values gathered once per texel (owner)
+        c0, w, fb = c0.take(live), c1.take(live) - c0.take(live) + 1, fb.take(live)
+        owner, kk = expand(w)
+        col = c0.take(owner)
+        col += kk
+        px = col + 0.5
+        num = n1.take(live).take(owner)
+        num *= px
+        num += n0.take(live).take(owner)
+        den = m1.take(live).take(owner)
+        den *= px
+        den += m0.take(live).take(owner)
+        z = np.divide(num, den, out=num)  # (n0 + n1 px) / (m0 + m1 px): Spans.depth_at
+        pix = col
+        pix += (sp.row.take(span.take(live)) * res).take(owner)
+        before = depth.take(pix)
         np.minimum.at(depth, pix, z)
-        after = depth[pix]
+        after = depth.take(pix)
         ident[pix[after < before]] = -1  # a nearer triangle arrived: forget the old ties
         win = z == after
-        np.maximum.at(ident, pix[win], sp.t_id[s[win]])
-        _refresh(far, depth, res, row, blk)
+        np.maximum.at(ident, pix[win], sp.t_id.take(span.take(live)).take(owner[win]))
+        _refresh(far_flat, depth, res, fb)
