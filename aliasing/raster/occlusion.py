@@ -45,6 +45,8 @@ TILE = 16
 #: Texels per merge step at most (and ``chunk``): the temporaries stay in cache, and ``far`` is
 #: refreshed between steps, so later spans of a group are culled against earlier ones.
 BATCH = 1 << 16
+#: Blocks of a row segment tested by the row test at most (wider rows are drawn).
+ROW_BLOCKS = 8
 #: Rounding margin of the tests, relative to the triangle's depth scale (never skip a texel that could win).
 MARGIN = 1e-9
 
@@ -78,9 +80,60 @@ def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv
 
 
 def draw_visible(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident, far, scale) -> None:
-    """Draw a group of triangles: their spans (:func:`.coverage.row_spans`) merged by :func:`merge_visible`."""
-    sp = row_spans(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res)
+    """Draw a group of triangles: their spans (:func:`.coverage.row_spans`) merged by :func:`merge_visible`.
+
+    Rows wholly behind the stored depths (:func:`_live_rows`) are dropped first, so their
+    exact spans are never computed.
+    """
+    t, row, x0, x1 = _live_rows(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, res, far, scale)
+    sp = row_spans(t, x0, x1, row, np.ones_like(row), sx, ty, row_coord, dep, inv_w, area2, res)
     merge_visible(sp, res, chunk, depth, ident, far, scale)
+
+
+def _live_rows(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, res: int, far: Array, scale: Array):
+    """(triangle, row, x0, x1) of the rows of triangles ``idx`` that may hold a visible texel.
+
+    The row's centre line meets the triangle in a segment whose ends lie on two edges; depth
+    along it is monotone, so no texel of the row is nearer than the ends' depths
+    (perspective-correct interpolation along those edges: a convex combination of the
+    corners', never nearer than the nearer corner).  A row is dropped when that bound, less
+    the rounding margin, lies beyond the farthest stored depth of every block within two
+    texels of the segment (the exact ends are within one texel of the estimate), or when no
+    edge crosses it (:func:`.coverage.row_spans` finds no span there either).
+    """
+    owner, k = expand(height)
+    row = y0.take(owner) + k
+    y = row_coord.take(row)
+    t = idx.take(owner)
+    ax, ay, d, iw = (a.take(t, axis=0) for a in (sx, ty, dep, inv_w))  # take: ~4× fancy indexing's speed
+    lo = np.full(row.size, np.inf)
+    hi = np.full(row.size, -np.inf)
+    near = np.full(row.size, np.inf)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for i0, i1 in ((0, 1), (1, 2), (2, 0)):
+            ya, yb = ay[:, i0], ay[:, i1]
+            cross = (np.minimum(ya, yb) <= y) & (y <= np.maximum(ya, yb)) & (ya != yb)
+            f = (y - ya) / (yb - ya)  # where the edge crosses the row: in [0, 1] where cross (rounding is monotone)
+            xe = ax[:, i0] + f * (ax[:, i1] - ax[:, i0])
+            wa, wb = (1.0 - f) * iw[:, i0], f * iw[:, i1]
+            de = (wa * d[:, i0] + wb * d[:, i1]) / (wa + wb)
+            lo = np.where(cross, np.minimum(lo, xe), lo)
+            hi = np.where(cross, np.maximum(hi, xe), hi)
+            near = np.where(cross, np.minimum(near, de), near)
+    bx0, bx1 = x0.take(owner), x1.take(owner)
+    has = np.isfinite(lo) & np.isfinite(hi)
+    c0 = np.minimum(np.maximum(np.floor(np.where(has, lo, 0.0)) - 2, bx0), bx1).astype(np.int64) // BLOCK
+    c1 = np.minimum(np.maximum(np.ceil(np.where(has, hi, 0.0)) + 2, bx0), bx1).astype(np.int64) // BLOCK
+    # farthest stored depth over blocks c0 … c1 (rows wider than ROW_BLOCKS blocks are kept)
+    last = np.minimum(c1 - c0, ROW_BLOCKS - 1)
+    first = row * far.shape[1] + c0
+    far_flat = far.reshape(-1)
+    row_far = far_flat.take(first)
+    for j in range(1, ROW_BLOCKS):
+        np.maximum(row_far, far_flat.take(first + np.minimum(j, last)), out=row_far)
+    row_far[c1 - c0 >= ROW_BLOCKS] = np.inf
+    live = np.flatnonzero(has & ~(near - MARGIN * scale.take(t) > row_far))
+    return t.take(live), row.take(live), bx0.take(live), bx1.take(live)
 
 
 def _block_far(depth: Array, res: int) -> Array:
@@ -159,11 +212,16 @@ def merge_visible(sp: Spans, res: int, chunk: int, depth: Array, ident: NDArray[
         fb = first.take(span) + k
         live = np.flatnonzero(~(near - margin.take(span) > far_flat.take(fb)))
         # texels of the live pieces: per-piece values gathered once per texel (owner)
+        sl = span.take(live)
         c0, w, fb = c0.take(live), c1.take(live) - c0.take(live) + 1, fb.take(live)
-        owner, kk = expand(w)
-        col = c0.take(owner)
-        col += kk
-        px = col + 0.5
+        owner = np.repeat(np.arange(live.size), w)
+        start = np.cumsum(w)
+        start -= w
+        c0 -= start  # a texel's column: c0 − start + its index in the step
+        px = np.arange(owner.size, dtype=np.float64)
+        px += (c0 + 0.5).take(owner)  # column + ½, exact (integers and halves)
+        pix = np.arange(owner.size)
+        pix += (sp.row.take(sl) * res + c0).take(owner)
         num = n1.take(live).take(owner)
         num *= px
         num += n0.take(live).take(owner)
@@ -171,12 +229,10 @@ def merge_visible(sp: Spans, res: int, chunk: int, depth: Array, ident: NDArray[
         den *= px
         den += m0.take(live).take(owner)
         z = np.divide(num, den, out=num)  # (n0 + n1 px) / (m0 + m1 px): Spans.depth_at
-        pix = col
-        pix += (sp.row.take(span.take(live)) * res).take(owner)
         before = depth.take(pix)
         np.minimum.at(depth, pix, z)
         after = depth.take(pix)
         ident[pix[after < before]] = -1  # a nearer triangle arrived: forget the old ties
         win = z == after
-        np.maximum.at(ident, pix[win], sp.t_id.take(span.take(live)).take(owner[win]))
+        np.maximum.at(ident, pix[win], sp.t_id.take(sl).take(owner[win]))
         _refresh(far_flat, depth, res, fb)
