@@ -85,21 +85,39 @@ def test_culled_z_buffer_matches_plain_one_for_perspective_and_log_rows(backend)
     assert (culled.rasterized, culled.degenerate) == (plain.rasterized, plain.degenerate)
 
 
-def test_culling_skips_hidden_work():
-    # a near wall hides a far grid: the culled pass draws far fewer texels than the plain one
+def test_culling_skips_hidden_work(monkeypatch):
+    # a near wall hides a far grid: the culled pass sets up the spans of the wall only (hidden
+    # triangles and rows are dropped before their spans are computed)
     wall = np.array([[[-9, -9, 2], [9, -9, 2], [0, 9, 2]], [[-9, 9, 2], [9, 9, 2], [9, -9, 2]]], float)
-    g = np.linspace(-5, 5, 21)
-    far = np.array([[[x, y, 50], [x + 0.5, y, 50], [x, y + 0.5, 50]] for x in g for y in g])
+    g = np.linspace(-20, 20, 21)
+    far = np.array([[[x, y, 50], [x + 2, y, 50], [x, y + 2, 50]] for x in g for y in g])  # half the image
     tri = np.concatenate([far, wall])
-    counts = []
-    real = occlusion.expand
-    try:
-        occlusion.expand = lambda c: (counts.append(int(np.sum(c))), real(c))[1]
-        eb = raster.eye_pass(tri, 60.0, 64)
-    finally:
-        occlusion.expand = real
-    assert set(np.unique(eb.triangle).tolist()) <= {len(far), len(far) + 1}
-    assert sum(counts) < 2 * 64 * 64  # without culling: ≥ 64² wall texels plus 441 triangles' worth
+    texels = []
+    real_spans = occlusion.row_spans
+    monkeypatch.setattr(occlusion, "row_spans", lambda *a: (lambda sp: (texels.append(int(sp.width.sum())), sp)[1])(real_spans(*a)))
+
+    def count(scene):
+        texels.clear()
+        eb = raster.eye_pass(scene, 60.0, 64, chunk=64)  # groups of 64 rows: the nearest triangles first, alone
+        return eb, sum(texels)
+
+    eb, culled = count(tri)
+    assert set(np.unique(eb.triangle).tolist()) == {len(far), len(far) + 1}
+    assert culled == count(wall)[1]
+    assert count(far)[1] > 64 * 64 / 4  # drawn alone, the grid covers a quarter of the image
+
+
+def test_row_test_drops_the_hidden_rows_of_a_partly_visible_triangle(monkeypatch):
+    # a near wall over the lower half of the image and a far backdrop over all of it: the
+    # backdrop's box is not hidden, but its rows behind the wall are never set up
+    low = np.array([[[-9, -9, 2], [9, -9, 2], [9, 0, 2]], [[-9, -9, 2], [9, 0, 2], [-9, 0, 2]]], float)
+    back = np.array([[[-99, -99, 50], [99, -99, 50], [0, 99, 50]]], float)
+    rows = []
+    real = occlusion.row_spans
+    monkeypatch.setattr(occlusion, "row_spans", lambda idx, x0, x1, y0, h, *a: (rows.append(np.repeat(idx, h)), real(idx, x0, x1, y0, h, *a))[1])
+    eb = raster.eye_pass(np.concatenate([back, low]), 60.0, 64, chunk=64)
+    assert (eb.triangle[:32] >= 1).all() and (eb.triangle[32:] == 0).all()
+    assert (np.concatenate(rows) == 0).sum() == 32  # the backdrop's upper 32 rows only
 
 
 def test_eye_pass_bad_chunk():
