@@ -1,14 +1,18 @@
 """Occlusion culling for scenes with much overdraw (the eye pass): the same z-buffer, less work.
 
-Triangles are rasterized nearest first (sorted by their nearest corner's depth), in groups
+Triangles are rasterized nearest first (sorted by their corners' mean depth: a large triangle
+reaching far back goes after the small ones in front of it), in groups
 of at most :data:`GROUP`·R rows.  Before a group is rasterized, a triangle is skipped when its
 nearest corner lies beyond the farthest depth stored in every tile (:data:`TILE` rows ×
 :data:`BLOCK` columns) its bounding box touches; a triangle's depth is a weighted mean of its corners' (weights b/w ≥ 0), so none of
-its texels could win.  Before each batch of texels is generated, every covered span is cut at blocks of
+its texels could win.  Then, before its exact span is computed, a (triangle, row) is skipped
+when the depths where the row's centre line enters and leaves the triangle both lie beyond the
+farthest depth stored in the blocks around that segment (:func:`_live_rows`).  Before each
+batch of at most :data:`BATCH` texels is generated, every covered span is cut at blocks of
 :data:`BLOCK` columns, and a piece is skipped when its nearest depth lies beyond the
 farthest depth already stored in its block: every texel of the piece would lose the depth
 test.  Depth along a span is monotone (a ratio of affine functions with a positive
-denominator), so a piece's nearest depth is at one of its ends.  Both tests keep a
+denominator), so a piece's nearest depth is at one of its ends.  All tests keep a
 rounding margin of :data:`MARGIN` times the triangle's largest corner depth (interpolation
 rounds relative to it), so no texel that could win is ever skipped.
 
@@ -61,7 +65,7 @@ def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv
     drawn, :func:`draw_visible` by default (:func:`.compiled.draw` has its signature).
     """
     draw = draw_visible if draw is None else draw
-    order = np.argsort(dep[idx].min(axis=1), kind="stable")
+    order = np.argsort(dep[idx].mean(axis=1), kind="stable")  # any order gives the same buffers; this one culls well
     idx, x0, x1, y0, height = idx[order], x0[order], x1[order], y0[order], height[order]
     scale = np.abs(dep).max(axis=1)  # per triangle: interpolated depths round relative to it
     near = dep[idx].min(axis=1) - MARGIN * scale[idx]  # a weighted mean of the corners' depths is never nearer
