@@ -163,20 +163,22 @@ def _refresh(far_flat: Array, depth: Array, res: int, fb: NDArray[np.int64]) -> 
     far_flat[fb] = m[:, 0]
 
 
-def _tile_far(far: Array, res: int) -> Array:
-    """Farthest of ``far`` per :data:`TILE` rows, (⌈R/TILE⌉, blocks); a max over a reshape is ~5× reduceat's speed."""
-    n = res - res % TILE
+def _tile_far(far: Array) -> Array:
+    """Farthest of ``far`` per :data:`TILE` rows (the last tile may be partial), (⌈rows/TILE⌉, blocks); a max over a reshape is ~5× reduceat's speed."""
+    n = far.shape[0] - far.shape[0] % TILE
     tiles = far[:n].reshape(-1, TILE, far.shape[1]).max(axis=1)
-    return np.vstack([tiles, far[n:].max(axis=0, keepdims=True)]) if n < res else tiles
+    return np.vstack([tiles, far[n:].max(axis=0, keepdims=True)]) if n < far.shape[0] else tiles
 
 
 def _visible_boxes(near: Array, x0, x1, y0, y1, res: int, far: Array, chunk: int) -> NDArray[np.bool_]:
     """False for a bounding box whose every tile's farthest stored depth is nearer than ``near``.
 
-    Tiles are expanded per box in groups of at most ``chunk`` tiles (bounded memory).
+    Only the tile rows the boxes touch are reduced; tiles are expanded per box in groups of
+    at most ``chunk`` tiles (bounded memory).
     """
-    tiles_far = _tile_far(far, res)
-    tx0, tx1, ty0, ty1 = x0 // BLOCK, x1 // BLOCK, y0 // TILE, y1 // TILE
+    top = int(y0.min()) // TILE
+    tiles_far = _tile_far(far[top * TILE:(int(y1.max()) // TILE + 1) * TILE])
+    tx0, tx1, ty0, ty1 = x0 // BLOCK, x1 // BLOCK, y0 // TILE - top, y1 // TILE - top
     nx = tx1 - tx0 + 1
     count = nx * (ty1 - ty0 + 1)
     box_far = np.empty(near.size)
