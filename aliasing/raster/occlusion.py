@@ -109,18 +109,19 @@ def _live_rows(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, res: int,
     row = y0.take(owner) + k
     y = row_coord.take(row)
     t = idx.take(owner)
-    ax, ay, d, iw = (a.take(t, axis=0) for a in (sx, ty, dep, inv_w))  # take: ~4× fancy indexing's speed
+    # per corner, contiguous: (x, y, depth, 1/w) of corner c of each row's triangle
+    ax, ay, d, iw = ([col.take(t) for col in a.T] for a in (sx, ty, dep, inv_w))
     lo = np.full(row.size, np.inf)
     hi = np.full(row.size, -np.inf)
     near = np.full(row.size, np.inf)
     with np.errstate(divide="ignore", invalid="ignore"):
         for i0, i1 in ((0, 1), (1, 2), (2, 0)):
-            ya, yb = ay[:, i0], ay[:, i1]
+            ya, yb = ay[i0], ay[i1]
             cross = (np.minimum(ya, yb) <= y) & (y <= np.maximum(ya, yb)) & (ya != yb)
             f = (y - ya) / (yb - ya)  # where the edge crosses the row: in [0, 1] where cross (rounding is monotone)
-            xe = ax[:, i0] + f * (ax[:, i1] - ax[:, i0])
-            wa, wb = (1.0 - f) * iw[:, i0], f * iw[:, i1]
-            de = (wa * d[:, i0] + wb * d[:, i1]) / (wa + wb)
+            xe = ax[i0] + f * (ax[i1] - ax[i0])
+            wa, wb = (1.0 - f) * iw[i0], f * iw[i1]
+            de = (wa * d[i0] + wb * d[i1]) / (wa + wb)
             lo = np.where(cross, np.minimum(lo, xe), lo)
             hi = np.where(cross, np.maximum(hi, xe), hi)
             near = np.where(cross, np.minimum(near, de), near)
