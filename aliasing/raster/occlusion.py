@@ -60,8 +60,8 @@ def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv
 
     Groups of at most :data:`GROUP`·R rows (and ``chunk``): each is culled against the
     buffer the nearer groups left.  ``far`` (farthest stored depth per row and block of
-    :data:`BLOCK` columns) is kept up to date only where texels were drawn: depths only
-    decrease, so elsewhere it stays exact.  ``draw``: how a group of triangles is
+    :data:`BLOCK` columns) starts at inf and is kept up to date only where texels were
+    drawn: depths only decrease, so elsewhere it is at worst too far (safe).  ``draw``: how a group of triangles is
     drawn, :func:`draw_visible` by default (:func:`.compiled.draw` has its signature).
     """
     draw = draw_visible if draw is None else draw
@@ -71,7 +71,9 @@ def rasterize_front_to_back(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv
     near = dep[idx].min(axis=1) - MARGIN * scale[idx]  # a weighted mean of the corners' depths is never nearer
     y1 = y0 + height - 1
     cum = np.cumsum(height)
-    far = _block_far(depth, res)
+    # ``far`` may only ever be too far (then it culls less, never wrongly): zbuffer's buffers
+    # start empty, so start at inf rather than reducing R² depths
+    far = np.full((res, -(-res // BLOCK)), np.inf)
     a = 0
     while a < idx.size:
         b = max(int(np.searchsorted(cum, (cum[a - 1] if a else 0) + min(GROUP * res, chunk), side="right")), a + 1)
