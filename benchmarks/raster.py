@@ -16,7 +16,7 @@ the three depth maps (one round = each map, then the eye pass, then the compiled
 pass of before issue 12 — ``reference_eye_pass`` of tests/reference_eye.py, imported by path: the plain z-buffer in
 triangle order and masked positions — so that load changes hit all alike); the script prints eye pass /
 depth map for each map and each eye pass, the speed-up over the reference, whether the buffers are identical,
-wall-clock and CPU time (process_time), best of the rounds or with ``--median`` their median, and the
+wall-clock and CPU time (process_time; its system part from os.times), best of the rounds or with ``--median`` their median, and the
 load average (os.getloadavg) before and after.  Then, once per resolution and outside the
 timings, the peak of traced allocations (tracemalloc) of one LogP map.  Pin one core with e.g. ``taskset -c 0`` and
 ``OMP_NUM_THREADS=1``; the rasterizer itself does not use threads, and Embree's threads
@@ -68,19 +68,30 @@ def best_of(fn, repeats: int) -> tuple[float, object]:
     return best, out
 
 
-def rounds(fns: dict, repeats: int, stat=min) -> tuple[dict, dict, dict]:
+def rounds(fns: dict, repeats: int, stat=min) -> tuple[dict, dict, dict, dict]:
     """Interleaved timing: ``repeats`` rounds of every function; ``stat`` (best, or median) of the
-    wall and CPU times [s] and the last outputs."""
+    wall and CPU times [s], the kernel's share of the CPU time (system time [s], from
+    os.times), and the last outputs.
+
+    A function's previous output is released before it runs again: an eye pass's 300 MB of
+    buffers kept alive across the next call made the kernel compact memory for the new
+    huge pages (transparent huge pages, defrag=madvise here), 0.1–0.3 s of system time
+    charged to whichever function ran next.
+    """
     walls = {k: [] for k in fns}
     cpus = {k: [] for k in fns}
+    syss = {k: [] for k in fns}
     out = {}
     for _ in range(repeats):
         for k, fn in fns.items():
-            w0, c0 = time.perf_counter(), time.process_time()
+            out.pop(k, None)
+            s0, w0, c0 = os.times().system, time.perf_counter(), time.process_time()
             out[k] = fn()
             walls[k].append(time.perf_counter() - w0)
             cpus[k].append(time.process_time() - c0)
-    return {k: float(stat(v)) for k, v in walls.items()}, {k: float(stat(v)) for k, v in cpus.items()}, out
+            syss[k].append(os.times().system - s0)
+    agg = lambda d: {k: float(stat(v)) for k, v in d.items()}  # noqa: E731
+    return agg(walls), agg(cpus), agg(syss), out
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -129,7 +140,7 @@ def main(argv: list[str] | None = None) -> None:
         if not args.no_reference:
             fns["reference"] = lambda ref=_reference_eye_pass(): ref(scene.triangles, FOV, res)
         load0 = os.getloadavg()[0]
-        wall, cpu, out = rounds(fns, args.repeats, stat=np.median if args.median else min)
+        wall, cpu, sys_, out = rounds(fns, args.repeats, stat=np.median if args.median else min)
         load1 = os.getloadavg()[0]
         eb = out["eye"]
         stat = "median" if args.median else "best"
@@ -138,7 +149,7 @@ def main(argv: list[str] | None = None) -> None:
         for eye in [k for k in ("eye", "eye numba") if k in out]:
             for name in maps:
                 print(f"{res}² {eye:9s} / {name:8s} depth map: wall {wall[eye] / wall[name]:.2f} (eye {wall[eye]:.3f} s, map {wall[name]:.3f} s), "
-                      f"CPU {cpu[eye] / cpu[name]:.2f} (eye {cpu[eye]:.3f} s, map {cpu[name]:.3f} s)")
+                      f"CPU {cpu[eye] / cpu[name]:.2f} (eye {cpu[eye]:.3f} s, map {cpu[name]:.3f} s; of which system {sys_[eye]:.3f} s, {sys_[name]:.3f} s)")
         if "eye numba" in out:
             nb = out["eye numba"]
             same = np.array_equal(eb.triangle, nb.triangle) and np.array_equal(eb.position, nb.position, equal_nan=True) and np.array_equal(eb.normal, nb.normal, equal_nan=True)
