@@ -99,47 +99,46 @@ def draw_visible(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, 
 def _live_rows(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, res: int, far: Array, scale: Array):
     """(triangle, row, x0, x1) of the rows of triangles ``idx`` that may hold a visible texel.
 
-    The row's centre line meets the triangle in a segment whose ends lie on two edges; depth
-    along it is monotone, so no texel of the row is nearer than the ends' depths
-    (perspective-correct interpolation along those edges: a convex combination of the
-    corners', never nearer than the nearer corner).  A row is dropped when that bound, less
-    the rounding margin, lies beyond the farthest stored depth of every block within two
-    texels of the segment (the exact ends are within one texel of the estimate), or when no
-    edge crosses it (:func:`.coverage.row_spans` finds no span there either).
+    With the corners sorted by t (top, middle, bottom), a row's centre line meets the
+    triangle in a segment from the long edge (top–bottom) to the short edge it crosses
+    (top–middle above the middle corner, middle–bottom from it on).  Depth along the segment
+    is monotone, so no texel of the row is nearer than its ends' depths (perspective-correct
+    interpolation along those edges).  A row is dropped when that bound, less the rounding
+    margin, lies beyond the farthest stored depth of every block within two texels of the
+    segment (the exact ends are within one texel of the estimate).
     """
     owner, k = expand(height)
     row = y0.take(owner) + k
     y = row_coord.take(row)
-    t = idx.take(owner)
-    # per corner, contiguous: (x, y, depth, 1/w) of corner c of each row's triangle
-    ax, ay, d, iw = ([col.take(t) for col in a.T] for a in (sx, ty, dep, inv_w))
-    lo = np.full(row.size, np.inf)
-    hi = np.full(row.size, -np.inf)
-    near = np.full(row.size, np.inf)
+    order = np.argsort(ty[idx], axis=1, kind="stable")  # per triangle: corners top, middle, bottom
+    cx, cy, cd, cw = (np.take_along_axis(a[idx], order, axis=1).ravel() for a in (sx, ty, dep, inv_w))
+    first = owner * 3
+    mid = first + 1
+    upper = y < cy.take(mid)
+    short = first + (~upper)  # the short edge's first corner: top above the middle corner, else middle
+    ends = []
     with np.errstate(divide="ignore", invalid="ignore"):
-        for i0, i1 in ((0, 1), (1, 2), (2, 0)):
-            ya, yb = ay[i0], ay[i1]
-            cross = (np.minimum(ya, yb) <= y) & (y <= np.maximum(ya, yb)) & (ya != yb)
-            f = (y - ya) / (yb - ya)  # where the edge crosses the row: in [0, 1] where cross (rounding is monotone)
-            xe = ax[i0] + f * (ax[i1] - ax[i0])
-            wa, wb = (1.0 - f) * iw[i0], f * iw[i1]
-            de = (wa * d[i0] + wb * d[i1]) / (wa + wb)
-            lo = np.where(cross, np.minimum(lo, xe), lo)
-            hi = np.where(cross, np.maximum(hi, xe), hi)
-            near = np.where(cross, np.minimum(near, de), near)
+        for a, b in ((first, first + 2), (short, short + 1)):
+            ya, yb = cy.take(a), cy.take(b)
+            f = (y - ya) / (yb - ya)  # in [0, 1] (rounding is monotone); 0/0 only on a horizontal bottom edge, at its row
+            f[yb == ya] = 0.0
+            xa, wa, wb = cx.take(a), (1.0 - f) * cw.take(a), f * cw.take(b)
+            ends.append((xa + f * (cx.take(b) - xa), (wa * cd.take(a) + wb * cd.take(b)) / (wa + wb)))
+    (xl, dl), (xs, ds) = ends
+    near = np.minimum(dl, ds)
     bx0, bx1 = x0.take(owner), x1.take(owner)
-    has = np.isfinite(lo) & np.isfinite(hi)
-    c0 = np.minimum(np.maximum(np.floor(np.where(has, lo, 0.0)) - 2, bx0), bx1).astype(np.int64) // BLOCK
-    c1 = np.minimum(np.maximum(np.ceil(np.where(has, hi, 0.0)) + 2, bx0), bx1).astype(np.int64) // BLOCK
+    c0 = np.minimum(np.maximum(np.floor(np.minimum(xl, xs)) - 2, bx0), bx1).astype(np.int64) // BLOCK
+    c1 = np.minimum(np.maximum(np.ceil(np.maximum(xl, xs)) + 2, bx0), bx1).astype(np.int64) // BLOCK
     # farthest stored depth over blocks c0 … c1 (rows wider than ROW_BLOCKS blocks are kept)
     last = np.minimum(c1 - c0, ROW_BLOCKS - 1)
-    first = row * far.shape[1] + c0
+    start = row * far.shape[1] + c0
     far_flat = far.reshape(-1)
-    row_far = far_flat.take(first)
+    row_far = far_flat.take(start)
     for j in range(1, ROW_BLOCKS):
-        np.maximum(row_far, far_flat.take(first + np.minimum(j, last)), out=row_far)
+        np.maximum(row_far, far_flat.take(start + np.minimum(j, last)), out=row_far)
     row_far[c1 - c0 >= ROW_BLOCKS] = np.inf
-    live = np.flatnonzero(has & ~(near - MARGIN * scale.take(t) > row_far))
+    t = idx.take(owner)
+    live = np.flatnonzero(~(near - MARGIN * scale.take(t) > row_far))
     return t.take(live), row.take(live), bx0.take(live), bx1.take(live)
 
 
