@@ -85,7 +85,7 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     backend : {"numpy", "numba"}
         ``"numba"`` runs the z-test and the per-pixel outputs as compiled loops
         (:mod:`.compiled`, the optional ``fast`` extra; ``chunk`` is not needed there): the
-        same buffers bit for bit, 4–5× faster at 2048² (benchmarks/README.md).
+        same buffers bit for bit, about 2× faster at 2048² (benchmarks/README.md).
 
     Returns
     -------
