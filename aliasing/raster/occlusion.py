@@ -187,7 +187,8 @@ def _visible_boxes(near: Array, x0, x1, y0, y1, res: int, far: Array, chunk: int
     for a, b in zip(bounds[:-1], bounds[1:]):
         box, k = expand(count[a:b])
         box += a
-        tiles = tiles_far[ty0[box] + k // nx[box], tx0[box] + k % nx[box]]
+        ny, nxb = np.divmod(k, nx.take(box))
+        tiles = tiles_far.reshape(-1).take((ty0.take(box) + ny) * tiles_far.shape[1] + tx0.take(box) + nxb)
         box_far[a:b] = np.maximum.reduceat(tiles, np.cumsum(count[a:b]) - count[a:b])
     return ~(near > box_far)
 
