@@ -219,28 +219,29 @@ def merge_visible(sp: Spans, res: int, chunk: int, depth: Array, ident: NDArray[
         near = np.minimum((n0 + n1 * p0) / (m0 + m1 * p0), (n0 + n1 * p1) / (m0 + m1 * p1))  # Spans.depth_at at both ends
         fb = first.take(span) + k
         live = np.flatnonzero(~(near - margin.take(span) > far_flat.take(fb)))
-        # texels of the live pieces: per-piece values gathered once per texel (owner)
+        # texels of the live pieces: per-piece values repeated per texel (np.repeat beats a
+        # gather by owner at these sizes: the step's arrays stay in cache)
         sl = span.take(live)
         c0, w, fb = c0.take(live), c1.take(live) - c0.take(live) + 1, fb.take(live)
-        owner = np.repeat(np.arange(live.size), w)
         start = np.cumsum(w)
         start -= w
         c0 -= start  # a texel's column: c0 − start + its index in the step
-        px = np.arange(owner.size, dtype=np.float64)
-        px += (c0 + 0.5).take(owner)  # column + ½, exact (integers and halves)
-        pix = np.arange(owner.size)
-        pix += (sp.row.take(sl) * res + c0).take(owner)
-        num = n1.take(live).take(owner)
+        n = int(start[-1] + w[-1]) if w.size else 0
+        px = np.arange(n, dtype=np.float64)
+        px += np.repeat(c0 + 0.5, w)  # column + ½, exact (integers and halves)
+        pix = np.arange(n)
+        pix += np.repeat(sp.row.take(sl) * res + c0, w)
+        num = np.repeat(n1.take(live), w)
         num *= px
-        num += n0.take(live).take(owner)
-        den = m1.take(live).take(owner)
+        num += np.repeat(n0.take(live), w)
+        den = np.repeat(m1.take(live), w)
         den *= px
-        den += m0.take(live).take(owner)
+        den += np.repeat(m0.take(live), w)
         z = np.divide(num, den, out=num)  # (n0 + n1 px) / (m0 + m1 px): Spans.depth_at
         before = depth.take(pix)
         np.minimum.at(depth, pix, z)
         after = depth.take(pix)
         ident[pix[after < before]] = -1  # a nearer triangle arrived: forget the old ties
         win = z == after
-        np.maximum.at(ident, pix[win], sp.t_id.take(sl).take(owner[win]))
+        np.maximum.at(ident, pix[win], np.repeat(sp.t_id.take(sl), w)[win])
         _refresh(far_flat, depth, res, fb)
