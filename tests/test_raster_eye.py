@@ -151,3 +151,17 @@ def test_numba_eye_pass_identical_on_random_scenes(seed):
     np.testing.assert_array_equal(b.position, a.position)
     np.testing.assert_array_equal(b.normal, a.normal)
     np.testing.assert_array_equal(np.signbit(b.position), np.signbit(a.position))  # signed zeros too
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_numpy_eye_pass_identical_to_the_reference_on_random_scenes(seed):
+    # the numpy path alone (row test, piece test, merge steps) against the plain z-buffer:
+    # slivers to screen-filling triangles, near-plane crossings, duplicates (exact ties),
+    # odd resolutions, fovs and chunks (small chunks: many groups and steps)
+    rng = np.random.default_rng(100 + seed)
+    n = int(rng.integers(50, 400))
+    c = np.column_stack([rng.uniform(-6, 6, (n, 2)), rng.uniform(-1, 12, n)])
+    tri = c[:, None, :] + rng.uniform(-3, 3, (n, 3, 3)) * rng.choice([0.02, 0.5, 2], n)[:, None, None]
+    tri = np.concatenate([tri, tri[: n // 4]])
+    res, fov, chunk = int(rng.integers(20, 160)), float(rng.uniform(30, 150)), int(rng.choice([64, 700, 1 << 20]))
+    assert_same(raster.eye_pass(tri, fov, res, chunk=chunk), reference_eye_pass(tri, fov, res))
