@@ -196,8 +196,9 @@ def _visible_boxes(near: Array, x0, x1, y0, y1, res: int, far: Array, chunk: int
 def merge_visible(sp: Spans, res: int, chunk: int, depth: Array, ident: NDArray[np.int64], far: Array, scale: Array) -> None:
     """Merge spans into the z-buffer (min depth, then highest triangle index), skipping hidden pieces.
 
-    ``far``: :func:`_block_far` of ``depth`` (C-contiguous), refreshed here where texels are
-    drawn; ``scale``: each triangle's largest absolute corner depth (for the rounding margin).
+    ``far``: per block, the farthest stored depth (:func:`_block_far`) or farther (never
+    nearer: a stale block only culls less); C-contiguous, refreshed here where texels are
+    drawn.  ``scale``: each triangle's largest absolute corner depth (for the rounding margin).
     Spans go in steps of at most ``min(chunk, BATCH)`` texels (:data:`BATCH`).
     """
     nb = far.shape[1]
