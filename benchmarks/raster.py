@@ -13,10 +13,10 @@ texels whose depths agree (:func:`aliasing.raster.raycast.agreement`).  Without 
 The eye pass (occlusion-culled, :mod:`aliasing.raster.occlusion`) is timed interleaved with
 the three depth maps (one round = each map, then the eye pass, then the compiled eye pass
 ``backend="numba"`` when numba is installed, then the plain reference eye
-pass of before issue 12 — :func:`reference_eye_pass`, the plain z-buffer in triangle order
-and masked positions — so that load changes hit all alike); the script prints eye pass /
+pass of before issue 12 — ``reference_eye_pass`` of tests/reference_eye.py, imported by path: the plain z-buffer in
+triangle order and masked positions — so that load changes hit all alike); the script prints eye pass /
 depth map for each map and each eye pass, the speed-up over the reference, whether the buffers are identical,
-wall-clock and CPU time (process_time), best of the rounds or with ``--median`` their median, and the
+wall-clock and CPU time (process_time; its system part from os.times), best of the rounds or with ``--median`` their median, and the
 load average (os.getloadavg) before and after.  Then, once per resolution and outside the
 timings, the peak of traced allocations (tracemalloc) of one LogP map.  Pin one core with e.g. ``taskset -c 0`` and
 ``OMP_NUM_THREADS=1``; the rasterizer itself does not use threads, and Embree's threads
@@ -34,8 +34,10 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import os
 import time
+from pathlib import Path
 import tracemalloc
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
@@ -45,9 +47,16 @@ import numpy as np  # noqa: E402
 
 from aliasing import raster  # noqa: E402
 from aliasing.raster import compiled, raycast  # noqa: E402
-from aliasing.raster.rasterize import clip_near, project  # noqa: E402
 
 NEAR, FAR, FOV, LIGHT = 1.0, 1000.0, 60.0, "gamma:60@azimuth:20"
+
+
+def _reference_eye_pass():
+    """tests/reference_eye.py's reference_eye_pass, imported by path (the package ships no reference code)."""
+    spec = importlib.util.spec_from_file_location("reference_eye", Path(__file__).resolve().parents[1] / "tests" / "reference_eye.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.reference_eye_pass
 
 
 def best_of(fn, repeats: int) -> tuple[float, object]:
@@ -59,42 +68,30 @@ def best_of(fn, repeats: int) -> tuple[float, object]:
     return best, out
 
 
-def rounds(fns: dict, repeats: int, stat=min) -> tuple[dict, dict, dict]:
+def rounds(fns: dict, repeats: int, stat=min) -> tuple[dict, dict, dict, dict]:
     """Interleaved timing: ``repeats`` rounds of every function; ``stat`` (best, or median) of the
-    wall and CPU times [s] and the last outputs."""
+    wall and CPU times [s], the kernel's share of the CPU time (system time [s], from
+    os.times), and the last outputs.
+
+    A function's previous output is released before it runs again: an eye pass's 300 MB of
+    buffers kept alive across the next call made the kernel compact memory for the new
+    huge pages (transparent huge pages, defrag=madvise here), 0.1–0.3 s of system time
+    charged to whichever function ran next.
+    """
     walls = {k: [] for k in fns}
     cpus = {k: [] for k in fns}
+    syss = {k: [] for k in fns}
     out = {}
     for _ in range(repeats):
         for k, fn in fns.items():
-            w0, c0 = time.perf_counter(), time.process_time()
+            out.pop(k, None)
+            s0, w0, c0 = os.times().system, time.perf_counter(), time.process_time()
             out[k] = fn()
             walls[k].append(time.perf_counter() - w0)
             cpus[k].append(time.process_time() - c0)
-    return {k: float(stat(v)) for k, v in walls.items()}, {k: float(stat(v)) for k, v in cpus.items()}, out
-
-
-def reference_eye_pass(triangles, fov: float, res: int, near: float = 1e-3):
-    """The eye pass before issue 12 (plain z-buffer in triangle order, masked positions): the reference."""
-    tri = np.asarray(triangles, float)
-    clipped, src = clip_near(tri, near)
-    u, v, z = project(clipped, fov)
-    dm = raster.rasterize(np.stack([u, v, -1.0 / z], axis=-1), res)
-    ident = np.where(dm.triangle >= 0, src[np.maximum(dm.triangle, 0)], -1)
-    t = np.tan(np.radians(fov) / 2)
-    c = (np.arange(res) + 0.5) / res
-    ray = np.stack(np.broadcast_arrays(((2 * c[None, :] - 1) * t), ((2 * c[:, None] - 1) * t), np.ones((res, 1))), axis=-1)
-    a, b, cc = tri[:, 0], tri[:, 1], tri[:, 2]
-    nrm = np.cross(b - a, cc - a)
-    nrm /= np.linalg.norm(nrm, axis=-1, keepdims=True)
-    hit = ident >= 0
-    n_px, a_px, r_px = nrm[ident[hit]], a[ident[hit]], ray[hit]
-    lam = (n_px * a_px).sum(-1) / (n_px * r_px).sum(-1)
-    position = np.full((res, res, 3), np.nan)
-    normal = np.full((res, res, 3), np.nan)
-    position[hit] = r_px * lam[:, None]
-    normal[hit] = np.where(((n_px * r_px).sum(-1) > 0)[:, None], -n_px, n_px)
-    return position, normal, ident
+            syss[k].append(os.times().system - s0)
+    agg = lambda d: {k: float(stat(v)) for k, v in d.items()}  # noqa: E731
+    return agg(walls), agg(cpus), agg(syss), out
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -141,9 +138,9 @@ def main(argv: list[str] | None = None) -> None:
         if numba_eye:
             fns["eye numba"] = lambda: raster.eye_pass(scene.triangles, FOV, res, backend="numba")
         if not args.no_reference:
-            fns["reference"] = lambda: reference_eye_pass(scene.triangles, FOV, res)
+            fns["reference"] = lambda ref=_reference_eye_pass(): ref(scene.triangles, FOV, res)
         load0 = os.getloadavg()[0]
-        wall, cpu, out = rounds(fns, args.repeats, stat=np.median if args.median else min)
+        wall, cpu, sys_, out = rounds(fns, args.repeats, stat=np.median if args.median else min)
         load1 = os.getloadavg()[0]
         eb = out["eye"]
         stat = "median" if args.median else "best"
@@ -152,7 +149,7 @@ def main(argv: list[str] | None = None) -> None:
         for eye in [k for k in ("eye", "eye numba") if k in out]:
             for name in maps:
                 print(f"{res}² {eye:9s} / {name:8s} depth map: wall {wall[eye] / wall[name]:.2f} (eye {wall[eye]:.3f} s, map {wall[name]:.3f} s), "
-                      f"CPU {cpu[eye] / cpu[name]:.2f} (eye {cpu[eye]:.3f} s, map {cpu[name]:.3f} s)")
+                      f"CPU {cpu[eye] / cpu[name]:.2f} (eye {cpu[eye]:.3f} s, map {cpu[name]:.3f} s; of which system {sys_[eye]:.3f} s, {sys_[name]:.3f} s)")
         if "eye numba" in out:
             nb = out["eye numba"]
             same = np.array_equal(eb.triangle, nb.triangle) and np.array_equal(eb.position, nb.position, equal_nan=True) and np.array_equal(eb.normal, nb.normal, equal_nan=True)

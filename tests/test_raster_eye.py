@@ -7,30 +7,7 @@ import pytest
 
 from aliasing import raster
 from aliasing.raster import compiled, core, eye, occlusion
-from aliasing.raster.rasterize import clip_near, project
-
-
-def reference_eye_pass(triangles, fov, res, near=1e-3):
-    """The eye pass before issue 12 (plain z-buffer in triangle order, masked positions), kept as the reference."""
-    tri = np.asarray(triangles, float)
-    clipped, src = clip_near(tri, near)
-    u, v, z = project(clipped, fov)
-    dm = raster.rasterize(np.stack([u, v, -1.0 / z], axis=-1), res)
-    ident = np.where(dm.triangle >= 0, src[np.maximum(dm.triangle, 0)], -1)
-    t = np.tan(np.radians(fov) / 2)
-    c = (np.arange(res) + 0.5) / res
-    ray = np.stack(np.broadcast_arrays(((2 * c[None, :] - 1) * t), ((2 * c[:, None] - 1) * t), np.ones((res, 1))), axis=-1)
-    a, b, cc = tri[:, 0], tri[:, 1], tri[:, 2]
-    nrm = np.cross(b - a, cc - a)
-    nrm /= np.linalg.norm(nrm, axis=-1, keepdims=True)
-    hit = ident >= 0
-    n_px, a_px, r_px = nrm[ident[hit]], a[ident[hit]], ray[hit]
-    lam = (n_px * a_px).sum(-1) / (n_px * r_px).sum(-1)
-    position = np.full((res, res, 3), np.nan)
-    normal = np.full((res, res, 3), np.nan)
-    position[hit] = r_px * lam[:, None]
-    normal[hit] = np.where(((n_px * r_px).sum(-1) > 0)[:, None], -n_px, n_px)
-    return position, normal, ident
+from reference_eye import reference_eye_pass  # tests/reference_eye.py: the pre-issue-12 eye pass
 
 
 def assert_same(eb, ref):
@@ -85,21 +62,39 @@ def test_culled_z_buffer_matches_plain_one_for_perspective_and_log_rows(backend)
     assert (culled.rasterized, culled.degenerate) == (plain.rasterized, plain.degenerate)
 
 
-def test_culling_skips_hidden_work():
-    # a near wall hides a far grid: the culled pass draws far fewer texels than the plain one
+def test_culling_skips_hidden_work(monkeypatch):
+    # a near wall hides a far grid: the culled pass sets up the spans of the wall only (hidden
+    # triangles and rows are dropped before their spans are computed)
     wall = np.array([[[-9, -9, 2], [9, -9, 2], [0, 9, 2]], [[-9, 9, 2], [9, 9, 2], [9, -9, 2]]], float)
-    g = np.linspace(-5, 5, 21)
-    far = np.array([[[x, y, 50], [x + 0.5, y, 50], [x, y + 0.5, 50]] for x in g for y in g])
+    g = np.linspace(-20, 20, 21)
+    far = np.array([[[x, y, 50], [x + 2, y, 50], [x, y + 2, 50]] for x in g for y in g])  # half the image
     tri = np.concatenate([far, wall])
-    counts = []
-    real = occlusion.expand
-    try:
-        occlusion.expand = lambda c: (counts.append(int(np.sum(c))), real(c))[1]
-        eb = raster.eye_pass(tri, 60.0, 64)
-    finally:
-        occlusion.expand = real
-    assert set(np.unique(eb.triangle).tolist()) <= {len(far), len(far) + 1}
-    assert sum(counts) < 2 * 64 * 64  # without culling: ≥ 64² wall texels plus 441 triangles' worth
+    texels = []
+    real_spans = occlusion.row_spans
+    monkeypatch.setattr(occlusion, "row_spans", lambda *a: (lambda sp: (texels.append(int(sp.width.sum())), sp)[1])(real_spans(*a)))
+
+    def count(scene):
+        texels.clear()
+        eb = raster.eye_pass(scene, 60.0, 64, chunk=64)  # groups of 64 rows: the nearest triangles first, alone
+        return eb, sum(texels)
+
+    eb, culled = count(tri)
+    assert set(np.unique(eb.triangle).tolist()) == {len(far), len(far) + 1}
+    assert culled == count(wall)[1]
+    assert count(far)[1] > 64 * 64 / 4  # drawn alone, the grid covers a quarter of the image
+
+
+def test_row_test_drops_the_hidden_rows_of_a_partly_visible_triangle(monkeypatch):
+    # a near wall over the lower half of the image and a far backdrop over all of it: the
+    # backdrop's box is not hidden, but its rows behind the wall are never set up
+    low = np.array([[[-9, -9, 2], [9, -9, 2], [9, 0, 2]], [[-9, -9, 2], [9, 0, 2], [-9, 0, 2]]], float)
+    back = np.array([[[-99, -99, 50], [99, -99, 50], [0, 99, 50]]], float)
+    rows = []
+    real = occlusion.row_spans
+    monkeypatch.setattr(occlusion, "row_spans", lambda idx, x0, x1, y0, h, *a: (rows.append(np.repeat(idx, h)), real(idx, x0, x1, y0, h, *a))[1])
+    eb = raster.eye_pass(np.concatenate([back, low]), 60.0, 64, chunk=64)
+    assert (eb.triangle[:32] >= 1).all() and (eb.triangle[32:] == 0).all()
+    assert (np.concatenate(rows) == 0).sum() == 32  # the backdrop's upper 32 rows only
 
 
 def test_eye_pass_bad_chunk():
@@ -156,3 +151,17 @@ def test_numba_eye_pass_identical_on_random_scenes(seed):
     np.testing.assert_array_equal(b.position, a.position)
     np.testing.assert_array_equal(b.normal, a.normal)
     np.testing.assert_array_equal(np.signbit(b.position), np.signbit(a.position))  # signed zeros too
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_numpy_eye_pass_identical_to_the_reference_on_random_scenes(seed):
+    # the numpy path alone (row test, piece test, merge steps) against the plain z-buffer:
+    # slivers to screen-filling triangles, near-plane crossings, duplicates (exact ties),
+    # odd resolutions, fovs and chunks (small chunks: many groups and steps)
+    rng = np.random.default_rng(100 + seed)
+    n = int(rng.integers(50, 400))
+    c = np.column_stack([rng.uniform(-6, 6, (n, 2)), rng.uniform(-1, 12, n)])
+    tri = c[:, None, :] + rng.uniform(-3, 3, (n, 3, 3)) * rng.choice([0.02, 0.5, 2], n)[:, None, None]
+    tri = np.concatenate([tri, tri[: n // 4]])
+    res, fov, chunk = int(rng.integers(20, 160)), float(rng.uniform(30, 150)), int(rng.choice([64, 700, 1 << 20]))
+    assert_same(raster.eye_pass(tri, fov, res, chunk=chunk), reference_eye_pass(tri, fov, res))

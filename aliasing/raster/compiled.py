@@ -1,10 +1,11 @@
 """Optional compiled kernels of the eye pass (numba, the ``fast`` extra): the same buffers, bit for bit.
 
-numpy cannot bring the eye pass within 1.5× a depth map (issue 12 item 5; figures in
-benchmarks/README.md): its z-buffer expands every covered span into (texel, triangle)
-arrays and merges them with ``np.minimum.at``, and the outputs take several passes over
-232 MB.  Loops compiled with numba replace those stages; the rest (near clipping,
-projection, triangle order and culling) stays the numpy code:
+The numpy eye pass comes within 1.5× of the P and LogP depth maps but not of the Standard
+map (issue 12 item 5; about 1.6–1.8× at 2048², figures in benchmarks/README.md): its
+z-buffer expands the covered spans into (texel, triangle) arrays and merges them with
+``np.minimum.at``, and the outputs take several passes over 232 MB.  Loops compiled with
+numba replace those stages; the rest (near clipping, projection, triangle order and
+culling) stays the numpy code:
 
 * ``draw_rows`` — the covered span of every (triangle, row) (:func:`.coverage.row_spans`)
   and the z-test of its texels (minimum depth, ties to the highest triangle index, NaN

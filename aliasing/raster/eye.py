@@ -14,6 +14,9 @@ from ..view import half_angle
 
 Array = NDArray[np.float64]
 
+#: Pixels per band of the numpy outputs (temporaries of ~8 arrays this long stay in cache).
+OUTPUT_BAND = 1 << 15
+
 
 @dataclass(frozen=True)
 class EyeBuffer:
@@ -82,7 +85,7 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     backend : {"numpy", "numba"}
         ``"numba"`` runs the z-test and the per-pixel outputs as compiled loops
         (:mod:`.compiled`, the optional ``fast`` extra; ``chunk`` is not needed there): the
-        same buffers bit for bit, 4–5× faster at 2048² (benchmarks/README.md).
+        same buffers bit for bit, about 2× faster at 2048² (benchmarks/README.md).
 
     Returns
     -------
@@ -134,23 +137,34 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
 def _outputs_numpy(tri_id: NDArray[np.int64], src: NDArray[np.int64], X: Array, nrm: Array, lam_num: Array, res: int) -> tuple[NDArray[np.int64], Array, Array]:
     """Source ids, positions and normals per pixel (:func:`eye_pass`), vectorized.
 
-    Per-triangle tables end in a NaN row, which empty pixels (id −1) pick: no masks over the image.
+    Per-triangle tables (one per coordinate) end in a NaN row, which empty pixels (id −1)
+    pick: no masks over the image.  Bands of :data:`OUTPUT_BAND` pixels are done at a time,
+    so the temporaries stay in cache and each output is written once.
     """
     ident = np.append(src, -1).take(tri_id).reshape(res, res)  # -1 (empty) picks the appended -1
-    Y = X[:, None]
-    rows = np.ascontiguousarray(np.vstack([nrm, np.full((1, 3), np.nan)])).view(np.dtype((np.void, 24))).ravel()
-    normal = rows.take(ident).view(np.float64).reshape(res, res, 3)  # whole rows at once: one gather
-    den = normal[..., 0] * X
-    den += normal[..., 1] * Y
-    den += normal[..., 2]  # n·(X, Y, 1), summed in a dot product's order
-    with np.errstate(divide="ignore", invalid="ignore"):
-        lam = np.append(lam_num, np.nan).take(ident)
-        lam /= den
+    nan = np.array([np.nan])
+    nx, ny, nz = (np.concatenate([nrm[:, i], nan]) for i in range(3))
+    num = np.concatenate([lam_num, nan])
     position = np.empty((res, res, 3))
-    np.multiply(X, lam, out=position[..., 0])
-    np.multiply(Y, lam, out=position[..., 1])
-    position[..., 2] = lam
-    np.negative(normal, out=normal, where=(den > 0)[..., None])  # face the eye: −n where n·ray > 0
+    normal = np.empty((res, res, 3))
+    step = max(1, OUTPUT_BAND // res)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for r0 in range(0, res, step):
+            ids, Y = ident[r0:r0 + step], X[r0:r0 + step, None]
+            gx, gy, gz = nx.take(ids), ny.take(ids), nz.take(ids)
+            den = gx * X
+            den += gy * Y
+            den += gz  # n·(X, Y, 1), summed in a dot product's order
+            lam = num.take(ids)
+            lam /= den
+            pos, nor = position[r0:r0 + step], normal[r0:r0 + step]
+            np.multiply(X, lam, out=pos[..., 0])
+            np.multiply(Y, lam, out=pos[..., 1])
+            pos[..., 2] = lam
+            flip = den > 0  # face the eye: −n where n·ray > 0
+            for i, g in enumerate((gx, gy, gz)):
+                np.negative(g, out=g, where=flip)
+                nor[..., i] = g
     return ident, position, normal
 
 
