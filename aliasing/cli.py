@@ -180,15 +180,7 @@ def _splits(args: argparse.Namespace) -> int:
     if args.k is not None and args.k >= 1:  # k maps over the light directions: refuse before allocating
         size, _ = limits.estimate_bytes(1, 1, 1, limits.light_count(args.light), args.k, 20_000)
         limits.check_bytes(size, "-k", limit)
-    params = {} if args.lam is None else {"lam": args.lam}
-    for item in args.param:
-        key, sep, value = item.partition("=")
-        try:
-            params[key.strip()] = float(value)
-        except ValueError:
-            sep = ""
-        if not sep or not key.strip():
-            raise ValueError(f"--param takes KEY=NUMBER, got {item!r}")
+    params = partitioning.split_params(args.lam, args.param)
     rows = budgets.splits_report(
         args.method, args.near, args.far, args.k, fov=args.fov, light=args.light, warp=args.warp,
         budget=args.budget, res_image=args.image_res, allocations=tuple(a for a in args.allocations.split(",") if a), **params,

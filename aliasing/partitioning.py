@@ -14,7 +14,7 @@ array([  1. ,  30.25, 100. ])
 from __future__ import annotations
 
 import inspect
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -67,6 +67,29 @@ def register(name: str, source: str, summary: str, *, default_k: int | None = No
 
 
 @check.public
+def split_params(lam: float | None, items: Sequence[str]) -> dict[str, float]:
+    """Split-method parameters from the command line: ``--lambda`` and ``--param KEY=NUMBER`` items.
+
+    Shared by ``aliasing splits``, ``aliasing render`` and ``aliasing validate --scene`` (not
+    part of the API: the functions take the parameters as keywords).
+
+    Example
+    -------
+    >>> split_params(0.5, ["ratio=2", "bias=0.1"])
+    {'lam': 0.5, 'ratio': 2.0, 'bias': 0.1}
+    """
+    params = {} if lam is None else {"lam": float(lam)}
+    for item in items:
+        key, sep, value = item.partition("=")
+        try:
+            params[key.strip()] = float(value)
+        except ValueError:
+            sep = ""
+        if not sep or not key.strip():
+            raise ValueError(f"--param takes KEY=NUMBER, got {item!r}")
+    return params
+
+
 def split_distances(method: str, near: float, far: float, k: int | None = None, **params: float) -> Array:
     """The k + 1 split distances C_0 = near < … < C_k = far of a named scheme [world units].
 

@@ -552,6 +552,26 @@ def _render(args: argparse.Namespace) -> int:
     return 0
 
 
+def add_scene_arguments(scene, cascades, splits_for: str) -> None:
+    """The options of a loaded scene (file, world camera, light) and of its cascades, for ``render`` and ``validate``.
+
+    ``scene`` and ``cascades`` are argument groups (or parsers); ``splits_for`` says which
+    schemes ``--splits`` applies to.
+    """
+    scene.add_argument("--scene", metavar="FILE", help="scene file: .glb, .gltf, .obj, .ply, .stl (glTF/GLB, binary PLY and STL need the scenes extra)")
+    scene.add_argument("--eye", metavar="X,Y,Z", help="camera position (world space; --eye=-5,2,0 when X is negative)")
+    scene.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at (world space)")
+    scene.add_argument("--up", metavar="X,Y,Z", default="0,1,0", help="up vector (default 0,1,0)")
+    scene.add_argument("--camera", metavar="NAME", help="a glTF camera of the file, by camera or node name")
+    scene.add_argument("--near", type=float, help="near distance (default 1, or the glTF camera's znear)")
+    scene.add_argument("--far", type=float, help="far (shadow) distance (default 100, or the glTF camera's zfar)")
+    scene.add_argument("--light-dir", metavar="X,Y,Z", help="world-space direction towards the light, instead of --light (eye space); write --light-dir=-1,2,0 when X is negative")
+    cascades.add_argument("--splits", metavar="NAME", help=f"split method or engine preset {splits_for} (see aliasing splits --list)")
+    cascades.add_argument("--lambda", dest="lam", type=float, help="blend λ in [0, 1] of practical-style splits")
+    cascades.add_argument("-k", type=int, help="number of cascades (default: the preset's own)")
+    cascades.add_argument("--param", action="append", default=[], metavar="KEY=VALUE", help="other split parameters, as in aliasing splits")
+
+
 def add_render_parser(sub) -> argparse.ArgumentParser:
     """Add the ``render`` subcommand to an ``add_subparsers`` object (of :class:`aliasing.cli._Parser`)."""
     ren = sub.add_parser(
@@ -574,20 +594,8 @@ def add_render_parser(sub) -> argparse.ArgumentParser:
     ren.add_argument("--image-res", type=int, default=512, help="image resolution in pixels per side (default 512)")
     ren.add_argument("--every", type=int, default=16, help="grid: texels between grid lines (default 16)")
     ren.add_argument("--seed", type=int, default=1, help="scene seed (default 1)")
-    scn = ren.add_argument_group("your own scene (needs the scenes extra for glTF/GLB, binary PLY, STL)")
-    scn.add_argument("--scene", metavar="FILE", help="scene file: .glb, .gltf, .obj, .ply, .stl")
-    scn.add_argument("--eye", metavar="X,Y,Z", help="camera position (world space; --eye=-5,2,0 when X is negative)")
-    scn.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at (world space)")
-    scn.add_argument("--up", metavar="X,Y,Z", default="0,1,0", help="up vector (default 0,1,0)")
-    scn.add_argument("--camera", metavar="NAME", help="a glTF camera of the file, by camera or node name")
-    scn.add_argument("--near", type=float, help="near distance (default 1, or the glTF camera's znear)")
-    scn.add_argument("--far", type=float, help="far (shadow) distance (default 100, or the glTF camera's zfar)")
-    scn.add_argument("--light-dir", metavar="X,Y,Z", help="world-space direction towards the light (write --light-dir=-1,2,0 when X is negative)")
-    cas = ren.add_argument_group("cascades")
-    cas.add_argument("--splits", metavar="NAME", help="split method or engine preset for every scheme (see aliasing splits --list)")
-    cas.add_argument("--lambda", dest="lam", type=float, help="blend λ in [0, 1] of practical-style splits")
-    cas.add_argument("-k", type=int, help="number of cascades (default: the preset's own)")
-    cas.add_argument("--param", action="append", default=[], metavar="KEY=VALUE", help="other split parameters, as in aliasing splits")
+    scn, cas = ren.add_argument_group("your own scene"), ren.add_argument_group("cascades")
+    add_scene_arguments(scn, cas, "for every scheme")
     cas.add_argument("--allocation", choices=["equal", "error"], default="equal", help="texel budget per cascade: equal, or error-based (Lloyd 2007 eq. 83)")
     ren.add_argument("--format", default="text", help="statistics on stdout: text (table) or json (default text)")
     ren.set_defaults(run=_render)

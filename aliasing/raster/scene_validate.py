@@ -35,8 +35,10 @@ import numpy as np
 
 from .cascades import cascade_set
 from .measure import pixel_errors, projection_factors
+from .pictures import add_scene_arguments
 from .rasterize import EyeBuffer, check_resolution, eye_pass
-from .scenerender import MIN_COS_LIGHT, SceneSetup, _finite, params_of, setup
+from ..partitioning import split_params
+from .scenerender import MIN_COS_LIGHT, SceneSetup, _finite, setup
 
 #: Relative tolerance of the finite differences (as :func:`aliasing.raster.measure.measure` states it).
 TOLERANCE = 1e-3
@@ -150,18 +152,7 @@ def format_text(r: dict) -> str:
 def add_scene_options(p: argparse.ArgumentParser) -> None:
     """Add ``--scene`` and its camera, light and split options to ``aliasing validate``'s parser ``p``."""
     g = p.add_argument_group("your own scene (instead of probes; --f-over-n is then not used)")
-    g.add_argument("--scene", metavar="FILE", help="scene file: .glb, .gltf, .obj, .ply, .stl (glTF/GLB, binary PLY, STL need the scenes extra)")
-    g.add_argument("--eye", metavar="X,Y,Z", help="camera position (world space; --eye=-5,2,0 when X is negative)")
-    g.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at")
-    g.add_argument("--up", metavar="X,Y,Z", default="0,1,0", help="up vector (default 0,1,0)")
-    g.add_argument("--camera", metavar="NAME", help="a glTF camera of the file")
-    g.add_argument("--near", type=float, help="near distance (default 1, or the glTF camera's)")
-    g.add_argument("--far", type=float, help="far (shadow) distance (default 100, or the glTF camera's)")
-    g.add_argument("--light-dir", metavar="X,Y,Z", help="world-space direction towards the light (else --light, in eye space)")
-    g.add_argument("--splits", metavar="NAME", help="split method or engine preset (aliasing splits --list), with a single-map --scheme")
-    g.add_argument("--lambda", dest="lam", type=float, help="blend λ of practical-style splits")
-    g.add_argument("-k", type=int, help="number of cascades (default: the preset's own)")
-    g.add_argument("--param", action="append", default=[], metavar="KEY=VALUE", help="other split parameters")
+    add_scene_arguments(g, g, "with a single-map --scheme")
     f_over_n = p._option_string_actions.get("--f-over-n")
     if f_over_n is not None and f_over_n.required:  # not needed with --scene; checked in run() without it
         f_over_n.required = False
@@ -190,7 +181,7 @@ def add_scene_options(p: argparse.ArgumentParser) -> None:
         light = None if args.light_dir is not None else args.light
         st = setup(args.scene, eye=args.eye, target=args.target, up=args.up, camera=args.camera, near=args.near, far=args.far, fov=fov,
                    light_dir=args.light_dir, light=light)
-        r = validate_scene(st, args.scheme, res=args.res, splits=args.splits, k=args.k, **params_of(args.lam, args.param))
+        r = validate_scene(st, args.scheme, res=args.res, splits=args.splits, k=args.k, **split_params(args.lam, args.param))
         if fmt == "json":
             sys.stdout.write(json.dumps(_finite(r), indent=1) + "\n")
         else:

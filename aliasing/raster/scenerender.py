@@ -34,6 +34,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import geometry
+from ..partitioning import split_params
 from .camera import Camera, check_raster_frustum, look_at, vector
 from .cascades import CascadeSet, budget_shares, cascade_set
 from .loading import WorldScene, load_scene
@@ -296,20 +297,6 @@ def _finite(value: object) -> object:
     return value
 
 
-def params_of(lam: float | None, items: list[str]) -> dict[str, float]:
-    """Split parameters from ``--lambda`` and ``--param KEY=NUMBER`` (as ``aliasing splits``)."""
-    params = {} if lam is None else {"lam": float(lam)}
-    for item in items:
-        key, sep, value = item.partition("=")
-        try:
-            params[key.strip()] = float(value)
-        except ValueError:
-            sep = ""
-        if not sep or not key.strip():
-            raise ValueError(f"--param takes KEY=NUMBER, got {item!r}")
-    return params
-
-
 def run(args) -> int:
     """``aliasing render`` with --scene, several schemes, --splits or --what cdf."""
     import json
@@ -348,7 +335,7 @@ def run(args) -> int:
             raise ValueError(f"light must be a single direction, got {ls.shape[0]}")
         st = SceneSetup(sc, plane_ids(sc.triangles), cam, ls[0])
     names = [s.strip() for s in args.scheme.split(",") if s.strip()]
-    params = params_of(args.lam, args.param)
+    params = split_params(args.lam, args.param)
     if args.splits is None and (args.k is not None or params):
         raise ValueError("-k, --lambda and --param need --splits NAME (see aliasing splits --list)")
     budget = int(args.res) ** 2
