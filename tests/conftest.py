@@ -77,6 +77,25 @@ def interrupt_after(n):
     return progress_bar
 
 
+def sweep_cli(argv, capsys):
+    """Run ``aliasing sweep ARGV``: (exit code, stdout, stderr)."""
+    from aliasing.cli import main
+
+    try:
+        code = main(["sweep", *argv])
+    except SystemExit as exc:
+        code = exc.code
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def sweep_one_line_error(argv, capsys, needle):
+    """``aliasing sweep ARGV`` must fail with exit code 2 and one line on stderr containing ``needle``."""
+    code, out, err = sweep_cli(argv, capsys)
+    assert code == 2 and len(err.strip().splitlines()) == 1 and needle in err, err
+    return err
+
+
 # Hypothesis profiles (issue 11 item 6, issue 19 item 5): "ci" is the default, derandomized
 # so that a run is reproducible (each test sets its own example count); "long" runs many more
 # cases locally (ALIASING_HYPOTHESIS=long, or pytest --hypothesis-profile=long).

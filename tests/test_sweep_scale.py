@@ -10,23 +10,7 @@ import pytest
 
 import aliasing
 from aliasing import sweep as S
-from aliasing.cli import main
-from conftest import Stop, interrupt_after, stop_after
-
-
-def _cli(argv, capsys):
-    try:
-        code = main(["sweep", *argv])
-    except SystemExit as exc:
-        code = exc.code
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def _one_line_error(argv, capsys, needle):
-    code, out, err = _cli(argv, capsys)
-    assert code == 2 and len(err.strip().splitlines()) == 1 and needle in err, err
-    return err
+from conftest import Stop, interrupt_after, stop_after, sweep_cli, sweep_one_line_error
 
 
 # ---- grids ------------------------------------------------------------------------------
@@ -150,8 +134,8 @@ def test_option_columns_in_csv():
 def test_cli_grid_jobs_2_is_byte_identical_to_jobs_1(tmp_path, capsys):
     argv = ["--schemes", "P,LogP,eta", "--k", "1,2", "--param", "eta=-1:1:lin:3", "--f-over-n", "10:1000:log:3", "--fov", "40:80:lin:2", "--light", "sphere:40", "--block", "16"]
     one, two = tmp_path / "one.csv", tmp_path / "two.csv"
-    assert _cli([*argv, "--out", str(one)], capsys)[0] == 0
-    code, out, err = _cli([*argv, "--out", str(two), "--jobs", "2"], capsys)
+    assert sweep_cli([*argv, "--out", str(one)], capsys)[0] == 0
+    code, out, err = sweep_cli([*argv, "--out", str(two), "--jobs", "2"], capsys)
     assert code == 0 and out == "" and err == ""  # no progress bar: stderr is not a terminal
     assert one.read_bytes() == two.read_bytes()
     assert len(one.read_text().splitlines()) == 1 + (2 + 2 + 3 * 2) * 3 * 2 * 40
@@ -161,11 +145,11 @@ def test_cli_grid_jobs_2_is_byte_identical_to_jobs_1(tmp_path, capsys):
 def test_cli_config_file_equals_flags(tmp_path, capsys):
     cfg = tmp_path / "sweep.toml"
     cfg.write_text('schemes = ["P", "LogP"]\nk = [1, 5]\nf_over_n = "10:1000:log:3"\nfov = [60]\nlight = "hemisphere:20"\nsummary = true\n[params]\nc_fraction = "0.2,0.4"\n')
-    code, from_config, _ = _cli(["--config", str(cfg)], capsys)
+    code, from_config, _ = sweep_cli(["--config", str(cfg)], capsys)
     assert code == 0
-    code, from_flags, _ = _cli(["--schemes", "P,LogP", "--k", "1,5", "--f-over-n", "10:1000:log:3", "--light", "hemisphere:20", "--summary", "--param", "c_fraction=0.2,0.4"], capsys)
+    code, from_flags, _ = sweep_cli(["--schemes", "P,LogP", "--k", "1,5", "--f-over-n", "10:1000:log:3", "--light", "hemisphere:20", "--summary", "--param", "c_fraction=0.2,0.4"], capsys)
     assert from_config == from_flags and len(from_config.splitlines()) == 1 + 2 * 2 * 2 * 3
-    code, overridden, _ = _cli(["--config", str(cfg), "--fov", "90"], capsys)
+    code, overridden, _ = sweep_cli(["--config", str(cfg), "--fov", "90"], capsys)
     assert code == 0 and ",90," in overridden.splitlines()[1]
 
 
@@ -184,17 +168,17 @@ def test_cli_config_file_equals_flags(tmp_path, capsys):
 def test_cli_config_errors_are_one_line(tmp_path, capsys, text, needle):
     cfg = tmp_path / "bad.toml"
     cfg.write_text(text)
-    _one_line_error(["--config", str(cfg)], capsys, needle)
+    sweep_one_line_error(["--config", str(cfg)], capsys, needle)
 
 
 def test_cli_missing_config_and_schemes(tmp_path, capsys):
-    _one_line_error(["--config", str(tmp_path / "none.toml")], capsys, "cannot be read")
-    _one_line_error([], capsys, "needs --schemes")
+    sweep_one_line_error(["--config", str(tmp_path / "none.toml")], capsys, "cannot be read")
+    sweep_one_line_error([], capsys, "needs --schemes")
 
 
 def test_cli_dry_run_prints_size_and_estimate(tmp_path, capsys):
     out = tmp_path / "never.csv"
-    code, text, _ = _cli(["--schemes", "P,LogP", "--k", "1,5", "--f-over-n", "10:10000:log:7", "--fov", "30:90:lin:7", "--light", "hemisphere:100", "--jobs", "2", "--dry-run", "--out", str(out)], capsys)
+    code, text, _ = sweep_cli(["--schemes", "P,LogP", "--k", "1,5", "--f-over-n", "10:10000:log:7", "--fov", "30:90:lin:7", "--light", "hemisphere:100", "--jobs", "2", "--dry-run", "--out", str(out)], capsys)
     assert code == 0
     lines = text.splitlines()
     assert lines[0] == "grid: 4 schemes × 7 f/n × 7 fov × 100 directions = 19,600 evaluations in 196 chunks"
@@ -215,12 +199,12 @@ def test_cli_dry_run_prints_size_and_estimate(tmp_path, capsys):
     ],
 )
 def test_cli_grid_bad_input(argv, needle, capsys):
-    _one_line_error(argv, capsys, needle)
+    sweep_one_line_error(argv, capsys, needle)
 
 
 def test_cli_unwritable_output_keeps_nothing(tmp_path, capsys):
-    _one_line_error(["--schemes", "P", "--out", str(tmp_path / "missing" / "x.csv")], capsys, "does not exist")
-    _one_line_error(["--schemes", "P", "--out", str(tmp_path)], capsys, "is a folder")
+    sweep_one_line_error(["--schemes", "P", "--out", str(tmp_path / "missing" / "x.csv")], capsys, "does not exist")
+    sweep_one_line_error(["--schemes", "P", "--out", str(tmp_path)], capsys, "is a folder")
     assert list(tmp_path.iterdir()) == []
 
 
@@ -234,7 +218,7 @@ ARGV = ["--schemes", "P,ZP3+LogP", "--f-over-n", "10,1000", "--fov", "60", "--li
 @pytest.mark.parametrize("jobs", [1, 2])
 def test_interrupted_sweep_resumes_to_identical_bytes(tmp_path, capsys, monkeypatch, jobs):
     whole, part = tmp_path / "whole.csv", tmp_path / "part.csv"
-    assert _cli([*ARGV, "--out", str(whole)], capsys)[0] == 0
+    assert sweep_cli([*ARGV, "--out", str(whole)], capsys)[0] == 0
     part.write_text("precious\n")
     grid = S.plan("P,ZP3+LogP", **ARGS)
     assert grid.chunks == 12
@@ -246,11 +230,11 @@ def test_interrupted_sweep_resumes_to_identical_bytes(tmp_path, capsys, monkeypa
     assert len(saved) >= 5 and (work / "manifest.json").exists()
     assert not [p for p in work.iterdir() if p.name.endswith(".tmp")]
     # without --resume the interrupted work is not thrown away
-    _one_line_error([*ARGV, "--out", str(part)], capsys, "pass --resume")
+    sweep_one_line_error([*ARGV, "--out", str(part)], capsys, "pass --resume")
     calls = []
     real = S.compute_chunk
     monkeypatch.setattr(S, "compute_chunk", lambda task: calls.append(task.index) or real(task))
-    assert _cli([*ARGV, "--out", str(part), "--resume"], capsys)[0] == 0
+    assert sweep_cli([*ARGV, "--out", str(part), "--resume"], capsys)[0] == 0
     assert part.read_bytes() == whole.read_bytes()
     assert sorted(calls) == [i for i in range(12) if f"{i:06d}.csv" not in saved]  # finished chunks not recomputed
     assert not work.exists()
@@ -261,19 +245,19 @@ def test_resume_refuses_a_different_sweep(tmp_path, capsys):
     out.write_text("old\n")
     with pytest.raises(Stop):
         S.execute(S.plan("P,ZP3+LogP", **ARGS), "json", out, progress=stop_after(2))
-    _one_line_error([*ARGV, "--format", "json", "--out", str(out), "--resume", "--fov", "61"], capsys, "belongs to a different sweep")
-    _one_line_error([*ARGV, "--out", str(out), "--resume"], capsys, "belongs to a different sweep")  # csv ≠ json
+    sweep_one_line_error([*ARGV, "--format", "json", "--out", str(out), "--resume", "--fov", "61"], capsys, "belongs to a different sweep")
+    sweep_one_line_error([*ARGV, "--out", str(out), "--resume"], capsys, "belongs to a different sweep")  # csv ≠ json
     assert out.read_text() == "old\n"
-    assert _cli([*ARGV, "--format", "json", "--out", str(out), "--resume"], capsys)[0] == 0
+    assert sweep_cli([*ARGV, "--format", "json", "--out", str(out), "--resume"], capsys)[0] == 0
     assert json.loads(out.read_text())[-1]["scheme"] == "ZP3+LogP"
 
 
 def test_resume_of_a_summary_sweep(tmp_path, capsys):
     whole, part = tmp_path / "w.csv", tmp_path / "p.csv"
-    assert _cli([*ARGV, "--summary", "--out", str(whole)], capsys)[0] == 0
+    assert sweep_cli([*ARGV, "--summary", "--out", str(whole)], capsys)[0] == 0
     with pytest.raises(Stop):
         S.execute(S.plan("P,ZP3+LogP", summary=True, **ARGS), "csv", part, progress=stop_after(7))
-    assert _cli([*ARGV, "--summary", "--out", str(part), "--resume"], capsys)[0] == 0
+    assert sweep_cli([*ARGV, "--summary", "--out", str(part), "--resume"], capsys)[0] == 0
     assert part.read_bytes() == whole.read_bytes()
 
 
@@ -330,7 +314,7 @@ def test_cli_netcdf_has_labels_parameters_version_and_command(tmp_path, capsys):
     xr = pytest.importorskip("xarray")
     pytest.importorskip("h5netcdf")
     out = tmp_path / "s.nc"
-    code, _, err = _cli(["--schemes", "P,LogP", "--k", "1,3", "--f-over-n", "10:1000:log:3", "--light", "hemisphere:8", "--block", "5", "--format", "netcdf", "--out", str(out)], capsys)
+    code, _, err = sweep_cli(["--schemes", "P,LogP", "--k", "1,3", "--f-over-n", "10:1000:log:3", "--light", "hemisphere:8", "--block", "5", "--format", "netcdf", "--out", str(out)], capsys)
     assert code == 0, err
     with xr.open_dataset(out, engine="h5netcdf") as ds:
         assert dict(ds.sizes) == {"scheme": 4, "f_over_n": 3, "fov": 1, "direction": 8, "map": 3}
@@ -349,9 +333,9 @@ def test_cli_netcdf_has_labels_parameters_version_and_command(tmp_path, capsys):
 def test_dask_local_cluster_is_byte_identical(tmp_path, capsys):
     distributed = pytest.importorskip("distributed")
     local, remote = tmp_path / "local.csv", tmp_path / "dask.csv"
-    assert _cli([*ARGV, "--out", str(local)], capsys)[0] == 0
+    assert sweep_cli([*ARGV, "--out", str(local)], capsys)[0] == 0
     with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as cluster:
-        code, _, err = _cli([*ARGV, "--out", str(remote), "--dask", cluster.scheduler_address], capsys)
+        code, _, err = sweep_cli([*ARGV, "--out", str(remote), "--dask", cluster.scheduler_address], capsys)
         assert code == 0, err
         t = aliasing.sweep("P,ZP3+LogP", dask=cluster.scheduler_address, **ARGS)
     assert remote.read_bytes() == local.read_bytes()
@@ -363,23 +347,23 @@ def test_dask_unreachable_address_is_one_line(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr(S, "DASK_TIMEOUT", 0.5)
     out = tmp_path / "x.csv"
     out.write_text("old\n")
-    _one_line_error(["--schemes", "P", "--out", str(out), "--dask", "tcp://127.0.0.1:1"], capsys, "cannot reach a Dask scheduler at 'tcp://127.0.0.1:1'")
+    sweep_one_line_error(["--schemes", "P", "--out", str(out), "--dask", "tcp://127.0.0.1:1"], capsys, "cannot reach a Dask scheduler at 'tcp://127.0.0.1:1'")
     assert out.read_text() == "old\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["x.csv"]  # no work directory left
 
 
 def test_dask_malformed_address_is_one_line(capsys):
     pytest.importorskip("distributed")
-    _one_line_error(["--schemes", "P", "--dask", "no-port-here"], capsys, "malformed scheduler address 'no-port-here'")
+    sweep_one_line_error(["--schemes", "P", "--dask", "no-port-here"], capsys, "malformed scheduler address 'no-port-here'")
 
 
 def test_cli_ctrl_c_keeps_chunks_and_resume_finishes(tmp_path, capsys, monkeypatch):
     whole, part = tmp_path / "whole.csv", tmp_path / "part.csv"
-    assert _cli([*ARGV, "--out", str(whole)], capsys)[0] == 0
+    assert sweep_cli([*ARGV, "--out", str(whole)], capsys)[0] == 0
     monkeypatch.setattr(S, "progress_bar", interrupt_after(4))
-    code, _, err = _cli([*ARGV, "--out", str(part)], capsys)
+    code, _, err = sweep_cli([*ARGV, "--out", str(part)], capsys)
     assert code == 130 and "interrupted; finished chunks are kept in" in err and "--resume" in err
     assert not part.exists() and len(list((tmp_path / "part.csv.parts").glob("*.csv"))) == 4
     monkeypatch.undo()
-    assert _cli([*ARGV, "--out", str(part), "--resume"], capsys)[0] == 0
+    assert sweep_cli([*ARGV, "--out", str(part), "--resume"], capsys)[0] == 0
     assert part.read_bytes() == whole.read_bytes()

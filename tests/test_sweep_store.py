@@ -11,25 +11,10 @@ import pytest
 from aliasing import sweep as S
 from aliasing.cli import main
 from aliasing.sweep import store
-from conftest import Stop, stop_after
+from conftest import Stop, stop_after, sweep_cli, sweep_one_line_error
 
 ARGV = ["--schemes", "P,ZP3+LogP", "--f-over-n", "10,1000", "--fov", "60", "--light", "sphere:30", "--block", "10"]
 ARGS = dict(f_over_n=[10.0, 1000.0], fov=[60.0], light="sphere:30", block=10)
-
-
-def _cli(argv, capsys):
-    try:
-        code = main(["sweep", *argv])
-    except SystemExit as exc:
-        code = exc.code
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def _one_line_error(argv, capsys, needle):
-    code, out, err = _cli(argv, capsys)
-    assert code == 2 and len(err.strip().splitlines()) == 1 and needle in err, err
-    return err
 
 
 # ---- resume checks what it reuses -------------------------------------------------------
@@ -69,7 +54,7 @@ def test_resume_recomputes_a_damaged_chunk(tmp_path, capsys, monkeypatch, whole,
     calls = []
     real = S.compute_chunk
     monkeypatch.setattr(S, "compute_chunk", lambda task: calls.append(task.index) or real(task))
-    code, _, err = _cli([*ARGV, "--out", str(part), "--resume"], capsys)
+    code, _, err = sweep_cli([*ARGV, "--out", str(part), "--resume"], capsys)
     assert code == 0
     assert part.read_bytes() == whole  # never the damaged bytes
     assert sorted(calls) == [2, *range(5, 12)]  # the damaged chunk and the unfinished ones
@@ -79,7 +64,7 @@ def test_resume_recomputes_a_damaged_chunk(tmp_path, capsys, monkeypatch, whole,
 
 def test_resume_with_intact_chunks_says_nothing(tmp_path, capsys, whole):
     part, _ = _interrupted(tmp_path)
-    code, _, err = _cli([*ARGV, "--out", str(part), "--resume"], capsys)
+    code, _, err = sweep_cli([*ARGV, "--out", str(part), "--resume"], capsys)
     assert code == 0 and err == "" and part.read_bytes() == whole
 
 
@@ -106,7 +91,7 @@ def test_out_through_a_symlink_writes_its_target(tmp_path, capsys):
     target.write_text("old\n")
     link = tmp_path / "link.csv"
     link.symlink_to(target)
-    assert _cli(["--schemes", "P", "--out", str(link)], capsys)[0] == 0
+    assert sweep_cli(["--schemes", "P", "--out", str(link)], capsys)[0] == 0
     assert link.is_symlink() and os.readlink(link) == str(target)  # the link is kept
     assert target.read_text().startswith("scheme,") and link.read_text() == target.read_text()
     assert sorted(p.name for p in folder.iterdir()) == ["data.csv"]  # no temp or work files left
@@ -114,7 +99,7 @@ def test_out_through_a_symlink_writes_its_target(tmp_path, capsys):
 
 @pytest.mark.parametrize("name", ["-", "/dev/stdout"])
 def test_out_dash_streams_to_stdout(name, capsys):
-    code, out, err = _cli(["--schemes", "P", "--light", "overhead,behind", "--out", name], capsys)
+    code, out, err = sweep_cli(["--schemes", "P", "--light", "overhead,behind", "--out", name], capsys)
     assert code == 0 and err == ""
     assert out == S.execute(S.plan("P", light="overhead,behind"))
 
@@ -123,7 +108,7 @@ def test_out_fifo_is_refused_before_work(tmp_path, capsys, monkeypatch):
     fifo = tmp_path / "pipe"
     os.mkfifo(fifo)
     monkeypatch.setattr(S, "compute_chunk", lambda task: pytest.fail("work started"))
-    _one_line_error(["--schemes", "P", "--out", str(fifo)], capsys, "is not a regular file (a FIFO)")
+    sweep_one_line_error(["--schemes", "P", "--out", str(fifo)], capsys, "is not a regular file (a FIFO)")
     assert stat.S_ISFIFO(os.stat(fifo).st_mode)
 
 
@@ -132,7 +117,7 @@ def test_out_device_is_refused_before_work(device, capsys, monkeypatch):
     if not os.path.exists(device):
         pytest.skip(f"no {device}")
     monkeypatch.setattr(S, "compute_chunk", lambda task: pytest.fail("work started"))
-    _one_line_error(["--schemes", "P", "--out", device], capsys, "a character device")
+    sweep_one_line_error(["--schemes", "P", "--out", device], capsys, "a character device")
     assert stat.S_ISCHR(os.stat(device).st_mode)
 
 
@@ -150,7 +135,7 @@ def test_finished_file_mode_follows_umask(tmp_path, capsys):
     old = os.umask(0o027)
     try:
         out = tmp_path / "m.csv"
-        assert _cli(["--schemes", "P", "--out", str(out)], capsys)[0] == 0
+        assert sweep_cli(["--schemes", "P", "--out", str(out)], capsys)[0] == 0
         assert stat.S_IMODE(os.stat(out).st_mode) == 0o640
     finally:
         os.umask(old)
@@ -168,7 +153,7 @@ def test_data_fsynced_before_rename_and_folder_after(tmp_path, monkeypatch):
 def test_254_character_file_name(tmp_path, capsys):
     out = tmp_path / ("n" * 250 + ".csv")
     assert len(out.name) == 254
-    assert _cli(["--schemes", "P,LogP", "--light", "sphere:30", "--block", "10", "--out", str(out)], capsys)[0] == 0
+    assert sweep_cli(["--schemes", "P,LogP", "--light", "sphere:30", "--block", "10", "--out", str(out)], capsys)[0] == 0
     assert out.read_text().startswith("scheme,")
     assert sorted(p.name for p in tmp_path.iterdir()) == [out.name]
 
@@ -179,5 +164,5 @@ def test_254_character_file_name_resumes(tmp_path, capsys):
         S.execute(S.plan("P,ZP3+LogP", **ARGS), "csv", out, progress=stop_after(3))
     (work,) = [p for p in tmp_path.iterdir() if p.is_dir()]
     assert len(work.name) <= 255 and work.name.endswith(".parts")
-    assert _cli([*ARGV, "--out", str(out), "--resume"], capsys)[0] == 0
+    assert sweep_cli([*ARGV, "--out", str(out), "--resume"], capsys)[0] == 0
     assert out.read_text() == S.execute(S.plan("P,ZP3+LogP", **ARGS))
