@@ -24,18 +24,11 @@ import numpy as np
 
 from aliasing import geometry, partitioning, schemes
 from aliasing.engines import compare
+from _timing import best_of  # the shared timer (benchmarks/_timing.py; run these as scripts)
 
 SCHEMES = ["csm:filament", "csm-stable:filament", "sdsm:k=4", "vsm:high", "vsm:epic", "matched", "exact"]
 NEAR, FAR, FOV = 10.0, 1e5, 60.0
 
-
-def best_of(repeats: int, func) -> float:
-    best = np.inf
-    for _ in range(repeats):
-        start = time.perf_counter()
-        func()
-        best = min(best, time.perf_counter() - start)
-    return best
 
 
 def main() -> None:
@@ -49,8 +42,8 @@ def main() -> None:
     print("|---:|---:|---:|---:|")
     for n in args.counts:
         lv = geometry.hemisphere_directions(n)
-        t_cmp = best_of(args.repeats, lambda: compare.compare(SCHEMES, fov=FOV, near=NEAR, far=FAR, lights=lv))
-        t_base = best_of(args.repeats, lambda: schemes.evaluate("Standard", NEAR, FAR, FOV, lv, edges=edges))
+        t_cmp = best_of(lambda: compare.compare(SCHEMES, fov=FOV, near=NEAR, far=FAR, lights=lv), args.repeats)
+        t_base = best_of(lambda: schemes.evaluate("Standard", NEAR, FAR, FOV, lv, edges=edges), args.repeats)
         print(f"| {n:,} | {t_cmp:.3f} | {t_base:.3f} | {t_cmp / t_base:.1f} |")
     print(f"load average (1, 5, 15 min) after the run: {os.getloadavg()}")
 

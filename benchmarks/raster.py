@@ -47,6 +47,7 @@ import numpy as np  # noqa: E402
 
 from aliasing import raster  # noqa: E402
 from aliasing.raster import compiled, raycast  # noqa: E402
+from _timing import timed  # noqa: E402 - the shared timer, benchmarks/_timing.py
 
 NEAR, FAR, FOV, LIGHT = 1.0, 1000.0, 60.0, "gamma:60@azimuth:20"
 
@@ -58,14 +59,6 @@ def _reference_eye_pass():
     spec.loader.exec_module(module)
     return module.reference_eye_pass
 
-
-def best_of(fn, repeats: int) -> tuple[float, object]:
-    best, out = float("inf"), None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def rounds(fns: dict, repeats: int, stat=min) -> tuple[dict, dict, dict, dict]:
@@ -119,12 +112,12 @@ def main(argv: list[str] | None = None) -> None:
     for res in args.res:
         times = {}
         for name, lm in maps.items():
-            sec, m = best_of(lambda lm=lm: raster.shadow_map(scene.triangles, lm, res), args.repeats)
+            sec, m = timed(lambda lm=lm: raster.shadow_map(scene.triangles, lm, res), args.repeats)
             times[name] = sec
             cover = float(np.isfinite(m.depth).mean())
             print(f"{res}² {name:8s} depth map {sec:7.3f} s   covered {cover:6.1%}   rasterized {m.rasterized}, degenerate {m.degenerate}")
             if cast:
-                ray_sec, r = best_of(lambda lm=lm: raycast.raycast_shadow_map(scene.triangles, lm, res), args.repeats)
+                ray_sec, r = timed(lambda lm=lm: raycast.raycast_shadow_map(scene.triangles, lm, res), args.repeats)
                 agree = raycast.agreement(m, r, scene.triangles)
                 differ = int((m.triangle != r.triangle).sum())
                 print(f"{res}² {name:8s} ray cast  {ray_sec:7.3f} s   raster / ray cast {sec / ray_sec:.2f}   "

@@ -33,17 +33,10 @@ import numpy as np  # noqa: E402
 
 from aliasing import raster  # noqa: E402
 from aliasing.raster import procedural  # noqa: E402
+from _timing import best_of  # noqa: E402 - the shared timer, benchmarks/_timing.py
 
 LIGHT_WORLD = (-1.0, 0.8, 0.3)
 
-
-def best_of(fn, repeats: int) -> float:
-    best = float("inf")
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t0)
-    return best
 
 
 def scene(count: int):

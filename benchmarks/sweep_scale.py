@@ -44,17 +44,10 @@ from pathlib import Path
 import numpy as np
 
 from aliasing import sweep as S
+from _timing import best_of  # the shared timer (benchmarks/_timing.py; run these as scripts)
 
 SCHEMES = "Standard,P,Po,LogP"
 
-
-def best(func, repeats: int) -> float:
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        func()
-        times.append(time.perf_counter() - t0)
-    return min(times)
 
 
 def _cpu() -> float:
@@ -121,14 +114,14 @@ def output(args) -> None:
         gamma, azimuth = geometry.direction_angles(task.light)
         ready = dataclasses.replace(task, shared={"result": r, "angles": (gamma, azimuth)})  # the text alone
         assert compute_chunk(ready) == _rowwise_fragment(task, gamma, azimuth, r)
-        col = best(lambda: compute_chunk(ready), args.repeats)
-        row = best(lambda: _rowwise_fragment(task, gamma, azimuth, r), args.repeats)
-        ev = best(lambda: schemes.evaluate(task.name, task.near, task.near * task.ratio, task.fov, task.light), args.repeats)
+        col = best_of(lambda: compute_chunk(ready), args.repeats)
+        row = best_of(lambda: _rowwise_fragment(task, gamma, azimuth, r), args.repeats)
+        ev = best_of(lambda: schemes.evaluate(task.name, task.near, task.near * task.ratio, task.fov, task.light), args.repeats)
         print(f"one ZP3+LogP chunk of 20,000 rows: evaluate {ev * 1e3:.0f} ms, CSV vectorized {col * 1e3:.0f} ms, row-wise %-format (baseline) {row * 1e3:.0f} ms: {row / col:.2f}x")
         many = names.split(",")
         lv = task.light
-        one = best(lambda: [schemes.evaluate(n, 1.0, 1000.0, 60.0, lv) for n in many], args.repeats)
-        shared = best(lambda: schemes.evaluate_many(many, 1.0, 1000.0, 60.0, lv), args.repeats)
+        one = best_of(lambda: [schemes.evaluate(n, 1.0, 1000.0, 60.0, lv) for n in many], args.repeats)
+        shared = best_of(lambda: schemes.evaluate_many(many, 1.0, 1000.0, 60.0, lv), args.repeats)
         print(f"the four schemes on one block of 20,000 directions: one evaluate each {one * 1e3:.0f} ms, one evaluate_many (a batch) {shared * 1e3:.0f} ms: {one / shared:.2f}x")
     load = os.getloadavg()
     print(f"load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f} at end")
@@ -155,7 +148,7 @@ def main() -> None:
             times = {}
             for jobs in (1, 2):
                 out = Path(tmp) / f"s{jobs}.csv"
-                times[jobs] = best(lambda: S.execute(grid, "csv", out, jobs=jobs), args.repeats)
+                times[jobs] = best_of(lambda: S.execute(grid, "csv", out, jobs=jobs), args.repeats)
                 size = out.stat().st_size / 1e6
             rate = grid.size / times[2] / 1e6
             print(f"{label:18s} {grid.size:,} evaluations, {grid.chunks} chunks, {size:.1f} MB: "
@@ -167,10 +160,10 @@ def main() -> None:
 
     n = args.dask_chunks
     tiny = S.plan("P", f_over_n=1000, fov=60, light=f"hemisphere:{n}", summary=True, block=1)
-    local = best(lambda: S.execute(tiny, "csv"), args.repeats)
+    local = best_of(lambda: S.execute(tiny, "csv"), args.repeats)
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
         S.execute(tiny, "csv", dask=cluster.scheduler_address)  # warm-up: workers import aliasing
-        remote = best(lambda: S.execute(tiny, "csv", dask=cluster.scheduler_address), args.repeats)
+        remote = best_of(lambda: S.execute(tiny, "csv", dask=cluster.scheduler_address), args.repeats)
     print(f"dask overhead: {n} one-direction chunks: in-process {local * 1e3:.0f} ms, LocalCluster (2 processes) {remote * 1e3:.0f} ms "
           f"(including client connect): {(remote - local) / n * 1e3:.2f} ms per chunk")
 

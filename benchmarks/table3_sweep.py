@@ -24,20 +24,12 @@ import time
 import numpy as np
 
 from aliasing import geometry, schemes
+from _timing import best_of  # the shared timer (benchmarks/_timing.py; run these as scripts)
 
 SCHEMES = ("Standard", "P", "Po", "Log", "ZP5", "ZP5+P", "ZP5+Log", "ZP7", "ZP7+P", "ZP7+Log")
 NEAR, FAR, FOV = 1.0, 1000.0, 60.0  # f/n = 1000, θ = fov/2 = 30°
 TARGET_COUNT, TARGET_SECONDS = 20_000, 1.0
 
-
-def best_of(repeats: int, func) -> float:
-    """Smallest wall time [s] of ``repeats`` calls of ``func``."""
-    best = np.inf
-    for _ in range(repeats):
-        start = time.perf_counter()
-        func()
-        best = min(best, time.perf_counter() - start)
-    return best
 
 
 def sweep(lights: np.ndarray) -> dict[str, np.ndarray]:
@@ -73,9 +65,9 @@ def main(argv: list[str] | None = None) -> int:
     for count in args.counts:
         lights = geometry.hemisphere_directions(count)
         sweep(lights[:10])  # warm-up (imports, first-call overheads)
-        per_scheme[count] = {name: best_of(args.repeats, lambda name=name: schemes.evaluate(name, NEAR, FAR, FOV, lights)) for name in SCHEMES}
-        total[count] = best_of(args.repeats, lambda: sweep(lights))
-        total_many[count] = best_of(args.repeats, lambda: sweep_many(lights))
+        per_scheme[count] = {name: best_of(lambda name=name: schemes.evaluate(name, NEAR, FAR, FOV, lights), args.repeats) for name in SCHEMES}
+        total[count] = best_of(lambda: sweep(lights), args.repeats)
+        total_many[count] = best_of(lambda: sweep_many(lights), args.repeats)
 
     print(f"Table 3 sweep, f/n = {FAR / NEAR:g}, fov = {FOV:g}° (θ = {FOV / 2:g}°), best of {args.repeats}")
     print(f"Machine: {machine()}\n")
