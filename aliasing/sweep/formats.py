@@ -51,7 +51,7 @@ SLOT = 24
 
 _OFF = EXPONENTS + 12
 _POW10 = np.array([float(f"1e{k}") for k in range(-_OFF, _OFF + 1)])  # correctly rounded 10**k, k = index − _OFF
-_S8, _S16, _S56 = np.uint64(8), np.uint64(16), np.uint64(56)
+_S8, _S56 = np.uint64(8), np.uint64(56)
 
 
 def _words(texts: Sequence[bytes], shift: int = 0) -> NDArray[np.uint64]:
@@ -216,6 +216,11 @@ def _columns(columns: Sequence[np.ndarray]) -> tuple[NDArray[np.float64], list[i
     return np.concatenate([a.reshape(n, w).astype(np.float64) for a, w in zip(cols, widths)], axis=1), widths
 
 
+def _count(columns: Sequence[np.ndarray]) -> int:
+    """Values per row of the columns: each (N,) column gives 1, each (N, k) column k."""
+    return sum(int(np.prod(np.shape(c)[1:])) for c in columns)
+
+
 def _fill(columns: Sequence[np.ndarray], out: NDArray[np.uint64]) -> None:
     """Write the slots of ``columns`` into ``out`` (N, K, 3): each value after its separator (``,`` or ``;``)."""
     values, widths = _columns(columns)
@@ -235,8 +240,7 @@ def cells(columns: Sequence[np.ndarray]) -> NDArray[np.uint64]:
     than 11 digits) as ``str(v)``, which is the same text.  A column's first value follows
     ``,``, the others ``;``.  For cells shared by several :func:`lines` calls.
     """
-    values, _ = _columns(columns)
-    out = np.empty(values.shape + (3,), "<u8")
+    out = np.empty((len(columns[0]) if columns else 0, _count(columns), 3), "<u8")
     _fill(columns, out)
     return out
 
@@ -262,7 +266,7 @@ def lines(head: str, blocks: Sequence[NDArray[np.uint64] | Sequence[np.ndarray]]
     if b"\0" in prefix:
         raise ValueError("head must not contain NUL characters")
     ready = [isinstance(b, np.ndarray) and b.dtype == np.dtype("<u8") and b.ndim == 3 and b.shape[2] == 3 for b in blocks]
-    counts = [b.shape[1] if r else sum(int(np.prod(np.shape(c)[1:])) for c in b) for b, r in zip(blocks, ready)]
+    counts = [b.shape[1] if r else _count(b) for b, r in zip(blocks, ready)]
     rows = {b.shape[0] if r else len(b[0]) for b, r in zip(blocks, ready) if r or len(b)}
     if len(rows) > 1:
         raise ValueError(f"blocks must have the same number of rows, got {sorted(rows)}")
