@@ -181,7 +181,7 @@ def test_render_out_symlink_and_readonly(tmp_path, capsys):
     link.symlink_to(real)
     code, out, err = _run(["render", "--res", "32", "--image-res", "32", "--out", str(link)], capsys)
     assert code == 0 and err == "" and link.is_symlink() and real.read_bytes()[:4] == b"\x89PNG"
-    if os.geteuid() == 0:
+    if os.geteuid() == 0:  # root ignores the mode bits; test_render_out_permission_errors_are_one_line simulates it
         pytest.skip("root may write read-only files")
     ro = tmp_path / "ro"
     ro.mkdir()
