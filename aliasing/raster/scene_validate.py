@@ -37,7 +37,7 @@ from .cascades import cascade_set
 from .measure import pixel_errors, projection_factors
 from .pictures import add_scene_arguments
 from .rasterize import EyeBuffer, check_resolution, eye_pass
-from ..partitioning import split_params
+from .. import partitioning
 from .scenerender import MIN_COS_LIGHT, SceneSetup, _finite, setup
 
 #: Relative tolerance of the finite differences (as :func:`aliasing.raster.measure.measure` states it).
@@ -181,7 +181,7 @@ def add_scene_options(p: argparse.ArgumentParser) -> None:
         light = None if args.light_dir is not None else args.light
         st = setup(args.scene, eye=args.eye, target=args.target, up=args.up, camera=args.camera, near=args.near, far=args.far, fov=fov,
                    light_dir=args.light_dir, light=light)
-        r = validate_scene(st, args.scheme, res=args.res, splits=args.splits, k=args.k, **split_params(args.lam, args.param))
+        r = validate_scene(st, args.scheme, res=args.res, splits=args.splits, k=args.k, **partitioning.split_params(args.lam, args.param))
         if fmt == "json":
             sys.stdout.write(json.dumps(_finite(r), indent=1) + "\n")
         else:

@@ -34,7 +34,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import geometry
-from ..partitioning import split_params
+from .. import partitioning
 from .camera import Camera, check_raster_frustum, look_at, vector
 from .cascades import CascadeSet, budget_shares, cascade_set
 from .loading import WorldScene, load_scene
@@ -335,7 +335,7 @@ def run(args) -> int:
             raise ValueError(f"light must be a single direction, got {ls.shape[0]}")
         st = SceneSetup(sc, plane_ids(sc.triangles), cam, ls[0])
     names = [s.strip() for s in args.scheme.split(",") if s.strip()]
-    params = split_params(args.lam, args.param)
+    params = partitioning.split_params(args.lam, args.param)
     if args.splits is None and (args.k is not None or params):
         raise ValueError("-k, --lambda and --param need --splits NAME (see aliasing splits --list)")
     budget = int(args.res) ** 2
