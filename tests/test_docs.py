@@ -51,7 +51,9 @@ pytestmark = [
 @pytest.fixture(scope="module")
 def site() -> Path:
     """Build the site as README says, with warnings as errors and nitpicky references."""
-    cmd = [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-n", "-b", "html", str(DOCS), str(HTML)]
+    # -E: read every source again; an incremental build re-emits no warning of an unchanged page, so a
+    # stale docs/_build once hid an unresolved reference that a fresh clone's build reported
+    cmd = [sys.executable, "-m", "sphinx", "-E", "-W", "--keep-going", "-n", "-b", "html", str(DOCS), str(HTML)]
     proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, timeout=900)
     warnings = [line for line in proc.stderr.splitlines() if "WARNING" in line or "ERROR" in line]
     assert proc.returncode == 0, "docs build failed:\n" + "\n".join(warnings[-40:] or proc.stderr.splitlines()[-40:])
