@@ -7,7 +7,7 @@ import importlib.util
 import pytest
 
 #: module file (relative to the repository) -> (optional module it needs, the extra that brings it)
-OPTIONAL_DOCTESTS = {"aliasing/raster/raycast.py": ("embreex", "bench")}
+OPTIONAL_DOCTESTS = {"aliasing/raster/validate/raycast.py": ("embreex", "bench")}
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:

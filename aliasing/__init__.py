@@ -52,7 +52,7 @@ from . import gmnpr  # noqa: E402,F401  (registers the gmnpr, glpr and lispsm-zh
 from . import adaptive_warping  # noqa: E402,F401  (registers the pyramid warping rule, issue 15)
 from . import sweep  # noqa: E402,F401  (a callable module: aliasing.sweep(...) runs a sweep grid into a table)
 
-__version__ = "0.1.0"
+from ._version import __version__
 
 __all__ = [
     "View",

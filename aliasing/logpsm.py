@@ -31,7 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
-from .logpsm_critical import critical_factor_side, critical_factors  # App. A, re-exported: old imports keep working
+from .logpsm_critical import critical_factors  # App. A's closed forms, re-exported: old imports keep working
 from .view import half_angle
 
 __all__ = [
@@ -516,3 +516,34 @@ def logp_inverse(t: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, 
         y_fin = (aa * (y0 + bb) * E - bb * (y0 + aa)) / ((y0 + aa) - (y0 + bb) * E)
     yy = np.where(np.isinf(bb), y_inf, y_fin)
     return (yy - y0) / (y1 - y0)
+
+
+@check.public
+def critical_factor_side(kind: str, direction: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, a: ArrayLike = 0.0, b: ArrayLike = np.inf, samples: int = 2001) -> Array:
+    """R = max_v δ_l/δ_b on a side face for the overhead light, by sampling (Lloyd 2007 eq. 47).
+
+    ``direction`` is ``"s"`` (δ_b,s; maximum over v, with u irrelevant) or ``"t"``.  The
+    ratio is monotone or convex for every parameterization here, so its maximum lies at
+    v = 0 or v = 1 and the samples only confirm it.  Parameters as in :func:`spacing`;
+    it checks the closed forms of :func:`critical_factors` (App. A).
+
+    Returns
+    -------
+    ndarray
+        R, dimensionless.
+
+    Examples
+    --------
+    >>> round(float(critical_factor_side("uniform", "t", 1.0, 100.0, 90.0)), 6)
+    99.0
+    """
+    key = check.choice(direction, "direction", ["s", "t"])
+    samples = check.whole(samples, "samples", 2, 100_000)  # bounded: one float per sample and frustum
+    vv = np.linspace(0.0, 1.0, samples).reshape((-1,) + (1,) * len(np.broadcast(np.asarray(near), np.asarray(far), np.asarray(fov), np.asarray(a), np.asarray(b)).shape))
+    if key == "s":
+        spacing_kind = {"uniform": "uniform", "perspective": "perspective_s", "logp": "perspective_s"}[check.choice(kind, "kind", ["uniform", "perspective", "logp"])]
+        ratio = spacing(spacing_kind, vv, near, far, fov, a=a) / delta_bound_side_s(0.5, vv, near, far, fov)  # eqs. (47), (71)
+    else:
+        spacing_kind = {"uniform": "uniform", "perspective": "perspective_t", "log": "log_t", "logp": "logp_t"}[check.choice(kind, "kind", ["uniform", "perspective", "log", "logp"])]
+        ratio = spacing(spacing_kind, vv, near, far, fov, a=a, b=b) / delta_bound_side_t(vv, near, far, fov)  # eq. (47)
+    return ratio.max(axis=0)

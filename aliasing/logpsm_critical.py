@@ -3,9 +3,9 @@
 For the directional light straight above the face (where R and S are maximal over light
 positions, §5.1): the closed forms of the maximum error factors R and the storage S of the
 error-bound, uniform, perspective and logarithmic parameterizations (eqs. 87–103, eqs. 100–101
-corrected), and R = max_v δ_l/δ_b by sampling the spacing functions of
-:mod:`aliasing.logpsm` (eq. 47), which checks them.  Both are re-exported by
-:mod:`aliasing.logpsm`; the factors for any light position are :mod:`aliasing.face_factors`.
+corrected).  They are re-exported by :mod:`aliasing.logpsm`, whose
+:func:`aliasing.logpsm.critical_factor_side` checks them by sampling the spacing functions
+(eq. 47); the factors for any light position are :mod:`aliasing.face_factors`.
 
 Conventions (see :mod:`aliasing`): angles in degrees, ``fov`` is the full field of view
 (θ = fov/2); ``near``, ``far`` are the eye distances n_e, f_e.
@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 from . import _validation as check
 from .view import half_angle
 
-__all__ = ["critical_factor_side", "critical_factors"]
+__all__ = ["critical_factors"]
 
 Array = NDArray[np.float64]
 
@@ -86,35 +86,3 @@ def critical_factors(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> dict[st
         "perspective_S_side": (r - 1) / (s2 * ct),  # eq. (101), corrected (cos²θ in the first form)
         "log_t_side": np.log(r) / s2,  # eq. (103)
     }
-
-
-@check.public
-def critical_factor_side(kind: str, direction: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, *, a: ArrayLike = 0.0, b: ArrayLike = np.inf, samples: int = 2001) -> Array:
-    """R = max_v δ_l/δ_b on a side face for the overhead light, by sampling (Lloyd 2007 eq. 47).
-
-    ``direction`` is ``"s"`` (δ_b,s; maximum over v, with u irrelevant) or ``"t"``.  The
-    ratio is monotone or convex for every parameterization here, so its maximum lies at
-    v = 0 or v = 1 and the samples only confirm it.  Parameters as in :func:`aliasing.logpsm.spacing`.
-
-    Returns
-    -------
-    ndarray
-        R, dimensionless.
-
-    Examples
-    --------
-    >>> round(float(critical_factor_side("uniform", "t", 1.0, 100.0, 90.0)), 6)
-    99.0
-    """
-    from .logpsm import delta_bound_side_s, delta_bound_side_t, spacing  # not at the top: logpsm imports this module to re-export it
-
-    key = check.choice(direction, "direction", ["s", "t"])
-    samples = check.whole(samples, "samples", 2, 100_000)  # bounded: one float per sample and frustum
-    vv = np.linspace(0.0, 1.0, samples).reshape((-1,) + (1,) * len(np.broadcast(np.asarray(near), np.asarray(far), np.asarray(fov), np.asarray(a), np.asarray(b)).shape))
-    if key == "s":
-        spacing_kind = {"uniform": "uniform", "perspective": "perspective_s", "logp": "perspective_s"}[check.choice(kind, "kind", ["uniform", "perspective", "logp"])]
-        ratio = spacing(spacing_kind, vv, near, far, fov, a=a) / delta_bound_side_s(0.5, vv, near, far, fov)  # eqs. (47), (71)
-    else:
-        spacing_kind = {"uniform": "uniform", "perspective": "perspective_t", "log": "log_t", "logp": "logp_t"}[check.choice(kind, "kind", ["uniform", "perspective", "log", "logp"])]
-        ratio = spacing(spacing_kind, vv, near, far, fov, a=a, b=b) / delta_bound_side_t(vv, near, far, fov)  # eq. (47)
-    return ratio.max(axis=0)

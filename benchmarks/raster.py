@@ -5,12 +5,12 @@ Times depth maps of a seeded ~10,000-triangle scene (a ground grid of 2·50² tr
 (γ = 60°, azimuth 20°, fov 60°), and the eye pass, at the given resolutions; best of
 ``--repeats`` runs (time.perf_counter), setup (scene, map fit) outside the timed region.
 Beside each map, in the same run, the ray-casting reference
-(:func:`aliasing.raster.raycast.raycast_shadow_map`, Intel Embree through embreex: one
+(:func:`aliasing.raster.validate.raycast.raycast_shadow_map`, Intel Embree through embreex: one
 orthographic ray per texel through its centre mapped back to the light plane, BVH build
 included) is timed the same way; the script prints raster / ray-cast time and the fraction of
-texels whose depths agree (:func:`aliasing.raster.raycast.agreement`).  Without embreex
+texels whose depths agree (:func:`aliasing.raster.validate.raycast.agreement`).  Without embreex
 (``pip install 'aliasing[bench]'``) it says so on one line and skips that part.
-The eye pass (occlusion-culled, :mod:`aliasing.raster.occlusion`) is timed interleaved with
+The eye pass (occlusion-culled, :mod:`aliasing.raster.draw.occlusion`) is timed interleaved with
 the three depth maps (one round = each map, then the eye pass, then the compiled eye pass
 ``backend="numba"`` when numba is installed, then the plain reference eye
 pass of before issue 12 — ``reference_eye_pass`` of tests/reference_eye.py, imported by path: the plain z-buffer in
@@ -46,7 +46,8 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 from aliasing import raster  # noqa: E402
-from aliasing.raster import compiled, raycast  # noqa: E402
+from aliasing.raster.draw import compiled  # noqa: E402
+from aliasing.raster.validate import raycast  # noqa: E402
 from _timing import timed  # noqa: E402 - the shared timer, benchmarks/_timing.py
 
 NEAR, FAR, FOV, LIGHT = 1.0, 1000.0, 60.0, "gamma:60@azimuth:20"

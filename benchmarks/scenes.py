@@ -1,6 +1,6 @@
-"""Benchmark of depth maps of large scenes (aliasing.raster.procedural); run by hand, not under pytest.
+"""Benchmark of depth maps of large scenes (aliasing.raster.scenes.procedural); run by hand, not under pytest.
 
-The seeded city block (:func:`aliasing.raster.procedural.city`, 400 × 400 world units)
+The seeded city block (:func:`aliasing.raster.scenes.procedural.city`, 400 × 400 world units)
 at 10⁴ … 10⁶ triangles, seen by its "street" camera (near 0.5, far 600, fov 60°), converted
 to eye space, one light (world direction (−1, 0.8, 0.3)), the P map fitted to the view
 frustum.  Timed (best of ``--repeats``, time.perf_counter): :func:`aliasing.raster.shadow_map`
@@ -32,7 +32,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 
 from aliasing import raster  # noqa: E402
-from aliasing.raster import procedural  # noqa: E402
+from aliasing.raster.scenes import procedural  # noqa: E402
 from _timing import best_of  # noqa: E402 - the shared timer, benchmarks/_timing.py
 
 LIGHT_WORLD = (-1.0, 0.8, 0.3)

@@ -3,7 +3,7 @@
 Scene, light and budget: see figures/_raster_panels.py (n = 1, f = 100, fov 60°,
 gamma:110@azimuth:60, 256² texels shared by each scheme's maps, 256² image).
 
-The shadow test is aliasing.raster.pictures.shadow_test: the stored sample and the pixel's
+The shadow test is aliasing.raster.draw.shadow_test: the stored sample and the pixel's
 surface are compared as planes, with no bias that grows with the texel. So the ground never
 shadows itself (no acne), and box shadows touch their boxes, even in the Standard panel,
 whose 256² texels are about 0.6 × 0.5 world units here, larger than the near boxes. What

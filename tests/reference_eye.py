@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from aliasing import raster
-from aliasing.raster.rasterize import clip_near, project
+from aliasing.raster.draw import clip_near, project
 
 
 def reference_eye_pass(triangles, fov: float, res: int, near: float = 1e-3):

@@ -562,9 +562,10 @@ def test_vsm_coarse_pages_and_dilation_in_the_frustum_bound():
 
 @pytest.fixture(scope="module")
 def city_setup():
-    from aliasing.raster import procedural, scenerender
+    from aliasing.raster import scenes
+    from aliasing.raster.scenes import procedural
 
-    return scenerender.setup(procedural.city(2000, seed=1, size=60.0), eye="-40,6,-35", target="0,0,0", near=0.5, far=90.0, light_dir="-1,0.8,0.3")
+    return scenes.setup(procedural.city(2000, seed=1, size=60.0), eye="-40,6,-35", target="0,0,0", near=0.5, far=90.0, light_dir="-1,0.8,0.3")
 
 
 def _dense_checks(r):

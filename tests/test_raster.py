@@ -9,9 +9,10 @@ import numpy as np
 import pytest
 
 from aliasing import geometry, raster, schemes
-from aliasing.raster import raycast, scenes
+from aliasing.raster import scenes
+from aliasing.raster.validate import raycast
 
-R = sys.modules["aliasing.raster.rasterize"]
+R = sys.modules["aliasing.raster.draw"]
 
 
 # ----------------------------------------------------------------------------- references
@@ -423,7 +424,7 @@ def test_raycast_reference_inputs(monkeypatch):
 
 
 def test_pixel_errors_is_public_and_checks_its_input():
-    from aliasing.raster.measure import pixel_errors
+    from aliasing.raster.validate.measure import pixel_errors
 
     lm = raster.light_map(1.0, 100.0, 60.0, "overhead", "P")
     pos = np.tile([0.0, 0.0, 10.0], (8, 8, 1))
@@ -442,7 +443,7 @@ def test_pixel_errors_is_public_and_checks_its_input():
 
 
 def test_projection_factor_is_one_on_bisector_normals_and_cos_psi_e_facing_the_light():
-    from aliasing.raster.measure import projection_factors
+    from aliasing.raster.validate.measure import projection_factors
 
     rng = np.random.default_rng(5)
     pos = rng.uniform([-5, -5, 1], [5, 5, 50], size=(200, 3))
@@ -466,7 +467,7 @@ def test_projection_factor_about_one_on_probes_far_from_one_on_the_ground():
     assert np.array_equal(np.isfinite(r.projection), on)
     assert abs(np.median(r.projection[on]) - 1) < 5e-3 and np.all(np.abs(r.projection[on] - 1) < 0.08)
     # the ground seen from 1 unit above, lit from overhead: grazing to the eye, facing the light
-    from aliasing.raster.measure import projection_factors
+    from aliasing.raster.validate.measure import projection_factors
 
     ground = raster.ground_and_boxes(1.0, 100.0, 60.0, boxes=0, ground_cells=4)
     eb = raster.eye_pass(ground.triangles, 60.0, 64)

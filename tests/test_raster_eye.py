@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from aliasing import raster
-from aliasing.raster import compiled, core, eye, occlusion
+from aliasing.raster.draw import compiled, core, eye, occlusion
 from reference_eye import reference_eye_pass  # tests/reference_eye.py: the pre-issue-12 eye pass
 
 
@@ -55,7 +55,7 @@ def test_culled_z_buffer_matches_plain_one_for_perspective_and_log_rows(backend)
     w = rng.uniform(0.2, 3.0, (400, 3))
     rows = np.sort(rng.uniform(0, 1, 96))
     plain = raster.rasterize(tri, 96, w=w, row_centres=rows, chunk=3000)
-    draw = eye.BACKENDS[backend]()[0]
+    draw = eye.KERNELS[backend]()[0]
     culled = core.zbuffer(tri, 96, 1.0 / w, rows, False, 3000, front_to_back=True, draw=draw)
     np.testing.assert_array_equal(culled.depth, plain.depth)
     np.testing.assert_array_equal(culled.triangle, plain.triangle)
@@ -106,7 +106,7 @@ def test_eye_pass_bad_chunk():
 def test_numba_merge_keeps_nan_and_ties_as_numpy():
     # exact ties (highest index wins) and a NaN depth (sticks, as np.minimum.at leaves it)
     # through both merges on the same spans
-    from aliasing.raster.coverage import Spans
+    from aliasing.raster.draw.coverage import Spans
 
     one = np.ones(4)
     sp = Spans(np.array([0, 0, 0, 1]), np.array([5, 2, 7, 3]), np.array([0, 2, 1, 0]), np.array([4, 2, 3, 2]),

@@ -24,7 +24,7 @@ def test_pictures_deterministic():
 def test_overhead_box_shadow_under_the_box():
     """A box above the ground, light overhead: ground pixels under it are shadowed, others lit."""
     ground = np.array([[[-20, -1, 1.5], [20, -1, 1.5], [20, -1, 40]], [[-20, -1, 1.5], [20, -1, 40], [-20, -1, 40]]], float)
-    box = scenes._box(np.array([[0.0, 0.0, 6.0]]), np.array([[1.0, 0.3, 1.0]]))  # floats 0.7 above the ground
+    box = scenes.builtin._box(np.array([[0.0, 0.0, 6.0]]), np.array([[1.0, 0.3, 1.0]]))  # floats 0.7 above the ground
     sc = scenes.Scene(np.concatenate([ground, box]), np.full(14, -1, np.int64))
     v = pictures.view(1.0, 40.0, 60.0, "overhead", "Standard", image_res=128, budget=512**2, scene=sc)
     on_ground = v.triangle >= 0
@@ -55,7 +55,7 @@ def test_box_shadow_touches_the_box_and_ground_has_no_acne(scheme):
     light = "gamma:110@azimuth:60"  # towards +x (and up, behind the eye): shadows fall towards −x
     ground = np.array([[[-200, -1, 0.5], [200, -1, 0.5], [200, -1, 150]], [[-200, -1, 0.5], [200, -1, 150], [-200, -1, 150]]], float)
     centre, half = np.array([1.5, -0.5, 6.0]), np.array([0.5, 0.5, 0.5])
-    sc = scenes.Scene(np.concatenate([ground, scenes._box(centre[None], half[None])]), np.full(14, -1, np.int64))
+    sc = scenes.Scene(np.concatenate([ground, scenes.builtin._box(centre[None], half[None])]), np.full(14, -1, np.int64))
     v = pictures.view(1.0, 100.0, 60.0, light, scheme, image_res=384, budget=256**2, scene=sc)
     on_ground = (v.triangle >= 0) & (v.triangle < 2)
     p = np.nan_to_num(v.position)

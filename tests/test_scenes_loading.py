@@ -1,4 +1,4 @@
-"""Loading engine exports (aliasing.raster.loading), the world-space camera, the procedural city."""
+"""Loading engine exports (aliasing.raster.scenes.loading), the world-space camera, the procedural city."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import struct
 import numpy as np
 import pytest
 
-from aliasing.raster import camera, loading, procedural
+from aliasing.raster.scenes import camera, loading, procedural
 
 trimesh = pytest.importorskip("trimesh")
 from scipy.spatial.transform import Rotation  # noqa: E402

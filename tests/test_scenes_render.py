@@ -1,4 +1,4 @@
-"""Rendering and measuring schemes on your own scene (aliasing.raster.scenerender, cascades, render CLI)."""
+"""Rendering and measuring schemes on your own scene (aliasing.raster.pictures.scenerender, cascades, render CLI)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,12 @@ import numpy as np
 import pytest
 
 from aliasing import cli, partitioning
-from aliasing.raster import camera, cascades, map_set, pictures, procedural, scene_validate, scenerender
+from aliasing.raster import map_set, pictures
+from aliasing.raster import scenes
+from aliasing.raster.scenes import camera, procedural
+from aliasing.raster.draw import cascades
+from aliasing.raster.validate import scene as scene_validate
+from aliasing.raster.pictures import scenerender
 from aliasing.raster.scenes import Scene
 
 trimesh = pytest.importorskip("trimesh")
@@ -32,7 +37,7 @@ def glb(tmp_path_factory, world):
 def test_world_render_equals_eye_space_render(world):
     """Eye at (40, 3, 5) looking along world −x, up +y: eye space is x_e = 5 − z, y_e = y − 3, z_e = 40 − x
     (written out here, not through the camera module); the light turns the same way."""
-    st = scenerender.setup(world, eye="40,3,5", target="0,3,5", near=0.5, far=90.0, fov=60.0, light_dir=LIGHT_WORLD)
+    st = scenes.setup(world, eye="40,3,5", target="0,3,5", near=0.5, far=90.0, fov=60.0, light_dir=LIGHT_WORLD)
     by_hand = np.stack([5.0 - world[..., 2], world[..., 1] - 3.0, 40.0 - world[..., 0]], axis=-1)
     light_eye = np.array([-LIGHT_WORLD[2], LIGHT_WORLD[1], -LIGHT_WORLD[0]])
     np.testing.assert_array_equal(st.scene.triangles, by_hand)
@@ -50,7 +55,7 @@ def test_world_render_equals_eye_space_render(world):
 
 def test_preset_cascades_match_aliasing_splits(glb, capsys):
     """three.js CSM and Unreal (overlapping cascades) in the render: split positions as `aliasing splits` prints them."""
-    st = scenerender.setup(str(glb), camera="view")
+    st = scenes.setup(str(glb), camera="view")
     for preset in ("threejs-csm", "unreal"):
         assert cli.main(["splits", "--method", preset, "--near", "0.5", "--far", "90", "--format", "json"]) == 0
         rows = [r for r in json.loads(capsys.readouterr().out) if r["partition"] != "all"]
@@ -68,7 +73,7 @@ def test_preset_cascades_match_aliasing_splits(glb, capsys):
 
 
 def test_budget_shares_and_measured_within_bound(glb):
-    st = scenerender.setup(str(glb), camera="view", light_dir="-1,0.8,0.3")
+    st = scenes.setup(str(glb), camera="view", light_dir="-1,0.8,0.3")
     budget = 256**2
     rs = scenerender.render(st, ["Standard", "ZP3+P", "FPc+LogP"], budget=budget, image_res=64)
     rs += scenerender.render(st, ["LogP"], splits="practical", k=3, lam=0.7, allocation="error", budget=budget, image_res=64)
@@ -162,7 +167,7 @@ def test_readme_scene_commands(tmp_path, monkeypatch, capsys):
     readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
     section = readme.split("### Your own scene", 1)[1].split("\n## ", 1)[0]
     lines = [ln.strip() for block in re.findall(r"```bash\n(.*?)```", section, flags=re.S) for ln in block.splitlines() if ln.strip()]
-    assert lines[0].startswith("python -m aliasing.raster.procedural") and len(lines) >= 4
+    assert lines[0].startswith("python -m aliasing.raster.scenes.procedural") and len(lines) >= 4
     monkeypatch.chdir(tmp_path)
     for line in lines:
         argv = shlex.split(line)

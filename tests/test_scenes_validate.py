@@ -1,4 +1,4 @@
-"""aliasing validate --scene FILE (aliasing.raster.scene_validate)."""
+"""aliasing validate --scene FILE (aliasing.raster.validate.scene)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,10 @@ import numpy as np
 import pytest
 
 from aliasing import cli
-from aliasing.raster import camera, procedural, scene_validate, scenerender
+from aliasing.raster import scenes
+from aliasing.raster.scenes import camera, procedural
+from aliasing.raster.validate import scene as scene_validate
+from aliasing.raster.pictures import scenerender
 
 pytest.importorskip("trimesh")
 
@@ -23,7 +26,7 @@ def glb(tmp_path_factory):
 
 @pytest.mark.parametrize("scheme,splits", [("Standard", None), ("ZP3+LogP", None), ("FPc+P", None), ("P", "bgfx")])
 def test_scene_within_analytic_bound(glb, scheme, splits):
-    st = scenerender.setup(str(glb), camera="view", light_dir="-1,0.8,0.3")
+    st = scenes.setup(str(glb), camera="view", light_dir="-1,0.8,0.3")
     r = scene_validate.validate_scene(st, scheme, res=96, splits=splits)
     assert r["passed"] and sum(r["pixels"]) > 1000
     measured = np.array(r["measured_M_x"] + r["measured_M_z"], float)

@@ -231,6 +231,7 @@ def test_projection_factor_reported_about_one_on_probes(capsys):
 # ----------------------------------------------------------------------------- grids through the sweep engine
 
 import aliasing.raster.validate as V  # noqa: E402
+import aliasing.raster.validate.grid as VG  # noqa: E402  (where the grid tasks call validate)
 from aliasing import sweep as S  # noqa: E402
 from conftest import Stop, interrupt_after, stop_after  # noqa: E402
 
@@ -276,8 +277,8 @@ def test_interrupted_grid_resumes_to_identical_bytes_without_redoing_validations
     code, _, err = run(capsys, "validate", *GRID, "--out", str(part))  # without --resume nothing is thrown away
     assert code == 2 and len(err.strip().splitlines()) == 1 and "pass --resume" in err
     calls = []
-    real = V.validate
-    monkeypatch.setattr(V, "validate", lambda **kw: calls.append((kw["scheme"], kw["f_over_n"], kw["light"])) or real(**kw))
+    real = VG.validate
+    monkeypatch.setattr(VG, "validate", lambda **kw: calls.append((kw["scheme"], kw["f_over_n"], kw["light"])) or real(**kw))
     assert run(capsys, "validate", *GRID, "--out", str(part), "--resume")[0] == 0
     assert part.read_bytes() == whole.read_bytes()
     assert len(calls) == 8 - len(saved)  # finished validations not redone

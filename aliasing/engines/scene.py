@@ -2,9 +2,9 @@
 
 :mod:`aliasing.engines.validate` renders the probes, which face the bisector of eye and
 light so that every bound is reached.  Here the scene is any
-:class:`aliasing.raster.scenerender.SceneSetup` (a glTF file, the procedural city of
-:func:`aliasing.raster.procedural.city`, any triangle soup), rendered by the eye pass; the
-measured pixels are those of :func:`aliasing.raster.scene_validate.validate_scene` (four
+:class:`aliasing.raster.scenes.SceneSetup` (a glTF file, the procedural city of
+:func:`aliasing.raster.scenes.procedural.city`, any triangle soup), rendered by the eye pass; the
+measured pixels are those of :func:`aliasing.raster.validate.scene.validate_scene` (four
 neighbours on the same planar face and map, inside [near, far], facing the light).
 
 For a uniform (orthographic) map of side W the perspective error of a pixel at eye depth d
@@ -24,8 +24,9 @@ surface's orientation (the projection factor is separate).  Three checks per map
 
 Example
 -------
->>> from aliasing.raster import procedural, scenerender
->>> st = scenerender.setup(procedural.city(2000, seed=1, size=60.0), eye="-40,6,-35", target="0,0,0", near=0.5, far=90.0, light_dir="-1,0.8,0.3")
+>>> from aliasing.raster import scenes
+>>> from aliasing.raster.scenes import procedural
+>>> st = scenes.setup(procedural.city(2000, seed=1, size=60.0), eye="-40,6,-35", target="0,0,0", near=0.5, far=90.0, light_dir="-1,0.8,0.3")
 >>> r = cascades_on_scene(st, "log", k=3, fit="sphere", res=96)
 >>> r["passed"], r["max_ratio"] <= 1 + TOLERANCE
 (True, True)
@@ -37,20 +38,20 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .. import _validation as check
-from .. import geometry, raster
-from ..raster.measure import pixel_errors
-from ..raster.rasterize import check_resolution
-from ..raster.scene_validate import measurable_pixels
-from ..raster.scenerender import SceneSetup
+from .. import geometry
+from ..raster.draw import check_resolution, frame_map
+from ..raster.scenes import SceneSetup
+from ..raster.validate.measure import pixel_errors
+from ..raster.validate.scene import measurable_pixels
 from . import sdsm, stable, vsm
 from ..view import half_angle
 
-#: Relative tolerance of the finite differences (:data:`aliasing.raster.scene_validate.TOLERANCE`).
+#: Relative tolerance of the finite differences (:data:`aliasing.raster.validate.scene.TOLERANCE`).
 TOLERANCE = 1e-3
 
 
 def _pixels(st: SceneSetup, res: int, assign) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Measurable pixels of the scene (:func:`aliasing.raster.scene_validate.measurable_pixels`), also not before near."""
+    """Measurable pixels of the scene (:func:`aliasing.raster.validate.scene.measurable_pixels`), also not before near."""
     eb, pos, part, ok = measurable_pixels(st, res, assign)
     return pos, part, ok & (part >= 0) & (pos[..., 2] >= st.camera.near)
 
@@ -77,7 +78,7 @@ def cascades_on_scene(st: SceneSetup, split: str | ArrayLike | tuple, *, res: in
     Parameters
     ----------
     st : SceneSetup
-        The scene in eye space (:func:`aliasing.raster.scenerender.setup`).
+        The scene in eye space (:func:`aliasing.raster.scenes.setup`).
     split : str, array_like or tuple
         As :func:`aliasing.engines.stable.evaluate` (a split preset, distances, or SDSM's
         (near_i, far_i)); the camera's near and far are the range.
@@ -116,7 +117,7 @@ def cascades_on_scene(st: SceneSetup, split: str | ArrayLike | tuple, *, res: in
         xc, yc = (0.5 * (np.min(corners @ basis[j]) + np.max(corners @ basis[j])) for j in (0, 2))  # centred on the slice's box
         if fit == "far":  # Filament's shadowFar sphere is centred on the camera
             xc = yc = 0.0
-        lm = raster.frame_map(st.light, basis[2], yc - wy / 2, yc + wy / 2, np.inf, xc - wx / 2, xc + wx / 2, "uniform")
+        lm = frame_map(st.light, basis[2], yc - wy / 2, yc + wy / 2, np.inf, xc - wx / 2, xc + wx / 2, "uniform")
         sel, mine = ok & (part == i), part == i
         if not sel.any():
             rows.append(dict(ratio_x=np.nan, ratio_z=np.nan, reach_x=np.nan, reach_z=np.nan, pointwise_min=np.nan, pointwise_max=np.nan, inside=np.nan, pixels=0))
@@ -144,8 +145,9 @@ def sdsm_on_scene(st: SceneSetup, method: str = "adaptive", k: int = 4, *, res: 
 
     Example
     -------
-    >>> from aliasing.raster import procedural, scenerender
-    >>> st = scenerender.setup(procedural.city(2000, seed=1, size=60.0), eye="-40,6,-35", target="0,0,0", near=0.5, far=90.0, light_dir="-1,0.8,0.3")
+    >>> from aliasing.raster import scenes
+    >>> from aliasing.raster.scenes import procedural
+    >>> st = scenes.setup(procedural.city(2000, seed=1, size=60.0), eye="-40,6,-35", target="0,0,0", near=0.5, far=90.0, light_dir="-1,0.8,0.3")
     >>> sdsm_on_scene(st, "kmeans", 3, res=96)["passed"]
     True
     """
@@ -178,8 +180,9 @@ def vsm_on_scene(st: SceneSetup, *, bias: float = 0.0, res: int = 128, first: in
 
     Example
     -------
-    >>> from aliasing.raster import procedural, scenerender
-    >>> st = scenerender.setup(procedural.city(2000, seed=1, size=60.0), eye="-40,6,-35", target="0,0,0", near=0.5, far=90.0, light_dir="-1,0.8,0.3")
+    >>> from aliasing.raster import scenes
+    >>> from aliasing.raster.scenes import procedural
+    >>> st = scenes.setup(procedural.city(2000, seed=1, size=60.0), eye="-40,6,-35", target="0,0,0", near=0.5, far=90.0, light_dir="-1,0.8,0.3")
     >>> vsm_on_scene(st, bias=-1.0, res=96)["passed"]
     True
     """
@@ -198,7 +201,7 @@ def vsm_on_scene(st: SceneSetup, *, bias: float = 0.0, res: int = 128, first: in
     rows, seen = [], []
     for L in np.unique(level[ok]):
         side = float(vsm.texel(c, L)) * vsm.VIRTUAL_RES  # 4·R_l, centred on the camera
-        lm = raster.frame_map(st.light, basis[2], -side / 2, side / 2, np.inf, -side / 2, side / 2, "uniform")
+        lm = frame_map(st.light, basis[2], -side / 2, side / 2, np.inf, -side / 2, side / 2, "uniform")
         sel, mine = ok & (level == L), level == L
         m = pixel_errors(lm, pos, sel, r, cam.fov)
         scale = r / vsm.VIRTUAL_RES  # unit resolutions → W pixels, 16384 texels

@@ -98,6 +98,7 @@ from numpy.typing import ArrayLike, NDArray
 from .. import _validation as check
 from .. import directional, geometry, partitioning
 from ..view import half_angle
+from .sample import sample_bounds
 
 Array = NDArray[np.float64]
 FITS = ("tight", "sphere", "diagonal", "body", "centroid", "centroid16", "far")
@@ -376,7 +377,7 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
         Bevy's overlap proportion in [0, 0.99].
     border, dilation, quantize
         Intel's SDSM sample's partition border [world units], dilation (fraction per side)
-        and power-of-two quantisation (:func:`aliasing.engines.sdsm.sample_bounds`), applied
+        and power-of-two quantisation (:func:`aliasing.engines.sample.sample_bounds`), applied
         after the fit, the light space L being the tight box of the whole [near, far].
     """
     kind = check.choice(fit, "fit", FITS)
@@ -407,8 +408,6 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
     elif snapping in ("godot", "border"):
         wx, wy = wx * res / (res - 2), wy * res / (res - 2)  # a texel on each side: W spans R − 2 texels
     if border or dilation or quantize:
-        from .sdsm import sample_bounds
-
         whole = directional.fit(geometry.frustum_vertices(np.array([float(near)]), np.array([float(far)]), fov), lv)  # App.cpp: the view's extents
         wx = sample_bounds(wx, np.ptp(whole.x, axis=-1), border=border, dilation=dilation, quantize=quantize)
         wy = sample_bounds(wy, whole.depth, border=border, dilation=dilation, quantize=quantize)

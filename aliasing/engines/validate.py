@@ -1,19 +1,19 @@
 """VSM clipmap levels through the rasterizer: measured error against the analytic bound.
 
-The probes of :func:`aliasing.raster.probes` are rendered by the eye pass
-(:func:`aliasing.raster.eye_pass`, W × W pixels); each pixel takes the clipmap level of its
+The probes of :func:`aliasing.raster.scenes.probes` are rendered by the eye pass
+(:func:`aliasing.raster.draw.eye_pass`, W × W pixels); each pixel takes the clipmap level of its
 visible point's distance to the camera (:func:`aliasing.engines.vsm.level`), and that
 level's uniform map — a square of side 2^(l+3) cm (16384 texels) centred on the camera in
-the light's image plane (:func:`aliasing.raster.frame_map`) — gives its map coordinates.
+the light's image plane (:func:`aliasing.raster.draw.frame_map`) — gives its map coordinates.
 The perspective error is then measured by central differences between neighbouring pixels
-on the same probe and level (:func:`aliasing.raster.measure.pixel_errors`, unit
+on the same probe and level (:func:`aliasing.raster.validate.measure.pixel_errors`, unit
 resolutions) and scaled to 16384 texels and W pixels.  Its maximum over the pixels is
 compared with :func:`aliasing.engines.vsm.frustum_max` (the corner rays' supremum
 2^(1+b)·√(1 + 2tan²θ), or the first level's clamp near the eye).
 
 What this witnesses: the level selection from rasterized positions (distance, not depth),
 the texel size per level, and that the pixels reach the bound; the coordinates themselves
-are those of :class:`aliasing.raster.LightMap`.
+are those of :class:`aliasing.raster.draw.LightMap`.
 
 Example
 -------
@@ -28,8 +28,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .. import _validation as check
-from .. import geometry, raster
-from ..raster.measure import pixel_errors
+from .. import geometry
+from ..raster.draw import eye_pass, frame_map
+from ..raster.scenes import probes
+from ..raster.validate.measure import pixel_errors
 from . import vsm
 
 TOLERANCE = 0.02  # finite differences across a probe: relative error of the central difference
@@ -64,8 +66,8 @@ def validate_vsm(near: float, far: float, fov: float, light: str | ArrayLike, *,
     lv = geometry.lights(light)
     if len(lv) != 1:
         raise ValueError(f"light must be one direction, got {len(lv)}")
-    sc = raster.probes(n, f, fov, lv[0], cells=cells)
-    eb = raster.eye_pass(sc.triangles, fov, resolution)
+    sc = probes(n, f, fov, lv[0], cells=cells)
+    eb = eye_pass(sc.triangles, fov, resolution)
     g = np.where(eb.triangle >= 0, sc.group[np.maximum(eb.triangle, 0)], -1)
     pos = np.where((g >= 0)[..., None], eb.position, 1.0)
     level = np.where(g >= 0, vsm.level(c, np.linalg.norm(pos, axis=-1)), np.nan)
@@ -78,7 +80,7 @@ def validate_vsm(near: float, far: float, fov: float, light: str | ArrayLike, *,
     measured, levels = 0.0, 0
     for L in np.unique(level[ok]):
         side = float(vsm.texel(c, L)) * vsm.VIRTUAL_RES  # 4·R_l = 2^(l+3) cm
-        lm = raster.frame_map(lv[0], basis[2], -side / 2, side / 2, np.inf, -side / 2, side / 2, "uniform")
+        lm = frame_map(lv[0], basis[2], -side / 2, side / 2, np.inf, -side / 2, side / 2, "uniform")
         sel = ok & (level == L)
         m = pixel_errors(lm, pos, sel, resolution, fov)
         peak = np.nanmax(np.maximum(m["m_x"], m["m_z"])) * resolution / vsm.VIRTUAL_RES  # unit → W px, 16384 texels
@@ -111,8 +113,8 @@ def validate_stable(split: str | ArrayLike, near: float, far: float, fov: float,
     res = stable.evaluate(split, n, f, fov, lv, k=k, fit=fit, **options)
     u, v = res.used
     edges = np.append(u, v[-1])
-    sc = raster.probes(n, f, fov, lv[0], cells=cells, splits=edges)
-    eb = raster.eye_pass(sc.triangles, fov, resolution)
+    sc = probes(n, f, fov, lv[0], cells=cells, splits=edges)
+    eb = eye_pass(sc.triangles, fov, resolution)
     g = np.where(eb.triangle >= 0, sc.group[np.maximum(eb.triangle, 0)], -1)
     pos = np.where((g >= 0)[..., None], eb.position, 1.0)
     cascade = np.clip(np.searchsorted(v, pos[..., 2], side="left"), 0, len(v) - 1)
@@ -122,7 +124,7 @@ def validate_stable(split: str | ArrayLike, near: float, far: float, fov: float,
         for step in (1, -1):
             ok &= key == np.roll(key, step, axis)
     basis = geometry.light_space(lv)[0]
-    frame = raster.frame_map(lv[0], basis[2], 0.0, 1.0, np.inf, 0.0, 1.0, "uniform").basis  # its x, z axes
+    frame = frame_map(lv[0], basis[2], 0.0, 1.0, np.inf, 0.0, 1.0, "uniform").basis  # its x, z axes
     a_fit, b_fit = res.fit_range
     rx, rz, inside = [], [], []
     for i in range(len(v)):
@@ -132,7 +134,7 @@ def validate_stable(split: str | ArrayLike, near: float, far: float, fov: float,
         yc = 0.5 * (np.min(corners @ frame[2]) + np.max(corners @ frame[2]))
         if fit == "far":  # Filament shadowFar: centred on the camera
             xc = yc = 0.0
-        lm = raster.frame_map(lv[0], basis[2], yc - wy / 2, yc + wy / 2, np.inf, xc - wx / 2, xc + wx / 2, "uniform")
+        lm = frame_map(lv[0], basis[2], yc - wy / 2, yc + wy / 2, np.inf, xc - wx / 2, xc + wx / 2, "uniform")
         mine = (g >= 0) & (cascade == i)
         sel = ok & mine
         if not sel.any():
@@ -155,7 +157,8 @@ def eye_histogram(triangles: ArrayLike, near: float, far: float, fov: float, *, 
 
     Example
     -------
-    >>> sc = raster.ground_and_boxes(near=1.0, far=100.0, boxes=5, seed=1)
+    >>> from aliasing.raster.scenes import ground_and_boxes
+    >>> sc = ground_and_boxes(near=1.0, far=100.0, boxes=5, seed=1)
     >>> e, c = eye_histogram(sc.triangles, 1.0, 100.0, 60.0, resolution=32, bins=8)
     >>> len(e), int(c.sum()) > 0
     (9, True)
@@ -163,7 +166,7 @@ def eye_histogram(triangles: ArrayLike, near: float, far: float, fov: float, *, 
     n, f = (float(x) for x in check.frustum(near, far))
     if isinstance(bins, bool) or int(bins) != bins or bins < 1:
         raise ValueError(f"bins must be a whole number >= 1, got {bins!r}")
-    eb = raster.eye_pass(triangles, fov, resolution)
+    eb = eye_pass(triangles, fov, resolution)
     z = eb.position[..., 2][eb.triangle >= 0]
     edges = np.geomspace(n, f, int(bins) + 1)
     counts, _ = np.histogram(z[(z >= n) & (z <= f)], bins=edges)
@@ -203,7 +206,7 @@ def scene_pages(triangles: ArrayLike, clipmap: vsm.Clipmap, light: str | ArrayLi
     lv = geometry.lights(light)
     if len(lv) != 1:
         raise ValueError(f"light must be one direction, got {len(lv)}")
-    eb = raster.eye_pass(triangles, clipmap.fov, resolution)
+    eb = eye_pass(triangles, clipmap.fov, resolution)
     hit = eb.triangle >= 0
     col = np.broadcast_to(np.arange(hit.shape[1]), hit.shape)[hit]  # the thread index's low bits: the pixel column
     pos = eb.position[hit]

@@ -1,18 +1,20 @@
 """Numpy rasterizer: the toolkit's independent witness for the analytic aliasing bounds.
 
-* :mod:`.rasterize`: the rasterizer's public names, from one module per concern:
-  :mod:`.core` (validation, clipping, the vectorized z-buffer :func:`rasterize` for (s, t,
-  depth) triangles), :mod:`.coverage` (covered spans and depths), :mod:`.lightmap` (maps
-  through the toolkit's parameterizations), :mod:`.facemaps` (face-partition maps, map
-  sets; face-fixed FP, FPc, FPcs), :mod:`.shadow` (shadow maps; log+perspective by logarithmic rasterization) and
-  :mod:`.eye` (the eye pass: visible position and normal per pixel, its z-buffer culled by
-  :mod:`.occlusion`);
-* :mod:`.scenes`: seeded procedural scenes (ground, boxes, probe planes) and an ASCII
-  OBJ/PLY loader;
-* :mod:`.measure`: perspective aliasing measured from sampled positions by finite
-  differences, compared with :func:`aliasing.schemes.evaluate`;
-* :mod:`.raycast`: a ray-casting reference for the shadow maps (one Embree ray per texel;
-  optional, ``pip install 'aliasing[bench]'``).
+One package per concern, from the bottom up:
+
+* :mod:`.scenes`: what is drawn: the built-in scenes and probes, the procedural city, the
+  one mesh loader (trimesh, with a plain ASCII OBJ/PLY fallback), world cameras;
+* :mod:`.draw`: drawing maps: the vectorized z-buffer, depth maps through every
+  parameterization (logarithmic rasterization included), face-partitioned map sets,
+  cascades, the eye pass, the shadow test, and the backends (numpy, the reference; numba);
+* :mod:`.validate`: measuring and validating: perspective aliasing measured by finite
+  differences against :func:`aliasing.schemes.evaluate`, validation grids, scene
+  validation, and a ray-casting reference for the depth maps (optional,
+  ``pip install ".[bench]"``);
+* :mod:`.pictures`: shadowed renders, texel grids, error maps and distributions.
+
+This package re-exports the documented names of the drawing, scenes and measuring
+packages; import from those packages in new code.
 
 Example
 -------
@@ -24,7 +26,7 @@ Example
 (64, 20)
 """
 
-from .rasterize import (
+from .draw import (
     CHUNK,
     MAX_RESOLUTION,
     DepthMap,
@@ -44,7 +46,7 @@ from .rasterize import (
     shadow_map,
 )
 from .scenes import Scene, ground_and_boxes, load_mesh, probes
-from .measure import Measurement, measure
+from .validate import Measurement, measure
 
 __all__ = [
     "CHUNK",

@@ -16,18 +16,18 @@ import re
 import shlex
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from .. import _validation as check
+from .._version import __version__
 from .. import geometry, schemes, warping
 from . import limits
+from .limits import split_lights  # noqa: F401  (re-exported: part of this module's API)
+from .tables import SweepTable, _assemble_stream
 from .chunks import _Batch, _Task, compute_chunk  # noqa: F401 - compute_chunk: part of this module's API before the split
-
-if TYPE_CHECKING:
-    from .tables import SweepTable
 
 
 RANGE = "START:STOP:lin|log:COUNT"
@@ -251,42 +251,6 @@ def expand_lights(light: str | Sequence[str] | ArrayLike) -> tuple[tuple[str, ..
     return tuple(specs), np.concatenate(blocks)
 
 
-def split_lights(text: str) -> list[str]:
-    """Split light specs at commas, keeping ``gamma:…@azimuth:30,60`` lists inside one spec.
-
-    Parameters
-    ----------
-    text : str
-        Comma-separated light specs (:data:`aliasing.geometry.LIGHT_SPEC`, with lists and
-        ranges after ``gamma:`` and ``@azimuth:``).
-
-    Returns
-    -------
-    list of str
-        The specs, stripped; an empty item (``a,,b``) is a ValueError.
-
-    Example
-    -------
-    >>> split_lights("overhead, gamma:30,60@azimuth:0,90, hemisphere:10")
-    ['overhead', 'gamma:30,60@azimuth:0,90', 'hemisphere:10']
-    """
-    if not isinstance(text, str):
-        raise ValueError(f"light must be text of comma-separated specs, got {text!r}")
-    out: list[str] = []
-    parts = [p.strip() for p in text.split(",")]
-    if any(parts) and not all(parts):
-        raise ValueError(f"light has an empty item in {text!r} (two commas, or a comma at an end)")
-    for part in parts:
-        if not part:
-            continue
-        starts_spec = re.match(r"(overhead|behind|front|gamma|sphere|hemisphere)\b", part, flags=re.IGNORECASE)
-        if out and out[-1].lower().startswith("gamma") and not starts_spec:
-            out[-1] += "," + part
-        else:
-            out.append(part)
-    return out
-
-
 def _digest_bytes(data: bytes) -> str:
     return hashlib.sha256(data).hexdigest()
 
@@ -302,7 +266,6 @@ def parameters_digest(parameters: dict, fmt: str, data: bytes = b"") -> str:
     >>> len(a), a == parameters_digest({"fov": [60.0]}, "json")
     (64, False)
     """
-    from .. import __version__
 
     text = json.dumps({"parameters": parameters, "format": fmt, "aliasing": __version__}, sort_keys=True)
     return _digest_bytes(text.encode() + data)
@@ -470,14 +433,10 @@ class Grid:
 
     def assemble(self, payload_kind: str, fmt: str, payloads: Iterable[object]) -> Iterator[str | bytes]:
         """The output text in pieces, from every chunk's payload in order."""
-        from .tables import _assemble_stream  # the formats sit above the grid
-
         return _assemble_stream(self, payload_kind, fmt, payloads)
 
     def table(self, payloads: Sequence[object], command: str | None = None) -> SweepTable:
         """The :class:`SweepTable` of every chunk's ``arrays`` payload, in order."""
-        from .tables import SweepTable
-
         return SweepTable._from_payloads(self, list(payloads), command)
 
     def timing(self, kind: str, sample: int = 500) -> tuple[list[tuple[_Task, int]], str]:

@@ -141,8 +141,6 @@ def light_count(light: object) -> int:
     >>> light_count("overhead,sphere:100000000000"), light_count("gamma:0:180:lin:19@azimuth:0:90:lin:4")
     (100000000001, 76)
     """
-    from .grid import split_lights
-
     if isinstance(light, str):
         try:
             specs = split_lights(light)
@@ -233,3 +231,39 @@ def check_request(schemes: object, f_over_n: object, fov: object, light: object,
     size, what = estimate_bytes(variants, axis_count(f_over_n), axis_count(fov), light_count(light), maps, blk, jobs if isinstance(jobs, int) else 1, in_memory)
     check_bytes(size, what, limit)
     return size
+
+
+def split_lights(text: str) -> list[str]:
+    """Split light specs at commas, keeping ``gamma:…@azimuth:30,60`` lists inside one spec.
+
+    Parameters
+    ----------
+    text : str
+        Comma-separated light specs (:data:`aliasing.geometry.LIGHT_SPEC`, with lists and
+        ranges after ``gamma:`` and ``@azimuth:``).
+
+    Returns
+    -------
+    list of str
+        The specs, stripped; an empty item (``a,,b``) is a ValueError.
+
+    Example
+    -------
+    >>> split_lights("overhead, gamma:30,60@azimuth:0,90, hemisphere:10")
+    ['overhead', 'gamma:30,60@azimuth:0,90', 'hemisphere:10']
+    """
+    if not isinstance(text, str):
+        raise ValueError(f"light must be text of comma-separated specs, got {text!r}")
+    out: list[str] = []
+    parts = [p.strip() for p in text.split(",")]
+    if any(parts) and not all(parts):
+        raise ValueError(f"light has an empty item in {text!r} (two commas, or a comma at an end)")
+    for part in parts:
+        if not part:
+            continue
+        starts_spec = re.match(r"(overhead|behind|front|gamma|sphere|hemisphere)\b", part, flags=re.IGNORECASE)
+        if out and out[-1].lower().startswith("gamma") and not starts_spec:
+            out[-1] += "," + part
+        else:
+            out.append(part)
+    return out

@@ -18,7 +18,7 @@ import numpy as np
 from .. import _validation as check
 from .store import _EXT
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # annotations only: the tables import the store, which this module imports
     from .tables import SweepTable
 
 

@@ -24,7 +24,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-if TYPE_CHECKING:
+from .._version import __version__
+
+if TYPE_CHECKING:  # annotations only: the runner and the tables import this module
     from .runner import Plan
     from .tables import SweepTable
 
@@ -269,8 +271,6 @@ class WorkDir:
 
 def _open_workdir(grid: Plan, fmt: str, out: Path, resume: bool, kind: str) -> tuple[WorkDir, set[int]]:
     """Create or reopen ``<out>.parts``; the finished chunks there whose checksums still match."""
-    from .. import __version__
-
     work = _workdir(out)
     digest = grid.digest(fmt)
     manifest = work / "manifest.json"

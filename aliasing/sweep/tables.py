@@ -5,12 +5,18 @@ from __future__ import annotations
 import json
 import types
 from collections.abc import Iterable, Iterator
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .. import geometry, schemes
-from .grid import Grid, _Task
+from .._version import __version__
+from .chunks import _Task
 from .rows import ROW_FIELDS, _csv_cells, _direction_rows, _summary_row, _with_cells, format_rows
+from .store import atomic_target
+
+if TYPE_CHECKING:  # annotations only: the grid imports this module
+    from .grid import Grid
 
 
 def _assemble_stream(grid: Grid, payload_kind: str, fmt: str, payloads: Iterable[object]) -> Iterator[str | bytes]:
@@ -103,8 +109,6 @@ class SweepTable:
 
     def attributes(self) -> dict:
         """Attributes of :meth:`to_xarray` (and NetCDF files): toolkit version, command, parameters (JSON)."""
-        from .. import __version__
-
         return {"aliasing_version": __version__, "command": self.command, "parameters": json.dumps(self.grid.parameters())}
 
     def to_pandas(self):
@@ -203,8 +207,6 @@ def write_parquet(grid: Grid, payloads: Iterable[object], target) -> None:
 
     Summaries are one row per scheme, f/n and fov (:data:`~aliasing.sweep.rows.SUMMARY_FIELDS`).
     """
-    from .store import atomic_target
-
     pa = import_pyarrow()
     pq = pa.parquet
     with atomic_target(target) as tmp:

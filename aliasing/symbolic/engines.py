@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from . import derivation
+from .registry import derivation
 
 a, b, t = sp.symbols("a b t", positive=True)
 z = sp.Symbol("z_c", real=True)

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from . import Printed, derivation
+from .registry import Printed, derivation
 
 z, n, f, theta = sp.symbols("z n f theta", positive=True)
 n_p = sp.Symbol("n'", positive=True)

@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from . import Printed, derivation
+from .registry import Printed, derivation
 
 SOURCE = "Lloyd et al. 2007"
 

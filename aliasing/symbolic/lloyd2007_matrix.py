@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from . import derivation
+from .registry import derivation
 from . import lloyd2007 as L2
 
 SOURCE = "Lloyd et al. 2007"

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from . import Printed, derivation
+from .registry import Printed, derivation
 
 z, z_n, z_f, n = sp.symbols("z z_n z_f n", positive=True)
 z_p = sp.Symbol("z'", positive=True)

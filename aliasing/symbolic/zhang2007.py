@@ -50,7 +50,7 @@ from functools import cache
 
 import sympy as sp
 
-from . import Printed, derivation
+from .registry import Printed, derivation
 from . import wimmer2004 as W
 
 z, n, f = sp.symbols("z n f", positive=True)

@@ -18,13 +18,13 @@ rounds relative to it), so no texel that could win is ever skipped.
 
 The merge is order-independent, so the result does not depend on the drawing order: each
 texel keeps the minimum depth and, among the triangles reaching it exactly, the highest
-index, which is what :func:`aliasing.raster.coverage.merge` gives when triangles are drawn in
-index order (the plain :func:`aliasing.raster.rasterize`).
+index, which is what :func:`aliasing.raster.draw.coverage.merge` gives when triangles are drawn in
+index order (the plain :func:`aliasing.raster.draw`).
 
 Example
 -------
 >>> import numpy as np
->>> from aliasing.raster import core
+>>> from aliasing.raster.draw import core
 >>> tri = np.array([[[0, 0, 2.0], [1, 0, 2.0], [0, 1, 2.0]], [[0, 0, 1.0], [1, 0, 1.0], [0, 1, 1.0]]])
 >>> a = core.zbuffer(tri, 8, np.ones((2, 3)), (np.arange(8) + 0.5) / 8, True, 1 << 20, front_to_back=True)
 >>> sorted(np.unique(a.triangle).tolist()), float(a.depth[0, 0])   # the far triangle is hidden

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import _validation as check
+from ... import _validation as check
 from .core import CHUNK, DepthMap, _triangles, check_resolution, clip_near, rasterize
 from .lightmap import LightMap, light_map
 

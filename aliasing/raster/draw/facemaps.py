@@ -12,10 +12,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import _validation as check
-from .. import directional, faces, geometry, schemes
+from ... import _validation as check
+from ... import directional, faces, geometry, schemes
 from .lightmap import LightMap, _unit_vector, light_maps
-from ..view import half_angle
+from ...view import half_angle
 
 Array = NDArray[np.float64]
 

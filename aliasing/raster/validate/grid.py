@@ -1,6 +1,6 @@
 """Validation of the analytic aliasing bounds by the rasterizer: ``aliasing validate``.
 
-Modules: one validation and its formats are :mod:`aliasing.raster.validate_one` (re-exported
+Modules: one validation and its formats are :mod:`aliasing.raster.validate.single` (re-exported
 here); this module holds the validation grids and the command glue.
 
 :func:`validate` measures the perspective error of one scheme for one light direction on
@@ -57,9 +57,9 @@ from typing import ClassVar
 
 import numpy as np
 
-from .. import _validation as check
-from .. import sweep
-from .validate_one import (  # noqa: F401  (re-exported: the public names of one validation)
+from ... import _validation as check
+from ... import sweep
+from .single import (  # noqa: F401  (re-exported: the public names of one validation)
     DEFAULT_PROBES,
     DEFAULT_REACH,
     DEFAULT_RES,
@@ -487,7 +487,7 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
     p.add_argument("--dask", metavar="ADDRESS", help="with --grid: run the validations on a running Dask scheduler, e.g. tcp://host:8786 (dask extra)")
     p.add_argument("--dry-run", action="store_true", help="with --grid: print the grid size and an estimated time, validate nothing")
     p.set_defaults(run=_run)
-    from .scene_validate import add_scene_options  # --scene FILE (aliasing.raster.scene_validate)
+    from .scene import add_scene_options  # --scene FILE (aliasing.raster.validate.scene)
 
     add_scene_options(p)
     return p

@@ -7,10 +7,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import _validation as check
-from . import compiled, occlusion
+from ... import _validation as check
+from . import backends, compiled, occlusion
 from .core import CHUNK, _triangles, check_chunk, check_resolution, clip_near, zbuffer
-from ..view import half_angle
+from ...view import half_angle
 
 Array = NDArray[np.float64]
 
@@ -109,9 +109,7 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     fv = float(check.fov(check.scalar(fov, "fov")))
     zc = float(check.positive(check.scalar(near, "near"), "near"))
     chunk = check_chunk(chunk)
-    if not isinstance(backend, str) or backend not in BACKENDS:
-        raise ValueError(f"backend must be one of {sorted(BACKENDS)}, got {backend!r}")
-    draw, outputs = BACKENDS[backend]()
+    draw, outputs = KERNELS[backends.check(backend, "eye_pass")]()
     clipped, src = clip_near(tri, zc)
     if clipped.shape[0] == 0:
         empty = np.full((res, res, 3), np.nan)
@@ -182,9 +180,9 @@ def _numpy():
 
 
 def _numba():
-    compiled.require()
     return compiled.draw, _outputs_numba
 
 
-#: Backends of :func:`eye_pass`: name → loader of (how a group of triangles is drawn, per-pixel outputs).
-BACKENDS = {"numpy": _numpy, "numba": _numba}
+#: Kernels of :func:`eye_pass` per backend (:mod:`.backends`): name → loader of (how a group
+#: of triangles is drawn, per-pixel outputs).
+KERNELS = {"numpy": _numpy, "numba": _numba}

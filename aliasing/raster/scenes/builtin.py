@@ -1,4 +1,4 @@
-"""Seeded procedural scenes and a plain ASCII OBJ/PLY loader (no new dependency).
+"""The built-in eye-space scenes: seeded ground and boxes, and the probes of the validation.
 
 All coordinates are eye space [world units] (eye at the origin looking along +z, x right,
 y up).  A :class:`Scene` is a triangle soup with a group per triangle: −1 for ordinary
@@ -20,15 +20,14 @@ Example
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import _validation as check
-from .. import geometry
-from ..view import half_angle
+from ... import _validation as check
+from ... import geometry
+from ...view import half_angle
 
 Array = NDArray[np.float64]
 
@@ -223,123 +222,3 @@ def probes(near: float, far: float, fov: float, light: str | ArrayLike, *, cells
     tri = np.concatenate([np.stack([p[0], p[1], p[2]], 1), np.stack([p[0], p[2], p[3]], 1)])
     group = np.concatenate([np.arange(k * k), np.arange(k * k)]).astype(np.int64)
     return Scene(tri, group, nrm)
-
-
-def load_mesh(path: str | os.PathLike) -> Scene:
-    """Triangles of an ASCII OBJ (``v``/``f`` lines; polygons fan-triangulated) or PLY file.
-
-    Parameters
-    ----------
-    path : str or path-like
-        ``.obj`` or ``.ply`` (``format ascii 1.0``, vertex x y z first, face lists).
-
-    Raises
-    ------
-    ValueError
-        Unknown extension, unreadable or unparsable content (with the line number), binary
-        PLY, or no triangles.
-
-    Example
-    -------
-    >>> import os, tempfile
-    >>> d = tempfile.mkdtemp(); p = os.path.join(d, "quad.obj")
-    >>> _ = open(p, "w").write("v 0 0 1\\nv 1 0 1\\nv 1 1 1\\nv 0 1 1\\nf 1 2 3 4\\n")
-    >>> load_mesh(p).triangles.shape
-    (2, 3, 3)
-    """
-    name = os.fspath(path)
-    ext = os.path.splitext(name)[1].lower()
-    if ext not in (".obj", ".ply"):
-        raise ValueError(f"path must end in .obj or .ply, got {name!r}")
-    try:
-        with open(name, encoding="utf-8") as fh:
-            lines = fh.read().splitlines()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ValueError(f"cannot read mesh file {name!r}: {exc}") from None
-    verts, faces = (_parse_obj if ext == ".obj" else _parse_ply)(lines, name)
-    if not faces:
-        raise ValueError(f"mesh file {name!r} has no faces (empty scene)")
-    v = np.asarray(verts, float)
-    tris = []
-    for lineno, f in faces:
-        if len(f) < 3:
-            raise ValueError(f"{name}:{lineno}: a face needs at least 3 vertices")
-        for i in f:
-            if not -len(v) <= i < len(v):
-                raise ValueError(f"{name}:{lineno}: vertex index out of range [1, {len(v)}]")
-        tris += [(f[0], f[j], f[j + 1]) for j in range(1, len(f) - 1)]
-    tri = v[np.asarray(tris)]
-    if not np.isfinite(tri).all():
-        raise ValueError(f"mesh file {name!r} has non-finite vertex coordinates")
-    return Scene(tri, np.full(len(tri), -1, np.int64))
-
-
-def _parse_obj(lines: list[str], name: str) -> tuple[list[list[float]], list[tuple[int, list[int]]]]:
-    verts: list[list[float]] = []
-    faces: list[tuple[int, list[int]]] = []
-    for no, raw in enumerate(lines, 1):
-        parts = raw.split("#", 1)[0].split()
-        if not parts:
-            continue
-        try:
-            if parts[0] == "v":
-                if len(parts) < 4:
-                    raise ValueError
-                verts.append([float(x) for x in parts[1:4]])
-            elif parts[0] == "f":
-                idx = [int(p.split("/")[0]) for p in parts[1:]]
-                if any(i == 0 for i in idx):
-                    raise ValueError
-                faces.append((no, [i - 1 if i > 0 else len(verts) + i for i in idx]))
-        except ValueError:
-            raise ValueError(f"{name}:{no}: cannot parse OBJ line {raw.strip()!r}") from None
-    return verts, faces
-
-
-def _parse_ply(lines: list[str], name: str) -> tuple[list[list[float]], list[tuple[int, list[int]]]]:
-    if not lines or lines[0].strip() != "ply":
-        raise ValueError(f"{name}:1: not a PLY file (first line must be 'ply')")
-    elements: list[tuple[str, int, list[str]]] = []
-    fmt = None
-    end = None
-    for no, raw in enumerate(lines[1:], 2):
-        parts = raw.split()
-        if not parts or parts[0] in ("comment", "obj_info"):
-            continue
-        if parts[0] == "format":
-            fmt = parts[1] if len(parts) > 1 else ""
-        elif parts[0] == "element":
-            try:
-                elements.append((parts[1], int(parts[2]), []))
-            except (IndexError, ValueError):
-                raise ValueError(f"{name}:{no}: cannot parse PLY header line {raw.strip()!r}") from None
-        elif parts[0] == "property" and elements:
-            elements[-1][2].append(parts[-1])
-        elif parts[0] == "end_header":
-            end = no
-            break
-    if fmt != "ascii":
-        raise ValueError(f"{name}: only 'format ascii 1.0' PLY files are supported, got format {fmt!r}")
-    if end is None:
-        raise ValueError(f"{name}: PLY header has no end_header")
-    verts: list[list[float]] = []
-    faces: list[tuple[int, list[int]]] = []
-    row = end  # 0-based index of the next body line
-    for el_name, count, props in elements:
-        for _ in range(count):
-            if row >= len(lines):
-                raise ValueError(f"{name}: PLY body ends early (element {el_name!r} expects {count} lines)")
-            parts = lines[row].split()
-            row += 1
-            try:
-                if el_name == "vertex":
-                    ix = [props.index(a) for a in ("x", "y", "z")]
-                    verts.append([float(parts[i]) for i in ix])
-                elif el_name == "face":
-                    m = int(parts[0])
-                    if len(parts) < m + 1:
-                        raise ValueError
-                    faces.append((row, [int(p) for p in parts[1:m + 1]]))
-            except (ValueError, IndexError):
-                raise ValueError(f"{name}:{row}: cannot parse PLY {el_name} line {lines[row - 1].strip()!r}") from None
-    return verts, faces

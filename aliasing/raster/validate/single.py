@@ -20,12 +20,12 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .. import _validation as check
-from .. import geometry, schemes, sweep
-from .camera import check_raster_frustum
+from ... import _validation as check
+from ... import geometry, schemes, sweep
+from ..scenes.camera import check_raster_frustum
 from .measure import measure
-from .rasterize import map_set
-from .scenes import probes as probe_scene
+from ..draw import map_set
+from ..scenes.builtin import probes as probe_scene
 
 MIN_RES = 16
 """Smallest measurement resolution: probes need interior pixels with both neighbours."""
@@ -131,7 +131,7 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
         M_z ratios), ``tolerance``, ``reach``, ``within_bound``, ``reached``, ``passed``,
         ``pixels``, ``self_lit``; ``projection_min``, ``projection_median``,
         ``projection_max``: the projection factor cos ψ_e / cos ψ_l measured from the normals
-        over the probe pixels (:func:`aliasing.raster.measure.projection_factors`), about 1 by
+        over the probe pixels (:func:`aliasing.raster.validate.measure.projection_factors`), about 1 by
         construction of the probes (Lloyd 2006 §3.3), so the measured error is perspective
         aliasing alone.
 

@@ -5,7 +5,8 @@ geometry node of the scene graph is placed by its world transform (glTF node tra
 rotation, scale or matrix, composed down the hierarchy).  glTF cameras are read from the
 file's own JSON (trimesh keeps only the first one): every perspective camera, by its name
 and by its node's name, placed by its node's world transform.  Without trimesh, ASCII OBJ
-and PLY files still load through :func:`aliasing.raster.scenes.load_mesh`.
+and PLY files still load through :func:`load_mesh`, the plain reader at the end of this
+module.
 
 Triangles of zero area (collinear or repeated corners) are skipped and counted
 (``WorldScene.degenerate``); a file that does not parse, holds no triangles or has
@@ -32,7 +33,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .camera import Camera, from_matrix
-from .scenes import Scene, load_mesh
+from .builtin import Scene
 
 Array = NDArray[np.float64]
 
@@ -62,7 +63,7 @@ class WorldScene:
     source: str = ""
 
     def camera(self, name: str, *, near: float | None = None, far: float | None = None, fov: float | None = None) -> Camera:
-        """The :class:`~aliasing.raster.camera.Camera` of glTF camera ``name``; near/far/fov override the file's.
+        """The :class:`~aliasing.raster.scenes.camera.Camera` of glTF camera ``name``; near/far/fov override the file's.
 
         The glTF yfov (vertical, full) is the square image's fov; a camera without zfar
         (infinite) needs ``far``.
@@ -218,3 +219,126 @@ def gltf_cameras(path: str | os.PathLike) -> dict[str, GltfCamera]:
         for key in {label, node.get("name")} - {None}:
             out.setdefault(key, gc)
     return out
+
+
+# ---------------------------------------------------------------- the ASCII fallback (no trimesh)
+
+
+def load_mesh(path: str | os.PathLike) -> Scene:
+    """Triangles of an ASCII OBJ (``v``/``f`` lines; polygons fan-triangulated) or PLY file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        ``.obj`` or ``.ply`` (``format ascii 1.0``, vertex x y z first, face lists).
+
+    Raises
+    ------
+    ValueError
+        Unknown extension, unreadable or unparsable content (with the line number), binary
+        PLY, or no triangles.
+
+    Example
+    -------
+    >>> import os, tempfile
+    >>> d = tempfile.mkdtemp(); p = os.path.join(d, "quad.obj")
+    >>> _ = open(p, "w").write("v 0 0 1\\nv 1 0 1\\nv 1 1 1\\nv 0 1 1\\nf 1 2 3 4\\n")
+    >>> load_mesh(p).triangles.shape
+    (2, 3, 3)
+    """
+    name = os.fspath(path)
+    ext = os.path.splitext(name)[1].lower()
+    if ext not in (".obj", ".ply"):
+        raise ValueError(f"path must end in .obj or .ply, got {name!r}")
+    try:
+        with open(name, encoding="utf-8") as fh:
+            lines = fh.read().splitlines()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ValueError(f"cannot read mesh file {name!r}: {exc}") from None
+    verts, faces = (_parse_obj if ext == ".obj" else _parse_ply)(lines, name)
+    if not faces:
+        raise ValueError(f"mesh file {name!r} has no faces (empty scene)")
+    v = np.asarray(verts, float)
+    tris = []
+    for lineno, f in faces:
+        if len(f) < 3:
+            raise ValueError(f"{name}:{lineno}: a face needs at least 3 vertices")
+        for i in f:
+            if not -len(v) <= i < len(v):
+                raise ValueError(f"{name}:{lineno}: vertex index out of range [1, {len(v)}]")
+        tris += [(f[0], f[j], f[j + 1]) for j in range(1, len(f) - 1)]
+    tri = v[np.asarray(tris)]
+    if not np.isfinite(tri).all():
+        raise ValueError(f"mesh file {name!r} has non-finite vertex coordinates")
+    return Scene(tri, np.full(len(tri), -1, np.int64))
+
+
+def _parse_obj(lines: list[str], name: str) -> tuple[list[list[float]], list[tuple[int, list[int]]]]:
+    verts: list[list[float]] = []
+    faces: list[tuple[int, list[int]]] = []
+    for no, raw in enumerate(lines, 1):
+        parts = raw.split("#", 1)[0].split()
+        if not parts:
+            continue
+        try:
+            if parts[0] == "v":
+                if len(parts) < 4:
+                    raise ValueError
+                verts.append([float(x) for x in parts[1:4]])
+            elif parts[0] == "f":
+                idx = [int(p.split("/")[0]) for p in parts[1:]]
+                if any(i == 0 for i in idx):
+                    raise ValueError
+                faces.append((no, [i - 1 if i > 0 else len(verts) + i for i in idx]))
+        except ValueError:
+            raise ValueError(f"{name}:{no}: cannot parse OBJ line {raw.strip()!r}") from None
+    return verts, faces
+
+
+def _parse_ply(lines: list[str], name: str) -> tuple[list[list[float]], list[tuple[int, list[int]]]]:
+    if not lines or lines[0].strip() != "ply":
+        raise ValueError(f"{name}:1: not a PLY file (first line must be 'ply')")
+    elements: list[tuple[str, int, list[str]]] = []
+    fmt = None
+    end = None
+    for no, raw in enumerate(lines[1:], 2):
+        parts = raw.split()
+        if not parts or parts[0] in ("comment", "obj_info"):
+            continue
+        if parts[0] == "format":
+            fmt = parts[1] if len(parts) > 1 else ""
+        elif parts[0] == "element":
+            try:
+                elements.append((parts[1], int(parts[2]), []))
+            except (IndexError, ValueError):
+                raise ValueError(f"{name}:{no}: cannot parse PLY header line {raw.strip()!r}") from None
+        elif parts[0] == "property" and elements:
+            elements[-1][2].append(parts[-1])
+        elif parts[0] == "end_header":
+            end = no
+            break
+    if fmt != "ascii":
+        raise ValueError(f"{name}: only 'format ascii 1.0' PLY files are supported, got format {fmt!r}")
+    if end is None:
+        raise ValueError(f"{name}: PLY header has no end_header")
+    verts: list[list[float]] = []
+    faces: list[tuple[int, list[int]]] = []
+    row = end  # 0-based index of the next body line
+    for el_name, count, props in elements:
+        for _ in range(count):
+            if row >= len(lines):
+                raise ValueError(f"{name}: PLY body ends early (element {el_name!r} expects {count} lines)")
+            parts = lines[row].split()
+            row += 1
+            try:
+                if el_name == "vertex":
+                    ix = [props.index(a) for a in ("x", "y", "z")]
+                    verts.append([float(parts[i]) for i in ix])
+                elif el_name == "face":
+                    m = int(parts[0])
+                    if len(parts) < m + 1:
+                        raise ValueError
+                    faces.append((row, [int(p) for p in parts[1:m + 1]]))
+            except (ValueError, IndexError):
+                raise ValueError(f"{name}:{row}: cannot parse PLY {el_name} line {lines[row - 1].strip()!r}") from None
+    return verts, faces

@@ -1,10 +1,8 @@
 """Your own scene: a loaded mesh, a world-space camera and light, each scheme rendered and measured.
 
-:func:`setup` loads a file (:mod:`aliasing.raster.loading`), places the camera
-(``eye``/``target``/``up`` or a glTF camera by name, :mod:`aliasing.raster.camera`) and
-turns the world-space light direction into eye space: everything after it is the toolkit's
-eye space.  :func:`render` draws the scene through each scheme's maps (any split method or
-engine preset, :mod:`aliasing.raster.cascades`) sharing one texel budget and measures the
+The scene comes placed in eye space (:func:`aliasing.raster.scenes.setup`: file, world camera,
+light).  :func:`render` draws the scene through each scheme's maps (any split method or
+engine preset, :mod:`aliasing.raster.draw.cascades`) sharing one texel budget and measures the
 perspective aliasing error per pixel on lit surfaces within [near, far]
 (:func:`aliasing.raster.pictures.error_field`:
 m = max(m_x, m_z)·R_image/R_map [image pixels per texel], the projection factor of the
@@ -12,12 +10,13 @@ surface left out as in the analytic model), with :func:`statistics`: its percent
 fraction of pixels at ≤ 1 texel per pixel, and each map's analytic maximum
 max(M_x, M_z)·R_image/R_map (Lloyd 2006 eqs. 7–10 at the map's resolution).
 
-Coplanar triangles count as one planar face (:func:`plane_ids`), so the error's central
-differences run across a mesh's tessellation, not only inside single triangles.
+Coplanar triangles count as one planar face (:func:`aliasing.raster.scenes.plane_ids`), so
+the error's central differences run across a mesh's tessellation, not only inside single
+triangles.
 
 Example
 -------
->>> from aliasing.raster import procedural
+>>> from aliasing.raster.scenes import procedural, setup
 >>> tri = procedural.city(2000, seed=1, size=100.0)
 >>> st = setup(tri, eye="-40,2,-40", target="0,0,0", near=0.5, far=100.0, light_dir="1,2,0.5")
 >>> r = render(st, ["Standard", "LogP"], budget=128**2, image_res=48)
@@ -32,36 +31,17 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import _validation as check
-from .. import geometry
-from .. import partitioning
-from .camera import Camera, check_raster_frustum, look_at, vector
-from .cascades import CascadeSet, budget_shares, cascade_set
-from .loading import WorldScene, load_scene
-from .pictures import BIAS, View, error_field, render_view
-from .scenes import Scene
+from ... import _validation as check
+from ... import geometry
+from ... import partitioning
+from ..scenes.camera import Camera, check_raster_frustum
+from ..draw.cascades import CascadeSet, budget_shares, cascade_set
+from .images import BIAS, View, error_field, render_view
+from ..scenes.world import MIN_COS_LIGHT, SceneSetup, json_safe, plane_ids, setup
 
 Array = NDArray[np.float64]
 
 PERCENTILES = (50, 90, 99)
-#: Errors are measured where the surface faces the light by more than this cosine (n·l):
-#: surfaces turned away are in their own shadow (nothing for the map to alias), and near
-#: grazing light the map's Jacobian on the surface is singular (finite differences blow up).
-MIN_COS_LIGHT = 0.1
-
-
-@dataclass(frozen=True)
-class SceneSetup:
-    """An eye-space scene ready to render: ``scene``, per-triangle planar ``faces``, the
-    ``camera`` (near, far, fov), ``light`` (eye-space unit vector towards the light), the
-    loaded file's ``degenerate`` triangle count, and ``source``."""
-
-    scene: Scene
-    faces: NDArray[np.int64]
-    camera: Camera
-    light: Array
-    degenerate: int = 0
-    source: str = ""
 
 
 @dataclass(frozen=True)
@@ -78,90 +58,13 @@ class SchemeRender:
     stats: dict = field(default_factory=dict)
 
 
-def plane_ids(triangles: ArrayLike) -> NDArray[np.int64]:
-    """An id per triangle, equal for coplanar triangles (normal and offset within 1e-6 relative).
-
-    Example
-    -------
-    >>> quad = [[[0, 0, 0], [1, 0, 0], [1, 0, 1]], [[0, 0, 0], [1, 0, 1], [0, 0, 1]], [[0, 0, 0], [0, 1, 0], [0, 1, 1]]]
-    >>> plane_ids(np.array(quad, float)).tolist()
-    [0, 0, 1]
-    """
-    tri = np.asarray(triangles, float)
-    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    n /= np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-300)
-    # one sign per plane: the first clearly non-zero component positive
-    lead = np.argmax(np.abs(n) > 1e-6, axis=-1)
-    n *= np.sign(np.take_along_axis(n, lead[:, None], -1))
-    d = (n * tri[:, 0]).sum(-1)
-    scale = max(float(np.abs(tri).max()), 1e-300)
-    key = np.column_stack([np.round(n * 1e6), np.round(d / scale * 1e6)])
-    _, first, inv = np.unique(key, axis=0, return_index=True, return_inverse=True)
-    rank = np.argsort(np.argsort(first))  # ids in order of first appearance
-    return rank[inv.ravel()].astype(np.int64)
-
-
-def setup(scene: str | WorldScene | ArrayLike, *, eye: ArrayLike | str | None = None, target: ArrayLike | str | None = None, up: ArrayLike | str = (0.0, 1.0, 0.0),
-          camera: str | None = None, near: float | None = None, far: float | None = None, fov: float | None = None,
-          light_dir: ArrayLike | str | None = None, light: str | ArrayLike | None = None) -> SceneSetup:
-    """Load (if a path), place the camera, convert to eye space.
-
-    Parameters
-    ----------
-    scene : str, WorldScene or array_like (T, 3, 3)
-        A file (:func:`aliasing.raster.loading.load_scene`) or world-space triangles.
-    eye, target, up : array_like or "X,Y,Z"
-        A look-at camera [world units] (eye ≠ target, up not parallel to the view).
-    camera : str, optional
-        A glTF camera's name instead of eye/target (near, far, fov override its own).
-    near, far : float, optional
-        Eye near and far (shadow) distances [world units]; defaults 1 and 100 for a look-at camera.
-    fov : float, optional
-        Full field of view [deg]; default 60 (look-at) or the glTF camera's yfov.
-    light_dir : array_like or "X,Y,Z", optional
-        World-space direction towards the light (non-zero).
-    light : str or array_like, optional
-        Or an eye-space light (:data:`aliasing.geometry.LIGHT_SPEC`, one direction);
-        default ``gamma:60@azimuth:30`` when neither is given.
-    """
-    if isinstance(scene, WorldScene):
-        ws = scene
-    elif isinstance(scene, str) or hasattr(scene, "__fspath__"):
-        ws = load_scene(scene)
-    else:
-        tri = check.as_float_array(scene, "scene")
-        if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri) or not np.isfinite(tri).all():
-            raise ValueError(f"scene triangles must be finite with shape (T, 3, 3), T >= 1, got {tri.shape}")
-        ws = WorldScene(tri)
-    if camera is not None:
-        if eye is not None or target is not None:
-            raise ValueError("give either camera (a glTF camera name) or eye and target, not both")
-        cam = ws.camera(camera, near=near, far=far, fov=fov)
-    else:
-        if eye is None or target is None:
-            raise ValueError("a scene needs a camera: eye and target (--eye X,Y,Z --target X,Y,Z) or a glTF camera name (--camera NAME)")
-        cam = look_at(eye, target, up, near=1.0 if near is None else near, far=100.0 if far is None else far, fov=60.0 if fov is None else fov)
-    if light_dir is not None and light is not None:
-        raise ValueError("give either light_dir (world space) or light (eye space), not both")
-    if light_dir is not None:
-        lv = cam.direction_to_eye(vector(light_dir, "light direction"))
-    else:
-        ls = geometry.lights("gamma:60@azimuth:30" if light is None else light)
-        if ls.shape[0] != 1:
-            raise ValueError(f"light must be a single direction, got {ls.shape[0]}")
-        lv = ls[0]
-    sc = ws.in_eye_space(cam)
-    check_raster_frustum(cam.near, cam.far, cam.fov)
-    return SceneSetup(sc, plane_ids(sc.triangles), cam, lv, ws.degenerate, ws.source)
-
-
 def render(st: SceneSetup, schemes_: list[str], *, splits: str | None = None, k: int | None = None, allocation: str = "equal", budget: int = 1024**2,
            image_res: int = 512, bias: float = BIAS, **params: float) -> list[SchemeRender]:
     """Render and measure each scheme on the scene, all sharing ``budget`` texels.
 
     ``splits``, ``k``, ``params``: the partitions of every scheme (a split method or engine
-    preset, :func:`aliasing.raster.cascades.cascade_set`); ``allocation``: ``equal`` or
-    ``error`` (:func:`aliasing.raster.cascades.budget_shares`).
+    preset, :func:`aliasing.raster.draw.cascades.cascade_set`); ``allocation``: ``equal`` or
+    ``error`` (:func:`aliasing.raster.draw.cascades.budget_shares`).
     """
     if not schemes_:
         raise ValueError("schemes must name at least one scheme")
@@ -231,7 +134,7 @@ def figure(renders: list[SchemeRender], what: str = "shadows", *, every: int = 1
     from matplotlib.colors import LogNorm
     from matplotlib.patches import Patch
 
-    from .pictures import GRID_COLOURS, cdf, error_of, grid_of, shade
+    from .images import GRID_COLOURS, cdf, error_of, grid_of, shade
 
     kind = check.choice(what, "what", dict.fromkeys(("shadows", "grid", "error", "cdf")))
     if kind == "cdf":
@@ -282,19 +185,8 @@ def report(st: SceneSetup, renders: list[SchemeRender], *, budget: int, allocati
                    "near": cam.near, "far": cam.far, "fov": cam.fov},
         "light_eye_space": st.light.tolist(), "gamma": float(np.degrees(np.arccos(np.clip(st.light[2], -1, 1)))),
         "budget": int(budget), "allocation": allocation, "splits": splits, "image_res": int(renders[0].view.position.shape[0]),
-        "schemes": [_finite(r.stats) for r in renders],
+        "schemes": [json_safe(r.stats) for r in renders],
     }
-
-
-def _finite(value: object) -> object:
-    """JSON has no NaN: write it as null."""
-    if isinstance(value, dict):
-        return {k: _finite(v) for k, v in value.items()}
-    if isinstance(value, list):
-        return [_finite(v) for v in value]
-    if isinstance(value, float) and not np.isfinite(value):
-        return None
-    return value
 
 
 def run(args) -> int:
@@ -308,7 +200,7 @@ def run(args) -> int:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .scenes import ground_and_boxes
+    from ..scenes.builtin import ground_and_boxes
 
     fmt = check.choice(args.format, "format", dict.fromkeys(("text", "json")))
     out = None if args.out is None else Path(args.out)

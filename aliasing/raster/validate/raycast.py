@@ -30,8 +30,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .core import CHUNK, DepthMap, _triangles, check_resolution
-from .lightmap import LightMap
+from ..draw.core import CHUNK, DepthMap, _triangles, check_resolution
+from ..draw.lightmap import LightMap
 
 #: Depth tolerance of :func:`agreement` as a fraction of the scene's extent: about 8 float32
 #: ulps (Embree's results differ from the rasterizer's by ≲ 1.3e-7 of the extent).

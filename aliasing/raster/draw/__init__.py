@@ -1,7 +1,6 @@
-"""Vectorized numpy triangle rasterizer: the public names of the former single module.
+"""Drawing maps: the vectorized triangle rasterizer, depth maps, face maps, the eye pass.
 
-The rasterizer is split by concern; this module re-exports their public names (and the
-helpers other modules of the package use), so ``aliasing.raster.rasterize.X`` keeps working:
+One module per step; this package re-exports their public names:
 
 * :mod:`.core`: map coordinates, validation, :class:`DepthMap`, near clipping and
   :func:`rasterize` (bounding boxes, chunking);
@@ -13,7 +12,12 @@ helpers other modules of the package use), so ``aliasing.raster.rasterize.X`` ke
 * :mod:`.occlusion`: front-to-back occlusion culling with an order-independent merge (the
   same buffers as :func:`rasterize`), used by the eye pass;
 * :mod:`.eye`: the eye pass (:func:`eye_pass`, :func:`project`);
-* :mod:`.compiled`: the eye pass's optional numba kernels (``eye_pass(..., backend="numba")``).
+* :mod:`.compiled`: the eye pass's optional numba kernels (``eye_pass(..., backend="numba")``);
+* :mod:`.backends`: the table of drawing backends (numpy, the reference; numba) and the one
+  check of a ``backend=`` keyword: the seam where another backend stands beside numpy;
+* :mod:`.cascades`: a scheme's maps for any split method or engine preset, and the texel
+  budget shared among them;
+* :mod:`.lookup`: the shadow test of surface points through a depth map.
 
 Example
 -------
@@ -31,10 +35,10 @@ from .eye import EyeBuffer, eye_pass, project
 from .facemaps import MapSet, fixed_face_map, frame_map, map_set, near_face_map
 from .lightmap import LightMap, _unit_vector, light_map, light_maps
 from .shadow import log_row_centres, shadow_map
-
-_clip_near = clip_near  # the former private name
+from .cascades import CascadeSet, budget_shares, cascade_set
+from .lookup import BIAS, shadow_test
 
 __all__ = [
-    "CHUNK", "MAX_RESOLUTION", "DepthMap", "EyeBuffer", "LightMap", "MapSet", "check_resolution", "clip_near", "eye_pass",
+    "BIAS", "CHUNK", "CascadeSet", "MAX_RESOLUTION", "DepthMap", "budget_shares", "cascade_set", "shadow_test", "EyeBuffer", "LightMap", "MapSet", "check_resolution", "clip_near", "eye_pass",
     "fixed_face_map", "frame_map", "light_map", "light_maps", "log_row_centres", "map_set", "near_face_map", "project", "rasterize", "shadow_map",
 ]

@@ -34,7 +34,7 @@ each of the k maps gets ⌊√(budget/k)⌋² texels, so ``ZP4+P`` at a 512² bu
   rasterizer (:func:`aliasing.raster.measure`) over a subset as a check.
 
 :func:`render_view` is the core of :func:`view` for any eye-space scene and map set, with one
-resolution per map (explicit cascades and error-based budgets, :mod:`aliasing.raster.scenerender`
+resolution per map (explicit cascades and error-based budgets, :mod:`aliasing.raster.pictures.scenerender`
 for loaded scenes); :func:`grid_of` and :func:`error_of` draw an existing :class:`View`.
 
 Images are float arrays (R, R, 3) in [0, 1], row 0 at the *top* (ready for
@@ -49,19 +49,17 @@ Example
 
 from __future__ import annotations
 
-import argparse
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import _validation as check
-from .. import geometry, schemes
-from .camera import check_raster_frustum
-from .measure import measure, pixel_errors
-from .rasterize import DepthMap, LightMap, MapSet, check_resolution, eye_pass, map_set, shadow_map
-from .scenes import Scene, ground_and_boxes
+from ... import _validation as check
+from ... import geometry, schemes
+from ..validate.measure import measure, pixel_errors
+from ..draw import LightMap, MapSet, check_resolution, eye_pass, map_set, shadow_map
+from ..draw.lookup import BIAS, _bias, shadow_test
+from ..scenes.builtin import Scene, ground_and_boxes
 
 Array = NDArray[np.float64]
 
@@ -69,8 +67,6 @@ SKY = np.array([0.78, 0.86, 0.95])
 GROUND = np.array([0.80, 0.78, 0.72])
 BOX = np.array([0.85, 0.55, 0.30])
 AMBIENT = 0.3
-#: Default tolerance of the shadow test's depth comparisons [world units].
-BIAS = 1e-3
 #: Partition colours of the projected grid.
 GRID_COLOURS = np.array([[0.0, 0.0, 0.0], [0.75, 0.0, 0.0], [0.0, 0.35, 0.85], [0.0, 0.55, 0.0], [0.6, 0.0, 0.6], [0.8, 0.45, 0.0]])
 
@@ -198,95 +194,6 @@ def render_view(sc: Scene, ms: MapSet, resolutions: ArrayLike, *, image_res: int
         lit[sel] = shadow_test(lm, sm, sc.triangles, p, nrm[sel], bias=bias)
     return View(sc, n_ground, eb.position, eb.normal, eb.triangle, face, list(maps), ms.edges, rms[0], np.where(hit, part, -1), s_all, t_all, lit,
                 ms.light, ms.fov, np.asarray(rms, np.int64))
-
-
-def _bias(value: float) -> float:
-    return float(check.closed_range(value, "bias", 0.0, np.inf, " world units (depth-test tolerance)"))
-
-
-def shadow_test(lm: LightMap, sm: DepthMap, triangles: ArrayLike, points: ArrayLike, normals: ArrayLike, *, bias: float = BIAS) -> NDArray[np.bool_]:
-    """Shadow-map test of surface points: True where lit (not occluded towards the light).
-
-    A texel stores one sample of the surface nearest the light: its depth at the texel's
-    centre and its triangle.  Treating the receiver and that occluder as locally planar, a
-    point p is lit when any of these holds (each within ``bias``):
-
-    1. p's depth is at most the stored depth (the plain test);
-    2. the occluder's plane, met on p's own light ray, is not nearer the light than p
-       (e.g. a box face beside the ground it stands on: the ground sampled at the texel
-       centre lies below the face at p);
-    3. the receiver's plane, met on the ray through the texel's centre (found with the
-       map's inverse, :meth:`~aliasing.raster.LightMap.inverse`), is not farther than the
-       stored depth (e.g. near a box's convex edge, or a planar receiver, which thus never
-       shadows itself: no acne).
-
-    No bias grows with the texel, so occluders of any height cast shadows that touch them
-    (no "peter-panning").  What remains is the map's own sampling error: shadow outlines
-    are the occluders' footprints on the texel grid, up to a texel out of place.
-
-    Parameters
-    ----------
-    lm : LightMap
-        The map the depth map was rendered through.
-    sm : DepthMap
-        :func:`aliasing.raster.shadow_map` of ``triangles`` through ``lm``.
-    triangles : array_like, shape (T, 3, 3)
-        The scene [world units], indexed by ``sm.triangle``.
-    points, normals : array_like, shape (..., 3)
-        Surface points [world units] and their surfaces' normals (any length or sign).
-    bias : float
-        Tolerance of the three depth comparisons [world units], ≥ 0.
-
-    Returns
-    -------
-    ndarray of bool, shape (...)
-        True where lit; points outside the map count as lit.
-
-    Example
-    -------
-    >>> from aliasing.raster import light_map
-    >>> lm = light_map(1.0, 20.0, 60.0, "gamma:60", "Standard")
-    >>> ground = np.array([[[-40, -1, 0.5], [40, -1, 0.5], [0, -1, 60]]], float)
-    >>> roof = np.array([[[-1, 0, 4], [1, 0, 4], [0, 0, 6]]], float)   # 1 above the ground
-    >>> scene = np.concatenate([ground, roof])
-    >>> sm = shadow_map(scene, lm, 64)
-    >>> p = np.array([[0.0, -1.0, 15.0], [0.0, 0.0, 5.0], [0.0, -1.0, 4.4]])   # open ground, roof, roof's shadow
-    >>> shadow_test(lm, sm, scene, p, [[0, 1, 0]] * 3).tolist()
-    [True, True, False]
-    """
-    tri = np.asarray(triangles, float)
-    if tri.ndim != 3 or tri.shape[1:] != (3, 3):
-        raise ValueError(f"triangles must have shape (T, 3, 3), got {tri.shape}")
-    p = check.as_float_array(points, "points")
-    nrm = check.as_float_array(normals, "normals")
-    if p.shape[-1:] != (3,) or nrm.shape != p.shape:
-        raise ValueError(f"points and normals must have the same shape (..., 3), got {p.shape} and {nrm.shape}")
-    bias = _bias(bias)
-    if sm.triangle.size and int(sm.triangle.max()) >= len(tri):
-        raise ValueError("triangles must be the scene of sm (sm names a triangle beyond them)")
-    rm = sm.resolution
-    s, t, d, _ = lm.coordinates(p)
-    inside = (s >= 0) & (s < 1) & (t >= 0) & (t < 1)
-    col = np.clip(np.floor(np.nan_to_num(s) * rm), 0, rm - 1).astype(np.int64)
-    row = np.clip(np.floor(np.nan_to_num(t) * rm), 0, rm - 1).astype(np.int64)
-    stored, occ = sm.depth[row, col], sm.triangle[row, col]
-    up = lm.basis[1]  # towards the light; height along it is −depth
-    lit = d <= stored + bias
-    # 2. the occluder's plane on p's ray p + λ·up: λ > 0 is nearer the light than p
-    a = tri[np.maximum(occ, 0)]
-    n_o = np.cross(a[..., 1, :] - a[..., 0, :], a[..., 2, :] - a[..., 0, :])
-    across = n_o @ up
-    ok = (occ >= 0) & (np.abs(across) > 1e-9 * np.linalg.norm(n_o, axis=-1))
-    lam = ((a[..., 0, :] - p) * n_o).sum(-1) / np.where(ok, across, 1.0)
-    lit |= ok & (lam <= bias)
-    # 3. the receiver's plane on the ray through the texel centre c0 + μ·up (c0 at height 0)
-    xc, yc = lm.inverse((col + 0.5) / rm, (row + 0.5) / rm)
-    c0 = lm.plane_point(xc, yc)
-    along = nrm @ up
-    ok = np.abs(along) > 1e-9 * np.linalg.norm(nrm, axis=-1)
-    mu = ((p - c0) * nrm).sum(-1) / np.where(ok, along, 1.0)
-    lit |= ok & (-mu <= stored + bias)
-    return ~inside | lit
 
 
 def _base_colour(v: View) -> Array:
@@ -469,7 +376,7 @@ def error_cdf(schemes_: list[str], near: float = 1.0, far: float = 1000.0, fov: 
     ``directions``), ``fraction``, and ``measured[S]`` (measured maxima at the first
     ``measured`` directions, unsorted, NaN-padded) with ``measured_direction`` indices.
     """
-    from ..plotting import subplots
+    from ...plotting import subplots
 
     lights = random_lights(directions, seed)
     if ax is None:
@@ -501,102 +408,3 @@ def error_cdf(schemes_: list[str], near: float = 1.0, far: float = 1000.0, fov: 
 # ----------------------------------------------------------------------------- CLI
 
 
-def _render(args: argparse.Namespace) -> int:
-    try:  # parsed once here, for both paths below (float() alone named no option)
-        args.f_over_n = float(args.f_over_n)
-    except ValueError:
-        raise ValueError(f"--f-over-n must be a number, got {args.f_over_n!r}") from None
-    if args.seed < 0:
-        raise ValueError(f"--seed must be a whole number >= 0, got {args.seed}")
-    if args.scene is not None or "," in args.scheme or args.splits is not None or args.what == "cdf" or args.format != "text" \
-            or any(v is not None for v in (args.eye, args.target, args.camera, args.light_dir, args.k, args.lam, args.near, args.far)) or args.param:
-        from .scenerender import run
-
-        return run(args)
-    if args.out is None:
-        raise ValueError("--out FILE.png is required")
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    f_over_n = float(args.f_over_n)
-    if not f_over_n > 1:
-        raise ValueError(f"--f-over-n must be > 1, got {args.f_over_n!r}")
-    out = Path(args.out)
-    if out.suffix.lower() != ".png":
-        raise ValueError(f"--out must be a .png file, got {args.out!r}")
-    if out.exists() and out.is_dir():
-        raise ValueError(f"--out must be a file, but {args.out!r} is a folder")
-    kw = dict(image_res=args.image_res, budget=args.res**2, seed=args.seed)
-    fov = 60.0 if args.fov is None else args.fov
-    check_raster_frustum(1.0, f_over_n, float(check.fov(fov)))
-    if args.what == "shadows":
-        img = shadow_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
-    elif args.what == "grid":
-        img = grid_image(1.0, f_over_n, fov, args.light, args.scheme, every=args.every, **kw)
-    else:
-        img, _ = error_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
-    from ..sweep import store  # the sweep's safe writer: atomic, symlinks followed, devices refused, one-line errors
-
-    try:
-        out.parent.mkdir(parents=True, exist_ok=True)
-        target = store.resolve_out(out, "--out")
-        if target is None:
-            raise ValueError("--out must be a .png file, not standard output")
-        with store.atomic_target(target) as tmp:
-            plt.imsave(tmp, img, format="png", metadata={"Software": None})
-    except OSError as exc:
-        raise ValueError(f"--out {args.out!r} cannot be written: {exc.strerror}") from None
-    print(out)
-    return 0
-
-
-def add_scene_arguments(scene, cascades, splits_for: str) -> None:
-    """The options of a loaded scene (file, world camera, light) and of its cascades, for ``render`` and ``validate``.
-
-    ``scene`` and ``cascades`` are argument groups (or parsers); ``splits_for`` says which
-    schemes ``--splits`` applies to.
-    """
-    scene.add_argument("--scene", metavar="FILE", help="scene file: .glb, .gltf, .obj, .ply, .stl (glTF/GLB, binary PLY and STL need the scenes extra)")
-    scene.add_argument("--eye", metavar="X,Y,Z", help="camera position (world space; --eye=-5,2,0 when X is negative)")
-    scene.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at (world space)")
-    scene.add_argument("--up", metavar="X,Y,Z", default="0,1,0", help="up vector (default 0,1,0)")
-    scene.add_argument("--camera", metavar="NAME", help="a glTF camera of the file, by camera or node name")
-    scene.add_argument("--near", type=float, help="near distance (default 1, or the glTF camera's znear)")
-    scene.add_argument("--far", type=float, help="far (shadow) distance (default 100, or the glTF camera's zfar)")
-    scene.add_argument("--light-dir", metavar="X,Y,Z", help="world-space direction towards the light, instead of --light (eye space); write --light-dir=-1,2,0 when X is negative")
-    cascades.add_argument("--splits", metavar="NAME", help=f"split method or engine preset {splits_for} (see aliasing splits --list)")
-    cascades.add_argument("--lambda", dest="lam", type=float, help="blend λ in [0, 1] of practical-style splits")
-    cascades.add_argument("-k", type=int, help="number of cascades (default: the preset's own)")
-    cascades.add_argument("--param", action="append", default=[], metavar="KEY=VALUE", help="other split parameters, as in aliasing splits")
-
-
-def add_render_parser(sub) -> argparse.ArgumentParser:
-    """Add the ``render`` subcommand to an ``add_subparsers`` object (of :class:`aliasing.cli._Parser`)."""
-    ren = sub.add_parser(
-        "render",
-        help="picture of a seeded or loaded scene: shadows, projected texel grid, per-pixel error, error distribution",
-        description="Render a seeded ground-and-boxes scene (near 1, far = f/n, eye 1 above the ground), or your own scene "
-        "(--scene FILE: glTF/GLB, OBJ, PLY, STL) seen by a world-space camera, with one directional light through each "
-        "scheme's shadow maps sharing a texel budget of RES² texels; write a PNG (schemes side by side) and a statistics table.",
-        epilog="schemes: Standard | P | LogP | <warping rule>, alone or after ZP<k>+; FPc|FPcs[+ZP<k>]+P|LogP|Standard; "
-        "comma-separated for side-by-side panels; with --splits NAME a warp used in every cascade.  "
-        "lights: overhead | behind | front | gamma:DEG[@azimuth:DEG] (eye space), or --light-dir X,Y,Z (world space, towards the light).",
-    )
-    ren.add_argument("--scheme", default="Standard", help="scheme(s), comma-separated (default Standard)")
-    ren.add_argument("--f-over-n", default="100", help="seeded scene: depth ratio far/near (default 100)")
-    ren.add_argument("--fov", type=float, default=None, help="FULL field of view in degrees (default 60, or the glTF camera's)")
-    ren.add_argument("--light", default="gamma:60@azimuth:30", help="one eye-space light direction (default gamma:60@azimuth:30)")
-    ren.add_argument("--what", choices=["shadows", "grid", "error", "cdf"], default="shadows", help="picture (default shadows)")
-    ren.add_argument("--out", help="output PNG file (required unless --format json)")
-    ren.add_argument("--res", type=int, default=1024, help="texel budget as RES² texels over all maps (default 1024)")
-    ren.add_argument("--image-res", type=int, default=512, help="image resolution in pixels per side (default 512)")
-    ren.add_argument("--every", type=int, default=16, help="grid: texels between grid lines (default 16)")
-    ren.add_argument("--seed", type=int, default=1, help="scene seed (default 1)")
-    scn, cas = ren.add_argument_group("your own scene"), ren.add_argument_group("cascades")
-    add_scene_arguments(scn, cas, "for every scheme")
-    cas.add_argument("--allocation", choices=["equal", "error"], default="equal", help="texel budget per cascade: equal, or error-based (Lloyd 2007 eq. 83)")
-    ren.add_argument("--format", default="text", help="statistics on stdout: text (table) or json (default text)")
-    ren.set_defaults(run=_render)
-    return ren

@@ -4,21 +4,22 @@ against the analytic bound for that view and light.
 The probes of :mod:`aliasing.raster.validate` face the bisector of the eye and light
 directions, so their error is perspective aliasing alone and the analytic maxima are
 reached.  A real scene's surfaces are not half-way oriented: the **perspective error**
-m_x, m_z measured on them (:func:`aliasing.raster.measure.pixel_errors`: the texel's
+m_x, m_z measured on them (:func:`aliasing.raster.validate.measure.pixel_errors`: the texel's
 light-beam footprint over the eye-beam width, Lloyd 2006 eqs. 2–4) must still stay within
 each map's analytic M_x, M_z (the maxima of the beam ratios over the frustum), but need not
 reach them; the **projection factor** cos ψ_e / cos ψ_l (Lloyd 2006 §3.3) is reported
 separately, with the **image error** m_s, m_t that a viewer sees (perspective × projection,
 plus the off-axis stretch).  Measured: pixels whose four neighbours lie on the same planar
 face (coplanar triangles merged) and map, within [near, far], on surfaces facing the light
-(n·l > :data:`aliasing.raster.scenerender.MIN_COS_LIGHT`).  PASS: every map's ratio
+(n·l > :data:`aliasing.raster.scenes.MIN_COS_LIGHT`).  PASS: every map's ratio
 measured/analytic ≤ 1 + tolerance (the finite differences' 1e-3 of
-:func:`aliasing.raster.measure.measure`).
+:func:`aliasing.raster.validate.measure.measure`).
 
 Example
 -------
->>> from aliasing.raster import procedural, scenerender
->>> st = scenerender.setup(procedural.city(2000, seed=1, size=60.0), eye="-40,6,-35", target="0,0,0", near=0.5, far=90.0, light_dir="-1,0.8,0.3")
+>>> from aliasing.raster import scenes
+>>> from aliasing.raster.scenes import procedural
+>>> st = scenes.setup(procedural.city(2000, seed=1, size=60.0), eye="-40,6,-35", target="0,0,0", near=0.5, far=90.0, light_dir="-1,0.8,0.3")
 >>> r = validate_scene(st, "ZP2+P", res=96)
 >>> r["maps"], r["passed"], r["max_ratio"] <= 1.001
 (2, True, True)
@@ -33,14 +34,13 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .cascades import cascade_set
+from ..draw.cascades import cascade_set
 from .measure import pixel_errors, projection_factors
-from .pictures import add_scene_arguments
-from .rasterize import EyeBuffer, check_resolution, eye_pass
-from .. import partitioning
-from .scenerender import MIN_COS_LIGHT, SceneSetup, _finite, setup
+from ..draw import EyeBuffer, check_resolution, eye_pass
+from ... import partitioning
+from ..scenes.world import MIN_COS_LIGHT, SceneSetup, add_scene_arguments, json_safe, setup
 
-#: Relative tolerance of the finite differences (as :func:`aliasing.raster.measure.measure` states it).
+#: Relative tolerance of the finite differences (as :func:`aliasing.raster.validate.measure.measure` states it).
 TOLERANCE = 1e-3
 
 
@@ -77,13 +77,13 @@ def validate_scene(st: SceneSetup, scheme: str, *, res: int = 384, splits: str |
     Parameters
     ----------
     st : SceneSetup
-        The scene in eye space (:func:`aliasing.raster.scenerender.setup`).
+        The scene in eye space (:func:`aliasing.raster.scenes.setup`).
     scheme : str
         Any scheme; with ``splits`` a single-map warp used in every cascade.
     res : int
         Eye-pass resolution [pixels per side].
     splits, k, **params
-        A split method or engine preset (:func:`aliasing.raster.cascades.cascade_set`).
+        A split method or engine preset (:func:`aliasing.raster.draw.cascades.cascade_set`).
 
     Returns
     -------
@@ -183,7 +183,7 @@ def add_scene_options(p: argparse.ArgumentParser) -> None:
                    light_dir=args.light_dir, light=light)
         r = validate_scene(st, args.scheme, res=args.res, splits=args.splits, k=args.k, **partitioning.split_params(args.lam, args.param))
         if fmt == "json":
-            sys.stdout.write(json.dumps(_finite(r), indent=1) + "\n")
+            sys.stdout.write(json.dumps(json_safe(r), indent=1) + "\n")
         else:
             sys.stdout.write(format_text(r))
         return 0 if r["passed"] else 1

@@ -10,7 +10,7 @@ projective map it becomes (affine in (s, t)) / (affine in (s, t)) with denominat
 1/w, w = z′/n′ = 1 + y/n′: interpolating d/w and 1/w linearly and dividing (``w=``) gives
 the exact light depth.  The log+perspective map (Lloyd 2007 eqs. 77–78, 84) bends edges:
 The log+perspective map (Lloyd 2007 eqs. 77–78, 84) bends edges: it is rasterized
-logarithmically by :func:`aliasing.raster.shadow.shadow_map`.
+logarithmically by :func:`aliasing.raster.draw.shadow.shadow_map`.
 """
 
 from __future__ import annotations
@@ -20,8 +20,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import _validation as check
-from .. import directional, geometry, schemes
+from ... import _validation as check
+from ... import directional, geometry, schemes
 from .core import check_resolution
 
 Array = NDArray[np.float64]

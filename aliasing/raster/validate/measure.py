@@ -49,15 +49,15 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import _validation as check
-from .. import geometry, schemes
-from .core import check_resolution
-from .eye import eye_pass
-from .facemaps import map_set
-from .lightmap import LightMap
-from .shadow import shadow_map
-from .scenes import Scene, probes
-from ..view import half_angle
+from ... import _validation as check
+from ... import geometry, schemes
+from ..draw.core import check_resolution
+from ..draw.eye import eye_pass
+from ..draw.facemaps import map_set
+from ..draw.lightmap import LightMap
+from ..draw.shadow import shadow_map
+from ..scenes.builtin import Scene, probes
+from ...view import half_angle
 
 Array = NDArray[np.float64]
 

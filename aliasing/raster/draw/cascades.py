@@ -27,9 +27,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import _validation as check
-from .. import geometry, partitioning, schemes
-from .rasterize import MapSet, check_resolution, light_map, map_set
+from ... import _validation as check
+from ... import geometry, partitioning, schemes
+from .core import check_resolution
+from .facemaps import MapSet, map_set
+from .lightmap import light_map
 
 Array = NDArray[np.float64]
 

@@ -8,7 +8,7 @@ placed by their nodes' translation and rotation.
 
 Command line (writes the file used in the README)::
 
-    python -m aliasing.raster.procedural --triangles 100000 --seed 1 --out city.glb
+    python -m aliasing.raster.scenes.procedural --triangles 100000 --seed 1 --out city.glb
 
 Example
 -------
@@ -32,8 +32,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .camera import Camera, look_at
-from .scenes import _box
-from ..view import half_angle
+from .builtin import _box
+from ...view import half_angle
 
 Array = NDArray[np.float64]
 
@@ -165,8 +165,8 @@ def add_cameras(glb: bytes, cameras: dict[str, Camera]) -> bytes:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m aliasing.raster.procedural``: write the city block as GLB with its "street" camera."""
-    p = argparse.ArgumentParser(prog="python -m aliasing.raster.procedural", description="Write a seeded city block with trees as GLB.")
+    """``python -m aliasing.raster.scenes.procedural``: write the city block as GLB with its "street" camera."""
+    p = argparse.ArgumentParser(prog="python -m aliasing.raster.scenes.procedural", description="Write a seeded city block with trees as GLB.")
     p.add_argument("--triangles", type=int, default=100_000, help="approximate triangle count (default 100000)")
     p.add_argument("--seed", type=int, default=1, help="seed (default 1)")
     p.add_argument("--size", type=float, default=400.0, help="side of the block in world units (default 400)")

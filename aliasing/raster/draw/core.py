@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .. import _validation as check
+from ... import _validation as check
 from . import occlusion
 from .coverage import chunk_bounds, rasterize_rows
 

@@ -1,0 +1,67 @@
+"""The drawing backends: one table of who can draw, and the one check of a ``backend=`` keyword.
+
+The numpy kernels are the reference: every map and eye buffer of the toolkit is defined by
+them (texel centres at (i + ½)/R, top-left-style ownership of edges, depth along the light
+or the eye's −1/z; :mod:`aliasing.raster.draw.core`).  A second backend stands beside them
+by adding an entry here and a kernel loader where the drawing function dispatches
+(:func:`aliasing.raster.draw.eye_pass` has one for the eye pass); it must reproduce the
+reference's buffers (``numba``: bit for bit).
+
+Example
+-------
+>>> check("numpy", "eye_pass")
+'numpy'
+>>> check("cuda", "eye_pass")
+Traceback (most recent call last):
+...
+ValueError: backend must be one of ['numba', 'numpy'] for eye_pass, got 'cuda'
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+from . import compiled
+
+
+@dataclass(frozen=True)
+class Backend:
+    """A drawing backend: its ``name``, what it is, and whether it can run here."""
+
+    name: str
+    summary: str
+    available: Callable[[], bool]
+    require: Callable[[], None]
+
+
+def _always() -> bool:
+    return True
+
+
+def _nothing() -> None:
+    return None
+
+
+#: Backends by name.  ``numpy`` is the default and the reference.
+BACKENDS: dict[str, Backend] = {
+    "numpy": Backend("numpy", "the reference: vectorized numpy kernels", _always, _nothing),
+    "numba": Backend("numba", "compiled loops of the eye pass (the fast extra), bit-identical to numpy", compiled.available, compiled.require),
+}
+
+#: Which backends each drawing operation has.
+SUPPORTED: dict[str, tuple[str, ...]] = {
+    "eye_pass": ("numpy", "numba"),
+}
+
+
+def check(backend: object, operation: str) -> str:
+    """``backend`` validated for ``operation``: a known name this operation supports, runnable here.
+
+    Raises ``ValueError`` naming ``backend`` and the allowed names, or what to install.
+    """
+    names = SUPPORTED[operation]
+    if not isinstance(backend, str) or backend not in names:
+        raise ValueError(f"backend must be one of {sorted(names)} for {operation}, got {backend!r}")
+    BACKENDS[backend].require()
+    return backend
