@@ -21,11 +21,11 @@ One module per step; this package re-exports their public names:
 
 Example
 -------
->>> import numpy as np
->>> tri = np.array([[[0.0, 0.0, 0.5], [1.0, 0.0, 0.5], [0.0, 1.0, 0.5]]])  # (s, t, depth)
->>> m = rasterize(tri, 8)
->>> int(np.isfinite(m.depth).sum()), m.degenerate   # s + t < 1; the 8 centres on s + t = 1 are not owned
-(28, 0)
+>>> from aliasing.raster.scenes import ground_and_boxes
+>>> sc = ground_and_boxes(near=1.0, far=50.0, boxes=5, seed=1)
+>>> maps = map_set(1.0, 50.0, 60.0, "gamma:60", "ZP2+P")   # two z-partitions, a P map each
+>>> [shadow_map(sc.triangles, lm, 32).resolution for lm in maps.maps]
+[32, 32]
 """
 
 from __future__ import annotations

@@ -8,8 +8,8 @@ triangle's straight edges.
 
 Example
 -------
->>> from aliasing import raster
->>> lm = raster.light_map(1.0, 10.0, 60.0, "overhead", "LogP")
+>>> from aliasing.raster.draw import light_map
+>>> lm = light_map(1.0, 10.0, 60.0, "overhead", "LogP")
 >>> m = shadow_map(np.array([[[-20, -1, 0.5], [20, -1, 0.5], [0, -1, 30]]], float), lm, 16)
 >>> m.resolution, bool(np.isfinite(m.depth).any())
 (16, True)

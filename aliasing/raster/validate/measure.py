@@ -250,10 +250,11 @@ def pixel_errors(lm: LightMap, position: ArrayLike, ok: ArrayLike, resolution: i
 
     Example
     -------
-    >>> from aliasing import raster
-    >>> lm = raster.light_map(1.0, 100.0, 60.0, "overhead", "Standard")
-    >>> sc = raster.probes(1.0, 100.0, 60.0, "overhead", cells=4)
-    >>> eb = raster.eye_pass(sc.triangles, 60.0, 64)
+    >>> from aliasing.raster.draw import eye_pass, light_map
+    >>> from aliasing.raster.scenes import probes
+    >>> lm = light_map(1.0, 100.0, 60.0, "overhead", "Standard")
+    >>> sc = probes(1.0, 100.0, 60.0, "overhead", cells=4)
+    >>> eb = eye_pass(sc.triangles, 60.0, 64)
     >>> g = np.where(eb.triangle >= 0, sc.group[eb.triangle], -1)  # probe of each pixel
     >>> ok = (g >= 0) & (g == np.roll(g, 1, 0)) & (g == np.roll(g, -1, 0)) & (g == np.roll(g, 1, 1)) & (g == np.roll(g, -1, 1))
     >>> got = pixel_errors(lm, np.where(ok[..., None], eb.position, 1.0), ok, 64, 60.0)

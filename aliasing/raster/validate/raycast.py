@@ -17,10 +17,11 @@ embreex is an optional dependency (``pip install 'aliasing[bench]'``); without i
 
 Example
 -------
->>> from aliasing import raster
->>> sc = raster.ground_and_boxes(1.0, 50.0, boxes=5, seed=1)
->>> lm = raster.light_map(1.0, 50.0, 60.0, "gamma:60", "LogP")
->>> a, b = raster.shadow_map(sc.triangles, lm, 64), raycast_shadow_map(sc.triangles, lm, 64)
+>>> from aliasing.raster.draw import light_map, shadow_map
+>>> from aliasing.raster.scenes import ground_and_boxes
+>>> sc = ground_and_boxes(1.0, 50.0, boxes=5, seed=1)
+>>> lm = light_map(1.0, 50.0, 60.0, "gamma:60", "LogP")
+>>> a, b = shadow_map(sc.triangles, lm, 64), raycast_shadow_map(sc.triangles, lm, 64)
 >>> bool(agreement(a, b, sc.triangles) > 0.99)
 True
 """
@@ -94,8 +95,8 @@ def raycast_shadow_map(triangles: ArrayLike, lm: LightMap, resolution: int, *, c
 
     Example
     -------
-    >>> from aliasing import raster
-    >>> lm = raster.light_map(1.0, 10.0, 60.0, "overhead", "P")
+    >>> from aliasing.raster.draw import light_map
+    >>> lm = light_map(1.0, 10.0, 60.0, "overhead", "P")
     >>> ground = np.array([[[-20, -1, 0.5], [20, -1, 0.5], [0, -1, 30]]], float)
     >>> m = raycast_shadow_map(ground, lm, 16)
     >>> float(np.unique(m.depth[np.isfinite(m.depth)]).round(5)[0])   # the ground is 1 below the eye
