@@ -19,6 +19,8 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from .. import _validation as check
+
 
 @dataclass(frozen=True)
 class Derivation:
@@ -74,7 +76,7 @@ def get(name: str) -> Derivation:
     """Look up a derivation; ``ValueError`` lists the valid names."""
     _load()
     if name not in DERIVATIONS:
-        raise ValueError(f"unknown derivation {name!r}; choose from: {', '.join(sorted(DERIVATIONS))}")
+        raise ValueError(f"unknown derivation {name!r}{check.did_you_mean(name, sorted(DERIVATIONS))}; choose from: {', '.join(sorted(DERIVATIONS))}")
     return DERIVATIONS[name]
 
 
