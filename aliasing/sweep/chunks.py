@@ -37,6 +37,7 @@ class _Task:
     ratio: float
     fov: float
     light: np.ndarray
+    angles: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False, compare=False)  # γ, azimuth as typed
     shared: dict[str, Any] | None = field(default=None, repr=False, compare=False)  # set by a batch: the Result, angle text
 
     def compute(self) -> str | dict[str, np.ndarray]:
@@ -65,7 +66,7 @@ def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
     r = shared["result"] if "result" in shared else schemes.evaluate(task.name, task.near, task.near * task.ratio, task.fov, task.light, **dict(task.options))
     if task.kind == "arrays":
         return {"S": r.S, "M_x": r.M_x, "M_z": r.M_z, "n_prime": r.n_prime, "eta": r.eta}
-    gamma, azimuth = shared["angles"] if "angles" in shared else geometry.direction_angles(task.light)
+    gamma, azimuth = shared["angles"] if "angles" in shared else _angles(task)
     if task.kind == "json":
         rows = _direction_rows(r.scheme.name, task.ratio, task.fov, gamma, azimuth, r)
         rows = [_with_cells(row, task) for row in rows]
@@ -104,7 +105,12 @@ def compute_batch(tasks: tuple[_Task, ...]) -> list[str | dict[str, np.ndarray]]
     results = schemes.evaluate_many([t.name for t in tasks], t0.near, t0.near * t0.ratio, t0.fov, t0.light, **dict(t0.options))
     shared: dict[str, Any] = {}
     if t0.kind != "arrays":
-        shared["angles"] = geometry.direction_angles(t0.light)
+        shared["angles"] = _angles(t0)
     if t0.kind == "csv":
         shared["angle_cells"] = formats.cells(list(shared["angles"]))
     return [compute_chunk(dataclasses.replace(t, shared={**shared, "result": r})) for t, r in zip(tasks, results)]
+
+
+def _angles(task: _Task) -> tuple[np.ndarray, np.ndarray]:
+    """The chunk's (γ, azimuth) [deg]: the light specs' numbers as typed, else from the vectors."""
+    return task.angles if task.angles is not None else geometry.direction_angles(task.light)

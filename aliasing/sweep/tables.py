@@ -84,7 +84,7 @@ class SweepTable:
     def rows(self) -> list[dict]:
         """Rows as :func:`sweep` gives them (plus a column per swept rule option)."""
         g = self.grid
-        gamma, azimuth = geometry.direction_angles(g.directions)
+        gamma, azimuth = g.direction_angles()
         rows: list[dict] = []
         for var, d in zip(g.variants, self.data):
             task = _Task(0, "", var.name, var.options, g.columns, g._cells(var), g.near, 0.0, 0.0, g.directions)
@@ -123,7 +123,7 @@ class SweepTable:
         """
         xr = import_xarray()
         g = self.grid
-        gamma, azimuth = geometry.direction_angles(g.directions)
+        gamma, azimuth = g.direction_angles()
         kmax = max(d["M_x"].shape[-1] for d in self.data)
         coords: dict = {"scheme": [v.label for v in g.variants], "f_over_n": list(g.f_over_n), "fov": list(g.fov)}
         coords["scheme_name"] = ("scheme", [v.name for v in g.variants])
@@ -183,7 +183,7 @@ def parquet_batches(grid: Grid, payloads: Iterable[object]) -> Iterator:
         task = grid.chunk(i, "arrays")
         d: dict = payload  # type: ignore[assignment]
         n = len(d["S"])
-        gamma, azimuth = geometry.direction_angles(task.light)
+        gamma, azimuth = task.angles if task.angles is not None else geometry.direction_angles(task.light)
 
         def per_map(a: np.ndarray):
             a = np.asarray(a, dtype=float).reshape(n, -1)
