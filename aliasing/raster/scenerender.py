@@ -212,9 +212,12 @@ def table(renders: list[SchemeRender]) -> str:
     text = "".join("  ".join(c.rjust(w[i]) for i, c in enumerate(r)) + "\n" for r in rows)
     text += "errors: measured perspective error [image pixels per texel] (p50/p90/p99/max over measured pixels); frac_le_1: share at <= 1\n"
     ck = ["scheme", "map", "near", "far", "side", "budget_share", "pixel_share", "analytic_max"]
-    crow = [ck] + [[_cell(r.label)] + [_cell(c[k]) for k in ck[1:]] for r in renders for c in r.stats["cascades"]]
+    crow = [ck] + [[_cell(r.label)] + [_cell(c[k]) if k not in ("near", "far") or np.isfinite(c[k]) else "—" for k in ck[1:]] for r in renders for c in r.stats["cascades"]]
     w = [max(len(r[i]) for r in crow) for i in range(len(ck))]
-    return text + "\n" + "".join("  ".join(c.rjust(w[i]) for i, c in enumerate(r)) + "\n" for r in crow)
+    text += "\n" + "".join("  ".join(c.rjust(w[i]) for i, c in enumerate(r)) + "\n" for r in crow)
+    if any(not np.isfinite(c["near"]) for r in renders for c in r.stats["cascades"]):
+        text += "near, far: each map's eye-depth range; — for a face partition's map, which covers one face of the frustum, not a depth slice\n"
+    return text
 
 
 def _cell(v: object) -> str:
