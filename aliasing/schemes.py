@@ -197,7 +197,7 @@ def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = Non
     check.instance(names, "names", (list, tuple))
     parsed = [parse(s) if isinstance(s, str) else s for s in names]
     for sch in parsed:
-        check.instance(sch, "names entry (a scheme)", Scheme)  # a name or a parsed Scheme, nothing else (issue 19)
+        check.instance(sch, "names entry (a scheme)", Scheme)  # a name or a parsed Scheme, nothing else
     if not parsed:
         raise ValueError("names must list at least one scheme")
     if isinstance(chunk, bool) or not isinstance(chunk, (int, np.integer)) or chunk < 1:

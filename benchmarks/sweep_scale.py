@@ -20,7 +20,7 @@ What it times (wall clock, ``time.perf_counter``, best of ``--repeats``):
    chunk, so the evaluation itself is negligible) on a ``distributed.LocalCluster`` of 2
    single-threaded worker processes, minus the same chunks run in-process (jobs 1), divided
    by the number of chunks.  Cluster start-up is not included.
-3. ``--output`` (only this part): output at scale, issue 12 item 4.  A sweep of 10^6
+3. ``--output`` (only this part): output at scale.  A sweep of 10^6
    per-direction rows (``ZP3+LogP,P,LogP,FPc+P`` over ``--directions`` hemisphere directions)
    with ``jobs 2`` written as the per-direction CSV and as Parquet, against the summary run of
    the same sweep (the same evaluations, a tiny output: the baseline), timed side by side;

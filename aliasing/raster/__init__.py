@@ -12,7 +12,7 @@
 * :mod:`.measure`: perspective aliasing measured from sampled positions by finite
   differences, compared with :func:`aliasing.schemes.evaluate`;
 * :mod:`.raycast`: a ray-casting reference for the shadow maps (one Embree ray per texel;
-  optional, ``pip install 'aliasing[bench]'``).
+  optional, ``pip install ".[bench]"``).
 
 Example
 -------

@@ -39,7 +39,7 @@ def import_xarray() -> types.ModuleType:
     try:
         import xarray
     except ImportError:
-        raise ValueError("format netcdf needs the optional extra: pip install 'aliasing[xarray]'") from None
+        raise ValueError("format netcdf needs the optional extra: pip install \".[xarray]\"") from None
     return xarray
 
 
@@ -157,7 +157,7 @@ def import_pyarrow() -> types.ModuleType:
         import pyarrow
         import pyarrow.parquet  # noqa: F401
     except ImportError:
-        raise ValueError("format parquet needs the optional extra: pip install 'aliasing[parquet]'") from None
+        raise ValueError("format parquet needs the optional extra: pip install \".[parquet]\"") from None
     return pyarrow
 
 
