@@ -116,8 +116,8 @@ def test_direction_blocks_give_the_same_rows():
     a = S.execute(S.plan("P,ZP2+Po", f_over_n=[100.0], light="sphere:50", block=50))
     b = S.execute(S.plan("P,ZP2+Po", f_over_n=[100.0], light="sphere:50", block=7))
     assert a.splitlines()[0] == b.splitlines()[0]
-    assert len(a.splitlines()) == len(b.splitlines()) == 1 + 2 * 50
-    np.testing.assert_allclose(np.loadtxt(io.StringIO(a), delimiter=",", skiprows=1, usecols=(3, 4, 7)), np.loadtxt(io.StringIO(b), delimiter=",", skiprows=1, usecols=(3, 4, 7)), rtol=1e-13)
+    assert len(a.splitlines()) == len(b.splitlines()) == 1 + (1 + 2) * 50  # a line per direction and map
+    np.testing.assert_allclose(np.loadtxt(io.StringIO(a), delimiter=",", skiprows=1, usecols=(3, 4, 8)), np.loadtxt(io.StringIO(b), delimiter=",", skiprows=1, usecols=(3, 4, 8)), rtol=1e-13)
 
 
 def test_option_columns_in_csv():
@@ -138,7 +138,7 @@ def test_cli_grid_jobs_2_is_byte_identical_to_jobs_1(tmp_path, capsys):
     code, out, err = sweep_cli([*argv, "--out", str(two), "--jobs", "2"], capsys)
     assert code == 0 and out == "" and err == ""  # no progress bar: stderr is not a terminal
     assert one.read_bytes() == two.read_bytes()
-    assert len(one.read_text().splitlines()) == 1 + (2 + 2 + 3 * 2) * 3 * 2 * 40
+    assert len(one.read_text().splitlines()) == 1 + (1 + 2 + 1 + 2 + 3 * (1 + 2)) * 3 * 2 * 40  # a line per map: ZP2+… has two
     assert sorted(p.name for p in tmp_path.iterdir()) == ["one.csv", "two.csv"]  # work directories removed
 
 

@@ -57,8 +57,10 @@ def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
     >>> from aliasing.sweep import plan
     >>> g = plan("ZP2+P", light="overhead,front")
     >>> print(compute_chunk(g.chunk(0, "csv")), end="")
-    ZP2+P,1000,60,90,0,5.623413252;5.623413252,4.716015218;4.716015218,53.04020494,2,6.623413252;209.4507176,0;0
-    ZP2+P,1000,60,0,0,31.6227766;31.6227766,31.6227766;31.6227766,2000,2,inf;inf,-1;-1
+    ZP2+P,1000,60,90,0,0,5.623413252,4.716015218,53.04020494,2,6.623413252,0
+    ZP2+P,1000,60,90,0,1,5.623413252,4.716015218,53.04020494,2,209.4507176,0
+    ZP2+P,1000,60,0,0,0,31.6227766,31.6227766,2000,2,inf,-1
+    ZP2+P,1000,60,0,0,1,31.6227766,31.6227766,2000,2,inf,-1
     >>> compute_chunk(g.chunk(0, "arrays"))["M_x"].shape
     (2, 2)
     """
@@ -75,7 +77,9 @@ def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
     angles = shared.get("angle_cells")
     if angles is None:
         angles = formats.cells([gamma, azimuth])
-    return formats.lines(head, [angles, [r.M_x, r.M_z, r.S, r.maps_used, r.n_prime, r.eta]])
+    n, k = r.M_x.shape  # one line per direction and map (tidy: the map's number in a column, nothing packed)
+    per_map = [np.tile(np.arange(k), n), r.M_x.reshape(-1), r.M_z.reshape(-1), np.repeat(r.S, k), np.repeat(r.maps_used, k), r.n_prime.reshape(-1), r.eta.reshape(-1)]
+    return formats.lines(head, [np.repeat(angles, k, axis=0), per_map])
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import geometry, schemes
 from .grid import Grid, _Task
-from .rows import ROW_FIELDS, _csv_cells, _direction_rows, _summary_row, _with_cells, format_rows
+from .rows import CSV_FIELDS, ROW_FIELDS, _csv_cells, _direction_rows, _summary_row, _with_cells, format_rows
 
 
 def _assemble_stream(grid: Grid, payload_kind: str, fmt: str, payloads: Iterable[object]) -> Iterator[str | bytes]:
@@ -18,7 +18,7 @@ def _assemble_stream(grid: Grid, payload_kind: str, fmt: str, payloads: Iterable
     if payload_kind == "arrays":  # summary rows (small)
         yield format_rows(SweepTable._from_payloads(grid, list(payloads)).rows(), fmt)
         return
-    header = _with_cells(dict.fromkeys(ROW_FIELDS), grid.chunk(0, fmt))
+    header = _with_cells(dict.fromkeys(CSV_FIELDS if fmt == "csv" else ROW_FIELDS), grid.chunk(0, fmt))
     if fmt == "csv":
         yield _csv_cells(list(header)) + "\n"
         yield from payloads  # type: ignore[misc]
