@@ -121,6 +121,8 @@ def test_light_angles_echoed_as_typed(capsys, tmp_path):
     assert float(aliasing.geometry.direction_angles(aliasing.geometry.lights("gamma:30"))[0][0]) != 30.0
     code, out, _ = run(capsys, "sweep", "--schemes", "P", "--light", "gamma:30", "--summary", "--format", "json")
     assert code == 0 and "29.99999" not in out
+    code, out, _ = run(capsys, "render", "--scheme", "P", "--light", "gamma:30@azimuth:45", "--res", "32", "--image-res", "32", "--format", "json")
+    assert code == 0 and json.loads(out)["gamma"] == 30.0  # not 30.000000000000004 from the eye-space vector
 
 
 # --- tidy per-map output --------------------------------------------------------------------

@@ -276,14 +276,14 @@ def _range(cs: CascadeSet, i: int) -> str:
     return f"{cs.near_i[i]:.3g}–{cs.far_i[i]:.3g}"
 
 
-def report(st: SceneSetup, renders: list[SchemeRender], *, budget: int, allocation: str, splits: str | None) -> dict:
-    """JSON-ready numbers of a render: the view, the light, and each scheme's statistics."""
+def report(st: SceneSetup, renders: list[SchemeRender], *, budget: int, allocation: str, splits: str | None, light: str | None = None) -> dict:
+    """JSON-ready numbers of a render: the view, the light (γ as typed in ``light``, a spec), and each scheme's statistics."""
     cam = st.camera
     return {
         "source": st.source, "triangles": int(len(st.scene.triangles)), "degenerate_skipped": st.degenerate,
         "camera": {"name": cam.name, "eye": cam.eye.tolist(), "forward": cam.rotation[2].tolist(), "up": cam.rotation[1].tolist(),
                    "near": cam.near, "far": cam.far, "fov": cam.fov},
-        "light_eye_space": st.light.tolist(), "gamma": float(np.degrees(np.arccos(np.clip(st.light[2], -1, 1)))),
+        "light_eye_space": st.light.tolist(), "gamma": float(geometry.light_angles(light)[0][0]) if isinstance(light, str) else float(np.degrees(np.arccos(np.clip(st.light[2], -1, 1)))),
         "budget": int(budget), "allocation": allocation, "splits": splits, "image_res": int(renders[0].view.position.shape[0]),
         "schemes": [_finite(r.stats) for r in renders],
     }
@@ -349,7 +349,7 @@ def run(args) -> int:
         fig.savefig(out, dpi=110, bbox_inches="tight", pad_inches=0.1, metadata={"Software": None})
         plt.close(fig)
     if fmt == "json":
-        sys.stdout.write(json.dumps(report(st, renders, budget=budget, allocation=args.allocation, splits=args.splits), indent=1) + "\n")
+        sys.stdout.write(json.dumps(report(st, renders, budget=budget, allocation=args.allocation, splits=args.splits, light=light), indent=1) + "\n")
     else:
         print(out)
         if st.degenerate:
