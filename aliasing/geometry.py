@@ -188,8 +188,8 @@ def _count(value: int, name: str = "count", hi: int = MAX_DIRECTIONS) -> int:
 LIGHT_SPEC = "overhead | behind | front | gamma:DEG[@azimuth:DEG] | sphere:N | hemisphere:N"
 
 
-def light_angles(spec: str | ArrayLike) -> tuple[Array, Array]:
-    """(γ, azimuth) [deg] of the directions of :func:`lights`, as the spec gives them.
+def _typed_angles(spec: str | ArrayLike) -> tuple[Array, Array]:
+    """(γ, azimuth) [deg] of the directions of :func:`lights`, as the spec gives them (for outputs that echo them).
 
     For ``gamma:DEG[@azimuth:DEG]`` and the named lights these are the numbers as typed
     (``gamma:30`` gives 30, not the 29.999999999999996 that the unit vector's angle
@@ -197,7 +197,7 @@ def light_angles(spec: str | ArrayLike) -> tuple[Array, Array]:
 
     Example
     -------
-    >>> light_angles("gamma:30@azimuth:45")
+    >>> _typed_angles("gamma:30@azimuth:45")
     (array([30.]), array([45.]))
     >>> [float(g) for g in direction_angles(lights("gamma:30"))[0]]
     [29.999999999999996]

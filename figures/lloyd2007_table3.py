@@ -212,7 +212,7 @@ def main(out_dir: Path, directions: int = DIRECTIONS) -> list[Path]:
     title = (f"Lloyd et al. 2007 Table 3: ours (bold) vs printed, f/n = {F_OVER_N:g}, θ = {FOV / 2:g}°, "
              f"overhead + {directions:,} hemisphere directions (1/cos²θ omitted)")
     png = save(views.figure(list(ROWS), table, SHORT_NOTES, title), out, NAME)
-    return png + [csv_path, md_path, hyp_path]
+    return [csv_path, md_path, hyp_path, *png]
 
 
 def new_rows(directions: int = DIRECTIONS, fp_log_mean: float | None = None) -> dict[str, dict[str, float]]:

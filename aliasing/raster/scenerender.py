@@ -283,7 +283,7 @@ def report(st: SceneSetup, renders: list[SchemeRender], *, budget: int, allocati
         "source": st.source, "triangles": int(len(st.scene.triangles)), "degenerate_skipped": st.degenerate,
         "camera": {"name": cam.name, "eye": cam.eye.tolist(), "forward": cam.rotation[2].tolist(), "up": cam.rotation[1].tolist(),
                    "near": cam.near, "far": cam.far, "fov": cam.fov},
-        "light_eye_space": st.light.tolist(), "gamma": float(geometry.light_angles(light)[0][0]) if isinstance(light, str) else float(np.degrees(np.arccos(np.clip(st.light[2], -1, 1)))),
+        "light_eye_space": st.light.tolist(), "gamma": float(geometry._typed_angles(light)[0][0]) if isinstance(light, str) else float(np.degrees(np.arccos(np.clip(st.light[2], -1, 1)))),
         "budget": int(budget), "allocation": allocation, "splits": splits, "image_res": int(renders[0].view.position.shape[0]),
         "schemes": [_finite(r.stats) for r in renders],
     }

@@ -250,7 +250,7 @@ def expand_lights(light: str | Sequence[str] | ArrayLike, *, angles: bool = Fals
             typed.append(np.stack(np.broadcast_arrays(g[:, None], a[None, :]), axis=-1).reshape(-1, 2))
         else:
             blocks.append(geometry.lights(spec))
-            typed.append(np.stack(geometry.light_angles(spec), axis=-1))
+            typed.append(np.stack(geometry._typed_angles(spec), axis=-1))
     if angles:  # (N, 2): γ and azimuth as typed, for the output (not recomputed from the vectors)
         return tuple(specs), np.concatenate(blocks), np.concatenate(typed)
     return tuple(specs), np.concatenate(blocks)

@@ -66,7 +66,7 @@ def sweep(scheme_names: Iterable[str], f_over_n: ArrayLike = (1000.0,), fov: Arr
     ratios = np.atleast_1d(check.depth_ratio(f_over_n))
     fovs = np.atleast_1d(check.fov(fov))
     lv = geometry.lights(light)
-    gamma, azimuth = geometry.light_angles(light)  # as typed: gamma:30 is 30
+    gamma, azimuth = geometry._typed_angles(light)  # as typed: gamma:30 is 30
     # every scheme of a (f/n, fov) cell shares its directions' light frames (schemes.evaluate_many)
     cells = {(i, j): schemes.evaluate_many(parsed, near, near * ratio, fv, lv, **options) for i, ratio in enumerate(ratios) for j, fv in enumerate(fovs)}
     rows: list[dict] = []
