@@ -45,14 +45,14 @@ from .error import (
     storage_factor,
     storage_factor_optimal,
 )
+from ._version import __version__
 from .view import View
 from .warping import WARPING_RULES, eta_from_n_prime, n_prime_from_eta, n_prime_lispsm, warping_parameter
 
 from . import gmnpr  # noqa: E402,F401  (registers the gmnpr, glpr and lispsm-zhang warping rules)
-from . import adaptive_warping  # noqa: E402,F401  (registers the pyramid warping rule, issue 15)
+from . import adaptive_warping  # noqa: E402,F401  (registers the pyramid warping rules)
 from . import sweep  # noqa: E402,F401  (a callable module: aliasing.sweep(...) runs a sweep grid into a table)
 
-from ._version import __version__
 
 __all__ = [
     "View",

@@ -6,6 +6,7 @@ so that the CLI can print the message as one line.
 
 from __future__ import annotations
 
+import difflib
 import functools
 import inspect
 import types
@@ -228,8 +229,34 @@ def choice(value: str, name: str, allowed: Iterable[str]) -> str:
         raise ValueError(f"{name} must be a string, one of: {', '.join(allowed)}; got {_repr(value)}")
     key = value.lower()
     if key not in allowed:
-        raise ValueError(f"unknown {name} {value!r}; choose one of: {', '.join(allowed)}")
+        raise ValueError(f"unknown {name} {value!r}{did_you_mean(value, allowed)}; choose one of: {', '.join(allowed)}")
     return key
+
+
+def did_you_mean(value: object, known: Iterable[str]) -> str:
+    """``" (did you mean 'X'?)"`` for the known names closest to a misspelt ``value``, else ``""``.
+
+    Case is ignored in the comparison; the suggestions keep the spelling of ``known``.
+
+    Example
+    -------
+    >>> did_you_mean("practcal", ["log", "uniform", "practical"])
+    " (did you mean 'practical'?)"
+    >>> did_you_mean("lgp", ["P", "LogP", "Po"])
+    " (did you mean 'LogP'?)"
+    >>> did_you_mean("zzz", ["log", "uniform"])
+    ''
+    """
+    if not isinstance(value, str) or not value:
+        return ""
+    names = list(dict.fromkeys(str(k) for k in known))
+    by_key: dict[str, str] = {}
+    for name in names:
+        by_key.setdefault(name.lower(), name)
+    close = difflib.get_close_matches(value.lower(), list(by_key), n=3, cutoff=0.6)
+    if not close:
+        return ""
+    return " (did you mean " + " or ".join(repr(by_key[c]) for c in close) + "?)"
 
 
 def jobs(value: object, name: str = "jobs") -> int:

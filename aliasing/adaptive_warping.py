@@ -1,6 +1,6 @@
 """A warping rule from the light's position in the eye's image ("pyramid" rule), and the grid study.
 
-Beyond the papers (issue 15 item 6; derivation and measurements in docs/warping_rule.md).
+Beyond the papers (derivation and measurements in docs/warping_rule.md).
 Lloyd et al. 2007's eq. 79 shapes η by γ alone.  The S-optimal η (scheme ``Sopt``) shows a
 simpler structure: for a light whose direction (folded towards the view direction) lies
 *outside* the view frustum's pyramid of directions, η_opt sits on a plateau near η = n/f

@@ -14,6 +14,9 @@ from collections.abc import Sequence
 
 import sympy as sp
 
+from . import _validation
+from ._version import __version__
+
 
 def _one_line(text: str) -> str:
     """``text`` with line breaks and other control characters escaped (user input is echoed in messages)."""
@@ -25,6 +28,13 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> None:  # type: ignore[override]
         self.exit(2, _one_line(f"{self.prog}: error: {message}") + "\n")
+
+    def _check_value(self, action: argparse.Action, value: object) -> None:
+        """An unknown subcommand or choice: the message suggests the closest known names."""
+        if action.choices is not None and value not in action.choices:
+            choices = ", ".join(map(repr, action.choices))
+            hint = _validation.did_you_mean(value, [str(c) for c in action.choices])
+            raise argparse.ArgumentError(action, f"invalid choice: {value!r}{hint} (choose from {choices})")
 
 
 def _reproduce(args: argparse.Namespace) -> int:
@@ -202,6 +212,7 @@ def _table(rows: list[dict]) -> str:
 
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="aliasing", description="Analytic study of shadow-map perspective aliasing.")
+    parser.add_argument("--version", action="version", version=f"aliasing {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     rep = sub.add_parser("reproduce", help="write reproduced figures and tables", description="Reproduce the papers' figures and tables into a folder.")
@@ -277,7 +288,7 @@ def build_parser() -> argparse.ArgumentParser:
     from .raster.pictures import add_render_parser
 
     add_render_parser(sub)
-    __import__("aliasing.engines.compare", fromlist=["add_engines_parser"]).add_engines_parser(sub)  # issue 18: aliasing engines
+    __import__("aliasing.engines.compare", fromlist=["add_engines_parser"]).add_engines_parser(sub)  # aliasing engines
     return parser
 
 

@@ -24,7 +24,7 @@ with Y the vertex's distance from the nearest one along y.  w_i = 2 tanθ·d at 
 (Lloyd 2006 eq. 2, corrected).  At an overhead light these reduce to Lloyd 2006 eqs. 7–12
 (tested).
 
-Speed (issue 12): :func:`light_frame` rotates the view's 4 corner rays into every direction's
+Speed: :func:`light_frame` rotates the view's 4 corner rays into every direction's
 light frame once; :func:`slice_fit` and :func:`slice_errors` fit and evaluate the maps of any
 z-slices from those coordinates scaled by depth, ``(K, N)`` arrays with directions innermost,
 giving the same numbers as :func:`fit` + :func:`vertex_errors` on the slices' vertices.
@@ -253,7 +253,7 @@ class LightFrame:
     ``X``, ``Y``: coordinates ``(4, N)`` of the corner rays at unit eye depth across (x_L)
     and along the projected view direction (Wimmer's z_L); a vertex at eye depth d of
     corner c is at ``(d X[c], d Y[c])``, so every z-slice of the frustum — every map of every
-    z-partition — is these coordinates scaled, with no rotation per map (issue 12).
+    z-partition — is these coordinates scaled, with no rotation per map.
     ``x_min`` … ``y_max`` ``(N,)``: their extremes over the corners.
     """
 

@@ -207,7 +207,7 @@ def _setup(kind, near, far, fov, lx, ly, lz, directional, face, samples) -> _Set
     lx_, ly_, lz_ = _light(lx, ly, lz, directional)
     samples = check.whole(samples, "samples", 3, MAX_SAMPLES)
     near_, far_ = check.frustum(near, far)
-    if (far_ / near_ > MAX_DEPTH_RATIO).any():  # the optimisations' ratios overflow float64 beyond (issue 19)
+    if (far_ / near_ > MAX_DEPTH_RATIO).any():  # the optimisations' ratios overflow float64 beyond
         raise ValueError(f"far/near must be at most {MAX_DEPTH_RATIO:g} for the face factors, got near={check._show(near_)}, far={check._show(far_)}")
     in_plane = np.zeros(lz_.shape, bool) if directional else lz_ == 0
     return _Setup(key, fkey, near_, far_, check.fov(fov), lx_, ly_, np.where(in_plane, 1.0, lz_), in_plane, directional, int(samples))

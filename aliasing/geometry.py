@@ -188,6 +188,33 @@ def _count(value: int, name: str = "count", hi: int = MAX_DIRECTIONS) -> int:
 LIGHT_SPEC = "overhead | behind | front | gamma:DEG[@azimuth:DEG] | sphere:N | hemisphere:N"
 
 
+def _typed_angles(spec: str | ArrayLike) -> tuple[Array, Array]:
+    """(γ, azimuth) [deg] of the directions of :func:`lights`, as the spec gives them (for outputs that echo them).
+
+    For ``gamma:DEG[@azimuth:DEG]`` and the named lights these are the numbers as typed
+    (``gamma:30`` gives 30, not the 29.999999999999996 that the unit vector's angle
+    computes to); for sampled directions and vectors they are :func:`direction_angles`.
+
+    Example
+    -------
+    >>> _typed_angles("gamma:30@azimuth:45")
+    (array([30.]), array([45.]))
+    >>> [float(g) for g in direction_angles(lights("gamma:30"))[0]]
+    [29.999999999999996]
+    """
+    lv = lights(spec)  # validates the spec (and its ranges) first
+    if isinstance(spec, str):
+        text = spec.strip().lower()
+        named = {"overhead": (90.0, 0.0), "behind": (180.0, 0.0), "front": (0.0, 0.0)}
+        if text in named:
+            return np.array([named[text][0]]), np.array([named[text][1]])
+        kind, _, rest = text.partition(":")
+        if kind == "gamma":
+            gamma_text, _, az_text = rest.partition("@")
+            return np.array([float(gamma_text)]), np.array([float(az_text.partition(":")[2]) if az_text else 0.0])
+    return direction_angles(lv)
+
+
 def lights(spec: str | ArrayLike) -> Array:
     """Light directions ``(N, 3)`` from a spec string (or pass vectors through).
 

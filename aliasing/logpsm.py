@@ -325,7 +325,7 @@ def zeta_bound(kind: str, coord: ArrayLike, near: ArrayLike, far: ArrayLike, fov
         yy = y0 + (y1 - y0) * _unit_coordinate(v, "v")
         xx = We * y1 / y0 * (cc - 0.5)
         return y0 / (We * ct) * lz_ / yy * np.arcsinh((xx - lx_) / lz_)  # eq. (67), C_b,s = y0/(W_e cosθ)
-    if (lz_ < 1e-150 * y0).any():  # lz² underflows below this and eq. (68) becomes 0/0 (issue 19)
+    if (lz_ < 1e-150 * y0).any():  # lz² underflows below this and eq. (68) becomes 0/0
         raise ValueError(f"lz must be at least 1e-150·near for the side face (lower is the face's plane), got {check._show(lz_)}")
     yy = y0 + (y1 - y0) * cc
     L = np.sqrt(ly_**2 + lz_**2)
@@ -375,7 +375,7 @@ def _ab(a: ArrayLike, b: ArrayLike, y0: Array, y1: Array) -> tuple[Array, Array]
         raise ValueError(f"b must be > −y0 or < −y1 (the root −b of δ_lp,t, eq. 106, must lie off the face [y0, y1]), got b={check._show(bb)}")
     if (np.abs(bb - aa) <= 1e-9 * (aa + y0)).any():  # eq. 110 is 0/0 at b = a, and all rounding near it
         raise ValueError(f"b must differ from a by more than 1e-9·(a + y0) (b = a makes eq. 110's logarithm 0); use b = inf for eq. 78; got a={check._show(aa)}, b={check._show(bb)}")
-    # issue 19: beyond 1e150 the products (y + a)(y + b) of eq. 110 overflow to inf/inf
+    # beyond 1e150 the products (y + a)(y + b) of eq. 110 overflow to inf/inf
     if (np.isinf(aa) & np.isfinite(bb)).any() or (np.isfinite(bb) & (np.abs(bb) > _BIG)).any() or (np.isfinite(aa) & (aa > _BIG)).any():
         raise ValueError(f"a and b must each be inf or within [-{_BIG:g}, {_BIG:g}], and a = inf needs b = inf; got a={check._show(aa)}, b={check._show(bb)}")
     return aa, bb

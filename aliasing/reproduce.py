@@ -14,6 +14,8 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
+from . import _validation as check
+
 
 @dataclass(frozen=True)
 class Target:
@@ -56,7 +58,7 @@ TARGETS: dict[str, Target] = {
         Target("lloyd2007-fig23", "lloyd2007_fig23", "Lloyd 2007 Fig. 23: optimal R_p,s, R_p,t and S_p of the perspective parameterization vs light position"),
         Target("lloyd2007-fig24", "lloyd2007_fig24", "Lloyd 2007 Fig. 24: the range of optimal perspective parameters a of S_p (l_y = 0.5 y1) and its top vs light position"),
         Target("warping-rule-grid", "warping_rule_grid", "New: max S / Standard's max and mean S / S-optimal mean of P, LogP, LiSPSM, GMNPR, GLPR and the pyramid rules over f/n 10..1e5 x fov 20..120 (2000 directions)"),
-        Target("engines-comparison", "engines_comparison", "Engine schemes (issue 18): m_x along the view and critical storage over gamma, stable CSM, SDSM, UE5 VSM High/Epic, matched and exact limits (near 10 cm, far 1 km, fov 60, 1920 px)"),
+        Target("engines-comparison", "engines_comparison", "Engine schemes: m_x along the view and critical storage over gamma, stable CSM, SDSM, UE5 VSM High/Epic, matched and exact limits (near 10 cm, far 1 km, fov 60, 1920 px)"),
     )
 }
 
@@ -71,7 +73,8 @@ def resolve(names: Iterable[str]) -> list[Target]:
         elif name in TARGETS:
             chosen.append(TARGETS[name])
         else:
-            raise ValueError(f"unknown reproduce target {name!r}; valid targets: all, {', '.join(TARGETS)}")
+            hint = check.did_you_mean(name, ["all", *TARGETS])
+            raise ValueError(f"unknown reproduce target {name!r}{hint}; valid targets: all, {', '.join(TARGETS)}")
     return list(dict.fromkeys(chosen))
 
 

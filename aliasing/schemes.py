@@ -50,8 +50,9 @@ _BASES = {
     "log": ("logp", "logperspective"),
     "sopt": ("sopt", "perspective"),
     "logsopt": ("sopt", "logperspective"),
-    "pyramid-log": ("pyramid-log", "logperspective"),  # issue 15: the registered rule's log+perspective form
+    "pyramid-log": ("pyramid-log", "logperspective"),  # the registered rule's log+perspective form
 }
+_NAMED = ("Standard", "P", "Po", "LogP", "Sopt", "LogSopt")  # the named schemes, as suggested for a misspelt one
 
 
 @dataclass(frozen=True)
@@ -109,8 +110,12 @@ def parse(name: str) -> Scheme:
     elif key in warping.WARPING_RULES:
         rule, param = key, "perspective"
     else:
-        raise ValueError(f"unknown scheme name {name!r}; grammar: {GRAMMAR}; rules: {', '.join(warping.WARPING_RULES)}")
-    label = {"uniform": "Standard", "p": "P", "po": "Po", "logp": "LogP"}.get(rule, rule.upper() if rule != "sopt" else "Sopt")
+        prefix = text[: len(text) - len(base)] if m and m.group(2) else ""  # the typed "ZP<k>+" stays in the suggestion
+        hint = check.did_you_mean(text, [prefix + known for known in (*_NAMED, *warping.WARPING_RULES)])
+        raise ValueError(f"unknown scheme name {name!r}{hint}; grammar: {GRAMMAR}; rules: {', '.join(warping.WARPING_RULES)}")
+    # the canonical name (docs/cli.rst, "Scheme names"): the named schemes in their own spelling,
+    # a warping rule by its registered name (lower case), aliases (Log, uniform) resolved
+    label = {"uniform": "Standard", "p": "P", "po": "Po", "logp": "LogP", "sopt": "Sopt"}.get(rule, rule)
     if rule == "sopt" and param == "logperspective":
         label = "LogSopt"
     return Scheme(name=(f"ZP{k}" if label == "Standard" else f"ZP{k}+{label}") if m else label, k=k, rule=rule, parameterization=param)
@@ -121,7 +126,8 @@ def _parse_faces(name: str, fm: re.Match) -> Scheme:
     if k < 1:
         raise ValueError(f"k in {name!r} must be >= 1; grammar: {GRAMMAR}")
     if base not in _FACE_BASES:
-        raise ValueError(f"unknown side-face parameterization in {name!r}: face partitions take P, LogP or Standard; grammar: {GRAMMAR}")
+        hint = check.did_you_mean(fm.group(3).strip(), ["P", "LogP", "Standard"])
+        raise ValueError(f"unknown side-face parameterization in {name!r}{hint}: face partitions take P, LogP or Standard; grammar: {GRAMMAR}")
     rule, param, label = _FACE_BASES[base]
     zp = f"+ZP{k}" if fm.group(2) else ""
     return Scheme(name=f"{_FACE_VARIANTS[variant]}{zp}+{label}", k=k, rule=rule, parameterization=param, faces=variant)
@@ -191,7 +197,7 @@ def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = Non
     check.instance(names, "names", (list, tuple))
     parsed = [parse(s) if isinstance(s, str) else s for s in names]
     for sch in parsed:
-        check.instance(sch, "names entry (a scheme)", Scheme)  # a name or a parsed Scheme, nothing else (issue 19)
+        check.instance(sch, "names entry (a scheme)", Scheme)  # a name or a parsed Scheme, nothing else
     if not parsed:
         raise ValueError("names must list at least one scheme")
     if isinstance(chunk, bool) or not isinstance(chunk, (int, np.integer)) or chunk < 1:

@@ -62,7 +62,7 @@ and the light's azimuth around the view direction [deg] (:func:`aliasing.geometr
 for rules that use the direction's full geometry rather than γ alone."""
 
 
-@check.public  # issue 19: broadcast errors name the parameters
+@check.public  # broadcast errors name the parameters
 def warping_parameter(method: str, near: ArrayLike, far: ArrayLike, **options: ArrayLike) -> NDArray[np.float64]:
     """n′ [world units] chosen by the named rule; broadcasts over its array arguments.
 
@@ -105,7 +105,7 @@ def _accepted(func: Callable) -> frozenset[str]:
     return frozenset(inspect.signature(func).parameters) - {"near", "far"}
 
 
-@check.public  # issue 19: broadcast errors name the parameters
+@check.public  # broadcast errors name the parameters
 def n_prime_lispsm(near: ArrayLike, far: ArrayLike) -> NDArray[np.float64]:
     """LiSPSM's n′ = n + √(fn) for an overhead light [world units].
 
@@ -129,7 +129,7 @@ def _n_gamma(near: NDArray[np.float64], far: NDArray[np.float64], depth: ArrayLi
     return product_ratio(d, near, far - near)  # W_ly/(α − 1), α = f/n; d·near under- or overflows for extreme frusta
 
 
-@check.public  # issue 19: broadcast errors name the parameters
+@check.public  # broadcast errors name the parameters
 def n_prime_from_eta(eta: ArrayLike, near: ArrayLike, far: ArrayLike, depth: ArrayLike | None = None) -> NDArray[np.float64]:
     """n′(η) [world units], Lloyd et al. 2006 eq. 11 (App. B); Lloyd et al. 2007 eq. 120.
 
@@ -164,7 +164,7 @@ def n_prime_from_eta(eta: ArrayLike, near: ArrayLike, far: ArrayLike, depth: Arr
     return np.where(e <= 0, np.where(e == -1, np.inf, lower), upper)
 
 
-@check.public  # issue 19: broadcast errors name the parameters
+@check.public  # broadcast errors name the parameters
 def eta_from_n_prime(n_prime: ArrayLike, near: ArrayLike, far: ArrayLike, depth: ArrayLike | None = None) -> NDArray[np.float64]:
     """η(n′), the inverse of eq. 11 (Lloyd et al. 2006 App. B; Lloyd 2007 eq. 120).
 
@@ -220,7 +220,7 @@ SHAPING = {
 }
 
 
-@check.public  # issue 19: broadcast errors name the parameters
+@check.public  # broadcast errors name the parameters
 def shaping_eta(gamma: ArrayLike, fov: ArrayLike, shaping: Shaping | str = "p") -> NDArray[np.float64]:
     """η(γ), Lloyd et al. 2007 eq. 79 (corrected: docs/ERRATA.md L1–L3).
 
@@ -317,7 +317,7 @@ def _tsm(near: ArrayLike, far: ArrayLike, depth: ArrayLike | None = None, focus:
     return n_prime_tsm(near, far, focus=focus, line=line, depth=depth)
 
 
-@check.public  # issue 19: broadcast errors name the parameters
+@check.public  # broadcast errors name the parameters
 def n_prime_tsm(near: ArrayLike, far: ArrayLike, focus: ArrayLike = 0.25, line: ArrayLike = 0.8, depth: ArrayLike | None = None) -> NDArray[np.float64]:
     """TSM's n′: the focus point maps to the line ``line`` of the way up the map [world units].
 

@@ -1,4 +1,4 @@
-"""Issue 12's speed targets: the toolkit against a plain implementation, timed side by side.
+"""Speed targets of the analytic core: the toolkit against a plain implementation, timed side by side.
 
 The baseline is an independent, straightforward numpy implementation of the vertex-based S̄
 (Lloyd et al. 2006 §4.4; Lloyd et al. 2007 §6.1.1, App. B): **per scheme, per map**, rotate

@@ -1,6 +1,6 @@
 """Benchmark of the Jupyter explorers' update time (aliasing.explore); run by hand, not under pytest.
 
-Issue 13's target: at default sizes each analytic explorer (overhead, directions, cascades,
+Target: at default sizes each analytic explorer (overhead, directions, cascades,
 faces) recomputes and redraws within 100 ms of a change, the rasterizer one within 1 s.  An
 update is what a slider change triggers once the debounce has elapsed: ``compute`` (the
 toolkit's numbers), ``draw`` (a fresh matplotlib figure) and the PNG the widget shows.

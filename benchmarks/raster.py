@@ -9,11 +9,11 @@ Beside each map, in the same run, the ray-casting reference
 orthographic ray per texel through its centre mapped back to the light plane, BVH build
 included) is timed the same way; the script prints raster / ray-cast time and the fraction of
 texels whose depths agree (:func:`aliasing.raster.validate.raycast.agreement`).  Without embreex
-(``pip install 'aliasing[bench]'``) it says so on one line and skips that part.
+(``pip install ".[bench]"``) it says so on one line and skips that part.
 The eye pass (occlusion-culled, :mod:`aliasing.raster.draw.occlusion`) is timed interleaved with
 the three depth maps (one round = each map, then the eye pass, then the compiled eye pass
 ``backend="numba"`` when numba is installed, then the plain reference eye
-pass of before issue 12 — ``reference_eye_pass`` of tests/reference_eye.py, imported by path: the plain z-buffer in
+pass as it was before the speed work — ``reference_eye_pass`` of tests/reference_eye.py, imported by path: the plain z-buffer in
 triangle order and masked positions — so that load changes hit all alike); the script prints eye pass /
 depth map for each map and each eye pass, the speed-up over the reference, whether the buffers are identical,
 wall-clock and CPU time (process_time; its system part from os.times), best of the rounds or with ``--median`` their median, and the
@@ -27,8 +27,8 @@ Usage::
     python benchmarks/raster.py                       # 2048², best of 3
     python benchmarks/raster.py --res 2048 4096 --repeats 5
     python benchmarks/raster.py --no-raycast          # without the ray-casting reference
-    python benchmarks/raster.py --no-reference        # without the plain (pre-issue-12) eye pass
-    python benchmarks/raster.py --no-raycast --median --repeats 7   # the eye-pass ratios of issue 12
+    python benchmarks/raster.py --no-reference        # without the plain (earlier) eye pass
+    python benchmarks/raster.py --no-raycast --median --repeats 7   # the eye-pass ratios against the 1.5x target
 """
 
 from __future__ import annotations
@@ -95,18 +95,18 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--no-memory", action="store_true", help="skip the tracemalloc peak")
     ap.add_argument("--no-raycast", action="store_true", help="skip the ray-casting reference")
-    ap.add_argument("--no-reference", action="store_true", help="skip the plain (pre-issue-12) eye pass")
+    ap.add_argument("--no-reference", action="store_true", help="skip the plain (earlier) eye pass")
     ap.add_argument("--no-numba", action="store_true", help="skip the compiled eye pass (backend='numba', the fast extra)")
     ap.add_argument("--median", action="store_true", help="median of the interleaved rounds instead of the best")
     args = ap.parse_args(argv)
     numba_eye = not args.no_numba and compiled.available()
     if not args.no_numba and not numba_eye:
-        print("compiled eye pass skipped: numba is not installed (pip install 'aliasing[fast]')")
+        print("compiled eye pass skipped: numba is not installed (pip install \".[fast]\")")
     if numba_eye:  # compile (or load the cached kernels) outside the timings
         raster.eye_pass(raster.ground_and_boxes(NEAR, FAR, FOV, boxes=3, ground_cells=2, seed=0).triangles, FOV, 16, backend="numba")
     cast = not args.no_raycast and raycast.available()
     if not args.no_raycast and not cast:
-        print("ray-casting reference skipped: embreex is not installed (pip install 'aliasing[bench]')")
+        print("ray-casting reference skipped: embreex is not installed (pip install \".[bench]\")")
     scene = raster.ground_and_boxes(NEAR, FAR, FOV, boxes=417, ground_cells=50, seed=args.seed)
     print(f"scene: {len(scene.triangles)} triangles, seed {args.seed}; light {LIGHT}, f/n {FAR / NEAR:g}, fov {FOV:g}")
     maps = {name: raster.light_map(NEAR, FAR, FOV, LIGHT, name) for name in ("Standard", "P", "LogP")}

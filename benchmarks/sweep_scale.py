@@ -20,7 +20,7 @@ What it times (wall clock, ``time.perf_counter``, best of ``--repeats``):
    chunk, so the evaluation itself is negligible) on a ``distributed.LocalCluster`` of 2
    single-threaded worker processes, minus the same chunks run in-process (jobs 1), divided
    by the number of chunks.  Cluster start-up is not included.
-3. ``--output`` (only this part): output at scale, issue 12 item 4.  A sweep of 10^6
+3. ``--output`` (only this part): output at scale.  A sweep of 10^6
    per-direction rows (``ZP3+LogP,P,LogP,FPc+P`` over ``--directions`` hemisphere directions)
    with ``jobs 2`` written as the per-direction CSV and as Parquet, against the summary run of
    the same sweep (the same evaluations, a tiny output: the baseline), timed side by side;
@@ -59,20 +59,15 @@ def _cpu() -> float:
 
 
 def _rowwise_fragment(task, gamma, azimuth, r) -> str:
-    """The previous CSV writer (one %-format per row), the baseline of the column-wise one."""
+    """A row-at-a-time CSV writer (one %-format per line: one direction's map), the baseline of the column-wise one."""
     from aliasing.sweep.rows import _csv_cells
 
-    def column(a):
-        if a.ndim == 2 and a.shape[1] == 1:
-            a = a[:, 0]
-        if a.ndim == 1:
-            return "%.10g", a.tolist()
-        return "%s", [";".join(f"{x:.10g}" for x in row) for row in a.tolist()]
-
     head = _csv_cells([r.scheme.name, *task.cells, float(task.ratio), float(task.fov)]).replace("%", "%%")
-    cols = [column(c) for c in (gamma, azimuth, r.M_x, r.M_z, r.S)] + [("%d", r.maps_used.tolist())] + [column(c) for c in (r.n_prime, r.eta)]
-    line = head + "," + ",".join(c[0] for c in cols) + "\n"
-    return "".join([line % row for row in zip(*(c[1] for c in cols))])
+    line = head + ",%.10g,%.10g,%d,%.10g,%.10g,%.10g,%d,%.10g,%.10g\n"
+    n, k = r.M_x.shape
+    mx, mz, s, used, npr, eta = r.M_x.tolist(), r.M_z.tolist(), r.S.tolist(), r.maps_used.tolist(), r.n_prime.tolist(), r.eta.tolist()
+    g, a = gamma.tolist(), azimuth.tolist()
+    return "".join([line % (g[i], a[i], j, mx[i][j], mz[i][j], s[i], used[i], npr[i][j], eta[i][j]) for i in range(n) for j in range(k)])
 
 
 def output(args) -> None:

@@ -1,4 +1,4 @@
-"""Today's engine schemes: error along the view axis and storage over light directions (issue 18).
+"""Today's engine schemes: error along the view axis and storage over light directions.
 
 Not a paper figure.  Setting (ours): near 10 cm, shadow distance 1 km (10⁵ cm), fov 60°,
 1920 px image, 4 cascades of 2048² texels, light overhead for panel (a), γ from 0° to 180°

@@ -88,6 +88,15 @@ def data(resolution: int = RESOLUTION) -> dict[str, np.ndarray]:
     return cols
 
 
+def _fill_outside(grid: np.ndarray) -> np.ndarray:
+    """``grid`` with its NaN cells (outside the disc) set to the nearest inside cell's value: for the picture only."""
+    from scipy import ndimage
+
+    outside = np.isnan(grid)
+    index = ndimage.distance_transform_edt(outside, return_distances=False, return_indices=True)
+    return grid[tuple(index)]
+
+
 def main(out_dir: Path) -> list[Path]:
     cols = data()
     res = int(round(np.sqrt(cols["u"].size)))
@@ -96,8 +105,14 @@ def main(out_dir: Path) -> list[Path]:
     hi = max(np.nanmax(g) for g in grids.values())
     fig, axes = subplots(3, width=4.4, height=4.4)
     titles = {"standard": "without warping (standard, $n'=\\infty$)", "lispsm": "with warping (LiSPSM, $n'=(n+\\sqrt{fn})/\\sin\\gamma$)", "fpw": "face partitioning + warping (FP+W)"}
+    # the grid's points lie on [-1, 1] (linspace), so each cell reaches half a step beyond them; cells
+    # whose centre lies just outside the disc still cover part of it: they show the nearest inside
+    # value, and the picture is clipped to the disc (no background specks along the rim)
+    half = 1.0 / (res - 1)
     for ax, key in zip(axes, SCHEMES):
-        im = ax.imshow(grids[key], origin="lower", extent=(-1, 1, -1, 1), vmin=lo, vmax=hi, cmap="viridis", interpolation="nearest")
+        shown = _fill_outside(grids[key])
+        im = ax.imshow(shown, origin="lower", extent=(-1 - half, 1 + half, -1 - half, 1 + half), vmin=lo, vmax=hi, cmap="viridis", interpolation="nearest")
+        im.set_clip_path(ax.add_patch(Circle((0, 0), 1.0, fill=False, lw=0, transform=ax.transData)))
         ax.add_patch(Circle((0, 0), 1.0, fill=False, lw=1.2, color="k"))
         ax.grid(False)
         ax.set(title=titles[key], xlabel="u   (behind ← overhead → in front)", ylabel="v   (sideways)", xlim=(-1.02, 1.02), ylim=(-1.02, 1.02), aspect="equal")

@@ -59,7 +59,8 @@ def main(out_dir: Path) -> list[Path]:
         ax.axvline(FOV / 2, color="0.6", ls=":", lw=1)
         ax.set(title=title, xlabel="γ [deg] (light in the view's vertical plane)", yscale="log", xlim=(0, 90))
     axes[0].set(ylabel=r"storage factor $\bar S$ (1/cos²θ omitted)")
-    axes[0].legend(fontsize=7.5)
+    # in the empty band between the single map (~10⁶) and k = 2 (~2·10³) of the uniform panel, right of γ = θ
+    axes[0].legend(fontsize=7.5, ncol=2, loc="center", bbox_to_anchor=(0.7, 0.71))
     fig.suptitle(f"Lloyd et al. 2007 Fig. 15: z-partitioning vs face partitioning (f/n = {FAR / NEAR:g}, θ = {FOV / 2:g}°)", fontsize=10)
     return save(fig, out_dir, NAME, cols)
 

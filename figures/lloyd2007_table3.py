@@ -8,7 +8,8 @@ light (where every row's minimum lies) plus 20,000 equal-solid-angle directions 
 hemisphere above the viewer (the paper does not state its sampling; by the symmetries of
 the square frustum and of l ↔ −l the hemisphere gives the sphere's statistics).
 
-Output: ``lloyd2007-table3.csv`` and ``.md``, each cell beside the printed value with the
+Output: ``lloyd2007-table3.png`` (every cell coloured by its status: agrees, explained by an
+erratum, unexplained), ``.csv`` and ``.md``, each cell beside the printed value with the
 relative difference.  What the comparison shows (docs/ERRATA.md):
 
 * minima agree at the printed precision everywhere;
@@ -35,6 +36,8 @@ from pathlib import Path
 import numpy as np
 
 from aliasing import geometry, schemes
+from aliasing.figures import _table3_views as views
+from aliasing.plotting import save
 
 NAME = "lloyd2007-table3"
 F_OVER_N, FOV, DIRECTIONS = 1000.0, 60.0, 20_000
@@ -65,6 +68,7 @@ NOTES = {
     "FPcs+P": "tau0, tau1 ours (not given in the paper)",
     "FPcs+Log": "tau0, tau1 ours (not given in the paper)",
 }
+SHORT_NOTES = {"P": "vs printed Po, L5", "Po": "vs printed P, L5", "FPcs+P": "our τ0, τ1", "FPcs+Log": "our τ0, τ1"}  # the PNG's row labels
 # which printed row each of our rows is compared with (ERRATA L5: P and Po swapped in print)
 COMPARED_WITH = {"P": "Po", "Po": "P"}
 # explained differences: (row, column) → erratum; "*" matches every row
@@ -205,7 +209,10 @@ def main(out_dir: Path, directions: int = DIRECTIONS) -> list[Path]:
     md_path.write_text("\n".join(md) + "\n")
     hyp_path = out / f"{NAME}-hypotheses.md"
     hyp_path.write_text(hypotheses_table(directions))
-    return [csv_path, md_path, hyp_path]
+    title = (f"Lloyd et al. 2007 Table 3: ours (bold) vs printed, f/n = {F_OVER_N:g}, θ = {FOV / 2:g}°, "
+             f"overhead + {directions:,} hemisphere directions (1/cos²θ omitted)")
+    png = save(views.figure(list(ROWS), table, SHORT_NOTES, title), out, NAME)
+    return [csv_path, md_path, hyp_path, *png]
 
 
 def new_rows(directions: int = DIRECTIONS, fp_log_mean: float | None = None) -> dict[str, dict[str, float]]:

@@ -1,7 +1,7 @@
 """Rasterizer pictures (error): measured perspective error per pixel [pixels per texel], log colour scale, blue ≤ 1 … red ≥ 64 (Lloyd 2007 Fig. 13 style, matched to its caption only), for Standard, P, LogP and ZP4+P.
 
 Scene, light and budget: see figures/_raster_panels.py (n = 1, f = 100, fov 60°,
-gamma:110@azimuth:60, 256² texels shared by each scheme's maps, 256² image).
+light at γ = 110°, azimuth 60°, 256² texels shared by each scheme's maps, 256² image).
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Rasterizer pictures (grid): texel grid every 8 texels projected on the scene (Lloyd 2006 Fig. 15 style), for Standard, P, LogP and ZP4+P.
 
 Scene, light and budget: see figures/_raster_panels.py (n = 1, f = 100, fov 60°,
-gamma:110@azimuth:60, 256² texels shared by each scheme's maps, 256² image).
+light at γ = 110°, azimuth 60°, 256² texels shared by each scheme's maps, 256² image).
 """
 
 from __future__ import annotations

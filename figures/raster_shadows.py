@@ -1,7 +1,7 @@
 """Rasterizer pictures (shadows): Lambert shading with the shadow-map test, for Standard, P, LogP and ZP4+P.
 
 Scene, light and budget: see figures/_raster_panels.py (n = 1, f = 100, fov 60°,
-gamma:110@azimuth:60, 256² texels shared by each scheme's maps, 256² image).
+light at γ = 110°, azimuth 60°, 256² texels shared by each scheme's maps, 256² image).
 
 The shadow test is aliasing.raster.draw.shadow_test: the stored sample and the pixel's
 surface are compared as planes, with no bias that grows with the texel. So the ground never

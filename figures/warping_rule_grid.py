@@ -1,6 +1,6 @@
 """Beyond the papers: each warping rule's worst and mean S̄ over light directions on a grid of frusta.
 
-Issue 15 item 6 (docs/warping_rule.md).  For f/n = 10, 100, 1e3, 1e4, 1e5 and fov = 20°, 50°,
+The pyramid rules (docs/warping_rule.md).  For f/n = 10, 100, 1e3, 1e4, 1e5 and fov = 20°, 50°,
 80°, 120° (near = 1, directional light, 2000 equal-solid-angle hemisphere directions; the
 vertex model of :mod:`aliasing.directional`):
 

@@ -31,6 +31,7 @@ def test_reproduce_all_writes_every_figure(tmp_path, capsys):
     for name in TARGETS:
         files = [p for p in tmp_path.iterdir() if p.stem == name]
         assert files, f"{name} wrote nothing"
+        assert (tmp_path / f"{name}.png").exists(), f"{name} wrote no PNG"  # as the README says: every target writes one
         csv = tmp_path / f"{name}.csv"  # every target writes its numbers: a header and data rows
         assert len(csv.read_text().strip().splitlines()) >= 2
     pngs = [p for p in tmp_path.glob("*.png")]

@@ -43,7 +43,7 @@ CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-back
 missing = [m for m in DOCS_MODULES if importlib.util.find_spec(m) is None]
 pytestmark = [
     pytest.mark.skipif(bool(missing), reason=f"the docs extra is not installed (missing {', '.join(missing)}): "
-                                              "pip install '.[docs]'"),
+                                              "pip install \".[docs]\""),
     pytest.mark.skipif(CHROMIUM is None, reason="chromium is not installed (Debian: apt-get install -y chromium)"),
 ]
 

@@ -191,7 +191,7 @@ def test_without_the_extra_import_works_and_explorers_say_which_extra():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     lines = out.stdout.strip().splitlines()
-    assert len(lines) == 1 and "pip install 'aliasing[explore]'" in lines[0]
+    assert len(lines) == 1 and "pip install \".[explore]\"" in lines[0]
 
 
 @pytest.mark.parametrize("name, change", [("overhead", {"f_over_n": 300.0}), ("directions", {"f_over_n": 300.0, "resolution": 24}),

@@ -60,7 +60,7 @@ EXCLUDED = {
     "aliasing.warping.eta_checked",
     "aliasing.partitioning.register",
     # reads a file path: covered by the file scenarios of tests/test_raster.py
-    "aliasing.raster.scenes.load_mesh",
+    "aliasing.raster.scenes.loading.load_mesh",
 }
 
 EYE = Camera(axes=np.eye(3), position=[0.0, 0.0, 5.0])

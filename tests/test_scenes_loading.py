@@ -107,7 +107,7 @@ def test_degenerate_skipped_and_bad_files(tmp_path):
 def test_without_trimesh(tmp_path, monkeypatch):
     monkeypatch.setattr(loading, "_trimesh", lambda: None)
     (tmp_path / "a.glb").write_bytes(b"glTF....")
-    with pytest.raises(ValueError, match=r"needs trimesh: pip install 'aliasing\[scenes\]'"):
+    with pytest.raises(ValueError, match=r'needs trimesh: pip install "\.\[scenes\]"'):
         loading.load_scene(tmp_path / "a.glb")
     p = tmp_path / "q.obj"
     p.write_text("v 0 0 1\nv 1 0 1\nv 1 1 1\nf 1 2 3\n")

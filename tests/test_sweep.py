@@ -40,7 +40,7 @@ def test_json_has_field_names_and_no_nan_tokens():
     rows = sweep(["Standard"], [100.0], [60.0], "front")
     data = json.loads(format_rows(rows, "json"))
     assert set(data[0]) == set(ROW_FIELDS)
-    assert data[0]["n_prime"] == "inf"  # uniform map: inf written as a string, valid JSON
+    assert data[0]["n_prime"] == ["inf"]  # uniform map: inf written as a string, valid JSON (per-map values: arrays)
 
 
 def test_write_is_atomic(tmp_path):

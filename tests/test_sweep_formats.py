@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from aliasing import schemes
 from aliasing import sweep as S
 from aliasing.cli import main
 
@@ -17,7 +18,11 @@ def test_column_wise_csv_is_byte_identical_to_the_row_formatter():
     fast = S.execute(grid, "csv")  # chunk fragments, formatted a column at a time
     slow = S.table(SCHEMES, **ARGS).format("csv")  # row dicts through format_rows, value by value
     assert fast == slow
-    assert fast.count("\n") == 1 + grid.size and ";" in fast and ",inf," in fast
+    # one line per direction and map slot (tidy: nothing packed with ";"); a face partition has a near-face slot and 4 side faces (× k)
+    maps = {"P": 1, "ZP3+LogP": 3, "FPc+ZP2+P": 1 + 4 * 2, "FP+LogP": 1 + 4, "eta": 1, "Standard": 1}
+    assert [schemes.evaluate(name, 1.0, 10.0, 30.0, "sphere:60").maps for name in maps] == list(maps.values())
+    per_direction = sum(maps.values()) + maps["eta"]  # eta swept over two values
+    assert fast.count("\n") == 1 + per_direction * grid.size // len(grid.variants) and ";" not in fast and ",inf," in fast
 
 
 def test_parquet_round_trips_through_pandas(tmp_path, capsys):

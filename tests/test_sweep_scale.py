@@ -38,8 +38,8 @@ def test_k_and_rule_options_expand_the_scheme_axis():
     variants = S.expand_schemes("Standard,LogP,eta,tsm", k="1:3:lin:2", params={"eta": "-1:1:lin:3", "focus": [0.2]})
     labels = [v.label for v in variants]
     assert labels[:4] == ["Standard", "ZP3", "LogP", "ZP3+LogP"]
-    assert labels[4:7] == ["ETA[eta=-1]", "ETA[eta=0]", "ETA[eta=1]"]
-    assert labels[-2:] == ["TSM[focus=0.2]", "ZP3+TSM[focus=0.2]"]
+    assert labels[4:7] == ["eta[eta=-1]", "eta[eta=0]", "eta[eta=1]"]
+    assert labels[-2:] == ["tsm[focus=0.2]", "ZP3+tsm[focus=0.2]"]
     assert len(labels) == 2 + 2 + 6 + 2
     with pytest.raises(ValueError, match="already names its k"):
         S.expand_schemes("ZP5+P", k=[1, 2])
@@ -116,15 +116,15 @@ def test_direction_blocks_give_the_same_rows():
     a = S.execute(S.plan("P,ZP2+Po", f_over_n=[100.0], light="sphere:50", block=50))
     b = S.execute(S.plan("P,ZP2+Po", f_over_n=[100.0], light="sphere:50", block=7))
     assert a.splitlines()[0] == b.splitlines()[0]
-    assert len(a.splitlines()) == len(b.splitlines()) == 1 + 2 * 50
-    np.testing.assert_allclose(np.loadtxt(io.StringIO(a), delimiter=",", skiprows=1, usecols=(3, 4, 7)), np.loadtxt(io.StringIO(b), delimiter=",", skiprows=1, usecols=(3, 4, 7)), rtol=1e-13)
+    assert len(a.splitlines()) == len(b.splitlines()) == 1 + (1 + 2) * 50  # a line per direction and map
+    np.testing.assert_allclose(np.loadtxt(io.StringIO(a), delimiter=",", skiprows=1, usecols=(3, 4, 8)), np.loadtxt(io.StringIO(b), delimiter=",", skiprows=1, usecols=(3, 4, 8)), rtol=1e-13)
 
 
 def test_option_columns_in_csv():
     text = S.execute(S.plan("eta,P", light="overhead", params={"eta": "-1,1"}))
     lines = text.splitlines()
     assert lines[0].startswith("scheme,param_eta,f_over_n,") and lines[0].endswith(",n_prime,eta")
-    assert lines[1].startswith("ETA,-1,1000,") and lines[3].startswith("P,,1000,")
+    assert lines[1].startswith("eta,-1,1000,") and lines[3].startswith("P,,1000,")
     assert lines[2].split(",")[-2:] == ["1", "1"]  # η = 1 is PSM: n′ = near
 
 
@@ -138,7 +138,7 @@ def test_cli_grid_jobs_2_is_byte_identical_to_jobs_1(tmp_path, capsys):
     code, out, err = sweep_cli([*argv, "--out", str(two), "--jobs", "2"], capsys)
     assert code == 0 and out == "" and err == ""  # no progress bar: stderr is not a terminal
     assert one.read_bytes() == two.read_bytes()
-    assert len(one.read_text().splitlines()) == 1 + (2 + 2 + 3 * 2) * 3 * 2 * 40
+    assert len(one.read_text().splitlines()) == 1 + (1 + 2 + 1 + 2 + 3 * (1 + 2)) * 3 * 2 * 40  # a line per map: ZP2+… has two
     assert sorted(p.name for p in tmp_path.iterdir()) == ["one.csv", "two.csv"]  # work directories removed
 
 
@@ -300,7 +300,7 @@ def test_table_to_xarray_labels():
     ds = t.to_xarray()
     assert ds["S"].dims == ("scheme", "f_over_n", "fov", "direction")
     assert ds["M_x"].dims == ("scheme", "f_over_n", "fov", "direction", "map") and ds.sizes["map"] == 3
-    assert list(ds["scheme"].values) == ["P", "ZP3+LogP", "ETA[eta=-1]", "ETA[eta=0]"]
+    assert list(ds["scheme"].values) == ["P", "ZP3+LogP", "eta[eta=-1]", "eta[eta=0]"]
     r = aliasing.schemes.evaluate("ZP3+LogP", 1.0, 100.0, 80.0, "sphere:9")
     np.testing.assert_array_equal(ds["S"].sel(scheme="ZP3+LogP", f_over_n=100, fov=80).values, r.S)
     np.testing.assert_array_equal(ds["M_z"].sel(scheme="ZP3+LogP", f_over_n=100, fov=80).values, r.M_z)

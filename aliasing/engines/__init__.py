@@ -1,4 +1,4 @@
-"""Today's engine shadow schemes beside the papers' (issue 18).
+"""Today's engine shadow schemes beside the papers'.
 
 Modules
 -------

@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import math
 
+from .. import _validation as check
+
 MATCHED_TEXELS_PER_PIXEL = 3 / math.log(4)  # ∫₀¹ 4^φ dφ
 LIMITS = {
     "matched": {"max_error": 1.0, "m_axis_min": 0.5, "m_axis_max": 1.0, "texels_per_pixel": MATCHED_TEXELS_PER_PIXEL, "S_bar": 1.0},
@@ -37,7 +39,7 @@ def row(name: str, image_res: int) -> dict[str, float | str]:
     10000.0
     """
     if name not in LIMITS:
-        raise ValueError(f"unknown limit {name!r}; choose one of: {', '.join(LIMITS)}")
+        raise ValueError(f"unknown limit {name!r}{check.did_you_mean(name, LIMITS)}; choose one of: {', '.join(LIMITS)}")
     lim = LIMITS[name]
     return {
         "scheme": name,

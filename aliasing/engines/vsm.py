@@ -324,7 +324,7 @@ def ground_area(rho: ArrayLike, height: float, fov: float) -> Array:
     the plane is seen from z₀ = h/tanθ on, inside the wedge |x| ≤ z tanθ.  Then
     A(ρ) = 0 for ρ ≤ z₀; ρ² acos(z₀/ρ) − z₀√(ρ² − z₀²) (a circular segment) for
     z₀ < ρ ≤ z₀/cosθ; θρ² − z₀² tanθ (the wedge minus its unseen triangle) beyond.
-    Derived here (issue 18); tested against a Monte Carlo count.
+    Derived here; tested against a Monte Carlo count.
 
     Example
     -------

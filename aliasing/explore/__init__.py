@@ -12,7 +12,7 @@ Each explorer is a function returning a displayable ipywidgets container (an
 
 The computation of every explorer is a plain function (``compute``, returning a dict) kept
 apart from its drawing, so what is drawn can be checked against the API.  Needs the
-``explore`` extra (``pip install 'aliasing[explore]'``: JupyterLab, ipywidgets ≥ 8, ipympl);
+``explore`` extra (``pip install ".[explore]"``: JupyterLab, ipywidgets ≥ 8, ipympl);
 without it ``import aliasing`` works and calling an explorer says which extra to install.
 
 Example
@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:  # the widget base needs ipywidgets (the explore extra)
     from .widget import Explorer
 
-EXTRA_MESSAGE = "aliasing.explore needs the 'explore' extra: pip install 'aliasing[explore]' (ipywidgets>=8, ipympl, jupyterlab)"
+EXTRA_MESSAGE = "aliasing.explore needs the 'explore' extra: pip install \".[explore]\" (ipywidgets>=8, ipympl, jupyterlab)"
 
 __all__ = ["EXTRA_MESSAGE", "available", "cascades", "directions", "faces", "overhead", "raster"]
 

@@ -37,6 +37,7 @@ class _Task:
     ratio: float
     fov: float
     light: np.ndarray
+    angles: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False, compare=False)  # γ, azimuth as typed
     shared: dict[str, Any] | None = field(default=None, repr=False, compare=False)  # set by a batch: the Result, angle text
 
     def compute(self) -> str | dict[str, np.ndarray]:
@@ -56,8 +57,10 @@ def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
     >>> from aliasing.sweep import plan
     >>> g = plan("ZP2+P", light="overhead,front")
     >>> print(compute_chunk(g.chunk(0, "csv")), end="")
-    ZP2+P,1000,60,90,0,5.623413252;5.623413252,4.716015218;4.716015218,53.04020494,2,6.623413252;209.4507176,0;0
-    ZP2+P,1000,60,0,0,31.6227766;31.6227766,31.6227766;31.6227766,2000,2,inf;inf,-1;-1
+    ZP2+P,1000,60,90,0,0,5.623413252,4.716015218,53.04020494,2,6.623413252,0
+    ZP2+P,1000,60,90,0,1,5.623413252,4.716015218,53.04020494,2,209.4507176,0
+    ZP2+P,1000,60,0,0,0,31.6227766,31.6227766,2000,2,inf,-1
+    ZP2+P,1000,60,0,0,1,31.6227766,31.6227766,2000,2,inf,-1
     >>> compute_chunk(g.chunk(0, "arrays"))["M_x"].shape
     (2, 2)
     """
@@ -65,7 +68,7 @@ def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
     r = shared["result"] if "result" in shared else schemes.evaluate(task.name, task.near, task.near * task.ratio, task.fov, task.light, **dict(task.options))
     if task.kind == "arrays":
         return {"S": r.S, "M_x": r.M_x, "M_z": r.M_z, "n_prime": r.n_prime, "eta": r.eta}
-    gamma, azimuth = shared["angles"] if "angles" in shared else geometry.direction_angles(task.light)
+    gamma, azimuth = shared["angles"] if "angles" in shared else _angles(task)
     if task.kind == "json":
         rows = _direction_rows(r.scheme.name, task.ratio, task.fov, gamma, azimuth, r)
         rows = [_with_cells(row, task) for row in rows]
@@ -74,7 +77,9 @@ def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
     angles = shared.get("angle_cells")
     if angles is None:
         angles = formats.cells([gamma, azimuth])
-    return formats.lines(head, [angles, [r.M_x, r.M_z, r.S, r.maps_used, r.n_prime, r.eta]])
+    n, k = r.M_x.shape  # one line per direction and map (tidy: the map's number in a column, nothing packed)
+    per_map = [np.tile(np.arange(k), n), r.M_x.reshape(-1), r.M_z.reshape(-1), np.repeat(r.S, k), np.repeat(r.maps_used, k), r.n_prime.reshape(-1), r.eta.reshape(-1)]
+    return formats.lines(head, [np.repeat(angles, k, axis=0), per_map])
 
 
 @dataclass(frozen=True)
@@ -104,7 +109,12 @@ def compute_batch(tasks: tuple[_Task, ...]) -> list[str | dict[str, np.ndarray]]
     results = schemes.evaluate_many([t.name for t in tasks], t0.near, t0.near * t0.ratio, t0.fov, t0.light, **dict(t0.options))
     shared: dict[str, Any] = {}
     if t0.kind != "arrays":
-        shared["angles"] = geometry.direction_angles(t0.light)
+        shared["angles"] = _angles(t0)
     if t0.kind == "csv":
         shared["angle_cells"] = formats.cells(list(shared["angles"]))
     return [compute_chunk(dataclasses.replace(t, shared={**shared, "result": r})) for t, r in zip(tasks, results)]
+
+
+def _angles(task: _Task) -> tuple[np.ndarray, np.ndarray]:
+    """The chunk's (γ, azimuth) [deg]: the light specs' numbers as typed, else from the vectors."""
+    return task.angles if task.angles is not None else geometry.direction_angles(task.light)

@@ -34,8 +34,8 @@ def run_command(
     -------
     >>> from aliasing.sweep import plan
     >>> run_command(plan("P", f_over_n=100, light="behind"), "csv", None, name="sweep")
-    scheme,f_over_n,fov,gamma,azimuth,M_x,M_z,S,maps,n_prime,eta
-    P,100,60,180,0,100,100,10000,1,inf,-1
+    scheme,f_over_n,fov,gamma,azimuth,map,M_x,M_z,S,maps,n_prime,eta
+    P,100,60,180,0,0,100,100,10000,1,inf,-1
     0
     """
     def notice(line: str) -> None:

@@ -5,6 +5,8 @@ from __future__ import annotations
 import os
 import stat
 
+from .. import _validation as check
+
 
 MAX_CONFIG_BYTES = 1 << 20
 """Largest config file read [bytes]: a sweep's parameters fit in a few hundred."""
@@ -70,13 +72,13 @@ def read_config(path: str | os.PathLike) -> dict:
     >>> _ = path.write_text('schemes = "P"\nfovv = 60\n')
     >>> read_config(path)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
-    ValueError: config '...sweep.toml': unknown key 'fovv'; allowed: schemes, k, f_over_n, fov, light, near, params, summary, format, out, block, jobs, dask
+    ValueError: config '...sweep.toml': unknown key 'fovv' (did you mean 'fov'?); allowed: schemes, k, f_over_n, fov, light, near, params, summary, format, out, block, jobs, dask
     """
     doc = _load_toml(path)
     where = f"config {str(path)!r}"
     for key, value in doc.items():
         if key not in CONFIG_KEYS:
-            raise ValueError(f"{where}: unknown key {key!r}; allowed: {', '.join(CONFIG_KEYS)}")
+            raise ValueError(f"{where}: unknown key {key!r}{check.did_you_mean(key, CONFIG_KEYS)}; allowed: {', '.join(CONFIG_KEYS)}")
         types, says = CONFIG_KEYS[key]
         bad = isinstance(value, bool) and bool not in types
         if bad or not isinstance(value, types):

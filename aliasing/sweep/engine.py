@@ -85,9 +85,9 @@ def execute(
     -------
     >>> g = plan("P", f_over_n=100, fov=60, light="overhead,behind")
     >>> print(execute(g), end="")
-    scheme,f_over_n,fov,gamma,azimuth,M_x,M_z,S,maps,n_prime,eta
-    P,100,60,90,0,10,8.573651497,85.73651497,1,11,0
-    P,100,60,180,0,100,100,10000,1,inf,-1
+    scheme,f_over_n,fov,gamma,azimuth,map,M_x,M_z,S,maps,n_prime,eta
+    P,100,60,90,0,0,10,8.573651497,85.73651497,1,11,0
+    P,100,60,180,0,0,100,100,10000,1,inf,-1
     """
     kind = check.choice(fmt, "format", grid.formats)
     jobs = check_jobs(jobs)

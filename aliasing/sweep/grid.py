@@ -131,7 +131,7 @@ class Variant:
 
     @property
     def label(self) -> str:
-        """Unique label, e.g. ``ETA[eta=-0.5]``."""
+        """Unique label, e.g. ``eta[eta=-0.5]``."""
         if not self.options:
             return self.name
         return f"{self.name}[{','.join(f'{k}={v:.10g}' for k, v in self.options)}]"
@@ -161,7 +161,7 @@ def expand_schemes(names: str | Iterable[str], k: ArrayLike | str | None = None,
     Example
     -------
     >>> [v.label for v in expand_schemes("P,eta", k=[1, 5], params={"eta": [-1, 0]})]
-    ['P', 'ZP5+P', 'ETA[eta=-1]', 'ETA[eta=0]', 'ZP5+ETA[eta=-1]', 'ZP5+ETA[eta=0]']
+    ['P', 'ZP5+P', 'eta[eta=-1]', 'eta[eta=0]', 'ZP5+eta[eta=-1]', 'ZP5+eta[eta=0]']
     """
     listed = [n.strip() for n in names.split(",")] if isinstance(names, str) else [str(n).strip() for n in names]
     if any(listed) and not all(listed):
@@ -205,7 +205,7 @@ def expand_schemes(names: str | Iterable[str], k: ArrayLike | str | None = None,
     return tuple(out)
 
 
-def expand_lights(light: str | Sequence[str] | ArrayLike) -> tuple[tuple[str, ...], np.ndarray]:
+def expand_lights(light: str | Sequence[str] | ArrayLike, *, angles: bool = False) -> tuple:
     """Light specs (comma-separated or a list) → ``(specs, vectors (N, 3))``.
 
     Besides :data:`aliasing.geometry.LIGHT_SPEC`, ``gamma:RANGE[@azimuth:RANGE]`` with
@@ -223,10 +223,11 @@ def expand_lights(light: str | Sequence[str] | ArrayLike) -> tuple[tuple[str, ..
         specs = [s.strip() for s in light if s.strip()]
     else:
         lv = geometry.lights(light)
-        return ("vectors:" + _digest_bytes(np.ascontiguousarray(lv).tobytes())[:16],), lv
+        spec_tuple = ("vectors:" + _digest_bytes(np.ascontiguousarray(lv).tobytes())[:16],)
+        return (spec_tuple, lv, np.stack(geometry.direction_angles(lv), axis=-1)) if angles else (spec_tuple, lv)
     if not specs:
         raise ValueError("light is empty: the sweep grid has no directions")
-    blocks = []
+    blocks, typed = [], []
     for spec in specs:
         text = spec.lower()
         kind, _, rest = text.partition(":")
@@ -246,8 +247,12 @@ def expand_lights(light: str | Sequence[str] | ArrayLike) -> tuple[tuple[str, ..
             g = np.array(grid_values(g_text, "light gamma"))
             a = np.array(grid_values(az, "light azimuth") if a_text else (0.0,))
             blocks.append(geometry.light_direction(g[:, None], a[None, :]).reshape(-1, 3))
+            typed.append(np.stack(np.broadcast_arrays(g[:, None], a[None, :]), axis=-1).reshape(-1, 2))
         else:
             blocks.append(geometry.lights(spec))
+            typed.append(np.stack(geometry._typed_angles(spec), axis=-1))
+    if angles:  # (N, 2): γ and azimuth as typed, for the output (not recomputed from the vectors)
+        return tuple(specs), np.concatenate(blocks), np.concatenate(typed)
     return tuple(specs), np.concatenate(blocks)
 
 
@@ -304,6 +309,7 @@ class Grid:
     near: float = 1.0
     summary: bool = False
     block: int = DEFAULT_BLOCK
+    angles: np.ndarray | None = field(default=None, repr=False, compare=False)  # (N, 2) γ, azimuth as typed
 
     formats: ClassVar[tuple[str, ...]] = OUTPUT_FORMATS
 
@@ -343,13 +349,20 @@ class Grid:
         """Number of chunks."""
         return len(self.variants) * len(self.f_over_n) * len(self.fov) * self.blocks
 
+    def direction_angles(self, start: int = 0, stop: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """(γ, azimuth) [deg] of directions ``start:stop``: the light specs' numbers as typed."""
+        if self.angles is None:
+            return geometry.direction_angles(self.directions[start:stop])
+        return self.angles[start:stop, 0], self.angles[start:stop, 1]
+
     def chunk(self, index: int, kind: str) -> _Task:
         """The work of chunk ``index`` (0 ≤ index < :attr:`chunks`) for a payload ``kind``."""
         cell, v = divmod(index, len(self.variants))
         r, rest = divmod(cell, len(self.fov) * self.blocks)
         f, b = divmod(rest, self.blocks)
         var = self.variants[v]
-        return _Task(index, kind, var.name, var.options, self.columns, self._cells(var), self.near, self.f_over_n[r], self.fov[f], self.directions[b * self.block : (b + 1) * self.block])
+        lo, hi = b * self.block, (b + 1) * self.block
+        return _Task(index, kind, var.name, var.options, self.columns, self._cells(var), self.near, self.f_over_n[r], self.fov[f], self.directions[lo:hi], self.direction_angles(lo, hi))
 
     def batches(self, todo: Sequence[int], workers: int = 1) -> list[list[int]]:
         """The chunks ``todo`` grouped into batches that share f/n, fov, direction block and rule options.
@@ -441,7 +454,7 @@ class Grid:
 
     def timing(self, kind: str, sample: int = 500) -> tuple[list[tuple[_Task, int]], str]:
         """Chunks to time for :func:`estimate` (``sample`` directions of up to 8 schemes), with their evaluations."""
-        small = Grid(self.variants, self.f_over_n[:1], self.fov[:1], self.light, self.directions[:sample], self.near, self.summary, sample)
+        small = Grid(self.variants, self.f_over_n[:1], self.fov[:1], self.light, self.directions[:sample], self.near, self.summary, sample, None if self.angles is None else self.angles[:sample])
         tasks = [(small.chunk(v, kind), len(small.directions)) for v in spread(len(self.variants))]
         return tasks, f"timed on {len(small.directions)} directions per scheme"
 
@@ -497,8 +510,8 @@ def plan(
     check.depth_ratio(ratios)
     fovs = grid_values(fov, "fov")
     check.fov(fovs)
-    specs, lv = expand_lights(light)
+    specs, lv, angles = expand_lights(light, angles=True)
     near = float(check.positive(near, "near"))
     if isinstance(block, bool) or int(block) != block or block < 1:
         raise ValueError(f"block must be a whole number >= 1 (directions per chunk), got {block!r}")
-    return Grid(variants, ratios, fovs, specs, lv, near, bool(summary), int(block))
+    return Grid(variants, ratios, fovs, specs, lv, near, bool(summary), int(block), angles)

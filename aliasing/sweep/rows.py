@@ -2,7 +2,9 @@
 
 The small, direct API: :func:`sweep` evaluates every scheme × f/n × fov over the light
 directions into rows (ready for ``pandas.DataFrame(rows)``); :func:`format_rows` writes
-them as CSV or JSON.  Per-map quantities (M_x, M_z, n′, η of a ``ZP<k>`` scheme) are lists.
+them as CSV or JSON.  Per-map quantities (M_x, M_z, n′, η) are lists, one value per map (of a
+``ZP<k>`` or face-partition scheme, or the one map of the others): arrays in JSON, and in CSV
+one row per map with the map's number in a ``map`` column (tidy data, nothing packed in a cell).
 
 Example
 -------
@@ -28,6 +30,7 @@ from .. import geometry, schemes
 
 FORMATS = ("csv", "json")
 ROW_FIELDS = ("scheme", "f_over_n", "fov", "gamma", "azimuth", "M_x", "M_z", "S", "maps", "n_prime", "eta")
+CSV_FIELDS = ("scheme", "f_over_n", "fov", "gamma", "azimuth", "map", "M_x", "M_z", "S", "maps", "n_prime", "eta")  # per-direction CSV
 SUMMARY_FIELDS = ("scheme", "f_over_n", "fov", "directions", "maps", "S_min", "S_max", "S_max_over_min", "S_mean")
 
 
@@ -63,7 +66,7 @@ def sweep(scheme_names: Iterable[str], f_over_n: ArrayLike = (1000.0,), fov: Arr
     ratios = np.atleast_1d(check.depth_ratio(f_over_n))
     fovs = np.atleast_1d(check.fov(fov))
     lv = geometry.lights(light)
-    gamma, azimuth = geometry.direction_angles(lv)
+    gamma, azimuth = geometry._typed_angles(light)  # as typed: gamma:30 is 30
     # every scheme of a (f/n, fov) cell shares its directions' light frames (schemes.evaluate_many)
     cells = {(i, j): schemes.evaluate_many(parsed, near, near * ratio, fv, lv, **options) for i, ratio in enumerate(ratios) for j, fv in enumerate(fovs)}
     rows: list[dict] = []
@@ -90,7 +93,7 @@ def _mean_maps(r: schemes.Result) -> int | float:
 
 
 def _direction_rows(name: str, ratio: float, fov: float, gamma: np.ndarray, azimuth: np.ndarray, r: schemes.Result) -> list[dict]:
-    per_map = {"M_x": r.M_x.tolist(), "M_z": r.M_z.tolist(), "n_prime": r.n_prime.tolist(), "eta": r.eta.tolist()}
+    per_map = {"M_x": r.M_x.tolist(), "M_z": r.M_z.tolist(), "n_prime": r.n_prime.tolist(), "eta": r.eta.tolist()}  # lists, one per map
     used = r.maps_used.tolist()
     return [
         {
@@ -99,33 +102,52 @@ def _direction_rows(name: str, ratio: float, fov: float, gamma: np.ndarray, azim
             "fov": float(fov),
             "gamma": float(gamma[i]),
             "azimuth": float(azimuth[i]),
-            "M_x": _scalar(per_map["M_x"][i]),
-            "M_z": _scalar(per_map["M_z"][i]),
+            "M_x": per_map["M_x"][i],
+            "M_z": per_map["M_z"][i],
             "S": float(r.S[i]),
             "maps": used[i],
-            "n_prime": _scalar(per_map["n_prime"][i]),
-            "eta": _scalar(per_map["eta"][i]),
+            "n_prime": per_map["n_prime"][i],
+            "eta": per_map["eta"][i],
         }
         for i in range(r.S.size)
     ]
 
 
-def _scalar(values: list[float]) -> float | list[float]:
-    return values[0] if len(values) == 1 else values
-
-
 def format_rows(rows: Sequence[dict], fmt: str = "csv") -> str:
-    """Rows as CSV (lists joined with ';') or JSON (a list of row objects)."""
+    """Rows as CSV or JSON (a list of row objects; per-map values as arrays).
+
+    In CSV, when some field holds a list (one value per map), each row becomes one row per
+    map, with the map's number (from 0) in a ``map`` column before the first such field; the
+    other fields repeat (tidy data: no cell packs several values).
+
+    Example
+    -------
+    >>> print(format_rows([{"scheme": "ZP2", "S": 5.0, "M_x": [1.5, 2.0]}, {"scheme": "P", "S": 2.0, "M_x": 1.0}]), end="")
+    scheme,S,map,M_x
+    ZP2,5,0,1.5
+    ZP2,5,1,2
+    P,2,0,1
+    """
     kind = check.choice(fmt, "format", FORMATS)
     if kind == "json":
         return json.dumps([{k: _json_value(v) for k, v in row.items()} for row in rows], indent=1) + "\n"
     if not rows:
         return ""
+    fields = list(rows[0])
+    listed = [k for k in fields if any(isinstance(row.get(k), list) for row in rows)]
+    if listed:
+        fields.insert(fields.index(listed[0]), "map")
     buf = io.StringIO()
-    writer = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
+    writer = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")
     writer.writeheader()
     for row in rows:
-        writer.writerow({k: ";".join(f"{x:.10g}" for x in v) if isinstance(v, list) else (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})
+        cells = {k: f"{v:.10g}" if isinstance(v, float) else v for k, v in row.items()}
+        if not listed:
+            writer.writerow(cells)
+            continue
+        count = max((len(row[k]) for k in listed if isinstance(row.get(k), list)), default=1)
+        for j in range(count):
+            writer.writerow({**cells, "map": j, **{k: _fmt(row[k][j]) if isinstance(row[k], list) else cells[k] for k in listed if k in row}})
     return buf.getvalue()
 
 

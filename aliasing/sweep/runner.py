@@ -180,7 +180,7 @@ def _run_dask(grid: Plan, kind: str, todo: Sequence[int], done: Callable[[int, o
     try:
         from distributed import Client, as_completed
     except ImportError:
-        raise ValueError("dask: --dask needs the optional extra: pip install 'aliasing[dask]'") from None
+        raise ValueError("dask: --dask needs the optional extra: pip install \".[dask]\"") from None
     from distributed.comm.addressing import parse_address, parse_host_port
 
     try:  # a malformed address would leave distributed's half-made Client hanging at exit

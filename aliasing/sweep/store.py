@@ -311,4 +311,4 @@ def _netcdf_engine() -> str:
     for module, engine in (("netCDF4", "netcdf4"), ("h5netcdf", "h5netcdf")):
         if importlib.util.find_spec(module):
             return engine
-    raise ValueError("format netcdf needs netCDF4 or h5netcdf: pip install 'aliasing[xarray]'")
+    raise ValueError("format netcdf needs netCDF4 or h5netcdf: pip install \".[xarray]\"")

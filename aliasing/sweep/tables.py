@@ -12,7 +12,7 @@ import numpy as np
 from .. import geometry, schemes
 from .._version import __version__
 from .chunks import _Task
-from .rows import ROW_FIELDS, _csv_cells, _direction_rows, _summary_row, _with_cells, format_rows
+from .rows import CSV_FIELDS, ROW_FIELDS, _csv_cells, _direction_rows, _summary_row, _with_cells, format_rows
 from .store import atomic_target
 
 if TYPE_CHECKING:  # annotations only: the grid imports this module
@@ -24,7 +24,7 @@ def _assemble_stream(grid: Grid, payload_kind: str, fmt: str, payloads: Iterable
     if payload_kind == "arrays":  # summary rows (small)
         yield format_rows(SweepTable._from_payloads(grid, list(payloads)).rows(), fmt)
         return
-    header = _with_cells(dict.fromkeys(ROW_FIELDS), grid.chunk(0, fmt))
+    header = _with_cells(dict.fromkeys(CSV_FIELDS if fmt == "csv" else ROW_FIELDS), grid.chunk(0, fmt))
     if fmt == "csv":
         yield _csv_cells(list(header)) + "\n"
         yield from payloads  # type: ignore[misc]
@@ -45,7 +45,7 @@ def import_xarray() -> types.ModuleType:
     try:
         import xarray
     except ImportError:
-        raise ValueError("format netcdf needs the optional extra: pip install 'aliasing[xarray]'") from None
+        raise ValueError("format netcdf needs the optional extra: pip install \".[xarray]\"") from None
     return xarray
 
 
@@ -90,7 +90,7 @@ class SweepTable:
     def rows(self) -> list[dict]:
         """Rows as :func:`sweep` gives them (plus a column per swept rule option)."""
         g = self.grid
-        gamma, azimuth = geometry.direction_angles(g.directions)
+        gamma, azimuth = g.direction_angles()
         rows: list[dict] = []
         for var, d in zip(g.variants, self.data):
             task = _Task(0, "", var.name, var.options, g.columns, g._cells(var), g.near, 0.0, 0.0, g.directions)
@@ -127,7 +127,7 @@ class SweepTable:
         """
         xr = import_xarray()
         g = self.grid
-        gamma, azimuth = geometry.direction_angles(g.directions)
+        gamma, azimuth = g.direction_angles()
         kmax = max(d["M_x"].shape[-1] for d in self.data)
         coords: dict = {"scheme": [v.label for v in g.variants], "f_over_n": list(g.f_over_n), "fov": list(g.fov)}
         coords["scheme_name"] = ("scheme", [v.name for v in g.variants])
@@ -161,7 +161,7 @@ def import_pyarrow() -> types.ModuleType:
         import pyarrow
         import pyarrow.parquet  # noqa: F401
     except ImportError:
-        raise ValueError("format parquet needs the optional extra: pip install 'aliasing[parquet]'") from None
+        raise ValueError("format parquet needs the optional extra: pip install \".[parquet]\"") from None
     return pyarrow
 
 
@@ -187,7 +187,7 @@ def parquet_batches(grid: Grid, payloads: Iterable[object]) -> Iterator:
         task = grid.chunk(i, "arrays")
         d: dict = payload  # type: ignore[assignment]
         n = len(d["S"])
-        gamma, azimuth = geometry.direction_angles(task.light)
+        gamma, azimuth = task.angles if task.angles is not None else geometry.direction_angles(task.light)
 
         def per_map(a: np.ndarray):
             a = np.asarray(a, dtype=float).reshape(n, -1)

@@ -14,6 +14,7 @@ The registry :data:`DERIVATIONS` (:mod:`.registry`) names every derivation for t
 
 from __future__ import annotations
 
+from .. import _validation as check
 from .registry import DERIVATIONS, Derivation, Printed, derivation, equivalent
 
 __all__ = ["DERIVATIONS", "Derivation", "Printed", "derivation", "equivalent", "get"]
@@ -23,7 +24,7 @@ def get(name: str) -> Derivation:
     """Look up a derivation; ``ValueError`` lists the valid names."""
     _load()
     if name not in DERIVATIONS:
-        raise ValueError(f"unknown derivation {name!r}; choose from: {', '.join(sorted(DERIVATIONS))}")
+        raise ValueError(f"unknown derivation {name!r}{check.did_you_mean(name, sorted(DERIVATIONS))}; choose from: {', '.join(sorted(DERIVATIONS))}")
     return DERIVATIONS[name]
 
 

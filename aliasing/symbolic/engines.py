@@ -1,4 +1,4 @@
-"""Closed forms for today's engine schemes (issue 18), derived from their definitions.
+"""Closed forms for today's engine schemes, derived from their definitions.
 
 None of these is printed by the engines' sources; each is derived here and the numeric
 code in :mod:`aliasing.engines` is tested against it.
@@ -37,7 +37,7 @@ z = sp.Symbol("z_c", real=True)
 W, L, phi, bias = sp.symbols("W L phi bias", real=True)
 
 
-@derivation("engines.sphere_centre", "issue 18 (derived)", "axis position z_c of the sphere through both corner rings of a frustum slice [a, b]")
+@derivation("engines.sphere_centre", "derived here", "axis position z_c of the sphere through both corner rings of a frustum slice [a, b]")
 def sphere_centre() -> sp.Expr:
     near_sq = (z - a) ** 2 + 2 * t**2 * a**2  # squared distance to a near corner
     far_sq = (z - b) ** 2 + 2 * t**2 * b**2
@@ -45,13 +45,13 @@ def sphere_centre() -> sp.Expr:
     return sp.factor(sol)
 
 
-@derivation("engines.sphere_radius", "issue 18 (derived)", "radius of that sphere (valid while z_c <= b; else sqrt(2) t b)")
+@derivation("engines.sphere_radius", "derived here", "radius of that sphere (valid while z_c <= b; else sqrt(2) t b)")
 def sphere_radius() -> sp.Expr:
     zc = sphere_centre()
     return sp.sqrt(sp.expand((b - zc) ** 2 + 2 * t**2 * b**2))
 
 
-@derivation("engines.vsm_m_axis", "UE5 VirtualShadowMapClipmap.cpp + issue 18 (derived)", "VSM clipmap error on the view axis: 2^(1 + bias - phi)")
+@derivation("engines.vsm_m_axis", "UE5 VirtualShadowMapClipmap.cpp + derived here", "VSM clipmap error on the view axis: 2^(1 + bias - phi)")
 def vsm_m_axis() -> sp.Expr:
     b_prime = bias + sp.log(sp.Rational(1, 2) * t * 16384 / W, 2)
     d = 2 ** (L + phi - b_prime)  # log2 d + B′ = L + φ
@@ -60,12 +60,12 @@ def vsm_m_axis() -> sp.Expr:
     return sp.powsimp(sp.expand_log(sp.simplify(texel / footprint), force=True), force=True)
 
 
-@derivation("engines.matched_texels", "issue 18 (derived)", "mean texels per pixel of power-of-two resolution matching, 3/ln 4")
+@derivation("engines.matched_texels", "derived here", "mean texels per pixel of power-of-two resolution matching, 3/ln 4")
 def matched_texels() -> sp.Expr:
     return sp.simplify(sp.integrate(4**phi, (phi, 0, 1)))
 
 
-@derivation("engines.centroid_radius", "Filament ShadowMap.cpp computeBoundingSphere, Babylon.js _computeCascadeFrustum, Godot 4 + issue 18 (derived)", "radius of the sphere around the 8 corners' average of a frustum slice [a, b]")
+@derivation("engines.centroid_radius", "Filament ShadowMap.cpp computeBoundingSphere, Babylon.js _computeCascadeFrustum, Godot 4 + derived here", "radius of the sphere around the 8 corners' average of a frustum slice [a, b]")
 def centroid_radius() -> sp.Expr:
     corners = [(sx * t * d, sy * t * d, d) for d in (a, b) for sx in (-1, 1) for sy in (-1, 1)]
     centre = [sp.Rational(1, 8) * sum(c[i] for c in corners) for i in range(3)]  # (0, 0, (a + b)/2)
@@ -74,7 +74,7 @@ def centroid_radius() -> sp.Expr:
     return sp.sqrt(sp.factor(far_sq))
 
 
-@derivation("engines.far_corner_distance", "Filament ShadowMap.cpp computeFocusParams (shadowFar > 0) + issue 18 (derived)", "distance from the camera to a far corner of the view frustum at depth f")
+@derivation("engines.far_corner_distance", "Filament ShadowMap.cpp computeFocusParams (shadowFar > 0) + derived here", "distance from the camera to a far corner of the view frustum at depth f")
 def far_corner_distance() -> sp.Expr:
     f = sp.Symbol("f", positive=True)
     return sp.sqrt(sp.factor((t * f) ** 2 + (t * f) ** 2 + f**2))

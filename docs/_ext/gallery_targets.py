@@ -88,8 +88,11 @@ def write_examples(src: Path) -> None:
         outputs = ["csv"] + (["md"] if target.module == "lloyd2007_table3" else [])
         downloads = ", ".join(f":download:`{target.name}.{ext} <data/{target.name}.{ext}>`" for ext in outputs)
         extra = ""
-        if "md" in outputs:  # a table, not a plot: show it
-            extra = "\nprint(Path('../auto_gallery/data/lloyd2007-table3.md').read_text())\n"
+        if "md" in outputs:  # a table: shown as an HTML table (the block's last value, its _repr_html_), beside its PNG
+            extra = ("\n# %%\n# The same comparison as a table (hover over a cell for its status; the Markdown file lists the\n"
+                     "# explained and unexplained cells and the pyramid rules' rows).\n\n"
+                     "from aliasing.figures import _table3_views\n\n"
+                     "_table3_views.HTMLTable(Path('../auto_gallery/data/lloyd2007-table3.csv'), script.SHORT_NOTES)\n")
         (src / f"plot_{target.module}.py").write_text(TEMPLATE.format(
             title=title, underline="=" * len(title), description=target.description,
             reference=_reference(target.description), module=target.module, name=target.name,

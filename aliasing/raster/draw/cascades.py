@@ -92,7 +92,7 @@ def cascade_set(near: float, far: float, fov: float, light: str | ArrayLike, sch
             lo = hi = np.full(len(ms.maps), np.nan)
         else:
             lo, hi = ms.edges[:-1], ms.edges[1:]
-        return CascadeSet(ms, scheme, lo, hi, r.M_x[0, cols], r.M_z[0, cols])
+        return CascadeSet(ms, r.scheme.name, lo, hi, r.M_x[0, cols], r.M_z[0, cols])  # the canonical name (docs/cli.rst)
     sch = schemes.parse(scheme)
     if sch.k != 1 or sch.faces:
         raise ValueError(f"scheme must be a single-map warp (Standard, P, LogP, a warping rule) with --splits, got {scheme!r}")

@@ -1,7 +1,7 @@
 """Optional compiled kernels of the eye pass (numba, the ``fast`` extra): the same buffers, bit for bit.
 
 The numpy eye pass comes within 1.5× of the P and LogP depth maps but not of the Standard
-map (issue 12 item 5; about 1.6–1.8× at 2048², figures in benchmarks/README.md): its
+map (target 1.5×; about 1.6–1.8× at 2048², figures in benchmarks/README.md): its
 z-buffer expands the covered spans into (texel, triangle) arrays and merges them with
 ``np.minimum.at``, and the outputs take several passes over 232 MB.  Loops compiled with
 numba replace those stages; the rest (near clipping, projection, triangle order and
@@ -35,13 +35,13 @@ from typing import Callable
 
 import numpy as np
 
-try:  # optional: pip install 'aliasing[fast]'
+try:  # optional: pip install ".[fast]"
     import numba
 except ImportError:  # pragma: no cover - depends on the environment
     numba = None
 
 #: The numba extra's install hint, for error messages.
-INSTALL = "pip install 'aliasing[fast]'"
+INSTALL = "pip install \".[fast]\""
 
 
 def available() -> bool:

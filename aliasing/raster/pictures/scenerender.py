@@ -115,9 +115,12 @@ def table(renders: list[SchemeRender]) -> str:
     text = "".join("  ".join(c.rjust(w[i]) for i, c in enumerate(r)) + "\n" for r in rows)
     text += "errors: measured perspective error [image pixels per texel] (p50/p90/p99/max over measured pixels); frac_le_1: share at <= 1\n"
     ck = ["scheme", "map", "near", "far", "side", "budget_share", "pixel_share", "analytic_max"]
-    crow = [ck] + [[_cell(r.label)] + [_cell(c[k]) for k in ck[1:]] for r in renders for c in r.stats["cascades"]]
+    crow = [ck] + [[_cell(r.label)] + [_cell(c[k]) if k not in ("near", "far") or np.isfinite(c[k]) else "—" for k in ck[1:]] for r in renders for c in r.stats["cascades"]]
     w = [max(len(r[i]) for r in crow) for i in range(len(ck))]
-    return text + "\n" + "".join("  ".join(c.rjust(w[i]) for i, c in enumerate(r)) + "\n" for r in crow)
+    text += "\n" + "".join("  ".join(c.rjust(w[i]) for i, c in enumerate(r)) + "\n" for r in crow)
+    if any(not np.isfinite(c["near"]) for r in renders for c in r.stats["cascades"]):
+        text += "near, far: each map's eye-depth range; — for a face partition's map, which covers one face of the frustum, not a depth slice\n"
+    return text
 
 
 def _cell(v: object) -> str:
@@ -176,14 +179,14 @@ def _range(cs: CascadeSet, i: int) -> str:
     return f"{cs.near_i[i]:.3g}–{cs.far_i[i]:.3g}"
 
 
-def report(st: SceneSetup, renders: list[SchemeRender], *, budget: int, allocation: str, splits: str | None) -> dict:
-    """JSON-ready numbers of a render: the view, the light, and each scheme's statistics."""
+def report(st: SceneSetup, renders: list[SchemeRender], *, budget: int, allocation: str, splits: str | None, light: str | None = None) -> dict:
+    """JSON-ready numbers of a render: the view, the light (γ as typed in ``light``, a spec), and each scheme's statistics."""
     cam = st.camera
     return {
         "source": st.source, "triangles": int(len(st.scene.triangles)), "degenerate_skipped": st.degenerate,
         "camera": {"name": cam.name, "eye": cam.eye.tolist(), "forward": cam.rotation[2].tolist(), "up": cam.rotation[1].tolist(),
                    "near": cam.near, "far": cam.far, "fov": cam.fov},
-        "light_eye_space": st.light.tolist(), "gamma": float(np.degrees(np.arccos(np.clip(st.light[2], -1, 1)))),
+        "light_eye_space": st.light.tolist(), "gamma": float(geometry._typed_angles(light)[0][0]) if isinstance(light, str) else float(np.degrees(np.arccos(np.clip(st.light[2], -1, 1)))),
         "budget": int(budget), "allocation": allocation, "splits": splits, "image_res": int(renders[0].view.position.shape[0]),
         "schemes": [json_safe(r.stats) for r in renders],
     }
@@ -238,7 +241,7 @@ def run(args) -> int:
         fig.savefig(out, dpi=110, bbox_inches="tight", pad_inches=0.1, metadata={"Software": None})
         plt.close(fig)
     if fmt == "json":
-        sys.stdout.write(json.dumps(report(st, renders, budget=budget, allocation=args.allocation, splits=args.splits), indent=1) + "\n")
+        sys.stdout.write(json.dumps(report(st, renders, budget=budget, allocation=args.allocation, splits=args.splits, light=light), indent=1) + "\n")
     else:
         print(out)
         if st.degenerate:

@@ -1,6 +1,6 @@
 """Load an engine's export (glTF/GLB, OBJ, PLY, STL) as world-space triangles, with its cameras.
 
-Meshes are read by ``trimesh`` (optional: ``pip install 'aliasing[scenes]'``): every
+Meshes are read by ``trimesh`` (optional: ``pip install ".[scenes]"``): every
 geometry node of the scene graph is placed by its world transform (glTF node translation,
 rotation, scale or matrix, composed down the hierarchy).  glTF cameras are read from the
 file's own JSON (trimesh keeps only the first one): every perspective camera, by its name
@@ -39,7 +39,7 @@ Array = NDArray[np.float64]
 
 #: File types read (through trimesh; .obj and ASCII .ply also without it).
 FORMATS = (".glb", ".gltf", ".obj", ".ply", ".stl")
-EXTRA = "pip install 'aliasing[scenes]'"
+EXTRA = "pip install \".[scenes]\""
 
 
 @dataclass(frozen=True)

@@ -126,12 +126,12 @@ def to_glb(triangles: Array, path: str | os.PathLike, cameras: dict[str, Camera]
 
     A camera's node gets translation = eye and the rotation taking glTF's local frame
     (−z ahead, +y up) to the camera's; yfov = fov, znear = near, zfar = far.
-    Needs trimesh (``pip install 'aliasing[scenes]'``).  Returns the path written.
+    Needs trimesh (``pip install ".[scenes]"``).  Returns the path written.
     """
     try:
         import trimesh
     except ImportError:
-        raise ValueError("writing GLB needs trimesh: pip install 'aliasing[scenes]'") from None
+        raise ValueError("writing GLB needs trimesh: pip install \".[scenes]\"") from None
     tri = np.asarray(triangles, float)
     if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri):
         raise ValueError(f"triangles must have shape (T, 3, 3) with T >= 1, got {tri.shape}")

@@ -12,7 +12,7 @@ centres within rounding of a triangle edge.  :func:`agreement` measures that.
 Embree computes in single precision (float32): depths carry an absolute error of about
 1e-7 times the scene's extent, which is what the tolerance of :func:`agreement` allows for.
 
-embreex is an optional dependency (``pip install 'aliasing[bench]'``); without it,
+embreex is an optional dependency (``pip install ".[bench]"``); without it,
 :func:`available` is False and :func:`raycast_shadow_map` raises ValueError.
 
 Example
@@ -59,7 +59,7 @@ def _embree():
         from embreex import rtcore_scene
         from embreex.mesh_construction import TriangleMesh
     except ImportError:
-        raise ValueError("the ray-casting reference needs embreex, the optional extra: pip install 'aliasing[bench]'") from None
+        raise ValueError("the ray-casting reference needs embreex, the optional extra: pip install \".[bench]\"") from None
     return rtcore_scene, TriangleMesh
 
 

@@ -251,7 +251,7 @@ def _table(rows: list[dict]) -> str:
 
 
 def format_rows(rows: list[dict], fmt: str = "csv") -> str:
-    """Validation rows as ``csv`` (per-map lists joined with ';'), ``json`` or a ``text`` table."""
+    """Validation rows as ``csv`` (one row per map when a row has per-map lists), ``json`` or a ``text`` table."""
     kind = check.choice(fmt, "format", FORMATS)
     if kind == "text":
         return _table(rows)
