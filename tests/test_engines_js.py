@@ -247,3 +247,13 @@ def test_babylon_cascade_count_clamp_is_the_presets(babylon_run):
         assert {row["k"] for row in run["stable"]} == {clamped}  # the engine changes the count silently...
         with pytest.raises(ValueError, match="k must be at least 2 and at most 4 for 'babylon'"):
             partitioning.split_distances("babylon", near, far, k)  # ...the toolkit refuses it
+
+
+def test_missing_node_skips_outside_ci_and_fails_under_ci(monkeypatch):
+    monkeypatch.setattr(shutil, "which", lambda name: None if name == "node" else f"/usr/bin/{name}")
+    monkeypatch.delenv("CI", raising=False)
+    with pytest.raises(pytest.skip.Exception, match=r"^node not installed: the engines' own JavaScript is not run"):
+        _tools()
+    monkeypatch.setenv("CI", "true")
+    with pytest.raises(pytest.fail.Exception, match="node not found under CI"):
+        _tools()
