@@ -302,3 +302,25 @@ def test_E6_eqs_22_23_hold_as_proportionalities():
     for value in (3, 8):
         assert sp.limit((zp / (j * a ** (2 / j))).subs(j, value), a, sp.oo) == 1 / (2 * sp.tan(L.theta))
         assert sp.limit((fp / (j * a ** (4 / j))).subs(j, 4 * value), a, sp.oo) == sp.Rational(1, 4) / (2 * sp.tan(L.theta))
+
+
+def test_engines_page_commands_print_what_the_page_shows(capsys):
+    # docs/guide/engines.rst: every "$ aliasing …" console example prints the output shown under it
+    import re
+    import shlex
+    from pathlib import Path
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "guide" / "engines.rst").read_text()
+    blocks = re.findall(r"\.\. code-block:: console\n\n((?:   .*\n|\n)+)", page)
+    assert len(blocks) == 3
+    for block in blocks:
+        lines = [line[3:] for line in block.rstrip("\n").splitlines()]
+        command, rest = lines[0], lines[1:]
+        while command.endswith("\\"):
+            command = command[:-1] + rest.pop(0).strip()
+        assert len(rest) >= 4, command  # the output table follows the command
+        args = shlex.split(command.removeprefix("$ "))
+        assert args[0] == "aliasing"
+        assert main(args[1:]) == 0
+        got = [line.rstrip() for line in capsys.readouterr().out.splitlines()]
+        assert got == [line.rstrip() for line in rest], command
