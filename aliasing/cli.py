@@ -177,9 +177,13 @@ def _splits(args: argparse.Namespace) -> int:
     from . import budgets, partitioning, sweep
 
     if args.list:
+        width = max(len(name) for name in partitioning.SPLIT_METHODS)
         for m in partitioning.SPLIT_METHODS.values():
             k = f"k={m.default_k}" if m.default_k else "k required"
-            print(f"{m.name:12s} {k:10s} {m.summary}  [{m.source}]")
+            print(f"{m.name:{width}s} {k:10s} {m.summary}  [{m.source}]")
+            if m.release:  # engine presets: the release they reproduce, NAME@RELEASE names
+                tags = f" (as {', '.join(m.name.partition('@')[0] + '@' + r for r in m.releases)})" if m.releases else ""
+                print(f"{'':{width}s} {'':10s} release: {m.release}{tags}")
         return 0
     missing = [flag for flag, value in (("--near", args.near), ("--far", args.far)) if value is None]
     if missing:

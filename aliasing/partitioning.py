@@ -9,6 +9,15 @@ Example
 array([   1.,   10.,  100., 1000.])
 >>> split_distances("practical", 1.0, 100.0, 2, lam=0.5)
 array([  1. ,  30.25, 100. ])
+
+Engine presets name the release they reproduce (``release``); where an engine changed its
+formula the older form stays under ``NAME@RELEASE`` (``threejs-csm@r184``), and a name may
+carry any release the preset covers (``threejs-csm@r187`` is ``threejs-csm``):
+
+>>> split_distances("threejs-csm@r184", 1.0, 100.0, 2).round(4)
+array([  1.    ,  30.9475, 100.    ])
+>>> split_distances("threejs-csm@r187", 1.0, 100.0, 2)
+array([  1.  ,  30.25, 100.  ])
 """
 
 from __future__ import annotations
@@ -27,6 +36,7 @@ __all__ = [
     "SplitMethod",
     "partitions",
     "register",
+    "resolve_name",
     "split_distances",
 ]
 
@@ -38,8 +48,11 @@ class SplitMethod:
     """A registered split scheme; ``func(near, far, k, **params) -> C (k + 1,)``.
 
     ``default_k`` is an engine's default cascade count (None: k must be given);
-    ``max_k`` the most it supports; ``extend`` maps the split distances to each map's
-    (near_i, far_i) where an engine pads or overlaps its cascades.
+    ``min_k`` and ``max_k`` the fewest and most it supports (Babylon.js clamps its count to
+    2–4; the toolkit refuses a count the engine would change); ``extend`` maps the split
+    distances to each map's (near_i, far_i) where an engine pads or overlaps its cascades.
+    ``release`` names the engine release or commit the preset reproduces (empty for the
+    papers' schemes) and ``releases`` the release names ``NAME@RELEASE`` accepts for it.
     """
 
     name: str
@@ -49,21 +62,56 @@ class SplitMethod:
     default_k: int | None = None
     max_k: int | None = None
     extend: Callable[..., tuple[Array, Array]] | None = None
+    release: str = ""
+    releases: tuple[str, ...] = ()
+    min_k: int = 1
 
 
 SPLIT_METHODS: dict[str, SplitMethod] = {}
 
 
-def register(name: str, source: str, summary: str, *, default_k: int | None = None, max_k: int | None = None, extend: Callable | None = None) -> Callable:
+def register(name: str, source: str, summary: str, *, default_k: int | None = None, max_k: int | None = None, extend: Callable | None = None, release: str = "", releases: tuple[str, ...] = (), min_k: int = 1) -> Callable:
     """Decorator adding a split method to :data:`SPLIT_METHODS`."""
 
     def wrap(func: Callable[..., Array]) -> Callable[..., Array]:
         if name in SPLIT_METHODS:
             raise RuntimeError(f"split method {name!r} registered twice")
-        SPLIT_METHODS[name] = SplitMethod(name, func, source, summary, default_k, max_k, extend)
+        SPLIT_METHODS[name] = SplitMethod(name, func, source, summary, default_k, max_k, extend, release, tuple(releases), min_k)
         return func
 
     return wrap
+
+
+def resolve_name(name: str, table: dict | None = None, what: str = "split method") -> str:
+    """The key in ``table`` (default :data:`SPLIT_METHODS`) of a preset name, ``NAME@RELEASE`` included.
+
+    ``NAME@RELEASE`` is the entry whose base name is NAME and whose ``releases`` hold RELEASE
+    (case-insensitive); an unknown release is refused with the known ones listed.  The table's
+    entries need ``name`` and ``releases`` (split methods, :data:`aliasing.engines.stable.PRESETS`).
+
+    Example
+    -------
+    >>> resolve_name("threejs-csm@r184"), resolve_name("ThreeJS-CSM@r187"), resolve_name("log")
+    ('threejs-csm@r184', 'threejs-csm', 'log')
+    >>> resolve_name("threejs-csm@r100")
+    Traceback (most recent call last):
+    ...
+    ValueError: split method 'threejs-csm@r100': unknown release 'r100' of 'threejs-csm'; known releases: r184, r185, r186, r187
+    """
+    table = SPLIT_METHODS if table is None else table
+    if not isinstance(name, str) or "@" not in name:
+        return check.choice(name, what, table)
+    base, _, rel = name.strip().lower().partition("@")
+    family = [e for e in table.values() if e.name.partition("@")[0] == base]
+    if not family:
+        check.choice(base, what, [key for key in table if "@" not in key])  # unknown base name: the usual message
+    known = sorted({r.lower() for e in family for r in e.releases})
+    for entry in family:
+        if rel in (r.lower() for r in entry.releases):
+            return entry.name
+    if not known:
+        raise ValueError(f"{what} {name!r}: {base!r} is not pinned to engine releases (drop {'@' + rel!r})")
+    raise ValueError(f"{what} {name!r}: unknown release {rel!r} of {base!r}; known releases: {', '.join(known)}")
 
 
 @check.public
@@ -143,7 +191,7 @@ def _extend_params(entry: SplitMethod) -> set[str]:
 
 
 def _resolve(method: str, near: float, far: float, k: int | None) -> tuple[SplitMethod, float, float, int]:
-    key = check.choice(method, "split method", SPLIT_METHODS)
+    key = resolve_name(method)
     entry = SPLIT_METHODS[key]
     n, f = (float(v) for v in check.frustum(check.scalar(near, "near"), check.scalar(far, "far")))
     if k is None:
@@ -151,6 +199,8 @@ def _resolve(method: str, near: float, far: float, k: int | None) -> tuple[Split
             raise ValueError(f"split method {key!r} needs k (number of partitions)")
         k = entry.default_k
     kk = _partitions(k)
+    if entry.min_k > 1 and not entry.min_k <= kk <= (entry.max_k or MAX_PARTITIONS):
+        raise ValueError(f"k must be at least {entry.min_k} and at most {entry.max_k} for {key!r} (the engine clamps its cascade count to that range), got {kk}")
     if entry.max_k is not None and kk > entry.max_k:
         raise ValueError(f"k must be at most {entry.max_k} for {key!r}, got {kk}")
     return entry, n, f, kk
@@ -245,13 +295,32 @@ def _fractions(n: float, f: float, k: int, fractions: tuple[float, ...]) -> Arra
 # --- engine presets: formulas read from the engines' public source (see each source) ----
 
 
+THREEJS_CURRENT = "three.js r185 and later (npm three 0.185.0 on; run in the tests: 0.187.0)"
+
+
 @register(
     "threejs-csm",
-    "three.js examples/jsm/csm/CSM.js getBreaks() + CSMFrustum.js split() (mrdoob/three.js)",
-    "practical, λ = 0.5 fixed; breaks C/F applied as fractions of F − n from n",
+    "three.js examples/jsm/csm/CSM.js _getBreaks() + CSMFrustum.js split() (npm three 0.187.0)",
+    "practical, λ = 0.5 fixed; cascade i ends at b_i·F = C_i (breaks b_i = C_i/F)",
     default_k=3,
+    release=THREEJS_CURRENT,
+    releases=("r185", "r186", "r187"),
 )
 def _threejs(near: float, far: float, k: int) -> Array:
+    """three.js's CSM since r185: ``split()`` lerps the corners by α = (b·F − n)/(F − n), so cascade
+    i ends at depth b_i·F, the practical split itself (b_i = C_i/F from ``_getBreaks``)."""
+    return 0.5 * _log(near, far, k) + 0.5 * _uniform(near, far, k)  # λ is a literal 0.5 in _getBreaks
+
+
+@register(
+    "threejs-csm@r184",
+    "three.js examples/jsm/csm/CSM.js _getBreaks() + CSMFrustum.js split() (npm three 0.184.0)",
+    "practical, λ = 0.5 fixed; breaks C/F applied as fractions of F − n from n (the form before r185)",
+    default_k=3,
+    release="three.js r184 and earlier (run in the tests: npm three 0.184.0)",
+    releases=("r184",),
+)
+def _threejs_r184(near: float, far: float, k: int) -> Array:
     c = 0.5 * _log(near, far, k) + 0.5 * _uniform(near, far, k)  # λ is a literal 0.5 in getBreaks
     return near + c / far * (far - near)  # CSMFrustum.split lerps the corners by C/F
 
@@ -262,6 +331,9 @@ def _threejs(near: float, far: float, k: int) -> Array:
     "practical over [minZ, maxZ], λ = 0.5, 4 cascades (2–4)",
     default_k=4,
     max_k=4,
+    min_k=2,
+    release="Babylon.js 9.35.0 (npm @babylonjs/core, run in the tests; source read at commit 043d0bd0)",
+    releases=("9.35.0",),
 )
 def _babylon(near: float, far: float, k: int, lam: float = 0.5) -> Array:
     return _practical(near, far, k, lam)
@@ -281,6 +353,7 @@ def _ogre_padding(edges: Array, padding: float = 1.0) -> tuple[Array, Array]:
     "practical, λ = 0.95, 3 splits, inner boundaries padded by 1 world unit",
     default_k=3,
     extend=_ogre_padding,
+    release="Ogre 1.x: OgreShadowCameraSetupPSSM.h as stored at OGRECave/ogre commit 00bcfdec (lambda = 0.95); read from source only",
 )
 def _ogre(near: float, far: float, k: int, lam: float = 0.95) -> Array:
     return _practical(near, far, k, lam)
@@ -292,6 +365,7 @@ def _ogre(near: float, far: float, k: int, lam: float = 0.95) -> Array:
     "split positions 0.125, 0.25, 0.5 of (far − near) from near; up to 4 cascades",
     default_k=4,
     max_k=4,
+    release="not pinned: ShadowOptions defaults read from copies of LightManager.h (read from source only)",
 )
 def _filament(near: float, far: float, k: int) -> Array:
     return _fractions(near, far, k, (0.125, 0.25, 0.5))
@@ -310,6 +384,7 @@ def _bgfx_overlap(edges: Array) -> tuple[Array, Array]:
     default_k=4,
     max_k=4,
     extend=_bgfx_overlap,
+    release="bgfx before commit 01dbbbc0 (the long-standing splitFrustum; read from source only)",
 )
 def _bgfx(near: float, far: float, k: int, lam: float = 0.6) -> Array:
     w = _lam(lam)
@@ -323,6 +398,7 @@ def _bgfx(near: float, far: float, k: int, lam: float = 0.6) -> Array:
     "fixed fractions 0.1, 0.2, 0.5 of (max_distance − near) from near; PSSM 4 (or 2) splits",
     default_k=4,
     max_k=4,
+    release="Godot 4.x, not pinned to a minor release: light_3d.cpp defaults read from copies (read from source only)",
 )
 def _godot(near: float, far: float, k: int) -> Array:
     if k == 3:
@@ -336,6 +412,7 @@ def _godot(near: float, far: float, k: int) -> Array:
     "fixed fractions of the shadow distance: 0.25 | 0.1, 0.3 | 0.067, 0.2, 0.467",
     default_k=4,
     max_k=4,
+    release="not pinned: URP asset defaults read from copies (read from source only)",
 )
 def _unity(near: float, far: float, k: int) -> Array:
     table = {1: (), 2: (0.25,), 3: (0.1, 0.3), 4: (0.067, 0.2, 0.467)}
@@ -355,6 +432,7 @@ def _unreal_overlap(edges: Array, transition: float = 0.1) -> tuple[Array, Array
     "geometric: C_i = n + (E^i − 1)/(E^k − 1)(f − n), E = 3, 3 cascades, +10 % overlap",
     default_k=3,
     extend=_unreal_overlap,
+    release="Unreal Engine 4, not pinned: read from copies, Epic's repository is private (read from source only)",
 )
 def _unreal(near: float, far: float, k: int, exponent: float = 3.0) -> Array:
     e = check.scalar(exponent, "exponent")
@@ -369,6 +447,7 @@ def _unreal(near: float, far: float, k: int, exponent: float = 3.0) -> Array:
     "osg-pssm",
     "OpenSceneGraph src/osgShadow/ParallelSplitShadowMap.cpp calculateFrustumCorners(), SPLIT_EXP (openscenegraph/OpenSceneGraph, commit 029da13c)",
     "power-law split C_i = n + (f − n)(i/k)^(bias + 1), bias = 0.66 (static fSplitSchemeBias; SPLIT_EXP is the constructor's mode), k from the constructor",
+    release="OpenSceneGraph commit 029da13c (read from source only)",
 )
 def _osg_pssm(near: float, far: float, k: int, bias: float = 0.66) -> Array:
     """OSG's "exponential" split: the fraction of (f − n) grows as a power of i/k, C_0 = n, C_k = f.
@@ -421,6 +500,7 @@ def bgfx_current_setting_far(near: float, far: float, k: int = 4, lam: float = 0
     "log/uniform blend λ = 0.6 at s = (2i + 1)/(2.5k), 4 cascades, no overlap; the last cascade ends before m_far (far = that end)",
     default_k=4,
     max_k=4,
+    release="bgfx commit 01dbbbc0 (read from source only)",
 )
 def _bgfx_current(near: float, far: float, k: int, lam: float = 0.6) -> Array:
     """bgfx's current cascade split: cascade i ends at λ n (m/n)^s_i + (1 − λ)(n + (m − n) s_i),
@@ -434,3 +514,43 @@ def _bgfx_current(near: float, far: float, k: int, lam: float = 0.6) -> Array:
     """
     m = bgfx_current_setting_far(near, far, k, lam)
     return np.concatenate([[near], _bgfx_current_splits(near, m, k, _lam(lam))])
+
+
+BEVY_FIRST_BOUND = 10.0  # CascadeShadowConfigBuilder::default first_cascade_far_bound [m]
+BEVY_RELEASE = "Bevy crates/bevy_light/src/cascade.rs at bevyengine/bevy commit 0876f40a (read from source only)"
+
+
+def _bevy_overlap(edges: Array, overlap: float = 0.2) -> tuple[Array, Array]:
+    p = float(check.closed_range(check.scalar(overlap, "overlap"), "overlap", 0.0, 0.99))
+    lo, hi = edges[:-1].copy(), edges[1:].copy()
+    lo[1:] = (1 - p) * edges[1:-1]  # near bound of cascade i = (1 − overlap_proportion)·far bound of i − 1
+    return lo, hi
+
+
+@register(
+    "bevy",
+    "Bevy crates/bevy_light/src/cascade.rs calculate_cascade_bounds(), build_directional_light_cascades(), CascadeShadowConfigBuilder::default",
+    "geometric from the first bound: C_i = first·(far/first)^((i − 1)/(k − 1)), first = 10 m, 4 cascades, near bounds (1 − 0.2)·C_(i−1)",
+    default_k=4,
+    extend=_bevy_overlap,
+    release=BEVY_RELEASE,
+)
+def _bevy(near: float, far: float, k: int, first: float = BEVY_FIRST_BOUND) -> Array:
+    """Bevy's cascade bounds: the first cascade spans [minimum_distance, first_cascade_far_bound],
+    the far bounds grow geometrically to maximum_distance; ``near`` is Bevy's ``minimum_distance``
+    (default 0.1 m), ``far`` its ``maximum_distance`` (default 150 m), ``first`` in world units
+    (Bevy's are metres).  One cascade spans [near, far] (Bevy ignores ``first`` then).
+
+    Example
+    -------
+    >>> split_distances("bevy", 0.1, 150.0).round(4).tolist()
+    [0.1, 10.0, 24.6621, 60.822, 150.0]
+    >>> [round(float(x), 4) for x in partitions("bevy", 0.1, 150.0)[0]]
+    [0.1, 8.0, 19.7297, 48.6576]
+    """
+    if k == 1:
+        return np.array([near, far])
+    fb = check.scalar(first, "first")
+    if not near < fb < far:
+        raise ValueError(f"first (Bevy's first_cascade_far_bound) must be in (near, far) = ({near:g}, {far:g}), got {fb:g}")
+    return np.concatenate([[near], fb * (far / fb) ** (np.arange(k) / (k - 1))])

@@ -631,3 +631,18 @@ def test_cli_vsm_dilation_and_coarse_options(capsys):
     assert full["pages"] >= bare["pages"] + 16
     assert cli.main(["engines", "--schemes", "vsm:high:dilation=0.9"]) == 2
     assert "dilation" in capsys.readouterr().err
+
+
+def test_threejs_stable_preset_is_the_unrounded_longer_diagonal():
+    # CSM.js _updateShadowBounds: side = max(|far0 − far2|, |far0 − near2|), not rounded (Bevy rounds it up)
+    from aliasing.engines import stable as st
+
+    p = st.PRESETS["threejs"]
+    assert (p.split, p.fit, p.snap, p.overlap, p.k) == ("threejs-csm", "diagonal-unrounded", "bevy", 0.0, 3)
+    assert st.PRESETS["threejs@r184"].split == "threejs-csm@r184"
+    (a, b), _ = st.cascade_ranges("threejs-csm", 0.1, 100.0, 3)
+    r = st.evaluate("threejs-csm", 0.1, 100.0, 50.0, "hemisphere:20", k=3, fit="diagonal-unrounded")
+    np.testing.assert_array_equal(r.width_x, np.broadcast_to(st.diagonal(a, b, 50.0), r.width_x.shape))
+    rounded = st.evaluate("threejs-csm", 0.1, 100.0, 50.0, "hemisphere:20", k=3, fit="diagonal")
+    assert np.all(rounded.width_x >= r.width_x) and np.all(rounded.width_x - r.width_x < 1.0)
+    assert st.coverage("threejs-csm", 0.1, 100.0, 50.0, "hemisphere:100", k=3, fit="diagonal-unrounded") == 1.0

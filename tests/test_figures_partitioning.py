@@ -171,8 +171,9 @@ def presets():
 
 
 def test_engine_presets_cover_the_registry(presets):
-    expected = [name for name, entry in partitioning.SPLIT_METHODS.items() if entry.default_k is not None]
-    assert presets["preset"] == expected and len(expected) == 9  # eight engines + bgfx-current (issue 15); osg-pssm has no default k
+    # the current release of each: NAME@RELEASE forms (threejs-csm@r184) stay out of the figure
+    expected = [name for name, entry in partitioning.SPLIT_METHODS.items() if entry.default_k is not None and "@" not in name]
+    assert presets["preset"] == expected and len(expected) == 10  # nine engines + bgfx-current; osg-pssm has no default k
     assert presets["k"] == [partitioning.SPLIT_METHODS[name].default_k for name in expected]
     for far_i in presets["far_i"] + presets["log_far_i"]:
         assert float(far_i.split(";")[-1]) == engine_presets.FAR

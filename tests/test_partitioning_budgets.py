@@ -178,13 +178,72 @@ def test_presets_reproduce_engine_defaults(method, near, far, expected):
     np.testing.assert_allclose(partitioning.split_distances(method, near, far), expected, rtol=5e-4)
 
 
-def test_threejs_applies_breaks_as_fractions_from_near():
-    # CSM.js stores C/F and CSMFrustum.split lerps near → far corners by it: n + (C/F)(F − n)
+def test_threejs_r184_applies_breaks_as_fractions_from_near():
+    # up to r184 CSM.js stores C/F and CSMFrustum.split lerps near → far corners by it: n + (C/F)(F − n)
     n, f = 0.1, 1000.0
     textbook = 0.5 * partitioning.split_distances("log", n, f, 3) + 0.5 * partitioning.split_distances("uniform", n, f, 3)
-    got = partitioning.split_distances("threejs-csm", n, f)
+    got = partitioning.split_distances("threejs-csm@r184", n, f)
     np.testing.assert_allclose(got[1:-1], (n + textbook / f * (f - n))[1:-1], rtol=1e-14)  # ends are n and F
     assert got[0] == n and got[-1] == f
+
+
+def test_threejs_current_ends_cascades_at_break_times_far():
+    # since r185 split() lerps by (b·F − n)/(F − n): cascade i ends at b_i·F = C_i, the practical split
+    n, f = 1.0, 100.0
+    textbook = partitioning.split_distances("practical", n, f, 8, lam=0.5)
+    np.testing.assert_allclose(partitioning.split_distances("threejs-csm", n, f, 8), textbook, rtol=1e-14)
+    np.testing.assert_array_equal(partitioning.split_distances("threejs-csm@r187", n, f, 8), partitioning.split_distances("threejs-csm", n, f, 8))
+    old = partitioning.split_distances("threejs-csm@r184", n, f, 8)
+    assert 0.10 < float(np.max(old / textbook - 1)) < 0.13  # up to 12 % apart at near 1, far 100, 8 cascades
+
+
+@pytest.mark.parametrize(
+    "name, message",
+    [
+        ("threejs-csm@r100", r"unknown release 'r100' of 'threejs-csm'; known releases: r184, r185, r186, r187"),
+        ("babylon@8.0.0", r"known releases: 9\.35\.0"),
+        ("log@r1", "not pinned to engine releases"),
+        ("nosuch@r1", "unknown split method 'nosuch'"),
+    ],
+)
+def test_unknown_release_is_refused_with_the_known_ones(name, message):
+    with pytest.raises(ValueError, match=message):
+        partitioning.split_distances(name, 1.0, 100.0, 3)
+
+
+def test_every_engine_preset_names_its_release():
+    engines = [m for m in partitioning.SPLIT_METHODS.values() if m.default_k is not None or m.name in ("osg-pssm",)]
+    assert {"threejs-csm", "threejs-csm@r184", "babylon", "bevy"} <= {m.name for m in engines}
+    for m in engines:
+        assert m.release, m.name
+    from aliasing.engines import stable
+
+    for p in stable.PRESETS.values():
+        assert p.release, p.name
+
+
+def test_babylon_cascade_count_is_its_engines_range():
+    # CascadedShadowGenerator clamps numCascades to [MIN_CASCADES_COUNT, MAX_CASCADES_COUNT] = [2, 4]: refused outside
+    for k in (2, 3, 4):
+        assert partitioning.split_distances("babylon", 1.0, 100.0, k).size == k + 1
+    for k in (1, 5):
+        with pytest.raises(ValueError, match="k must be at least 2 and at most 4 for 'babylon'"):
+            partitioning.split_distances("babylon", 1.0, 100.0, k)
+
+
+def test_bevy_split_is_geometric_from_the_first_bound_with_overlap():
+    # cascade.rs: bounds first·(max/first)^(i/(n − 1)); near bounds minimum_distance, then (1 − 0.2)·previous far bound
+    e = partitioning.split_distances("bevy", 0.1, 150.0)
+    np.testing.assert_allclose(e, [0.1, *(10.0 * 15.0 ** (np.arange(4) / 3))], rtol=1e-14)
+    lo, hi = partitioning.partitions("bevy", 0.1, 150.0)
+    np.testing.assert_allclose(lo, [0.1, *(0.8 * e[1:-1])], rtol=1e-14)
+    np.testing.assert_array_equal(hi, e[1:])
+    np.testing.assert_array_equal(partitioning.split_distances("bevy", 0.1, 150.0, 1), [0.1, 150.0])
+    np.testing.assert_allclose(partitioning.split_distances("bevy", 0.1, 150.0, 3, first=5.0)[1:], 5.0 * 30.0 ** (np.arange(3) / 2), rtol=1e-14)
+    with pytest.raises(ValueError, match=r"first \(Bevy's first_cascade_far_bound\) must be in \(near, far\)"):
+        partitioning.split_distances("bevy", 0.1, 5.0)
+    with pytest.raises(ValueError, match=r"overlap must be in \[0, 0.99\]"):
+        partitioning.partitions("bevy", 0.1, 150.0, overlap=1.0)
 
 
 def test_padding_and_overlaps():
@@ -217,8 +276,13 @@ def test_preset_bad_input(call, message):
 
 def test_splits_list_shows_every_method(capsys):
     assert main(["splits", "--list"]) == 0
-    listed = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
+    out = capsys.readouterr().out
+    listed = [line.split()[0] for line in out.splitlines() if not line.startswith(" ")]
     assert listed == list(partitioning.SPLIT_METHODS)
+    for m in partitioning.SPLIT_METHODS.values():  # each engine preset's release on the line below it
+        if m.release:
+            assert f"release: {m.release}" in out, m.name
+    assert "threejs-csm@r185, threejs-csm@r186, threejs-csm@r187" in out
 
 
 def test_pow2_allocation_is_zhang_2006_section_3_5():
@@ -238,3 +302,25 @@ def test_E6_eqs_22_23_hold_as_proportionalities():
     for value in (3, 8):
         assert sp.limit((zp / (j * a ** (2 / j))).subs(j, value), a, sp.oo) == 1 / (2 * sp.tan(L.theta))
         assert sp.limit((fp / (j * a ** (4 / j))).subs(j, 4 * value), a, sp.oo) == sp.Rational(1, 4) / (2 * sp.tan(L.theta))
+
+
+def test_engines_page_commands_print_what_the_page_shows(capsys):
+    # docs/guide/engines.rst: every "$ aliasing …" console example prints the output shown under it
+    import re
+    import shlex
+    from pathlib import Path
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "guide" / "engines.rst").read_text()
+    blocks = re.findall(r"\.\. code-block:: console\n\n((?:   .*\n|\n)+)", page)
+    assert len(blocks) == 3
+    for block in blocks:
+        lines = [line[3:] for line in block.rstrip("\n").splitlines()]
+        command, rest = lines[0], lines[1:]
+        while command.endswith("\\"):
+            command = command[:-1] + rest.pop(0).strip()
+        assert len(rest) >= 4, command  # the output table follows the command
+        args = shlex.split(command.removeprefix("$ "))
+        assert args[0] == "aliasing"
+        assert main(args[1:]) == 0
+        got = [line.rstrip() for line in capsys.readouterr().out.splitlines()]
+        assert got == [line.rstrip() for line in rest], command

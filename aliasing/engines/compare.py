@@ -3,7 +3,7 @@
 Scheme specs (``:``-separated options, case-insensitive)::
 
     csm:SPLIT[:k=N]                          tight fit (the papers'), a split of aliasing.partitioning
-    csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body|centroid|centroid16|far][:snap=none|origin|border|bevy|pad|godot][:scene=1][:overlap=P]
+    csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|diagonal-unrounded|body|centroid|centroid16|far][:snap=none|origin|border|bevy|pad|godot][:scene=1][:overlap=P]
     sdsm[:k=N][:zmin=Z][:zmax=Z]             log partitions of the occupied range (default [near, far], k = 4)
     sdsm:method=adaptive|kmeans[:k=N]        from a depth histogram (``histogram=``; CLI ``--histogram``)
         both with [:border=B][:dilation=D][:quantize=1]: Intel's sample's partition border [units],
@@ -177,7 +177,8 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
         kw = {"k": _k(opts, spec, None)}
     else:
         opts = _options(rest, spec, {"k", "fit", "snap", "scene", "overlap"})
-        if name in stable.PRESETS:
+        if name.partition("@")[0] in {q.name.partition("@")[0] for q in stable.PRESETS.values()}:
+            name = partitioning.resolve_name(name, stable.PRESETS, "stable preset")  # NAME@RELEASE included
             p = stable.PRESETS[name]
             name, kw = p.split, {"fit": p.fit, "snap": p.snap, "overlap": p.overlap, "scene": p.scene}
             if "k" not in opts:
@@ -196,7 +197,9 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
     if name == "bevy-bounds":  # Bevy's own split, its first bound 5 m in the scene's unit
         name = stable.bevy_bounds(near, far, kw.pop("k") or 4, stable.BEVY_FIRST_BOUND_M * 100.0 / vsm.CM_PER_UNIT[unit.lower()])
     else:
-        check.choice(name, "split method", partitioning.SPLIT_METHODS)
+        name = partitioning.resolve_name(name)
+        if name == "bevy":  # Bevy's first cascade bound is 10 m: in the scene's unit
+            kw["first"] = partitioning.BEVY_FIRST_BOUND * 100.0 / vsm.CM_PER_UNIT[unit.lower()]
     res = stable.evaluate(name, near, far, fov, lights, **kw)
     axis = stable.evaluate(name, near, far, fov, "overhead", **kw)
     row = _cascade_row(spec, res, axis, t, image_res, shadow_res)
@@ -279,7 +282,7 @@ def _cell(v: object) -> str:
 
 LISTING = """families and presets:
   csm:SPLIT[:k=N]                 split methods: {splits}
-  csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|body|centroid|centroid16|far][:snap=none|origin|border|bevy|pad|godot][:scene=1][:overlap=P]
+  csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|diagonal-unrounded|body|centroid|centroid16|far][:snap=none|origin|border|bevy|pad|godot][:scene=1][:overlap=P]
                                   stable presets: {stables}
   sdsm[:k=N][:zmin=Z][:zmax=Z]    log partitions of the occupied range (Lauritzen et al. 2011)
   sdsm:method=adaptive|kmeans[:k=N]  from --histogram (Intel's SDSM sample)
@@ -293,7 +296,7 @@ LISTING = """families and presets:
 
 def _run(args: argparse.Namespace) -> int:
     if args.list:
-        print(LISTING.format(splits=", ".join(partitioning.SPLIT_METHODS), stables=", ".join(f"{p.name} ({p.source})" for p in stable.PRESETS.values()), vsms=", ".join(f"{p.name} (bias {p.bias:g}, pool {p.pool})" for p in vsm.PRESETS.values())), end="")
+        print(LISTING.format(splits=", ".join(partitioning.SPLIT_METHODS), stables=", ".join(f"{p.name} ({p.source}; release: {p.release})" for p in stable.PRESETS.values()), vsms=", ".join(f"{p.name} (bias {p.bias:g}, pool {p.pool})" for p in vsm.PRESETS.values())), end="")
         return 0
     schemes = [s for s in (args.schemes or "").split(",") if s.strip()]
     histogram = _read_histogram(args.histogram) if args.histogram else None

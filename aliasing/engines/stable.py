@@ -28,6 +28,11 @@ Fits
     ``crates/bevy_pbr/src/light/mod.rs``, ``calculate_cascade``, bevyengine/bevy as stored,
     commit c62a6fcd; the same construction as the DirectX SDK's CascadedShadowMaps11
     "fit to cascades" stable mode, whose source was not read here).
+``diagonal-unrounded``
+    The same square without the rounding, side max(|c0 − c6|, |c4 − c6|): three.js's CSM
+    (``examples/jsm/csm/CSM.js`` ``_updateShadowBounds``, npm three 0.187.0 and 0.184.0: the
+    distance from far corner 0 to far corner 2 or to near corner 2, whichever is longer,
+    unrounded; ``update`` then floors the centre to a texel, as Bevy does).
 ``body``
     A square of side |c0 − c6| only, the body diagonal (DirectX SDK
     ``CascadedShadowMaps11/CascadedShadowsManager.cpp`` ``InitFrame``, FIT_TO_SCENE branch,
@@ -66,7 +71,7 @@ Texel snapping (``snap``)
     keeps a one-texel border on each side, so the fit's side spans R − 2 of its R texels,
     W′ = W·R/(R − 2) (Filament ``ShadowMapManager.cpp`` ``shadowDimension = mapSize − 2``,
     commit 003e5005; its ``snapLightFrustum`` then moves the origin only).
-    ``"bevy"``: the map centre is floored to a texel;
+    ``"bevy"``: the map centre is floored to a texel (three.js's CSM does the same);
     Bevy keeps the side D (so up to one texel at one border may be uncovered) —
     the size is unchanged.  ``"pad"``: a coverage-preserving snap: the side grows by one
     texel, W′ = W·R/(R − 1) at R texels per side (the model's assumption for engines that
@@ -101,13 +106,17 @@ from ..view import half_angle
 from .sample import sample_bounds
 
 Array = NDArray[np.float64]
-FITS = ("tight", "sphere", "diagonal", "body", "centroid", "centroid16", "far")
+FITS = ("tight", "sphere", "diagonal", "diagonal-unrounded", "body", "centroid", "centroid16", "far")
 SNAPS = ("none", "origin", "border", "bevy", "pad", "godot")
 
 
 @dataclass(frozen=True)
 class StablePreset:
-    """An engine's stable cascade mode: fit, snap, overlap, its split preset and source."""
+    """An engine's stable cascade mode: fit, snap, overlap, its split preset and source.
+
+    ``release`` names the engine release or commit it reproduces, ``releases`` the names
+    ``NAME@RELEASE`` accepts (:func:`aliasing.partitioning.resolve_name`).
+    """
 
     name: str
     split: str
@@ -117,6 +126,8 @@ class StablePreset:
     source: str
     scene: bool = False
     k: int = 4  # cascades evaluated when the spec gives no k
+    release: str = ""
+    releases: tuple[str, ...] = ()
 
 
 # Only modes whose source was read.  Unity's StableFit/CloseFit (QualitySettings.shadowProjection;
@@ -132,6 +143,7 @@ PRESETS: dict[str, StablePreset] = {
         0.0,
         "Godot 4 renderer_scene_cull.cpp _light_instance_setup_directional_shadow (a Godot 4 copy in the index): sphere around the "
         "corners' average, radius × R/(R − 2), ends snapped to 4r/R; split: the toolkit's godot preset; blend_splits off",
+        release="Godot 4.x, not pinned to a minor release (a copy in the index; read from source only)",
     ),
     "dxsdk-scene": StablePreset(
         "dxsdk-scene",
@@ -142,6 +154,7 @@ PRESETS: dict[str, StablePreset] = {
         "DirectX SDK CascadedShadowMaps11 CascadedShadowsManager.cpp InitFrame, FIT_TO_SCENE + m_bMoveLightTexelSize (walbourn/directx-sdk-samples); "
         "scene=True; split: the sample's partitions are user-set, the toolkit's log split stands in",
         scene=True,
+        release="DirectX SDK samples, walbourn/directx-sdk-samples commit 1494e2be (read from source only)",
     ),
     "filament": StablePreset(
         "filament",
@@ -154,6 +167,7 @@ PRESETS: dict[str, StablePreset] = {
         "per cascade the sphere around its 8 corners' average, origin snapped to even texels, shadowDimension = mapSize - 2 "
         "(1-texel border); LiSPSM off in stable mode; ShadowOptions defaults (LightManager.h): shadowFar = 0, mapSize 1024, "
         "cascadeSplitPositions {0.125, 0.25, 0.5}, shadowCascades = 1 (the preset evaluates 4 cascades, the split's; k=1 is the engine default)",
+        release="Filament commits 0362f36e (ShadowMap.cpp) and 003e5005 (ShadowMapManager.cpp) (read from source only)",
     ),
     "filament-shadowfar": StablePreset(
         "filament-shadowfar",
@@ -163,6 +177,7 @@ PRESETS: dict[str, StablePreset] = {
         0.0,
         "as filament, with ShadowOptions::shadowFar > 0 (= the shadow distance): computeFocusParams takes the sphere "
         "{camera position, shadowFar} for every cascade (google/filament ShadowMap.cpp commit 0362f36e)",
+        release="Filament commit 0362f36e (read from source only)",
     ),
     "babylon": StablePreset(
         "babylon",
@@ -174,6 +189,8 @@ PRESETS: dict[str, StablePreset] = {
         "_computeCascadeFrustum/_computeMatrices (BabylonJS/Babylon.js commit 043d0bd0): sphere around the slice corners' "
         "centroid, radius ceil to 1/16 unit, projected origin rounded to a texel; split: practical lambda 0.5, DEFAULT_CASCADES_COUNT 4, "
         "cascadeBlendPercentage 0.1 blends in the shader (no fit overlap)",
+        release="Babylon.js 9.35.0 (npm @babylonjs/core, run in the tests; source read at commit 043d0bd0)",
+        releases=("9.35.0",),
     ),
     "bevy": StablePreset(
         "bevy",
@@ -184,6 +201,31 @@ PRESETS: dict[str, StablePreset] = {
         "Bevy crates/bevy_pbr/src/light/mod.rs (bevyengine/bevy as stored): calculate_cascade (diameter = ceil(max(body, far-face "
         "diagonal)), centre floored to a texel), calculate_cascade_bounds (geometric from first_cascade_far_bound), "
         "CascadeShadowConfigBuilder defaults 4 cascades, first bound 5 m, overlap_proportion 0.2",
+        release="Bevy bevy_pbr/src/light/mod.rs at bevyengine/bevy commit c62a6fcd, first bound 5 m (read from source only; "
+        "the current cascade.rs defaults to 10 m: split preset 'bevy')",
+    ),
+    "threejs": StablePreset(
+        "threejs",
+        "threejs-csm",
+        "diagonal-unrounded",
+        "bevy",
+        0.0,
+        "three.js examples/jsm/csm/CSM.js _updateShadowBounds (side = the longer of the far-face and body diagonals, unrounded; "
+        "fade off, the default) and update (centre floored to a texel); split: threejs-csm, 3 cascades (CSM's default)",
+        k=3,
+        release=partitioning.THREEJS_CURRENT,
+        releases=("r185", "r186", "r187"),
+    ),
+    "threejs@r184": StablePreset(
+        "threejs@r184",
+        "threejs-csm@r184",
+        "diagonal-unrounded",
+        "bevy",
+        0.0,
+        "as threejs, with the split of three.js r184 and earlier (CSMFrustum.split lerps by the break itself)",
+        k=3,
+        release="three.js r184 and earlier (run in the tests: npm three 0.184.0)",
+        releases=("r184",),
     ),
 }
 
@@ -367,7 +409,7 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
         Light spec (:data:`aliasing.geometry.LIGHT_SPEC`) or vectors ``(N, 3)``.
     k : int, optional
         Number of cascades (the preset's default when omitted).
-    fit : {"tight", "sphere", "diagonal", "body", "centroid", "centroid16", "far"}
+    fit : {"tight", "sphere", "diagonal", "diagonal-unrounded", "body", "centroid", "centroid16", "far"}
     snap : {"none", "origin", "border", "bevy", "pad", "godot"}
     resolution : float
         Texels per side of each map (``snap`` "pad", "border", "godot" depend on it), > 2.
@@ -400,6 +442,8 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
             side = np.full_like(a, 2 * float(far))  # Filament shadowFar: sphere {camera, shadowFar}
         elif kind == "diagonal":
             side = np.ceil(diagonal(a, b, fov))  # Bevy rounds up to a whole unit
+        elif kind == "diagonal-unrounded":
+            side = diagonal(a, b, fov)  # three.js CSM: the longer diagonal as it is
         else:
             side = body_diagonal(a, b, fov)
         wx = wy = np.broadcast_to(side, (len(lv), len(a)))

@@ -107,7 +107,7 @@ def cascade_set(near: float, far: float, fov: float, light: str | ArrayLike, sch
 def _split_params(method: str) -> set[str]:
     import inspect
 
-    entry = partitioning.SPLIT_METHODS[check.choice(method, "split method", partitioning.SPLIT_METHODS)]
+    entry = partitioning.SPLIT_METHODS[partitioning.resolve_name(method)]
     return set(inspect.signature(entry.func).parameters) - {"near", "far", "k"}
 
 
