@@ -105,8 +105,8 @@ def depth_test(lm: LightMap, sm: DepthMap, points: ArrayLike, normals: ArrayLike
                normal_offset: ArrayLike = 0.0, pcf: int = 1, receiver_plane: bool = False) -> Array:
     """A renderer's shadow test: the lit fraction of a k×k PCF lookup with depth bias, slope bias and normal offset.
 
-    The point p is first moved by ``normal_offset`` along its unit normal turned towards the
-    light (q = p + o·n).  Each of the k×k taps at q + (i, j) texels of the map, i, j ∈
+    The point p is first moved by ``normal_offset`` along its unit normal as given (q = p + o·n;
+    engines use the surface's outward normal, which faces the light on lit surfaces).  Each of the k×k taps at q + (i, j) texels of the map, i, j ∈
     {−(k−1)/2 … (k−1)/2}, reads the depth stored in the texel under it (the depth of the
     surface nearest the light on the ray through that texel's centre) and is lit when the
     reference depth is at most the stored depth plus the bias.  The reference depth is q's
@@ -121,7 +121,7 @@ def depth_test(lm: LightMap, sm: DepthMap, points: ArrayLike, normals: ArrayLike
     sm : DepthMap
         :func:`aliasing.raster.shadow_map` of the scene through ``lm``.
     points, normals : array_like, shape (..., 3)
-        Surface points [world units] and their surfaces' normals (any length or sign).
+        Surface points [world units] and their surfaces' outward normals (any length).
     bias : array_like
         Constant depth bias along the light [world units], ≥ 0, broadcast over the points.
     slope : array_like
@@ -159,8 +159,7 @@ def depth_test(lm: LightMap, sm: DepthMap, points: ArrayLike, normals: ArrayLike
                   for v, name, unit in ((bias, "bias", " world units"), (slope, "slope", " (factor)"), (normal_offset, "normal_offset", " world units")))
     res = sm.resolution
     up = lm.basis[1]
-    n = np.where(((n @ up) < 0)[..., None], -n, n)
-    q = p + off[..., None] * n
+    q = p + off[..., None] * n  # along the normal as given (outward: away from the surface's material)
     s, t, d, _ = lm.coordinates(q)
     grad, cos = light_gradient(lm, n)
     total = b.astype(float)
@@ -181,7 +180,7 @@ def depth_test(lm: LightMap, sm: DepthMap, points: ArrayLike, normals: ArrayLike
                 x, y = lm.inverse(st, tt)
                 c0 = lm.plane_point(x, y)
                 with np.errstate(divide="ignore", invalid="ignore"):
-                    ref = -((q - c0) * n).sum(-1) / cos
+                    ref = -((q - c0) * n).sum(-1) / (n @ up)
             else:
                 ref = d
             lit += ~inside | ~np.isfinite(stored) | (ref <= stored + total)
