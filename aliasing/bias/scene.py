@@ -31,10 +31,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from .. import _validation as check
 from ..raster.draw import depth_test, shadow_map, texel_edges
 from ..raster.draw.biased import light_gradient
-from ..raster.pictures.images import View
 from . import presets as _presets
 from .plane import map_bias
 
@@ -47,7 +45,17 @@ def _offsets(p: _presets.BiasPreset, n: Array, up: Array, w: float) -> dict:
     return {"bias": p.depth + p.depth_texels * w, "normal_offset": p.normal_texels * w * scale, "slope": p.slope, "pcf": p.pcf}
 
 
-def _cascades(v: View):
+_VIEW_FIELDS = ("scene", "maps", "map_res", "map_resolutions", "partition", "triangle", "position", "normal", "lit", "light")
+
+
+def _view(v: object) -> None:
+    """A rendered view (:class:`aliasing.raster.pictures.View`, a higher layer: checked by its fields)."""
+    missing = [f for f in _VIEW_FIELDS if not hasattr(v, f)]
+    if missing:
+        raise ValueError(f"v must be a rendered view (aliasing.raster.pictures.View), missing {', '.join(missing)}")
+
+
+def _cascades(v):
     """(index, map, resolution, selected pixels, points, outward normals, cascade texel) per cascade with pixels.
 
     The eye pass's normals face the eye: the outward normals of the visible side.
@@ -63,7 +71,7 @@ def _cascades(v: View):
         yield i, lm, int(res[i]), sel, p, n, w
 
 
-def scene_bias(v: View, preset: str) -> list[dict]:
+def scene_bias(v, preset: str) -> list[dict]:
     """Acne and peter-panning pixels of ``preset`` per cascade of a rendered view (module docstring).
 
     Parameters
@@ -80,7 +88,7 @@ def scene_bias(v: View, preset: str) -> list[dict]:
         Per cascade: ``pixels``, ``texel`` [world units], ``acne_px`` and ``acne`` (fraction of
         the cascade's pixels), ``peter_px`` and ``peter`` (fraction of its shadowed pixels).
     """
-    check.instance(v, "v", View)
+    _view(v)
     p = _presets.get(preset)
     rows = []
     for i, lm, res, sel, pts, n, w in _cascades(v):
@@ -97,7 +105,7 @@ def scene_bias(v: View, preset: str) -> list[dict]:
     return rows
 
 
-def bias_margin(v: View, preset: str) -> Array:
+def bias_margin(v, preset: str) -> Array:
     """Per pixel: the preset's bias over the minimal bias, (R, R); NaN off the scene and on faces turned from the light.
 
     Example
@@ -108,7 +116,7 @@ def bias_margin(v: View, preset: str) -> Array:
     >>> m.shape, bool(np.nanmin(m) > 1)   # URP's slope-scaled 2.5 alone covers its 2x2 filter
     ((32, 32), True)
     """
-    check.instance(v, "v", View)
+    _view(v)
     p = _presets.get(preset)
     out = np.full(v.triangle.shape, np.nan)
     light = np.asarray(v.light, float)
