@@ -250,3 +250,22 @@ def test_bad_input_messages():
             depth_test(lm, sm, [[0, 0, 5.0]], [[0, 1, 0.0]], **kwargs)
     with pytest.raises(ValueError, match="normals"):
         depth_test(lm, sm, [[0, 0, 5.0]], [[0, 0, 0.0]])
+
+
+def test_quantized_depth_adds_its_rounding_to_the_threshold():
+    import dataclasses
+
+    from aliasing.bias import quantization_bias
+
+    res = 128
+    lm, sm, p, n = _plane("Standard", 30.0, 0.0, res, n=60000)
+    d = sm.depth[np.isfinite(sm.depth)]
+    lo, span = float(d.min()) - 1.0, 10000.0  # a light depth range of 10 000 world units around the plane
+    q = quantization_bias(span, 16)
+    step = span / (2**16 - 1)
+    smq = dataclasses.replace(sm, depth=lo + np.round((sm.depth - lo) / step) * step)
+    need = map_bias(lm, res, p, n).depth
+    assert q > 0.2 * need.max()  # the rounding matters at this range
+    assert (depth_test(lm, smq, p, n, bias=need + 1.1 * q) < 1).mean() == 0.0
+    assert (depth_test(lm, smq, p, n, bias=need * 1.0001 + 0.9 * q) < 1).mean() > 0.0
+    assert (depth_test(lm, smq, p, n, bias=1.1 * need) < 1).mean() > 0.0  # the geometric minimum alone no longer suffices

@@ -168,3 +168,14 @@ def test_bad_command_lines_are_one_line(args, plane, capsysbinary):
     if code == 2:
         assert len(out.err.decode().strip().splitlines()) == 1, (argv, out.err)
         assert b"Traceback" not in out.err
+
+
+def test_render_bias_margin(tmp_path, capsys):
+    out = tmp_path / "m.png"
+    assert main(["render", "--what", "bias-margin", "--bias-preset", "bevy", "--image-res", "32", "--res", "128", "--out", str(out)]) == 0
+    assert out.stat().st_size > 0
+    assert main(["render", "--what", "bias-margin", "--bias-preset", "unreal", "--image-res", "32", "--res", "128", "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "preset" in err[0]
+    assert main(["render", "--what", "bias-margin", "--splits", "practical", "-k", "2", "--out", str(out)]) == 2
+    assert len(capsys.readouterr().err.strip().splitlines()) == 1

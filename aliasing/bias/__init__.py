@@ -7,7 +7,10 @@ One concern, modules by source and method:
   derived in :mod:`aliasing.symbolic.bias`;
 * :mod:`.quantization`: the depth step of 16-, 24- and 32-bit depth buffers;
 * :mod:`.presets`: the engines' bias rules, read from their source;
-* :mod:`.cascades`: per cascade of a setup, the minimal biases against a preset's.
+* :mod:`.cascades`: per cascade of a setup, the minimal biases against a preset's;
+* :mod:`.scene`: a preset's acne and peter-panning pixels per cascade of a rendered scene,
+  and the per-pixel margin;
+* :mod:`.command`: the ``aliasing bias`` command.
 
 Example
 -------
@@ -18,5 +21,6 @@ PlaneBias(depth=0.05, normal=0.035355339059327376)
 from __future__ import annotations
 
 from .plane import LOOKUPS, PlaneBias, kernel, lit_gap, map_bias, plane_bias, slope_factor
+from .quantization import quantization_bias
 
-__all__ = ["LOOKUPS", "PlaneBias", "kernel", "lit_gap", "map_bias", "plane_bias", "slope_factor"]
+__all__ = ["LOOKUPS", "PlaneBias", "kernel", "lit_gap", "map_bias", "plane_bias", "quantization_bias", "slope_factor"]
