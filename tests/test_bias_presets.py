@@ -179,3 +179,34 @@ def test_render_bias_margin(tmp_path, capsys):
     assert len(err) == 1 and "preset" in err[0]
     assert main(["render", "--what", "bias-margin", "--splits", "practical", "-k", "2", "--out", str(out)]) == 2
     assert len(capsys.readouterr().err.strip().splitlines()) == 1
+
+
+def test_figures_registered_and_their_claims():
+    import sys
+    from pathlib import Path
+
+    from aliasing.reproduce import TARGETS
+
+    assert TARGETS["bias-threshold"].module == "bias_threshold" and TARGETS["bias-presets"].module == "bias_presets"
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from figures import bias_threshold
+
+    cols = bias_threshold.data()
+    f = cols["factor"]
+    for key, v in cols.items():
+        if key == "factor":
+            continue
+        assert (v[f >= 1.05] == 0).all(), key  # the docstring: zero from 1.025–1.05 at the latest
+        assert v[np.isclose(f, 0.9)][0] > 0.004, key  # acne at 0.9 in every case
+    assert (cols["Standard_nearest"][f >= 1.0] == 0).all() and (cols["Standard_pcf3"][f >= 1.0] == 0).all()
+
+
+def test_bias_explorer_equals_the_api():
+    pytest.importorskip("ipywidgets")
+    from aliasing import explore
+
+    e = explore.bias(preset="bevy", elevation=20.0, k=4)
+    assert e.error is None and e.png().startswith(b"\x89PNG")
+    rows = cascade_bias(0.1, 100.0, 60.0, "gamma:20", "bevy", k=4, resolution=2048, image=1080, lam=0.5)
+    assert [r["margin"] for r in e.data["rows"]] == [r["margin"] for r in rows]
+    assert e.set_state({"preset": "filament"}) and e.data["preset"] == "filament"
