@@ -41,7 +41,7 @@ def _grid():
 
 
 def test_derivations_are_registered():
-    for name in ("bias.corners", "bias.depth", "bias.pcf", "bias.receiver_plane", "bias.offset_height", "bias.normal_offset", "bias.slope", "bias.lit_gap"):
+    for name in ("bias.corners", "bias.depth", "bias.pcf", "bias.receiver_plane", "bias.offset_height", "bias.normal_offset", "bias.slope", "bias.lit_gap", "bias.projection_ground"):
         assert symbolic.get(name).name == name
 
 
@@ -269,3 +269,21 @@ def test_quantized_depth_adds_its_rounding_to_the_threshold():
     assert (depth_test(lm, smq, p, n, bias=need + 1.1 * q) < 1).mean() == 0.0
     assert (depth_test(lm, smq, p, n, bias=need * 1.0001 + 0.9 * q) < 1).mean() > 0.0
     assert (depth_test(lm, smq, p, n, bias=1.1 * need) < 1).mean() > 0.0  # the geometric minimum alone no longer suffices
+
+
+def test_projection_factor_matches_the_ground_closed_form_and_grazes_to_inf():
+    from aliasing.bias.projection import ground_factor, projection_factor
+
+    f = sp.lambdify((sp.Symbol("h", positive=True), sp.Symbol("d", positive=True), sb.alpha), sb.projection_ground(), "numpy")
+    h, d, el = np.meshgrid([0.5, 2.0], [0.0, 3.0, 50.0], [5.0, 45.0, 90.0], indexing="ij")
+    np.testing.assert_allclose(ground_factor(h, d, el), f(h, d, np.radians(el)), rtol=1e-12)
+    # the general form on ground points ahead of an eye h above the ground, light ahead at elevation α
+    for hh, dd, a in ((1.0, 10.0, 30.0), (2.0, 0.5, 70.0)):
+        light = [0.0, np.sin(np.radians(a)), np.cos(np.radians(a))]
+        got = projection_factor([[0.0, -hh, dd]], [[0.0, 1.0, 0.0]], light)[0]
+        assert got == pytest.approx(ground_factor(hh, dd, a), rel=1e-12)
+    # a wall along the light: no maximum (inf); a wall facing away from the light: NaN (self-shadowed)
+    assert projection_factor([[1.0, 0.0, 5.0]], [[-1.0, 0.0, 0.0]], [0.0, 1.0, 1.0])[0] == np.inf
+    assert np.isnan(projection_factor([[0.0, 0.0, 5.0]], [[0.0, 0.0, -1.0]], [0.0, 0.0, 1.0])[0])
+    with pytest.raises(ValueError, match="elevation"):
+        ground_factor(1.0, 1.0, 0.0)

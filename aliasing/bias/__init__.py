@@ -6,6 +6,7 @@ One concern, modules by source and method:
   (:func:`plane_bias`, :func:`map_bias`) and the lit gap a bias leaves (:func:`lit_gap`),
   derived in :mod:`aliasing.symbolic.bias`;
 * :mod:`.quantization`: the depth step of 16-, 24- and 32-bit depth buffers;
+* :mod:`.projection`: projection aliasing, the full error m·cos ψ_e / cos ψ_l;
 * :mod:`.presets`: the engines' bias rules, read from their source;
 * :mod:`.cascades`: per cascade of a setup, the minimal biases against a preset's;
 * :mod:`.scene`: a preset's acne and peter-panning pixels per cascade of a rendered scene,

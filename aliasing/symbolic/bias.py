@@ -144,3 +144,12 @@ def lit_gap() -> sp.Expr:
     (hit,) = sp.solve(sp.Eq(-g + lam * sp.cos(alpha), D), lam)
     (gap,) = sp.solve(sp.Eq(hit, b), g)  # lit while the stored surface is no more than b nearer along the ray
     return gap
+
+
+@derivation("bias.projection_ground", "Lloyd 2006 §3.3 (projection factor), derived for the ground", "cos ψ_e / cos ψ_l on the ground: h / (sin α sqrt(h² + d²))")
+def projection_ground() -> sp.Expr:
+    h, dd = sp.symbols("h d", positive=True)
+    n = sp.Matrix([0, 1, 0])  # the ground's normal; the eye at height h, the point d away horizontally
+    to_eye = sp.Matrix([0, h, -dd]) / sp.sqrt(h**2 + dd**2)
+    to_light = sp.Matrix([0, sp.sin(alpha), sp.cos(alpha)])
+    return sp.simplify(n.dot(to_eye) / n.dot(to_light))
