@@ -1,6 +1,6 @@
 """Per cascade of a setup: the minimal biases, an engine preset's bias, its acne and its peter-panning.
 
-For each map of a cascade setup (:func:`aliasing.raster.cascade_set`: a split method or an
+For each map of a cascade setup (:func:`aliasing.raster.draw.cascades.cascade_set`: a split method or an
 engine's split preset, any warp) the texel at the middle of the cascade on the view axis
 (:func:`aliasing.raster.draw.biased.texel_edges`: its sides w_s, w_t; warped maps vary across
 the map) gives
