@@ -293,6 +293,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_render_parser(sub)
     __import__("aliasing.engines.compare", fromlist=["add_engines_parser"]).add_engines_parser(sub)  # aliasing engines
+    from .bias.command import add_bias_parser
+
+    add_bias_parser(sub)
     return parser
 
 

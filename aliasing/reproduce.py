@@ -58,6 +58,8 @@ TARGETS: dict[str, Target] = {
         Target("lloyd2007-fig23", "lloyd2007_fig23", "Lloyd 2007 Fig. 23: optimal R_p,s, R_p,t and S_p of the perspective parameterization vs light position"),
         Target("lloyd2007-fig24", "lloyd2007_fig24", "Lloyd 2007 Fig. 24: the range of optimal perspective parameters a of S_p (l_y = 0.5 y1) and its top vs light position"),
         Target("warping-rule-grid", "warping_rule_grid", "New: max S / Standard's max and mean S / S-optimal mean of P, LogP, LiSPSM, GMNPR, GLPR and the pyramid rules over f/n 10..1e5 x fov 20..120 (2000 directions)"),
+        Target("bias-threshold", "bias_threshold", "Depth bias: acne against the derived minimum in the rasterizer, uniform/perspective/log maps, nearest and 3x3 PCF (plane 60 deg from the light)"),
+        Target("bias-presets", "bias_presets", "Engine bias rules per cascade: ground margin, acne angle and lit gap in pixels for Filament, Bevy, Godot 4, Unity URP, three.js (near 0.1, far 100, 4 cascades, 2048^2)"),
         Target("engines-comparison", "engines_comparison", "Engine schemes: m_x along the view and critical storage over gamma, stable CSM, SDSM, UE5 VSM High/Epic, matched and exact limits (near 10 cm, far 1 km, fov 60, 1920 px)"),
     )
 }

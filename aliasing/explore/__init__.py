@@ -8,7 +8,8 @@ Each explorer is a function returning a displayable ipywidgets container (an
   and Lloyd et al. 2007 Table 3's statistics for any scheme of :mod:`aliasing.schemes`;
 * :func:`cascades`: split methods and engine presets, texel budgets and allocations;
 * :func:`faces`: the face partition (FP, FPc, FPcs; Lloyd 2007 §6.1.3, §6.5) for a light;
-* :func:`raster`: the rasterizer's shadows, texel grid, per-pixel error and measured/bound.
+* :func:`raster`: the rasterizer's shadows, texel grid, per-pixel error and measured/bound;
+* :func:`bias`: an engine's depth bias per cascade against the derived minimum (acne, lit gap).
 
 The computation of every explorer is a plain function (``compute``, returning a dict) kept
 apart from its drawing, so what is drawn can be checked against the API.  Needs the
@@ -33,7 +34,7 @@ if TYPE_CHECKING:  # the widget base needs ipywidgets (the explore extra)
 
 EXTRA_MESSAGE = "aliasing.explore needs the 'explore' extra: pip install \".[explore]\" (ipywidgets>=8, ipympl, jupyterlab)"
 
-__all__ = ["EXTRA_MESSAGE", "available", "cascades", "directions", "faces", "overhead", "raster"]
+__all__ = ["EXTRA_MESSAGE", "available", "bias", "cascades", "directions", "faces", "overhead", "raster"]
 
 
 def __getattr__(name: str) -> Any:
@@ -173,3 +174,27 @@ def raster(**values: Any) -> Explorer:
     (64, None)
     """
     return _module("_raster").RasterExplorer(**values)
+
+
+def bias(**values: Any) -> Explorer:
+    """Depth-bias explorer: per cascade, an engine preset's bias against the derived minimum, the ground's margin and the lit gap.
+
+    Parameters
+    ----------
+    **values
+        ``preset`` (:data:`aliasing.bias.presets.PRESETS`), ``elevation`` (light above the
+        ground [deg]), ``k`` (cascades), ``lam`` (λ), ``far`` [world units], ``resolution``
+        (texels per cascade side), ``image`` [pixels].
+
+    Returns
+    -------
+    Explorer
+        ``.data`` holds :func:`aliasing.explore._bias.compute`'s result.
+
+    Example
+    -------
+    >>> e = bias(preset="bevy", elevation=20.0, k=4)
+    >>> [round(r["margin"], 2) for r in e.data["rows"]]
+    [1.24, 1.02, 0.93, 0.87]
+    """
+    return _module("_bias").BiasExplorer(**values)

@@ -17,7 +17,9 @@ One module per step; this package re-exports their public names:
   check of a ``backend=`` keyword: the seam where another backend stands beside numpy;
 * :mod:`.cascades`: a scheme's maps for any split method or engine preset, and the texel
   budget shared among them;
-* :mod:`.lookup`: the shadow test of surface points through a depth map.
+* :mod:`.lookup`: the shadow test of surface points through a depth map;
+* :mod:`.biased`: the engines' shadow test (depth compare with constant, slope-scaled and
+  normal-offset bias, PCF, receiver-plane depth) and the local texel's sides.
 
 Example
 -------
@@ -37,8 +39,9 @@ from .lightmap import LightMap, _unit_vector, light_map, light_maps
 from .shadow import log_row_centres, shadow_map
 from .cascades import CascadeSet, budget_shares, cascade_set
 from .lookup import BIAS, shadow_test
+from .biased import depth_test, texel_edges
 
 __all__ = [
-    "BIAS", "CHUNK", "CascadeSet", "MAX_RESOLUTION", "DepthMap", "budget_shares", "cascade_set", "shadow_test", "EyeBuffer", "LightMap", "MapSet", "check_resolution", "clip_near", "eye_pass",
+    "BIAS", "CHUNK", "CascadeSet", "MAX_RESOLUTION", "DepthMap", "budget_shares", "cascade_set", "shadow_test", "depth_test", "texel_edges", "EyeBuffer", "LightMap", "MapSet", "check_resolution", "clip_near", "eye_pass",
     "fixed_face_map", "frame_map", "light_map", "light_maps", "log_row_centres", "map_set", "near_face_map", "project", "rasterize", "shadow_map",
 ]

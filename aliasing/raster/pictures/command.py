@@ -21,6 +21,8 @@ def _render(args: argparse.Namespace) -> int:
         raise ValueError(f"--f-over-n must be a number, got {args.f_over_n!r}") from None
     if args.seed < 0:
         raise ValueError(f"--seed must be a whole number >= 0, got {args.seed}")
+    if args.what == "bias-margin" and (args.scene is not None or "," in args.scheme or args.splits is not None):
+        raise ValueError("--what bias-margin draws the seeded scene through one scheme (no --scene, --splits or several schemes)")
     if args.scene is not None or "," in args.scheme or args.splits is not None or args.what == "cdf" or args.format != "text" \
             or any(v is not None for v in (args.eye, args.target, args.camera, args.light_dir, args.k, args.lam, args.near, args.far)) or args.param:
         return run(args)
@@ -46,6 +48,10 @@ def _render(args: argparse.Namespace) -> int:
         img = shadow_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
     elif args.what == "grid":
         img = grid_image(1.0, f_over_n, fov, args.light, args.scheme, every=args.every, **kw)
+    elif args.what == "bias-margin":
+        from .biasmargin import bias_margin_image
+
+        img, _ = bias_margin_image(1.0, f_over_n, fov, args.light, args.scheme, preset=args.bias_preset, **kw)
     else:
         img, _ = error_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
     # the sweep's safe writer (store): atomic, symlinks followed, devices refused, one-line errors
@@ -78,7 +84,9 @@ def add_render_parser(sub) -> argparse.ArgumentParser:
     ren.add_argument("--f-over-n", default="100", help="seeded scene: depth ratio far/near (default 100)")
     ren.add_argument("--fov", type=float, default=None, help="FULL field of view in degrees (default 60, or the glTF camera's)")
     ren.add_argument("--light", default="gamma:60@azimuth:30", help="one eye-space light direction (default gamma:60@azimuth:30)")
-    ren.add_argument("--what", choices=["shadows", "grid", "error", "cdf"], default="shadows", help="picture (default shadows)")
+    ren.add_argument("--what", choices=["shadows", "grid", "error", "cdf", "bias-margin"], default="shadows",
+                     help="picture (default shadows); bias-margin: an engine's bias over each pixel's minimal bias (red: acne, blue: to spare)")
+    ren.add_argument("--bias-preset", default="filament", help="engine bias preset of --what bias-margin (default filament; see aliasing bias --list)")
     ren.add_argument("--out", help="output PNG file (required unless --format json)")
     ren.add_argument("--res", type=int, default=1024, help="texel budget as RES² texels over all maps (default 1024)")
     ren.add_argument("--image-res", type=int, default=512, help="image resolution in pixels per side (default 512)")

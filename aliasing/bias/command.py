@@ -1,0 +1,107 @@
+"""The ``aliasing bias`` subcommand: minimal biases per cascade against the engines' presets.
+
+Example
+-------
+>>> import argparse
+>>> sub = argparse.ArgumentParser().add_subparsers()
+>>> p = add_bias_parser(sub)
+>>> args = p.parse_args(["--plane", "--texel", "0.1", "--angle", "45"])
+>>> _run(args)
+texel  angle  azimuth   lookup  depth    normal
+  0.1     45        0  nearest   0.05  0.0353553
+0
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from .. import _validation as check
+from ..sweep import format_rows
+from . import presets as _presets
+from .cascades import cascade_bias
+from .plane import plane_bias
+
+
+def _table(rows: list[dict]) -> str:
+    keys = list(rows[0])
+    cells = [list(keys)] + [[f"{r[k]:.6g}" if isinstance(r[k], float) else str(r[k]) for k in keys] for r in rows]
+    widths = [max(len(c[i]) for c in cells) for i in range(len(keys))]
+    return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells)
+
+
+def _numbers(text: str, flag: str) -> list[float]:
+    items = [t.strip() for t in str(text).split(",")]
+    if not items or any(not t for t in items):
+        raise ValueError(f"{flag} must be a comma-separated list of numbers, got {text!r}")
+    out = []
+    for t in items:
+        try:
+            out.append(float(t))
+        except ValueError:
+            raise ValueError(f"{flag} must be a comma-separated list of numbers, got {text!r}") from None
+    return out
+
+
+def _run(args: argparse.Namespace) -> int:
+    if args.list:
+        for p in _presets.PRESETS.values():
+            note = f" [not modelled: {p.partial}]" if p.partial else ""
+            print(f"{p.name:15s} {p.engine}: {p.source}{note}")
+        return 0
+    if args.plane:
+        if args.texel is None or args.angle is None:
+            raise ValueError("--plane needs --texel and --angle")
+        rows = []
+        for w in _numbers(args.texel, "--texel"):
+            for a in _numbers(args.angle, "--angle"):
+                for az in _numbers(args.azimuth, "--azimuth"):
+                    pb = plane_bias(w, a, az, args.lookup)
+                    rows.append({"texel": w, "angle": a, "azimuth": az, "lookup": args.lookup, "depth": pb.depth, "normal": pb.normal})
+    else:
+        names = [t.strip() for t in str(args.presets).split(",")]
+        chosen = [_presets.get(n).name for n in names]  # validate every name before any work
+        params = {} if args.lam is None else {"lam": float(check.closed_range(args.lam, "--lambda", 0.0, 1.0))}
+        rows = []
+        for name in chosen:
+            rows.extend(cascade_bias(args.near, args.far, args.fov, args.light, name, scheme=args.scheme, splits=args.splits,
+                                     k=args.k, resolution=args.resolution, image=args.image, **params))
+    sys.stdout.write(_table(rows) if args.format == "table" else format_rows(rows, args.format))
+    return 0
+
+
+def add_bias_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    """Add the ``bias`` subcommand to the ``aliasing`` command's subparsers ``sub``.
+
+    ValueErrors (bad input) are printed by ``aliasing.cli.main`` as one line, exit 2.
+    """
+    p = sub.add_parser(
+        "bias",
+        help="minimal depth bias and normal offset per cascade against the engines' bias presets",
+        description="Per cascade: the texel, the ground's minimal depth bias and normal offset, a preset's bias as one depth "
+        "bias and its margin (below 1: acne), the receiver angle from which the preset shows acne, the lit gap at a contact "
+        "(peter-panning) in world units and pixels, the filter's footprint in pixels and the texel step to the next cascade. "
+        "With --plane: the minimal biases of planar receivers.",
+        epilog="presets: " + ", ".join(_presets.PRESETS) + " (see --list); lookups: nearest, pcf<k>, receiver-plane.",
+    )
+    p.add_argument("--list", action="store_true", help="list the bias presets with the engine files they were read from, and exit")
+    p.add_argument("--presets", default=",".join(_presets.PRESETS), help="comma list of bias presets (default all)")
+    p.add_argument("--near", type=float, default=0.1, help="near distance (default 0.1)")
+    p.add_argument("--far", type=float, default=100.0, help="shadow distance (default 100)")
+    p.add_argument("--fov", type=float, default=60.0, help="FULL field of view in degrees (default 60)")
+    p.add_argument("--light", default="gamma:45", help="one light direction above the ground (default gamma:45: 45° elevation ahead)")
+    p.add_argument("--scheme", default="Standard", help="warp inside each cascade: Standard, P, LogP or a warping rule (default Standard)")
+    p.add_argument("--splits", default="practical", help="split method or engine split preset (default practical, λ = 0.5)")
+    p.add_argument("-k", type=int, default=4, help="number of cascades (default 4)")
+    p.add_argument("--lambda", dest="lam", type=float, help="λ of practical-style splits (default 0.5)")
+    p.add_argument("--resolution", type=int, default=2048, help="texels per side of each cascade (default 2048)")
+    p.add_argument("--image", type=int, default=1080, help="pixels across the view (default 1080)")
+    p.add_argument("--plane", action="store_true", help="minimal biases of planar receivers instead (with --texel, --angle)")
+    p.add_argument("--texel", help="texel widths in world units, comma list (with --plane)")
+    p.add_argument("--angle", help="angles between the receiver's normal and the light in degrees, comma list (with --plane)")
+    p.add_argument("--azimuth", default="0", help="azimuths of the receiver's slope from the map's s axis in degrees, comma list (default 0)")
+    p.add_argument("--lookup", default="nearest", help="nearest, pcf<k> or receiver-plane (default nearest; with --plane)")
+    p.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
+    p.set_defaults(run=_run)
+    return p

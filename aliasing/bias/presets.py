@@ -1,0 +1,179 @@
+"""The engines' bias rules for directional lights, read from their source, as presets.
+
+Every engine moves the looked-up point (or the caster) by hand-tuned amounts, some scaled by
+the cascade's texel size.  For a planar receiver at θ from the light, each kind of offset is
+a depth bias along the light in disguise (:mod:`aliasing.symbolic.bias`):
+
+* a constant along the light, b: b;
+* a normal offset o (along the receiver's normal): o/cos θ;
+* an offset s across the light (the normal's part perpendicular to the light): s·tan θ;
+* a caster moved by o along its own normal, away from the light side: o/cos θ;
+* a slope-scaled bias f of the rasterizer state: f·w·tan θ·max(|cos φ|, |sin φ|).
+
+:func:`equivalent_depth` sums them; :func:`aliasing.bias.plane_bias` says what is needed.  For
+the lit gap at a contact (peter-panning) only the part along the light counts: a normal
+offset raises the looked-up ground point and moves it across the map by amounts that cancel
+exactly against a vertical caster (derived in the guide page), so ``contact_depth`` is the
+constant part alone.
+
+Each preset names the file it was read from; the lookups are modelled as k×k PCF of the
+width of the engine's default filter (hardware 2×2 comparison sampling is k = 2).
+
+Example
+-------
+>>> p = PRESETS["filament"]
+>>> round(equivalent_depth(p, 0.1, 45.0), 6)   # 0.001 + 1·sin45°·0.1/cos45° + 2·0.1·tan45°
+0.301
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .. import _validation as check
+
+Array = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class BiasPreset:
+    """One engine's default bias rule for a directional light (world units unless said).
+
+    Attributes
+    ----------
+    name, engine : str
+        Preset key and engine (release).
+    source : str
+        Repository file(s) the rule was read from.
+    depth : float
+        Constant depth bias along the light [world units].
+    depth_texels : float
+        Depth bias along the light in texels (× the cascade's texel size).
+    normal_texels : float
+        Normal offset in texels (× texel size × ``normal_scale`` of θ).
+    normal_scale : str
+        ``one``, ``sin`` (× sin θ) or ``one-minus-cos`` (× (1 − cos θ)).
+    across_texels : float
+        Offset across the light in texels, × sin θ (the normal with its along-light part removed).
+    slope : float
+        Slope-scaled depth bias of the rasterizer state (``glPolygonOffset`` factor, Direct3D
+        ``SlopeScaledDepthBias``): × the caster's depth change per texel, max(|∂d/∂s|, |∂d/∂t|).
+    pcf : int
+        Width of the default filter, modelled as k×k PCF [texels].
+    partial : str
+        What of the engine's rule is not modelled (empty when all of it is).
+    """
+
+    name: str
+    engine: str
+    source: str
+    depth: float = 0.0
+    depth_texels: float = 0.0
+    normal_texels: float = 0.0
+    normal_scale: str = "one"
+    across_texels: float = 0.0
+    slope: float = 0.0
+    pcf: int = 1
+    partial: str = ""
+
+
+PRESETS: dict[str, BiasPreset] = {p.name: p for p in (
+    BiasPreset("filament", "Filament (1.5x)", "google/filament shaders/src/common_shadowing.fs computeLightSpacePosition (p += n·sinθ·b); "
+               "filament/src/ShadowMapManager.cpp (b = normalBias · texelSizeWorldSpace); include/filament/LightManager.h ShadowOptions (constantBias 0.001, normalBias 1, polygonOffsetSlope 2); PCF by hardware comparison",
+               depth=0.001, normal_texels=1.0, normal_scale="sin", slope=2.0, pcf=2),
+    BiasPreset("bevy", "Bevy (0.13+)", "bevyengine/bevy crates/bevy_pbr/src/render/shadows.wgsl sample_directional_cascade (normal_bias · cascade texel_size · n, "
+               "depth_bias · direction_to_light); DirectionalLight::DEFAULT_SHADOW_DEPTH_BIAS 0.02, DEFAULT_SHADOW_NORMAL_BIAS 1.8; default filter Gaussian (Castaño 13-tap, 5×5)",
+               depth=0.02, normal_texels=1.8, normal_scale="one", pcf=5),
+    BiasPreset("godot", "Godot 4", "godotengine/godot servers/rendering/renderer_rd/forward_clustered/scene_shader_forward_clustered (scene_forward_lights_inc.glsl BIAS_FUNC: "
+               "n·(1 − max(0, dot(L, −n))) · shadow_normal_bias, minus its along-light part); light_data.shadow_normal_bias = normal_bias · shadow_texel_size; "
+               "DirectionalLight3D shadow_normal_bias 2.0",
+               across_texels=2.0, pcf=2,
+               partial="the constant term shadow_bias/100 × a per-split bias_scale (from the split's depth range and pancake size) is not modelled"),
+    BiasPreset("unity-urp", "Unity URP (12–17), hard shadows", "Unity-Technologies/Graphics Packages/com.unity.render-pipelines.universal/Runtime/ShadowUtils.cs GetShadowBias "
+               "(bias × frustumSize/resolution); ShaderLibrary/Shadows.hlsl ApplyShadowBias (caster moved along the light, and along −n by (1 − N·L)·normalBias); RenderShadowSlice SetGlobalDepthBias(1, 2.5); asset defaults 1, 1",
+               depth_texels=1.0, normal_texels=1.0, normal_scale="one-minus-cos", slope=2.5, pcf=2),
+    BiasPreset("unity-urp-soft", "Unity URP (12–17), soft shadows", "as unity-urp; GetShadowBias multiplies both by 2.5 when soft shadows are supported; 5×5 tent filter",
+               depth_texels=2.5, normal_texels=2.5, normal_scale="one-minus-cos", slope=2.5, pcf=5),
+    BiasPreset("threejs", "three.js (r150+)", "mrdoob/three.js src/lights/LightShadow.js (bias 0, normalBias 0 by default; normalBias in world units along n, "
+               "shadowmap_vertex.glsl.js); PCFShadowMap filter",
+               pcf=3),
+)}
+
+_SCALES = ("one", "sin", "one-minus-cos")
+
+
+def get(name: str) -> BiasPreset:
+    """A preset by name; ValueError names ``preset`` and lists the known ones.
+
+    Example
+    -------
+    >>> get("Bevy").pcf
+    5
+    """
+    if not isinstance(name, str) or name.strip().lower() not in PRESETS:
+        raise ValueError(f"unknown bias preset {name!r}; choose one of: {', '.join(PRESETS)}")
+    return PRESETS[name.strip().lower()]
+
+
+def _normal_scale(preset: BiasPreset, theta: Array) -> Array:
+    if preset.normal_scale == "sin":
+        return np.sin(theta)
+    if preset.normal_scale == "one-minus-cos":
+        return 1.0 - np.cos(theta)
+    return np.ones_like(theta)
+
+
+@check.public
+def equivalent_depth(preset: BiasPreset | str, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0) -> float | Array:
+    """The preset's offsets as one depth bias along the light [world units], for a plane at ``angle`` from the light.
+
+    b + b_t·w + o_t·w·g(θ)/cos θ + s_t·w·sin θ·tan θ + f·w·tan θ·max(|cos φ|, |sin φ|)
+    (module docstring).
+
+    Parameters
+    ----------
+    preset : BiasPreset or str
+        A preset of :data:`PRESETS`.
+    texel : array_like
+        Texel size w of the cascade [world units], > 0.
+    angle : array_like
+        θ between the receiver's normal and the direction to the light [deg], in [0, 90).
+    azimuth : array_like
+        φ, the receiver's steepest depth change from the map's s axis [deg] (the slope term only).
+
+    Example
+    -------
+    >>> round(equivalent_depth("bevy", 0.05, 0.0), 6)   # facing the light: 0.02 + 1.8·0.05
+    0.11
+    """
+    p = get(preset) if isinstance(preset, str) else preset
+    check.instance(p, "preset", BiasPreset)
+    from .plane import _angle
+
+    w = check.as_float_array(texel, "texel")
+    if not np.isfinite(w).all() or (w <= 0).any():
+        raise ValueError(f"texel must be a finite texel width > 0 [world units], got {check._show(w)}")
+    th = np.radians(_angle(angle, "angle", "between the receiver's normal and the direction to the light"))
+    ph = np.radians(check.finite(azimuth, "azimuth"))
+    w, th, ph = np.broadcast_arrays(w, th, ph)
+    steep = np.maximum(np.abs(np.cos(ph)), np.abs(np.sin(ph)))
+    b = (p.depth + p.depth_texels * w + p.normal_texels * w * _normal_scale(p, th) / np.cos(th)
+         + p.across_texels * w * np.sin(th) * np.tan(th) + p.slope * w * np.tan(th) * steep)
+    return float(b) if b.ndim == 0 else b
+
+
+def contact_depth(preset: BiasPreset | str, texel: ArrayLike) -> float | Array:
+    """The part of the preset's bias along the light [world units]: what opens a lit gap at a contact.
+
+    Example
+    -------
+    >>> contact_depth("unity-urp-soft", 0.04)
+    0.1
+    """
+    p = get(preset) if isinstance(preset, str) else preset
+    w = check.as_float_array(texel, "texel")
+    b = p.depth + p.depth_texels * w
+    return float(b) if np.ndim(b) == 0 else b
