@@ -15,7 +15,6 @@ from typing import Any
 import numpy as np
 from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
-from matplotlib.ticker import FormatStrFormatter, LogLocator
 
 from .. import geometry, schemes
 from . import widget as w
@@ -95,8 +94,7 @@ def draw(fig: Figure, d: dict[str, Any]) -> dict:
     bx = b.bar(k[used] - 0.2, d["M_x"][used], 0.4, label="M_x")
     bz = b.bar(k[used] + 0.2, d["M_z"][used], 0.4, label="M_z")
     b.set_yscale("log")
-    b.yaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
-    b.yaxis.set_major_formatter(FormatStrFormatter("%g"))
+    w.readable_log_ticks(b.yaxis)
     b.set(xlabel="map", ylabel="max. error (unit res.)", xticks=k[used])
     b.legend(fontsize=8, loc="upper left")
     text = b.text(0.98, 0.97, "", transform=b.transAxes, ha="right", va="top", fontsize=8, bbox={"fc": "white", "ec": "0.7"})
