@@ -216,6 +216,13 @@ class ReadableLogLocator(Locator):
 
     Decades (1, 10, 100, …) when the range holds enough of them, else 1-2-5 steps, else
     (a range under a decade, e.g. f/n from 1 to 1.5) evenly spaced round values.
+
+    Example
+    -------
+    >>> ReadableLogLocator().tick_values(1.0, 1e4).tolist()
+    [1.0, 10.0, 100.0, 1000.0, 10000.0]
+    >>> ReadableLogLocator().tick_values(1.0, 1.5).tolist()
+    [1.0, 1.2, 1.4]
     """
 
     def __call__(self):
@@ -246,7 +253,18 @@ def _tick_label(x: float, pos: int | None = None) -> str:
 
 
 def readable_log_ticks(*axes: Any) -> None:
-    """Give each logarithmic matplotlib axis (``ax.xaxis``, ``ax.yaxis``) :class:`ReadableLogLocator`'s labelled ticks."""
+    """Give each logarithmic matplotlib axis (``ax.xaxis``, ``ax.yaxis``) :class:`ReadableLogLocator`'s labelled ticks.
+
+    Example
+    -------
+    >>> fig = Figure()
+    >>> ax = fig.subplots()
+    >>> ax.set_xscale("log"); ax.set_xlim(1.0, 1.5)
+    (1.0, 1.5)
+    >>> readable_log_ticks(ax.xaxis)
+    >>> [t.get_text() for t in ax.xaxis.get_ticklabels()]
+    ['1', '1.2', '1.4']
+    """
     for axis in axes:
         axis.set_major_locator(ReadableLogLocator())
         axis.set_major_formatter(FuncFormatter(_tick_label))
