@@ -28,7 +28,8 @@ EXTREMES = {
     "cascades": [{}, {"k": 1}, {"k": 8, "far": 1e6}, {"k": 8, "near": 1e-3, "far": 1.5e-3, "fov": 150.0}, {"method": "log", "k": 8, "budget": 512**2}],
     "faces": [{}, {"variant": "fp"}, {"variant": "fpcs", "gamma": 0.0, "azimuth": -180.0, "f_over_n": 1.5, "fov": 150.0},
               {"variant": "fpcs", "gamma": 30.0, "azimuth": 45.0, "f_over_n": 1e5, "fov": 150.0},
-              {"variant": "fpc", "gamma": 180.0, "azimuth": 180.0, "f_over_n": 1e5, "fov": 5.0}],
+              {"variant": "fpc", "gamma": 180.0, "azimuth": 180.0, "f_over_n": 1e5, "fov": 5.0},
+              {"variant": "fpcs", "gamma": 20.0, "azimuth": 30.0, "f_over_n": 100.0}],  # the notebook's: arrows past the outline
     "raster": [{"image_res": 32}, {"f_over_n": 1.5, "fov": 10.0, "image_res": 32, "every": 1},
                {"f_over_n": 1e4, "fov": 120.0, "image_res": 32, "scheme": "FPcs+LogP", "budget": 64**2, "every": 64}],
 }
@@ -119,8 +120,10 @@ def test_faces_arrow_labels_clear_of_the_legend(values):
     renderer = fig.canvas.get_renderer()
     a = fig.axes[0]
     legend = a.get_legend().get_window_extent(renderer)
+    title = a.title.get_window_extent(renderer)
     for _, label in e._artists["arrows"]:
-        assert not label.get_window_extent(renderer).overlaps(legend), label.get_text()
+        box = label.get_window_extent(renderer)
+        assert not box.overlaps(legend) and not box.overlaps(title), label.get_text()
 
 
 @pytest.mark.parametrize("lo, hi", [(1.0, 1.5), (1.0, 1.01), (0.3, 0.5), (1.0, 1e5), (2.0, 9.0), (1e-3, 1.5e-3), (5e4, 6e5), (1e8, 1.1e8)])

@@ -114,12 +114,16 @@ def redraw(artists: dict, d: dict[str, Any]) -> bool:
     for poly, idx in zip(artists["polygons"], FACE_CORNERS):
         poly.set_xy(c[list(idx)])
     artists["far"].set_data(*c[[4, 5, 6, 7, 4]].T)
-    for (arrow, text), (_, axis, length) in zip(artists["arrows"], d["axes"]):
-        arrow.xy = tuple(axis * length * 0.85)
-        text.set_position(tuple(axis * length * 0.87))
-    span = np.ptp(c, axis=0).max()
-    a.set_xlim(c[:, 0].min() - 0.05 * span, c[:, 0].max() + 0.05 * span)
-    a.set_ylim(c[:, 1].min() - 0.05 * span, c[:, 1].max() + 0.05 * span)
+    tips = [axis * length * 0.85 for _, axis, length in d["axes"]]
+    for (arrow, text), tip in zip(artists["arrows"], tips):
+        arrow.xy = tuple(tip)
+        text.set_position(tuple(tip * 1.02))
+        text.set_ha("left" if tip[0] >= 0 else "right")  # the label beyond the tip, away from the other arrows
+        text.set_va("bottom" if tip[1] >= 0 else "top")
+    pts = np.vstack([c, *tips]) if tips else c  # the arrows may reach past the frustum's outline: keep them inside
+    span = np.ptp(pts, axis=0).max()
+    a.set_xlim(pts[:, 0].min() - 0.12 * span, pts[:, 0].max() + 0.12 * span)  # room for the labels at the tips
+    a.set_ylim(pts[:, 1].min() - 0.12 * span, pts[:, 1].max() + 0.12 * span)
     for rect, height in zip(artists["bars"], d["S_i"][used]):
         rect.set_height(height)
     b.set_ylim(0.0, d["S_i"][used].max() * 1.08)
