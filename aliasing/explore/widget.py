@@ -142,8 +142,7 @@ class Explorer(widgets.VBox):
                     self._artists = self.draw(fig, data)
                     for ax in fig.axes:  # log axes' minor ticks cost most of a redraw
                         ax.minorticks_off()
-                buf = io.BytesIO()
-                fig.savefig(buf, format="png", dpi=self.dpi, pil_kwargs={"compress_level": 1})
+                buf = _png(fig)
         except Exception as exc:  # shown in the widget, never a traceback in the notebook
             text = str(exc) if isinstance(exc, ValueError) else f"{type(exc).__name__}: {exc}"
             self.error = text
@@ -200,6 +199,16 @@ class Explorer(widgets.VBox):
             data["image/png"] = base64.b64encode(self.png()).decode("ascii")
             meta["image/png"] = {"width": self.css_width()}
         return data, meta
+
+
+def _png(fig: Figure) -> io.BytesIO:
+    """The figure drawn once on its Agg canvas, as an RGB PNG (fast zlib level 1; the figure is opaque)."""
+    from PIL import Image  # matplotlib's own dependency
+
+    fig.canvas.draw()
+    buf = io.BytesIO()
+    Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3]).save(buf, format="png", compress_level=1)
+    return buf
 
 
 def _shown(widget: widgets.ValueWidget) -> str:
