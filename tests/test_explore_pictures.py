@@ -91,7 +91,7 @@ def test_ipython_publishes_the_png_beside_the_widget_view():
 
 
 @pytest.mark.parametrize("name, values", CASES, ids=[f"{n}-{i}" for n, s in EXTREMES.items() for i in range(len(s))])
-def test_no_text_outside_the_figure_and_log_axes_readable(name, values):
+def test_no_text_outside_the_figure_or_overlapping_and_log_axes_readable(name, values):
     e = getattr(explore, name)(**values)
     assert e.error is None, e.error
     fig = e.figure
@@ -105,6 +105,23 @@ def test_no_text_outside_the_figure_and_log_axes_readable(name, values):
         if bb.x0 < 0 or bb.y0 < 0 or bb.x1 > width or bb.y1 > height:
             outside.append(f"{t.get_text()[:40]!r} at {np.round(bb.extents).tolist()} (figure {width:.0f} × {height:.0f})")
     assert not outside, outside
+    drawn = {id(t) for t in texts}
+    crossing = []
+    for ax in fig.axes:  # one panel's tick labels never run into another panel's axis labels or title
+        ticks = [lab for axis in (ax.xaxis, ax.yaxis) for tick in axis._update_ticks() for lab in (tick.label1, tick.label2) if id(lab) in drawn]
+        for other in fig.axes:
+            if other is ax:
+                continue
+            for label in (other.xaxis.label, other.yaxis.label, other.title):
+                if id(label) in drawn:
+                    box = label.get_window_extent(renderer)
+                    crossing += [f"{t.get_text()!r} on {label.get_text()!r}" for t in ticks if t.get_window_extent(renderer).overlaps(box)]
+    assert not crossing, crossing
+    for ax in fig.axes:  # nor do the tick labels of one axis run into each other
+        for axis in (ax.xaxis, ax.yaxis):
+            boxes = [lab.get_window_extent(renderer) for tick in axis._update_ticks() for lab in (tick.label1, tick.label2) if id(lab) in drawn]
+            hits = [(i, j) for i in range(len(boxes)) for j in range(i + 1, len(boxes)) if boxes[i].overlaps(boxes[j])]
+            assert not hits, (axis.axis_name, [lab.get_text() for lab in axis.get_ticklabels()])
     for ax in fig.axes:
         for axis in (ax.xaxis, ax.yaxis):
             if axis.get_scale() == "log" and axis.get_visible():

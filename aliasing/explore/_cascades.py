@@ -85,16 +85,6 @@ def compute(method: str, k: int, lam: float, near: float, far: float, fov: float
     }
 
 
-def _short(x: float) -> str:
-    """A number in at most 3 significant digits, exponents without sign padding (7.5e9, 0.25, 1.2e-4)."""
-    if x == 0 or not np.isfinite(x):
-        return f"{x:g}"
-    if 1e-3 <= abs(x) < 1e4:
-        return f"{x:.3g}"
-    mantissa, exponent = f"{x:.2e}".split("e")
-    return f"{float(mantissa):g}e{int(exponent)}"
-
-
 def _band(lo: float, hi: float, tan: float) -> np.ndarray:
     """Outline (60, 2) of the frustum between depths lo and hi in the side view (z, y)."""
     z = np.geomspace(lo, hi, 30)
@@ -115,7 +105,7 @@ def draw(fig: Figure, d: dict[str, Any]) -> dict:
     planes = [a.axvline(1.0, color=f"C{i % 10}", lw=0.8) for i in range(slots)]
     a.set_xscale("log")
     w.readable_log_ticks(a.xaxis)
-    a.yaxis.set_major_formatter(FuncFormatter(lambda y, pos: _short(y)))  # far up to 10¹²: short labels
+    a.yaxis.set_major_formatter(FuncFormatter(lambda y, pos: w.short_number(y)))  # far up to 10¹²: short labels
     a.set(xlabel="z [world units] (log)", ylabel="y", title="partitions on the frustum (side view)")
     i = np.arange(1, slots + 1)
     bars = b.bar(i, np.ones(slots), color=[f"C{j % 10}" for j in range(slots)])
@@ -152,7 +142,7 @@ def redraw(artists: dict, d: dict[str, Any]) -> bool:
             bar.set_height(d["error"][j])
             text.set_position((j + 1, d["error"][j]))
             side = f"{d['res_s'][j]:.0f}²" if d["res_s"][j] == d["res_t"][j] else f"{d['res_s'][j]:.0f}×{d['res_t'][j]:.0f}"
-            text.set_text(f"S̄ {_short(d['S_max'][j])}\n{side}")
+            text.set_text(f"S̄ {w.short_number(d['S_max'][j])}\n{side}")
             text.set_fontsize(7 if k <= 5 else 6)  # eight labels side by side fit at 6 pt
     b.set_xlim(0.4, k + 0.6)  # as a bar chart of k bars autoscales, whatever the hidden slots
     b.set_xticks(np.arange(1, k + 1))

@@ -261,6 +261,22 @@ def _tick_label(x: float, pos: int | None = None) -> str:
     return f"$10^{{{k}}}$" if abs(m - 1) < 1e-6 else f"${m:.3g}\\times10^{{{k}}}$"
 
 
+def short_number(x: float) -> str:
+    """A number in at most 3 significant digits, exponents without sign or padding: for crowded labels.
+
+    Example
+    -------
+    >>> [short_number(x) for x in (7.53e9, 0.25, 1.2e-4, 1448.0, 0.0)]
+    ['7.53e9', '0.25', '1.2e-4', '1.45e3', '0']
+    """
+    if x == 0 or not np.isfinite(x):
+        return f"{x:g}"
+    if 1e-3 <= abs(x) < 1e3:
+        return f"{x:.3g}"
+    mantissa, exponent = f"{x:.2e}".split("e")
+    return f"{float(mantissa):g}e{int(exponent)}"
+
+
 def readable_log_ticks(*axes: Any) -> None:
     """Give each logarithmic matplotlib axis (``ax.xaxis``, ``ax.yaxis``) :class:`ReadableLogLocator`'s labelled ticks.
 
