@@ -1,7 +1,8 @@
-"""Your own scene: a loaded mesh, a world-space camera and light, each scheme rendered and measured.
+"""Schemes rendered and measured on a scene: your own (a loaded mesh, a world-space camera and
+light) or the built-in ground and boxes (:func:`builtin`); the one path of ``aliasing render``.
 
 The scene comes placed in eye space (:func:`aliasing.raster.scenes.setup`: file, world camera,
-light).  :func:`render` draws the scene through each scheme's maps (any split method or
+light; :func:`builtin`: the seeded scene in the conventions' eye space).  :func:`render` draws the scene through each scheme's maps (any split method or
 engine preset, :mod:`aliasing.raster.draw.cascades`) sharing one texel budget and measures the
 perspective aliasing error per pixel on lit surfaces within [near, far]
 (:func:`aliasing.raster.pictures.error_field`:
