@@ -83,6 +83,9 @@ nb_execution_timeout = 180
 nb_execution_raise_on_error = True
 nb_execution_show_tb = True
 nb_ipywidgets_js: dict = {}  # no require.js / widget manager from a CDN: widgets show their text form
+# with no widget manager the widget view renders as nothing: an explorer's output shows the picture of its
+# state that its display bundle carries beside the view (image/png, aliasing.explore.widget.Explorer)
+nb_mime_priority_overrides = [("html", "application/vnd.jupyter.widget-view+json", None)]
 nb_merge_streams = True
 suppress_warnings = ["mystnb.unknown_mime_type"]
 

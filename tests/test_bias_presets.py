@@ -177,8 +177,11 @@ def test_render_bias_margin(tmp_path, capsys):
     assert main(["render", "--what", "bias-margin", "--bias-preset", "unreal", "--image-res", "32", "--res", "128", "--out", str(out)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "preset" in err[0]
-    assert main(["render", "--what", "bias-margin", "--splits", "practical", "-k", "2", "--out", str(out)]) == 2
-    assert len(capsys.readouterr().err.strip().splitlines()) == 1
+    assert "did you mean 'unity-urp'" in (main(["render", "--what", "bias-margin", "--bias-preset", "unity", "--out", str(out)]) == 2 and capsys.readouterr().err)
+    # one rendering path: cascades of a split method and several schemes get the picture too, labelled
+    out.unlink()
+    assert main(["render", "--what", "bias-margin", "--scheme", "Standard,P", "--splits", "practical", "-k", "2", "--image-res", "32", "--res", "128", "--out", str(out)]) == 0
+    assert out.stat().st_size > 0 and "practical+P" in capsys.readouterr().out
 
 
 def test_figures_registered_and_their_claims():

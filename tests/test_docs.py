@@ -220,3 +220,53 @@ def test_every_public_function_is_in_the_api_reference(site: Path) -> None:
     # the equations travel with the docstrings: a function implementing a paper names its equation
     error_page = (site / "api" / "aliasing.error.html").read_text(encoding="utf-8")
     assert "eq. 7" in error_page or "eq. (7)" in error_page or "eqs. 7" in error_page
+
+
+def _png_size(path: Path) -> tuple[int, int]:
+    """(width, height) [pixels] from a PNG's header."""
+    head = path.read_bytes()[:24]
+    assert head[:8] == b"\x89PNG\r\n\x1a\n", f"{path} is not a PNG"
+    return int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
+
+
+def test_notebook_pages_show_the_explorers_pictures(site: Path) -> None:
+    """Each notebook cell that shows an explorer gives an <img> of its picture on the page (no widget manager runs
+    there): the PNG the explorer's display bundle carries beside the widget view, at the explorer's pixel size."""
+    import re
+
+    pytest.importorskip("ipywidgets")
+    from aliasing.explore import widget
+
+    sizes = {(int(c.figsize[0] * c.dpi), int(c.figsize[1] * c.dpi)) for c in _explorer_classes(widget.Explorer)}
+    checked = 0
+    for nb in sorted((ROOT / "notebooks").glob("*.ipynb")):
+        cells = json.loads(nb.read_text(encoding="utf-8"))["cells"]
+        shown = sum(1 for c in cells if c["cell_type"] == "code" and re.search(r"explore\.\w+\(", "".join(c["source"])))
+        if not shown:
+            continue
+        page = site / "notebooks" / f"{nb.stem}.html"
+        text = page.read_text(encoding="utf-8")
+        assert "widget-view+json" not in text, f"{page.name}: an unrendered widget view is left on the page"
+        pictures = [src for src in re.findall(r'<img [^>]*src="([^"]+)"', text)
+                    if (page.parent / src).resolve().exists() and _png_size((page.parent / src).resolve()) in sizes]
+        assert len(pictures) >= shown, f"{page.name}: {shown} explorer(s) shown, {len(pictures)} explorer picture(s) on the page"
+        if 'id="play-with-it"' in text:  # the picture follows the heading that introduces the explorer
+            assert any(text.index(f'src="{src}"') > text.index('id="play-with-it"') for src in pictures), page.name
+        checked += 1
+    assert checked >= 5
+
+
+def _explorer_classes(base: type) -> list[type]:
+    import importlib
+    import pkgutil
+
+    import aliasing.explore as pkg
+
+    for info in pkgutil.iter_modules(pkg.__path__):
+        importlib.import_module(f"aliasing.explore.{info.name}")
+    out, todo = [], list(base.__subclasses__())
+    while todo:
+        c = todo.pop()
+        out.append(c)
+        todo += c.__subclasses__()
+    return out

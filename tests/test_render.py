@@ -110,18 +110,69 @@ def _run(argv, capsys):
 
 
 def test_render_cli(tmp_path, capsys):
+    """One scheme on the built-in scene: a labelled figure (not a bare image) and the statistics table."""
+    from matplotlib.image import imread
+
     out = tmp_path / "r.png"
     for what in ("shadows", "grid", "error"):
         assert _run(["render", "--scheme", "P", "--f-over-n", "50", "--fov", "60", "--light", "overhead", "--what", what,
                      "--out", str(out), "--res", "64", "--image-res", "48"], capsys) == 0
         assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    capsys.readouterr()
+        h, w = imread(out).shape[:2]
+        assert h > 48 and w > 48 and (w > h) == (what == "error")  # a titled panel; the error's colour bar beside it
+        text = capsys.readouterr().out
+        assert text.splitlines()[0] == str(out) and "p99" in text and "analytic_max" in text  # the statistics, always
     assert _run(["render", "--scheme", "Nope", "--out", str(out), "--image-res", "16"], capsys) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1
+    assert _run(["render", "--f-over-n", "1", "--out", str(out)], capsys) == 2
+    assert "--f-over-n must be > 1" in capsys.readouterr().err
+    (tmp_path / "folder.png").mkdir()
+    assert _run(["render", "--out", str(tmp_path / "folder.png")], capsys) == 2 and "is a folder" in capsys.readouterr().err
     with pytest.raises(SystemExit) as e:
         _run(["render", "--what", "bad", "--out", str(out)], capsys)
     assert e.value.code == 2
+
+
+@pytest.mark.parametrize("scheme, light", [("LogP", "gamma:60@azimuth:30"), ("ZP3+P", "overhead"), ("FPc+LogP", "gamma:150")])
+def test_one_render_path_keeps_the_bare_images_pixels(scheme, light):
+    """``render``'s single-scheme pictures once were the bare images of shadow_image, grid_image and error_image;
+    every case now goes through the labelled figure (scenerender): the panels hold the same pixels, the grid's
+    scene lightened under its lines and the error greyed where it is not measured, at full resolution."""
+    from aliasing.raster.pictures import scenerender
+
+    kw = dict(image_res=48, budget=64**2, seed=1)
+    r = scenerender.render(scenerender.builtin(1.0, 50.0, 60.0, light, seed=1), [scheme], budget=64**2, image_res=48)
+    hit = r[0].view.triangle[::-1] >= 0
+    panels = {}
+    for what in ("shadows", "grid", "error"):
+        fig = scenerender.figure(r, what, every=4)
+        fig.canvas.draw()
+        panels[what] = np.asarray(fig.axes[0].images[0].get_array())
+        assert min(fig.axes[0].get_window_extent().size) >= 48  # no pixel of the render lost
+        assert scheme in fig.axes[0].get_title() and "p99" in fig.axes[0].get_title()
+    np.testing.assert_array_equal(panels["shadows"], pictures.shadow_image(1.0, 50.0, 60.0, light, scheme, **kw))
+    old = pictures.grid_image(1.0, 50.0, 60.0, light, scheme, every=4, **kw)
+    line = np.any(old != panels["shadows"], axis=-1)  # the grid's lines
+    assert line.sum() > 100
+    np.testing.assert_array_equal(panels["grid"][line], old[line])
+    np.testing.assert_allclose(panels["grid"][~line], 0.55 * old[~line] + 0.45, rtol=0, atol=1e-15)
+    old, err = pictures.error_image(1.0, 50.0, 60.0, light, scheme, **kw)
+    measured = r[0].measured[::-1]
+    assert 0.2 < measured.mean() < 0.8
+    np.testing.assert_array_equal(panels["error"][measured], old[measured])
+    np.testing.assert_array_equal(panels["error"][hit & ~measured], 0.6 * old[hit & ~measured] + 0.25)
+    np.testing.assert_array_equal(panels["error"][~hit], old[~hit])
+    np.testing.assert_array_equal(r[0].error[::-1][measured], err[measured])
+
+
+def test_large_render_panel_keeps_every_pixel():
+    from aliasing.raster.pictures import scenerender
+
+    r = scenerender.render(scenerender.builtin(1.0, 20.0, 60.0, "gamma:60", seed=1), ["P"], budget=64**2, image_res=400)
+    fig = scenerender.figure(r, "shadows")
+    fig.canvas.draw()
+    assert min(fig.axes[0].get_window_extent().size) >= 400 and fig.dpi == scenerender.DPI
 
 
 @pytest.mark.parametrize("mod", ["raster_shadows", "raster_grid", "raster_error", "raster_cdf"])

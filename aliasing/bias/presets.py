@@ -114,7 +114,8 @@ def get(name: str) -> BiasPreset:
     5
     """
     if not isinstance(name, str) or name.strip().lower() not in PRESETS:
-        raise ValueError(f"unknown bias preset {name!r}; choose one of: {', '.join(PRESETS)}")
+        hint = check.did_you_mean(name, list(PRESETS)) if isinstance(name, str) else ""
+        raise ValueError(f"unknown bias preset {name!r}{hint}; choose one of: {', '.join(PRESETS)}")
     return PRESETS[name.strip().lower()]
 
 

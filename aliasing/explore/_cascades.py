@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.patches import Polygon
+from matplotlib.ticker import FuncFormatter
 
 from .. import budgets, partitioning
 from . import widget as w
@@ -103,13 +104,15 @@ def draw(fig: Figure, d: dict[str, Any]) -> dict:
     bands = [a.add_patch(Polygon(np.zeros((3, 2)), closed=True, fc=f"C{i % 10}", alpha=0.45, lw=0)) for i in range(slots)]
     planes = [a.axvline(1.0, color=f"C{i % 10}", lw=0.8) for i in range(slots)]
     a.set_xscale("log")
+    w.readable_log_ticks(a.xaxis)
+    a.yaxis.set_major_formatter(FuncFormatter(lambda y, pos: w.short_number(y)))  # far up to 10¹²: short labels
     a.set(xlabel="z [world units] (log)", ylabel="y", title="partitions on the frustum (side view)")
     i = np.arange(1, slots + 1)
     bars = b.bar(i, np.ones(slots), color=[f"C{j % 10}" for j in range(slots)])
     b.axhline(1.0, color="0.5", lw=0.8, ls="--")
     b.set(xlabel="partition", ylabel="worst error m (texel/pixel width)")
     texts = [b.text(i[j], 0.0, "", ha="center", va="bottom", fontsize=7) for j in range(slots)]
-    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.15, top=0.84, wspace=0.25)
+    fig.subplots_adjust(left=0.08, right=0.98, bottom=0.15, top=0.84, wspace=0.25)
     artists = {"a": a, "b": b, "frustum": frustum, "bands": bands, "planes": planes, "bars": bars, "texts": texts, "slots": slots,
                "suptitle": fig.suptitle("", fontsize=10)}
     redraw(artists, d)
@@ -138,7 +141,9 @@ def redraw(artists: dict, d: dict[str, Any]) -> bool:
         if j < k:
             bar.set_height(d["error"][j])
             text.set_position((j + 1, d["error"][j]))
-            text.set_text(f"S̄ {d['S_max'][j]:.3g}\n{d['res_s'][j]:.0f}×{d['res_t'][j]:.0f}")
+            side = f"{d['res_s'][j]:.0f}²" if d["res_s"][j] == d["res_t"][j] else f"{d['res_s'][j]:.0f}×{d['res_t'][j]:.0f}"
+            text.set_text(f"S̄ {w.short_number(d['S_max'][j])}\n{side}")
+            text.set_fontsize(7 if k <= 5 else 6)  # eight labels side by side fit at 6 pt
     b.set_xlim(0.4, k + 0.6)  # as a bar chart of k bars autoscales, whatever the hidden slots
     b.set_xticks(np.arange(1, k + 1))
     b.set_ylim(0, max(d["error"].max(), 1.0) * 1.35)

@@ -15,7 +15,6 @@ from typing import Any
 import numpy as np
 from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
-from matplotlib.ticker import FormatStrFormatter, LogLocator
 
 from .. import geometry, schemes
 from . import widget as w
@@ -95,12 +94,13 @@ def draw(fig: Figure, d: dict[str, Any]) -> dict:
     bx = b.bar(k[used] - 0.2, d["M_x"][used], 0.4, label="M_x")
     bz = b.bar(k[used] + 0.2, d["M_z"][used], 0.4, label="M_z")
     b.set_yscale("log")
-    b.yaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
-    b.yaxis.set_major_formatter(FormatStrFormatter("%g"))
-    b.set(xlabel="map", ylabel="max. error (unit res.)", xticks=k[used])
+    w.readable_log_ticks(b.yaxis)
+    step = -(-int(used.sum()) // 10)  # at most 10 labelled maps (FPcs+ZP4 has up to 29 slots): the labels never overlap
+    b.set_xticks(k[used], [str(m) if i % step == 0 else "" for i, m in enumerate(k[used])])
+    b.set(xlabel="map", ylabel="max. error (unit res.)")
     b.legend(fontsize=8, loc="upper left")
     text = b.text(0.98, 0.97, "", transform=b.transAxes, ha="right", va="top", fontsize=8, bbox={"fc": "white", "ec": "0.7"})
-    fig.subplots_adjust(left=0.04, right=0.98, bottom=0.15, top=0.84, wspace=0.4)
+    fig.subplots_adjust(left=0.04, right=0.98, bottom=0.15, top=0.84, wspace=0.5)  # the colour bar's labels clear of the bars' y label
     artists = {"a": a, "b": b, "im": im, "cb": cb, "marker": marker, "bx": bx, "bz": bz, "text": text, "used": used,
                "shape": d["S_map"].shape, "suptitle": fig.suptitle("", fontsize=10)}
     redraw(artists, d)
@@ -118,7 +118,7 @@ def redraw(artists: dict, d: dict[str, Any]) -> bool:
     artists["im"].set_array(d["S_map"])
     artists["im"].set_clim(lo, hi)
     ticks = np.geomspace(lo, hi, 5)
-    artists["cb"].set_ticks(ticks, labels=[f"{x:.3g}" for x in ticks])
+    artists["cb"].set_ticks(ticks, labels=[w.short_number(x) for x in ticks])
     artists["cb"].minorticks_off()
     artists["marker"].set_data(*([v] for v in map_position(d["light"])))
     artists["marker"].set_visible(bool(d["light"][1] >= 0))

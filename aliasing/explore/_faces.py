@@ -91,13 +91,13 @@ def draw(fig: Figure, d: dict[str, Any]) -> dict:
                a.text(0, 0, label, fontsize=7)) for label, _, _ in d["axes"]]
     a.plot(0, 0, "k.", ms=6)
     a.set(aspect="equal", xticks=[], yticks=[], title="seen from the light (arrows: map axes)")
-    a.legend(fontsize=7, loc="best")
+    a.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)  # beside the drawing: no arrow label under it
     used = d["M_x"] > 0
     x = np.arange(used.sum())
     bars = b.bar(x, d["S_i"][used], color="C7")
     b.set_xticks(x, [lab for lab, u in zip(d["labels"], used) if u], fontsize=8)
     b.set(ylabel="S = M_x·M_z (unit res.)")
-    fig.subplots_adjust(left=0.03, right=0.98, bottom=0.12, top=0.84, wspace=0.2)
+    fig.subplots_adjust(left=0.02, right=0.98, bottom=0.2, top=0.84, wspace=0.45)
     artists = {"a": a, "b": b, "polygons": polygons, "far": far, "arrows": arrows, "bars": bars, "used": used,
                "chosen": d["chosen"].copy(), "labels": [lab for lab, _, _ in d["axes"]], "suptitle": fig.suptitle("", fontsize=10)}
     redraw(artists, d)
@@ -114,17 +114,22 @@ def redraw(artists: dict, d: dict[str, Any]) -> bool:
     for poly, idx in zip(artists["polygons"], FACE_CORNERS):
         poly.set_xy(c[list(idx)])
     artists["far"].set_data(*c[[4, 5, 6, 7, 4]].T)
-    for (arrow, text), (_, axis, length) in zip(artists["arrows"], d["axes"]):
-        arrow.xy = tuple(axis * length * 0.85)
-        text.set_position(tuple(axis * length * 0.87))
-    span = np.ptp(c, axis=0).max()
-    a.set_xlim(c[:, 0].min() - 0.05 * span, c[:, 0].max() + 0.05 * span)
-    a.set_ylim(c[:, 1].min() - 0.05 * span, c[:, 1].max() + 0.05 * span)
+    tips = [axis * length * 0.85 for _, axis, length in d["axes"]]
+    for (arrow, text), tip in zip(artists["arrows"], tips):
+        arrow.xy = tuple(tip)
+        text.set_position(tuple(tip * 1.02))
+        text.set_ha("left" if tip[0] >= 0 else "right")  # the label beyond the tip, away from the other arrows
+        text.set_va("bottom" if tip[1] >= 0 else "top")
+    pts = np.vstack([c, *tips]) if tips else c  # the arrows may reach past the frustum's outline: keep them inside
+    span = np.ptp(pts, axis=0).max()
+    a.set_xlim(pts[:, 0].min() - 0.12 * span, pts[:, 0].max() + 0.12 * span)  # room for the labels at the tips
+    a.set_ylim(pts[:, 1].min() - 0.12 * span, pts[:, 1].max() + 0.12 * span)
     for rect, height in zip(artists["bars"], d["S_i"][used]):
         rect.set_height(height)
     b.set_ylim(0.0, d["S_i"][used].max() * 1.08)
     taus = ", ".join(f"{n} {t:.0f}°" for n, t in zip(faces.SIDES, d["tau"]) if np.isfinite(t))
-    b.set_title(f"S̄ = {d['S']:.4g} over {d['maps']} map(s); τ: {taus or '—'}", fontsize=9)
+    b.set_title(f"S̄ = {d['S']:.4g} over {d['maps']} map(s)", fontsize=9)
+    b.set_xlabel(f"τ: {taus or '—'}", fontsize=8)  # one angle per side face: a line of its own, never past the edge
     artists["suptitle"].set_text(f"{d['variant'].upper()}+{d['parameterization']}, γ = {d['gamma']:g}°, azimuth = {d['azimuth']:g}°, "
                                  f"f/n = {d['f_over_n']:.4g}, fov = {d['fov']:g}°")
     return True

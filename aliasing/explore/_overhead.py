@@ -95,7 +95,8 @@ def draw(fig: Figure, d: dict[str, Any]) -> dict:
     marker = b.axvline(0.0, color="C3", lw=1, ls="--")
     b.set(xlabel="η (−1 uniform, 0 LiSPSM, 1 PSM)")
     b.legend(fontsize=8)
-    fig.subplots_adjust(left=0.08, right=0.98, bottom=0.15, top=0.84, wspace=0.22)
+    w.readable_log_ticks(a.xaxis, a.yaxis, b.yaxis)  # ≥ 3 labelled ticks at any f/n (f/n = 1.5 is under a decade)
+    fig.subplots_adjust(left=0.1, right=0.98, bottom=0.15, top=0.84, wspace=0.22)
     artists = {"a": a, "b": b, "marker": marker, "suptitle": fig.suptitle("", fontsize=10)}
     redraw(artists, d)
     return artists

@@ -90,12 +90,31 @@ def draw(fig: Figure, d: dict[str, Any]) -> None:
         im = b.imshow(np.where(ok, err, np.nan), origin="lower", norm=Normalize(*_range(err[ok])),
                       cmap="jet", interpolation="nearest")
         fig.colorbar(im, ax=b, fraction=0.046, pad=0.02, label="pixels per texel")
-    ratios = "  ".join(f"map {i + 1}: {x:.2f}, {z:.2f}" for i, (x, z) in enumerate(zip(d["ratio_M_x"], d["ratio_M_z"])))
     b.set(xticks=[], yticks=[], title="per-pixel error")
-    fig.text(0.5, 0.03, f"measured/bound (M_x, M_z) per map: {ratios}", ha="center", fontsize=8)
+    fig.text(0.5, 0.03, ratio_line(d["ratio_M_x"], d["ratio_M_z"]), ha="center", fontsize=8)
     fig.suptitle(f"{d['scheme']}, light {d['light']}, f/n = {d['f_over_n']:.4g}, fov = {d['fov']:g}°, {d['image_res']}² pixels, "
                  f"{d['maps']} map(s)", fontsize=10)
-    fig.subplots_adjust(left=0.02, right=0.95, bottom=0.1, top=0.86, wspace=0.1)
+    fig.subplots_adjust(left=0.02, right=0.9, bottom=0.1, top=0.86, wspace=0.1)  # right: room for the colour bar's label
+
+
+#: Most maps whose ratios are listed one by one (more: their range).
+LISTED_MAPS = 4
+
+
+def ratio_line(ratio_x: np.ndarray, ratio_z: np.ndarray) -> str:
+    """The measured/bound ratios as one line: per map for up to :data:`LISTED_MAPS` maps, else their range.
+
+    Example
+    -------
+    >>> ratio_line(np.array([0.95, 0.5]), np.array([0.98, 0.7]))
+    'measured/bound (M_x, M_z) per map: map 1: 0.95, 0.98   map 2: 0.50, 0.70'
+    >>> ratio_line(np.linspace(0.5, 1.0, 9), np.full(9, 0.9))
+    'measured/bound over 9 maps: M_x 0.50–1.00, M_z 0.90–0.90'
+    """
+    if len(ratio_x) <= LISTED_MAPS:
+        return "measured/bound (M_x, M_z) per map: " + "   ".join(f"map {i + 1}: {x:.2f}, {z:.2f}" for i, (x, z) in enumerate(zip(ratio_x, ratio_z)))
+    span = lambda r: f"{np.nanmin(r):.2f}–{np.nanmax(r):.2f}"  # noqa: E731
+    return f"measured/bound over {len(ratio_x)} maps: M_x {span(ratio_x)}, M_z {span(ratio_z)}"
 
 
 def _range(values: np.ndarray) -> tuple[float, float]:

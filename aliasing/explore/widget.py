@@ -2,7 +2,12 @@
 
 The figure is drawn with matplotlib's object-oriented API on an Agg canvas and shown as
 a PNG in an ``ipywidgets.Image``: it needs no live front end (explorers build headless in
-tests and in nbmake), and the picture is what a saved notebook shows.  Changes are
+tests and in nbmake).  The PNG is drawn at :data:`PIXEL_RATIO` device pixels per CSS pixel
+(``dpi`` = :data:`CSS_DPI` × :data:`PIXEL_RATIO`) and shown :data:`CSS_DPI` CSS pixels per
+inch of the figure, sharp on high-density screens.  The display's MIME bundle
+(:meth:`Explorer._repr_mimebundle_`) holds the live widget view and, beside it, the same
+picture as ``image/png`` and the controls' values as ``text/plain``: a front end without
+the widget manager (nbconvert, myst-nb, GitHub) shows the picture of the explorer's state.  Changes are
 debounced: inside a running kernel (an asyncio loop) the update runs ``debounce`` seconds
 after the last change; without a loop (tests, scripts) it runs at once.  Any error of
 ``compute`` or ``draw`` goes to the message line; the last good data and picture stay.
@@ -11,6 +16,7 @@ after the last change; without a loop (tests, scripts) it runs at once.  Any err
 from __future__ import annotations
 
 import asyncio
+import base64
 import html
 import io
 from typing import Any
@@ -19,9 +25,16 @@ import ipywidgets as widgets
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+from matplotlib.ticker import FuncFormatter, Locator, LogLocator, MaxNLocator
 
 #: Seconds after the last change before an update runs (in a live kernel).
 DEBOUNCE = 0.15
+#: CSS pixels per inch of the figure as shown in the notebook (the CSS inch).
+CSS_DPI = 96
+#: Device pixels drawn per CSS pixel (a high-density screen's ratio); the figure's dpi is CSS_DPI × PIXEL_RATIO.
+PIXEL_RATIO = 2
+#: Fewest labelled ticks on a logarithmic axis (:class:`ReadableLogLocator`).
+MIN_TICKS = 3
 
 
 class Explorer(widgets.VBox):
@@ -42,7 +55,7 @@ class Explorer(widgets.VBox):
 
     title = ""
     figsize = (9.0, 3.6)
-    dpi = 72
+    dpi = CSS_DPI * PIXEL_RATIO
 
     def __init__(self, debounce: float = DEBOUNCE, **values: Any) -> None:
         self.controls = self.make_controls()
@@ -54,7 +67,7 @@ class Explorer(widgets.VBox):
         self._hold = False
         self._artists: dict | None = None
         self.message = widgets.HTML(value="")
-        self.image = widgets.Image(format="png")
+        self.image = widgets.Image(format="png", layout=widgets.Layout(width=f"{self.css_width()}px", max_width="100%", height="auto"))
         self.figure = Figure(figsize=self.figsize, dpi=self.dpi)
         FigureCanvasAgg(self.figure)
         for w in self.controls.values():
@@ -129,8 +142,7 @@ class Explorer(widgets.VBox):
                     self._artists = self.draw(fig, data)
                     for ax in fig.axes:  # log axes' minor ticks cost most of a redraw
                         ax.minorticks_off()
-                buf = io.BytesIO()
-                fig.savefig(buf, format="png", dpi=self.dpi, pil_kwargs={"compress_level": 1})
+                buf = _png(fig)
         except Exception as exc:  # shown in the widget, never a traceback in the notebook
             text = str(exc) if isinstance(exc, ValueError) else f"{type(exc).__name__}: {exc}"
             self.error = text
@@ -165,6 +177,39 @@ class Explorer(widgets.VBox):
         """The PNG currently shown."""
         return bytes(self.image.value)
 
+    def css_width(self) -> int:
+        """Width [CSS pixels] the picture is shown at: the figure's width at :data:`CSS_DPI`."""
+        return round(self.figsize[0] * CSS_DPI)
+
+    def describe(self) -> str:
+        """The explorer's title and its controls' values, one line of ``description = value`` each."""
+        return "\n".join([self.title] + [f"  {w.description} = {_shown(w)}" for w in self.controls.values()])
+
+    def _repr_mimebundle_(self, **kwargs: Any) -> tuple[dict, dict]:
+        """The widget view (live in JupyterLab) with the picture of the current state beside it.
+
+        ``image/png`` (base64, shown :meth:`css_width` CSS pixels wide) is what nbconvert,
+        myst-nb and GitHub show where no widget manager runs; ``text/plain`` lists the
+        controls' values (:meth:`describe`).
+        """
+        data = dict(super()._repr_mimebundle_(**kwargs))
+        data["text/plain"] = self.describe()
+        meta = {}
+        if self.image.value:
+            data["image/png"] = base64.b64encode(self.png()).decode("ascii")
+            meta["image/png"] = {"width": self.css_width()}
+        return data, meta
+
+
+def _png(fig: Figure) -> io.BytesIO:
+    """The figure drawn once on its Agg canvas, as an RGB PNG (fast zlib level 1; the figure is opaque)."""
+    from PIL import Image  # matplotlib's own dependency
+
+    fig.canvas.draw()
+    buf = io.BytesIO()
+    Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3]).save(buf, format="png", compress_level=1)
+    return buf
+
 
 def _shown(widget: widgets.ValueWidget) -> str:
     """A control's value as its label shows it (the option's label for dropdowns)."""
@@ -173,6 +218,81 @@ def _shown(widget: widgets.ValueWidget) -> str:
         return str(label)
     value = widget.value
     return f"{value:.4g}" if isinstance(value, float) else str(value)
+
+
+class ReadableLogLocator(Locator):
+    """Ticks of a logarithmic axis with at least :data:`MIN_TICKS` inside any view range.
+
+    Decades (1, 10, 100, …) when the range holds enough of them, else 1-2-5 steps, else
+    (a range under a decade, e.g. f/n from 1 to 1.5) evenly spaced round values.
+
+    Example
+    -------
+    >>> ReadableLogLocator().tick_values(1.0, 1e4).tolist()
+    [1.0, 10.0, 100.0, 1000.0, 10000.0]
+    >>> ReadableLogLocator().tick_values(1.0, 1.5).tolist()
+    [1.0, 1.2, 1.4]
+    """
+
+    def __call__(self):
+        lo, hi = self.axis.get_view_interval()
+        return self.tick_values(lo, hi)
+
+    def tick_values(self, vmin: float, vmax: float) -> np.ndarray:
+        lo, hi = sorted((float(vmin), float(vmax)))
+        if not (np.isfinite(lo) and np.isfinite(hi) and hi > lo > 0):
+            return np.array([])
+        inside = lambda t: t[(t >= lo * (1 - 1e-9)) & (t <= hi * (1 + 1e-9))]  # noqa: E731
+        for subs in ((1.0,), (1.0, 2.0, 5.0)):
+            ticks = inside(LogLocator(base=10.0, subs=subs, numticks=12).tick_values(lo, hi))
+            if len(ticks) >= MIN_TICKS:
+                return ticks
+        return inside(MaxNLocator(nbins=4, steps=[1, 2, 2.5, 5, 10], min_n_ticks=MIN_TICKS).tick_values(lo, hi))
+
+
+def _tick_label(x: float, pos: int | None = None) -> str:
+    """A log axis's tick as a plain number from 0.001 to 9999 (1, 20, 0.5, 1.25, 1000), else m×10ᵏ (10⁵, 5×10⁴)."""
+    if x <= 0 or not np.isfinite(x):
+        return ""
+    if 1e-3 <= x < 1e4:
+        return f"{x:.4g}"
+    k = int(np.floor(np.log10(x) + 1e-9))
+    m = x / 10.0**k
+    return f"$10^{{{k}}}$" if abs(m - 1) < 1e-6 else f"${m:.3g}\\times10^{{{k}}}$"
+
+
+def short_number(x: float) -> str:
+    """A number in at most 3 significant digits, exponents without sign or padding: for crowded labels.
+
+    Example
+    -------
+    >>> [short_number(x) for x in (7.53e9, 0.25, 1.2e-4, 1448.0, 0.0)]
+    ['7.53e9', '0.25', '1.2e-4', '1.45e3', '0']
+    """
+    if x == 0 or not np.isfinite(x):
+        return f"{x:g}"
+    if 1e-3 <= abs(x) < 1e3:
+        return f"{x:.3g}"
+    mantissa, exponent = f"{x:.2e}".split("e")
+    return f"{float(mantissa):g}e{int(exponent)}"
+
+
+def readable_log_ticks(*axes: Any) -> None:
+    """Give each logarithmic matplotlib axis (``ax.xaxis``, ``ax.yaxis``) :class:`ReadableLogLocator`'s labelled ticks.
+
+    Example
+    -------
+    >>> fig = Figure()
+    >>> ax = fig.subplots()
+    >>> ax.set_xscale("log"); ax.set_xlim(1.0, 1.5)
+    (1.0, 1.5)
+    >>> readable_log_ticks(ax.xaxis)
+    >>> [t.get_text() for t in ax.xaxis.get_ticklabels()]
+    ['1', '1.2', '1.4']
+    """
+    for axis in axes:
+        axis.set_major_locator(ReadableLogLocator())
+        axis.set_major_formatter(FuncFormatter(_tick_label))
 
 
 def _rows(items: list, n: int) -> list[list]:

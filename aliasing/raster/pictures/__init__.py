@@ -4,9 +4,9 @@ distributions, of the built-in scene or a loaded one.
 * :mod:`.images`: a scene seen and shadowed through a scheme's maps (:func:`render_view`)
   and the pictures drawn from it (:func:`shade`, :func:`grid_of`, :func:`error_of`), the
   error's distribution over light directions (:func:`error_cdf`);
-* :mod:`.scenerender`: each scheme rendered and measured on a loaded scene with any split
-  method or engine preset;
-* :mod:`.command`: the ``aliasing render`` command.
+* :mod:`.scenerender`: each scheme rendered and measured on the built-in or a loaded scene
+  with any split method or engine preset, drawn as titled panels with their statistics;
+* :mod:`.command`: the ``aliasing render`` command (every case through :mod:`.scenerender`).
 
 Example
 -------

@@ -3,69 +3,24 @@
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
-
-from ... import _validation as check
-from ...sweep import store
+from ...bias import presets as bias_presets
 from ..scenes import world
-from ..scenes.camera import check_raster_frustum
-from .images import error_image, grid_image, shadow_image
 from .scenerender import run
 
 
 def _render(args: argparse.Namespace) -> int:
-    try:  # parsed once here, for both paths below (float() alone named no option)
+    """``aliasing render``: one path for every case (:func:`~aliasing.raster.pictures.scenerender.run`),
+    the built-in scene or a loaded one, one scheme or several: labelled panels and their statistics."""
+    try:  # parsed once here (float() alone named no option)
         args.f_over_n = float(args.f_over_n)
     except ValueError:
         raise ValueError(f"--f-over-n must be a number, got {args.f_over_n!r}") from None
     if args.seed < 0:
         raise ValueError(f"--seed must be a whole number >= 0, got {args.seed}")
-    if args.what == "bias-margin" and (args.scene is not None or "," in args.scheme or args.splits is not None):
-        raise ValueError("--what bias-margin draws the seeded scene through one scheme (no --scene, --splits or several schemes)")
-    if args.scene is not None or "," in args.scheme or args.splits is not None or args.what == "cdf" or args.format != "text" \
-            or any(v is not None for v in (args.eye, args.target, args.camera, args.light_dir, args.k, args.lam, args.near, args.far)) or args.param:
-        return run(args)
-    if args.out is None:
-        raise ValueError("--out FILE.png is required")
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    f_over_n = float(args.f_over_n)
-    if not f_over_n > 1:
-        raise ValueError(f"--f-over-n must be > 1, got {args.f_over_n!r}")
-    out = Path(args.out)
-    if out.suffix.lower() != ".png":
-        raise ValueError(f"--out must be a .png file, got {args.out!r}")
-    if out.exists() and out.is_dir():
-        raise ValueError(f"--out must be a file, but {args.out!r} is a folder")
-    kw = dict(image_res=args.image_res, budget=args.res**2, seed=args.seed)
-    fov = 60.0 if args.fov is None else args.fov
-    check_raster_frustum(1.0, f_over_n, float(check.fov(fov)))
-    if args.what == "shadows":
-        img = shadow_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
-    elif args.what == "grid":
-        img = grid_image(1.0, f_over_n, fov, args.light, args.scheme, every=args.every, **kw)
-    elif args.what == "bias-margin":
-        from .biasmargin import bias_margin_image
-
-        img, _ = bias_margin_image(1.0, f_over_n, fov, args.light, args.scheme, preset=args.bias_preset, **kw)
-    else:
-        img, _ = error_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
-    # the sweep's safe writer (store): atomic, symlinks followed, devices refused, one-line errors
-    try:
-        out.parent.mkdir(parents=True, exist_ok=True)
-        target = store.resolve_out(out, "--out")
-        if target is None:
-            raise ValueError("--out must be a .png file, not standard output")
-        with store.atomic_target(target) as tmp:
-            plt.imsave(tmp, img, format="png", metadata={"Software": None})
-    except OSError as exc:
-        raise ValueError(f"--out {args.out!r} cannot be written: {exc.strerror}") from None
-    print(out)
-    return 0
+    if args.what == "bias-margin":
+        bias_presets.get(args.bias_preset)  # refused before any work
+    return run(args)
 
 
 def add_render_parser(sub) -> argparse.ArgumentParser:
@@ -75,7 +30,8 @@ def add_render_parser(sub) -> argparse.ArgumentParser:
         help="picture of a seeded or loaded scene: shadows, projected texel grid, per-pixel error, error distribution",
         description="Render a seeded ground-and-boxes scene (near 1, far = f/n, eye 1 above the ground), or your own scene "
         "(--scene FILE: glTF/GLB, OBJ, PLY, STL) seen by a world-space camera, with one directional light through each "
-        "scheme's shadow maps sharing a texel budget of RES² texels; write a PNG (schemes side by side) and a statistics table.",
+        "scheme's shadow maps sharing a texel budget of RES² texels; write a PNG (one panel per scheme, titled with its "
+        "statistics) and print the statistics table.",
         epilog="schemes: Standard | P | LogP | <warping rule>, alone or after ZP<k>+; FPc|FPcs[+ZP<k>]+P|LogP|Standard; "
         "comma-separated for side-by-side panels; with --splits NAME a warp used in every cascade.  "
         "lights: overhead | behind | front | gamma:DEG[@azimuth:DEG] (eye space), or --light-dir X,Y,Z (world space, towards the light).",

@@ -1,7 +1,8 @@
-"""Your own scene: a loaded mesh, a world-space camera and light, each scheme rendered and measured.
+"""Schemes rendered and measured on a scene: your own (a loaded mesh, a world-space camera and
+light) or the built-in ground and boxes (:func:`builtin`); the one path of ``aliasing render``.
 
 The scene comes placed in eye space (:func:`aliasing.raster.scenes.setup`: file, world camera,
-light).  :func:`render` draws the scene through each scheme's maps (any split method or
+light; :func:`builtin`: the seeded scene in the conventions' eye space).  :func:`render` draws the scene through each scheme's maps (any split method or
 engine preset, :mod:`aliasing.raster.draw.cascades`) sharing one texel budget and measures the
 perspective aliasing error per pixel on lit surfaces within [near, far]
 (:func:`aliasing.raster.pictures.error_field`:
@@ -34,6 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 from ... import _validation as check
 from ... import geometry
 from ... import partitioning
+from ...sweep import store
 from ..scenes.camera import Camera, check_raster_frustum
 from ..draw.cascades import CascadeSet, budget_shares, cascade_set
 from .images import BIAS, View, error_field, render_view
@@ -48,7 +50,9 @@ PERCENTILES = (50, 90, 99)
 class SchemeRender:
     """One scheme on the scene: ``label``, its ``view``, ``cascades``, map ``resolutions``
     [texels per side], per-pixel ``error`` (R, R, row 0 at the bottom; NaN where not
-    measured, beyond far or on surfaces not facing the light, :data:`MIN_COS_LIGHT`) and ``stats``."""
+    measured, beyond far or on surfaces not facing the light, :data:`MIN_COS_LIGHT`), ``stats``
+    and ``measured`` (R, R): the pixels where the error is measured, on the scene within far
+    and facing the light (the error is NaN there only at a face's border)."""
 
     label: str
     view: View
@@ -56,6 +60,7 @@ class SchemeRender:
     resolutions: NDArray[np.int64]
     error: Array
     stats: dict = field(default_factory=dict)
+    measured: NDArray[np.bool_] | None = None
 
 
 def render(st: SceneSetup, schemes_: list[str], *, splits: str | None = None, k: int | None = None, allocation: str = "equal", budget: int = 1024**2,
@@ -73,12 +78,13 @@ def render(st: SceneSetup, schemes_: list[str], *, splits: str | None = None, k:
     for name in schemes_:
         cs = cascade_set(cam.near, cam.far, cam.fov, st.light, name.strip(), splits=splits, k=k, **params)
         res = budget_shares(cs, budget, allocation)
-        v = render_view(st.scene, cs.maps, res, image_res=image_res, bias=bias, faces=st.faces)
+        v = render_view(st.scene, cs.maps, res, image_res=image_res, bias=bias, ground=st.ground, faces=st.faces)
         if not (v.triangle >= 0).any():
             raise ValueError("no triangles in front of the camera: the image is empty")
         facing = np.nan_to_num(v.normal) @ st.light > MIN_COS_LIGHT  # lit side, not grazing the light
-        err = np.where((v.position[..., 2] <= cam.far) & facing, error_field(v), np.nan)  # shadows end at far
-        out.append(SchemeRender(cs.label, v, cs, res, err, statistics(err, cs, res, v, budget)))
+        measured = (v.triangle >= 0) & (v.position[..., 2] <= cam.far) & facing  # shadows end at far
+        err = np.where(measured, error_field(v), np.nan)
+        out.append(SchemeRender(cs.label, v, cs, res, err, statistics(err, cs, res, v, budget), measured))
     return out
 
 
@@ -130,16 +136,29 @@ def _cell(v: object) -> str:
 # ----------------------------------------------------------------------------- pictures and CLI
 
 
-def figure(renders: list[SchemeRender], what: str = "shadows", *, every: int = 16, vmax: float = 64.0):
-    """Side-by-side panels of the schemes (``shadows``, ``grid``, ``error``) or their per-pixel
-    error distributions on one plot (``cdf``); returns the matplotlib Figure."""
+#: Resolution [dots per inch] :func:`run` saves the figure at; :func:`figure` sizes the panels for it.
+DPI = 110
+#: Smallest side of an image panel [inches] (small renders are enlarged to it).
+PANEL_MIN = 3.2
+
+
+def figure(renders: list[SchemeRender], what: str = "shadows", *, every: int = 16, vmax: float = 64.0, preset: str = "filament"):
+    """Side-by-side panels of the schemes (``shadows``, ``grid``, ``error``, ``bias-margin``: an
+    engine ``preset``'s bias over each pixel's minimal bias) or their per-pixel error
+    distributions on one plot (``cdf``); returns the matplotlib Figure.
+
+    Each panel is titled with its scheme and statistics and is at least the image's size at
+    :data:`DPI` (no pixel of the render is lost when saved at that resolution); ``error`` has a
+    colour bar, ``grid`` a legend of the maps.
+    """
+    from .biasmargin import SPAN, margin_of
     import matplotlib.pyplot as plt
     from matplotlib.colors import LogNorm
     from matplotlib.patches import Patch
 
     from .images import GRID_COLOURS, cdf, error_of, grid_of, shade
 
-    kind = check.choice(what, "what", dict.fromkeys(("shadows", "grid", "error", "cdf")))
+    kind = check.choice(what, "what", dict.fromkeys(("shadows", "grid", "error", "cdf", "bias-margin")))
     if kind == "cdf":
         fig, ax = plt.subplots(figsize=(6, 4), layout="constrained")
         for r in renders:
@@ -150,15 +169,21 @@ def figure(renders: list[SchemeRender], what: str = "shadows", *, every: int = 1
         ax.legend(fontsize=7, loc="lower right")
         return fig
     n = len(renders)
-    fig, axes = plt.subplots(1, n, figsize=(3.6 * n, 4.3 if kind == "grid" else 3.9), layout="constrained", squeeze=False)
+    side = max(renders[0].view.position.shape[0] / DPI * 1.04, PANEL_MIN)  # [inches]: the image's pixels and some room
+    legend = 0.2 + 0.16 * np.ceil(max(len(r.resolutions) for r in renders) / 2) if kind == "grid" else 0.0
+    width = n * (side + 0.15) + (1.1 if kind in ("error", "bias-margin") else 0.0)
+    fig, axes = plt.subplots(1, n, figsize=(width, side + 0.55 + legend), dpi=DPI, layout="constrained", squeeze=False)
     for ax, r in zip(axes[0], renders):
         if kind == "shadows":
             img = np.clip(shade(r.view)[::-1], 0, 1)
         elif kind == "grid":
             img = grid_of(r.view, every, wash=0.45)
+        elif kind == "bias-margin":
+            img = margin_of(r.view, preset)[0]
         else:
             img = error_of(r.view, vmax)[0]
-            img = np.where(np.isnan(r.error[::-1])[..., None] & (r.view.triangle[::-1] >= 0)[..., None], 0.6 * img + 0.25, img)
+            unmeasured = (r.view.triangle >= 0) & ~(r.measured if r.measured is not None else np.isfinite(r.error))
+            img = np.where(unmeasured[::-1, :, None], 0.6 * img + 0.25, img)  # greyed: facing away from the light, or beyond far
         ax.imshow(img, interpolation="nearest")
         ax.set_xticks([]), ax.set_yticks([])
         s = r.stats
@@ -169,7 +194,16 @@ def figure(renders: list[SchemeRender], what: str = "shadows", *, every: int = 1
             ax.legend(handles=handles, fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.01), ncol=2, frameon=False)
     if kind == "error":
         sm = plt.cm.ScalarMappable(norm=LogNorm(1.0, vmax), cmap="jet")
-        fig.colorbar(sm, ax=axes[0].tolist(), shrink=0.8, label="perspective error [pixels per texel] (grey: not measured)")
+        cb = fig.colorbar(sm, ax=axes[0].tolist(), shrink=0.8, label="perspective error [pixels per texel] (grey: not measured)")
+        ticks = 2.0 ** np.arange(0, np.floor(np.log2(vmax)) + 1)  # 1, 2, 4, … : a labelled tick per doubling
+        cb.set_ticks(ticks, labels=[f"{t:g}" for t in ticks])
+        cb.minorticks_off()
+    if kind == "bias-margin":
+        sm = plt.cm.ScalarMappable(norm=LogNorm(2.0 ** -SPAN, 2.0 ** SPAN), cmap="RdBu")
+        cb = fig.colorbar(sm, ax=axes[0].tolist(), shrink=0.8, label=f"{preset} bias / minimal bias\n(red: acne; blue: to spare, a lit gap at contacts)")
+        ticks = 2.0 ** np.arange(-SPAN, SPAN + 1)
+        cb.set_ticks(ticks, labels=[f"{t:g}" for t in ticks])
+        cb.minorticks_off()
     return fig
 
 
@@ -192,8 +226,39 @@ def report(st: SceneSetup, renders: list[SchemeRender], *, budget: int, allocati
     }
 
 
+#: Ground cells per side of the built-in scene (its first 2·16² triangles are the ground).
+GROUND_CELLS = 16
+
+
+def builtin(near: float, far: float, fov: float, light: str | ArrayLike, *, seed: int = 1) -> SceneSetup:
+    """The built-in scene (:func:`~aliasing.raster.scenes.builtin.ground_and_boxes`, 40 boxes) in eye space as a
+    :class:`SceneSetup`: the eye at the origin looking along +z, near/far [world units], ``fov`` [deg], one light.
+
+    Example
+    -------
+    >>> st = builtin(1.0, 50.0, 60.0, "gamma:60", seed=1)
+    >>> st.ground, st.camera.far, len(st.scene.triangles) > st.ground
+    (512, 50.0, True)
+    """
+    from ..scenes.builtin import ground_and_boxes
+
+    n, f = (float(x) for x in check.frustum(near, far))
+    fv = float(check.fov(fov))
+    check_raster_frustum(n, f, fv)  # before the scene is built
+    ls = geometry.lights(light)
+    if ls.shape[0] != 1:
+        raise ValueError(f"light must be a single direction, got {ls.shape[0]}")
+    sc = ground_and_boxes(n, f, fv, seed=seed, boxes=40, ground_cells=GROUND_CELLS)
+    cam = Camera(np.zeros(3), np.eye(3), n, f, fv, "eye space")
+    return SceneSetup(sc, plane_ids(sc.triangles), cam, ls[0], ground=2 * GROUND_CELLS**2)
+
+
 def run(args) -> int:
-    """``aliasing render`` with --scene, several schemes, --splits or --what cdf."""
+    """``aliasing render``: the built-in scene or a loaded one, one scheme or several, any splits.
+
+    Every picture is :func:`figure`'s (panels titled with the scheme and its statistics) and
+    the statistics go to standard output (:func:`table`, or JSON with ``--format json``).
+    """
     import json
     import sys
     from pathlib import Path
@@ -203,14 +268,14 @@ def run(args) -> int:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..scenes.builtin import ground_and_boxes
-
     fmt = check.choice(args.format, "format", dict.fromkeys(("text", "json")))
     out = None if args.out is None else Path(args.out)
     if out is not None and out.suffix.lower() != ".png":
         raise ValueError(f"--out must be a .png file, got {args.out!r}")
     if out is None and fmt != "json":
         raise ValueError("--out FILE.png is required (or --format json for the numbers alone)")
+    if out is not None and out.parent.is_dir() and store.resolve_out(out, "--out") is None:  # refused before any work
+        raise ValueError("--out must be a .png file, not standard output")
     light = None if args.light_dir is not None else args.light
     if args.scene is not None:
         st = setup(args.scene, eye=args.eye, target=args.target, up=args.up, camera=args.camera, near=args.near, far=args.far, fov=args.fov,
@@ -219,16 +284,10 @@ def run(args) -> int:
         for flag, value in (("--eye", args.eye), ("--target", args.target), ("--camera", args.camera), ("--light-dir", args.light_dir)):
             if value is not None:
                 raise ValueError(f"{flag} needs --scene FILE (the seeded scene is in eye space)")
+        if args.far is None and args.near is None and not float(args.f_over_n) > 1:
+            raise ValueError(f"--f-over-n must be > 1, got {args.f_over_n!r}")
         f = float(args.f_over_n) if args.far is None else float(args.far)
-        n = 1.0 if args.near is None else float(args.near)
-        fv = 60.0 if args.fov is None else float(args.fov)
-        check_raster_frustum(*check.frustum(n, f), check.fov(fv))  # before the scene is built
-        sc = ground_and_boxes(n, f, fv, seed=args.seed, boxes=40, ground_cells=16)
-        cam = Camera(np.zeros(3), np.eye(3), *(float(x) for x in check.frustum(n, f)), float(check.fov(fv)), "eye space")
-        ls = geometry.lights(light)
-        if ls.shape[0] != 1:
-            raise ValueError(f"light must be a single direction, got {ls.shape[0]}")
-        st = SceneSetup(sc, plane_ids(sc.triangles), cam, ls[0])
+        st = builtin(1.0 if args.near is None else float(args.near), f, 60.0 if args.fov is None else float(args.fov), light, seed=args.seed)
     names = [s.strip() for s in args.scheme.split(",") if s.strip()]
     params = partitioning.split_params(args.lam, args.param)
     if args.splits is None and (args.k is not None or params):
@@ -236,10 +295,18 @@ def run(args) -> int:
     budget = int(args.res) ** 2
     renders = render(st, names, splits=args.splits, k=args.k, allocation=args.allocation, budget=budget, image_res=args.image_res, **params)
     if out is not None:
-        fig = figure(renders, args.what, every=args.every)
-        out.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(out, dpi=110, bbox_inches="tight", pad_inches=0.1, metadata={"Software": None})
-        plt.close(fig)
+        fig = figure(renders, args.what, every=args.every, preset=getattr(args, "bias_preset", "filament"))
+        try:  # the sweep's safe writer (store): atomic, symlinks followed, devices refused, one-line errors
+            out.parent.mkdir(parents=True, exist_ok=True)
+            target = store.resolve_out(out, "--out")
+            if target is None:
+                raise ValueError("--out must be a .png file, not standard output")
+            with store.atomic_target(target) as tmp:
+                fig.savefig(tmp, format="png", dpi=DPI, bbox_inches="tight", pad_inches=0.1, metadata={"Software": None})
+        except OSError as exc:
+            raise ValueError(f"--out {args.out!r} cannot be written: {exc.strerror}") from None
+        finally:
+            plt.close(fig)
     if fmt == "json":
         sys.stdout.write(json.dumps(report(st, renders, budget=budget, allocation=args.allocation, splits=args.splits, light=light), indent=1) + "\n")
     else:

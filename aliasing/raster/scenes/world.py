@@ -42,7 +42,9 @@ MIN_COS_LIGHT = 0.1
 class SceneSetup:
     """An eye-space scene ready to render: ``scene``, per-triangle planar ``faces``, the
     ``camera`` (near, far, fov), ``light`` (eye-space unit vector towards the light), the
-    loaded file's ``degenerate`` triangle count, and ``source``."""
+    loaded file's ``degenerate`` triangle count, ``source``, and ``ground``: the number of
+    leading ground triangles, shaded in the ground's colour and the rest in the boxes'
+    (the built-in scene; 0: a loaded scene, all in the ground's colour)."""
 
     scene: Scene
     faces: NDArray[np.int64]
@@ -50,6 +52,7 @@ class SceneSetup:
     light: Array
     degenerate: int = 0
     source: str = ""
+    ground: int = 0
 
 
 def plane_ids(triangles: ArrayLike) -> NDArray[np.int64]:
