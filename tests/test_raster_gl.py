@@ -108,9 +108,19 @@ def test_no_egl_device_is_one_clear_line(monkeypatch, capsys):
         raster.shadow_map(tri, lm, 8, backend="gl")
     with pytest.raises(ValueError, match="backend 'gl' cannot draw here"):
         raster.eye_pass(tri, FOV, 8, backend="gl")
-    code = main(["validate", "--schemes", "P", "--lights", "overhead", "--resolution", "64", "--backend", "gl"])
+    for argv in (["validate", "--scheme", "P", "--f-over-n", "100", "--light", "overhead", "--res", "64", "--backend", "gl"],
+                 ["render", "--scheme", "P", "--out", "/nonexistent/x.png", "--backend", "gl"]):
+        code = main(argv)
+        err = capsys.readouterr().err
+        assert code == 2 and len(err.strip().splitlines()) == 1 and "backend 'gl' cannot draw here: no EGL device" in err
+
+
+@pytest.mark.parametrize("argv", [["validate", "--scheme", "P", "--f-over-n", "100", "--backend", "cuda"], ["render", "--scheme", "P", "--out", "x.png", "--backend", "cuda"],
+                                  ["validate", "--scheme", "P", "--f-over-n", "100", "--grid", "--backend", "gl"]])
+def test_backend_option_errors_are_one_line(argv, capsys):
+    code = main(argv)
     err = capsys.readouterr().err
-    assert code == 2 and len(err.strip().splitlines()) == 1 and "backend 'gl' cannot draw here" in err
+    assert code == 2 and len(err.strip().splitlines()) == 1 and "backend" in err
 
 
 # --- agreement with numpy ---------------------------------------------------------------------
@@ -226,3 +236,14 @@ def test_z_fighting_from_below_the_ground_is_a_tie_of_coincident_surfaces():
     differ = (ref.triangle >= 0) & (got.triangle >= 0) & (ref.triangle != got.triangle)
     gap = np.abs(ref.depth[differ] - got.depth[differ]) / np.ptp(ref.depth[ref.triangle >= 0])
     assert (gap <= 1e-5).mean() >= 0.999
+
+
+@GL
+def test_validate_and_render_draw_through_gl(tmp_path, capsys):
+    assert main(["validate", "--scheme", "ZP2+P", "--f-over-n", "100", "--light", "gamma:60", "--res", "128", "--probes", "8", "--backend", "gl", "--format", "json"]) == 0
+    import json
+
+    assert json.loads(capsys.readouterr().out)["passed"] is True
+    out = tmp_path / "gl.png"
+    assert main(["render", "--scheme", "P", "--res", "256", "--image-res", "96", "--out", str(out), "--backend", "gl"]) == 0
+    assert out.stat().st_size > 1000

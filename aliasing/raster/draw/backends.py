@@ -61,6 +61,21 @@ SUPPORTED: dict[str, tuple[str, ...]] = {
 NAMES: tuple[str, ...] = tuple(BACKENDS)
 
 
+def pair(backend: object) -> tuple[str, str]:
+    """(eye-pass backend, map backend) of a picture or a measurement drawn with ``backend``.
+
+    The maps use ``backend`` where it draws maps, numpy otherwise (``numba`` compiles the eye
+    pass only).  Raises ``ValueError`` naming ``backend`` as :func:`check` does.
+
+    Example
+    -------
+    >>> pair("numba") if BACKENDS["numba"].available() else ("numba", "numpy")
+    ('numba', 'numpy')
+    """
+    eye = check(backend, "eye_pass")
+    return eye, eye if eye in SUPPORTED["shadow_map"] else "numpy"
+
+
 def check(backend: object, operation: str) -> str:
     """``backend`` validated for ``operation``: a known name this operation supports, runnable here.
 

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from ... import _validation as check
 from ...sweep import store
+from ..draw import backends
 from ..scenes import world
 from ..scenes.camera import check_raster_frustum
 from .images import error_image, grid_image, shadow_image
@@ -21,6 +22,7 @@ def _render(args: argparse.Namespace) -> int:
         raise ValueError(f"--f-over-n must be a number, got {args.f_over_n!r}") from None
     if args.seed < 0:
         raise ValueError(f"--seed must be a whole number >= 0, got {args.seed}")
+    backends.check(args.backend, "eye_pass")
     if args.scene is not None or "," in args.scheme or args.splits is not None or args.what == "cdf" or args.format != "text" \
             or any(v is not None for v in (args.eye, args.target, args.camera, args.light_dir, args.k, args.lam, args.near, args.far)) or args.param:
         return run(args)
@@ -39,7 +41,7 @@ def _render(args: argparse.Namespace) -> int:
         raise ValueError(f"--out must be a .png file, got {args.out!r}")
     if out.exists() and out.is_dir():
         raise ValueError(f"--out must be a file, but {args.out!r} is a folder")
-    kw = dict(image_res=args.image_res, budget=args.res**2, seed=args.seed)
+    kw = dict(image_res=args.image_res, budget=args.res**2, seed=args.seed, backend=args.backend)
     fov = 60.0 if args.fov is None else args.fov
     check_raster_frustum(1.0, f_over_n, float(check.fov(fov)))
     if args.what == "shadows":
@@ -84,6 +86,7 @@ def add_render_parser(sub) -> argparse.ArgumentParser:
     ren.add_argument("--image-res", type=int, default=512, help="image resolution in pixels per side (default 512)")
     ren.add_argument("--every", type=int, default=16, help="grid: texels between grid lines (default 16)")
     ren.add_argument("--seed", type=int, default=1, help="scene seed (default 1)")
+    ren.add_argument("--backend", default="numpy", help="how the eye pass and the maps are drawn: numpy (default, the reference), numba (the eye pass; fast extra) or gl (OpenGL, gl extra)")
     scn, cas = ren.add_argument_group("your own scene"), ren.add_argument_group("cascades")
     world.add_scene_arguments(scn, cas, "for every scheme")
     cas.add_argument("--allocation", choices=["equal", "error"], default="equal", help="texel budget per cascade: equal, or error-based (Lloyd 2007 eq. 83)")
