@@ -63,9 +63,8 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--quick", action="store_true", help="skip the 10⁶-triangle scene")
     ap.add_argument("--res", type=int, nargs="+", default=[2048, 8192])
     args = ap.parse_args(argv)
-    gl.require()
     t0 = time.perf_counter()
-    gl.available()
+    gl.require()
     print(f"renderer: {gl.renderer()} (context and shaders ready in {time.perf_counter() - t0:.2f} s)")
     counts = [10_000] + ([] if args.quick else [1_000_000])
     scenes = {n: scene(n) for n in counts}

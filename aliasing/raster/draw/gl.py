@@ -17,22 +17,28 @@ H·(p, 1) = (s·w, t·w, depth, w)).  The vertex shader puts x = 2s − 1, y = 2
 space and, for the depth test, z = k·(depth − d₀) − w with d₀ the smallest depth over the
 scene's bounding box and k = 2/range: every point a light ray through a texel meets has the
 same w (s and t fix the light-plane point), so ordering by z/w orders by depth, and w ≥ 1
-on the map (t ∈ [0, 1] ⇔ 0 ≤ y ≤ W_ly) keeps z/w within [−1, 1].  The fragment shader writes
-the depth itself, interpolated perspective-correctly (exact for a planar triangle), into a
-32-bit float target, and ``gl_PrimitiveID`` into a 32-bit integer target; both are read
-back into float64 / int64 arrays.  Triangles behind the warp's centre of projection are
-clipped by the hardware (w > 0), where numpy clips them at y = −n′/2: both leave the map's
-texels alone.
+on the map (t ∈ [0, 1] ⇔ 0 ≤ y ≤ W_ly) keeps z/w within [−1, 1].  The first pass keeps, per
+texel, the nearest triangle's ``gl_PrimitiveID`` (a 32-bit integer target; 24-bit hardware
+depth test, ties to the last drawn, the highest index).  A second pass, once per texel,
+computes the depth of that triangle's plane at the texel centre in double precision (the
+light ray through (s, t) met with the plane; no interpolated attribute, so the value does
+not depend on the vertices' snapping) and stores it as two float32 (hi + lo, 48 bits).  Both
+targets are read back into float64 / int64 arrays.  Triangles behind the warp's centre of
+projection are clipped by the hardware (w > 0), where numpy clips them at y = −n′/2: both
+leave the map's texels alone.
 
 Example
 -------
->>> if available():   # doctest: +SKIP
-...     import numpy as np
-...     tri = np.array([[[0.0, 0.0, 0.5], [1.0, 0.0, 0.5], [0.0, 1.0, 0.5]]])
-...     h = np.eye(4)   # (s, t, depth) given directly: w = 1
-...     depth, ident = draw_maps(tri, [h], [8])[0]
-...     int(np.isfinite(depth).sum())
-28
+>>> import numpy as np
+>>> tri = np.array([[[0.0, 0.0, 0.5], [1.0, 0.0, 0.5], [0.0, 1.0, 0.5]]])   # (s, t, depth): H = I
+>>> if available():
+...     depth, ident = draw_maps(tri, [np.eye(4)], [8])[0]
+... else:   # without an EGL device: the numpy reference, whose buffers these are
+...     from aliasing.raster.draw.core import rasterize
+...     m = rasterize(tri, 8)
+...     depth, ident = m.depth, m.triangle
+>>> int(np.isfinite(depth).sum()), int((ident == 0).sum())   # the 8 centres on s + t = 1 are not owned
+(28, 28)
 """
 
 from __future__ import annotations
