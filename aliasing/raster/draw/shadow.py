@@ -60,8 +60,10 @@ def shadow_map(triangles: ArrayLike, lm: LightMap, resolution: int, *, chunk: in
     its 4×4 matrix (:meth:`LightMap.matrix`): the same depth (computed per texel centre from
     the visible triangle's plane, in double precision) and the same visible triangles up to
     the hardware's sub-texel snapping of edges; there ``rasterized`` counts the finite
-    triangles sent and ``degenerate`` the non-finite ones.  Log+perspective maps have no
-    matrix: they are rasterized by numpy whichever backend is asked.
+    triangles sent and ``degenerate`` the non-finite ones, and a scene wholly behind the
+    warp's centre of projection gives an empty map (numpy: a ``ValueError``).
+    Log+perspective maps have no matrix: they are rasterized by numpy whichever backend is
+    asked.
 
     Example
     -------
