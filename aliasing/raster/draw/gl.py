@@ -22,8 +22,8 @@ texel, the nearest triangle's ``gl_PrimitiveID`` (a 32-bit integer target; 24-bi
 depth test, ties to the last drawn, the highest index).  A second pass, once per texel,
 computes the depth of that triangle's plane at the texel centre in double precision (the
 light ray through (s, t) met with the plane; no interpolated attribute, so the value does
-not depend on the vertices' snapping) and stores it as two float32 (hi + lo, 48 bits).  Both
-targets are read back into float64 / int64 arrays.  Triangles behind the warp's centre of
+not depend on the vertices' snapping), stores it as two float32 (hi + lo, 48 bits) beside
+the id (−1 where empty), and both are read back into float64 / int64 arrays.  Triangles behind the warp's centre of
 projection are clipped by the hardware (w > 0), where numpy clips them at y = −n′/2: both
 leave the map's texels alone.
 
@@ -97,20 +97,23 @@ uniform isampler2D ids;
 uniform sampler2D zbuffer;
 uniform dvec4 ray;        // q_w = ray.x s + ray.y t + ray.z; e_w = ray.w
 uniform double texel;     // 1/R
-uniform double offset;    // subtracted before the float32 store, added back in float64
 layout(location = 0) out vec2 depth_out;
+layout(location = 1) out int id_out;
 void main() {
     ivec2 c = ivec2(gl_FragCoord.xy);
     if (texelFetch(zbuffer, c, 0).r == 1.0) {   // the cleared value: nothing drawn here
-        depth_out = vec2(uintBitsToFloat(0x7f800000u));
+        depth_out = vec2(uintBitsToFloat(0x7f800000u), 0.0);
+        id_out = -1;
         return;
     }
+    int id = texelFetch(ids, c, 0).r;
     double s = double(gl_FragCoord.x) * texel, t = double(gl_FragCoord.y) * texel;
-    dvec4 k = coef[texelFetch(ids, c, 0).r];
+    dvec4 k = coef[id];
     double a = k.x * s + k.y * t + k.z;
-    double rel = a / (a * ray.w - k.w * (ray.x * s + ray.y * t + ray.z)) - offset;
-    float hi = float(rel);
-    depth_out = vec2(hi, float(rel - double(hi)));
+    double d = a / (a * ray.w - k.w * (ray.x * s + ray.y * t + ray.z));
+    float hi = float(d);
+    depth_out = vec2(hi, float(d - double(hi)));
+    id_out = id;
 }
 """
 
@@ -124,10 +127,11 @@ class _Targets:
     zbuffer: object
     draw: object
     depth: object
+    visible: object
     resolve: object
 
     def release(self) -> None:
-        for obj in (self.resolve, self.draw, self.depth, self.ids, self.zbuffer):
+        for obj in (self.resolve, self.draw, self.depth, self.visible, self.ids, self.zbuffer):
             obj.release()
 
 
@@ -160,13 +164,14 @@ def _targets(ctx, res: int) -> _Targets:
     zbuf = ctx.depth_texture((res, res))
     zbuf.compare_func = ""  # read the stored depth, not a comparison
     depth = ctx.texture((res, res), 2, dtype="f4")
-    t = _Targets(res, ids, zbuf, ctx.framebuffer([ids], zbuf), depth, ctx.framebuffer([depth]))
+    visible = ctx.texture((res, res), 1, dtype="i4")
+    t = _Targets(res, ids, zbuf, ctx.framebuffer([ids], zbuf), depth, visible, ctx.framebuffer([depth, visible]))
     cache.append(t)
     return t
 
 
 def release() -> None:
-    """Free the kept render targets (up to 16 bytes per texel of the last resolution drawn)."""
+    """Free the kept render targets (20 bytes per texel of the last resolution drawn)."""
     state = _setup()[0]
     if state is not None and state[3]:
         state[3].pop().release()
@@ -206,8 +211,8 @@ def _planes(tri: Array) -> Array:
     return np.concatenate([n, -(n * a).sum(axis=1, keepdims=True)], axis=1)
 
 
-def _draw(tri: Array, jobs: Sequence[tuple[Array, Array | None, float, int]]) -> list[tuple[Array, NDArray[np.int64]]]:
-    """Draw the finite triangles ``tri`` (T, 3, 3) once per job (clip 4×4, H⁻¹ or None, offset, R).
+def _draw(tri: Array, jobs: Sequence[tuple[Array, Array | None, int]]) -> list[tuple[Array, NDArray[np.int64]]]:
+    """Draw the finite triangles ``tri`` (T, 3, 3) once per job (clip 4×4, H⁻¹ or None, R).
 
     With H⁻¹, the depth at each texel centre is computed from the visible triangle's plane
     (second pass); without, only ids are drawn (depth 0 where covered).  Returns per job the
@@ -228,7 +233,7 @@ def _draw(tri: Array, jobs: Sequence[tuple[Array, Array | None, float, int]]) ->
         quad = ctx.vertex_array(resolve, [])
         ctx.disable(moderngl.CULL_FACE)
         try:
-            for clip, inverse, offset, res in jobs:
+            for clip, inverse, res in jobs:
                 tg = _targets(ctx, res)
                 tg.draw.use()
                 tg.draw.viewport = (0, 0, res, res)
@@ -238,12 +243,14 @@ def _draw(tri: Array, jobs: Sequence[tuple[Array, Array | None, float, int]]) ->
                 draw["clip"].write(np.ascontiguousarray(clip.T, dtype=np.float32).tobytes())  # GLSL: column-major
                 vao.render(moderngl.TRIANGLES)
                 ids32 = np.empty((res, res), np.int32)
-                tg.ids.read_into(ids32)
                 if inverse is None:
+                    tg.ids.read_into(ids32)
                     zb = np.empty((res, res), np.float32)
                     tg.zbuffer.read_into(zb)
                     empty = zb == 1.0
                     depth = np.where(empty, np.inf, 0.0)
+                    ids = ids32.astype(np.int64)
+                    ids[empty] = -1
                 else:
                     ctx.disable(moderngl.DEPTH_TEST)
                     tg.resolve.use()
@@ -254,16 +261,13 @@ def _draw(tri: Array, jobs: Sequence[tuple[Array, Array | None, float, int]]) ->
                     coef.bind_to_storage_buffer(0)
                     resolve["ray"].write(inverse[3, [0, 1, 3, 2]].astype(np.float64).tobytes())
                     resolve["texel"].write(np.float64(1.0 / res).tobytes())
-                    resolve["offset"].write(np.float64(offset).tobytes())
                     quad.render(moderngl.TRIANGLES, vertices=3)
                     hilo = np.empty((res, res, 2), np.float32)
                     tg.depth.read_into(hilo)
-                    depth = hilo[..., 0].astype(np.float64)
-                    empty = np.isinf(depth)
-                    depth += hilo[..., 1]
-                    depth += offset
-                ids = ids32.astype(np.int64)
-                ids[empty] = -1
+                    depth = np.add(hilo[..., 0], hilo[..., 1], dtype=np.float64)  # inf + 0 where empty
+                    del hilo
+                    tg.visible.read_into(ids32)  # −1 where empty
+                    ids = ids32.astype(np.int64)
                 out.append((depth, ids))
         finally:
             quad.release()
@@ -301,7 +305,7 @@ def draw_maps(triangles: Array, matrices: Sequence[Array], resolutions: Sequence
         d_lo, span = _depth_range(tri, h[2])
         k = 2.0 / (span * (1.0 + DEPTH_PAD))
         clip = np.stack([2 * h[0] - h[3], 2 * h[1] - h[3], k * (h[2] - d_lo * e3) - h[3], h[3]])
-        jobs.append((clip, np.linalg.inv(h), d_lo, int(res)))
+        jobs.append((clip, np.linalg.inv(h), int(res)))
     out = _draw(tri, jobs)
     if idx is not None:
         out = [(d, np.where(i >= 0, idx[np.maximum(i, 0)], -1)) for d, i in out]
@@ -324,7 +328,7 @@ def eye_ids(triangles: Array, tan_half: float, resolution: int, near: float) -> 
     z_near = max(float(near), float(z.min()) * (1.0 - DEPTH_PAD))  # the nearest vertex, or the clipping plane
     a, b = (z_far + z_near) / (z_far - z_near), -2.0 * z_far * z_near / (z_far - z_near)
     clip = np.array([[1 / tan_half, 0, 0, 0], [0, 1 / tan_half, 0, 0], [0, 0, a, b], [0, 0, 1, 0]], float)
-    (_, ids), = _draw(tri, [(clip, None, 0.0, int(resolution))])
+    (_, ids), = _draw(tri, [(clip, None, int(resolution))])
     if idx is not None:
         ids = np.where(ids >= 0, idx[np.maximum(ids, 0)], -1)
     return ids
