@@ -55,6 +55,12 @@ Array = NDArray[np.float64]
 #: Relative margin of the depth-test range (keeps window depths below 1, the cleared value).
 DEPTH_PAD = 1e-3
 
+#: Bytes per texel of one resolution's render targets (ids, depth buffer, depth hi/lo, visible ids).
+TARGET_BYTES = 20
+#: Render targets are kept for the next draw at the same resolution up to this many bytes in all
+#: (an 8192² and a 2048² set; :func:`release` frees them).
+KEEP_BYTES = 3 * 2**29
+
 #: What to install when there is no EGL device (Debian's Mesa packages: llvmpipe on the CPU).
 EGL_PACKAGES = "libegl1 libegl-mesa0 libgl1-mesa-dri"
 
@@ -155,11 +161,15 @@ def _setup() -> tuple[object | None, str]:
 
 
 def _targets(ctx, res: int) -> _Targets:
-    """The targets for resolution ``res``: the cached ones, or new ones replacing them."""
+    """The targets for resolution ``res``: kept ones, or new ones (the least recently used
+    others are freed while all would exceed :data:`KEEP_BYTES`)."""
     cache = _setup()[0][3]
-    if cache and cache[0].res == res:
-        return cache[0]
-    release()
+    for i, t in enumerate(cache):
+        if t.res == res:
+            cache.append(cache.pop(i))  # most recently used last
+            return t
+    while cache and TARGET_BYTES * (res * res + sum(t.res * t.res for t in cache)) > KEEP_BYTES:
+        cache.pop(0).release()
     ids = ctx.texture((res, res), 1, dtype="i4")
     zbuf = ctx.depth_texture((res, res))
     zbuf.compare_func = ""  # read the stored depth, not a comparison
@@ -171,9 +181,9 @@ def _targets(ctx, res: int) -> _Targets:
 
 
 def release() -> None:
-    """Free the kept render targets (20 bytes per texel of the last resolution drawn)."""
+    """Free the kept render targets (:data:`TARGET_BYTES` per texel of each resolution kept)."""
     state = _setup()[0]
-    if state is not None and state[3]:
+    while state is not None and state[3]:
         state[3].pop().release()
 
 
