@@ -11,7 +11,7 @@ backends; the figures are medians over the rounds.  The OpenGL context is made a
 shaders compiled once, before the rounds (printed).  Each round also checks that the two maps
 agree (coverage difference, same visible triangle) so that a fast wrong answer cannot pass.
 
-Targets (issue text, llvmpipe on this CPU): gl ≤ 0.1 × numpy at 2048² with 10⁴ triangles,
+Targets (llvmpipe on this CPU): gl ≤ 0.1 × numpy at 2048² with 10⁴ triangles,
 ≤ 0.02 × numpy with 10⁶ triangles.
 
 Usage::
