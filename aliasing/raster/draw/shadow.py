@@ -123,7 +123,7 @@ def shadow_maps(triangles: ArrayLike, maps: MapSet | Sequence[LightMap], resolut
         A scheme's maps (:func:`aliasing.raster.map_set`; cascades:
         ``cascade_set(...).maps``; face partitions), or a list of light maps.
     resolution : int or sequence of int
-        Texels per side of every map, or of each map (e.g. :func:`aliasing.raster.budget_shares`).
+        Texels per side of every map, or of each map (e.g. :func:`aliasing.raster.draw.cascades.budget_shares`).
     chunk : int
         Rows, or texels, per vectorized step of the numpy rasterizer.
     backend : {"numpy", "gl"}
