@@ -82,6 +82,7 @@ def _lazy(make: Callable[[], object]) -> Callable[[], object]:
 
 
 _LM = _lazy(lambda: aliasing.raster.light_map(1.0, 50.0, 60.0, "gamma:60", "P"))
+_MAPS = _lazy(lambda: aliasing.raster.map_set(1.0, 50.0, 60.0, "gamma:60", "ZP2+P"))
 _FIT = _lazy(lambda: aliasing.directional.fit(aliasing.geometry.frustum_vertices(1.0, 10.0, 60.0), [0.0, 1.0, 0.3]))
 _FRAME = _lazy(lambda: aliasing.directional.light_frame(aliasing.View(1.0, 100.0, 60.0), [[0.0, 1.0, 0.3], [0.2, 0.5, -0.8]]))
 _SLICES = _lazy(lambda: aliasing.directional.slice_fit(_FRAME(), [1.0, 10.0], [10.0, 100.0]))
@@ -148,6 +149,7 @@ BASE: dict[str, dict[str, object]] = {
     "project": {"points": [[0.0, 0.0, 5.0]]},
     "rasterize": {"triangles": TRI, "resolution": 8},
     "shadow_map": {"resolution": 8},
+    "shadow_maps": {"maps": _MAPS, "resolution": 8},
     "log_row_centres": {"resolution": 8},
     "side_frames": {}, "storage_factor": {"far": 100.0, "fov": 60.0, "n_prime": 5.0},
     # near may be a View (issue 11), so far and fov have defaults: give them

@@ -44,6 +44,7 @@ from .draw import (
     project,
     rasterize,
     shadow_map,
+    shadow_maps,
 )
 from .scenes import Scene, ground_and_boxes, load_mesh, probes
 from .validate import Measurement, measure
@@ -72,4 +73,5 @@ __all__ = [
     "project",
     "rasterize",
     "shadow_map",
+    "shadow_maps",
 ]

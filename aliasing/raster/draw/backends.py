@@ -1,11 +1,12 @@
 """The drawing backends: one table of who can draw, and the one check of a ``backend=`` keyword.
 
 The numpy kernels are the reference: every map and eye buffer of the toolkit is defined by
-them (texel centres at (i + ½)/R, top-left-style ownership of edges, depth along the light
-or the eye's −1/z; :mod:`aliasing.raster.draw.core`).  A second backend stands beside them
-by adding an entry here and a kernel loader where the drawing function dispatches
-(:func:`aliasing.raster.draw.eye_pass` has one for the eye pass); it must reproduce the
-reference's buffers (``numba``: bit for bit).
+them (the conventions of :mod:`aliasing.raster.draw.core`: texel centres at (i + ½)/R, row 0
+at the bottom, left and bottom edges own the centres on them, the nearest depth kept, ties
+to the highest triangle index).  Another backend stands beside them by adding an entry here
+and a kernel where the drawing function dispatches; it must reproduce the reference's
+buffers: ``numba`` bit for bit, ``gl`` (OpenGL through moderngl, :mod:`.gl`) up to the
+hardware's sub-texel vertex snapping at triangle edges.
 
 Example
 -------
@@ -14,7 +15,7 @@ Example
 >>> check("cuda", "eye_pass")
 Traceback (most recent call last):
 ...
-ValueError: backend must be one of ['numba', 'numpy'] for eye_pass, got 'cuda'
+ValueError: backend must be one of ['gl', 'numba', 'numpy'] for eye_pass, got 'cuda'
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable
 
-from . import compiled
+from . import compiled, gl
 
 
 @dataclass(frozen=True)
@@ -47,12 +48,32 @@ def _nothing() -> None:
 BACKENDS: dict[str, Backend] = {
     "numpy": Backend("numpy", "the reference: vectorized numpy kernels", _always, _nothing),
     "numba": Backend("numba", "compiled loops of the eye pass (the fast extra), bit-identical to numpy", compiled.available, compiled.require),
+    "gl": Backend("gl", "OpenGL through moderngl and headless EGL (the gl extra): a GPU, or Mesa's llvmpipe on the CPU", gl.available, gl.require),
 }
 
 #: Which backends each drawing operation has.
 SUPPORTED: dict[str, tuple[str, ...]] = {
-    "eye_pass": ("numpy", "numba"),
+    "eye_pass": ("numpy", "numba", "gl"),
+    "shadow_map": ("numpy", "gl"),
 }
+
+#: What the command line offers (``--backend``): every backend of some operation.
+NAMES: tuple[str, ...] = tuple(BACKENDS)
+
+
+def pair(backend: object) -> tuple[str, str]:
+    """(eye-pass backend, map backend) of a picture or a measurement drawn with ``backend``.
+
+    The maps use ``backend`` where it draws maps, numpy otherwise (``numba`` compiles the eye
+    pass only).  Raises ``ValueError`` naming ``backend`` as :func:`check` does.
+
+    Example
+    -------
+    >>> pair("numba") if BACKENDS["numba"].available() else ("numba", "numpy")
+    ('numba', 'numpy')
+    """
+    eye = check(backend, "eye_pass")
+    return eye, eye if eye in SUPPORTED["shadow_map"] else "numpy"
 
 
 def check(backend: object, operation: str) -> str:

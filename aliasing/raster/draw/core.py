@@ -2,14 +2,20 @@
 
 Map coordinates
 ---------------
-A map of resolution R covers (s, t) ∈ [0, 1]²; texel (row j, column i) has its centre at
-s = (i + ½)/R and, by default, t = (j + ½)/R (row 0 is t ≈ 0: show with ``origin="lower"``).
-A texel belongs to a triangle when its centre lies inside it; a centre exactly on an edge
-goes to one triangle only (the top-left rule, here with t up: an edge on the triangle's
-left side, or a horizontal edge at its bottom, owns the centres lying exactly on it), so a
-mesh without overlaps covers every texel at most once.  Depth is interpolated from the vertices by barycentric weights, optionally
-perspective-correctly with per-vertex homogeneous weights ``w``: d = Σ bᵢdᵢ/wᵢ / Σ bᵢ/wᵢ.
+The conventions every backend reproduces (the rasterizer guide's "Map conventions"):
 
+* A map of resolution R covers (s, t) ∈ [0, 1]²; texel (row j, column i) has its centre at
+  s = (i + ½)/R and, by default, t = (j + ½)/R: row 0 is at the bottom, t ≈ 0 (show with
+  ``origin="lower"``).
+* A texel belongs to a triangle when its centre lies inside it; a centre exactly on an edge
+  goes to one triangle only (the top-left rule, here with t up: an edge on the triangle's
+  left side, or a horizontal edge at its bottom, owns the centres lying exactly on it), so a
+  mesh without overlaps covers every texel at most once.
+* Depth is interpolated from the vertices by barycentric weights, optionally
+  perspective-correctly with per-vertex homogeneous weights ``w``: d = Σ bᵢdᵢ/wᵢ / Σ bᵢ/wᵢ,
+  the depth of the triangle's plane at the texel centre.  Smaller is nearer: the z-buffer
+  keeps the minimum, ties go to the highest triangle index; empty texels hold ``inf`` and
+  triangle −1.  (Light maps store the negated height along the light, :mod:`.lightmap`.)
 
 The covered spans and their depths are computed in :mod:`.coverage`.
 

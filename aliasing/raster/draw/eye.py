@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ... import _validation as check
-from . import backends, compiled, occlusion
+from . import backends, compiled, gl, occlusion
 from .core import CHUNK, _triangles, check_chunk, check_resolution, clip_near, zbuffer
 from ...view import half_angle
 
@@ -82,10 +82,15 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
         Clipping distance [world units], > 0.
     chunk : int
         Rows, or texels, per vectorized step (bounds the temporaries), ≥ 1.
-    backend : {"numpy", "numba"}
+    backend : {"numpy", "numba", "gl"}
         ``"numba"`` runs the z-test and the per-pixel outputs as compiled loops
         (:mod:`.compiled`, the optional ``fast`` extra; ``chunk`` is not needed there): the
         same buffers bit for bit, about 2× faster at 2048² (benchmarks/README.md).
+        ``"gl"`` draws the G-buffer's triangle ids with OpenGL (:mod:`.gl`, the optional
+        ``gl`` extra; a hardware depth test on the perspective depth), and the positions and
+        normals are then computed from them exactly as numpy does, in double precision: the
+        same visible triangle but where the hardware's sub-pixel snapping of edges, or its
+        24-bit depth test between near-coincident surfaces, decides otherwise.
 
     Returns
     -------
@@ -109,7 +114,11 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     fv = float(check.fov(check.scalar(fov, "fov")))
     zc = float(check.positive(check.scalar(near, "near"), "near"))
     chunk = check_chunk(chunk)
-    draw, outputs = KERNELS[backends.check(backend, "eye_pass")]()
+    name = backends.check(backend, "eye_pass")
+    if name == "gl":
+        ids = gl.eye_ids(tri, float(np.tan(half_angle(fv))), res, zc)
+        return _buffer(tri, ids.ravel(), np.arange(tri.shape[0]), res, fv, _outputs_numpy)
+    draw, outputs = KERNELS[name]()
     clipped, src = clip_near(tri, zc)
     if clipped.shape[0] == 0:
         empty = np.full((res, res, 3), np.nan)
@@ -119,6 +128,11 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     # much overdraw, so hidden triangles and pieces of spans are culled (front_to_back)
     key = np.stack([u, v, -1.0 / z], axis=-1)
     dm = zbuffer(key, res, np.ones((key.shape[0], 3)), (np.arange(res) + 0.5) / res, True, chunk, front_to_back=True, draw=draw)
+    return _buffer(tri, dm.triangle.ravel(), src, res, fv, outputs)
+
+
+def _buffer(tri: Array, tri_id: NDArray[np.int64], src: NDArray[np.int64], res: int, fv: float, outputs) -> EyeBuffer:
+    """The eye buffer of the visible (drawn) triangle ids ``tri_id`` (−1 where empty; ``src``: their input indices)."""
     # exact positions: the ray (X, Y, 1) through the pixel centre ∩ the source triangle's
     # plane n·p = n·a, so p = λ(X, Y, 1) with λ = n·a / (n_x X + n_y Y + n_z)
     t = np.tan(half_angle(fv))
@@ -128,7 +142,7 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     nrm = np.cross(b - a, cc - a)
     with np.errstate(divide="ignore", invalid="ignore"):  # a zero-area triangle (never drawn) gets a NaN normal
         nrm /= np.linalg.norm(nrm, axis=-1, keepdims=True)
-    ident, position, normal = outputs(dm.triangle.ravel(), src, X, nrm, (nrm * a).sum(-1), res)
+    ident, position, normal = outputs(tri_id, src, X, nrm, (nrm * a).sum(-1), res)
     return EyeBuffer(position, normal, ident, res, fv)
 
 

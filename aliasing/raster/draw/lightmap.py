@@ -135,6 +135,46 @@ class LightMap:
         x_lo, x_hi = float(self.frustum.x_lo[0, 0]), float(self.frustum.x_hi[0, 0])
         return (x_lo + ss * (x_hi - x_lo)) * zp, y
 
+    def matrix(self) -> Array:
+        """The 4×4 matrix H with H·(p, 1) = (s·w, t·w, depth, w) for eye-space points p.
+
+        Every map but log+perspective is a projective function of the point: with
+        x = x_L·p, y = z_L·p − y_offset and height h = y_L·p (:meth:`light_plane`), the
+        homogeneous weight is w = 1 + y/n′ (1 if uniform), s·w = (x − x_lo·w)/(x_hi − x_lo)
+        (Lloyd 2006 eq. 5) and t·w = y·(n′ + W_ly)/(W_ly·n′) (eq. 6; y/W_ly if uniform), all
+        affine in p; the depth −h is affine in p and is not divided by w.  So
+        s = H₀·p̃/H₃·p̃, t = H₁·p̃/H₃·p̃, depth = H₂·p̃ (p̃ = (p, 1)), as :meth:`coordinates`
+        gives them; a hardware rasterizer draws the map with this matrix (the ``gl`` backend).
+
+        Raises
+        ------
+        ValueError
+            For a log+perspective map, whose t = ln(1 + y/n′)/ln(1 + W_ly/n′) is no
+            projective function of the point.
+
+        Example
+        -------
+        >>> lm = light_map(1.0, 100.0, 60.0, "gamma:50@azimuth:20", "P")
+        >>> p = geometry.frustum_vertices(1.0, 100.0, 60.0)
+        >>> h = np.c_[p, np.ones(len(p))] @ lm.matrix().T
+        >>> s, t, d, w = lm.coordinates(p)
+        >>> np.allclose(h[:, 0] / h[:, 3], s) and np.allclose(h[:, 1] / h[:, 3], t) and np.allclose(h[:, 2], d)
+        True
+        """
+        if self.parameterization == "logperspective" and np.isfinite(self.n_prime):
+            raise ValueError("lm must be a projective map (uniform or perspective): a log+perspective map has no 4×4 matrix")
+        npr, depth = self.n_prime, float(self.frustum.depth[0, 0])
+        x_lo, x_hi = float(self.frustum.x_lo[0, 0]), float(self.frustum.x_hi[0, 0])
+        x_row = np.append(self.basis[0], 0.0)
+        y_row = np.append(self.basis[2], -self.y_offset)
+        if np.isinf(npr):
+            w_row, t_row = np.array([0.0, 0.0, 0.0, 1.0]), y_row / depth
+        else:
+            w_row = y_row / npr + np.array([0.0, 0.0, 0.0, 1.0])  # w = 1 + y/n′
+            t_row = y_row * ((npr + depth) / (depth * npr))  # eq. (6) times w
+        s_row = (x_row - x_lo * w_row) / (x_hi - x_lo)  # eq. (5) times w
+        return np.stack([s_row, t_row, -np.append(self.basis[1], 0.0), w_row])
+
     def texel_centres(self, resolution: int) -> tuple[Array, Array]:
         """Light-plane (x, y) [world units] of the centres of a resolution² map's texels, each (R, R).
 

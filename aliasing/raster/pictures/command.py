@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from ...bias import presets as bias_presets
+from ..draw import backends
 from ..scenes import world
 from .scenerender import run
 
@@ -18,8 +19,9 @@ def _render(args: argparse.Namespace) -> int:
         raise ValueError(f"--f-over-n must be a number, got {args.f_over_n!r}") from None
     if args.seed < 0:
         raise ValueError(f"--seed must be a whole number >= 0, got {args.seed}")
+    backends.check(args.backend, "eye_pass")  # refused before any work, like the bias preset
     if args.what == "bias-margin":
-        bias_presets.get(args.bias_preset)  # refused before any work
+        bias_presets.get(args.bias_preset)
     return run(args)
 
 
@@ -48,6 +50,7 @@ def add_render_parser(sub) -> argparse.ArgumentParser:
     ren.add_argument("--image-res", type=int, default=512, help="image resolution in pixels per side (default 512)")
     ren.add_argument("--every", type=int, default=16, help="grid: texels between grid lines (default 16)")
     ren.add_argument("--seed", type=int, default=1, help="scene seed (default 1)")
+    ren.add_argument("--backend", default="numpy", help="how the eye pass and the maps are drawn: numpy (default, the reference), numba (the eye pass; fast extra) or gl (OpenGL, gl extra)")
     scn, cas = ren.add_argument_group("your own scene"), ren.add_argument_group("cascades")
     world.add_scene_arguments(scn, cas, "for every scheme")
     cas.add_argument("--allocation", choices=["equal", "error"], default="equal", help="texel budget per cascade: equal, or error-based (Lloyd 2007 eq. 83)")

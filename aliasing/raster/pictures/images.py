@@ -57,7 +57,7 @@ from numpy.typing import ArrayLike, NDArray
 from ... import _validation as check
 from ... import geometry, schemes
 from ..validate.measure import measure, pixel_errors
-from ..draw import LightMap, MapSet, check_resolution, eye_pass, map_set, shadow_map
+from ..draw import LightMap, MapSet, backends, check_resolution, eye_pass, map_set, shadow_map
 from ..draw.lookup import BIAS, _bias, shadow_test
 from ..scenes.builtin import Scene, ground_and_boxes
 
@@ -116,11 +116,12 @@ def map_resolution(budget: int, k: int) -> int:
 
 
 def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, image_res: int = 256, budget: int = 1024**2,
-         boxes: int = 40, ground_cells: int = 16, seed: int = 1, bias: float = BIAS, scene: Scene | None = None) -> View:
+         boxes: int = 40, ground_cells: int = 16, seed: int = 1, bias: float = BIAS, scene: Scene | None = None, backend: str = "numpy") -> View:
     """Render the eye pass and the shadow test of a seeded scene (see the module docstring).
 
     ``bias`` is the tolerance of the depth tests of :func:`shadow_test` [world units, ≥ 0].
     ``scene`` replaces the seeded ground and boxes (then ``face`` is the triangle index).
+    ``backend``: how the eye pass and the maps are drawn (:func:`render_view`).
     """
     fv = float(check.fov(fov))
     lv = geometry.lights(light)
@@ -133,10 +134,11 @@ def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: st
         n_ground = 2 * ground_cells**2
     else:
         sc, n_ground = scene, 0
-    return render_view(sc, ms, [rm] * len(ms.maps), image_res=image_res, bias=bias, ground=n_ground)
+    return render_view(sc, ms, [rm] * len(ms.maps), image_res=image_res, bias=bias, ground=n_ground, backend=backend)
 
 
-def render_view(sc: Scene, ms: MapSet, resolutions: ArrayLike, *, image_res: int = 256, bias: float = BIAS, ground: int = 0, faces: ArrayLike | None = None) -> View:
+def render_view(sc: Scene, ms: MapSet, resolutions: ArrayLike, *, image_res: int = 256, bias: float = BIAS, ground: int = 0, faces: ArrayLike | None = None,
+                backend: str = "numpy") -> View:
     """Eye pass and shadow test of an eye-space scene through a map set, one resolution per map.
 
     Parameters
@@ -156,14 +158,18 @@ def render_view(sc: Scene, ms: MapSet, resolutions: ArrayLike, *, image_res: int
     faces : array_like of int, optional
         A planar-face id per triangle (e.g. coplanar triangles of a mesh share one), for the
         error's differences; overrides ``ground``.
+    backend : {"numpy", "numba", "gl"}
+        How the eye pass and the maps are drawn (:mod:`aliasing.raster.draw.backends`; numba
+        draws the eye pass only, the maps by numpy).
     """
     res = check_resolution(image_res, "image_res")
     rms = [check_resolution(r, "map resolution") for r in np.atleast_1d(np.asarray(resolutions)).tolist()]
     if len(rms) != len(ms.maps):
         raise ValueError(f"resolutions must give one side per map ({len(ms.maps)}), got {len(rms)}")
     bias = _bias(bias)
+    eye_backend, map_backend = backends.pair(backend)
     maps, n_ground = ms.maps, ground
-    eb = eye_pass(sc.triangles, ms.fov, res)
+    eb = eye_pass(sc.triangles, ms.fov, res, backend=eye_backend)
     hit = eb.triangle >= 0
     tri_id = np.maximum(eb.triangle, 0)
     if faces is not None:
@@ -190,7 +196,7 @@ def render_view(sc: Scene, ms: MapSet, resolutions: ArrayLike, *, image_res: int
         p = pos[sel]
         s, t, d, _ = lm.coordinates(p)
         s_all[sel], t_all[sel] = s, t
-        sm = shadow_map(sc.triangles, lm, rms[i])
+        sm = shadow_map(sc.triangles, lm, rms[i], backend=map_backend)
         lit[sel] = shadow_test(lm, sm, sc.triangles, p, nrm[sel], bias=bias)
     return View(sc, n_ground, eb.position, eb.normal, eb.triangle, face, list(maps), ms.edges, rms[0], np.where(hit, part, -1), s_all, t_all, lit,
                 ms.light, ms.fov, np.asarray(rms, np.int64))

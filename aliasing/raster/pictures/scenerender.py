@@ -64,12 +64,13 @@ class SchemeRender:
 
 
 def render(st: SceneSetup, schemes_: list[str], *, splits: str | None = None, k: int | None = None, allocation: str = "equal", budget: int = 1024**2,
-           image_res: int = 512, bias: float = BIAS, **params: float) -> list[SchemeRender]:
+           image_res: int = 512, bias: float = BIAS, backend: str = "numpy", **params: float) -> list[SchemeRender]:
     """Render and measure each scheme on the scene, all sharing ``budget`` texels.
 
     ``splits``, ``k``, ``params``: the partitions of every scheme (a split method or engine
     preset, :func:`aliasing.raster.draw.cascades.cascade_set`); ``allocation``: ``equal`` or
-    ``error`` (:func:`aliasing.raster.draw.cascades.budget_shares`).
+    ``error`` (:func:`aliasing.raster.draw.cascades.budget_shares`); ``backend``: how the eye
+    pass and the maps are drawn (:func:`aliasing.raster.pictures.images.render_view`).
     """
     if not schemes_:
         raise ValueError("schemes must name at least one scheme")
@@ -78,7 +79,7 @@ def render(st: SceneSetup, schemes_: list[str], *, splits: str | None = None, k:
     for name in schemes_:
         cs = cascade_set(cam.near, cam.far, cam.fov, st.light, name.strip(), splits=splits, k=k, **params)
         res = budget_shares(cs, budget, allocation)
-        v = render_view(st.scene, cs.maps, res, image_res=image_res, bias=bias, ground=st.ground, faces=st.faces)
+        v = render_view(st.scene, cs.maps, res, image_res=image_res, bias=bias, ground=st.ground, faces=st.faces, backend=backend)
         if not (v.triangle >= 0).any():
             raise ValueError("no triangles in front of the camera: the image is empty")
         facing = np.nan_to_num(v.normal) @ st.light > MIN_COS_LIGHT  # lit side, not grazing the light
@@ -293,7 +294,7 @@ def run(args) -> int:
     if args.splits is None and (args.k is not None or params):
         raise ValueError("-k, --lambda and --param need --splits NAME (see aliasing splits --list)")
     budget = int(args.res) ** 2
-    renders = render(st, names, splits=args.splits, k=args.k, allocation=args.allocation, budget=budget, image_res=args.image_res, **params)
+    renders = render(st, names, splits=args.splits, k=args.k, allocation=args.allocation, budget=budget, image_res=args.image_res, backend=args.backend, **params)
     if out is not None:
         fig = figure(renders, args.what, every=args.every, preset=getattr(args, "bias_preset", "filament"))
         try:  # the sweep's safe writer (store): atomic, symlinks followed, devices refused, one-line errors

@@ -59,6 +59,7 @@ import numpy as np
 
 from ... import _validation as check
 from ... import sweep
+from ..draw import backends
 from .single import (  # noqa: F401  (re-exported: the public names of one validation)
     DEFAULT_PROBES,
     DEFAULT_REACH,
@@ -406,6 +407,8 @@ def _number(value: str, flag: str) -> float:
 
 
 def _run_grid(args: argparse.Namespace, fmt: str) -> int:
+    if args.backend != "numpy":
+        raise ValueError(f"--backend {args.backend} draws one validation (without --grid); a grid is drawn by numpy, the reference")
     grid = plan(args.scheme, args.f_over_n, args.fov, args.light, args.res, image_res=args.image_res, probes=args.probes, seed=args.seed, reach=args.reach)
     if args.dry_run:
         sys.stdout.write(sweep.dry_run(grid, fmt, args.jobs))
@@ -421,6 +424,7 @@ def _run_grid(args: argparse.Namespace, fmt: str) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     fmt = args.format or ("csv" if args.grid else "text")
+    backends.check(args.backend, "eye_pass")
     if args.grid:
         return _run_grid(args, fmt)
     for flag, given in (("--jobs", args.jobs != 1), ("--out", args.out), ("--resume", args.resume), ("--dask", args.dask), ("--dry-run", args.dry_run)):
@@ -429,7 +433,7 @@ def _run(args: argparse.Namespace) -> int:
     kind = check.choice(fmt, "format", FORMATS)
     r = validate(
         _single(args.scheme, "--scheme"), _number(args.f_over_n, "--f-over-n"), _number(args.fov, "--fov"), _single(args.light, "--light"),
-        args.res, args.image_res, args.probes, seed=args.seed, reach=args.reach,
+        args.res, args.image_res, args.probes, seed=args.seed, reach=args.reach, backend=args.backend,
     )
     if kind == "text":
         sys.stdout.write(format_text(r))
@@ -480,6 +484,7 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
     p.add_argument("--seed", type=int, default=0, help="seed of the probe depths (default 0)")
     p.add_argument("--reach", type=float, default=DEFAULT_REACH, help=f"fraction of the bound the maxima must reach to pass (default {DEFAULT_REACH})")
     p.add_argument("--format", choices=GRID_FORMATS, help="text (default; with --grid a table) | json | csv (default with --grid) | netcdf (--grid --out only; xarray extra)")
+    p.add_argument("--backend", default="numpy", help="how the eye pass and the maps are drawn: numpy (default, the reference), numba (the eye pass; fast extra) or gl (OpenGL, gl extra); one validation only")
     p.add_argument("--grid", action="store_true", help="validate the product of comma lists, one row per combination")
     p.add_argument("--jobs", type=int, default=1, help="local worker processes with --grid (default 1); the output does not depend on it")
     p.add_argument("--out", help="with --grid: output file (default: standard output); written atomically, never truncated by a failed run")

@@ -51,6 +51,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ... import _validation as check
 from ... import geometry, schemes
+from ..draw import backends
 from ..draw.core import check_resolution
 from ..draw.eye import eye_pass
 from ..draw.facemaps import map_set
@@ -115,7 +116,8 @@ def _differences(a: Array, same: NDArray[np.bool_], axis: int, spacing: float) -
 
 
 @check.public
-def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, resolution: int = 512, cells: int = 32, scene: Scene | None = None, map_resolution: int = 512, **options: ArrayLike) -> Measurement:
+def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, resolution: int = 512, cells: int = 32, scene: Scene | None = None, map_resolution: int = 512,
+            backend: str = "numpy", **options: ArrayLike) -> Measurement:
     """Measure the aliasing error of a scheme's maps on probes and compare with their bounds.
 
     Parameters
@@ -138,6 +140,9 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
         splits=...)`` with the scheme's z split depths (none for face partitions).
     map_resolution : int
         Resolution of the shadow map rasterized for the ``self_lit`` check [texels per side].
+    backend : {"numpy", "numba", "gl"}
+        How the eye pass and the shadow maps are drawn (:mod:`aliasing.raster.draw.backends`;
+        numba draws the eye pass only, its maps by numpy).
     **options
         Warping-rule options for :func:`aliasing.schemes.evaluate`.
 
@@ -153,6 +158,7 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     """
     res = check_resolution(resolution)
     rm = check_resolution(map_resolution, "map_resolution")
+    eye_backend, map_backend = backends.pair(backend)
     if scene is not None:
         check.instance(scene, "scene", Scene)
     ms = map_set(near, far, fov, light, scheme, **options)
@@ -161,7 +167,7 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     sc = probes(near, far, fov, light, cells=cells, splits=None if ms.faces else edges) if scene is None else scene
     if not (sc.group >= 0).any():
         raise ValueError("scene must contain probes (triangles with group >= 0)")
-    eb = eye_pass(sc.triangles, fov, res)
+    eb = eye_pass(sc.triangles, fov, res, backend=eye_backend)
     group = np.where(eb.triangle >= 0, sc.group[np.maximum(eb.triangle, 0)], -1)
     on = group >= 0
     pos = np.where(on[..., None], eb.position, 0.0)
@@ -189,7 +195,7 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
         measured_x.append(float(np.nanmax(got["m_x"][sel])))
         measured_z.append(float(np.nanmax(got["m_z"][sel])))
         # the sampled map: the texel of each measured pixel should hold the pixel's own probe
-        sm = shadow_map(sc.triangles, lm, rm)
+        sm = shadow_map(sc.triangles, lm, rm, backend=map_backend)
         t_row = got["t"]
         col = np.clip((np.where(sel, got["s"], 0.0) * rm).astype(np.int64), 0, rm - 1)
         row = np.clip((np.where(sel, t_row, 0.0) * rm).astype(np.int64), 0, rm - 1)

@@ -44,7 +44,7 @@ from ..scenes.world import MIN_COS_LIGHT, SceneSetup, add_scene_arguments, json_
 TOLERANCE = 1e-3
 
 
-def measurable_pixels(st: SceneSetup, res: int, assign: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> tuple[EyeBuffer, np.ndarray, np.ndarray, np.ndarray]:
+def measurable_pixels(st: SceneSetup, res: int, assign: Callable[[np.ndarray, np.ndarray], np.ndarray], *, backend: str = "numpy") -> tuple[EyeBuffer, np.ndarray, np.ndarray, np.ndarray]:
     """The eye pass of a scene and the pixels whose error can be measured there.
 
     ``assign(pos, hit)`` gives each pixel's map index.  Returns the eye buffer, the eye-space
@@ -52,9 +52,10 @@ def measurable_pixels(st: SceneSetup, res: int, assign: Callable[[np.ndarray, np
     index per pixel (−1 where nothing is hit) and the mask of measurable pixels: lit
     (n·l > ``MIN_COS_LIGHT``), not beyond far, and with the same face and map on all four
     neighbours (the finite differences stay on one plane and one map), border excluded.
+    ``backend`` draws the eye pass (:func:`aliasing.raster.eye_pass`).
     """
     cam = st.camera
-    eb = eye_pass(st.scene.triangles, cam.fov, res)
+    eb = eye_pass(st.scene.triangles, cam.fov, res, backend=backend)
     hit = eb.triangle >= 0
     if not hit.any():
         raise ValueError("no triangles in front of the camera: the image is empty")
@@ -71,7 +72,7 @@ def measurable_pixels(st: SceneSetup, res: int, assign: Callable[[np.ndarray, np
     return eb, pos, part, ok
 
 
-def validate_scene(st: SceneSetup, scheme: str, *, res: int = 384, splits: str | None = None, k: int | None = None, **params: float) -> dict:
+def validate_scene(st: SceneSetup, scheme: str, *, res: int = 384, splits: str | None = None, k: int | None = None, backend: str = "numpy", **params: float) -> dict:
     """Measured perspective error per map on the scene against the analytic M_x, M_z.
 
     Parameters
@@ -84,6 +85,8 @@ def validate_scene(st: SceneSetup, scheme: str, *, res: int = 384, splits: str |
         Eye-pass resolution [pixels per side].
     splits, k, **params
         A split method or engine preset (:func:`aliasing.raster.draw.cascades.cascade_set`).
+    backend : {"numpy", "numba", "gl"}
+        How the eye pass is drawn (:func:`aliasing.raster.eye_pass`).
 
     Returns
     -------
@@ -98,7 +101,7 @@ def validate_scene(st: SceneSetup, scheme: str, *, res: int = 384, splits: str |
     r = check_resolution(res, "res")
     cam = st.camera
     cs = cascade_set(cam.near, cam.far, cam.fov, st.light, scheme, splits=splits, k=k, **params)
-    eb, pos, part, ok = measurable_pixels(st, r, lambda pos, hit: cs.maps.assign(pos))
+    eb, pos, part, ok = measurable_pixels(st, r, lambda pos, hit: cs.maps.assign(pos), backend=backend)
     k_maps = len(cs.maps.maps)
     mx, mz, ms_, mt_, count = (np.full(k_maps, np.nan) for _ in range(5))
     for i, lm in enumerate(cs.maps.maps):
@@ -181,7 +184,7 @@ def add_scene_options(p: argparse.ArgumentParser) -> None:
         light = None if args.light_dir is not None else args.light
         st = setup(args.scene, eye=args.eye, target=args.target, up=args.up, camera=args.camera, near=args.near, far=args.far, fov=fov,
                    light_dir=args.light_dir, light=light)
-        r = validate_scene(st, args.scheme, res=args.res, splits=args.splits, k=args.k, **partitioning.split_params(args.lam, args.param))
+        r = validate_scene(st, args.scheme, res=args.res, splits=args.splits, k=args.k, backend=args.backend, **partitioning.split_params(args.lam, args.param))
         if fmt == "json":
             sys.stdout.write(json.dumps(json_safe(r), indent=1) + "\n")
         else:

@@ -90,7 +90,8 @@ def _scalar(values: np.ndarray) -> float | list[float]:
     return vals[0] if len(vals) == 1 else vals
 
 
-def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[float], res: int = DEFAULT_RES, image_res: int | None = None, probes: int = DEFAULT_PROBES, *, seed: int = 0, reach: float = DEFAULT_REACH, **options) -> dict:
+def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[float], res: int = DEFAULT_RES, image_res: int | None = None, probes: int = DEFAULT_PROBES, *, seed: int = 0, reach: float = DEFAULT_REACH,
+             backend: str = "numpy", **options) -> dict:
     """Measure a scheme's perspective error on probes and compare it with the analytic bounds.
 
     Parameters
@@ -115,6 +116,8 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
         Seed of the probes' depth permutation: the same inputs give the same result.
     reach : float
         Fraction of the bound every map's measured maxima must reach to pass, in [0, 1].
+    backend : {"numpy", "numba", "gl"}
+        How the eye pass and the maps are drawn (:func:`aliasing.raster.validate.measure.measure`).
     **options
         Warping-rule options for :func:`aliasing.schemes.evaluate`.
 
@@ -153,7 +156,7 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
     lv = c["lv"]
     ms = map_set(near, far, c["fov"], lv, c["scheme"].name, **options)
     scene = probe_scene(near, far, c["fov"], lv, cells=c["probes"], seed=seed, splits=None if ms.faces else ms.edges)
-    m = measure(near, far, c["fov"], lv, c["scheme"].name, resolution=c["res"], scene=scene, map_resolution=c["res"], **options)
+    m = measure(near, far, c["fov"], lv, c["scheme"].name, resolution=c["res"], scene=scene, map_resolution=c["res"], backend=backend, **options)
     S = m.M_x * m.M_z
     measured_S = m.measured_x * m.measured_z
     ratios = np.concatenate([m.ratio_x, m.ratio_z])
