@@ -2,7 +2,7 @@
 
 For each map of a cascade setup (:func:`aliasing.raster.draw.cascades.cascade_set`: a split method or an
 engine's split preset, any warp) the texel at the middle of the cascade on the view axis
-(:func:`aliasing.raster.draw.biased.texel_edges`: its sides w_s, w_t; warped maps vary across
+(:func:`aliasing.raster.draw.lookup.texel_edges`: its sides w_s, w_t; warped maps vary across
 the map) gives
 
 * the minimal depth bias and normal offset of the ground (``need_depth``, ``need_normal``:
@@ -33,7 +33,7 @@ from numpy.typing import ArrayLike
 
 from .. import _validation as check
 from ..raster.draw import cascade_set
-from ..raster.draw.biased import light_gradient, texel_edges
+from ..raster.draw.lookup import light_gradient, texel_edges
 from . import presets as _presets
 from .plane import lit_gap, map_bias
 

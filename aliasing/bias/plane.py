@@ -31,7 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
-from ..raster.draw.biased import PCF_MAX, light_gradient, texel_edges
+from ..raster.draw.lookup import PCF_MAX, light_gradient, texel_edges
 from ..raster.draw.lightmap import LightMap
 
 Array = NDArray[np.float64]
@@ -185,7 +185,7 @@ def lit_gap(depth_bias: ArrayLike, elevation: ArrayLike, thickness: ArrayLike = 
 def map_bias(lm: LightMap, resolution: int, points: ArrayLike, normals: ArrayLike, lookup: str = "nearest") -> PlaneBias:
     """Minimal biases at surface points of a map of any parameterization, from its local texel.
 
-    The texel at a point is the parallelogram of its sides e_s, e_t (:func:`aliasing.raster.draw.biased.texel_edges`,
+    The texel at a point is the parallelogram of its sides e_s, e_t (:func:`aliasing.raster.draw.lookup.texel_edges`,
     first order in the texel); the receiver's depth gradient over the light plane g (from its
     normal) gives depth = (k/2)·(|g·e_s| + |g·e_t|), which is :func:`plane_bias` for square texels,
     and normal = depth·cos θ.

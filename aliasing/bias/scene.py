@@ -2,7 +2,7 @@
 
 The reference is the rasterizer's own shadow test (:func:`aliasing.raster.draw.lookup.shadow_test`:
 it compares planes, so it neither acnes nor peter-pans); the preset's is the engines'
-depth compare (:func:`aliasing.raster.draw.biased.depth_test`) with the preset's offsets,
+depth compare (:func:`aliasing.raster.draw.lookup.depth_test`) with the preset's offsets,
 each scaled by the cascade's texel size (the larger side of the map's texel, median over the
 cascade's pixels).  A pixel is
 
@@ -32,7 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..raster.draw import depth_test, shadow_map, texel_edges
-from ..raster.draw.biased import light_gradient
+from ..raster.draw.lookup import light_gradient
 from . import presets as _presets
 from .plane import map_bias
 

@@ -20,9 +20,9 @@ One module per step; this package re-exports their public names:
   optional ``gl`` extra), with the maps' 4×4 matrices;
 * :mod:`.cascades`: a scheme's maps for any split method or engine preset, and the texel
   budget shared among them;
-* :mod:`.lookup`: the shadow test of surface points through a depth map;
-* :mod:`.biased`: the engines' shadow test (depth compare with constant, slope-scaled and
-  normal-offset bias, PCF, receiver-plane depth) and the local texel's sides.
+* :mod:`.lookup`: the shadow tests of surface points through a depth map: the toolkit's plane
+  test, and the engines' depth compare (constant, slope-scaled and normal-offset bias, PCF,
+  receiver-plane depth) with the local texel's sides.
 
 Example
 -------
@@ -42,7 +42,7 @@ from .lightmap import LightMap, _unit_vector, light_map, light_maps
 from .shadow import log_row_centres, shadow_map, shadow_maps
 from .cascades import CascadeSet, budget_shares, cascade_set
 from .lookup import BIAS, shadow_test
-from .biased import depth_test, texel_edges
+from .lookup import depth_test, texel_edges
 
 __all__ = [
     "BIAS", "CHUNK", "CascadeSet", "MAX_RESOLUTION", "DepthMap", "budget_shares", "cascade_set", "shadow_test", "depth_test", "texel_edges", "EyeBuffer", "LightMap", "MapSet", "check_resolution", "clip_near", "eye_pass",
