@@ -12,7 +12,6 @@ import sys
 import warnings
 from collections.abc import Sequence
 
-import sympy as sp
 
 
 def _one_line(text: str) -> str:
@@ -49,10 +48,9 @@ def _derive(args: argparse.Namespace) -> int:
         return 0
     names = args.names or list(symbolic.DERIVATIONS)
     chosen = [symbolic.get(name) for name in names]  # validate all names before any work
-    show = sp.latex if args.latex else sp.sstr
     for d in chosen:
         print(f"# {d.name}  ({d.source}): {d.summary}")
-        print(show(d.func()))
+        print(symbolic.display(d.func(), latex=args.latex))
     return 0
 
 

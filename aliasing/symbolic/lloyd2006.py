@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from . import Printed, derivation
+from . import Printed, derivation, linear_solve, polynomial_roots
 
 z, n, f, theta = sp.symbols("z n f theta", positive=True)
 n_p = sp.Symbol("n'", positive=True)
@@ -61,7 +61,7 @@ def warping_frustum() -> dict[str, sp.Expr]:
     zp = n_p + z - n
     fp = n_p + f - n
     tp = sp.Symbol("T", positive=True)
-    (tan_tp,) = sp.solve(fp * tp - f * sp.tan(theta), tp)  # linear in T
+    tan_tp = linear_solve([fp * tp - f * sp.tan(theta)], [tp])[tp]
     return {"z'": zp, "f'": fp, "tan(theta')": tan_tp}
 
 
@@ -85,9 +85,9 @@ def shadow_map_coordinates() -> sp.Matrix:
     fp, tan_tp = wf["f'"], wf["tan(theta')"]
     A, B, alpha, beta = sp.symbols("A B alpha beta")
     s_gen = A * x / z_p + B
-    sol_s = sp.solve([s_gen.subs(x, -z_p * tan_tp), s_gen.subs(x, z_p * tan_tp) - 1], [A, B])
+    sol_s = linear_solve([s_gen.subs(x, -z_p * tan_tp), s_gen.subs(x, z_p * tan_tp) - 1], [A, B])
     t_gen = alpha + beta / z_p
-    sol_t = sp.solve([t_gen.subs(z_p, n_p), t_gen.subs(z_p, fp) - 1], [alpha, beta])
+    sol_t = linear_solve([t_gen.subs(z_p, n_p), t_gen.subs(z_p, fp) - 1], [alpha, beta])
     # both are rational in their symbols: one common denominator is the whole simplification
     return sp.Matrix([sp.together(s_gen.subs(sol_s)), sp.together(t_gen.subs(sol_t))])
 
@@ -129,7 +129,7 @@ def m_z_minimum() -> sp.Expr:
     """
     mz = m_z()
     # the roots are z = ±(n′ − n); keep the positive one and check convexity there
-    (zs,) = [r for r in sp.solve(sp.diff(mz, z), z) if _on_domain(r).is_positive]
+    (zs,) = [r for r in polynomial_roots(sp.diff(mz, z), z) if _on_domain(r).is_positive]
     assert _on_domain(sp.diff(mz, z, 2)).is_positive
     return zs
 
@@ -146,7 +146,7 @@ def _n_prime_lispsm(mz: sp.Expr) -> sp.Expr:
     The difference's numerator is a quadratic in n′ (its denominator is positive), so the
     equation is solved on that polynomial directly.
     """
-    roots = sp.solve(sp.numer(sp.together(mz.subs(z, n) - mz.subs(z, f))), n_p)
+    roots = polynomial_roots(mz.subs(z, n) - mz.subs(z, f), n_p)
     (root,) = [r for r in roots if _on_domain(r - n).is_positive]  # n′ ≥ n by definition
     return root
 
@@ -222,7 +222,7 @@ def n_prime_of_eta() -> sp.Piecewise:
     for expr, cond in (upper, (eta <= 0)), (lower, True):
         # each branch is a Möbius map of n′: its numerator minus η times its denominator is linear in n′
         num, den = sp.fraction(sp.together(expr[0].subs(f, a * n).subs(a, r**2)))
-        (root,) = sp.solve(sp.expand(num - eta * den), n_p)
+        root = linear_solve([num - eta * den], [n_p])[n_p]
         branches.append((sp.factor(sp.cancel(root)).subs(r, sp.sqrt(a)), cond))
     return sp.Piecewise(*branches)
 
@@ -241,25 +241,28 @@ def storage_factor() -> sp.Piecewise:
 def critical_resolutions() -> sp.Matrix:
     """Critical resolutions res*_s, res*_t: the resolutions with M_x = 1 and M_z = 1."""
     mx, mz = _m_xz()
-    rs = sp.solve(sp.Eq(_max_error_x(mx), 1), res_s)[0]
-    return sp.Matrix([rs, sp.Piecewise(*[(sp.solve(sp.Eq(e, 1), res_t)[0], c) for e, c in _max_error_z(mz).args])])
+    # each maximum is (a factor)/resolution: M = 1 is linear in the resolution once multiplied out
+    (rs,) = polynomial_roots(_max_error_x(mx) - 1, res_s)
+    return sp.Matrix([rs, sp.Piecewise(*[(polynomial_roots(e - 1, res_t)[0], c) for e, c in _max_error_z(mz).args])])
 
 
 @derivation("lloyd2006.budget_resolutions", f"{SOURCE}, eqs. 13-14", "res_s, res_t for a texel budget S0 keeping res_s/res_t = res_s*/res_t*")
 def budget_resolutions() -> sp.Matrix:
     """Split a budget S0: res_s·res_t = S0 and res_s/res_t = res*_s/res*_t (eqs. 13–14)."""
     rs_c, rt_c = sp.symbols("res_s^* res_t^*", positive=True)
-    sol = sp.solve([sp.Eq(res_s * res_t, S0), sp.Eq(res_s / res_t, rs_c / rt_c)], [res_s, res_t], dict=True)
-    (s,) = [s for s in sol if s[res_s].is_positive is not False]
-    return sp.Matrix([s[res_s], s[res_t]])
+    # the ratio condition is linear in res_s: res_s = res_t res*_s/res*_t; then res_t² = S0 res*_t/res*_s
+    rs_of_rt = linear_solve([res_s * rt_c - res_t * rs_c], [res_s])[res_s]
+    (rt,) = [r for r in polynomial_roots(rs_of_rt * res_t - S0, res_t) if r.is_positive is not False]
+    return sp.Matrix([rs_of_rt.subs(res_t, rt), rt])
 
 
 @derivation("lloyd2006.log_parameterization", f"{SOURCE}, Appendix C", "t(z) with dz/dt proportional to z, normalised to [0, 1]")
 def log_parameterization() -> sp.Expr:
     """t(z) = ∫_n^z dζ/ζ normalised to [0, 1]: the logarithmic map (Appendix C)."""
     zeta = sp.Symbol("zeta", positive=True)
-    t_tilde = sp.integrate(1 / zeta, (zeta, n, z))
-    return sp.simplify(sp.expand_log(t_tilde / t_tilde.subs(z, f), force=True))
+    t_tilde = sp.integrate(1 / zeta, (zeta, n, z))  # log(z) − log(n)
+    combine = lambda q: sp.logcombine(sp.expand_log(q, force=True), force=True)  # noqa: E731
+    return combine(t_tilde) / combine(t_tilde.subs(z, f))
 
 
 @derivation("lloyd2006.storage_factor_optimal", f"{SOURCE}, Appendix C", "S of the logarithmic parameterization")
@@ -267,9 +270,9 @@ def storage_factor_optimal() -> sp.Expr:
     """S̄_optimal of the logarithmic map: m_x with n′ = n (PSM in x) times m_z of t = ln(z/n)/ln(f/n)."""
     t_log = log_parameterization()
     w_lz = 1 / (res_t * sp.diff(t_log, z))
-    mz = sp.simplify(w_lz / image_beam_width())
+    mz = sp.factor(w_lz / image_beam_width())
     mx = m_x().subs(n_p, n)
-    return sp.simplify((mx * mz).subs({res_i: 1, res_s: 1, res_t: 1}))
+    return sp.factor(sp.expand_log((mx * mz).subs({res_i: 1, res_s: 1, res_t: 1}), force=True))
 
 
 @derivation("lloyd2006.projective_spacing", f"{SOURCE}, Appendix A", "dz/dt of a general projective t(z)")
@@ -277,7 +280,7 @@ def projective_spacing() -> sp.Expr:
     """dz/dt of t = (αz + β)/(γz + δ): proportional to (z + δ/γ)² (Appendix A)."""
     al, be, ga, de = sp.symbols("alpha beta gamma delta")
     t = (al * z + be) / (ga * z + de)
-    return sp.factor(sp.simplify(1 / sp.diff(t, z)))
+    return sp.factor(1 / sp.diff(t, z))
 
 
 def _printed() -> dict[str, Printed]:
@@ -341,7 +344,7 @@ def _partition_ratio() -> sp.Expr:
     i = sp.Symbol("i", positive=True, integer=True)
     n_i = n * (f / n) ** ((i - 1) / k)  # eq. (15)
     f_i = n * (f / n) ** (i / k)  # eq. (16)
-    return sp.simplify(sp.powsimp(f_i / n_i, force=True))
+    return sp.powsimp(sp.powdenest(sp.powsimp(f_i / n_i, force=True), force=True), force=True)
 
 
 def _storage_per_partition(warped: bool) -> sp.Expr:
@@ -349,7 +352,7 @@ def _storage_per_partition(warped: bool) -> sp.Expr:
     (low, _), (high, _) = storage_factor().args
     r = _partition_ratio()
     expr = low if warped else sp.limit(high, n_p, sp.oo)
-    return sp.simplify(expr.subs(f, r * n))
+    return sp.factor(sp.powsimp(expr.subs(f, r * n), force=True))
 
 
 @derivation("lloyd2006.S_zp_overhead", f"{SOURCE}, eq. 17", "S of k self-similar z-partitions, uniform maps, light overhead")
@@ -375,7 +378,7 @@ def storage_zp_behind() -> sp.Expr:
     width = lambda depth: 2 * depth * sp.tan(theta)  # noqa: E731  frustum width at a depth
     r = _partition_ratio()
     per_map = (width(r * n) / width(n)) ** 2
-    return sp.simplify(k * per_map)
+    return k * per_map  # the widths' common factors cancel on construction
 
 
 @derivation("lloyd2006.S_fp_zp_w_behind", f"{SOURCE}, eq. 21", "FP+ZP+W with the light behind: four warped side faces plus the near face")

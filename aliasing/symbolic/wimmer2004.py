@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from . import Printed, derivation
+from . import Printed, derivation, linear_solve, polynomial_roots
 
 z, z_n, z_f, n = sp.symbols("z z_n z_f n", positive=True)
 z_p = sp.Symbol("z'", positive=True)
@@ -43,7 +43,7 @@ def _depth_map(far: sp.Expr) -> sp.Expr:
     """Projective s(z′) = α + β/z′ with s(n) = 0 and s(far) = 1 (glFrustum depth)."""
     al, be = sp.symbols("alpha beta")
     s = al + be / z_p
-    return s.subs(sp.solve([s.subs(z_p, n), s.subs(z_p, far) - 1], [al, be]))
+    return s.subs(linear_solve([s.subs(z_p, n), s.subs(z_p, far) - 1], [al, be]))
 
 
 @derivation("wimmer2004.s", f"{SOURCE}, eq. 2", "shadow-map depth coordinate s(z') of the perspective frustum P")
@@ -76,7 +76,7 @@ def dp_ds_minimum() -> sp.Expr:
     """The stationary point of eq. 3 in z > 0 (for n > z_n): z = n − z_n, a minimum."""
     d = sp.Symbol("d", positive=True)
     e = dp_ds()
-    (zs,) = [r for r in sp.solve(sp.diff(e, z), z) if _on_domain(r.subs(n, z_n + d)).is_positive]
+    (zs,) = [r for r in polynomial_roots(sp.diff(e, z), z) if _on_domain(r.subs(n, z_n + d)).is_positive]
     assert _on_domain(sp.diff(e, z, 2).subs(z, zs).subs(n, z_n + d)).is_positive
     return zs
 
@@ -86,7 +86,7 @@ def n_opt() -> sp.Expr:
     """n_opt: the maxima of eq. 3 lie at z_n and z_f; make them equal (L∞-optimal)."""
     e = dp_ds()
     # the difference's numerator is a quadratic in n (its denominator is positive)
-    roots = sp.solve(sp.numer(sp.together(e.subs(z, z_n) - e.subs(z, z_f))), n)
+    roots = polynomial_roots(e.subs(z, z_n) - e.subs(z, z_f), n)
     (root,) = [r for r in roots if _on_domain(r).is_positive]
     return root
 
@@ -100,7 +100,7 @@ def n_opt_general() -> sp.Expr:
     # sin γ as a positive symbol keeps the equation a polynomial (a quadratic in n)
     sg = sp.Symbol("sin_gamma", positive=True)
     ends = (e.subs(z, z_n) - e.subs(z, z_f)).subs(sp.sin(gamma), sg)
-    roots = sp.solve(sp.numer(sp.together(ends)), n)
+    roots = polynomial_roots(ends, n)
     probe = {z_n: 1, z_f: 100, sg: sp.sin(sp.pi / 3)}  # pick the positive root
     (root,) = [r for r in roots if r.subs(probe).evalf() > 0]
     return sp.factor(root).subs(sg, sp.sin(gamma))

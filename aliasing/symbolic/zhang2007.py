@@ -50,7 +50,7 @@ from functools import cache
 
 import sympy as sp
 
-from . import Printed, derivation
+from . import Printed, derivation, linear_solve, polynomial_roots
 from . import wimmer2004 as W
 
 z, n, f = sp.symbols("z n f", positive=True)
@@ -140,7 +140,7 @@ def _s_map(near: sp.Expr, far: sp.Expr) -> sp.Expr:
     """Projective depth s(z′) = α + β/z′ with s(near) = 0 and s(far) = 1 (glFrustum)."""
     al, be = sp.symbols("alpha beta")
     s = al + be / z_p
-    return s.subs(sp.solve([s.subs(z_p, near), s.subs(z_p, far) - 1], [al, be]))
+    return s.subs(linear_solve([s.subs(z_p, near), s.subs(z_p, far) - 1], [al, be]))
 
 
 @cache
@@ -210,7 +210,7 @@ def error_minimum() -> sp.Piecewise:
         ps, ph = _psi_varphi(regime)
         F = ps * (z + v) ** 2 / z
         # ψ > 0 does not depend on z: the stationary points are the roots of d/dz (z + ϕ)²/z
-        roots = sp.solve(sp.numer(sp.together(sp.diff((z + v) ** 2 / z, z))), z)
+        roots = polynomial_roots(sp.diff((z + v) ** 2 / z, z), z)
         assert set(roots) == {v, -v}
         assert sp.cancel(sp.diff(F, z, 2).subs(z, v) - 2 * ps / v) == 0  # > 0 for ϕ > 0
         out.append(ph)
@@ -248,7 +248,7 @@ def _varphi_optimal() -> sp.Expr:
     The root +√(fn) is the one with the centre of projection behind the eye; with −√(fn)
     F would vanish at z = √(fn) inside [n, f] (the view ray would pass through the centre).
     """
-    roots = sp.solve(sp.Eq((n + v) ** 2 / n, (f + v) ** 2 / f), v)
+    roots = polynomial_roots((n + v) ** 2 / n - (f + v) ** 2 / f, v)
     (root,) = [r for r in roots if r.subs({n: 1, f: 100}) > 0]
     return root
 
@@ -302,8 +302,10 @@ def lambda_glpr() -> sp.Piecewise:
         # F/z = ψ(1 + ϕ/z)² with ψ > 0 free of z: constant in z iff d/dz ((z + ϕ)/z)² = 0
         numer = sp.numer(sp.together(sp.diff((z + ph) ** 2 / z**2, z)))
         coeffs = sp.Poly(sp.expand(numer), z).coeffs()
-        (root,) = sp.solve(coeffs, lam, dict=True)
-        out.append(sp.factor(root[lam]))
+        # the leading coefficient (−2ϕ) is linear in λ; its root must zero every coefficient
+        root = linear_solve([coeffs[0]], [lam])[lam]
+        assert all(sp.cancel(cf.subs(lam, root)) == 0 for cf in coeffs)
+        out.append(sp.factor(root))
     # regime 2: the root is (tanθ/tanφ − 1)/2, not positive for θ ≤ φ
     assert sp.cancel(out[1] - (sp.tan(theta) / sp.tan(phi) - 1) / 2) == 0
     return sp.Piecewise((out[0], theta > phi), (sp.nan, True))
@@ -347,7 +349,7 @@ def lambda_minimax_degenerate() -> sp.Matrix:
 
 def shadow_map_depth_normalised() -> sp.Expr:
     """s(z′) of P with normalised depth (P_f − P_n = 1, P_n = λ); z′ from the centre (§3)."""
-    return sp.simplify(_s_map(lam, lam + 1))
+    return sp.together(_s_map(lam, lam + 1))
 
 
 def _printed() -> dict[str, Printed]:
