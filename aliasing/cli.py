@@ -198,7 +198,10 @@ def _table(rows: list[dict]) -> str:
     return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(full: bool = True) -> argparse.ArgumentParser:
+    """The ``aliasing`` parser; ``full=False`` leaves out the subcommands whose parsers import
+    the rasterizer and the engines (validate, render, engines), for ``aliasing derive``,
+    which would otherwise spend most of its start-up importing them."""
     parser = _Parser(prog="aliasing", description="Analytic study of shadow-map perspective aliasing.")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
@@ -267,6 +270,8 @@ def build_parser() -> argparse.ArgumentParser:
     spl.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
     spl.add_argument("--max-memory", metavar="SIZE", help="refuse a -k estimated to need more memory than this, e.g. 8G (default 4G)")
     spl.set_defaults(run=_splits)
+    if not full:
+        return parser
 
     from .raster.validate import add_validate_parser
 
@@ -281,7 +286,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``aliasing`` console script; returns the exit status."""
-    parser = build_parser()
+    words = list(sys.argv[1:] if argv is None else argv)
+    parser = build_parser(full=words[:1] != ["derive"])
     args = parser.parse_args(argv)
     try:
         with warnings.catch_warnings():
