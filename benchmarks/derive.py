@@ -18,6 +18,8 @@ Usage::
     python benchmarks/derive.py                 # 3 runs of all, 5 of the slowest one and of the baseline
     python benchmarks/derive.py --repeats 5
     python benchmarks/derive.py --skip-search --name lloyd2007.m_point_far_limit
+    git archive b54a15a aliasing | tar -x -C /tmp/before   # an older tree, timed side by side:
+    python benchmarks/derive.py --skip-search --name zhang2007.psi --against /tmp/before
 """
 
 from __future__ import annotations
@@ -32,7 +34,14 @@ import sys
 import time
 
 
+AGAINST: str | None = None
+"""With ``--against DIR``: the package tree (a folder holding ``aliasing/``) that every run imports."""
+
+
 def _command() -> list[str]:
+    if AGAINST is not None:
+        code = "import sys; sys.path.insert(0, sys.argv.pop(1)); from aliasing.cli import main; sys.exit(main())"
+        return [sys.executable, "-c", code, AGAINST]
     exe = shutil.which("aliasing", path=os.path.dirname(sys.executable)) or shutil.which("aliasing")
     return [exe] if exe else [sys.executable, "-m", "aliasing.cli"]
 
@@ -62,7 +71,12 @@ def main() -> None:
     ap.add_argument("--repeats", type=int, default=3, help="runs of all derivations (the single one and the baseline get 2 more)")
     ap.add_argument("--name", help="the single derivation to time (default: the slowest, found by running each once)")
     ap.add_argument("--skip-search", action="store_true", help="with --name: do not run every derivation once")
+    ap.add_argument("--against", metavar="DIR", help="time the package tree in DIR (e.g. an older commit's, from git archive) instead of the installed one")
     args = ap.parse_args()
+    global AGAINST
+    AGAINST = args.against
+    if AGAINST is not None:
+        print(f"package tree: {AGAINST}")
     print(f"load average before: {os.getloadavg()[0]:.2f} (cores: {os.cpu_count()})")
     names = _names()
     name = args.name
