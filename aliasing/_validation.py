@@ -85,6 +85,24 @@ def instance(value: object, name: str, kind: type | tuple[type, ...]) -> None:
         raise TypeError(f"{name} must be a {names}, got {type(value).__name__}")
 
 
+def names(value: object, name: str) -> list[str]:
+    """Names given as one comma-separated str or as an iterable of str (a list of schemes).
+
+    Anything else (a number, a complex, None) or an entry that is not a str is refused with
+    a TypeError naming the parameter; the entries come back stripped, empty ones kept (the
+    callers say what an empty item means).
+    """
+    if isinstance(value, str):
+        return [part.strip() for part in value.split(",")]
+    if isinstance(value, bytes) or not isinstance(value, Iterable):
+        raise TypeError(f"{name} must be a comma-separated str or a list of str, got {type(value).__name__} {_repr(value)}")
+    items = list(value.tolist() if isinstance(value, np.ndarray) else value)
+    bad = [v for v in items if not isinstance(v, str)]
+    if bad:
+        raise TypeError(f"{name} entries must be str (names), got {type(bad[0]).__name__} {_repr(bad[0])}")
+    return [v.strip() for v in items]
+
+
 def broadcast(**arrays: ArrayLike) -> list[NDArray]:
     """``np.broadcast_arrays`` whose error names the parameters and their shapes."""
     try:

@@ -22,6 +22,10 @@ a few divisions and two maxima per direction.  Its log+perspective counterpart (
 inside, η = min((1 − r)(min(t, 2t²) − 1) − r(1 − t)⁵, 3t² − 1); outside a ramp to LogSopt's
 plateau η = 1 at t = 1.3, where the guard ends; the same guard (docs/warping_rule.md §6).
 
+Both rules are registered ``bounded``: :func:`aliasing.schemes.evaluate` keeps their n′ for a
+map only where its S̄ is at most the uniform map's and uses n′ = ∞ elsewhere, so that S̄ is
+never above Standard's, per direction, for any frustum (docs/warping_rule.md §7).
+
 What holds on the grid f/n ∈ 10…1e5, fov 20°…120° (docs/warping_rule.md): see
 :func:`grid_study` and the reproduce target ``warping-rule-grid``.
 
@@ -192,7 +196,7 @@ def n_prime_pyramid(near: ArrayLike, far: ArrayLike, t: ArrayLike, depth: ArrayL
     return np.maximum(npr, np.where(np.isfinite(tt), guard, 0.0))
 
 
-@register("pyramid", "new (this toolkit, docs/warping_rule.md): η from the light's vanishing point in the eye image", "eta = clip(min(t, 2t^2) - 1, -1, n/f), t = max(|u|,|w|) of the light's image position / tan(theta), n' >= 0.1 W_ly near t = 1; perspective")
+@register("pyramid", "new (this toolkit, docs/warping_rule.md): η from the light's vanishing point in the eye image", "eta = clip(min(t, 2t^2) - 1, -1, n/f), t = max(|u|,|w|) of the light's image position / tan(theta), n' >= 0.1 W_ly near t = 1; perspective", bounded=True)
 def _pyramid(near: ArrayLike, far: ArrayLike, *, fov: ArrayLike = 60.0, gamma: ArrayLike = 90.0, depth: ArrayLike | None = None, azimuth: ArrayLike = 0.0) -> Array:
     """n′ [world units] of the pyramid rule from γ and the light's azimuth [deg] (eq. 120's n_γ).
 
@@ -204,7 +208,7 @@ def _pyramid(near: ArrayLike, far: ArrayLike, *, fov: ArrayLike = 60.0, gamma: A
     return n_prime_pyramid(n, f, pyramid_t(gamma, azimuth, fov), d)
 
 
-@register("pyramid-log", "new (this toolkit, docs/warping_rule.md): the pyramid rule for the log+perspective map", "inside: blend by r = min/max(|u|,|w|) of min(t, 2t^2) - 1 and -(1 - t)^5, capped by 3t^2 - 1; outside: ramp to eta = 1 at t = 1.3; guard as pyramid; the scheme 'pyramid-log' uses it with the log+perspective parameterization")
+@register("pyramid-log", "new (this toolkit, docs/warping_rule.md): the pyramid rule for the log+perspective map", "inside: blend by r = min/max(|u|,|w|) of min(t, 2t^2) - 1 and -(1 - t)^5, capped by 3t^2 - 1; outside: ramp to eta = 1 at t = 1.3; guard as pyramid; the scheme 'pyramid-log' uses it with the log+perspective parameterization", bounded=True)
 def _pyramid_log(near: ArrayLike, far: ArrayLike, *, fov: ArrayLike = 60.0, gamma: ArrayLike = 90.0, depth: ArrayLike | None = None, azimuth: ArrayLike = 0.0) -> Array:
     """n′ [world units] of pyramid-log: η of :func:`eta_pyramid_log` through eq. 120 and the same guard."""
     n, f = check.frustum(near, far)

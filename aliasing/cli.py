@@ -12,7 +12,6 @@ import sys
 import warnings
 from collections.abc import Sequence
 
-import sympy as sp
 
 from . import _validation
 from ._version import __version__
@@ -59,10 +58,9 @@ def _derive(args: argparse.Namespace) -> int:
         return 0
     names = args.names or list(symbolic.DERIVATIONS)
     chosen = [symbolic.get(name) for name in names]  # validate all names before any work
-    show = sp.latex if args.latex else sp.sstr
     for d in chosen:
         print(f"# {d.name}  ({d.source}): {d.summary}")
-        print(show(d.func()))
+        print(symbolic.display(d.func(), latex=args.latex))
     return 0
 
 
@@ -214,7 +212,10 @@ def _table(rows: list[dict]) -> str:
     return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(full: bool = True) -> argparse.ArgumentParser:
+    """The ``aliasing`` parser; ``full=False`` leaves out the subcommands whose parsers import
+    the rasterizer and the engines (validate, render, engines), for ``aliasing derive``,
+    which would otherwise spend most of its start-up importing them."""
     parser = _Parser(prog="aliasing", description="Analytic study of shadow-map perspective aliasing.")
     parser.add_argument("--version", action="version", version=f"aliasing {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
@@ -284,6 +285,8 @@ def build_parser() -> argparse.ArgumentParser:
     spl.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
     spl.add_argument("--max-memory", metavar="SIZE", help="refuse a -k estimated to need more memory than this, e.g. 8G (default 4G)")
     spl.set_defaults(run=_splits)
+    if not full:
+        return parser
 
     from .raster.validate import add_validate_parser
 
@@ -301,7 +304,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``aliasing`` console script; returns the exit status."""
-    parser = build_parser()
+    words = list(sys.argv[1:] if argv is None else argv)
+    parser = build_parser(full=words[:1] != ["derive"])
     args = parser.parse_args(argv)
     try:
         with warnings.catch_warnings():

@@ -54,6 +54,9 @@ def _unpack(near: ArrayLike | View, far: ArrayLike | None, fov: ArrayLike | None
     """(near, far, fov, n′) from the numbers or from a :class:`aliasing.View` in ``near``
     (then ``f(view, n_prime)``: the arguments after it move up one place)."""
     view, npr = split_view(near, far, fov, n_prime, (None, None, None, np.inf))
+    if not isinstance(near, View):
+        # against the near given: the View broadcasts near to far's shape, which may be empty
+        check.n_prime(npr, check.positive(near, "near"))
     return view.near, view.far, view.fov, npr
 
 

@@ -247,6 +247,15 @@ def _maps(sch: Scheme, sf: directional.SliceFit, gamma: Array, azimuth: Array, o
     else:
         npr = np.broadcast_to(warping.warping_parameter(sch.rule, n_i, f_i, fov=fov, gamma=gamma, depth=sf.depth, azimuth=azimuth, **options), sf.depth.shape)
     M_x, M_z = directional.slice_errors(sf, npr, sch.parameterization)
+    rule = warping.WARPING_RULES.get(sch.rule)
+    if rule is not None and rule.bounded:
+        # never above Standard, by construction: each map keeps the rule's n′ only where its
+        # S̄ is at most the uniform map's (n′ = ∞, which both parameterizations reduce to)
+        u_x, u_z = directional.slice_errors(sf, np.inf, "uniform")
+        above = M_x * M_z > u_x * u_z
+        if above.any():
+            npr = np.where(above, np.inf, npr)
+            M_x, M_z = np.where(above, u_x, M_x), np.where(above, u_z, M_z)
     return M_x, M_z, npr, _eta_or_nan(npr, n_i, f_i, sf.depth)
 
 

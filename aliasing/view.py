@@ -202,6 +202,8 @@ def split_view(near: View | ArrayLike | None, far: Any, fov: Any, rest: Any, def
     (View(near=1.0, far=10.0, fov=60.0), 'front')
     """
     dn, df, da, dr = defaults
+    if near is not None and far is None and not isinstance(near, View):
+        raise ValueError(f"far is required beside near={near!r} (the default far goes with the default near), or a View in place of near")
     if isinstance(near, View):
         if fov is not None or (far is not None and rest is not None):
             raise ValueError("with a View, pass the arguments that follow it once (e.g. light), not far and fov")

@@ -37,18 +37,25 @@ class WarpingRule:
     func: Callable[..., NDArray[np.float64]]
     source: str
     summary: str
+    bounded: bool = False
+    """Promises S̄ never above Standard's: :func:`aliasing.schemes.evaluate` keeps the rule's
+    n′ only for the maps and directions where its S̄ is at most the uniform map's, and uses
+    n′ = ∞ (the uniform map) elsewhere."""
 
 
 WARPING_RULES: dict[str, WarpingRule] = {}
 
 
-def register(name: str, source: str, summary: str) -> Callable:
-    """Decorator adding a rule ``func(near, far, **options) -> n′`` to the registry."""
+def register(name: str, source: str, summary: str, bounded: bool = False) -> Callable:
+    """Decorator adding a rule ``func(near, far, **options) -> n′`` to the registry.
+
+    ``bounded``: the rule promises S̄ never above Standard's (:attr:`WarpingRule.bounded`).
+    """
 
     def wrap(func: Callable[..., NDArray[np.float64]]) -> Callable[..., NDArray[np.float64]]:
         if name in WARPING_RULES:
             raise RuntimeError(f"warping rule {name!r} registered twice")
-        WARPING_RULES[name] = WarpingRule(name, func, source, summary)
+        WARPING_RULES[name] = WarpingRule(name, func, source, summary, bounded)
         return func
 
     return wrap

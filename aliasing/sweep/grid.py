@@ -163,7 +163,7 @@ def expand_schemes(names: str | Iterable[str], k: ArrayLike | str | None = None,
     >>> [v.label for v in expand_schemes("P,eta", k=[1, 5], params={"eta": [-1, 0]})]
     ['P', 'ZP5+P', 'eta[eta=-1]', 'eta[eta=0]', 'ZP5+eta[eta=-1]', 'ZP5+eta[eta=0]']
     """
-    listed = [n.strip() for n in names.split(",")] if isinstance(names, str) else [str(n).strip() for n in names]
+    listed = check.names(names, "schemes")
     if any(listed) and not all(listed):
         raise ValueError(f"schemes has an empty item in {names!r} (two commas, or a comma at an end)")
     listed = [n for n in listed if n]

@@ -20,6 +20,8 @@ from collections.abc import Iterable
 
 import numpy as np
 
+from .. import _validation as check
+
 ARRAYS_PER_MAP = 64
 """Peak float64 per direction × map of one ``schemes.evaluate`` call: measured with tracemalloc
 on 20,000 directions (P 64.5, LogP 65.5, ZP8+P 60.6, ZP32+P 60.1, ZP4+TSM 61.1)."""
@@ -171,7 +173,7 @@ def scheme_counts(names: object, k: object = None, params: dict | None = None) -
     >>> scheme_counts("P,ZP99999999+P"), scheme_counts("P,LogP", k="1:8:lin:8", params={"c_fraction": "0:1:lin:3"})
     ((2, 99999999), (48, 8))
     """
-    listed = [n for n in (names.split(",") if isinstance(names, str) else [str(n) for n in names or ()]) if n.strip()]  # type: ignore[attr-defined]
+    listed = [n for n in check.names(() if names is None else names, "schemes") if n]
     top = _max_value(k) if k is not None else 1
     most = 1
     for name in listed:

@@ -60,7 +60,7 @@ def sweep(scheme_names: Iterable[str], f_over_n: ArrayLike = (1000.0,), fov: Arr
     list of dict
         With the keys :data:`ROW_FIELDS` or :data:`SUMMARY_FIELDS`.
     """
-    parsed = [schemes.parse(name) for name in scheme_names]
+    parsed = [schemes.parse(name) for name in check.names(scheme_names, "scheme_names")]
     if not parsed:
         raise ValueError("schemes must name at least one scheme")
     ratios = np.atleast_1d(check.depth_ratio(f_over_n))

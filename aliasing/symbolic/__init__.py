@@ -16,8 +16,9 @@ from __future__ import annotations
 
 from .. import _validation as check
 from .registry import DERIVATIONS, Derivation, Printed, derivation, equivalent
+from .rewrite import display, linear_solve, polynomial_roots
 
-__all__ = ["DERIVATIONS", "Derivation", "Printed", "derivation", "equivalent", "get"]
+__all__ = ["DERIVATIONS", "Derivation", "Printed", "derivation", "display", "equivalent", "get", "linear_solve", "polynomial_roots"]
 
 
 def get(name: str) -> Derivation:

@@ -31,6 +31,7 @@ from __future__ import annotations
 import sympy as sp
 
 from .registry import derivation
+from .rewrite import polynomial_roots
 
 a, b, t = sp.symbols("a b t", positive=True)
 z = sp.Symbol("z_c", real=True)
@@ -41,7 +42,7 @@ W, L, phi, bias = sp.symbols("W L phi bias", real=True)
 def sphere_centre() -> sp.Expr:
     near_sq = (z - a) ** 2 + 2 * t**2 * a**2  # squared distance to a near corner
     far_sq = (z - b) ** 2 + 2 * t**2 * b**2
-    (sol,) = sp.solve(sp.Eq(near_sq, far_sq), z)
+    (sol,) = polynomial_roots(near_sq - far_sq, z)  # the z_c² terms cancel: linear
     return sp.factor(sol)
 
 
@@ -62,7 +63,7 @@ def vsm_m_axis() -> sp.Expr:
 
 @derivation("engines.matched_texels", "derived here", "mean texels per pixel of power-of-two resolution matching, 3/ln 4")
 def matched_texels() -> sp.Expr:
-    return sp.simplify(sp.integrate(4**phi, (phi, 0, 1)))
+    return sp.factor(sp.expand_log(sp.integrate(4**phi, (phi, 0, 1)), force=True))  # 3/ln 4 = 3/(2 ln 2)
 
 
 @derivation("engines.centroid_radius", "Filament ShadowMap.cpp computeBoundingSphere, Babylon.js _computeCascadeFrustum, Godot 4 + derived here", "radius of the sphere around the 8 corners' average of a frustum slice [a, b]")

@@ -30,6 +30,7 @@ from __future__ import annotations
 import sympy as sp
 
 from .registry import Printed, derivation
+from .rewrite import linear_solve, polynomial_roots
 
 z, n, f, theta = sp.symbols("z n f theta", positive=True)
 n_p = sp.Symbol("n'", positive=True)
@@ -46,7 +47,9 @@ SOURCE = "Lloyd et al. 2006"
 def _on_domain(expr: sp.Expr) -> sp.Expr:
     """Rewrite ``expr`` on the physical domain f > n, n′ > n, 0 < θ < 90° for sign tests."""
     gap, d, tan_t = sp.symbols("gap d T", positive=True)
-    return sp.simplify(expr.subs(sp.tan(theta), tan_t).subs({f: n + gap, n_p: n + d}))
+    # factor, not simplify: a product/quotient of positive symbols and sums of them is
+    # all a sign test needs (and all that the sympy assumptions system can read).
+    return sp.factor(sp.together(expr.subs(sp.tan(theta), tan_t).subs({f: n + gap, n_p: n + d})))
 
 
 def warping_frustum() -> dict[str, sp.Expr]:
@@ -59,7 +62,7 @@ def warping_frustum() -> dict[str, sp.Expr]:
     zp = n_p + z - n
     fp = n_p + f - n
     tp = sp.Symbol("T", positive=True)
-    (tan_tp,) = sp.solve(sp.Eq(fp * tp, f * sp.tan(theta)), tp)
+    tan_tp = linear_solve([fp * tp - f * sp.tan(theta)], [tp])[tp]
     return {"z'": zp, "f'": fp, "tan(theta')": tan_tp}
 
 
@@ -83,10 +86,11 @@ def shadow_map_coordinates() -> sp.Matrix:
     fp, tan_tp = wf["f'"], wf["tan(theta')"]
     A, B, alpha, beta = sp.symbols("A B alpha beta")
     s_gen = A * x / z_p + B
-    sol_s = sp.solve([s_gen.subs(x, -z_p * tan_tp), s_gen.subs(x, z_p * tan_tp) - 1], [A, B])
+    sol_s = linear_solve([s_gen.subs(x, -z_p * tan_tp), s_gen.subs(x, z_p * tan_tp) - 1], [A, B])
     t_gen = alpha + beta / z_p
-    sol_t = sp.solve([t_gen.subs(z_p, n_p), t_gen.subs(z_p, fp) - 1], [alpha, beta])
-    return sp.Matrix([sp.simplify(s_gen.subs(sol_s)), sp.simplify(t_gen.subs(sol_t))])
+    sol_t = linear_solve([t_gen.subs(z_p, n_p), t_gen.subs(z_p, fp) - 1], [alpha, beta])
+    # both are rational in their symbols: one common denominator is the whole simplification
+    return sp.Matrix([sp.together(s_gen.subs(sol_s)), sp.together(t_gen.subs(sol_t))])
 
 
 def light_beam_widths() -> tuple[sp.Expr, sp.Expr]:
@@ -95,21 +99,26 @@ def light_beam_widths() -> tuple[sp.Expr, sp.Expr]:
     zp = warping_frustum()["z'"]
     ds_dx = sp.diff(s_map, x).subs(z_p, zp)
     dt_dz = sp.diff(t_map.subs(z_p, zp), z)
-    return sp.simplify(1 / (res_s * ds_dx)), sp.simplify(1 / (res_t * dt_dz))
+    return sp.factor(1 / (res_s * ds_dx)), sp.factor(1 / (res_t * dt_dz))  # rational: factor suffices
+
+
+def _m_xz() -> tuple[sp.Expr, sp.Expr]:
+    """m_x and m_z from one derivation of the beam widths (see :func:`m_x`, :func:`m_z`)."""
+    w_lx, w_lz = light_beam_widths()
+    w_i = image_beam_width()
+    return sp.factor(w_lx / w_i), sp.factor(w_lz / w_i)
 
 
 @derivation("lloyd2006.m_x", f"{SOURCE}, eq. 7", "perspective aliasing error in x, overhead light")
 def m_x() -> sp.Expr:
     """m_x(z, n′) = w_lx / w_i (Lloyd 2006 eq. 7)."""
-    w_lx, _ = light_beam_widths()
-    return sp.factor(sp.simplify(w_lx / image_beam_width()))
+    return _m_xz()[0]
 
 
 @derivation("lloyd2006.m_z", f"{SOURCE}, eq. 8", "perspective aliasing error in z, overhead light")
 def m_z() -> sp.Expr:
     """m_z(z, n′) = w_lz / w_i (Lloyd 2006 eq. 8)."""
-    _, w_lz = light_beam_widths()
-    return sp.factor(sp.simplify(w_lz / image_beam_width()))
+    return _m_xz()[1]
 
 
 @derivation("lloyd2006.m_z_minimum", f"{SOURCE}, §4.1 (text after eq. 8)", "the only stationary point of m_z over z > 0, a minimum")
@@ -121,7 +130,7 @@ def m_z_minimum() -> sp.Expr:
     """
     mz = m_z()
     # the roots are z = ±(n′ − n); keep the positive one and check convexity there
-    (zs,) = [r for r in sp.solve(sp.diff(mz, z), z) if _on_domain(r).is_positive]
+    (zs,) = [r for r in polynomial_roots(sp.diff(mz, z), z) if _on_domain(r).is_positive]
     assert _on_domain(sp.diff(mz, z, 2)).is_positive
     return zs
 
@@ -129,16 +138,38 @@ def m_z_minimum() -> sp.Expr:
 @derivation("lloyd2006.n_prime_lispsm", f"{SOURCE}, §4.1; Wimmer 2004 §4.3", "n' equating the near- and far-plane maxima of m_z")
 def n_prime_lispsm() -> sp.Expr:
     """n′ with m_z(n) = m_z(f): the equal-maxima (L∞-optimal) warp, n + √(fn)."""
-    mz = m_z()
-    roots = sp.solve(sp.Eq(mz.subs(z, n), mz.subs(z, f)), n_p)
+    return _n_prime_lispsm(m_z())
+
+
+def _n_prime_lispsm(mz: sp.Expr) -> sp.Expr:
+    """The root n′ ≥ n of m_z(n) = m_z(f), from ``mz`` = m_z(z, n′).
+
+    The difference's numerator is a quadratic in n′ (its denominator is positive), so the
+    equation is solved on that polynomial directly.
+    """
+    roots = polynomial_roots(mz.subs(z, n) - mz.subs(z, f), n_p)
     (root,) = [r for r in roots if _on_domain(r - n).is_positive]  # n′ ≥ n by definition
-    return sp.simplify(root)
+    return root
+
+
+def _cancel_roots(expr: sp.Expr) -> sp.Expr:
+    """``cancel`` for a rational function of √f, √n (and other symbols).
+
+    With f = F², n = N² the expression is rational in F and N, so ``cancel`` finds the
+    common factors (such as √f − √n) that it cannot see through the square roots.
+    """
+    F, N = sp.symbols("F N", positive=True)
+    return sp.cancel(expr.subs({f: F**2, n: N**2})).subs({F: sp.sqrt(f), N: sp.sqrt(n)})
 
 
 @derivation("lloyd2006.M_x", f"{SOURCE}, eq. 9", "maximum of m_x over z in [n, f]")
 def max_error_x() -> sp.Expr:
     """M_x: m_x decreases in z for n′ ≥ n (dm_x/dz ∝ −(n′ − n)), so its maximum is at z = n."""
-    mx = m_x()
+    return _max_error_x(m_x())
+
+
+def _max_error_x(mx: sp.Expr) -> sp.Expr:
+    """M_x from ``mx`` = m_x(z, n′)."""
     assert _on_domain(sp.diff(mx, z)).is_negative
     return sp.factor(mx.subs(z, n))
 
@@ -146,17 +177,19 @@ def max_error_x() -> sp.Expr:
 @derivation("lloyd2006.M_z", f"{SOURCE}, eq. 10", "maximum of m_z over z in [n, f], piecewise in n'")
 def max_error_z() -> sp.Piecewise:
     """M_z: the larger end value; the far plane for n′ ≤ n′_LiSPSM, the near plane above."""
-    mz = m_z()
+    return _max_error_z(m_z())
+
+
+def _max_error_z(mz: sp.Expr) -> sp.Piecewise:
+    """M_z from ``mz`` = m_z(z, n′)."""
     return sp.Piecewise(
-        (sp.factor(mz.subs(z, f)), n_p <= n_prime_lispsm()),
+        (sp.factor(mz.subs(z, f)), n_p <= _n_prime_lispsm(mz)),
         (sp.factor(mz.subs(z, n)), True),
     )
 
 
-def _mz_max(value: sp.Expr) -> sp.Expr:
-    """M_z evaluated at the warping parameter ``value`` (∞ allowed), resolutions 1."""
-    mz = m_z().subs({res_i: 1, res_t: 1})
-    n_l = n_prime_lispsm()
+def _mz_max(value: sp.Expr, mz: sp.Expr, n_l: sp.Expr) -> sp.Expr:
+    """M_z at the warping parameter ``value`` (∞ allowed), from ``mz`` = m_z and ``n_l`` = n′_LiSPSM."""
     if value is sp.oo:
         return sp.limit(mz.subs(z, n), n_p, sp.oo)
     near_branch = mz.subs(z, n).subs(n_p, value)
@@ -171,13 +204,13 @@ def eta_of_n_prime() -> sp.Piecewise:
     η = −1 at n′ = ∞ (M_z maximal at the near plane), 0 at n′_LiSPSM (M_z minimal), and
     1 at n′ = n (M_z maximal at the far plane).
     """
-    n_l = n_prime_lispsm()
     mz = m_z().subs({res_i: 1, res_t: 1})
+    n_l = _n_prime_lispsm(mz)
     m_near, m_far = mz.subs(z, n), mz.subs(z, f)
-    m_l, m_inf, m_psm = _mz_max(n_l), _mz_max(sp.oo), _mz_max(n)
+    m_l, m_inf, m_psm = (_mz_max(v, mz, n_l) for v in (n_l, sp.oo, n))
     return sp.Piecewise(
-        (sp.simplify((m_l - m_near) / (m_inf - m_l)), n_p > n_l),
-        (sp.simplify((m_far - m_l) / (m_psm - m_l)), True),
+        (sp.factor(_cancel_roots((m_l - m_near) / (m_inf - m_l))), n_p > n_l),
+        (sp.factor(_cancel_roots((m_far - m_l) / (m_psm - m_l))), True),
     )
 
 
@@ -186,11 +219,12 @@ def n_prime_of_eta() -> sp.Piecewise:
     """n′(η), Lloyd 2006 eq. 11, by solving each branch of Appendix B's η(n′) for n′."""
     upper, lower = eta_of_n_prime().args
     branches = []
+    r = sp.Symbol("r", positive=True)  # a = r² keeps √a out of the algebra
     for expr, cond in (upper, (eta <= 0)), (lower, True):
-        roots = sp.solve(sp.Eq(expr[0].subs(f, a * n), eta), n_p)
-        (root,) = roots
-        r = sp.Symbol("r", positive=True)  # a = r² lets sympy cancel the common (√a − 1)
-        branches.append((sp.factor(sp.cancel(sp.factor(root.subs(a, r**2)))).subs(r, sp.sqrt(a)), cond))
+        # each branch is a Möbius map of n′: its numerator minus η times its denominator is linear in n′
+        num, den = sp.fraction(sp.together(expr[0].subs(f, a * n).subs(a, r**2)))
+        root = linear_solve([num - eta * den], [n_p])[n_p]
+        branches.append((sp.factor(sp.cancel(root)).subs(r, sp.sqrt(a)), cond))
     return sp.Piecewise(*branches)
 
 
@@ -198,32 +232,38 @@ def n_prime_of_eta() -> sp.Piecewise:
 def storage_factor() -> sp.Piecewise:
     """S̄ = M_x·M_z with res_i = res_s = res_t = 1 (Lloyd 2006 eq. 12)."""
     unit = {res_i: 1, res_s: 1, res_t: 1}
-    mx = max_error_x().subs(unit)
-    return sp.Piecewise(*[(sp.factor(sp.simplify(mx * e.subs(unit))), c) for e, c in max_error_z().args])
+    mx, mz = _m_xz()
+    m_x_max = _max_error_x(mx).subs(unit)
+    # both maxima are rational in n, f, n′ and tanθ: factor finds the cancellations
+    return sp.Piecewise(*[(sp.factor(m_x_max * e.subs(unit)), c) for e, c in _max_error_z(mz).args])
 
 
 @derivation("lloyd2006.critical_resolutions", f"{SOURCE}, §4.2", "res_s*, res_t* at which M_x = M_z = 1")
 def critical_resolutions() -> sp.Matrix:
     """Critical resolutions res*_s, res*_t: the resolutions with M_x = 1 and M_z = 1."""
-    rs = sp.solve(sp.Eq(max_error_x(), 1), res_s)[0]
-    return sp.Matrix([rs, sp.Piecewise(*[(sp.solve(sp.Eq(e, 1), res_t)[0], c) for e, c in max_error_z().args])])
+    mx, mz = _m_xz()
+    # each maximum is (a factor)/resolution: M = 1 is linear in the resolution once multiplied out
+    (rs,) = polynomial_roots(_max_error_x(mx) - 1, res_s)
+    return sp.Matrix([rs, sp.Piecewise(*[(polynomial_roots(e - 1, res_t)[0], c) for e, c in _max_error_z(mz).args])])
 
 
 @derivation("lloyd2006.budget_resolutions", f"{SOURCE}, eqs. 13-14", "res_s, res_t for a texel budget S0 keeping res_s/res_t = res_s*/res_t*")
 def budget_resolutions() -> sp.Matrix:
     """Split a budget S0: res_s·res_t = S0 and res_s/res_t = res*_s/res*_t (eqs. 13–14)."""
     rs_c, rt_c = sp.symbols("res_s^* res_t^*", positive=True)
-    sol = sp.solve([sp.Eq(res_s * res_t, S0), sp.Eq(res_s / res_t, rs_c / rt_c)], [res_s, res_t], dict=True)
-    (s,) = [s for s in sol if s[res_s].is_positive is not False]
-    return sp.Matrix([s[res_s], s[res_t]])
+    # the ratio condition is linear in res_s: res_s = res_t res*_s/res*_t; then res_t² = S0 res*_t/res*_s
+    rs_of_rt = linear_solve([res_s * rt_c - res_t * rs_c], [res_s])[res_s]
+    (rt,) = [r for r in polynomial_roots(rs_of_rt * res_t - S0, res_t) if r.is_positive is not False]
+    return sp.Matrix([rs_of_rt.subs(res_t, rt), rt])
 
 
 @derivation("lloyd2006.log_parameterization", f"{SOURCE}, Appendix C", "t(z) with dz/dt proportional to z, normalised to [0, 1]")
 def log_parameterization() -> sp.Expr:
     """t(z) = ∫_n^z dζ/ζ normalised to [0, 1]: the logarithmic map (Appendix C)."""
     zeta = sp.Symbol("zeta", positive=True)
-    t_tilde = sp.integrate(1 / zeta, (zeta, n, z))
-    return sp.simplify(sp.expand_log(t_tilde / t_tilde.subs(z, f), force=True))
+    t_tilde = sp.integrate(1 / zeta, (zeta, n, z))  # log(z) − log(n)
+    combine = lambda q: sp.logcombine(sp.expand_log(q, force=True), force=True)  # noqa: E731
+    return combine(t_tilde) / combine(t_tilde.subs(z, f))
 
 
 @derivation("lloyd2006.storage_factor_optimal", f"{SOURCE}, Appendix C", "S of the logarithmic parameterization")
@@ -231,9 +271,9 @@ def storage_factor_optimal() -> sp.Expr:
     """S̄_optimal of the logarithmic map: m_x with n′ = n (PSM in x) times m_z of t = ln(z/n)/ln(f/n)."""
     t_log = log_parameterization()
     w_lz = 1 / (res_t * sp.diff(t_log, z))
-    mz = sp.simplify(w_lz / image_beam_width())
+    mz = sp.factor(w_lz / image_beam_width())
     mx = m_x().subs(n_p, n)
-    return sp.simplify((mx * mz).subs({res_i: 1, res_s: 1, res_t: 1}))
+    return sp.factor(sp.expand_log((mx * mz).subs({res_i: 1, res_s: 1, res_t: 1}), force=True))
 
 
 @derivation("lloyd2006.projective_spacing", f"{SOURCE}, Appendix A", "dz/dt of a general projective t(z)")
@@ -241,7 +281,7 @@ def projective_spacing() -> sp.Expr:
     """dz/dt of t = (αz + β)/(γz + δ): proportional to (z + δ/γ)² (Appendix A)."""
     al, be, ga, de = sp.symbols("alpha beta gamma delta")
     t = (al * z + be) / (ga * z + de)
-    return sp.factor(sp.simplify(1 / sp.diff(t, z)))
+    return sp.factor(1 / sp.diff(t, z))
 
 
 def _printed() -> dict[str, Printed]:
@@ -305,7 +345,7 @@ def _partition_ratio() -> sp.Expr:
     i = sp.Symbol("i", positive=True, integer=True)
     n_i = n * (f / n) ** ((i - 1) / k)  # eq. (15)
     f_i = n * (f / n) ** (i / k)  # eq. (16)
-    return sp.simplify(sp.powsimp(f_i / n_i, force=True))
+    return sp.powsimp(sp.powdenest(sp.powsimp(f_i / n_i, force=True), force=True), force=True)
 
 
 def _storage_per_partition(warped: bool) -> sp.Expr:
@@ -313,7 +353,7 @@ def _storage_per_partition(warped: bool) -> sp.Expr:
     (low, _), (high, _) = storage_factor().args
     r = _partition_ratio()
     expr = low if warped else sp.limit(high, n_p, sp.oo)
-    return sp.simplify(expr.subs(f, r * n))
+    return sp.factor(sp.powsimp(expr.subs(f, r * n), force=True))
 
 
 @derivation("lloyd2006.S_zp_overhead", f"{SOURCE}, eq. 17", "S of k self-similar z-partitions, uniform maps, light overhead")
@@ -339,7 +379,7 @@ def storage_zp_behind() -> sp.Expr:
     width = lambda depth: 2 * depth * sp.tan(theta)  # noqa: E731  frustum width at a depth
     r = _partition_ratio()
     per_map = (width(r * n) / width(n)) ** 2
-    return sp.simplify(k * per_map)
+    return k * per_map  # the widths' common factors cancel on construction
 
 
 @derivation("lloyd2006.S_fp_zp_w_behind", f"{SOURCE}, eq. 21", "FP+ZP+W with the light behind: four warped side faces plus the near face")

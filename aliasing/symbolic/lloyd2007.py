@@ -38,6 +38,7 @@ from __future__ import annotations
 import sympy as sp
 
 from .registry import Printed, derivation
+from .rewrite import linear_solve, polynomial_roots
 
 SOURCE = "Lloyd et al. 2007"
 
@@ -206,8 +207,10 @@ def F_from_spacing(spacing: sp.Expr | None = None, var: sp.Symbol = v, lo: sp.Ex
     With no ``spacing`` the result is in terms of an unspecified δ (an unevaluated integral).
     """
     d = delta(nu) if spacing is None else spacing.subs(var, nu)
-    rho = sp.integrate(1 / d, (nu, lo, hi))
-    F = sp.integrate(1 / d, (nu, lo, var)) / rho
+    # an unspecified δ has no antiderivative to look for: the integrals stay unevaluated
+    integral = sp.Integral if spacing is None else sp.integrate
+    rho = integral(1 / d, (nu, lo, hi))
+    F = integral(1 / d, (nu, lo, var)) / rho
     return F, rho
 
 
@@ -258,19 +261,19 @@ x_of_u = (x1_of(y1) - x0_of(y1)) * u + x0_of(y1)
 @derivation("lloyd2007.delta_b_end", f"{SOURCE}, eqs. 55, 57-58", "error-bound spacing delta_b,t on an end face (point light)")
 def delta_b_end() -> sp.Expr:
     """End face at depth d_e: W_ly = W_e d_e/n_e, so δ_b = cosθ/cos φ_ly(v) (eq. 58)."""
-    return sp.simplify(delta_b_general(W_e, d_e / n_e, W_e * d_e / n_e, cos_phi(y, l_y)))
+    return sp.together(delta_b_general(W_e, d_e / n_e, W_e * d_e / n_e, cos_phi(y, l_y)))  # one fraction
 
 
 @derivation("lloyd2007.delta_b_side_s", f"{SOURCE}, eqs. 55, 59-61", "error-bound spacing delta_b,s on a side face (point light)")
 def delta_b_side_s() -> sp.Expr:
     """Side face, s: d_e/n_e = y/y0 (eq. 59), W_lx = x1(y1) − x0(y1) = W_e y1/y0."""
-    return sp.simplify(delta_b_general(W_e, y / y0, x1_of(y1) - x0_of(y1), cos_phi(x, l_x)))
+    return sp.together(delta_b_general(W_e, y / y0, x1_of(y1) - x0_of(y1), cos_phi(x, l_x)))
 
 
 @derivation("lloyd2007.delta_b_side_t", f"{SOURCE}, eqs. 55, 59, 62", "error-bound spacing delta_b,t on a side face (point light)")
 def delta_b_side_t() -> sp.Expr:
     """Side face, t: d_e/n_e = y/y0, W_ly = y1 − y0."""
-    return sp.simplify(delta_b_general(W_e, y / y0, y1 - y0, cos_phi(y, l_y)))
+    return sp.together(delta_b_general(W_e, y / y0, y1 - y0, cos_phi(y, l_y)))
 
 
 def zeta_integrands() -> dict[str, tuple[sp.Expr, sp.Symbol]]:
@@ -285,9 +288,8 @@ def zeta_integrands() -> dict[str, tuple[sp.Expr, sp.Symbol]]:
 @derivation("lloyd2007.u_range_side", f"{SOURCE}, eq. 69", "u0(v), u1(v): the part of the u domain covered by a side face")
 def u_range_side() -> sp.Matrix:
     """Solve x(u) = x0(y(v)) and x(u) = x1(y(v)) for u (eq. 69)."""
-    (u0,) = sp.solve(sp.Eq(x_of_u, x0_of(y)), u)
-    (u1,) = sp.solve(sp.Eq(x_of_u, x1_of(y)), u)
-    return sp.Matrix([sp.simplify(u0), sp.simplify(u1)])
+    sol = linear_solve([x_of_u - x0_of(y)], [u]), linear_solve([x_of_u - x1_of(y)], [u])
+    return sp.Matrix([sol[0][u], sol[1][u]])
 
 
 def _overhead(expr: sp.Expr) -> sp.Expr:
@@ -302,11 +304,13 @@ def R_bound() -> sp.Matrix:
     r_end = sp.integrate(1 / ends, (v, 0, 1))
     s_side = _overhead(delta_b_side_s())
     u0, u1 = u_range_side()
-    rho_s = sp.simplify(sp.integrate(1 / s_side, (u, u0, u1)))  # constant in v
+    rho_s = sp.factor(sp.integrate(1 / s_side, (u, u0, u1)))  # constant in v
     assert sp.diff(rho_s, y) == 0
     t_side = _overhead(delta_b_side_t()).subs(y, y_of_v)
-    rho_t = sp.simplify(sp.integrate(1 / t_side, (v, 0, 1)))
-    return sp.Matrix([sp.simplify(r_end), rho_s, rho_t])
+    rho_t = sp.integrate(1 / t_side, (v, 0, 1))
+    # ∫ dv/(y0 + (y1 − y0)v) is a difference of logs: combine it into one
+    rho_t = sp.factor(sp.logcombine(sp.expand_log(rho_t, force=True), force=True))
+    return sp.Matrix([sp.factor(r_end), rho_s, rho_t])
 
 
 def to_frustum(expr: sp.Expr) -> sp.Expr:
@@ -332,13 +336,14 @@ def F_p() -> sp.Matrix:
 def F_log() -> sp.Expr:
     """t = ∫_{y0}^{y} dη/(η + a), normalised: δ linear in y (the y term of δ_b,t^side)."""
     eta_ = sp.Symbol("eta", positive=True)
-    g = sp.integrate(1 / (eta_ + a), (eta_, y0, y))
-    return sp.simplify(sp.expand_log(g / g.subs(y, y1), force=True))
+    g = sp.integrate(1 / (eta_ + a), (eta_, y0, y))  # log(y + a) − log(y0 + a)
+    combine = lambda q: sp.logcombine(sp.expand_log(q, force=True), force=True)  # noqa: E731
+    return combine(g) / combine(g.subs(y, y1))
 
 
 def spacing_of(F_expr: sp.Expr, coord: sp.Symbol, d_coord_d_param: sp.Expr) -> sp.Expr:
     """δ = (dF/dparam)⁻¹ with dparam = dcoord / d_coord_d_param."""
-    return sp.simplify(1 / (sp.diff(F_expr, coord) * d_coord_d_param))
+    return sp.factor(1 / (sp.diff(F_expr, coord) * d_coord_d_param))  # rational (in the logs too)
 
 
 @derivation("lloyd2007.spacing_p", f"{SOURCE}, eqs. 96-97", "spacing functions delta_p,s and delta_p,t on a side face")
@@ -350,7 +355,7 @@ def spacing_p() -> sp.Matrix:
 
 @derivation("lloyd2007.spacing_log", f"{SOURCE}, eq. 102", "spacing function delta_log,t on a side face")
 def spacing_log() -> sp.Expr:
-    return sp.simplify(spacing_of(F_log(), y, y1 - y0))
+    return spacing_of(F_log(), y, y1 - y0)
 
 
 c0_s, c1_s, c2_s = sp.symbols("c0 c1 c2", real=True)
@@ -368,7 +373,13 @@ def spacing_lp_general() -> sp.Expr:
 
 @derivation("lloyd2007.lp_roots", f"{SOURCE}, eq. 105", "the two roots in y of delta_lp,t")
 def lp_roots() -> list[sp.Expr]:
-    return sorted(sp.solve(sp.numer(sp.together(spacing_lp_general())), y), key=sp.count_ops)
+    """Both roots of δ_lp,t's numerator in y (−a among them: y is a positive symbol, and a
+    general solver would drop that negative root)."""
+    def tidy(r: sp.Expr) -> sp.Expr:  # one fraction, its denominator's leading sign positive
+        num, den = sp.fraction(sp.cancel(r))
+        return (-num) / (-den) if den.could_extract_minus_sign() else num / den
+
+    return sorted((tidy(r) for r in polynomial_roots(spacing_lp_general(), y)), key=sp.count_ops)
 
 
 @derivation("lloyd2007.lp_constants", f"{SOURCE}, eqs. 107-108, 110", "c0, c1, c2 of F_lp,t with roots -a, -b, F(y0) = 0, F(y1) = 1")
@@ -376,10 +387,10 @@ def lp_constants() -> dict[sp.Symbol, sp.Expr]:
     """c1, c2 from λ1 = −b and c1 F_p,t(y0) + c2 = 1; then c0 from F_lp,t(y1) = 1."""
     lam1 = -(a + c1_s * p3 / (c1_s * p2 + c2_s))  # second root of eq. 104
     arg_y0 = (c1_s * F_p()[1] + c2_s).subs(y, y0)
-    sol = sp.solve([sp.Eq(lam1, -b), sp.Eq(arg_y0, 1)], [c1_s, c2_s], dict=True)
-    (s,) = sol
-    c1v, c2v = sp.simplify(s[c1_s]), sp.simplify(s[c2_s])
-    arg_y1 = sp.simplify((c1v * F_p()[1] + c2v).subs(y, y1))
+    # λ1 = −b is linear in c1, c2 once multiplied by its denominator c1 p2 + c2 (≠ 0)
+    s = linear_solve([sp.numer(sp.together(lam1 + b)), arg_y0 - 1], [c1_s, c2_s])
+    c1v, c2v = sp.factor(s[c1_s]), sp.factor(s[c2_s])
+    arg_y1 = sp.factor((c1v * F_p()[1] + c2v).subs(y, y1))
     return {c0_s: 1 / sp.log(arg_y1), c1_s: c1v, c2_s: c2v}
 
 
@@ -399,7 +410,7 @@ def spacing_lp() -> sp.Expr:
 
 @derivation("lloyd2007.lp_constants_b_inf", f"{SOURCE}, eq. 78", "c0, c1, c2 of F_lp,t as b -> infinity")
 def lp_constants_b_inf() -> dict[sp.Symbol, sp.Expr]:
-    return {key: sp.simplify(sp.limit(val, b, sp.oo)) for key, val in lp_constants().items()}
+    return {key: sp.factor(sp.limit(val, b, sp.oo)) for key, val in lp_constants().items()}
 
 
 @derivation("lloyd2007.F_lp_inverse", f"{SOURCE}, eq. 84", "inverse of F_lp,t: v(t) and the perspective coordinate p(t)")
@@ -408,12 +419,15 @@ def F_lp_inverse() -> sp.Matrix:
     pp = sp.Symbol("p", real=True)
     k = lp_constants()
     # w.r.t. p: t = c0 log(c1 p + c2)
-    (p_of_t,) = sp.solve(sp.Eq(c0_s * sp.log(c1_s * pp + c2_s), t), pp)
+    # t = c0 log(c1 p + c2)  ⇔  c1 p + c2 = exp(t/c0): linear in p
+    p_of_t = linear_solve([c1_s * pp + c2_s - sp.exp(t / c0_s)], [pp])[pp]
     # w.r.t. v: y(v) from t = c0 log(arg(y)), arg(y) = exp(t/c0)
     Ex = sp.Symbol("E", positive=True)
     arg = sp.factor(sp.cancel((c1_s * F_p()[1] + c2_s).subs(k)))
-    (y_of_E,) = sp.solve(sp.Eq(arg, Ex), y)
-    v_of_t = sp.simplify(((y_of_E - y0) / (y1 - y0)).subs(Ex, sp.exp(t / k[c0_s])))
+    (y_of_E,) = polynomial_roots(arg - Ex, y)  # arg is a Möbius map of y: one root
+    # c0 = 1/log(A) with A = arg(y1), so exp(t/c0) = A**t
+    (log_a,) = (1 / k[c0_s]).atoms(sp.log)
+    v_of_t = sp.factor((y_of_E - y0) / (y1 - y0)).subs(Ex, log_a.args[0] ** t)
     return sp.Matrix([v_of_t, p_of_t])
 
 
@@ -421,7 +435,13 @@ def F_lp_inverse() -> sp.Matrix:
 def ratio_bound(spacing: sp.Expr, which: str) -> sp.Expr:
     """δ_l/δ_b for the overhead directional light (cos φ_l = 1), as a function of y."""
     bound = {"s": _overhead(delta_b_side_s()), "t": _overhead(delta_b_side_t()), "end": _overhead(delta_b_end())}[which]
-    return sp.simplify(spacing / bound)
+    return sp.factor(spacing / bound)
+
+
+def _decreasing_in_y(expr: sp.Expr) -> bool:
+    """d expr/dy < 0 on a side face (y1 = y0 + gap, cosθ > 0), read from its factors."""
+    gap, C = sp.symbols("gap C", positive=True)
+    return bool(sp.factor(sp.diff(expr, y).subs({y1: y0 + gap, sp.cos(theta): C})).is_negative)
 
 
 @derivation("lloyd2007.R_uniform", f"{SOURCE}, eqs. 90-95", "critical resolution factors of the uniform parameterization, overhead light")
@@ -429,16 +449,16 @@ def R_uniform() -> sp.Matrix:
     """δ_un = 1: R = max 1/δ_b; on side faces 1/δ_b decreases in y, so the max is at y = y0."""
     end = ratio_bound(sp.Integer(1), "end")
     rs, rt = ratio_bound(sp.Integer(1), "s"), ratio_bound(sp.Integer(1), "t")
-    assert sp.diff(rs, y).could_extract_minus_sign() and sp.diff(rt, y).could_extract_minus_sign()
+    assert _decreasing_in_y(rs) and _decreasing_in_y(rt)
     return sp.Matrix([end, rs.subs(y, y0), rt.subs(y, y0)])
 
 
 @derivation("lloyd2007.a_lispsm_side", f"{SOURCE}, App. A (text before eq. 99)", "a equating the end values of delta_p,t/delta_b,t: the LiSPSM parameter")
 def a_lispsm_side() -> sp.Expr:
     r = ratio_bound(spacing_p()[1], "t")  # (y+a)²/y: convex, maximum at an end
-    roots = sp.solve(sp.Eq(r.subs(y, y0), r.subs(y, y1)), a)
+    roots = polynomial_roots(r.subs(y, y0) - r.subs(y, y1), a)
     (root,) = [q for q in roots if q.is_positive]
-    return sp.simplify(root)
+    return root
 
 
 @derivation("lloyd2007.R_perspective", f"{SOURCE}, eqs. 98-101", "min_a R_p,s, min_a R_p,t and min_a S_p on a side face, overhead light")
@@ -450,11 +470,11 @@ def R_perspective() -> sp.Matrix:
     rt = ratio_bound(spacing_p()[1], "t")
     rs_a = rs.subs(y, y0)
     gap = sp.Symbol("g", positive=True)
-    assert sp.simplify(sp.diff(rs_a, a).subs({y1: y0 + gap, sp.cos(theta): sp.Symbol("C", positive=True)})).is_positive  # grows with a: min at a = 0
+    assert sp.factor(sp.diff(rs_a, a).subs({y1: y0 + gap, sp.cos(theta): sp.Symbol("C", positive=True)})).is_positive  # grows with a: min at a = 0
     aL = a_lispsm_side()
-    R_s_min = sp.simplify(rs_a.subs(a, 0))
-    R_t_min = sp.simplify(rt.subs(y, y0).subs(a, aL))
-    S_far = sp.simplify(rs_a * rt.subs(y, y1))  # a ≤ a_L: far end binds R_t
+    R_s_min = sp.factor(rs_a.subs(a, 0))
+    R_t_min = sp.factor(rt.subs(y, y0).subs(a, aL))
+    S_far = sp.factor(rs_a * rt.subs(y, y1))  # a ≤ a_L: far end binds R_t
     assert sp.diff(S_far, a) == 0
     return sp.Matrix([R_s_min, R_t_min, S_far])
 
@@ -463,7 +483,7 @@ def R_perspective() -> sp.Matrix:
 def R_log() -> sp.Expr:
     """δ_log/δ_b,t ∝ (y + a)/y decreases in y: value at y0, which grows with a: a_opt = 0."""
     r0 = ratio_bound(spacing_log(), "t").subs(y, y0)
-    return sp.simplify(r0.subs(a, 0))
+    return sp.factor(r0.subs(a, 0))
 
 
 # --- printed forms ----------------------------------------------------------------------
@@ -544,21 +564,21 @@ def _plane_2d():
 def jacobian_eye() -> sp.Matrix:
     nh, X, e, pi_pt, pi_vec = _plane_2d()
     p_e = X - pi_pt(X) / pi_vec(e - X) * (e - X)  # eq. (4)
-    return sp.simplify(p_e.jacobian(X))
+    return p_e.jacobian(X).applyfunc(sp.factor)  # rational entries: factor each
 
 
 @derivation("lloyd2007.jacobian_light", f"{SOURCE}, eq. 9", "d p / d p_l of the projection from the light onto the surface (eq. 3)")
 def jacobian_light() -> sp.Matrix:
     nh, X, lpos, pi_pt, pi_vec = _plane_2d()
     p = X - pi_pt(X) / pi_vec(X - lpos) * (X - lpos)  # eq. (3)
-    return sp.simplify(p.jacobian(X))
+    return p.jacobian(X).applyfunc(sp.factor)
 
 
 @derivation("lloyd2007.jacobian_directional", f"{SOURCE}, eqs. 25-26", "d p / d p_l of the directional projection p = p_l - (pi p_l / pi l) l")
 def jacobian_directional() -> sp.Matrix:
     nh, X, ell, pi_pt, pi_vec = _plane_2d()
     p = X - pi_pt(X) / pi_vec(ell) * ell  # eq. (25)
-    return sp.simplify(p.jacobian(X))
+    return p.jacobian(X).applyfunc(sp.factor)
 
 
 def printed_jacobians() -> dict[str, sp.Matrix]:
@@ -579,5 +599,16 @@ def m_point_far_limit() -> sp.Expr:
     D = sp.Symbol("D", positive=True)
     k = sp.Symbol("k", real=True)
     toward = _unit(s_v)
-    expr = m_point_2d().subs({L1: D * toward[0], L2: D * toward[1]}).subs(n_l, D * _dot(_unit(s_l), toward) - k)
-    return sp.cancel(sp.limit(sp.cancel(sp.together(expr)), D, sp.oo))
+    g = configuration_2d()
+    # only dp/dv (eq. 10) depends on the light's position, and m is linear in it: take the
+    # limit there.  Each component is rational in D with numerator and denominator of one
+    # degree, so its limit is the ratio of their leading coefficients.
+    dp_dv = _dp_dv_point(g).subs({L1: D * toward[0], L2: D * toward[1]}).subs(n_l, D * _dot(_unit(s_l), toward) - k)
+
+    def at_infinity(q: sp.Expr) -> sp.Expr:
+        num, den = (sp.Poly(part, D) for part in sp.fraction(sp.cancel(sp.together(q))))
+        assert num.degree() <= den.degree()
+        return num.LC() / den.LC() if num.degree() == den.degree() else sp.Integer(0)
+
+    dj_dv = _dot(g["y_e"], _eye_jacobian(g) * dp_dv.applyfunc(at_infinity)) / W_e  # eqs. (5), (7)
+    return sp.cancel(sp.together(r_j / r_t * dj_dv * dGdt))

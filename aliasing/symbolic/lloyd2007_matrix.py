@@ -107,7 +107,7 @@ def jacobian_light_3d() -> sp.Matrix:
 
 @derivation("lloyd2007.jacobian_directional_3d", f"{SOURCE}, eqs. 25-26 (3D)", "d p / d p_l of eq. 25 in 3D")
 def jacobian_directional_3d() -> sp.Matrix:
-    return sp.simplify(project_directional(X).jacobian(X))
+    return project_directional(X).jacobian(X).applyfunc(sp.cancel)  # rational entries
 
 
 def printed_jacobians_3d() -> dict[str, sp.Matrix]:

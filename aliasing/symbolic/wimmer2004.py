@@ -25,6 +25,7 @@ from __future__ import annotations
 import sympy as sp
 
 from .registry import Printed, derivation
+from .rewrite import linear_solve, polynomial_roots
 
 z, z_n, z_f, n = sp.symbols("z z_n z_f n", positive=True)
 z_p = sp.Symbol("z'", positive=True)
@@ -36,39 +37,39 @@ SOURCE = "Wimmer et al. 2004"
 def _on_domain(expr: sp.Expr) -> sp.Expr:
     """Rewrite on the physical domain z_f > z_n, n > 0 for sign tests."""
     gap = sp.Symbol("gap", positive=True)
-    return sp.simplify(expr.subs(z_f, z_n + gap))
+    return sp.factor(sp.together(expr.subs(z_f, z_n + gap)))  # a sign test needs factors only
 
 
 def _depth_map(far: sp.Expr) -> sp.Expr:
     """Projective s(z′) = α + β/z′ with s(n) = 0 and s(far) = 1 (glFrustum depth)."""
     al, be = sp.symbols("alpha beta")
     s = al + be / z_p
-    return s.subs(sp.solve([s.subs(z_p, n), s.subs(z_p, far) - 1], [al, be]))
+    return s.subs(linear_solve([s.subs(z_p, n), s.subs(z_p, far) - 1], [al, be]))
 
 
 @derivation("wimmer2004.s", f"{SOURCE}, eq. 2", "shadow-map depth coordinate s(z') of the perspective frustum P")
 def s_of_z_prime() -> sp.Expr:
     """s(z′) of P mapping its near plane (z′ = n) to 0 and far plane (z′ = f) to 1 (eq. 2)."""
-    return sp.simplify(_depth_map(n + z_f - z_n))
+    return sp.together(_depth_map(n + z_f - z_n))  # rational: one common denominator
 
 
 @derivation("wimmer2004.dp_ds", f"{SOURCE}, eq. 3", "perspective aliasing dp/ds along the view depth, light perpendicular")
 def dp_ds() -> sp.Expr:
     """dp/ds = (z_n/z)·dz/ds (eq. 1 without projection aliasing) with z′ = z − z_n + n (eq. 3)."""
     ds_dz = sp.diff(s_of_z_prime().subs(z_p, z - z_n + n), z)
-    return sp.factor(sp.simplify(z_n / z / ds_dz))
+    return sp.factor(z_n / z / ds_dz)
 
 
 @derivation("wimmer2004.dp_ds_uniform", f"{SOURCE}, §4.3", "eq. 3 with n -> infinity (uniform shadow map)")
 def dp_ds_uniform() -> sp.Expr:
     """The uniform limit n → ∞ of eq. 3."""
-    return sp.simplify(sp.limit(dp_ds(), n, sp.oo))
+    return sp.factor(sp.limit(dp_ds(), n, sp.oo))
 
 
 @derivation("wimmer2004.dp_ds_psm", f"{SOURCE}, §4.3", "eq. 3 with n = z_n (perspective shadow map)")
 def dp_ds_psm() -> sp.Expr:
     """The PSM case n = z_n of eq. 3: linear in z."""
-    return sp.simplify(dp_ds().subs(n, z_n))
+    return sp.factor(dp_ds().subs(n, z_n))
 
 
 @derivation("wimmer2004.dp_ds_minimum", f"{SOURCE}, §4.3", "location of the only positive extremum of eq. 3, a minimum")
@@ -76,7 +77,7 @@ def dp_ds_minimum() -> sp.Expr:
     """The stationary point of eq. 3 in z > 0 (for n > z_n): z = n − z_n, a minimum."""
     d = sp.Symbol("d", positive=True)
     e = dp_ds()
-    (zs,) = [r for r in sp.solve(sp.diff(e, z), z) if _on_domain(r.subs(n, z_n + d)).is_positive]
+    (zs,) = [r for r in polynomial_roots(sp.diff(e, z), z) if _on_domain(r.subs(n, z_n + d)).is_positive]
     assert _on_domain(sp.diff(e, z, 2).subs(z, zs).subs(n, z_n + d)).is_positive
     return zs
 
@@ -85,9 +86,10 @@ def dp_ds_minimum() -> sp.Expr:
 def n_opt() -> sp.Expr:
     """n_opt: the maxima of eq. 3 lie at z_n and z_f; make them equal (L∞-optimal)."""
     e = dp_ds()
-    roots = sp.solve(sp.Eq(e.subs(z, z_n), e.subs(z, z_f)), n)
+    # the difference's numerator is a quadratic in n (its denominator is positive)
+    roots = polynomial_roots(e.subs(z, z_n) - e.subs(z, z_f), n)
     (root,) = [r for r in roots if _on_domain(r).is_positive]
-    return sp.simplify(root)
+    return root
 
 
 @derivation("wimmer2004.n_opt_general", f"{SOURCE}, §4.4", "n_opt for tilt angle gamma, with z' = (z - z_n)/sin(gamma) + n")
@@ -95,11 +97,14 @@ def n_opt_general() -> sp.Expr:
     """n′_opt for a tilt γ: redo the equal-maxima argument with z′ = (z − z_n)/sin γ + n."""
     far = n + (z_f - z_n) / sp.sin(gamma)
     ds_dz = sp.diff(_depth_map(far).subs(z_p, (z - z_n) / sp.sin(gamma) + n), z)
-    e = sp.simplify(z_n / z / ds_dz)
-    roots = sp.solve(sp.Eq(e.subs(z, z_n), e.subs(z, z_f)), n)
-    probe = {z_n: 1, z_f: 100, gamma: sp.pi / 3}  # pick the positive root
+    e = sp.factor(z_n / z / ds_dz)
+    # sin γ as a positive symbol keeps the equation a polynomial (a quadratic in n)
+    sg = sp.Symbol("sin_gamma", positive=True)
+    ends = (e.subs(z, z_n) - e.subs(z, z_f)).subs(sp.sin(gamma), sg)
+    roots = polynomial_roots(ends, n)
+    probe = {z_n: 1, z_f: 100, sg: sp.sin(sp.pi / 3)}  # pick the positive root
     (root,) = [r for r in roots if r.subs(probe).evalf() > 0]
-    return sp.simplify(root)
+    return sp.factor(root).subs(sg, sp.sin(gamma))
 
 
 def _printed() -> dict[str, Printed]:

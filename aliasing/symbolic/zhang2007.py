@@ -51,6 +51,7 @@ from functools import cache
 import sympy as sp
 
 from .registry import Printed, derivation
+from .rewrite import linear_solve, polynomial_roots
 from . import wimmer2004 as W
 
 z, n, f = sp.symbols("z n f", positive=True)
@@ -74,8 +75,22 @@ def _piecewise(first: sp.Expr, second: sp.Expr) -> sp.Piecewise:
 
 
 def _same(a: sp.Expr, b: sp.Expr) -> bool:
-    """Trigonometric identity test used inside derivations."""
-    return sp.simplify(sp.expand_trig(a - b)) == 0
+    """Trigonometric identity test used inside derivations.
+
+    Sums of angles are expanded and tanφ written as sinφ/cosφ; what is left is rational in
+    the sines and cosines, and ``cancel`` decides whether it vanishes.
+    """
+    diff = sp.expand_trig(a - b).subs(sp.tan(phi), sp.sin(phi) / sp.cos(phi))
+    return sp.cancel(diff) == 0
+
+
+def _tan_theta(expr: sp.Expr) -> sp.Expr:
+    """``expr`` with sinθ = tanθ·cosθ, factored: the cosθ of sinθ and cosθ terms cancel.
+
+    The errors of the Fig. 4 model are homogeneous in sinθ and cosθ, so this writes them
+    in tanθ and tanφ (eq. 2's variables) without a general simplification.
+    """
+    return sp.factor(expr.subs(sp.sin(theta), sp.tan(theta) * sp.cos(theta)))
 
 
 def view_frustum_light_space() -> dict[str, sp.Expr]:
@@ -109,7 +124,7 @@ def light_space_extent(regime: int) -> tuple[sp.Expr, sp.Expr]:
 @cache
 def _depth(regime: int) -> sp.Expr:
     lo, hi = light_space_extent(regime)
-    return sp.simplify(hi - lo)
+    return sp.expand(hi - lo)  # a sum of the corners' terms: expand collects them
 
 
 @derivation("zhang2007.depth", f"{SOURCE}, Fig. 4 and eq. 9", "light-space depth D = P_f - P_n of the warping frustum fitted to the view frustum")
@@ -126,7 +141,7 @@ def _s_map(near: sp.Expr, far: sp.Expr) -> sp.Expr:
     """Projective depth s(z′) = α + β/z′ with s(near) = 0 and s(far) = 1 (glFrustum)."""
     al, be = sp.symbols("alpha beta")
     s = al + be / z_p
-    return s.subs(sp.solve([s.subs(z_p, near), s.subs(z_p, far) - 1], [al, be]))
+    return s.subs(linear_solve([s.subs(z_p, near), s.subs(z_p, far) - 1], [al, be]))
 
 
 @cache
@@ -138,7 +153,9 @@ def _error(regime: int) -> sp.Expr:
     s = _s_map(p_n, p_n + d)
     # the view-ray point at eye depth z has z_L = z sinθ, i.e. z′ = P_n + z sinθ − z_L,min
     ds_dz = sp.diff(s.subs(z_p, p_n + z * sp.sin(theta) - z_min), z)
-    return sp.simplify(1 / (sp.tan(phi) * z * ds_dz))
+    # rational in z, λ, sinθ, cosθ, tanφ: factor finds eq. 2's square; sinθ and cosθ are
+    # kept apart (not tanθ) so that the overhead light θ = π/2 stays a plain substitution
+    return sp.factor(1 / (sp.tan(phi) * z * ds_dz))
 
 
 @cache
@@ -148,11 +165,15 @@ def _psi_varphi(regime: int) -> tuple[sp.Expr, sp.Expr]:
     ψ = lim F/z (z → ∞); F·z/ψ must then be the perfect square z² + 2ϕz + ϕ².
     """
     F = _error(regime)
-    psi = sp.simplify(sp.limit(F / z, z, sp.oo))
-    quad = sp.Poly(sp.expand(sp.simplify(F * z / psi)), z)
+    # F is rational in z with a numerator one degree above its denominator: lim F/z is
+    # the ratio of their leading coefficients
+    num, den = (sp.Poly(part, z) for part in sp.fraction(sp.together(F)))
+    assert num.degree() == den.degree() + 1
+    psi = sp.factor(num.LC() / den.LC())
+    quad = sp.Poly(sp.cancel(F * z / psi), z)
     a2, a1, a0 = quad.all_coeffs()
-    assert sp.simplify(a2 - 1) == 0 and sp.simplify(a1**2 - 4 * a0) == 0  # a perfect square: eq. 2's form
-    return psi, sp.simplify(a1 / 2)
+    assert sp.cancel(a2 - 1) == 0 and sp.cancel(a1**2 - 4 * a0) == 0  # a perfect square: eq. 2's form
+    return psi, sp.expand(_tan_theta(a1 / 2))  # ϕ in tanφ/tanθ, as eq. 2 writes it
 
 
 @derivation("zhang2007.F", f"{SOURCE}, eq. 2", "generalized perspective aliasing error F(lambda, theta, z) of the Fig. 4 model")
@@ -189,18 +210,19 @@ def error_minimum() -> sp.Piecewise:
     for regime in (1, 2):
         ps, ph = _psi_varphi(regime)
         F = ps * (z + v) ** 2 / z
-        roots = sp.solve(sp.diff(F, z), z)
+        # ψ > 0 does not depend on z: the stationary points are the roots of d/dz (z + ϕ)²/z
+        roots = polynomial_roots(sp.diff((z + v) ** 2 / z, z), z)
         assert set(roots) == {v, -v}
-        assert sp.simplify(sp.diff(F, z, 2).subs(z, v) - 2 * ps / v) == 0  # > 0 for ϕ > 0
+        assert sp.cancel(sp.diff(F, z, 2).subs(z, v) - 2 * ps / v) == 0  # > 0 for ϕ > 0
         out.append(ph)
     return _piecewise(*out)
 
 
 def _linear_in_lambda(expr: sp.Expr) -> tuple[sp.Expr, sp.Expr]:
     """(a, b) with expr = a·λ + b, asserting that expr is affine in λ."""
-    a = sp.simplify(sp.diff(expr, lam))
+    a = sp.factor(sp.diff(expr, lam))
     assert sp.diff(a, lam) == 0
-    return a, sp.simplify(expr - a * lam)
+    return a, sp.factor(expr - a * lam)
 
 
 @derivation("zhang2007.boundary_errors", f"{SOURCE}, §3 Cases 1-2", "F at z = n and z = f as K (lambda + mu)^2 / (lambda (lambda + 1)): [K_n, mu, K_f, nu]")
@@ -214,9 +236,10 @@ def boundary_errors() -> sp.Matrix:
     for regime in (1, 2):
         ps, ph = _psi_varphi(regime)
         a, b = _linear_in_lambda(ph)
-        k = sp.simplify(ps * lam * (lam + 1))
+        k = sp.factor(ps * lam * (lam + 1))
         assert sp.diff(k, lam) == 0
-        rows.append([sp.simplify(k * a**2 / n), sp.simplify((n + b) / a), sp.simplify(k * a**2 / f), sp.simplify((f + b) / a)])
+        # K in ψ's sinθ, cosθ (defined at θ = π/2); μ and ν in ϕ's tanθ
+        rows.append([sp.factor(k * a**2 / n), _tan_theta((n + b) / a), sp.factor(k * a**2 / f), _tan_theta((f + b) / a)])
     return sp.Matrix([_piecewise(r1, r2) for r1, r2 in zip(*rows)])
 
 
@@ -226,7 +249,7 @@ def _varphi_optimal() -> sp.Expr:
     The root +√(fn) is the one with the centre of projection behind the eye; with −√(fn)
     F would vanish at z = √(fn) inside [n, f] (the view ray would pass through the centre).
     """
-    roots = sp.solve(sp.Eq((n + v) ** 2 / n, (f + v) ** 2 / f), v)
+    roots = polynomial_roots((n + v) ** 2 / n - (f + v) ** 2 / f, v)
     (root,) = [r for r in roots if r.subs({n: 1, f: 100}) > 0]
     return root
 
@@ -241,8 +264,8 @@ def lambda_optimal() -> sp.Piecewise:
     target = _varphi_optimal()
     out = []
     for regime in (1, 2):
-        (root,) = sp.solve(sp.Eq(_psi_varphi(regime)[1], target), lam)
-        out.append(sp.simplify(root))
+        a, b = _linear_in_lambda(_psi_varphi(regime)[1])  # ϕ = aλ + b
+        out.append(sp.cancel((target - b) / a))
     return _piecewise(*out)
 
 
@@ -254,7 +277,7 @@ def lambda_gmnpr() -> sp.Piecewise:
     λ2*(φ) = λ1(φ) (eq. 5) and λ2* → ∞ as θ → 0 (eq. 6); λ1(φ) is derived here.
     """
     lam1 = lambda_optimal().args[0][0]
-    lam1_phi = sp.simplify(lam1.subs(theta, phi))
+    lam1_phi = sp.factor(lam1.subs(theta, phi))
     lam2_star = lam1_phi / sp.tan(sp.pi * theta / (4 * phi))  # eq. (7): the paper's choice
     return _piecewise(lam1, lam2_star)
 
@@ -263,7 +286,7 @@ def lambda_gmnpr() -> sp.Piecewise:
 def lambda_lispsm() -> sp.Piecewise:
     """λ_LiSPSM = P_n/(P_f − P_n) with Wimmer 2004's P_n = n_opt/sinθ (eq. 9)."""
     p_n = W.n_opt_general().subs({W.z_n: n, W.z_f: f, W.gamma: theta})
-    return _piecewise(sp.simplify(p_n / _depth(1)), sp.simplify(p_n / _depth(2)))
+    return _piecewise(sp.factor(p_n / _depth(1)), sp.factor(p_n / _depth(2)))
 
 
 @derivation("zhang2007.lambda_glpr", f"{SOURCE}, §3 (GLPR, F ~ z)", "lambda with F proportional to z (varphi = 0); only for theta > phi")
@@ -276,13 +299,16 @@ def lambda_glpr() -> sp.Piecewise:
     """
     out = []
     for regime in (1, 2):
-        ps, ph = _psi_varphi(regime)
-        numer = sp.numer(sp.together(sp.diff(ps * (z + ph) ** 2 / z**2, z)))
+        _, ph = _psi_varphi(regime)
+        # F/z = ψ(1 + ϕ/z)² with ψ > 0 free of z: constant in z iff d/dz ((z + ϕ)/z)² = 0
+        numer = sp.numer(sp.together(sp.diff((z + ph) ** 2 / z**2, z)))
         coeffs = sp.Poly(sp.expand(numer), z).coeffs()
-        (root,) = sp.solve(coeffs, lam, dict=True)
-        out.append(sp.simplify(root[lam]))
+        # the leading coefficient (−2ϕ) is linear in λ; its root must zero every coefficient
+        root = linear_solve([coeffs[0]], [lam])[lam]
+        assert all(sp.cancel(cf.subs(lam, root)) == 0 for cf in coeffs)
+        out.append(sp.factor(root))
     # regime 2: the root is (tanθ/tanφ − 1)/2, not positive for θ ≤ φ
-    assert sp.simplify(out[1] - (sp.tan(theta) / sp.tan(phi) - 1) / 2) == 0
+    assert sp.cancel(out[1] - (sp.tan(theta) / sp.tan(phi) - 1) / 2) == 0
     return sp.Piecewise((out[0], theta > phi), (sp.nan, True))
 
 
@@ -306,18 +332,25 @@ def lambda_minimax_degenerate() -> sp.Matrix:
     k_n, mu, _, nu = (e.args[1][0] for e in boundary_errors())
     assert nu == sp.Rational(1, 2)
     g = (lam + mu) ** 2 / (lam * (lam + 1))
-    (lam_star,) = sp.solve(sp.numer(sp.together(sp.diff(g, lam))) / (lam + mu), lam)
-    lam_star = sp.simplify(lam_star)
+    # dg/dλ ∝ (λ + μ)·(λ(1 − 2μ) − μ): divide out λ + μ and solve the linear factor
+    quotient, remainder = sp.div(sp.Poly(sp.numer(sp.together(sp.diff(g, lam))), lam), sp.Poly(lam + mu, lam))
+    assert remainder.is_zero and quotient.degree() == 1
+    c1, c0 = quotient.all_coeffs()
+    lam_star = sp.factor(-c0 / c1)
     lam2 = lambda_optimal().args[1][0]
-    tt = sp.Symbol("T", positive=True)  # tan θ
-    roots = sp.solve(sp.Eq(lam2.subs(sp.tan(theta), tt), lam_star.subs(sp.tan(theta), tt)), tt)
-    (tan_theta1,) = [r for r in roots if r.subs(_PROBE[2]).evalf() > 0]
-    return sp.Matrix([lam_star, sp.simplify(tan_theta1)])
+    tt, tp = sp.symbols("T P", positive=True)  # tan θ, tan φ (both positive here)
+    # λ2 = λ* is, times tanθ, a quadratic in tanθ without a linear term: solve for tan²θ
+    quad = sp.Poly(sp.numer(sp.together((lam2 - lam_star).subs({sp.tan(theta): tt, sp.tan(phi): tp}))), tt)
+    a2, a1, a0 = quad.all_coeffs()
+    assert a1 == 0
+    tan_theta1 = sp.sqrt(sp.factor(-a0 / a2)).subs(tp, sp.tan(phi))
+    assert tan_theta1.subs(_PROBE[2]).evalf() > 0
+    return sp.Matrix([lam_star, tan_theta1])
 
 
 def shadow_map_depth_normalised() -> sp.Expr:
     """s(z′) of P with normalised depth (P_f − P_n = 1, P_n = λ); z′ from the centre (§3)."""
-    return sp.simplify(_s_map(lam, lam + 1))
+    return sp.together(_s_map(lam, lam + 1))
 
 
 def _printed() -> dict[str, Printed]:

@@ -58,7 +58,7 @@ def _light(light: object) -> tuple[str, np.ndarray]:
         lv = geometry.lights(label)
     else:
         try:
-            lv = geometry.lights(np.asarray(light, dtype=float))
+            lv = geometry.lights(check.as_float_array(light, "light"))  # complex, huge ints, ragged: ValueError
         except (TypeError, ValueError) as exc:
             raise ValueError(f"light must be a spec or a vector towards the light, got {light!r} ({exc})") from None
         label = "vector:" + ",".join(f"{x:.10g}" for x in lv.ravel())
