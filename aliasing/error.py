@@ -27,7 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 from ._stable import sqrt_product
-from .view import View, half_angle, split_view
+from .view import View, split_view, tan_theta
 from .parameterizations import _depths, _ratio
 
 __all__ = [
@@ -47,7 +47,7 @@ Array = NDArray[np.float64]
 
 def _half_tan(fov: ArrayLike) -> Array:
     """tan θ for the full field of view ``fov`` [deg]."""
-    return np.tan(half_angle(fov))
+    return tan_theta(fov)
 
 
 def _unpack(near: ArrayLike | View, far: ArrayLike | None, fov: ArrayLike | None, n_prime: ArrayLike | None) -> tuple[ArrayLike, ArrayLike, ArrayLike, ArrayLike]:

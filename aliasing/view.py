@@ -82,7 +82,7 @@ class View:
         n, f = check.frustum(self.near, self.far)
         a = check.fov(self.fov)
         n, f, a = check.broadcast(near=n, far=f, fov=a)  # a shape error names the three and their shapes
-        theta = half_angle(a)
+        theta = np.radians(a) / 2  # the conversion of half_angle, on the fov validated above
         for name, value in (("near", n), ("far", f), ("fov", a), ("_theta", theta)):
             object.__setattr__(self, name, _store(value))
 
@@ -148,6 +148,25 @@ class View:
         half = depth * t[..., None]
         return np.stack([sx * half, sy * half, depth], axis=-1)
 
+    def between(self, z0: ArrayLike, z1: ArrayLike) -> "View":
+        """The same view cut to the eye depths [z0, z1] (a partition's sub-frustum) [world units].
+
+        Only the new depths are checked (0 < z0 < z1 < inf); the field of view and θ are
+        carried over as they are, not validated or converted again.
+
+        Example
+        -------
+        >>> v = View(1.0, 100.0, 60.0).between(10.0, 20.0)
+        >>> v.near, v.far, v.fov, v.theta == View(1.0, 100.0, 60.0).theta
+        (10.0, 20.0, 60.0, True)
+        """
+        n, f = check.frustum(z0, z1)
+        n, f, a, th = check.broadcast(near=n, far=f, fov=np.asarray(self.fov), theta=np.asarray(self._theta))
+        out = object.__new__(View)
+        for name, value in (("near", n), ("far", f), ("fov", a), ("_theta", th)):
+            object.__setattr__(out, name, _store(value))
+        return out
+
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, View):
             return NotImplemented
@@ -170,6 +189,28 @@ def half_angle(fov: ArrayLike, name: str = "fov") -> Array:
     return np.radians(check.fov(fov, name)) / 2
 
 
+def theta_of(fov: View | ArrayLike, name: str = "fov") -> float | Array:
+    """θ [rad] of a View (as it is, not validated again) or of a full field of view [deg] (validated).
+
+    Example
+    -------
+    >>> theta_of(View(1.0, 2.0, 90.0)) == float(theta_of(90.0))
+    True
+    """
+    return fov.theta if isinstance(fov, View) else half_angle(fov, name)
+
+
+def tan_theta(fov: View | ArrayLike, name: str = "fov") -> float | Array:
+    """tan θ of a View (as it is) or of a full field of view [deg] (validated): np.tan(half_angle(fov)).
+
+    Example
+    -------
+    >>> round(float(tan_theta(90.0)), 12), round(tan_theta(View(1.0, 2.0, 90.0)), 12)
+    (1.0, 1.0)
+    """
+    return fov.tan_theta if isinstance(fov, View) else np.tan(half_angle(fov, name))
+
+
 def as_view(near: View | ArrayLike, far: ArrayLike | None = None, fov: ArrayLike | None = None) -> View:
     """A View from a View (returned as is) or from the three numbers.
 
@@ -185,6 +226,59 @@ def as_view(near: View | ArrayLike, far: ArrayLike | None = None, fov: ArrayLike
     if far is None or fov is None:
         raise ValueError("far and fov are required unless near is a View")
     return View(near, far, fov)
+
+
+def view_args(near: View | ArrayLike | None, far: Any, fov: Any, rest: tuple[Any, ...], defaults: tuple[Any, ...], names: tuple[str, ...] = ("light", "scheme")) -> tuple[View, tuple[Any, ...]]:
+    """Resolve ``(near, far, fov, *rest)`` where ``near`` may be a View, for any number of following arguments.
+
+    With a View in ``near``, what was given in the places of ``far`` and ``fov`` moves to the
+    first two of ``rest`` (``f(view, light, scheme)`` means ``f(near, far, fov, light,
+    scheme)``); arguments given by name stay where they are.  ``None`` means "not given";
+    ``defaults`` are (near, far, fov, *rest) (None: required; ``names`` name the following
+    arguments in the error).  Loose numbers are validated
+    here, once, into the View.
+
+    Example
+    -------
+    >>> v = View(1.0, 10.0, 60.0)
+    >>> view_args(v, "overhead", "P", (None, None), (None, None, None, None, "Standard"))[1]
+    ('overhead', 'P')
+    >>> view_args(v, "overhead", None, (None, None), (None, None, None, None, "Standard"))[1]
+    ('overhead', 'Standard')
+    >>> view_args(v, None, None, ("front", "LogP"), (None, None, None, None, "Standard"))[1]   # by name
+    ('front', 'LogP')
+    >>> view_args(1.0, 10.0, 60.0, ("front", None), (None, None, None, None, "Standard"))
+    (View(near=1.0, far=10.0, fov=60.0), ('front', 'Standard'))
+    """
+    tail = defaults[3:]
+    if len(tail) != len(rest):
+        raise ValueError("defaults must give near, far, fov and one default per following argument")
+    if isinstance(near, View):
+        # the arguments after the View, in order: those given by position form a leading
+        # run of the places far, fov, rest...; any later one was given by name in its own place
+        seq = [far, fov, *rest]
+        m = next((i for i, v in enumerate(seq) if v is None), len(seq))
+        out = [None] * len(rest)
+        for j, value in enumerate(seq):
+            if value is None:
+                continue
+            i = j if j < m else j - 2
+            if i >= len(out) or out[i] is not None:
+                raise ValueError("with a View, pass the arguments that follow it (e.g. light) once each, not far and fov")
+            out[i] = value
+        view = near
+    else:
+        given = {"near": defaults[0] if near is None else near, "far": defaults[1] if far is None else far, "fov": defaults[2] if fov is None else fov}
+        missing = [k for k, v in given.items() if v is None]
+        if missing:
+            raise ValueError(f"{', '.join(missing)} required (or a View in place of near)")
+        view = View(given["near"], given["far"], given["fov"])
+        out = list(rest)
+    resolved = tuple(d if v is None else v for v, d in zip(out, tail))
+    missing = [names[i] if i < len(names) else f"argument {i + 4}" for i, v in enumerate(resolved) if v is None]
+    if missing:
+        raise ValueError(f"{', '.join(missing)} required")
+    return view, resolved
 
 
 def split_view(near: View | ArrayLike | None, far: Any, fov: Any, rest: Any, defaults: tuple[Any, Any, Any, Any]) -> tuple[View, Any]:

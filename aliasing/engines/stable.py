@@ -97,7 +97,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import directional, geometry, partitioning
-from ..view import half_angle
+from ..view import tan_theta
 from .sample import sample_bounds
 
 Array = NDArray[np.float64]
@@ -215,7 +215,7 @@ def sphere_radius(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
     4.242640687119285
     """
     a, b = check.frustum(a, b)
-    t2 = np.tan(half_angle(fov)) ** 2
+    t2 = tan_theta(fov) ** 2
     zc = (a + b) * (1 + 2 * t2) / 2
     r_far = np.sqrt(2 * t2) * b
     return np.where(zc >= b, r_far, np.sqrt((b - np.minimum(zc, b)) ** 2 + 2 * t2 * b**2))
@@ -233,7 +233,7 @@ def centroid_radius(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
     4.358899
     """
     a, b = check.frustum(a, b)
-    t = np.tan(half_angle(fov))
+    t = tan_theta(fov)
     return np.sqrt(((b - a) / 2) ** 2 + 2 * t**2 * b**2)
 
 
@@ -249,7 +249,7 @@ def diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
     5.656854
     """
     a, b = check.frustum(a, b)
-    t = np.tan(half_angle(fov))
+    t = tan_theta(fov)
     body = np.sqrt((b - a) ** 2 + 2 * t**2 * (a + b) ** 2)
     return np.maximum(body, 2 * np.sqrt(2) * t * b)
 
@@ -290,7 +290,7 @@ def body_diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
     1.732051
     """
     a, b = check.frustum(a, b)
-    t = np.tan(half_angle(fov))
+    t = tan_theta(fov)
     return np.sqrt((b - a) ** 2 + 2 * t**2 * (a + b) ** 2)
 
 
@@ -385,7 +385,7 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
     res = float(check.closed_range(resolution, "resolution", 3.0, np.inf, " texels"))
     (a, b), (u, v) = cascade_ranges(split, near, far, k, scene=scene, overlap=overlap, **params)
     lv = geometry.lights(light)
-    t = np.tan(float(half_angle(fov)))
+    t = tan_theta(fov)
     if kind == "tight":
         lf = directional.fit(geometry.frustum_vertices(a, b, fov), lv)
         wx, wy = np.ptp(lf.x, axis=-1), lf.depth

@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike, NDArray
 from ... import _validation as check
 from . import backends, compiled, occlusion
 from .core import CHUNK, _triangles, check_chunk, check_resolution, clip_near, zbuffer
-from ...view import half_angle
+from ...view import View, tan_theta
 
 Array = NDArray[np.float64]
 
@@ -43,23 +43,38 @@ class EyeBuffer:
     fov: float
 
 
+def _fov_tan(fov: float | View) -> tuple[float, float]:
+    """(fov [deg], tan θ) of a View (as it is) or of a loose field of view (validated here, once)."""
+    if isinstance(fov, View):
+        if fov.shape != ():
+            raise ValueError(f"the view must be one frustum (scalar near, far, fov), got shape {fov.shape}")
+        return fov.fov, fov.tan_theta
+    fv = check.scalar(fov, "fov")
+    return fv, float(tan_theta(fv))
+
+
 @check.public
-def project(points: ArrayLike, fov: float) -> tuple[Array, Array, Array]:
+def project(points: ArrayLike, fov: float | View) -> tuple[Array, Array, Array]:
     """Image coordinates (u, v) ∈ [0, 1]² and depth z of eye-space points (square image).
 
-    u = ½ + x/(2 z tanθ), v = ½ + y/(2 z tanθ), θ = fov/2.
+    u = ½ + x/(2 z tanθ), v = ½ + y/(2 z tanθ), θ = fov/2; ``fov`` [deg] or a
+    :class:`~aliasing.View` (its near and far are not used).
     """
     p = check.finite(points, "points")
     if p.shape[-1:] != (3,):
         raise ValueError(f"points must have shape (..., 3), got {p.shape}")
     if (p[..., 2] <= 0).any():
         raise ValueError("points must lie in front of the eye (depth z > 0)")
-    t = np.tan(float(half_angle(check.scalar(fov, "fov"))))
+    return _project(p, _fov_tan(fov)[1])
+
+
+def _project(p: Array, t: float) -> tuple[Array, Array, Array]:
+    """:func:`project` on checked points with tan θ = ``t``."""
     z = p[..., 2]
     return 0.5 + p[..., 0] / (2 * z * t), 0.5 + p[..., 1] / (2 * z * t), z
 
 
-def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float = 1e-3, chunk: int = CHUNK, backend: str = "numpy") -> EyeBuffer:
+def eye_pass(triangles: ArrayLike, fov: float | View, resolution: int, *, near: float = 1e-3, chunk: int = CHUNK, backend: str = "numpy") -> EyeBuffer:
     """Render eye-space triangles with the perspective camera of the conventions.
 
     The eye is at the origin looking along +z, x right, y up, square image of full field of
@@ -74,8 +89,9 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     ----------
     triangles : array_like, shape (T, 3, 3)
         Eye-space triangles [world units].
-    fov : float
-        Full field of view [deg], in (0, 180).
+    fov : float or View
+        Full field of view [deg], in (0, 180), or a :class:`~aliasing.View` (its field of
+        view; its near and far do not clip: ``near`` below does).
     resolution : int
         R, pixels per side, 1 ≤ R ≤ :data:`~aliasing.raster.MAX_RESOLUTION`.
     near : float
@@ -106,7 +122,7 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     """
     tri = _triangles(triangles)
     res = check_resolution(resolution)
-    fv = float(check.fov(check.scalar(fov, "fov")))
+    fv, t = _fov_tan(fov)
     zc = float(check.positive(check.scalar(near, "near"), "near"))
     chunk = check_chunk(chunk)
     draw, outputs = KERNELS[backends.check(backend, "eye_pass")]()
@@ -114,14 +130,13 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     if clipped.shape[0] == 0:
         empty = np.full((res, res, 3), np.nan)
         return EyeBuffer(empty, empty.copy(), np.full((res, res), -1, np.int64), res, fv)
-    u, v, z = project(clipped, fv)
+    u, v, z = _project(clipped, t)
     # depth key: -1/z is affine in (u, v) over a plane and increases with z; the eye sees
     # much overdraw, so hidden triangles and pieces of spans are culled (front_to_back)
     key = np.stack([u, v, -1.0 / z], axis=-1)
     dm = zbuffer(key, res, np.ones((key.shape[0], 3)), (np.arange(res) + 0.5) / res, True, chunk, front_to_back=True, draw=draw)
     # exact positions: the ray (X, Y, 1) through the pixel centre ∩ the source triangle's
     # plane n·p = n·a, so p = λ(X, Y, 1) with λ = n·a / (n_x X + n_y Y + n_z)
-    t = np.tan(half_angle(fv))
     c = (np.arange(res) + 0.5) / res
     X = (2 * c - 1) * t
     a, b, cc = tri[:, 0], tri[:, 1], tri[:, 2]

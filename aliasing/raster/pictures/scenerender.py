@@ -38,6 +38,7 @@ from ..scenes.camera import Camera, check_raster_frustum
 from ..draw.cascades import CascadeSet, budget_shares, cascade_set
 from .images import BIAS, View, error_field, render_view
 from ..scenes.world import MIN_COS_LIGHT, SceneSetup, json_safe, plane_ids, setup
+from ...view import View as Frustum
 
 Array = NDArray[np.float64]
 
@@ -71,7 +72,7 @@ def render(st: SceneSetup, schemes_: list[str], *, splits: str | None = None, k:
     cam = st.camera
     out = []
     for name in schemes_:
-        cs = cascade_set(cam.near, cam.far, cam.fov, st.light, name.strip(), splits=splits, k=k, **params)
+        cs = cascade_set(cam.view, st.light, name.strip(), splits=splits, k=k, **params)
         res = budget_shares(cs, budget, allocation)
         v = render_view(st.scene, cs.maps, res, image_res=image_res, bias=bias, faces=st.faces)
         if not (v.triangle >= 0).any():
@@ -219,9 +220,10 @@ def run(args) -> int:
         f = float(args.f_over_n) if args.far is None else float(args.far)
         n = 1.0 if args.near is None else float(args.near)
         fv = 60.0 if args.fov is None else float(args.fov)
-        check_raster_frustum(*check.frustum(n, f), check.fov(fv))  # before the scene is built
-        sc = ground_and_boxes(n, f, fv, seed=args.seed, boxes=40, ground_cells=16)
-        cam = Camera(np.zeros(3), np.eye(3), *(float(x) for x in check.frustum(n, f)), float(check.fov(fv)), "eye space")
+        frustum = Frustum(n, f, fv)
+        check_raster_frustum(frustum.near, frustum.far, frustum.fov)  # before the scene is built
+        sc = ground_and_boxes(frustum, seed=args.seed, boxes=40, ground_cells=16)
+        cam = Camera(np.zeros(3), np.eye(3), frustum.near, frustum.far, frustum.fov, "eye space")
         ls = geometry.lights(light)
         if ls.shape[0] != 1:
             raise ValueError(f"light must be a single direction, got {ls.shape[0]}")

@@ -25,12 +25,14 @@ Example
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ... import _validation as check
+from ...view import View
 
 Array = NDArray[np.float64]
 
@@ -59,6 +61,11 @@ class Camera:
     far: float
     fov: float
     name: str = "look-at"
+
+    @functools.cached_property
+    def view(self) -> View:
+        """The camera's frustum as a :class:`~aliasing.View` (built once per camera)."""
+        return View(self.near, self.far, self.fov)
 
     def to_eye(self, points: ArrayLike) -> Array:
         """Eye-space coordinates ``(..., 3)`` of world points ``(..., 3)`` [world units]."""

@@ -26,6 +26,7 @@ from ..scenes.camera import check_raster_frustum
 from .measure import measure
 from ..draw import map_set
 from ..scenes.builtin import probes as probe_scene
+from ...view import View
 
 MIN_RES = 16
 """Smallest measurement resolution: probes need interior pixels with both neighbours."""
@@ -67,19 +68,28 @@ def _light(light: object) -> tuple[str, np.ndarray]:
     return label, lv
 
 
-def _check(scheme: str, f_over_n: float, fov: float, light: object, res: int, image_res: int | None, probes: int, reach: float) -> dict:
+def _check(scheme: str, f_over_n: float | View, fov: float | None, light: object, res: int, image_res: int | None, probes: int, reach: float) -> dict:
     if not isinstance(scheme, str):
         raise ValueError(f"scheme must be a scheme name (e.g. Standard, P, ZP4+LogP), got {scheme!r}")
     sch = schemes.parse(scheme)
-    ratio = float(check.depth_ratio(f_over_n, "f_over_n"))
-    fv = float(check.fov(fov))
-    check_raster_frustum(1.0, ratio, fv)
+    if isinstance(f_over_n, View):
+        view = f_over_n
+        if view.shape != ():
+            raise ValueError(f"the view must be one frustum (scalar near, far, fov), got shape {view.shape}")
+        ratio = view.ratio
+    else:
+        ratio = float(check.depth_ratio(f_over_n, "f_over_n"))
+        if fov is None:
+            raise ValueError("fov required (or a View in place of f_over_n)")
+        view = View(1.0, ratio, fov)
+    fv = view.fov
+    check_raster_frustum(view.near, view.far, fv)
     label, lv = _light(light)
     r = _whole(res, "res", MIN_RES, MAX_RES, " pixels per side (larger does not fit in memory)")
     ri = r if image_res is None else _whole(image_res, "image_res", 1, 1 << 20, " pixels per side")
     cells = _whole(probes, "probes", 2, min(MAX_PROBES, r // 4), f" probe cells per side (at most res/4 = {r // 4}, so that probes span pixels)")
     reach = float(check.closed_range(reach, "reach", 0.0, 1.0))
-    return dict(scheme=sch, f_over_n=ratio, fov=fv, light=label, lv=lv, res=r, image_res=ri, probes=cells, reach=reach)
+    return dict(scheme=sch, f_over_n=ratio, fov=fv, view=view, light=label, lv=lv, res=r, image_res=ri, probes=cells, reach=reach)
 
 
 # --------------------------------------------------------------------------- validation
@@ -90,7 +100,7 @@ def _scalar(values: np.ndarray) -> float | list[float]:
     return vals[0] if len(vals) == 1 else vals
 
 
-def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[float], res: int = DEFAULT_RES, image_res: int | None = None, probes: int = DEFAULT_PROBES, *, seed: int = 0, reach: float = DEFAULT_REACH, **options) -> dict:
+def validate(scheme: str, f_over_n: float | View, fov: float | None = None, light: str | Sequence[float] | None = None, res: int | None = None, image_res: int | None = None, probes: int | None = None, *, seed: int = 0, reach: float = DEFAULT_REACH, **options) -> dict:
     """Measure a scheme's perspective error on probes and compare it with the analytic bounds.
 
     Parameters
@@ -99,18 +109,19 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
         Scheme name (Standard, P, LogP, a warping rule, each alone or after ``ZP<k>+``; or
         ``FPc+…``, ``FPcs+…``, whose per-map bounds are :func:`aliasing.faces.face_errors`).
     f_over_n : float
-        Depth ratio far/near, > 1 (near = 1).
+        Depth ratio far/near, > 1 (near = 1); or a :class:`~aliasing.View` in its place,
+        followed by the light: ``validate(scheme, view, light, ...)``.
     fov : float
         FULL field of view [deg], in (0, 180).
     light : str or array_like
         Exactly one light direction: ``overhead``, ``behind``, ``front``,
         ``gamma:DEG[@azimuth:DEG]`` or a vector towards the light.
     res : int
-        Eye-pass (measurement) resolution [pixels per side], in [16, 2048].
+        Eye-pass (measurement) resolution [pixels per side], in [16, 2048] (default 384).
     image_res : int, optional
         Image resolution the critical shadow-map resolutions are given for (default ``res``).
     probes : int
-        Probe grid cells per side, in [2, min(256, res/4)].
+        Probe grid cells per side, in [2, min(256, res/4)] (default 24).
     seed : int
         Seed of the probes' depth permutation: the same inputs give the same result.
     reach : float
@@ -147,13 +158,30 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
     >>> r["maps"], r["passed"], len(r["ratio_M_x"])
     (2, True, 2)
     """
+    if isinstance(f_over_n, View):  # the arguments after the View move up one place
+        seq = [fov, light, res, image_res, probes]
+        run = next((i for i, v in enumerate(seq) if v is None), len(seq))
+        if run == len(seq):
+            raise ValueError("with a View, pass the arguments that follow it (light, res, ...) once each, not fov")
+        out: list = [None] * 4
+        for j, value in enumerate(seq):
+            i = j if j < run else j - 1
+            if value is not None:
+                if out[i] is not None:
+                    raise ValueError("with a View, pass the arguments that follow it (light, res, ...) once each, not fov")
+                out[i] = value
+        fov, (light, res, image_res, probes) = None, out
+    if light is None:
+        raise ValueError("light required")
+    res = DEFAULT_RES if res is None else res
+    probes = DEFAULT_PROBES if probes is None else probes
     c = _check(scheme, f_over_n, fov, light, res, image_res, probes, reach)
     seed = _whole(seed, "seed", 0, 2**32 - 1)
-    near, far = 1.0, c["f_over_n"]
+    view = c["view"]
     lv = c["lv"]
-    ms = map_set(near, far, c["fov"], lv, c["scheme"].name, **options)
-    scene = probe_scene(near, far, c["fov"], lv, cells=c["probes"], seed=seed, splits=None if ms.faces else ms.edges)
-    m = measure(near, far, c["fov"], lv, c["scheme"].name, resolution=c["res"], scene=scene, map_resolution=c["res"], **options)
+    ms = map_set(view, lv, c["scheme"].name, **options)
+    scene = probe_scene(view, lv, cells=c["probes"], seed=seed, splits=None if ms.faces else ms.edges)
+    m = measure(view, lv, c["scheme"].name, resolution=c["res"], scene=scene, map_resolution=c["res"], **options)
     S = m.M_x * m.M_z
     measured_S = m.measured_x * m.measured_z
     ratios = np.concatenate([m.ratio_x, m.ratio_z])
