@@ -54,6 +54,7 @@ def _unpack(near: ArrayLike | View, far: ArrayLike | None, fov: ArrayLike | None
     """(near, far, fov, n′) from the numbers or from a :class:`aliasing.View` in ``near``
     (then ``f(view, n_prime)``: the arguments after it move up one place)."""
     view, npr = split_view(near, far, fov, n_prime, (None, None, None, np.inf))
+    view.require_square("the closed forms of Lloyd et al. 2006 (eqs. 3-4, 7-10: a square frustum; use aliasing.schemes.evaluate)")
     return view.near, view.far, view.fov, npr
 
 

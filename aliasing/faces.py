@@ -207,6 +207,7 @@ def _arguments(variant: str, parameterization: str, near: float | View, far: flo
     view, light = split_view(near, far, fov, light, (None, None, None, None))
     if view.shape != ():
         raise ValueError(f"near, far and fov must be scalars here, got shape {view.shape}")
+    view.require_square("face partitions (Lloyd et al. 2007 §6.1.3: the four side faces of a square frustum)")
     if view.far > FAR_MAX:
         raise ValueError(f"far must be at most {FAR_MAX:g} [world units] here (the face closed forms cube depths), got {view.far:g}")
     k = check.whole(k, "k", 1, K_MAX, " (depth ranges per face)")

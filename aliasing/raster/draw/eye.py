@@ -48,6 +48,7 @@ def _fov_tan(fov: float | View) -> tuple[float, float]:
     if isinstance(fov, View):
         if fov.shape != ():
             raise ValueError(f"the view must be one frustum (scalar near, far, fov), got shape {fov.shape}")
+        fov.require_square("the rasterizer's eye pass (a square R x R image)")
         return fov.fov, fov.tan_theta
     fv = check.scalar(fov, "fov")
     return fv, float(tan_theta(fv))
