@@ -12,6 +12,7 @@ from scipy.optimize import minimize_scalar
 
 from aliasing import View, error, geometry, schemes
 from aliasing.engines import stable
+from aliasing import raster
 from aliasing.raster.draw.eye import eye_pass
 
 BAD_ASPECTS = st.one_of(st.floats(max_value=0.0, allow_nan=False), st.sampled_from([math.nan, math.inf, -math.inf]))
@@ -104,7 +105,48 @@ def test_square_only_parts_refuse_a_wide_view():
         schemes.evaluate("FPc+P", wide, "overhead")
     with pytest.raises(ValueError, match="^aspect must be 1 for the closed forms"):
         error.max_error_z(wide, 5.0)
-    with pytest.raises(ValueError, match="^aspect must be 1 for the rasterizer"):
-        eye_pass(np.array([[[-1.0, -1.0, 5.0], [1.0, -1.0, 5.0], [0.0, 1.0, 5.0]]]), wide, 8)
     with pytest.raises(ValueError, match="^aspect must be 1"):
         schemes.evaluate("pyramid", wide, "gamma:40")
+
+
+def test_symbolic_ratios_and_the_general_evaluation():
+    """aspect.ratios is (A, 1); aspect.m_x, aspect.m_z at the frustum's ends equal the general
+    evaluation's M_x, M_z of a wide view (overhead, LiSPSM's n′ read from the evaluation)."""
+    import sympy as sp
+
+    from aliasing.symbolic import aspect as sym
+    from aliasing.symbolic import get
+    from aliasing.symbolic import lloyd2006 as base
+
+    assert list(get("aspect.ratios").func()) == [sym.A, 1]
+    n, f, fov, a = 1.0, 300.0, 60.0, 16 / 9
+    r = schemes.evaluate("lispsm", View(n, f, fov, a), "overhead")
+    npr = float(r.n_prime[0, 0])
+    ty = math.tan(math.radians(fov) / 2)
+    values = {base.n: n, base.f: f, base.n_p: npr, base.res_i: 1, base.res_s: 1, base.res_t: 1, sym.theta_x: math.atan(a * ty), base.theta: math.atan(ty)}
+    mx = sp.lambdify(base.z, get("aspect.m_x").func().subs(values))
+    mz = sp.lambdify(base.z, get("aspect.m_z").func().subs(values))
+    assert float(r.M_x[0, 0]) == pytest.approx(max(mx(n), mx(f)), rel=1e-9)
+    assert float(r.M_z[0, 0]) == pytest.approx(max(mz(n), mz(f)), rel=1e-9)
+
+
+@pytest.mark.parametrize("aspect", [0.5, 2.0])
+@pytest.mark.parametrize("scheme, light", [("ZP2+P", "gamma:50@azimuth:30"), ("LogP", "gamma:120"), ("Standard", "overhead")])
+def test_rasterizer_measures_the_wide_view_bound(scheme, light, aspect):
+    """The eye pass over a non-square frustum (R × R pixels, aspect : 1 wide) and probes across
+    its width: the measured perspective error stays within the general evaluation's M_x, M_z
+    and reaches them (an independent check of the non-square analysis)."""
+    r = raster.measure(View(1.0, 100.0, 60.0, aspect), light, scheme, resolution=192, cells=10)
+    ratios = np.concatenate([r.ratio_x, r.ratio_z])
+    assert np.all(ratios <= 1 + r.tolerance) and np.all(ratios >= 0.9), ratios
+
+
+def test_eye_pass_spans_the_wide_frustum():
+    wall = np.array([[[-1e3, -1e3, 10.0], [1e3, -1e3, 10.0], [0.0, 1e3, 10.0]]])
+    res = 8
+    eb = eye_pass(wall, View(1.0, 100.0, 60.0, 2.0), res)
+    t = math.tan(math.radians(30.0))
+    c = (np.arange(res) + 0.5) / res
+    assert np.allclose(eb.position[0, :, 0], (2 * c - 1) * 2 * t * 10.0, rtol=1e-12)  # columns over 2 tan θ_y
+    assert np.allclose(eb.position[:, -1, 1], (2 * c - 1) * t * 10.0, rtol=1e-12)
+    assert eb.aspect == 2.0

@@ -112,7 +112,7 @@ def ground_and_boxes(near: float | View | None = None, far: float | None = None,
     (44, 3, 3)
     """
     view, _ = view_args(near, far, fov, (), (1.0, 1000.0, 60.0))
-    n, f, tan = _scalar_view(view)
+    n, f, tan, _ = _scalar_view(view)  # the width of the view: tan θ_x
     h = float(check.positive(check.scalar(height, "height"), "height"))
     nb = _count(boxes, "boxes", 0)
     gc = _count(ground_cells, "ground_cells", 1)
@@ -135,11 +135,11 @@ def ground_and_boxes(near: float | View | None = None, far: float | None = None,
     return Scene(tri, np.full(len(tri), -1, np.int64))
 
 
-def _scalar_view(view: View) -> tuple[float, float, float]:
-    """near, far, tan θ of one frustum."""
+def _scalar_view(view: View) -> tuple[float, float, float, float]:
+    """near, far, tan θ_x, tan θ_y of one frustum."""
     if view.shape != ():
         raise ValueError(f"near, far and fov must be scalars here, got shape {view.shape}")
-    return view.near, view.far, view.tan_theta
+    return view.near, view.far, view.tan_theta_x, view.tan_theta
 
 
 def probes(near: float | View, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, *, cells: int = 32, fill: float = 0.6, seed: int = 0, splits: ArrayLike | None = None) -> Scene:
@@ -179,7 +179,7 @@ def probes(near: float | View, far: float | None = None, fov: float | None = Non
     True
     """
     view, (light,) = view_args(near, far, fov, (light,), (None, None, None, None), ("light",))
-    n, f, tan = _scalar_view(view)
+    n, f, tan_x, tan = _scalar_view(view)
     k = _count(cells, "cells", 2)
     fl = check.scalar(fill, "fill")
     if not 0 < fl <= 1:
@@ -190,7 +190,7 @@ def probes(near: float | View, far: float | None = None, fov: float | None = Non
     lv = lv[0]
     c = (np.arange(k) + 0.5) / k
     u, v = np.meshgrid(c, c)  # row = v index
-    ray = np.stack([(2 * u - 1) * tan, (2 * v - 1) * tan, np.ones_like(u)], axis=-1).reshape(-1, 3)
+    ray = np.stack([(2 * u - 1) * tan_x, (2 * v - 1) * tan, np.ones_like(u)], axis=-1).reshape(-1, 3)
     to_eye = -ray / np.linalg.norm(ray, axis=-1, keepdims=True)
     nrm = to_eye + lv
     small = np.linalg.norm(nrm, axis=-1) < 1e-3  # light straight behind the probe: face the eye
@@ -202,7 +202,7 @@ def probes(near: float | View, far: float | None = None, fov: float | None = Non
     e1 /= np.linalg.norm(e1, axis=-1, keepdims=True)
     e2 = np.cross(nrm, e1)
     # half size per unit depth: fill/2 of a cell's width (2 tan θ z / k) over the ray length
-    half = fl / 2 * 2 * tan / k / np.linalg.norm(ray, axis=-1)
+    half = fl / 2 * 2 * min(tan, tan_x) / k / np.linalg.norm(ray, axis=-1)  # the cell's narrower side
     dz = half * (np.abs(e1[:, 2]) + np.abs(e2[:, 2]))  # corner depth offset per unit depth
     edges = np.array([n, f]) if splits is None else check.finite(splits, "splits").ravel()
     if edges.size < 2 or np.any(np.diff(edges) <= 0) or not (np.isclose(edges[0], n) and np.isclose(edges[-1], f)):

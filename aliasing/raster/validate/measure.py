@@ -249,7 +249,9 @@ def pixel_errors(lm: LightMap, position: ArrayLike, ok: ArrayLike, resolution: i
     resolution : int
         R [pixels per side], the image resolution of ``position``.
     fov : float or View
-        Full field of view [deg], in (0, 180), or the :class:`~aliasing.View`.
+        Full (vertical) field of view [deg], in (0, 180), or the :class:`~aliasing.View`:
+        w_i = 2 d tan θ_y at any aspect (square pixels of unit vertical resolution, as in
+        :func:`aliasing.schemes.evaluate`).
 
     Returns
     -------
@@ -273,7 +275,7 @@ def pixel_errors(lm: LightMap, position: ArrayLike, ok: ArrayLike, resolution: i
     if not isinstance(lm, LightMap):
         raise ValueError(f"lm must be a LightMap (aliasing.raster.light_map), got {type(lm).__name__}")
     res = check_resolution(resolution)
-    _, tan = _fov_tan(fov)
+    tan = _fov_tan(fov)[3]  # tan θ_y: w_i of a pixel of unit vertical resolution
     pos = np.asarray(position, dtype=float)
     if pos.shape != (res, res, 3):
         raise ValueError(f"position must have shape (resolution, resolution, 3) = ({res}, {res}, 3), got {pos.shape}")
