@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+import numpy as np
+
 
 from ... import _validation as check
 from ...sweep import store
@@ -12,6 +14,7 @@ from ..scenes import world
 from ..scenes.camera import check_raster_frustum
 from .images import error_image, grid_image, shadow_image
 from .scenerender import run
+from ...view import View, check_aspect
 
 
 def _render(args: argparse.Namespace) -> int:
@@ -21,8 +24,11 @@ def _render(args: argparse.Namespace) -> int:
         raise ValueError(f"--f-over-n must be a number, got {args.f_over_n!r}") from None
     if args.seed < 0:
         raise ValueError(f"--seed must be a whole number >= 0, got {args.seed}")
+    aspect = float(check_aspect(args.aspect))
     if args.scene is not None or "," in args.scheme or args.splits is not None or args.what == "cdf" or args.format != "text" \
             or any(v is not None for v in (args.eye, args.target, args.camera, args.light_dir, args.k, args.lam, args.near, args.far)) or args.param:
+        if aspect != 1.0:
+            raise ValueError("--aspect applies to one scheme's picture of the seeded scene (no --scene, --splits, cdf, several schemes or --format json)")
         return run(args)
     if args.out is None:
         raise ValueError("--out FILE.png is required")
@@ -40,14 +46,17 @@ def _render(args: argparse.Namespace) -> int:
     if out.exists() and out.is_dir():
         raise ValueError(f"--out must be a file, but {args.out!r} is a folder")
     kw = dict(image_res=args.image_res, budget=args.res**2, seed=args.seed)
-    fov = 60.0 if args.fov is None else args.fov
-    check_raster_frustum(1.0, f_over_n, float(check.fov(fov)))
+    frustum = View(1.0, f_over_n, 60.0 if args.fov is None else args.fov, aspect)
+    check_raster_frustum(frustum.near, frustum.far, frustum.fov)
     if args.what == "shadows":
-        img = shadow_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
+        img = shadow_image(frustum, args.light, args.scheme, **kw)
     elif args.what == "grid":
-        img = grid_image(1.0, f_over_n, fov, args.light, args.scheme, every=args.every, **kw)
+        img = grid_image(frustum, args.light, args.scheme, every=args.every, **kw)
     else:
-        img, _ = error_image(1.0, f_over_n, fov, args.light, args.scheme, **kw)
+        img, _ = error_image(frustum, args.light, args.scheme, **kw)
+    if aspect != 1.0:  # the R x R pixels are aspect : 1 wide: shown as round(aspect·R) square pixels per row
+        width = max(1, round(aspect * img.shape[1]))
+        img = img[:, ((np.arange(width) + 0.5) * img.shape[1] / width).astype(int)]
     # the sweep's safe writer (store): atomic, symlinks followed, devices refused, one-line errors
     try:
         out.parent.mkdir(parents=True, exist_ok=True)
@@ -76,7 +85,8 @@ def add_render_parser(sub) -> argparse.ArgumentParser:
     )
     ren.add_argument("--scheme", default="Standard", help="scheme(s), comma-separated (default Standard)")
     ren.add_argument("--f-over-n", default="100", help="seeded scene: depth ratio far/near (default 100)")
-    ren.add_argument("--fov", type=float, default=None, help="FULL field of view in degrees (default 60, or the glTF camera's)")
+    ren.add_argument("--fov", type=float, default=None, help="FULL (vertical) field of view in degrees (default 60, or the glTF camera's)")
+    ren.add_argument("--aspect", type=float, default=1.0, help="image width/height, > 0 (default 1): one scheme's picture of the seeded scene, IMAGE_RES rows")
     ren.add_argument("--light", default="gamma:60@azimuth:30", help="one eye-space light direction (default gamma:60@azimuth:30)")
     ren.add_argument("--what", choices=["shadows", "grid", "error", "cdf"], default="shadows", help="picture (default shadows)")
     ren.add_argument("--out", help="output PNG file (required unless --format json)")

@@ -68,7 +68,7 @@ def _light(light: object) -> tuple[str, np.ndarray]:
     return label, lv
 
 
-def _check(scheme: str, f_over_n: float | View, fov: float | None, light: object, res: int, image_res: int | None, probes: int, reach: float) -> dict:
+def _check(scheme: str, f_over_n: float | View, fov: float | None, light: object, res: int, image_res: int | None, probes: int, reach: float, aspect: float = 1.0) -> dict:
     if not isinstance(scheme, str):
         raise ValueError(f"scheme must be a scheme name (e.g. Standard, P, ZP4+LogP), got {scheme!r}")
     sch = schemes.parse(scheme)
@@ -77,11 +77,13 @@ def _check(scheme: str, f_over_n: float | View, fov: float | None, light: object
         if view.shape != ():
             raise ValueError(f"the view must be one frustum (scalar near, far, fov), got shape {view.shape}")
         ratio = view.ratio
+        if aspect != 1.0:
+            raise ValueError("aspect is the View's: pass it in the View, not again")
     else:
         ratio = float(check.depth_ratio(f_over_n, "f_over_n"))
         if fov is None:
             raise ValueError("fov required (or a View in place of f_over_n)")
-        view = View(1.0, ratio, fov)
+        view = View(1.0, ratio, fov, aspect)
     fv = view.fov
     check_raster_frustum(view.near, view.far, fv)
     label, lv = _light(light)
@@ -100,7 +102,7 @@ def _scalar(values: np.ndarray) -> float | list[float]:
     return vals[0] if len(vals) == 1 else vals
 
 
-def validate(scheme: str, f_over_n: float | View, fov: float | None = None, light: str | Sequence[float] | None = None, res: int | None = None, image_res: int | None = None, probes: int | None = None, *, seed: int = 0, reach: float = DEFAULT_REACH, **options) -> dict:
+def validate(scheme: str, f_over_n: float | View, fov: float | None = None, light: str | Sequence[float] | None = None, res: int | None = None, image_res: int | None = None, probes: int | None = None, *, aspect: float = 1.0, seed: int = 0, reach: float = DEFAULT_REACH, **options) -> dict:
     """Measure a scheme's perspective error on probes and compare it with the analytic bounds.
 
     Parameters
@@ -112,7 +114,11 @@ def validate(scheme: str, f_over_n: float | View, fov: float | None = None, ligh
         Depth ratio far/near, > 1 (near = 1); or a :class:`~aliasing.View` in its place,
         followed by the light: ``validate(scheme, view, light, ...)``.
     fov : float
-        FULL field of view [deg], in (0, 180).
+        FULL (vertical) field of view [deg], in (0, 180).
+    aspect : float
+        Image width/height, > 0 (default 1); the rows hold ``res`` pixels (see
+        :class:`aliasing.View` and :func:`aliasing.raster.eye_pass`).  The result gains an
+        ``aspect`` entry when it is not 1.
     light : str or array_like
         Exactly one light direction: ``overhead``, ``behind``, ``front``,
         ``gamma:DEG[@azimuth:DEG]`` or a vector towards the light.
@@ -175,7 +181,7 @@ def validate(scheme: str, f_over_n: float | View, fov: float | None = None, ligh
         raise ValueError("light required")
     res = DEFAULT_RES if res is None else res
     probes = DEFAULT_PROBES if probes is None else probes
-    c = _check(scheme, f_over_n, fov, light, res, image_res, probes, reach)
+    c = _check(scheme, f_over_n, fov, light, res, image_res, probes, reach, aspect)
     seed = _whole(seed, "seed", 0, 2**32 - 1)
     view = c["view"]
     lv = c["lv"]
@@ -228,7 +234,7 @@ def validate(scheme: str, f_over_n: float | View, fov: float | None = None, ligh
         "projection_min": float(np.nanmin(m.projection)),
         "projection_median": float(np.nanmedian(m.projection)),
         "projection_max": float(np.nanmax(m.projection)),
-    }
+    } | ({} if view.square else {"aspect": float(view.aspect)})
 
 
 # --------------------------------------------------------------------------- output
@@ -248,7 +254,7 @@ def _fmt(v: object) -> str:
 def format_text(r: dict) -> str:
     """One validation as a short plain-text report."""
     lines = [
-        f"scheme {r['scheme']}  f/n {r['f_over_n']:g}  fov {r['fov']:g} deg  light {r['light']} (gamma {r['gamma']:.6g} deg)  maps {r['maps']}",
+        f"scheme {r['scheme']}  f/n {r['f_over_n']:g}  fov {r['fov']:g} deg{'  aspect %g' % r['aspect'] if 'aspect' in r else ''}  light {r['light']} (gamma {r['gamma']:.6g} deg)  maps {r['maps']}",
         f"measurement: res {r['res']} px, {r['probes']}x{r['probes']} probes, seed {r['seed']}, {r['pixels']} pixels, self-lit {r['self_lit']:.3f}",
         f"projection factor cos(psi_e)/cos(psi_l) on the probes: min {r['projection_min']:.4f}, median {r['projection_median']:.4f}, "
         f"max {r['projection_max']:.4f} (about 1 by construction: perspective aliasing alone)",
