@@ -289,7 +289,7 @@ def view_args(near: View | ArrayLike | None, far: Any, fov: Any, rest: tuple[Any
     With a View in ``near``, what was given in the places of ``far`` and ``fov`` moves to the
     first two of ``rest`` (``f(view, light, scheme)`` means ``f(near, far, fov, light,
     scheme)``); arguments given by name stay where they are.  ``None`` means "not given";
-    ``defaults`` are (near, far, fov, *rest) (None: required; ``names`` name the following
+    ``defaults`` are ``(near, far, fov, *rest)`` (None: required; ``names`` name the following
     arguments in the error).  Loose numbers are validated
     here, once, into the View.
 
