@@ -45,7 +45,7 @@ from numpy.typing import ArrayLike, NDArray
 from . import _validation as check
 from . import geometry, schemes, warping
 from .warping import register
-from .view import half_angle
+from .view import tan_theta
 
 Array = NDArray[np.float64]
 RULES = ("P", "LogP", "lispsm", "gmnpr", "glpr", "pyramid", "pyramid-log")
@@ -67,7 +67,7 @@ def image_position(light: ArrayLike, fov: ArrayLike) -> tuple[Array, Array]:
         Full field of view [deg], 0 < fov < 180.
     """
     lv = np.atleast_2d(geometry._unit(light))
-    tan = np.tan(half_angle(fov))
+    tan = tan_theta(fov)
     lz = np.abs(lv[:, 2])
     sign = np.where(lv[:, 2] < 0, -1.0, 1.0)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -166,7 +166,7 @@ def pyramid_t_r(gamma: ArrayLike, azimuth: ArrayLike, fov: ArrayLike) -> tuple[A
     g = check.closed_range(gamma, "gamma", 0.0, 180.0, " degrees")
     g = np.minimum(g, 180.0 - g)
     phi = np.radians(check.as_float_array(azimuth, "azimuth"))
-    tan = np.tan(half_angle(fov))
+    tan = tan_theta(fov)
     with np.errstate(over="ignore"):
         scale = np.tan(np.radians(g)) / tan
         return _t_and_r(scale * np.abs(np.sin(phi)), scale * np.abs(np.cos(phi)))

@@ -129,6 +129,7 @@ def splits_report(
     k: int | None = None,
     *,
     fov: float = 60.0,
+    aspect: float = 1.0,
     light: str | ArrayLike = "overhead",
     warp: str = "Standard",
     budget: float | None = None,
@@ -156,7 +157,9 @@ def splits_report(
     k : int, optional
         Number of partitions (an engine preset's default when omitted).
     fov : float
-        Full field of view [deg].
+        Full (vertical) field of view [deg].
+    aspect : float
+        Image width/height, > 0 (default 1, square): see :class:`aliasing.View`.
     light : str or array_like
         Light spec or vectors.
     warp : str
@@ -164,7 +167,7 @@ def splits_report(
     budget : float, optional
         Total texels over all maps; needs ``res_image``.
     res_image : float, optional
-        Image resolution [pixels per side].
+        Image resolution [pixels per side; rows of a non-square image, square pixels].
     allocations : tuple of str
         Allocation methods to compare (:data:`ALLOCATIONS`).
     **params
@@ -177,6 +180,7 @@ def splits_report(
     ([5.623, 31.623, 177.828, 1000.0], 1.0005)
     """
     from . import partitioning, schemes
+    from .view import View
 
     if (budget is None) != (res_image is None):
         raise ValueError("budget and res_image (image resolution) go together: give both or neither")
@@ -188,7 +192,7 @@ def splits_report(
     if budget is not None:
         budget, res_image = check.scalar(budget, "budget"), check.scalar(res_image, "res_image")
     n_i, f_i = partitioning.partitions(method, near, far, k, **params)
-    r = schemes.evaluate(warp, near, far, fov, light, edges=(n_i, f_i))
+    r = schemes.evaluate(warp, View(near, far, fov, aspect), light, edges=(n_i, f_i))
     s = r.M_x * r.M_z  # (N, K)
     rows = [{"partition": i + 1, "near": float(n_i[i]), "far": float(f_i[i]), "S_max": float(s[:, i].max())} for i in range(len(n_i))]
     total = {"partition": "all", "near": float(n_i.min()), "far": float(f_i.max()), "S_max": float(r.S.max())}

@@ -194,7 +194,7 @@ def _splits(args: argparse.Namespace) -> int:
         limits.check_bytes(size, "-k", limit)
     params = partitioning.split_params(args.lam, args.param)
     rows = budgets.splits_report(
-        args.method, args.near, args.far, args.k, fov=args.fov, light=args.light, warp=args.warp,
+        args.method, args.near, args.far, args.k, fov=args.fov, aspect=args.aspect, light=args.light, warp=args.warp,
         budget=args.budget, res_image=args.image_res, allocations=tuple(a for a in args.allocations.split(",") if a), **params,
     )
     if args.format == "table":
@@ -276,7 +276,8 @@ def build_parser(full: bool = True) -> argparse.ArgumentParser:
     spl.add_argument("--near", type=float, help="near distance")
     spl.add_argument("--far", type=float, help="far distance (for engine presets: the shadow distance)")
     spl.add_argument("-k", type=int, help="number of partitions (default: the preset's own; required for log, uniform, practical)")
-    spl.add_argument("--fov", type=float, default=60.0, help="FULL field of view in degrees (default 60)")
+    spl.add_argument("--fov", type=float, default=60.0, help="FULL (vertical) field of view in degrees (default 60)")
+    spl.add_argument("--aspect", type=float, default=1.0, help="image width/height, > 0 (default 1, a square view; 16:9 is 1.7778)")
     spl.add_argument("--light", default="overhead", help="light directions (default overhead)")
     spl.add_argument("--warp", default="Standard", help="warp inside each partition: Standard, P, LogP or a warping rule (default Standard)")
     spl.add_argument("--budget", type=float, help="total texels over all maps (with --image-res)")

@@ -49,7 +49,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 from .geometry import VIEW, light_space
-from .view import View, half_angle
+from .view import View, tan_theta
 
 Array = NDArray[np.float64]
 PARAMETERIZATIONS = ("uniform", "perspective", "logperspective")
@@ -240,7 +240,8 @@ def _n_prime(n_prime: ArrayLike, lf: LightFit) -> Array:
 
 
 def _tan_theta(fov: ArrayLike | View) -> Array | float:
-    return fov.tan_theta if isinstance(fov, View) else np.tan(half_angle(fov))
+    """tan θ_y: the eye beam w_i = 2 d tan θ_y of a pixel of unit vertical resolution (square pixels at any aspect)."""
+    return fov.tan_theta if isinstance(fov, View) else tan_theta(fov)
 
 
 # --- shared light frames: the rotation done once per (view, directions) -------------------------

@@ -27,7 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 from ._stable import sqrt_product
-from .view import View, half_angle, split_view
+from .view import View, split_view, tan_theta
 from .parameterizations import _depths, _ratio
 
 __all__ = [
@@ -47,7 +47,7 @@ Array = NDArray[np.float64]
 
 def _half_tan(fov: ArrayLike) -> Array:
     """tan θ for the full field of view ``fov`` [deg]."""
-    return np.tan(half_angle(fov))
+    return tan_theta(fov)
 
 
 def _unpack(near: ArrayLike | View, far: ArrayLike | None, fov: ArrayLike | None, n_prime: ArrayLike | None) -> tuple[ArrayLike, ArrayLike, ArrayLike, ArrayLike]:
@@ -57,6 +57,7 @@ def _unpack(near: ArrayLike | View, far: ArrayLike | None, fov: ArrayLike | None
     if not isinstance(near, View):
         # against the near given: the View broadcasts near to far's shape, which may be empty
         check.n_prime(npr, check.positive(near, "near"))
+    view.require_square("the closed forms of Lloyd et al. 2006 (eqs. 3-4, 7-10: a square frustum; use aliasing.schemes.evaluate)")
     return view.near, view.far, view.fov, npr
 
 

@@ -54,7 +54,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 from .geometry import VIEW
-from .view import View, half_angle, split_view
+from .view import View, split_view, theta_of, view_args
 
 Array = NDArray[np.float64]
 VARIANTS = ("fp", "fpc", "fpcs")
@@ -85,14 +85,16 @@ class FaceResult:
     chosen: Array  # (N, 5) bool: near, bottom, top, left, right
 
 
-def side_frames(fov: float) -> tuple[Array, Array, Array, Array]:
+def side_frames(fov: float | View) -> tuple[Array, Array, Array, Array]:
     """Each side face's unit normal (outward), centre line ŷ_f, across x̂_f and side edges.
+
+    ``fov``: the full field of view [deg], or a :class:`~aliasing.View` (its θ is used as is).
 
     Lloyd 2007 Fig. 5 (bottom row): the origin is the eye, y runs along the face's centre
     line and z along its normal.  Returns ``normal (4, 3)``, ``centre (4, 3)``,
     ``across (4, 3)`` and the side edges ``(4, 2, 3)`` scaled to unit eye depth.
     """
-    th = half_angle(check.scalar(fov, "fov"))
+    th = theta_of(fov if isinstance(fov, View) else check.scalar(fov, "fov"))
     c, s, t = np.cos(th), np.sin(th), np.tan(th)
     out = np.array([[0, -1, 0], [0, 1, 0], [-1, 0, 0], [1, 0, 0]], float)  # bottom, top, left, right
     normal = out * c - VIEW * s
@@ -103,7 +105,7 @@ def side_frames(fov: float) -> tuple[Array, Array, Array, Array]:
     return normal, centre, across, edges
 
 
-def chosen_faces(light: ArrayLike, fov: float) -> Array:
+def chosen_faces(light: ArrayLike, fov: float | View) -> Array:
     """Eq. 54's faces for directional lights ``(N, 3)`` (towards the light): ``(N, 5)`` bool.
 
     Exit faces (n̂·l̂ < 0) when v̂·l̂ ≥ 0, entry faces otherwise; faces seen edge-on are not
@@ -117,20 +119,24 @@ def chosen_faces(light: ArrayLike, fov: float) -> Array:
 
 
 @check.public
-def partition_of(points: ArrayLike, near: float, far: float, fov: float, light: ArrayLike) -> NDArray[np.int_]:
+def partition_of(points: ArrayLike, near: float | View, far: float | None = None, fov: float | None = None, light: ArrayLike | None = None) -> NDArray[np.int_]:
     """The face partition (0 near, 1 bottom, 2 top, 3 left, 4 right) of eye-space points.
 
     A point belongs to the chosen face that its light ray reaches first while travelling
     towards smaller eye depth — the exit face along −l̂ when v̂·l̂ ≥ 0, else the entry face
     along +l̂ (eq. 54): the partition polyhedra are the faces swept along the light.  Points
     ``(..., 3)`` inside the frustum, one directional ``light`` ``(3,)``; returns ``(...)``.
+    A :class:`~aliasing.View` may stand for near, far, fov: ``partition_of(points, view, light)``.
 
     Example
     -------
     >>> int(partition_of([0.0, 0.0, 500.0], 1.0, 1000.0, 60.0, [0.0, 1.0, 0.0]))  # overhead → bottom
     1
     """
-    n, f = (float(v) for v in check.frustum(check.scalar(near, "near"), check.scalar(far, "far")))
+    view, (light,) = view_args(near, far, fov, (light,), (None, None, None, None), ("light",))
+    if view.shape != ():
+        raise ValueError(f"near, far and fov must be scalars here, got shape {view.shape}")
+    n = view.near
     pts = check.finite(points, "points")
     if pts.shape[-1:] != (3,):
         raise ValueError(f"points must have shape (..., 3), got {pts.shape}")
@@ -138,7 +144,7 @@ def partition_of(points: ArrayLike, near: float, far: float, fov: float, light: 
     if lv.shape[0] != 1:
         raise ValueError("partition_of takes one light direction (3,)")
     travel = -lv[0] if lv[0] @ VIEW >= 0 else lv[0]  # eq. (54): towards the smaller eye depth
-    normal, *_ = side_frames(fov)
+    normal, *_ = side_frames(view)
     normals = np.vstack([-VIEW, normal])  # (5, 3), the planes n̂·p = h with h = −n (near), 0 (sides)
     offset = np.array([-n, 0.0, 0.0, 0.0, 0.0])
     speed = normals @ travel
@@ -201,6 +207,7 @@ def _arguments(variant: str, parameterization: str, near: float | View, far: flo
     view, light = split_view(near, far, fov, light, (None, None, None, None))
     if view.shape != ():
         raise ValueError(f"near, far and fov must be scalars here, got shape {view.shape}")
+    view.require_square("face partitions (Lloyd et al. 2007 §6.1.3: the four side faces of a square frustum)")
     if view.far > FAR_MAX:
         raise ValueError(f"far must be at most {FAR_MAX:g} [world units] here (the face closed forms cube depths), got {view.far:g}")
     k = check.whole(k, "k", 1, K_MAX, " (depth ranges per face)")
@@ -236,15 +243,16 @@ def face_frames(variant: str, parameterization: str, near: float | View, far: fl
     """
     var = check.choice(variant, "variant", ("fpc", "fpcs"))
     _, kind, view, lv, k = _arguments(var, parameterization, near, far, fov, light, k, tau0, tau1)
-    return _frames(var, kind, view.near, view.far, view.fov, lv, k, float(tau0), float(tau1))
+    return _frames(var, kind, view, lv, k, float(tau0), float(tau1))
 
 
-def _frames(var: str, kind: str, n: float, f: float, fov: float, lv: Array, k: int, tau0: float, tau1: float) -> FaceFrames:
+def _frames(var: str, kind: str, view: View, lv: Array, k: int, tau0: float, tau1: float) -> FaceFrames:
     """:func:`face_frames` on checked arguments."""
+    n, f = view.near, view.far
     depth = n * (f / n) ** (np.arange(k + 1) / k)
     depth[-1] = f
-    chosen = chosen_faces(lv, fov)
-    _, _, _, edges = side_frames(fov)
+    chosen = chosen_faces(lv, view)
+    _, _, _, edges = side_frames(view)
     halves = 1 if var == "fpc" else 2
     N = lv.shape[0]
     axis = np.zeros((N, 4, halves, 3))
@@ -313,12 +321,12 @@ def face_errors(variant: str, parameterization: str, near: float | View, far: fl
     (1999.0, 5)
     """
     var, kind, view, lv, k = _arguments(variant, parameterization, near, far, fov, light, k, tau0, tau1)
-    n, f, fov = view.near, view.far, view.fov
-    chosen = chosen_faces(lv, fov)
+    n, f = view.near, view.far
+    chosen = chosen_faces(lv, view)
     near_x, near_z = _near_face(lv)
     tan = view.tan_theta
     if var == "fp":
-        normal, centre, across, edges = side_frames(fov)
+        normal, centre, across, edges = side_frames(view)
         depth = n * (f / n) ** (np.arange(k + 1) / k)
         depth[-1] = f
         mx = np.zeros((lv.shape[0], 4, 1, k))
@@ -329,7 +337,7 @@ def face_errors(variant: str, parameterization: str, near: float | View, far: fl
         tau = np.degrees(np.arccos(np.clip(np.sum(_normalize(e0) * _normalize(e1), -1), -1, 1)))
         used = chosen[:, 1:, None]
     else:
-        fr = _frames(var, kind, n, f, fov, lv, k, float(tau0), float(tau1))
+        fr = _frames(var, kind, view, lv, k, float(tau0), float(tau1))
         mx, mz = _adjusted_side(fr, tan, kind)
         tau, used = fr.tau, fr.used
     mx, mz = np.where(used[..., None], mx, 0.0), np.where(used[..., None], mz, 0.0)

@@ -36,7 +36,7 @@ from . import _validation as check
 from ._stable import sqrt_product
 from .parameterizations import _depths
 from .warping import register
-from .view import half_angle
+from .view import View, theta_of
 
 __all__ = [
     "generalized_error",
@@ -68,11 +68,11 @@ class _Geometry(NamedTuple):
 
 def _geometry(near: ArrayLike, far: ArrayLike, fov: ArrayLike, gamma: ArrayLike) -> _Geometry:
     n, f = check.frustum(near, far)
-    fov_deg = check.fov(fov)
+    fov_deg = np.asarray(fov.fov, dtype=float) if isinstance(fov, View) else check.fov(fov)  # a View: validated there
     g = check.closed_range(gamma, "gamma", 0.0, 180.0, " degrees")
     theta_deg = np.minimum(g, 180.0 - g)  # symmetry (§2): only 0 ≤ θ ≤ 90° matters
     regime1 = theta_deg >= fov_deg / 2  # compared in degrees, so θ = φ is exact
-    theta, phi = np.radians(theta_deg), half_angle(fov_deg)
+    theta, phi = np.radians(theta_deg), theta_of(fov if isinstance(fov, View) else fov_deg)
     sin_t, cos_t, tan_p, cos_p = np.sin(theta), np.cos(theta), np.tan(phi), np.cos(phi)
     # smallest corner z_L: (n, −n tanφ) in regime 1, (f, −f tanφ) in regime 2; x·sin(θ−φ)/cosφ
     z_min = np.where(regime1, n, f) * np.sin(theta - phi) / cos_p

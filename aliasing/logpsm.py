@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 from .logpsm_critical import critical_factors  # App. A's closed forms, re-exported: old imports keep working
-from .view import half_angle
+from .view import theta_of
 
 __all__ = [
     "aliasing_error",
@@ -157,7 +157,7 @@ def side_face(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> tuple[Array, A
     [1.4142, 2.8284, 2.0, 0.7071]
     """
     n, f = check.frustum(near, far)
-    half = half_angle(fov)
+    half = theta_of(fov)
     ct = np.cos(half)
     return n / ct, f / ct, 2 * n * np.tan(half), ct
 

@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
-from .view import half_angle
+from .view import theta_of
 
 __all__ = ["critical_factors"]
 
@@ -71,7 +71,7 @@ def critical_factors(near: ArrayLike, far: ArrayLike, fov: ArrayLike) -> dict[st
     99.0
     """
     n, f = check.frustum(near, far)
-    half = half_angle(fov)
+    half = theta_of(fov)
     ct, s2 = np.cos(half), np.sin(2 * half)
     r = f / n
     return {

@@ -241,7 +241,7 @@ def evaluate_many(names: Sequence[str | Scheme], near: float | View | None = Non
 
 def _maps(sch: Scheme, sf: directional.SliceFit, gamma: Array, azimuth: Array, options: dict) -> tuple[Array, ...]:
     """M_x, M_z, n′, η ``(K, N)`` of one scheme's maps on fitted slices."""
-    n_i, f_i, fov = sf.near, sf.far, sf.frame.view.fov
+    n_i, f_i, fov = sf.near, sf.far, sf.frame.view  # the View itself: its fov is validated once, there
     if sch.rule == "sopt":
         npr = _s_optimal(sf, sch.parameterization)
     else:

@@ -41,7 +41,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from . import directional, geometry, schemes, warping
-from .view import half_angle
+from .view import tan_theta, theta_of
 
 Array = NDArray[np.float64]
 F_OVER_N, FOV = 1000.0, 60.0
@@ -125,7 +125,7 @@ def _frustum_points(n_i: Array, f_i: Array, fov: float, per_axis: int) -> Array:
     """``per_axis``³ points filling each partition (vertices included): ``(K, P, 3)``."""
     u = np.linspace(-1.0, 1.0, per_axis)
     w = np.linspace(0.0, 1.0, per_axis)
-    tan = np.tan(half_angle(fov))
+    tan = tan_theta(fov)
     xs, ys, ws = np.meshgrid(u, u, w, indexing="ij")
     d = n_i[:, None] + (f_i - n_i)[:, None] * ws.ravel()[None]  # (K, P)
     return np.stack([xs.ravel() * tan * d, ys.ravel() * tan * d, d], axis=-1)
@@ -225,7 +225,7 @@ def _dense(count: int) -> dict[str, float]:
 
 @register("cos2-included", "evaluation", "the 1/cos²θ factor of δ_b included (the caption says it is not)")
 def _cos2(count: int) -> dict[str, float]:
-    return {r: m / np.cos(np.radians(FOV / 2)) ** 2 for r, m in _baseline(count).items()}
+    return {r: m / np.cos(theta_of(FOV)) ** 2 for r, m in _baseline(count).items()}
 
 
 @register("symmetric-frame", "frame", "warping frustum symmetric about the eye's x (not tight across)")

@@ -46,22 +46,27 @@ def _store(value: Array) -> float | Array:
     return value
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class View:
-    """A square symmetric view frustum, validated once.
+    """A symmetric view frustum, validated once.
 
     Parameters
     ----------
     near, far : float or array_like
         Eye near and far distances [world units], 0 < near < far < inf.
     fov : float or array_like
-        Full field of view [deg], 0 < fov < 180; θ = fov/2.
+        VERTICAL full field of view [deg], 0 < fov < 180; θ = θ_y = fov/2 (the engines'
+        convention).
+    aspect : float or array_like
+        Image width/height, 0 < aspect < inf (default 1, the square view of the papers):
+        tan θ_x = aspect·tan θ_y.  The image has square pixels: R_y rows and aspect·R_y
+        columns, and errors are per pixel of that image (unit resolution: R_y = 1).
 
     Raises
     ------
     ValueError
-        Naming ``near``, ``far`` or ``fov`` and its allowed range (also for NaN, non-numbers
-        and shapes that do not broadcast).
+        Naming ``near``, ``far``, ``fov`` or ``aspect`` and its allowed range (also for NaN,
+        non-numbers and shapes that do not broadcast).
 
     Example
     -------
@@ -76,15 +81,32 @@ class View:
     near: Any
     far: Any
     fov: Any
+    aspect: Any = 1.0
     _theta: Any = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         n, f = check.frustum(self.near, self.far)
         a = check.fov(self.fov)
-        n, f, a = check.broadcast(near=n, far=f, fov=a)  # a shape error names the three and their shapes
-        theta = half_angle(a)
-        for name, value in (("near", n), ("far", f), ("fov", a), ("_theta", theta)):
+        r = check_aspect(self.aspect)
+        n, f, a, r = check.broadcast(near=n, far=f, fov=a, aspect=r)  # a shape error names them and their shapes
+        theta = np.radians(a) / 2  # the conversion of half_angle, on the fov validated above
+        for name, value in (("near", n), ("far", f), ("fov", a), ("aspect", r), ("_theta", theta)):
             object.__setattr__(self, name, _store(value))
+
+    def __repr__(self) -> str:
+        square = np.all(np.asarray(self.aspect) == 1.0)
+        tail = "" if square else f", aspect={self.aspect!r}"
+        return f"View(near={self.near!r}, far={self.far!r}, fov={self.fov!r}{tail})"
+
+    @property
+    def square(self) -> bool:
+        """True when aspect = 1 everywhere (the papers' square frustum)."""
+        return bool(np.all(np.asarray(self.aspect) == 1.0))
+
+    def require_square(self, what: str) -> None:
+        """Refuse a non-square view where only the square closed forms exist (ValueError naming aspect)."""
+        if not self.square:
+            raise ValueError(f"aspect must be 1 for {what} (a square view), got {check._show(np.asarray(self.aspect, float))}")
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -107,6 +129,11 @@ class View:
         return _store(np.tan(np.asarray(self._theta)))
 
     @property
+    def tan_theta_x(self) -> float | Array:
+        """tan θ_x = aspect·tan θ [dimensionless]: the half-width of the image at unit eye depth (= tan θ at aspect 1)."""
+        return _store(np.asarray(self.aspect) * np.asarray(self.tan_theta))
+
+    @property
     def cos_theta(self) -> float | Array:
         """cos θ [dimensionless]."""
         return _store(np.cos(np.asarray(self._theta)))
@@ -124,7 +151,8 @@ class View:
         ``d * ray`` (up to rounding: :meth:`slice_vertices` forms them as the toolkit always has).
         """
         t = np.asarray(self.tan_theta)[..., None]
-        return np.stack([CORNER_SIGNS[:, 0] * t, CORNER_SIGNS[:, 1] * t, np.ones_like(t * CORNER_SIGNS[:, 0])], axis=-1)
+        tx = np.asarray(self.tan_theta_x)[..., None]  # the same numbers as t at aspect 1
+        return np.stack([CORNER_SIGNS[:, 0] * tx, CORNER_SIGNS[:, 1] * t, np.ones_like(t * CORNER_SIGNS[:, 0])], axis=-1)
 
     def slice_vertices(self, z0: ArrayLike | None = None, z1: ArrayLike | None = None) -> Array:
         """The 8 vertices of the frustum between eye depths z0 < z1 [world units].
@@ -141,20 +169,56 @@ class View:
         f = np.asarray(self.far if z1 is None else check.positive(z1, "z1"))
         if (f <= n).any():
             raise ValueError("z1 must be greater than z0 (a slice of positive depth)")
-        n, f, t = np.broadcast_arrays(n, f, np.asarray(self.tan_theta))
+        n, f, t, tx = np.broadcast_arrays(n, f, np.asarray(self.tan_theta), np.asarray(self.tan_theta_x))
         depth = np.stack([n] * 4 + [f] * 4, axis=-1)  # (..., 8)
         sx = np.concatenate([CORNER_SIGNS[:, 0], CORNER_SIGNS[:, 0]])
         sy = np.concatenate([CORNER_SIGNS[:, 1], CORNER_SIGNS[:, 1]])
         half = depth * t[..., None]
-        return np.stack([sx * half, sy * half, depth], axis=-1)
+        half_x = depth * tx[..., None]  # equal to half at aspect 1 (aspect·t = t exactly)
+        return np.stack([sx * half_x, sy * half, depth], axis=-1)
+
+    def between(self, z0: ArrayLike, z1: ArrayLike) -> "View":
+        """The same view cut to the eye depths [z0, z1] (a partition's sub-frustum) [world units].
+
+        Only the new depths are checked (0 < z0 < z1 < inf); the field of view and θ are
+        carried over as they are, not validated or converted again.
+
+        Example
+        -------
+        >>> v = View(1.0, 100.0, 60.0).between(10.0, 20.0)
+        >>> v.near, v.far, v.fov, v.theta == View(1.0, 100.0, 60.0).theta
+        (10.0, 20.0, 60.0, True)
+        """
+        n, f = check.frustum(z0, z1)
+        n, f, a, r, th = check.broadcast(near=n, far=f, fov=np.asarray(self.fov), aspect=np.asarray(self.aspect), theta=np.asarray(self._theta))
+        out = object.__new__(View)
+        for name, value in (("near", n), ("far", f), ("fov", a), ("aspect", r), ("_theta", th)):
+            object.__setattr__(out, name, _store(value))
+        return out
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, View):
             return NotImplemented
-        return all(np.array_equal(getattr(self, k), getattr(other, k)) for k in ("near", "far", "fov"))
+        return all(np.array_equal(getattr(self, k), getattr(other, k)) for k in ("near", "far", "fov", "aspect"))
 
     def __hash__(self) -> int:
-        return hash(tuple(np.asarray(getattr(self, k)).tobytes() for k in ("near", "far", "fov")))
+        return hash(tuple(np.asarray(getattr(self, k)).tobytes() for k in ("near", "far", "fov", "aspect")))
+
+
+def check_aspect(value: ArrayLike, name: str = "aspect") -> Array:
+    """Image width/height: require 0 < aspect < inf (ValueError naming ``aspect``).
+
+    Example
+    -------
+    >>> check_aspect(0.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: aspect (image width/height) must be in (0, inf), got 0
+    """
+    arr = check.as_float_array(value, name)
+    if not np.all(np.isfinite(arr) & (arr > 0)):
+        raise ValueError(f"{name} (image width/height) must be in (0, inf), got {check._show(arr)}")
+    return arr
 
 
 def half_angle(fov: ArrayLike, name: str = "fov") -> Array:
@@ -168,6 +232,38 @@ def half_angle(fov: ArrayLike, name: str = "fov") -> Array:
     1.0
     """
     return np.radians(check.fov(fov, name)) / 2
+
+
+def theta_of(fov: View | ArrayLike, name: str = "fov") -> float | Array:
+    """θ [rad] of a View (as it is, not validated again) or of a full field of view [deg] (validated).
+
+    For the closed forms of the square frustum: a View with aspect ≠ 1 is refused.
+
+    Example
+    -------
+    >>> theta_of(View(1.0, 2.0, 90.0)) == float(theta_of(90.0))
+    True
+    """
+    if isinstance(fov, View):
+        fov.require_square("a closed form of the square frustum (θ alone)")
+        return fov.theta
+    return half_angle(fov, name)
+
+
+def tan_theta(fov: View | ArrayLike, name: str = "fov") -> float | Array:
+    """tan θ of a View (as it is) or of a full field of view [deg] (validated): np.tan(half_angle(fov)).
+
+    For the closed forms of the square frustum: a View with aspect ≠ 1 is refused.
+
+    Example
+    -------
+    >>> round(float(tan_theta(90.0)), 12), round(tan_theta(View(1.0, 2.0, 90.0)), 12)
+    (1.0, 1.0)
+    """
+    if isinstance(fov, View):
+        fov.require_square("a closed form of the square frustum (tan θ alone)")
+        return fov.tan_theta
+    return np.tan(half_angle(fov, name))
 
 
 def as_view(near: View | ArrayLike, far: ArrayLike | None = None, fov: ArrayLike | None = None) -> View:
@@ -185,6 +281,59 @@ def as_view(near: View | ArrayLike, far: ArrayLike | None = None, fov: ArrayLike
     if far is None or fov is None:
         raise ValueError("far and fov are required unless near is a View")
     return View(near, far, fov)
+
+
+def view_args(near: View | ArrayLike | None, far: Any, fov: Any, rest: tuple[Any, ...], defaults: tuple[Any, ...], names: tuple[str, ...] = ("light", "scheme")) -> tuple[View, tuple[Any, ...]]:
+    """Resolve ``(near, far, fov, *rest)`` where ``near`` may be a View, for any number of following arguments.
+
+    With a View in ``near``, what was given in the places of ``far`` and ``fov`` moves to the
+    first two of ``rest`` (``f(view, light, scheme)`` means ``f(near, far, fov, light,
+    scheme)``); arguments given by name stay where they are.  ``None`` means "not given";
+    ``defaults`` are ``(near, far, fov, *rest)`` (None: required; ``names`` name the following
+    arguments in the error).  Loose numbers are validated
+    here, once, into the View.
+
+    Example
+    -------
+    >>> v = View(1.0, 10.0, 60.0)
+    >>> view_args(v, "overhead", "P", (None, None), (None, None, None, None, "Standard"))[1]
+    ('overhead', 'P')
+    >>> view_args(v, "overhead", None, (None, None), (None, None, None, None, "Standard"))[1]
+    ('overhead', 'Standard')
+    >>> view_args(v, None, None, ("front", "LogP"), (None, None, None, None, "Standard"))[1]   # by name
+    ('front', 'LogP')
+    >>> view_args(1.0, 10.0, 60.0, ("front", None), (None, None, None, None, "Standard"))
+    (View(near=1.0, far=10.0, fov=60.0), ('front', 'Standard'))
+    """
+    tail = defaults[3:]
+    if len(tail) != len(rest):
+        raise ValueError("defaults must give near, far, fov and one default per following argument")
+    if isinstance(near, View):
+        # the arguments after the View, in order: those given by position form a leading
+        # run of the places far, fov, rest...; any later one was given by name in its own place
+        seq = [far, fov, *rest]
+        m = next((i for i, v in enumerate(seq) if v is None), len(seq))
+        out = [None] * len(rest)
+        for j, value in enumerate(seq):
+            if value is None:
+                continue
+            i = j if j < m else j - 2
+            if i >= len(out) or out[i] is not None:
+                raise ValueError("with a View, pass the arguments that follow it (e.g. light) once each, not far and fov")
+            out[i] = value
+        view = near
+    else:
+        given = {"near": defaults[0] if near is None else near, "far": defaults[1] if far is None else far, "fov": defaults[2] if fov is None else fov}
+        missing = [k for k, v in given.items() if v is None]
+        if missing:
+            raise ValueError(f"{', '.join(missing)} required (or a View in place of near)")
+        view = View(given["near"], given["far"], given["fov"])
+        out = list(rest)
+    resolved = tuple(d if v is None else v for v, d in zip(out, tail))
+    missing = [names[i] if i < len(names) else f"argument {i + 4}" for i, v in enumerate(resolved) if v is None]
+    if missing:
+        raise ValueError(f"{', '.join(missing)} required")
+    return view, resolved
 
 
 def split_view(near: View | ArrayLike | None, far: Any, fov: Any, rest: Any, defaults: tuple[Any, Any, Any, Any]) -> tuple[View, Any]:

@@ -27,6 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _validation as check
 from ._stable import product_ratio, sqrt_product
+from .view import View
 
 
 @dataclass(frozen=True)
@@ -228,7 +229,7 @@ SHAPING = {
 
 
 @check.public  # broadcast errors name the parameters
-def shaping_eta(gamma: ArrayLike, fov: ArrayLike, shaping: Shaping | str = "p") -> NDArray[np.float64]:
+def shaping_eta(gamma: ArrayLike, fov: ArrayLike | View, shaping: Shaping | str = "p") -> NDArray[np.float64]:
     """η(γ), Lloyd et al. 2007 eq. 79 (corrected: docs/ERRATA.md L1–L3).
 
     −1 (uniform) up to γ_a, linear to η_b at γ_b = θ, a quarter sine to η_c at γ_c, then
@@ -238,8 +239,8 @@ def shaping_eta(gamma: ArrayLike, fov: ArrayLike, shaping: Shaping | str = "p") 
     ----------
     gamma : array_like
         Angle between view direction and light [deg], 0 ≤ γ ≤ 180.
-    fov : array_like
-        Full field of view [deg]; θ = fov/2.
+    fov : array_like or View
+        Full field of view [deg]; θ = fov/2 (a :class:`~aliasing.View`'s, as validated there).
     shaping : Shaping or {"p", "logp"}
         The parameter set.
 
@@ -252,7 +253,7 @@ def shaping_eta(gamma: ArrayLike, fov: ArrayLike, shaping: Shaping | str = "p") 
     check.instance(sh, "shaping", Shaping)
     g = check.closed_range(gamma, "gamma", 0.0, 180.0, " degrees")
     g = np.minimum(g, 180.0 - g)
-    theta = check.fov(fov) / 2
+    theta = fov.theta_deg if isinstance(fov, View) else check.fov(fov) / 2
     ga, gb, gc = sh.a * theta, theta, theta + sh.c_fraction * (90.0 - theta)
     rising = -1.0 + (sh.eta_b + 1.0) * (g - ga) / (gb - ga)  # eq. (79), γ_a ≤ γ ≤ γ_b
     easing = sh.eta_b + (sh.eta_c - sh.eta_b) * np.sin(np.pi / 2 * (g - gb) / (gc - gb))  # eq. (79), γ_b ≤ γ ≤ γ_c

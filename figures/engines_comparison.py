@@ -28,10 +28,11 @@ import numpy as np
 from aliasing import geometry
 from aliasing.engines import sdsm, stable, vsm
 from aliasing.plotting import save, subplots
+from aliasing.view import View
 
 NAME = "engines-comparison"
 NEAR, FAR, FOV, WIDTH, RES = 10.0, 1e5, 60.0, 1920, 2048
-T = np.tan(np.radians(FOV) / 2)
+T = View(NEAR, FAR, FOV).tan_theta
 
 
 def _csm_axis(res: stable.StableResult, d: np.ndarray) -> np.ndarray:

@@ -36,6 +36,7 @@ import numpy as np
 
 from aliasing import schemes
 from aliasing.plotting import save, subplots
+from aliasing.view import View
 
 NAME = "lloyd2006-fig10"
 NEAR, FAR, FOV = 1.0, 1000.0, 60.0  # not printed for Fig. 10: f/n = 1000, θ = 30° as in Fig. 12
@@ -46,7 +47,7 @@ def data(k_max: int = K_MAX) -> dict[str, np.ndarray]:
     from aliasing.figures.lloyd2006_fig12 import closed_forms
 
     cf = closed_forms()
-    theta = np.radians(FOV / 2)
+    theta = View(NEAR, FAR, FOV).theta
     k = np.arange(1, k_max + 1, dtype=float)
     return {
         "k": k,

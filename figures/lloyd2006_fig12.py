@@ -61,6 +61,7 @@ import sympy as sp
 
 from aliasing import schemes
 from aliasing.plotting import save, subplots
+from aliasing.view import View
 
 NAME = "lloyd2006-fig12"
 NEAR, FAR, FOV = 1.0, 1000.0, 60.0  # printed in the caption: f/n = 1000, θ = 30°
@@ -92,7 +93,7 @@ def _where(mask: np.ndarray, func, k: np.ndarray) -> np.ndarray:
 
 def data(maps: int = MAPS) -> dict[str, np.ndarray]:
     cf = closed_forms()
-    theta = np.radians(FOV / 2)
+    theta = View(NEAR, FAR, FOV).theta
     j = np.arange(1, maps + 1, dtype=float)
     # pass k as float: lambdify would otherwise raise integer arrays to negative powers
     S = {name: (lambda k, fn=cf[name]: np.broadcast_to(fn(FAR, NEAR, k, theta), np.shape(k)).astype(float)) for name in cf}

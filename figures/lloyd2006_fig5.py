@@ -19,6 +19,7 @@ import numpy as np
 
 from aliasing.error import m_x, m_z
 from aliasing.plotting import save, subplots
+from aliasing.view import tan_theta
 from aliasing.warping import n_prime_lispsm
 
 NAME = "lloyd2006-fig5"
@@ -31,7 +32,7 @@ def data() -> dict[str, np.ndarray]:
     cols: dict[str, np.ndarray] = {"z": z}
     for label, npr in curves():
         cols[f"mx[{label}]"] = m_x(z, NEAR, FAR, npr)
-        cols[f"mz[{label}]"] = m_z(z, NEAR, FAR, FOV, npr) * 2 * np.tan(np.radians(FOV / 2)) / (FAR - NEAR)
+        cols[f"mz[{label}]"] = m_z(z, NEAR, FAR, FOV, npr) * 2 * tan_theta(FOV) / (FAR - NEAR)
     return cols
 
 

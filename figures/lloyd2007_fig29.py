@@ -62,6 +62,7 @@ import numpy as np
 
 from aliasing import directional, geometry
 from aliasing.plotting import save, subplots
+from aliasing.view import View
 from aliasing.warping import n_prime_from_eta
 
 NAME = "lloyd2007-fig29"
@@ -77,7 +78,7 @@ def _profile_points(samples: int) -> tuple[np.ndarray, np.ndarray]:
 
     Returns ``(points (3·samples, 3), on_top (3·samples,) bool)``.
     """
-    t = np.tan(np.radians(FOV / 2))
+    t = View(NEAR, FAR, FOV).tan_theta
     ft, nt, nb, fb = (np.array([0.0, s * d * t, d]) for s, d in ((1, FAR), (1, NEAR), (-1, NEAR), (-1, FAR)))
     s = np.linspace(0.0, 1.0, samples)[:, None]
     points = np.concatenate([ft + s * (nt - ft), nt + s * (nb - nt), nb + s * (fb - nb)])

@@ -133,19 +133,19 @@ BASE: dict[str, dict[str, object]] = {
     "max_errors": {"light": [0.0, 1.0, 0.3]},
     "folded_gamma": {"light": [0.0, 1.0, 0.3]},
     "chosen_faces": {"light": [[0.0, 1.0, 0.3]]},
-    "partition_of": {"light": [[0.0, 1.0, 0.3]], "far": 10.0},
+    "partition_of": {"light": [[0.0, 1.0, 0.3]], "far": 10.0, "fov": 60.0},  # near may be a View: far, fov have defaults
     "face_frames": {"variant": "fpc", "parameterization": "perspective", "light": [[0.0, 1.0, 0.3]], "far": 10.0, "fov": 60.0},
     "face_errors": {"variant": "fpc", "parameterization": "perspective", "light": [[0.0, 1.0, 0.3]], "far": 10.0, "fov": 60.0},
     "lights": {"spec": "gamma:30@azimuth:10"},
     "eye_pass": {"resolution": 8},
     "frame_map": {"light": [0.0, 1.0, 0.3], "axis": [1.0, 0.0, 0.0], "y0": 1.0, "y1": 10.0, "a": 0.5, "s_lo": -1.0, "s_hi": 1.0, "parameterization": "perspective"},
     "ground_and_boxes": {"far": 30.0, "boxes": 2, "ground_cells": 2},
-    "light_map": {"far": 50.0, "light": "gamma:60", "scheme": "P"},
-    "light_maps": {"far": 50.0, "light": "gamma:60", "scheme": "ZP2+P"},
-    "map_set": {"far": 50.0, "light": "gamma:60", "scheme": "P"},
-    "measure": {"far": 20.0, "light": "gamma:60", "scheme": "P", "resolution": 16, "cells": 2, "map_resolution": 16},
-    "near_face_map": {"light": [0.0, 1.0, 0.3]},
-    "probes": {"far": 20.0, "light": "gamma:60", "cells": 2},
+    "light_map": {"far": 50.0, "fov": 60.0, "light": "gamma:60", "scheme": "P"},
+    "light_maps": {"far": 50.0, "fov": 60.0, "light": "gamma:60", "scheme": "ZP2+P"},
+    "map_set": {"far": 50.0, "fov": 60.0, "light": "gamma:60", "scheme": "P"},
+    "measure": {"far": 20.0, "fov": 60.0, "light": "gamma:60", "scheme": "P", "resolution": 16, "cells": 2, "map_resolution": 16},
+    "near_face_map": {"light": [0.0, 1.0, 0.3], "fov": 60.0},  # near may be a View: fov has a default
+    "probes": {"far": 20.0, "fov": 60.0, "light": "gamma:60", "cells": 2},
     "project": {"points": [[0.0, 0.0, 5.0]]},
     "rasterize": {"triangles": TRI, "resolution": 8},
     "shadow_map": {"resolution": 8},
@@ -162,7 +162,7 @@ BASE: dict[str, dict[str, object]] = {
     "slice_fit": {"frame": _FRAME, "near": [1.0, 10.0], "far": [10.0, 100.0]},
     "slice_errors": {"sf": _SLICES, "n_prime": 5.0},
     "evaluate_many": {"names": ["P", "ZP2+LogP"], "light": "sphere:4"},
-    "fixed_face_map": {"far": 50.0, "light": [0.0, 1.0, 0.3], "face": "bottom", "parameterization": "perspective"},
+    "fixed_face_map": {"far": 50.0, "fov": 60.0, "light": [0.0, 1.0, 0.3], "face": "bottom", "parameterization": "perspective"},
 }
 # Results that may hold NaN by contract (documented in the function's docstring).
 NAN_BY_CONTRACT = {"lambda_glpr", "hemisphere_map", "splits_report", "eye_pass", "measure", "face_errors", "face_frames"}

@@ -51,7 +51,7 @@ import numpy as np
 from .. import _validation as check
 from .. import partitioning
 from . import limits, sdsm, stable, vsm
-from ..view import half_angle
+from ..view import tan_theta
 
 FAMILIES = ("csm", "csm-stable", "sdsm", "vsm", "matched", "exact")
 FIELDS = ("scheme", "max_error", "median_error", "m_axis_min", "m_axis_max", "storage_texels", "S_bar", "pages", "overflow", "extra_bias", "coverage", "storage_ratio", "error_ratio")
@@ -111,7 +111,7 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
     text = str(spec).strip().lower()
     family, *parts = text.split(":")
     check.choice(family, "scheme family", FAMILIES)
-    t = float(np.tan(half_angle(fov)))
+    t = float(tan_theta(fov))
     if family in ("matched", "exact"):
         if parts:
             raise ValueError(f"scheme {spec!r}: {family} takes no options")

@@ -44,7 +44,7 @@ from ..raster.scenes import SceneSetup
 from ..raster.validate.measure import pixel_errors
 from ..raster.validate.scene import measurable_pixels
 from . import sdsm, stable, vsm
-from ..view import half_angle
+from ..view import tan_theta
 
 #: Relative tolerance of the finite differences (:data:`aliasing.raster.validate.scene.TOLERANCE`).
 TOLERANCE = 1e-3
@@ -109,7 +109,7 @@ def cascades_on_scene(st: SceneSetup, split: str | ArrayLike | tuple, *, res: in
 
     pos, part, ok = _pixels(st, r, assign)
     basis = geometry.light_space(lv)[0]
-    t = np.tan(half_angle(cam.fov))
+    t = tan_theta(cam.fov)
     rows = []
     for i in range(len(v)):
         wx, wy = float(fit_result.width_x[0, i]), float(fit_result.width_y[0, i])
@@ -197,7 +197,7 @@ def vsm_on_scene(st: SceneSetup, *, bias: float = 0.0, res: int = 128, first: in
     pos, level, ok = _pixels(st, r, assign)
     basis = geometry.light_space(st.light[None])[0]
     bound = vsm.frustum_max(c, cam.near, cam.far)
-    t = np.tan(half_angle(cam.fov))
+    t = tan_theta(cam.fov)
     rows, seen = [], []
     for L in np.unique(level[ok]):
         side = float(vsm.texel(c, L)) * vsm.VIRTUAL_RES  # 4·R_l, centred on the camera

@@ -102,7 +102,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import directional, geometry, partitioning
-from ..view import half_angle
+from ..view import check_aspect, tan_theta
 from .sample import sample_bounds
 
 Array = NDArray[np.float64]
@@ -243,13 +243,28 @@ class StableResult:
     fit_range: tuple[Array, Array]  # (a_k, b_k)
 
 
-def sphere_radius(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
-    """Radius [world units] of the minimal sphere around a square frustum slice [a, b].
+def _corner2(fov: ArrayLike, aspect: ArrayLike) -> tuple[Array, Array | None]:
+    """(c², tan θ) with c² = tan²θ_x + tan²θ_y, the squared distance of a corner ray from the view axis at
+    unit depth; tan θ is None unless the view is square (aspect 1: c² = 2 tan²θ, formed as before).
+
+    θ = θ_y = fov/2 is the vertical half angle [rad], tan θ_x = aspect·tan θ_y (the engines' convention).
+    """
+    r = check_aspect(aspect)
+    t = tan_theta(fov)
+    if np.all(r == 1.0):
+        return 2 * t**2, t
+    return (r * t) ** 2 + t**2, None
+
+
+def sphere_radius(a: ArrayLike, b: ArrayLike, fov: ArrayLike, aspect: ArrayLike = 1.0) -> Array:
+    """Radius [world units] of the minimal sphere around a frustum slice [a, b].
 
     With t = tan(fov/2) the corners lie at depth a (radius √2·t·a from the axis) and b;
     the centre on the axis equidistant from both rings is z_c = (a + b)(1 + 2t²)/2; if
     z_c ≥ b the far ring alone decides: r = √2·t·b.  Otherwise
     r² = (b − z_c)² + 2t²b².  Derived and tested in :mod:`aliasing.symbolic.engines`.
+    A non-square view (``aspect`` = width/height, ``fov`` vertical) puts the corners at
+    c·a and c·b from the axis, c² = tan²θ_x + tan²θ_y: 2t² becomes c² throughout.
 
     Example
     -------
@@ -257,17 +272,18 @@ def sphere_radius(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
     4.242640687119285
     """
     a, b = check.frustum(a, b)
-    t2 = np.tan(half_angle(fov)) ** 2
-    zc = (a + b) * (1 + 2 * t2) / 2
-    r_far = np.sqrt(2 * t2) * b
-    return np.where(zc >= b, r_far, np.sqrt((b - np.minimum(zc, b)) ** 2 + 2 * t2 * b**2))
+    c2, _ = _corner2(fov, aspect)  # 2 t² (square) or tan²θ_x + tan²θ_y
+    zc = (a + b) * (1 + c2) / 2
+    r_far = np.sqrt(c2) * b
+    return np.where(zc >= b, r_far, np.sqrt((b - np.minimum(zc, b)) ** 2 + c2 * b**2))
 
 
-def centroid_radius(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
+def centroid_radius(a: ArrayLike, b: ArrayLike, fov: ArrayLike, aspect: ArrayLike = 1.0) -> Array:
     """Largest distance from the corners' average to a corner of the slice [a, b] [world units].
 
     The average lies on the axis at (a + b)/2, so the far corners are farthest:
-    r = √(((b − a)/2)² + 2t²b²) (Godot 4's stable fit, before its texel padding).
+    r = √(((b − a)/2)² + 2t²b²) (Godot 4's stable fit, before its texel padding); 2t² is
+    tan²θ_x + tan²θ_y for a non-square view (``aspect`` = width/height, ``fov`` vertical).
 
     Example
     -------
@@ -275,15 +291,16 @@ def centroid_radius(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
     4.358899
     """
     a, b = check.frustum(a, b)
-    t = np.tan(half_angle(fov))
-    return np.sqrt(((b - a) / 2) ** 2 + 2 * t**2 * b**2)
+    c2, _ = _corner2(fov, aspect)
+    return np.sqrt(((b - a) / 2) ** 2 + c2 * b**2)
 
 
-def diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
+def diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike, aspect: ArrayLike = 1.0) -> Array:
     """Bevy's cascade diameter before rounding: max(body diagonal, far-face diagonal).
 
     Body diagonal |c0 − c6| from a near corner to the opposite far corner:
-    √((b − a)² + 2t²(a + b)²); far face |c4 − c6|: 2√2·t·b (t = tan(fov/2)).
+    √((b − a)² + 2t²(a + b)²); far face |c4 − c6|: 2√2·t·b (t = tan(fov/2)).  For a
+    non-square view (``aspect`` = width/height, ``fov`` vertical) √2·t is c = √(tan²θ_x + tan²θ_y).
 
     Example
     -------
@@ -291,9 +308,9 @@ def diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
     5.656854
     """
     a, b = check.frustum(a, b)
-    t = np.tan(half_angle(fov))
-    body = np.sqrt((b - a) ** 2 + 2 * t**2 * (a + b) ** 2)
-    return np.maximum(body, 2 * np.sqrt(2) * t * b)
+    c2, t = _corner2(fov, aspect)
+    body = np.sqrt((b - a) ** 2 + c2 * (a + b) ** 2)
+    return np.maximum(body, 2 * np.sqrt(2) * t * b if t is not None else 2 * np.sqrt(c2) * b)
 
 
 BEVY_FIRST_BOUND_M = 5.0  # CascadeShadowConfigBuilder::default first_cascade_far_bound [m]
@@ -323,8 +340,10 @@ def bevy_bounds(near: float, far: float, k: int = 4, first: float = BEVY_FIRST_B
     return edges
 
 
-def body_diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
+def body_diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike, aspect: ArrayLike = 1.0) -> Array:
     """|c0 − c6| = √((b − a)² + 2t²(a + b)²) [world units], the DirectX SDK's cascade bound.
+
+    2t² is tan²θ_x + tan²θ_y for a non-square view (``aspect`` = width/height, ``fov`` vertical).
 
     Example
     -------
@@ -332,8 +351,8 @@ def body_diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike) -> Array:
     1.732051
     """
     a, b = check.frustum(a, b)
-    t = np.tan(half_angle(fov))
-    return np.sqrt((b - a) ** 2 + 2 * t**2 * (a + b) ** 2)
+    c2, _ = _corner2(fov, aspect)
+    return np.sqrt((b - a) ** 2 + c2 * (a + b) ** 2)
 
 
 def coverage(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "hemisphere:200", **options) -> float:
@@ -427,7 +446,7 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
     res = float(check.closed_range(resolution, "resolution", 3.0, np.inf, " texels"))
     (a, b), (u, v) = cascade_ranges(split, near, far, k, scene=scene, overlap=overlap, **params)
     lv = geometry.lights(light)
-    t = np.tan(float(half_angle(fov)))
+    t = tan_theta(fov)
     if kind == "tight":
         lf = directional.fit(geometry.frustum_vertices(a, b, fov), lv)
         wx, wy = np.ptp(lf.x, axis=-1), lf.depth

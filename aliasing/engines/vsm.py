@@ -63,7 +63,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import geometry
-from ..view import half_angle
+from ..view import tan_theta, theta_of
 
 Array = NDArray[np.float64]
 VIRTUAL_RES = 16384  # FVirtualShadowMap::VirtualMaxResolutionXY
@@ -143,7 +143,7 @@ class Clipmap:
 
     @property
     def tan(self) -> float:
-        return float(np.tan(half_angle(self.fov)))
+        return float(tan_theta(self.fov))
 
     @property
     def lod_bias(self) -> float:
@@ -333,7 +333,7 @@ def ground_area(rho: ArrayLike, height: float, fov: float) -> Array:
     """
     r = np.asarray(check.as_float_array(rho, "rho"), float)
     h = float(check.positive(height, "height"))
-    th = float(half_angle(fov))
+    th = float(theta_of(fov))
     z0 = h / np.tan(th)
     with np.errstate(invalid="ignore"):
         seg = r**2 * np.arccos(np.clip(z0 / np.maximum(r, z0), -1, 1)) - z0 * np.sqrt(np.maximum(r**2 - z0**2, 0))

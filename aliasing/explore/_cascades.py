@@ -20,7 +20,7 @@ from matplotlib.ticker import FuncFormatter
 
 from .. import budgets, partitioning
 from . import widget as w
-from ..view import half_angle
+from ..view import tan_theta
 
 #: Light directions the worst error is taken over (equal solid angle over the whole sphere).
 SLOTS = 8  # partitions drawn without a new layout (the k slider's maximum)
@@ -125,7 +125,7 @@ def redraw(artists: dict, d: dict[str, Any]) -> bool:
     if k > artists["slots"]:
         return False
     a, b = artists["a"], artists["b"]
-    t = np.tan(half_angle(d["fov"]))
+    t = tan_theta(d["fov"])
     artists["frustum"].set_xy(_band(d["near"], d["far"], t))
     for j, (band, plane) in enumerate(zip(artists["bands"], artists["planes"])):
         band.set_visible(j < k)

@@ -17,13 +17,14 @@ from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
 
 from .. import geometry, schemes
+from ..view import View
 from . import widget as w
 
 #: Directions of the Table 3 statistics (equal solid angle, upper hemisphere).
 STAT_DIRECTIONS = 1024
 
 
-def compute(scheme: str, f_over_n: float, fov: float, gamma: float, azimuth: float, resolution: int) -> dict[str, Any]:
+def compute(scheme: str, f_over_n: float, fov: float, gamma: float, azimuth: float, resolution: int, aspect: float = 1.0) -> dict[str, Any]:
     """The hemisphere map of S̄, the chosen direction's per-map errors and Table 3's statistics.
 
     Parameters
@@ -33,11 +34,13 @@ def compute(scheme: str, f_over_n: float, fov: float, gamma: float, azimuth: flo
     f_over_n : float
         far/near (near = 1).
     fov : float
-        Full field of view [deg].
+        Full (vertical) field of view [deg].
     gamma, azimuth : float
         The chosen direction [deg] (:func:`aliasing.geometry.light_direction`).
     resolution : int
         Side of the hemisphere map [cells].
+    aspect : float
+        Image width/height (:class:`aliasing.View`; face partitions need 1).
 
     Returns
     -------
@@ -53,19 +56,20 @@ def compute(scheme: str, f_over_n: float, fov: float, gamma: float, azimuth: flo
     5.982
     """
     sch = schemes.parse(scheme)
-    near, far = 1.0, float(f_over_n)
+    view = View(1.0, float(f_over_n), fov, aspect)  # validated once, for the three evaluations
+    far = view.far
     u, v, light = geometry.hemisphere_map(int(resolution))
     inside = np.isfinite(light[..., 0])
-    r = schemes.evaluate(sch, near, far, fov, light[inside])
+    r = schemes.evaluate(sch, view, light[inside])
     s_map = np.full(u.shape, np.nan)
     s_map[inside] = r.S
     maps_map = np.zeros(u.shape, int)
     maps_map[inside] = r.maps_used
     lv = geometry.light_direction(gamma, azimuth)
-    one = schemes.evaluate(sch, near, far, fov, lv[None])
-    st = schemes.evaluate(sch, near, far, fov, f"hemisphere:{STAT_DIRECTIONS}")
+    one = schemes.evaluate(sch, view, lv[None])
+    st = schemes.evaluate(sch, view, f"hemisphere:{STAT_DIRECTIONS}")
     return {
-        "scheme": sch.name, "f_over_n": far, "fov": float(fov), "gamma": float(gamma), "azimuth": float(azimuth),
+        "scheme": sch.name, "f_over_n": far, "fov": float(view.fov), "aspect": float(view.aspect), "gamma": float(gamma), "azimuth": float(azimuth),
         "u": u, "v": v, "S_map": s_map, "maps_map": maps_map,
         "light": lv, "M_x": one.M_x[0], "M_z": one.M_z[0], "n_prime": one.n_prime[0], "eta": one.eta[0],
         "S": float(one.S[0]), "maps": int(one.maps_used[0]),
@@ -134,12 +138,13 @@ def redraw(artists: dict, d: dict[str, Any]) -> bool:
     b.set_title(f"γ = {d['gamma']:g}°, az = {d['azimuth']:g}°: S̄ = {d['S']:.4g}, {d['maps']} map(s)", fontsize=10)
     artists["text"].set_text(f"{warp}Table 3 over {STAT_DIRECTIONS} dirs:\nmin {d['S_min']:.4g}  max {d['S_max']:.4g}\n"
                              f"mean {d['S_mean']:.4g}  maps {d['maps_min']}–{d['maps_max']}")
-    artists["suptitle"].set_text(f"{d['scheme']}, f/n = {d['f_over_n']:.4g}, fov = {d['fov']:g}°")
+    wide = "" if d.get("aspect", 1.0) == 1.0 else f", aspect = {d['aspect']:.3g}"
+    artists["suptitle"].set_text(f"{d['scheme']}, f/n = {d['f_over_n']:.4g}, fov = {d['fov']:g}°{wide}")
     return True
 
 
 class DirectionsExplorer(w.Explorer):
-    """S̄ over light directions for a typed scheme; controls scheme, f/n, fov, γ, azimuth, map size."""
+    """S̄ over light directions for a typed scheme; controls scheme, f/n, fov, aspect, γ, azimuth, map size."""
 
     title = "Light directions (Lloyd et al. 2006 Fig. 7, Lloyd et al. 2007 Table 3)"
     figsize = (9.5, 3.8)
@@ -149,6 +154,7 @@ class DirectionsExplorer(w.Explorer):
             "scheme": w.text("scheme", "LogP", "e.g. P, ZP4+LogP, FPc+LogP, lispsm"),
             "f_over_n": w.log_slider("f/n", 1000.0, 1.5, 1e5),
             "fov": w.slider("fov [deg]", 60.0, 5.0, 150.0),
+            "aspect": w.log_slider("aspect", 1.0, 0.25, 4.0),
             "gamma": w.slider("γ [deg]", 60.0, 0.0, 180.0),
             "azimuth": w.slider("azimuth [deg]", 0.0, -90.0, 90.0),
             "resolution": w.widgets.IntSlider(value=64, min=8, max=256, description="map cells", continuous_update=False),

@@ -32,6 +32,7 @@ from ... import geometry, partitioning, schemes
 from .core import check_resolution
 from .facemaps import MapSet, map_set
 from .lightmap import light_map
+from ...view import View, view_args
 
 Array = NDArray[np.float64]
 
@@ -55,20 +56,21 @@ class CascadeSet:
     M_z: Array
 
 
-def cascade_set(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, splits: str | None = None, k: int | None = None,
+def cascade_set(near: float | View, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, scheme: str | None = None, *, splits: str | None = None, k: int | None = None,
                 **params: float) -> CascadeSet:
     """The maps of ``scheme`` for one light, with the partitions of split method ``splits``.
 
     Parameters
     ----------
     near, far : float
-        Eye near and far (shadow) distances [world units], 0 < near < far.
+        Eye near and far (shadow) distances [world units], 0 < near < far; or a
+        :class:`~aliasing.View` in ``near``: ``cascade_set(view, light, scheme, splits=…)``.
     fov : float
         Full field of view [deg].
     light : str or array_like
         One direction (spec or eye-space vector towards the light).
     scheme : str
-        Any scheme (:data:`aliasing.schemes.GRAMMAR`); with ``splits`` a single-map warp
+        Default Standard.  Any scheme (:data:`aliasing.schemes.GRAMMAR`); with ``splits`` a single-map warp
         (Standard, P, LogP, a warping rule) used inside every partition.
     splits : str, optional
         A split method or engine preset of :data:`aliasing.partitioning.SPLIT_METHODS`.
@@ -77,16 +79,18 @@ def cascade_set(near: float, far: float, fov: float, light: str | ArrayLike, sch
     **params
         The split method's parameters (``lam``, ``ratio``, ``padding``, …).
     """
-    fv = float(check.fov(fov))
+    view, (light, scheme) = view_args(near, far, fov, (light, scheme), (None, None, None, None, "Standard"))
+    if view.shape != ():
+        raise ValueError(f"cascade_set takes one view: near, far and fov must be scalars, got shape {view.shape}")
     lv = geometry.lights(light)
     if lv.shape[0] != 1:
         raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
-    n, f = (float(v) for v in check.frustum(near, far))
+    n, f = view.near, view.far
     if splits is None:
         if k is not None or params:
             raise ValueError("k and split parameters need splits (a split method name)")
-        ms = map_set(n, f, fv, lv, scheme)
-        r = schemes.evaluate(scheme, n, f, fv, lv)
+        ms = map_set(view, lv, scheme)
+        r = schemes.evaluate(scheme, view, lv)
         cols = ms.slots
         if ms.faces:
             lo = hi = np.full(len(ms.maps), np.nan)
@@ -98,9 +102,9 @@ def cascade_set(near: float, far: float, fov: float, light: str | ArrayLike, sch
         raise ValueError(f"scheme must be a single-map warp (Standard, P, LogP, a warping rule) with --splits, got {scheme!r}")
     lo, hi = partitioning.partitions(splits, n, f, k, **params)
     edges = partitioning.split_distances(splits, n, f, len(lo), **{key: v for key, v in params.items() if key in _split_params(splits)})
-    maps = [light_map(float(a), float(b), fv, lv, sch) for a, b in zip(lo, hi)]
-    r = schemes.evaluate(sch, n, f, fv, lv, edges=(lo, hi))
-    ms = MapSet(maps, np.arange(len(maps)), edges, "", n, f, fv, lv[0])
+    maps = [light_map(view.between(float(a), float(b)), lv, sch) for a, b in zip(lo, hi)]
+    r = schemes.evaluate(sch, view, lv, edges=(lo, hi))
+    ms = MapSet(maps, np.arange(len(maps)), edges, "", view, lv[0])
     return CascadeSet(ms, f"{splits}+{sch.name}", lo, hi, r.M_x[0], r.M_z[0])
 
 

@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike, NDArray
 from ... import _validation as check
 from . import backends, compiled, gl, occlusion
 from .core import CHUNK, _triangles, check_chunk, check_resolution, clip_near, zbuffer
-from ...view import half_angle
+from ...view import View, tan_theta
 
 Array = NDArray[np.float64]
 
@@ -32,8 +32,9 @@ class EyeBuffer:
         Unit face normal of the visible triangle, facing the eye; NaN where empty.
     triangle : ndarray of int64 (R, R)
         Visible triangle index, −1 where empty.
-    resolution, fov
-        R and the full field of view [deg].
+    resolution, fov, aspect
+        R, the full (vertical) field of view [deg] and the view's width/height: the R × R
+        pixels span the frustum, so at aspect ≠ 1 they are aspect : 1 wide.
     """
 
     position: Array
@@ -41,25 +42,44 @@ class EyeBuffer:
     triangle: NDArray[np.int64]
     resolution: int
     fov: float
+    aspect: float = 1.0
+
+
+def _fov_tan(fov: float | View) -> tuple[float, float, float, float]:
+    """(fov [deg], aspect, tan θ_x, tan θ_y) of a View (as it is) or of a loose field of view
+    (validated here, once; a square view)."""
+    if isinstance(fov, View):
+        if fov.shape != ():
+            raise ValueError(f"the view must be one frustum (scalar near, far, fov), got shape {fov.shape}")
+        return fov.fov, fov.aspect, fov.tan_theta_x, fov.tan_theta
+    fv = check.scalar(fov, "fov")
+    t = float(tan_theta(fv))
+    return fv, 1.0, t, t
 
 
 @check.public
-def project(points: ArrayLike, fov: float) -> tuple[Array, Array, Array]:
+def project(points: ArrayLike, fov: float | View) -> tuple[Array, Array, Array]:
     """Image coordinates (u, v) ∈ [0, 1]² and depth z of eye-space points (square image).
 
-    u = ½ + x/(2 z tanθ), v = ½ + y/(2 z tanθ), θ = fov/2.
+    u = ½ + x/(2 z tanθ_x), v = ½ + y/(2 z tanθ_y), θ_y = fov/2; ``fov`` [deg] or a
+    :class:`~aliasing.View` (its near and far are not used; tanθ_x = aspect·tanθ_y).
     """
     p = check.finite(points, "points")
     if p.shape[-1:] != (3,):
         raise ValueError(f"points must have shape (..., 3), got {p.shape}")
     if (p[..., 2] <= 0).any():
         raise ValueError("points must lie in front of the eye (depth z > 0)")
-    t = np.tan(float(half_angle(check.scalar(fov, "fov"))))
+    _, _, tx, ty = _fov_tan(fov)
+    return _project(p, tx, ty)
+
+
+def _project(p: Array, tx: float, ty: float) -> tuple[Array, Array, Array]:
+    """:func:`project` on checked points with tan θ_x = ``tx``, tan θ_y = ``ty``."""
     z = p[..., 2]
-    return 0.5 + p[..., 0] / (2 * z * t), 0.5 + p[..., 1] / (2 * z * t), z
+    return 0.5 + p[..., 0] / (2 * z * tx), 0.5 + p[..., 1] / (2 * z * ty), z
 
 
-def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float = 1e-3, chunk: int = CHUNK, backend: str = "numpy") -> EyeBuffer:
+def eye_pass(triangles: ArrayLike, fov: float | View, resolution: int, *, near: float = 1e-3, chunk: int = CHUNK, backend: str = "numpy") -> EyeBuffer:
     """Render eye-space triangles with the perspective camera of the conventions.
 
     The eye is at the origin looking along +z, x right, y up, square image of full field of
@@ -74,8 +94,12 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     ----------
     triangles : array_like, shape (T, 3, 3)
         Eye-space triangles [world units].
-    fov : float
-        Full field of view [deg], in (0, 180).
+    fov : float or View
+        Full field of view [deg], in (0, 180), or a :class:`~aliasing.View` (its field of
+        view and aspect; its near and far do not clip: ``near`` below does).  A non-square
+        view is drawn on the same R × R pixels, which then span tan θ_x = aspect·tan θ_y:
+        pixels aspect : 1 wide.  The perspective error measured from the buffer does not
+        depend on the pixels' shape (:mod:`aliasing.raster.validate.measure`).
     resolution : int
         R, pixels per side, 1 ≤ R ≤ :data:`~aliasing.raster.MAX_RESOLUTION`.
     near : float
@@ -111,42 +135,42 @@ def eye_pass(triangles: ArrayLike, fov: float, resolution: int, *, near: float =
     """
     tri = _triangles(triangles)
     res = check_resolution(resolution)
-    fv = float(check.fov(check.scalar(fov, "fov")))
+    fv, aspect, tx, ty = _fov_tan(fov)
     zc = float(check.positive(check.scalar(near, "near"), "near"))
     chunk = check_chunk(chunk)
     name = backends.check(backend, "eye_pass")
     if name == "gl":
-        ids = gl.eye_ids(tri, float(np.tan(half_angle(fv))), res, zc)
-        return _buffer(tri, ids.ravel(), np.arange(tri.shape[0]), res, fv, _outputs_numpy)
+        ids = gl.eye_ids(tri, float(tx), res, zc, tan_y=float(ty))
+        return _buffer(tri, ids.ravel(), np.arange(tri.shape[0]), res, fv, aspect, tx, ty, _outputs_numpy)
     draw, outputs = KERNELS[name]()
     clipped, src = clip_near(tri, zc)
     if clipped.shape[0] == 0:
         empty = np.full((res, res, 3), np.nan)
-        return EyeBuffer(empty, empty.copy(), np.full((res, res), -1, np.int64), res, fv)
-    u, v, z = project(clipped, fv)
+        return EyeBuffer(empty, empty.copy(), np.full((res, res), -1, np.int64), res, fv, aspect)
+    u, v, z = _project(clipped, tx, ty)
     # depth key: -1/z is affine in (u, v) over a plane and increases with z; the eye sees
     # much overdraw, so hidden triangles and pieces of spans are culled (front_to_back)
     key = np.stack([u, v, -1.0 / z], axis=-1)
     dm = zbuffer(key, res, np.ones((key.shape[0], 3)), (np.arange(res) + 0.5) / res, True, chunk, front_to_back=True, draw=draw)
-    return _buffer(tri, dm.triangle.ravel(), src, res, fv, outputs)
+    return _buffer(tri, dm.triangle.ravel(), src, res, fv, aspect, tx, ty, outputs)
 
 
-def _buffer(tri: Array, tri_id: NDArray[np.int64], src: NDArray[np.int64], res: int, fv: float, outputs) -> EyeBuffer:
+def _buffer(tri: Array, tri_id: NDArray[np.int64], src: NDArray[np.int64], res: int, fv: float, aspect: float, tx: float, ty: float, outputs) -> EyeBuffer:
     """The eye buffer of the visible (drawn) triangle ids ``tri_id`` (−1 where empty; ``src``: their input indices)."""
     # exact positions: the ray (X, Y, 1) through the pixel centre ∩ the source triangle's
     # plane n·p = n·a, so p = λ(X, Y, 1) with λ = n·a / (n_x X + n_y Y + n_z)
-    t = np.tan(half_angle(fv))
     c = (np.arange(res) + 0.5) / res
-    X = (2 * c - 1) * t
+    X = (2 * c - 1) * tx  # columns
+    Y = (2 * c - 1) * ty  # rows (the same numbers as X at aspect 1)
     a, b, cc = tri[:, 0], tri[:, 1], tri[:, 2]
     nrm = np.cross(b - a, cc - a)
     with np.errstate(divide="ignore", invalid="ignore"):  # a zero-area triangle (never drawn) gets a NaN normal
         nrm /= np.linalg.norm(nrm, axis=-1, keepdims=True)
-    ident, position, normal = outputs(tri_id, src, X, nrm, (nrm * a).sum(-1), res)
-    return EyeBuffer(position, normal, ident, res, fv)
+    ident, position, normal = outputs(tri_id, src, X, Y, nrm, (nrm * a).sum(-1), res)
+    return EyeBuffer(position, normal, ident, res, fv, aspect)
 
 
-def _outputs_numpy(tri_id: NDArray[np.int64], src: NDArray[np.int64], X: Array, nrm: Array, lam_num: Array, res: int) -> tuple[NDArray[np.int64], Array, Array]:
+def _outputs_numpy(tri_id: NDArray[np.int64], src: NDArray[np.int64], X: Array, Yr: Array, nrm: Array, lam_num: Array, res: int) -> tuple[NDArray[np.int64], Array, Array]:
     """Source ids, positions and normals per pixel (:func:`eye_pass`), vectorized.
 
     Per-triangle tables (one per coordinate) end in a NaN row, which empty pixels (id −1)
@@ -162,7 +186,7 @@ def _outputs_numpy(tri_id: NDArray[np.int64], src: NDArray[np.int64], X: Array, 
     step = max(1, OUTPUT_BAND // res)
     with np.errstate(divide="ignore", invalid="ignore"):
         for r0 in range(0, res, step):
-            ids, Y = ident[r0:r0 + step], X[r0:r0 + step, None]
+            ids, Y = ident[r0:r0 + step], Yr[r0:r0 + step, None]
             gx, gy, gz = nx.take(ids), ny.take(ids), nz.take(ids)
             den = gx * X
             den += gy * Y
@@ -180,12 +204,12 @@ def _outputs_numpy(tri_id: NDArray[np.int64], src: NDArray[np.int64], X: Array, 
     return ident, position, normal
 
 
-def _outputs_numba(tri_id: NDArray[np.int64], src: NDArray[np.int64], X: Array, nrm: Array, lam_num: Array, res: int) -> tuple[NDArray[np.int64], Array, Array]:
+def _outputs_numba(tri_id: NDArray[np.int64], src: NDArray[np.int64], X: Array, Y: Array, nrm: Array, lam_num: Array, res: int) -> tuple[NDArray[np.int64], Array, Array]:
     """:func:`_outputs_numpy` in one compiled pass (:func:`.compiled.eye_outputs`)."""
     ident = np.empty(res * res, np.int64)
     position = np.empty((res * res, 3))
     normal = np.empty((res * res, 3))
-    compiled.eye_outputs(tri_id, src, X, X, np.ascontiguousarray(nrm), lam_num, ident, position, normal)
+    compiled.eye_outputs(tri_id, src, X, Y, np.ascontiguousarray(nrm), lam_num, ident, position, normal)
     return ident.reshape(res, res), position.reshape(res, res, 3), normal.reshape(res, res, 3)
 
 

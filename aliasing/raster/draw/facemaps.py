@@ -14,8 +14,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from ... import _validation as check
 from ... import directional, faces, geometry, schemes
-from .lightmap import LightMap, _unit_vector, light_maps
-from ...view import half_angle
+from .lightmap import LightMap, _light_maps, _unit_vector
+from ...view import View, view_args
 
 Array = NDArray[np.float64]
 
@@ -79,7 +79,7 @@ def frame_map(light: ArrayLike, axis: ArrayLike, y0: float, y1: float, a: float,
     return LightMap(np.stack([np.cross(lv, ax), lv, ax]), lo, wf, kind, float(npr))
 
 
-def fixed_face_map(near: float, far: float, fov: float, light: ArrayLike, face: str, parameterization: str) -> LightMap:
+def fixed_face_map(near: float | View, far: float | None = None, fov: float | None = None, light: ArrayLike | None = None, face: str | None = None, parameterization: str | None = None) -> LightMap:
     """A side face's face-fixed map (FP, Lloyd 2007 §6.1.3, Fig. 5), as a light-plane map.
 
     The map's image plane is the face itself: a point's light ray is followed to the face's
@@ -99,7 +99,8 @@ def fixed_face_map(near: float, far: float, fov: float, light: ArrayLike, face: 
     ----------
     near, far : float
         The face's eye-depth range [world units], 0 < near < far (a depth range's ends for
-        ``FP+ZP<k>``).
+        ``FP+ZP<k>``).  Or a :class:`~aliasing.View` in ``near``:
+        ``fixed_face_map(view, light, face, parameterization)``.
     fov : float
         Full field of view [deg].
     light : array_like, shape (3,)
@@ -116,19 +117,26 @@ def fixed_face_map(near: float, far: float, fov: float, light: ArrayLike, face: 
 
     (s runs along x̂_f = n̂ × ŷ_f, which is −x on the bottom face.)
     """
-    n, f = (float(v) for v in check.frustum(check.scalar(near, "near"), check.scalar(far, "far")))
-    fv = float(check.fov(check.scalar(fov, "fov")))
+    view, (light, face, parameterization) = view_args(near, far, fov, (light, face, parameterization), (None,) * 6, ("light", "face", "parameterization"))
+    if view.shape != ():
+        raise ValueError(f"near, far and fov must be scalars here, got shape {view.shape}")
     j = faces.SIDES.index(check.choice(face, "face", faces.SIDES))
     kind = check.choice(parameterization, "parameterization", faces.FACE_PARAMETERIZATIONS)
-    lv = _unit_vector(light, "light")
-    normal, centre, across, _ = faces.side_frames(fv)
+    return _fixed_face_map(view, _unit_vector(light, "light"), j, kind)
+
+
+def _fixed_face_map(view: View, lv: Array, j: int, kind: str) -> LightMap:
+    """:func:`fixed_face_map` on a validated View, unit light ``lv`` (3,), face index and parameterization."""
+    n, f = view.near, view.far
+    face = faces.SIDES[j]
+    normal, centre, across, _ = faces.side_frames(view)
     if not abs(lv @ normal[j]) > 1e-12:  # the edge-on test of aliasing.faces.chosen_faces
         raise ValueError(f"light must not lie in the {face} face's plane (the face is then edge-on, no map), got {lv!r}")
     x_l, z_l = np.cross(lv, centre[j]), np.cross(across[j], lv)
     x_l, z_l = x_l / np.linalg.norm(x_l), z_l / np.linalg.norm(z_l)
     x_l, z_l = x_l * np.sign(x_l @ across[j]), z_l * np.sign(z_l @ centre[j])  # s grows with x, t with y
     cx, cy = float(x_l @ across[j]), float(z_l @ centre[j])  # cos φ_lx, cos φ_ly (eqs. 55, 61–62)
-    th = np.radians(fv) / 2
+    th = view.theta
     y0, y1 = n / np.cos(th), f / np.cos(th)  # Fig. 5: the face's ends along its centre line
     half = y1 * np.sin(th)  # the face's half-width at y1
     if kind == "uniform":
@@ -144,7 +152,7 @@ def fixed_face_map(near: float, far: float, fov: float, light: ArrayLike, face: 
     return LightMap(np.stack([x_l, lv, z_l]), cy * y0, wf, kind, float(npr))
 
 
-def near_face_map(near: float, fov: float, light: ArrayLike) -> LightMap:
+def near_face_map(near: float | View, fov: float | None = None, light: ArrayLike | None = None) -> LightMap:
     """The near face's uniform map (face-fixed, Lloyd 2007 §6.1.3), as a light-plane map.
 
     A point's (s, t) are those of the point where its light ray meets the near plane, in
@@ -156,7 +164,8 @@ def near_face_map(near: float, fov: float, light: ArrayLike) -> LightMap:
     Parameters
     ----------
     near : float
-        Eye near distance [world units], > 0.
+        Eye near distance [world units], > 0; or a :class:`~aliasing.View` in ``near``
+        (``near_face_map(view, light)``; its far distance is not used).
     fov : float
         Full field of view [deg].
     light : array_like, shape (3,)
@@ -169,9 +178,26 @@ def near_face_map(near: float, fov: float, light: ArrayLike) -> LightMap:
     >>> np.round(s, 12).tolist(), np.round(t, 12).tolist()
     ([0.0, 1.0, 0.5], [0.0, 1.0, 0.5])
     """
-    n = float(check.positive(check.scalar(near, "near"), "near"))
-    h = n * np.tan(float(half_angle(check.scalar(fov, "fov"))))
-    lv = _unit_vector(light, "light")
+    if isinstance(near, View):
+        if fov is not None and light is not None:
+            raise ValueError("with a View, pass light once (near_face_map(view, light)), not fov")
+        view, light = near, fov if light is None else light
+        if view.shape != ():
+            raise ValueError(f"near and fov must be scalars here, got shape {view.shape}")
+    else:
+        if fov is None:
+            raise ValueError("fov required (or a View in place of near)")
+        n = float(check.positive(check.scalar(near, "near"), "near"))
+        view = View(n, 2 * n, check.scalar(fov, "fov"))  # the far distance is not used
+    if light is None:
+        raise ValueError("light required")
+    return _near_face_map(view, _unit_vector(light, "light"))
+
+
+def _near_face_map(view: View, lv: Array) -> LightMap:
+    """:func:`near_face_map` on a validated View and a unit light (3,)."""
+    n = view.near
+    h = n * view.tan_theta
     if abs(lv[2]) < 1e-9:
         raise ValueError(f"light must not be parallel to the near plane (the near face is then edge-on, no map), got {lv!r}")
     x_l = np.cross(lv, [0.0, 1.0, 0.0])
@@ -201,8 +227,9 @@ class MapSet:
         (eye depth of the face point a light ray meets) [world units].
     faces : str
         "" (z-partitions), "fp", "fpc" or "fpcs".
-    near, far, fov : float
-        The view frustum [world units, deg].
+    view : View
+        The view frustum (``near``, ``far`` [world units] and ``fov`` [deg] are its fields,
+        also read as the set's attributes).
     light : ndarray (3,)
         Unit vector towards the light.
     frames : FaceFrames or None
@@ -214,11 +241,24 @@ class MapSet:
     slots: NDArray[np.int_]
     edges: Array
     faces: str
-    near: float
-    far: float
-    fov: float
+    view: View
     light: Array
     frames: faces.FaceFrames | None = None
+
+    @property
+    def near(self) -> float:
+        """Eye near distance [world units]."""
+        return self.view.near
+
+    @property
+    def far(self) -> float:
+        """Eye far distance [world units]."""
+        return self.view.far
+
+    @property
+    def fov(self) -> float:
+        """Full field of view [deg]."""
+        return self.view.fov
 
     def assign(self, points: ArrayLike) -> NDArray[np.int_]:
         """Index into ``maps`` of the map shading each eye-space point ``(..., 3)`` in the frustum.
@@ -233,12 +273,12 @@ class MapSet:
         k = self.edges.size - 1
         if not self.faces:
             return np.clip(np.searchsorted(self.edges, p[..., 2], side="right") - 1, 0, k - 1)
-        face = faces.partition_of(p, self.near, self.far, self.fov, self.light)
+        face = faces.partition_of(p, self.view, self.light)
         fr = self.frames
         if fr is None and self.faces != "fp":
             raise ValueError(f"frames must be the face frames of the {self.faces} partitions (see map_set), got None")
         halves = 1 if fr is None else fr.used.shape[2]
-        normal, *_ = faces.side_frames(self.fov)
+        normal, *_ = faces.side_frames(self.view)
         lv = self.light
         travel = -lv if lv[2] >= 0 else lv  # eq. (54), as in partition_of
         j = np.clip(face - 1, 0, 3)
@@ -260,7 +300,7 @@ class MapSet:
 
 
 @check.public
-def map_set(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", **options: ArrayLike) -> MapSet:
+def map_set(near: float | View, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, scheme: str | None = None, **options: ArrayLike) -> MapSet:
     """The maps of any scheme for one light: single, z-partitioned or face-partitioned.
 
     ``ZP<k>+…`` and single-map schemes: :func:`light_maps`.  ``FPc+P|LogP|Standard`` and
@@ -275,7 +315,8 @@ def map_set(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     ----------
     near, far, fov, light
         The view frustum (0 < near < far [world units], full field of view [deg]) and one
-        light direction, as for :func:`light_map`.
+        light direction, as for :func:`light_map`; or ``map_set(view, light, scheme)`` with a
+        :class:`~aliasing.View`.
     scheme : str
         Any scheme of :mod:`aliasing.schemes`.
     **options
@@ -289,36 +330,45 @@ def map_set(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     >>> ms.assign([[0.0, -20.0, 50.0], [-25.0, 20.0, 50.0], [0.0, 0.0, 1.0]]).tolist()   # bottom, left, near
     [1, 2, 0]
     """
+    view, (light, scheme) = view_args(near, far, fov, (light, scheme), (None, None, None, None, "Standard"))
+    if view.shape != ():
+        raise ValueError(f"map_set takes one view: near, far and fov must be scalars, got shape {view.shape}")
     check.instance(scheme, "scheme", (str, schemes.Scheme))
     sch = schemes.parse(scheme) if isinstance(scheme, str) else scheme
-    n, f = (float(v) for v in check.frustum(check.scalar(near, "near"), check.scalar(far, "far")))
-    fv = float(check.fov(check.scalar(fov, "fov")))
     lv = geometry.lights(light)
     if lv.shape[0] != 1:
         raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
+    return _map_set(view, lv, sch, options)
+
+
+def _map_set(view: View, lv: Array, sch: schemes.Scheme, options: dict) -> MapSet:
+    """:func:`map_set` on a validated View, one light ``lv`` (1, 3) and a parsed scheme."""
+    n, f = view.near, view.far
     if not sch.faces:
-        maps, edges = light_maps(n, f, fv, lv, sch.name, **options)
-        return MapSet(maps, np.arange(len(maps)), edges, "", n, f, fv, lv[0])
+        # light_maps normalizes its light once more (geometry.lights is not idempotent to the last bit)
+        maps, edges = _light_maps(view, geometry.lights(lv), schemes.parse(sch.name), options)
+        return MapSet(maps, np.arange(len(maps)), edges, "", view, lv[0])
     unknown = set(options) - {"tau0", "tau1"}
     if unknown:
         raise ValueError(f"unknown options for {sch.name}: {', '.join(sorted(unknown))}; face partitions take tau0, tau1")
     maps, slots = [], []
-    chosen = faces.chosen_faces(lv, fv)[0]
+    chosen = faces.chosen_faces(lv, view)[0]
     if chosen[0]:
-        maps.append(near_face_map(n, fv, lv[0]))
+        maps.append(_near_face_map(view, _unit_vector(lv[0], "light")))
         slots.append(0)
     k = sch.k
     if sch.faces == "fp":
-        faces.face_errors("fp", sch.parameterization, n, f, fv, lv, k=k, **{key: float(v) for key, v in options.items()})  # validates tau0, tau1
+        faces.face_errors("fp", sch.parameterization, view, lv, k=k, **{key: float(v) for key, v in options.items()})  # validates tau0, tau1
         depth = n * (f / n) ** (np.arange(k + 1) / k)  # the depth ranges of face_errors
         depth[-1] = f
-        for j, side in enumerate(faces.SIDES):
+        kind = check.choice(sch.parameterization, "parameterization", faces.FACE_PARAMETERIZATIONS)
+        for j in range(len(faces.SIDES)):
             if chosen[1 + j]:
                 for i in range(k):
-                    maps.append(fixed_face_map(depth[i], depth[i + 1], fv, lv[0], side, sch.parameterization))
+                    maps.append(_fixed_face_map(view.between(depth[i], depth[i + 1]), _unit_vector(lv[0], "light"), j, kind))
                     slots.append(1 + j * k + i)
-        return MapSet(maps, np.asarray(slots), depth, sch.faces, n, f, fv, lv[0], None)
-    fr = faces.face_frames(sch.faces, sch.parameterization, n, f, fv, lv, k=k, **{key: float(v) for key, v in options.items()})
+        return MapSet(maps, np.asarray(slots), depth, sch.faces, view, lv[0], None)
+    fr = faces.face_frames(sch.faces, sch.parameterization, view, lv, k=k, **{key: float(v) for key, v in options.items()})
     halves = fr.used.shape[2]
     for j in range(4):  # ≤ 4 faces × 2 halves × k ranges
         for h in range(halves):
@@ -328,4 +378,4 @@ def map_set(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
                 c = (0, j, h, i)
                 maps.append(frame_map(lv[0], fr.axis[0, j, h], fr.y0[c], fr.y1[c], fr.a[c], fr.s_lo[c], fr.s_hi[c], sch.parameterization))
                 slots.append(1 + (j * halves + h) * k + i)
-    return MapSet(maps, np.asarray(slots), fr.depth, sch.faces, n, f, fv, lv[0], fr)
+    return MapSet(maps, np.asarray(slots), fr.depth, sch.faces, view, lv[0], fr)

@@ -322,11 +322,12 @@ def draw_maps(triangles: Array, matrices: Sequence[Array], resolutions: Sequence
     return out
 
 
-def eye_ids(triangles: Array, tan_half: float, resolution: int, near: float) -> NDArray[np.int64]:
+def eye_ids(triangles: Array, tan_half: float, resolution: int, near: float, *, tan_y: float | None = None) -> NDArray[np.int64]:
     """The visible triangle per pixel of the eye pass (index into ``triangles``, −1 where empty).
 
     The camera of :func:`aliasing.raster.eye_pass`: eye at the origin looking along +z,
-    u = ½ + x/(2z·tanθ), row 0 at the bottom; clipped at z = ``near``.  The depth test is a
+    u = ½ + x/(2z·tanθ), v = ½ + y/(2z·tanθ_y) (``tan_y``, default ``tan_half``: a square
+    view; a non-square one has tan θ_x = ``tan_half``), row 0 at the bottom; clipped at z = ``near``.  The depth test is a
     perspective one between ``near`` (or the nearest vertex, if farther) and the farthest
     vertex, ties to the highest index.
     """
@@ -337,7 +338,8 @@ def eye_ids(triangles: Array, tan_half: float, resolution: int, near: float) -> 
     z_far = float(z.max()) * (1.0 + DEPTH_PAD) + DEPTH_PAD
     z_near = max(float(near), float(z.min()) * (1.0 - DEPTH_PAD))  # the nearest vertex, or the clipping plane
     a, b = (z_far + z_near) / (z_far - z_near), -2.0 * z_far * z_near / (z_far - z_near)
-    clip = np.array([[1 / tan_half, 0, 0, 0], [0, 1 / tan_half, 0, 0], [0, 0, a, b], [0, 0, 1, 0]], float)
+    ty = tan_half if tan_y is None else tan_y
+    clip = np.array([[1 / tan_half, 0, 0, 0], [0, 1 / ty, 0, 0], [0, 0, a, b], [0, 0, 1, 0]], float)
     (_, ids), = _draw(tri, [(clip, None, int(resolution))])
     if idx is not None:
         ids = np.where(ids >= 0, idx[np.maximum(ids, 0)], -1)

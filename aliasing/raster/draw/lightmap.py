@@ -22,6 +22,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ... import _validation as check
 from ... import directional, geometry, schemes
+from ...view import View, view_args
 from .core import check_resolution
 
 Array = NDArray[np.float64]
@@ -195,13 +196,14 @@ class LightMap:
 
 
 @check.public
-def light_map(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str | schemes.Scheme = "Standard", **options: ArrayLike) -> LightMap:
+def light_map(near: float | View, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, scheme: str | schemes.Scheme | None = None, **options: ArrayLike) -> LightMap:
     """Fit the map of a single-map ``scheme`` (Standard, P, LogP, any rule) for one light.
 
     Parameters
     ----------
     near, far : float
-        Eye near and far distances [world units].
+        Eye near and far distances [world units].  Or a :class:`~aliasing.View` in ``near``:
+        ``light_map(view, light, scheme)``.
     fov : float
         Full field of view [deg].
     light : str or array_like
@@ -218,6 +220,7 @@ def light_map(near: float, far: float, fov: float, light: str | ArrayLike, schem
     >>> float(s.min()), float(t.min()), round(float(s.max()), 12), round(float(t.max()), 12)
     (0.0, 0.0, 1.0, 1.0)
     """
+    view, (light, scheme) = view_args(near, far, fov, (light, scheme), (None, None, None, None, "Standard"))
     check.instance(scheme, "scheme", (str, schemes.Scheme))
     sch = schemes.parse(scheme) if isinstance(scheme, str) else scheme
     if sch.k != 1:
@@ -225,11 +228,18 @@ def light_map(near: float, far: float, fov: float, light: str | ArrayLike, schem
     lv = geometry.lights(light)
     if lv.shape[0] != 1:
         raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
-    res = schemes.evaluate(sch, near, far, fov, lv, **options)
+    if view.shape != ():
+        raise ValueError(f"light_map takes one view: near, far and fov must be scalars, got shape {view.shape}")
+    return _light_map(view, lv, sch, options)
+
+
+def _light_map(view: View, lv: Array, sch: schemes.Scheme, options: dict) -> LightMap:
+    """The map of one single-map scheme on a validated View, for one light ``lv`` (1, 3)."""
+    res = schemes.evaluate(sch, view, lv, **options)
     npr = float(res.n_prime[0, 0])
-    verts = geometry.frustum_vertices(near, far, fov)
+    verts = geometry.frustum_vertices(view)
     if np.abs(verts).max() > directional.VERTEX_MAX:  # the light-space fit would overflow
-        raise ValueError(f"far must keep the view frustum within |coordinate| <= {directional.VERTEX_MAX:g} [world units], got far={check._repr(far)}")
+        raise ValueError(f"far must keep the view frustum within |coordinate| <= {directional.VERTEX_MAX:g} [world units], got far={check._repr(view.far)}")
     basis = geometry.light_space(lv)[0]
     lf = directional.fit(verts, lv)
     wf = directional.warping_frustum(lf, npr if sch.parameterization != "uniform" else np.inf)
@@ -239,11 +249,13 @@ def light_map(near: float, far: float, fov: float, light: str | ArrayLike, schem
 
 
 @check.public
-def light_maps(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", **options: ArrayLike) -> tuple[list[LightMap], Array]:
+def light_maps(near: float | View, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, scheme: str | None = None, **options: ArrayLike) -> tuple[list[LightMap], Array]:
     """The maps of a scheme with k z-partitions (``ZP<k>+…``; k = 1 otherwise) and the split depths.
 
     Partition i spans [C_i, C_{i+1}] (Lloyd 2006 eqs. 15–16, :func:`aliasing.schemes.z_partitions`)
     and gets its own map fitted to its sub-frustum, as :func:`aliasing.schemes.evaluate` does.
+    The arguments are those of :func:`light_map` (a :class:`~aliasing.View` may stand for
+    near, far, fov).
 
     Returns
     -------
@@ -258,10 +270,20 @@ def light_maps(near: float, far: float, fov: float, light: str | ArrayLike, sche
     >>> len(maps), edges.round(3).tolist()
     (4, [1.0, 5.623, 31.623, 177.828, 1000.0])
     """
-    sch = schemes.parse(scheme)
-    n_i, f_i = schemes.z_partitions(near, far, sch.k)
+    view, (light, scheme) = view_args(near, far, fov, (light, scheme), (None, None, None, None, "Standard"))
+    lv = geometry.lights(light)
+    if lv.shape[0] != 1:
+        raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
+    if view.shape != ():
+        raise ValueError(f"light_maps takes one view: near, far and fov must be scalars, got shape {view.shape}")
+    return _light_maps(view, lv, schemes.parse(scheme), options)
+
+
+def _light_maps(view: View, lv: Array, sch: schemes.Scheme, options: dict) -> tuple[list[LightMap], Array]:
+    """:func:`light_maps` on a validated View, one light ``lv`` (1, 3) and a parsed scheme."""
+    n_i, f_i = schemes.z_partitions(view.near, view.far, sch.k)
     base = schemes.Scheme(name=sch.name, k=1, rule=sch.rule, parameterization=sch.parameterization)
-    maps = [light_map(float(a), float(b), fov, light, base, **options) for a, b in zip(n_i, f_i)]
+    maps = [_light_map(view.between(float(a), float(b)), lv, base, options) for a, b in zip(n_i, f_i)]
     return maps, np.append(n_i, f_i[-1])
 
 

@@ -6,6 +6,7 @@ import argparse
 
 from ...bias import presets as bias_presets
 from ..draw import backends
+from ...view import check_aspect
 from ..scenes import world
 from .scenerender import run
 
@@ -19,9 +20,12 @@ def _render(args: argparse.Namespace) -> int:
         raise ValueError(f"--f-over-n must be a number, got {args.f_over_n!r}") from None
     if args.seed < 0:
         raise ValueError(f"--seed must be a whole number >= 0, got {args.seed}")
-    backends.check(args.backend, "eye_pass")  # refused before any work, like the bias preset
+    backends.check(args.backend, "eye_pass")  # refused before any work, like the bias preset and the aspect
     if args.what == "bias-margin":
         bias_presets.get(args.bias_preset)
+    args.aspect = float(check_aspect(args.aspect))
+    if args.aspect != 1.0 and (args.scene is not None or args.what == "cdf"):
+        raise ValueError("--aspect applies to the seeded scene's pictures (a loaded scene's camera has its own; cdf has no image)")
     return run(args)
 
 
@@ -40,7 +44,8 @@ def add_render_parser(sub) -> argparse.ArgumentParser:
     )
     ren.add_argument("--scheme", default="Standard", help="scheme(s), comma-separated (default Standard)")
     ren.add_argument("--f-over-n", default="100", help="seeded scene: depth ratio far/near (default 100)")
-    ren.add_argument("--fov", type=float, default=None, help="FULL field of view in degrees (default 60, or the glTF camera's)")
+    ren.add_argument("--fov", type=float, default=None, help="FULL (vertical) field of view in degrees (default 60, or the glTF camera's)")
+    ren.add_argument("--aspect", type=float, default=1.0, help="image width/height, > 0 (default 1): one scheme's picture of the seeded scene, IMAGE_RES rows")
     ren.add_argument("--light", default="gamma:60@azimuth:30", help="one eye-space light direction (default gamma:60@azimuth:30)")
     ren.add_argument("--what", choices=["shadows", "grid", "error", "cdf", "bias-margin"], default="shadows",
                      help="picture (default shadows); bias-margin: an engine's bias over each pixel's minimal bias (red: acne, blue: to spare)")

@@ -60,6 +60,7 @@ from ..validate.measure import measure, pixel_errors
 from ..draw import LightMap, MapSet, backends, check_resolution, eye_pass, map_set, shadow_map
 from ..draw.lookup import BIAS, _bias, shadow_test
 from ..scenes.builtin import Scene, ground_and_boxes
+from ...view import View as Frustum, view_args
 
 Array = NDArray[np.float64]
 
@@ -115,22 +116,23 @@ def map_resolution(budget: int, k: int) -> int:
     return check_resolution(r, "budget/k (texels per side of each map)")
 
 
-def view(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, image_res: int = 256, budget: int = 1024**2,
+def view(near: float | Frustum, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, scheme: str | None = None, *, image_res: int = 256, budget: int = 1024**2,
          boxes: int = 40, ground_cells: int = 16, seed: int = 1, bias: float = BIAS, scene: Scene | None = None, backend: str = "numpy") -> View:
     """Render the eye pass and the shadow test of a seeded scene (see the module docstring).
 
     ``bias`` is the tolerance of the depth tests of :func:`shadow_test` [world units, ≥ 0].
     ``scene`` replaces the seeded ground and boxes (then ``face`` is the triangle index).
+    An :class:`aliasing.View` may stand for near, far, fov: ``view(frustum, light, scheme)``.
     ``backend``: how the eye pass and the maps are drawn (:func:`render_view`).
     """
-    fv = float(check.fov(fov))
+    frustum, (light, scheme) = view_args(near, far, fov, (light, scheme), (None, None, None, None, "Standard"))
     lv = geometry.lights(light)
     if lv.shape[0] != 1:
         raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
-    ms = map_set(near, far, fv, lv[0], scheme)
+    ms = map_set(frustum, lv[0], scheme)
     rm = map_resolution(budget, len(ms.maps))
     if scene is None:
-        sc = ground_and_boxes(near, far, fv, boxes=boxes, ground_cells=ground_cells, seed=seed)
+        sc = ground_and_boxes(frustum, boxes=boxes, ground_cells=ground_cells, seed=seed)
         n_ground = 2 * ground_cells**2
     else:
         sc, n_ground = scene, 0
@@ -169,7 +171,7 @@ def render_view(sc: Scene, ms: MapSet, resolutions: ArrayLike, *, image_res: int
     bias = _bias(bias)
     eye_backend, map_backend = backends.pair(backend)
     maps, n_ground = ms.maps, ground
-    eb = eye_pass(sc.triangles, ms.fov, res, backend=eye_backend)
+    eb = eye_pass(sc.triangles, ms.view, res, backend=eye_backend)
     hit = eb.triangle >= 0
     tri_id = np.maximum(eb.triangle, 0)
     if faces is not None:
@@ -222,12 +224,12 @@ def shade(v: View, *, shadows: bool = True) -> Array:
     return np.where(hit[..., None], img, SKY)
 
 
-def shadow_image(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", **kwargs) -> Array:
+def shadow_image(near: float | Frustum, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, scheme: str | None = None, **kwargs) -> Array:
     """Shadowed render (R, R, 3) of the seeded scene; ``kwargs`` as :func:`view`."""
     return _finish(shade(view(near, far, fov, light, scheme, **kwargs)))
 
 
-def grid_image(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, every: int = 16, **kwargs) -> Array:
+def grid_image(near: float | Frustum, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, scheme: str | None = None, *, every: int = 16, **kwargs) -> Array:
     """Shadowed render with the texel grid, a line every ``every`` texels, projected on it.
 
     A pixel is on a line when the index ⌊s·R/every⌋ or ⌊t·R/every⌋ (R the map resolution)
@@ -316,7 +318,7 @@ def error_colours(err: ArrayLike, vmax: float = 64.0) -> Array:
     return np.where(np.isfinite(e)[..., None], rgb, 0.6)
 
 
-def error_image(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, vmax: float = 64.0, **kwargs) -> tuple[Array, Array]:
+def error_image(near: float | Frustum, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, scheme: str | None = None, *, vmax: float = 64.0, **kwargs) -> tuple[Array, Array]:
     """(image (R, R, 3), error (R, R)) of the per-pixel measured perspective error; sky white.
 
     Both have row 0 at the top.  Pixels at face borders (no central difference) take the
@@ -349,19 +351,28 @@ def random_lights(count: int, seed: int = 0) -> Array:
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
 
 
-def analytic_max_error(scheme: str, near: float, far: float, fov: float, lights: ArrayLike, *, image_res: int = 1024, budget: int = 1024**2) -> Array:
-    """Max over maps of max(M_x, M_z)·R_image/R_map per light direction [pixels per texel]."""
-    r = schemes.evaluate(scheme, near, far, fov, np.asarray(lights, float))
+def analytic_max_error(scheme: str, near: float | Frustum, far: float | None = None, fov: float | None = None, lights: ArrayLike | None = None, *, image_res: int = 1024, budget: int = 1024**2) -> Array:
+    """Max over maps of max(M_x, M_z)·R_image/R_map per light direction [pixels per texel].
+
+    An :class:`aliasing.View` may stand for near, far, fov.
+    """
+    frustum, (lights,) = view_args(near, far, fov, (lights,), (None, None, None, None), ("lights",))
+    r = schemes.evaluate(scheme, frustum, np.asarray(lights, float))
     rm = map_resolution(budget, r.M_x.shape[1])
     return np.maximum(r.M_x, r.M_z).max(axis=1) * image_res / rm
 
 
-def measured_max_error(scheme: str, near: float, far: float, fov: float, lights: ArrayLike, *, image_res: int = 1024, budget: int = 1024**2, resolution: int = 128, cells: int = 8) -> Array:
-    """The same maxima measured on probes by the rasterizer (resolution² probe image)."""
+def measured_max_error(scheme: str, near: float | Frustum, far: float | None = None, fov: float | None = None, lights: ArrayLike | None = None, *, image_res: int = 1024, budget: int = 1024**2, resolution: int = 128,
+                       cells: int = 8) -> Array:
+    """The same maxima measured on probes by the rasterizer (resolution² probe image).
+
+    An :class:`aliasing.View` may stand for near, far, fov.
+    """
+    frustum, (lights,) = view_args(near, far, fov, (lights,), (None, None, None, None), ("lights",))
     lv = np.asarray(lights, float).reshape(-1, 3)
     out = np.empty(len(lv))
     for i, d in enumerate(lv):
-        m = measure(near, far, fov, d, scheme, resolution=resolution, cells=cells, map_resolution=16)
+        m = measure(frustum, d, scheme, resolution=resolution, cells=cells, map_resolution=16)
         k = len(m.M_x)
         out[i] = np.nanmax(np.maximum(m.measured_x, m.measured_z)) * image_res / map_resolution(budget, k)
     return out
@@ -374,16 +385,19 @@ def cdf(values: ArrayLike) -> tuple[Array, Array]:
     return v, np.arange(1, v.size + 1) / max(v.size, 1)
 
 
-def error_cdf(schemes_: list[str], near: float = 1.0, far: float = 1000.0, fov: float = 60.0, *, directions: int = 2000, measured: int = 24,
+def error_cdf(schemes_: list[str], near: float | Frustum | None = None, far: float | None = None, fov: float | None = None, *, directions: int = 2000, measured: int = 24,
               seed: int = 0, image_res: int = 1024, budget: int = 1024**2, ax=None):
     """Cumulative distributions of the maximum perspective error over random light directions.
 
     Returns ``(fig, ax, columns)``; ``columns`` maps ``analytic[S]`` (sorted maxima over
     ``directions``), ``fraction``, and ``measured[S]`` (measured maxima at the first
     ``measured`` directions, unsorted, NaN-padded) with ``measured_direction`` indices.
+    The frustum defaults to near 1, far 1000, fov 60 [deg]; an :class:`aliasing.View` may
+    stand for near, far, fov.
     """
     from ...plotting import subplots
 
+    frustum, _ = view_args(near, far, fov, (), (1.0, 1000.0, 60.0))
     lights = random_lights(directions, seed)
     if ax is None:
         fig, ax = subplots()
@@ -394,12 +408,12 @@ def error_cdf(schemes_: list[str], near: float = 1.0, far: float = 1000.0, fov: 
     cols["fraction"] = frac
     n_meas = min(int(measured), directions)
     for i, sch in enumerate(schemes_):
-        a = analytic_max_error(sch, near, far, fov, lights, image_res=image_res, budget=budget)
+        a = analytic_max_error(sch, frustum, lights, image_res=image_res, budget=budget)
         xs, ys = cdf(a)
         line, = ax.plot(xs, ys, label=sch)
         cols[f"analytic[{sch}]"] = np.concatenate([xs, np.full(directions - xs.size, np.nan)])
         if n_meas:
-            m = measured_max_error(sch, near, far, fov, lights[:n_meas], image_res=image_res, budget=budget)
+            m = measured_max_error(sch, frustum, lights[:n_meas], image_res=image_res, budget=budget)
             mx, my = cdf(m)
             ax.plot(mx, my, "o", ms=3, color=line.get_color(), alpha=0.8)
             cols[f"measured[{sch}]"] = np.concatenate([m, np.full(directions - n_meas, np.nan)])

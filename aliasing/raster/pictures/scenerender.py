@@ -40,6 +40,7 @@ from ..scenes.camera import Camera, check_raster_frustum
 from ..draw.cascades import CascadeSet, budget_shares, cascade_set
 from .images import BIAS, View, error_field, render_view
 from ..scenes.world import MIN_COS_LIGHT, SceneSetup, json_safe, plane_ids, setup
+from ...view import View as Frustum
 
 Array = NDArray[np.float64]
 
@@ -77,7 +78,7 @@ def render(st: SceneSetup, schemes_: list[str], *, splits: str | None = None, k:
     cam = st.camera
     out = []
     for name in schemes_:
-        cs = cascade_set(cam.near, cam.far, cam.fov, st.light, name.strip(), splits=splits, k=k, **params)
+        cs = cascade_set(cam.view, st.light, name.strip(), splits=splits, k=k, **params)
         res = budget_shares(cs, budget, allocation)
         v = render_view(st.scene, cs.maps, res, image_res=image_res, bias=bias, ground=st.ground, faces=st.faces, backend=backend)
         if not (v.triangle >= 0).any():
@@ -185,6 +186,10 @@ def figure(renders: list[SchemeRender], what: str = "shadows", *, every: int = 1
             img = error_of(r.view, vmax)[0]
             unmeasured = (r.view.triangle >= 0) & ~(r.measured if r.measured is not None else np.isfinite(r.error))
             img = np.where(unmeasured[::-1, :, None], 0.6 * img + 0.25, img)  # greyed: facing away from the light, or beyond far
+        aspect = float(r.cascades.maps.view.aspect)
+        if aspect != 1.0:  # the R x R pixels of a non-square view are aspect : 1 wide: shown as round(aspect·R) square pixels per row
+            width = max(1, round(aspect * img.shape[1]))
+            img = img[:, ((np.arange(width) + 0.5) * img.shape[1] / width).astype(int)]
         ax.imshow(img, interpolation="nearest")
         ax.set_xticks([]), ax.set_yticks([])
         s = r.stats
@@ -231,9 +236,10 @@ def report(st: SceneSetup, renders: list[SchemeRender], *, budget: int, allocati
 GROUND_CELLS = 16
 
 
-def builtin(near: float, far: float, fov: float, light: str | ArrayLike, *, seed: int = 1) -> SceneSetup:
+def builtin(near: float, far: float, fov: float, light: str | ArrayLike, *, seed: int = 1, aspect: float = 1.0) -> SceneSetup:
     """The built-in scene (:func:`~aliasing.raster.scenes.builtin.ground_and_boxes`, 40 boxes) in eye space as a
-    :class:`SceneSetup`: the eye at the origin looking along +z, near/far [world units], ``fov`` [deg], one light.
+    :class:`SceneSetup`: the eye at the origin looking along +z, near/far [world units], ``fov`` [deg] (vertical),
+    ``aspect`` (width/height), one light.
 
     Example
     -------
@@ -243,14 +249,14 @@ def builtin(near: float, far: float, fov: float, light: str | ArrayLike, *, seed
     """
     from ..scenes.builtin import ground_and_boxes
 
-    n, f = (float(x) for x in check.frustum(near, far))
-    fv = float(check.fov(fov))
+    frustum = Frustum(near, far, fov, aspect)
+    n, f, fv = float(frustum.near), float(frustum.far), float(frustum.fov)
     check_raster_frustum(n, f, fv)  # before the scene is built
     ls = geometry.lights(light)
     if ls.shape[0] != 1:
         raise ValueError(f"light must be a single direction, got {ls.shape[0]}")
-    sc = ground_and_boxes(n, f, fv, seed=seed, boxes=40, ground_cells=GROUND_CELLS)
-    cam = Camera(np.zeros(3), np.eye(3), n, f, fv, "eye space")
+    sc = ground_and_boxes(frustum, seed=seed, boxes=40, ground_cells=GROUND_CELLS)
+    cam = Camera(np.zeros(3), np.eye(3), n, f, fv, "eye space", float(frustum.aspect))
     return SceneSetup(sc, plane_ids(sc.triangles), cam, ls[0], ground=2 * GROUND_CELLS**2)
 
 
@@ -288,7 +294,7 @@ def run(args) -> int:
         if args.far is None and args.near is None and not float(args.f_over_n) > 1:
             raise ValueError(f"--f-over-n must be > 1, got {args.f_over_n!r}")
         f = float(args.f_over_n) if args.far is None else float(args.far)
-        st = builtin(1.0 if args.near is None else float(args.near), f, 60.0 if args.fov is None else float(args.fov), light, seed=args.seed)
+        st = builtin(1.0 if args.near is None else float(args.near), f, 60.0 if args.fov is None else float(args.fov), light, seed=args.seed, aspect=args.aspect)
     names = [s.strip() for s in args.scheme.split(",") if s.strip()]
     params = partitioning.split_params(args.lam, args.param)
     if args.splits is None and (args.k is not None or params):

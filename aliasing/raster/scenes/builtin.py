@@ -27,7 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ... import _validation as check
 from ... import geometry
-from ...view import half_angle
+from ...view import View, view_args
 
 Array = NDArray[np.float64]
 
@@ -81,15 +81,16 @@ def _box(centre: Array, half: Array) -> Array:
     return pts[:, faces].reshape(-1, 3, 3)
 
 
-def ground_and_boxes(near: float = 1.0, far: float = 1000.0, fov: float = 60.0, *, boxes: int = 100, ground_cells: int = 20, height: float = 1.0, seed: int = 0) -> Scene:
+def ground_and_boxes(near: float | View | None = None, far: float | None = None, fov: float | None = None, *, boxes: int = 100, ground_cells: int = 20, height: float = 1.0, seed: int = 0) -> Scene:
     """A ground plane with boxes spread log-uniformly over the depth range [near, far].
 
     Parameters
     ----------
     near, far : float
-        Depth range [world units], 0 < near < far.
+        Depth range [world units], 0 < near < far (default 1, 1000); or a
+        :class:`~aliasing.View` in ``near``.
     fov : float
-        Full field of view [deg]; the ground spans the view's width at every depth.
+        Full field of view [deg] (default 60); the ground spans the view's width at every depth.
     boxes : int
         Number of boxes (12 triangles each), ≥ 0.
     ground_cells : int
@@ -110,8 +111,8 @@ def ground_and_boxes(near: float = 1.0, far: float = 1000.0, fov: float = 60.0, 
     >>> ground_and_boxes(1.0, 50.0, boxes=3, ground_cells=2).triangles.shape
     (44, 3, 3)
     """
-    n, f = (float(a) for a in check.frustum(check.scalar(near, "near"), check.scalar(far, "far")))
-    tan = np.tan(float(half_angle(check.scalar(fov, "fov"))))
+    view, _ = view_args(near, far, fov, (), (1.0, 1000.0, 60.0))
+    n, f, tan, _ = _scalar_view(view)  # the width of the view: tan θ_x
     h = float(check.positive(check.scalar(height, "height"), "height"))
     nb = _count(boxes, "boxes", 0)
     gc = _count(ground_cells, "ground_cells", 1)
@@ -134,7 +135,14 @@ def ground_and_boxes(near: float = 1.0, far: float = 1000.0, fov: float = 60.0, 
     return Scene(tri, np.full(len(tri), -1, np.int64))
 
 
-def probes(near: float, far: float, fov: float, light: str | ArrayLike, *, cells: int = 32, fill: float = 0.6, seed: int = 0, splits: ArrayLike | None = None) -> Scene:
+def _scalar_view(view: View) -> tuple[float, float, float, float]:
+    """near, far, tan θ_x, tan θ_y of one frustum."""
+    if view.shape != ():
+        raise ValueError(f"near, far and fov must be scalars here, got shape {view.shape}")
+    return view.near, view.far, view.tan_theta_x, view.tan_theta
+
+
+def probes(near: float | View, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, *, cells: int = 32, fill: float = 0.6, seed: int = 0, splits: ArrayLike | None = None) -> Scene:
     """Probe squares, one per cell of a cells × cells grid over the image, inside the frustum.
 
     Probe k sits on the ray through its cell's centre, faces the bisector of the directions
@@ -148,7 +156,8 @@ def probes(near: float, far: float, fov: float, light: str | ArrayLike, *, cells
     Parameters
     ----------
     near, far : float
-        Frustum depth range [world units].
+        Frustum depth range [world units]; or a :class:`~aliasing.View` in ``near``
+        (``probes(view, light)``).
     fov : float
         Full field of view [deg].
     light : str or array_like
@@ -169,8 +178,8 @@ def probes(near: float, far: float, fov: float, light: str | ArrayLike, *, cells
     >>> bool(np.all((sc.triangles[..., 2] >= 1.0) & (sc.triangles[..., 2] <= 10.0)))
     True
     """
-    n, f = (float(a) for a in check.frustum(check.scalar(near, "near"), check.scalar(far, "far")))
-    tan = np.tan(float(half_angle(check.scalar(fov, "fov"))))
+    view, (light,) = view_args(near, far, fov, (light,), (None, None, None, None), ("light",))
+    n, f, tan_x, tan = _scalar_view(view)
     k = _count(cells, "cells", 2)
     fl = check.scalar(fill, "fill")
     if not 0 < fl <= 1:
@@ -181,7 +190,7 @@ def probes(near: float, far: float, fov: float, light: str | ArrayLike, *, cells
     lv = lv[0]
     c = (np.arange(k) + 0.5) / k
     u, v = np.meshgrid(c, c)  # row = v index
-    ray = np.stack([(2 * u - 1) * tan, (2 * v - 1) * tan, np.ones_like(u)], axis=-1).reshape(-1, 3)
+    ray = np.stack([(2 * u - 1) * tan_x, (2 * v - 1) * tan, np.ones_like(u)], axis=-1).reshape(-1, 3)
     to_eye = -ray / np.linalg.norm(ray, axis=-1, keepdims=True)
     nrm = to_eye + lv
     small = np.linalg.norm(nrm, axis=-1) < 1e-3  # light straight behind the probe: face the eye
@@ -193,7 +202,7 @@ def probes(near: float, far: float, fov: float, light: str | ArrayLike, *, cells
     e1 /= np.linalg.norm(e1, axis=-1, keepdims=True)
     e2 = np.cross(nrm, e1)
     # half size per unit depth: fill/2 of a cell's width (2 tan θ z / k) over the ray length
-    half = fl / 2 * 2 * tan / k / np.linalg.norm(ray, axis=-1)
+    half = fl / 2 * 2 * min(tan, tan_x) / k / np.linalg.norm(ray, axis=-1)  # the cell's narrower side
     dz = half * (np.abs(e1[:, 2]) + np.abs(e2[:, 2]))  # corner depth offset per unit depth
     edges = np.array([n, f]) if splits is None else check.finite(splits, "splits").ravel()
     if edges.size < 2 or np.any(np.diff(edges) <= 0) or not (np.isclose(edges[0], n) and np.isclose(edges[-1], f)):

@@ -25,12 +25,14 @@ Example
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ... import _validation as check
+from ...view import View
 
 Array = NDArray[np.float64]
 
@@ -48,9 +50,11 @@ class Camera:
     near, far : float
         Eye near and far (shadow) distances [world units], 0 < near < far.
     fov : float
-        Full field of view [deg] of the square image.
+        Full vertical field of view [deg].
     name : str
         A label (the glTF camera's name, or "look-at").
+    aspect : float
+        Image width/height (default 1: a square image).
     """
 
     eye: Array
@@ -59,6 +63,12 @@ class Camera:
     far: float
     fov: float
     name: str = "look-at"
+    aspect: float = 1.0
+
+    @functools.cached_property
+    def view(self) -> View:
+        """The camera's frustum as a :class:`~aliasing.View` (built once per camera)."""
+        return View(self.near, self.far, self.fov, self.aspect)
 
     def to_eye(self, points: ArrayLike) -> Array:
         """Eye-space coordinates ``(..., 3)`` of world points ``(..., 3)`` [world units]."""

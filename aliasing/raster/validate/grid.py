@@ -426,6 +426,8 @@ def _run(args: argparse.Namespace) -> int:
     fmt = args.format or ("csv" if args.grid else "text")
     backends.check(args.backend, "eye_pass")
     if args.grid:
+        if args.aspect != 1.0:
+            raise ValueError("--aspect other than 1 validates one case (without --grid)")
         return _run_grid(args, fmt)
     for flag, given in (("--jobs", args.jobs != 1), ("--out", args.out), ("--resume", args.resume), ("--dask", args.dask), ("--dry-run", args.dry_run)):
         if given:
@@ -433,7 +435,7 @@ def _run(args: argparse.Namespace) -> int:
     kind = check.choice(fmt, "format", FORMATS)
     r = validate(
         _single(args.scheme, "--scheme"), _number(args.f_over_n, "--f-over-n"), _number(args.fov, "--fov"), _single(args.light, "--light"),
-        args.res, args.image_res, args.probes, seed=args.seed, reach=args.reach, backend=args.backend,
+        args.res, args.image_res, args.probes, aspect=args.aspect, seed=args.seed, reach=args.reach, backend=args.backend,
     )
     if kind == "text":
         sys.stdout.write(format_text(r))
@@ -477,6 +479,7 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
     p.add_argument("--scheme", required=True, help="scheme name, e.g. P or ZP4+LogP (with --grid: comma list)")
     p.add_argument("--f-over-n", required=True, help="depth ratio far/near > 1 (with --grid: list or range)")
     p.add_argument("--fov", default="60", help="FULL field of view in degrees (the papers' theta is half; default 60; with --grid: list or range)")
+    p.add_argument("--aspect", type=float, default=1.0, help="image width/height, > 0 (default 1: square; --fov is then the vertical field of view); one case, not --grid")
     p.add_argument("--light", default="overhead", help="one light direction, e.g. gamma:150 (default overhead; with --grid: comma list)")
     p.add_argument("--res", type=int, default=DEFAULT_RES, help=f"measurement (eye-pass) resolution in pixels per side, {MIN_RES}..{MAX_RES} (default {DEFAULT_RES})")
     p.add_argument("--image-res", type=int, help="image resolution for the critical shadow-map resolutions (default --res)")

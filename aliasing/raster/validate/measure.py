@@ -53,12 +53,12 @@ from ... import _validation as check
 from ... import geometry, schemes
 from ..draw import backends
 from ..draw.core import check_resolution
-from ..draw.eye import eye_pass
-from ..draw.facemaps import map_set
+from ..draw.eye import _fov_tan, eye_pass
+from ..draw.facemaps import _map_set
 from ..draw.lightmap import LightMap
 from ..draw.shadow import shadow_map
 from ..scenes.builtin import Scene, probes
-from ...view import half_angle
+from ...view import View, view_args
 
 Array = NDArray[np.float64]
 
@@ -116,20 +116,21 @@ def _differences(a: Array, same: NDArray[np.bool_], axis: int, spacing: float) -
 
 
 @check.public
-def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, resolution: int = 512, cells: int = 32, scene: Scene | None = None, map_resolution: int = 512,
+def measure(near: float | View, far: float | None = None, fov: float | None = None, light: str | ArrayLike | None = None, scheme: str | None = None, *, resolution: int = 512, cells: int = 32, scene: Scene | None = None, map_resolution: int = 512,
             backend: str = "numpy", **options: ArrayLike) -> Measurement:
     """Measure the aliasing error of a scheme's maps on probes and compare with their bounds.
 
     Parameters
     ----------
     near, far : float
-        Eye near and far distances [world units], 0 < near < far.
+        Eye near and far distances [world units], 0 < near < far; or a
+        :class:`~aliasing.View` in ``near``: ``measure(view, light, scheme)``.
     fov : float
         Full field of view [deg].
     light : str or array_like
         One light direction (spec or vector towards the light).
     scheme : str
-        Scheme (Standard, P, LogP, a warping rule, each alone or after ``ZP<k>+``; or
+        Scheme (default Standard: Standard, P, LogP, a warping rule, each alone or after ``ZP<k>+``; or
         ``FP+…``, ``FPc+…``, ``FPcs+…``): each pixel is measured in the map of its z- or face partition.
     resolution : int
         Image resolution R_i [pixels per side].
@@ -156,18 +157,26 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     >>> r.pixels > 1000, bool(np.all(r.measured_x <= r.M_x * (1 + r.tolerance)))
     (True, True)
     """
+    view, (light, scheme) = view_args(near, far, fov, (light, scheme), (None, None, None, None, "Standard"))
+    if view.shape != ():
+        raise ValueError(f"measure takes one view: near, far and fov must be scalars, got shape {view.shape}")
     res = check_resolution(resolution)
     rm = check_resolution(map_resolution, "map_resolution")
     eye_backend, map_backend = backends.pair(backend)
     if scene is not None:
         check.instance(scene, "scene", Scene)
-    ms = map_set(near, far, fov, light, scheme, **options)
+    check.instance(scheme, "scheme", (str, schemes.Scheme))
+    sch = schemes.parse(scheme) if isinstance(scheme, str) else scheme
+    lv = geometry.lights(light)
+    if lv.shape[0] != 1:
+        raise ValueError(f"light must be a single direction, got {lv.shape[0]}")
+    ms = _map_set(view, lv, sch, options)
     maps, edges = ms.maps, ms.edges
-    analytic = schemes.evaluate(scheme, near, far, fov, geometry.lights(light), **options)
-    sc = probes(near, far, fov, light, cells=cells, splits=None if ms.faces else edges) if scene is None else scene
+    analytic = schemes.evaluate(sch, view, lv, **options)
+    sc = probes(view, light, cells=cells, splits=None if ms.faces else edges) if scene is None else scene
     if not (sc.group >= 0).any():
         raise ValueError("scene must contain probes (triangles with group >= 0)")
-    eb = eye_pass(sc.triangles, fov, res, backend=eye_backend)
+    eb = eye_pass(sc.triangles, view, res, backend=eye_backend)
     group = np.where(eb.triangle >= 0, sc.group[np.maximum(eb.triangle, 0)], -1)
     on = group >= 0
     pos = np.where(on[..., None], eb.position, 0.0)
@@ -189,7 +198,7 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
             measured_x.append(np.nan)
             measured_z.append(np.nan)
             continue
-        got = _errors(lm, pos, ok, res, float(fov))
+        got = _errors(lm, pos, ok, res, view.tan_theta)
         for key, val in got.items():
             fields[key][sel] = val[sel]
         measured_x.append(float(np.nanmax(got["m_x"][sel])))
@@ -227,7 +236,7 @@ def measure(near: float, far: float, fov: float, light: str | ArrayLike, scheme:
     )
 
 
-def pixel_errors(lm: LightMap, position: ArrayLike, ok: ArrayLike, resolution: int, fov: float) -> dict[str, Array]:
+def pixel_errors(lm: LightMap, position: ArrayLike, ok: ArrayLike, resolution: int, fov: float | View) -> dict[str, Array]:
     """Per-pixel map coordinates and the image and perspective errors through one light map.
 
     Central differences between a pixel's neighbours (pixel spacing 1/R in image units) of
@@ -245,8 +254,10 @@ def pixel_errors(lm: LightMap, position: ArrayLike, ok: ArrayLike, resolution: i
         Pixels to measure: those whose four neighbours lie on the same plane (and map).
     resolution : int
         R [pixels per side], the image resolution of ``position``.
-    fov : float
-        Full field of view [deg], in (0, 180).
+    fov : float or View
+        Full (vertical) field of view [deg], in (0, 180), or the :class:`~aliasing.View`:
+        w_i = 2 d tan θ_y at any aspect (square pixels of unit vertical resolution, as in
+        :func:`aliasing.schemes.evaluate`).
 
     Returns
     -------
@@ -271,7 +282,7 @@ def pixel_errors(lm: LightMap, position: ArrayLike, ok: ArrayLike, resolution: i
     if not isinstance(lm, LightMap):
         raise ValueError(f"lm must be a LightMap (aliasing.raster.light_map), got {type(lm).__name__}")
     res = check_resolution(resolution)
-    fv = float(check.fov(fov))
+    tan = _fov_tan(fov)[3]  # tan θ_y: w_i of a pixel of unit vertical resolution
     pos = np.asarray(position, dtype=float)
     if pos.shape != (res, res, 3):
         raise ValueError(f"position must have shape (resolution, resolution, 3) = ({res}, {res}, 3), got {pos.shape}")
@@ -280,7 +291,7 @@ def pixel_errors(lm: LightMap, position: ArrayLike, ok: ArrayLike, resolution: i
         raise ValueError(f"ok must be a boolean array of shape ({res}, {res}), got {mask.dtype} {mask.shape}")
     if not (np.all(np.isfinite(pos[mask])) and np.all(pos[mask][:, 2] > 0)):
         raise ValueError("position must be finite with z > 0 (in front of the eye) at every ok pixel")
-    return _errors(lm, pos, mask, res, fv)
+    return _errors(lm, pos, mask, res, tan)
 
 
 def projection_factors(position: ArrayLike, normal: ArrayLike, light: str | ArrayLike) -> Array:
@@ -327,8 +338,8 @@ def projection_factors(position: ArrayLike, normal: ArrayLike, light: str | Arra
         return np.where(cos_l > 0, cos_e / np.where(cos_l > 0, cos_l, 1.0), np.nan)
 
 
-def _errors(lm: LightMap, pos: Array, ok: NDArray[np.bool_], res: int, fov: float) -> dict[str, Array]:
-    """Per-pixel s, t and the image and perspective errors through one map (NaN off ``ok``)."""
+def _errors(lm: LightMap, pos: Array, ok: NDArray[np.bool_], res: int, tan: float) -> dict[str, Array]:
+    """Per-pixel s, t and the image and perspective errors through one map (NaN off ``ok``); ``tan`` = tan θ."""
     s, t, _, _ = lm.coordinates(pos)
     h = 1.0 / res
     s_u, t_u = _differences(s, ok, 1, h), _differences(t, ok, 1, h)
@@ -343,7 +354,7 @@ def _errors(lm: LightMap, pos: Array, ok: NDArray[np.bool_], res: int, fov: floa
     x_u, x_v = np.where(ok[..., None], x_u, 0.0), np.where(ok[..., None], x_v, 0.0)
     dX_ds = x_u * u_s[..., None] + x_v * v_s[..., None]
     dX_dt = x_u * u_t[..., None] + x_v * v_t[..., None]
-    w_i = 2 * np.tan(half_angle(fov)) * pos[..., 2]
+    w_i = 2 * tan * pos[..., 2]
     return {
         "s": s, "t": t,
         "m_s": np.hypot(u_s, v_s) * fill, "m_t": np.hypot(u_t, v_t) * fill,

@@ -174,6 +174,8 @@ def add_scene_options(p: argparse.ArgumentParser) -> None:
             return probes_run(args)
         if args.grid:
             raise ValueError("--grid validates probes over parameter grids; it does not take --scene")
+        if getattr(args, "aspect", 1.0) != 1.0:
+            raise ValueError("--aspect applies to the probe validation; a --scene camera is square here")
         fmt = args.format or "text"
         if fmt not in ("text", "json"):
             raise ValueError(f"--format with --scene must be text or json, got {fmt!r}")

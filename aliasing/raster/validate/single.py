@@ -26,6 +26,7 @@ from ..scenes.camera import check_raster_frustum
 from .measure import measure
 from ..draw import map_set
 from ..scenes.builtin import probes as probe_scene
+from ...view import View
 
 MIN_RES = 16
 """Smallest measurement resolution: probes need interior pixels with both neighbours."""
@@ -67,19 +68,30 @@ def _light(light: object) -> tuple[str, np.ndarray]:
     return label, lv
 
 
-def _check(scheme: str, f_over_n: float, fov: float, light: object, res: int, image_res: int | None, probes: int, reach: float) -> dict:
+def _check(scheme: str, f_over_n: float | View, fov: float | None, light: object, res: int, image_res: int | None, probes: int, reach: float, aspect: float = 1.0) -> dict:
     if not isinstance(scheme, str):
         raise ValueError(f"scheme must be a scheme name (e.g. Standard, P, ZP4+LogP), got {scheme!r}")
     sch = schemes.parse(scheme)
-    ratio = float(check.depth_ratio(f_over_n, "f_over_n"))
-    fv = float(check.fov(fov))
-    check_raster_frustum(1.0, ratio, fv)
+    if isinstance(f_over_n, View):
+        view = f_over_n
+        if view.shape != ():
+            raise ValueError(f"the view must be one frustum (scalar near, far, fov), got shape {view.shape}")
+        ratio = view.ratio
+        if aspect != 1.0:
+            raise ValueError("aspect is the View's: pass it in the View, not again")
+    else:
+        ratio = float(check.depth_ratio(f_over_n, "f_over_n"))
+        if fov is None:
+            raise ValueError("fov required (or a View in place of f_over_n)")
+        view = View(1.0, ratio, fov, aspect)
+    fv = view.fov
+    check_raster_frustum(view.near, view.far, fv)
     label, lv = _light(light)
     r = _whole(res, "res", MIN_RES, MAX_RES, " pixels per side (larger does not fit in memory)")
     ri = r if image_res is None else _whole(image_res, "image_res", 1, 1 << 20, " pixels per side")
     cells = _whole(probes, "probes", 2, min(MAX_PROBES, r // 4), f" probe cells per side (at most res/4 = {r // 4}, so that probes span pixels)")
     reach = float(check.closed_range(reach, "reach", 0.0, 1.0))
-    return dict(scheme=sch, f_over_n=ratio, fov=fv, light=label, lv=lv, res=r, image_res=ri, probes=cells, reach=reach)
+    return dict(scheme=sch, f_over_n=ratio, fov=fv, view=view, light=label, lv=lv, res=r, image_res=ri, probes=cells, reach=reach)
 
 
 # --------------------------------------------------------------------------- validation
@@ -90,7 +102,7 @@ def _scalar(values: np.ndarray) -> float | list[float]:
     return vals[0] if len(vals) == 1 else vals
 
 
-def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[float], res: int = DEFAULT_RES, image_res: int | None = None, probes: int = DEFAULT_PROBES, *, seed: int = 0, reach: float = DEFAULT_REACH,
+def validate(scheme: str, f_over_n: float | View, fov: float | None = None, light: str | Sequence[float] | None = None, res: int | None = None, image_res: int | None = None, probes: int | None = None, *, aspect: float = 1.0, seed: int = 0, reach: float = DEFAULT_REACH,
              backend: str = "numpy", **options) -> dict:
     """Measure a scheme's perspective error on probes and compare it with the analytic bounds.
 
@@ -100,18 +112,23 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
         Scheme name (Standard, P, LogP, a warping rule, each alone or after ``ZP<k>+``; or
         ``FPc+…``, ``FPcs+…``, whose per-map bounds are :func:`aliasing.faces.face_errors`).
     f_over_n : float
-        Depth ratio far/near, > 1 (near = 1).
+        Depth ratio far/near, > 1 (near = 1); or a :class:`~aliasing.View` in its place,
+        followed by the light: ``validate(scheme, view, light, ...)``.
     fov : float
-        FULL field of view [deg], in (0, 180).
+        FULL (vertical) field of view [deg], in (0, 180).
+    aspect : float
+        Image width/height, > 0 (default 1); the rows hold ``res`` pixels (see
+        :class:`aliasing.View` and :func:`aliasing.raster.eye_pass`).  The result gains an
+        ``aspect`` entry when it is not 1.
     light : str or array_like
         Exactly one light direction: ``overhead``, ``behind``, ``front``,
         ``gamma:DEG[@azimuth:DEG]`` or a vector towards the light.
     res : int
-        Eye-pass (measurement) resolution [pixels per side], in [16, 2048].
+        Eye-pass (measurement) resolution [pixels per side], in [16, 2048] (default 384).
     image_res : int, optional
         Image resolution the critical shadow-map resolutions are given for (default ``res``).
     probes : int
-        Probe grid cells per side, in [2, min(256, res/4)].
+        Probe grid cells per side, in [2, min(256, res/4)] (default 24).
     seed : int
         Seed of the probes' depth permutation: the same inputs give the same result.
     reach : float
@@ -150,13 +167,30 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
     >>> r["maps"], r["passed"], len(r["ratio_M_x"])
     (2, True, 2)
     """
-    c = _check(scheme, f_over_n, fov, light, res, image_res, probes, reach)
+    if isinstance(f_over_n, View):  # the arguments after the View move up one place
+        seq = [fov, light, res, image_res, probes]
+        run = next((i for i, v in enumerate(seq) if v is None), len(seq))
+        if run == len(seq):
+            raise ValueError("with a View, pass the arguments that follow it (light, res, ...) once each, not fov")
+        out: list = [None] * 4
+        for j, value in enumerate(seq):
+            i = j if j < run else j - 1
+            if value is not None:
+                if out[i] is not None:
+                    raise ValueError("with a View, pass the arguments that follow it (light, res, ...) once each, not fov")
+                out[i] = value
+        fov, (light, res, image_res, probes) = None, out
+    if light is None:
+        raise ValueError("light required")
+    res = DEFAULT_RES if res is None else res
+    probes = DEFAULT_PROBES if probes is None else probes
+    c = _check(scheme, f_over_n, fov, light, res, image_res, probes, reach, aspect)
     seed = _whole(seed, "seed", 0, 2**32 - 1)
-    near, far = 1.0, c["f_over_n"]
+    view = c["view"]
     lv = c["lv"]
-    ms = map_set(near, far, c["fov"], lv, c["scheme"].name, **options)
-    scene = probe_scene(near, far, c["fov"], lv, cells=c["probes"], seed=seed, splits=None if ms.faces else ms.edges)
-    m = measure(near, far, c["fov"], lv, c["scheme"].name, resolution=c["res"], scene=scene, map_resolution=c["res"], backend=backend, **options)
+    ms = map_set(view, lv, c["scheme"].name, **options)
+    scene = probe_scene(view, lv, cells=c["probes"], seed=seed, splits=None if ms.faces else ms.edges)
+    m = measure(view, lv, c["scheme"].name, resolution=c["res"], scene=scene, map_resolution=c["res"], backend=backend, **options)
     S = m.M_x * m.M_z
     measured_S = m.measured_x * m.measured_z
     ratios = np.concatenate([m.ratio_x, m.ratio_z])
@@ -203,7 +237,7 @@ def validate(scheme: str, f_over_n: float, fov: float, light: str | Sequence[flo
         "projection_min": float(np.nanmin(m.projection)),
         "projection_median": float(np.nanmedian(m.projection)),
         "projection_max": float(np.nanmax(m.projection)),
-    }
+    } | ({} if view.square else {"aspect": float(view.aspect)})
 
 
 # --------------------------------------------------------------------------- output
@@ -223,7 +257,7 @@ def _fmt(v: object) -> str:
 def format_text(r: dict) -> str:
     """One validation as a short plain-text report."""
     lines = [
-        f"scheme {r['scheme']}  f/n {r['f_over_n']:g}  fov {r['fov']:g} deg  light {r['light']} (gamma {r['gamma']:.6g} deg)  maps {r['maps']}",
+        f"scheme {r['scheme']}  f/n {r['f_over_n']:g}  fov {r['fov']:g} deg{'  aspect %g' % r['aspect'] if 'aspect' in r else ''}  light {r['light']} (gamma {r['gamma']:.6g} deg)  maps {r['maps']}",
         f"measurement: res {r['res']} px, {r['probes']}x{r['probes']} probes, seed {r['seed']}, {r['pixels']} pixels, self-lit {r['self_lit']:.3f}",
         f"projection factor cos(psi_e)/cos(psi_l) on the probes: min {r['projection_min']:.4f}, median {r['projection_median']:.4f}, "
         f"max {r['projection_max']:.4f} (about 1 by construction: perspective aliasing alone)",
