@@ -278,6 +278,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_render_parser(sub)
     __import__("aliasing.engines.compare", fromlist=["add_engines_parser"]).add_engines_parser(sub)  # issue 18: aliasing engines
+    from .temporal.command import add_shimmer_parser
+
+    add_shimmer_parser(sub)  # aliasing shimmer
     return parser
 
 
