@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import math
 
@@ -220,3 +222,39 @@ def test_cli_bad_input_one_line_exit_2(capsys, args, words):
     assert cli.main(argv) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and words in err and "Traceback" not in err
+
+
+# ---------------------------------------------------------------- fuzz: exit 0, or exit 2 with one line
+
+_WORDS = {
+    "--schemes": ["csm:log:k=2", "csm-stable:log:k=2:fit=sphere:snap=origin", "csm-stable:godot", "sdsm:k=2", "vsm:bias=2", "matched", "csm:log:k=0", "csm:log:k=nan",
+                  "csm-stable:log:fit=oval", "vsm", "", ",", "csm:log:k=2,,sdsm:k=2"],
+    "--motion": ["translate:0.1,0,0", "rotate:yaw,1", "rotate:pitch,-1", "zoom:0.5", "zoom:-50", "sun:2", "sun:nan", "translate:inf,0,0", "translate:1e400,0,0", "rotate:roll,1", "zoom:", ""],
+    "--frames": ["2", "3", "0", "1", "-1", "2.5", "nan", "inf", "1e400", "x", ""],
+    "--scene": ["boxes", "city.glb", "", "boxes "],
+    "--near": ["0.5", "1", "0", "-1", "nan", "1e400"], "--far": ["50", "100", "1", "nan", "inf"], "--fov": ["60", "0", "180", "nan", "1e400"],
+    "--light-dir": ["-1,2,0.6", "0,1,0", "0,0,0", "nan,1,0", "1,2", "a,b,c"], "--eye": ["0,0,0", "1,2", "nan,0,0"], "--target": ["0,0,1", "0,0,0"],
+    "--image-res": ["16", "24", "0", "-3", "x"], "--shadow-res": ["16", "32", "0", "99999"], "--fps": ["60", "0", "-1", "nan", "inf"],
+    "--unit": ["m", "cm", "parsec"], "--format": ["table", "csv", "json", "xml"],
+}
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.dictionaries(st.sampled_from(sorted(_WORDS)), st.integers(0, 99), max_size=7), st.text(max_size=8))
+def test_shimmer_fuzz(picks, garbage):
+    base = {"--schemes": "csm:log:k=2", "--motion": "translate:0.1,0,0", "--frames": "2", "--image-res": "16", "--shadow-res": "16"}
+    for key, i in picks.items():
+        words = _WORDS[key] + ([garbage] if key not in ("--image-res", "--shadow-res", "--frames") else [])
+        base[key] = words[i % len(words)]
+    argv = ["shimmer"] + [f"{k}={v}" for k, v in base.items()]
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+        try:
+            code = cli.main(argv)
+        except SystemExit as exc:  # argparse: a non-number for a typed option
+            code = exc.code
+    text = err.getvalue()
+    assert code in (0, 2), (argv, text)
+    assert "Traceback" not in text
+    if code == 2 and not text.startswith("usage:"):
+        assert text.count("\n") == 1, (argv, text)
