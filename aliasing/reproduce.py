@@ -57,6 +57,7 @@ TARGETS: dict[str, Target] = {
         Target("lloyd2007-fig24", "lloyd2007_fig24", "Lloyd 2007 Fig. 24: the range of optimal perspective parameters a of S_p (l_y = 0.5 y1) and its top vs light position"),
         Target("warping-rule-grid", "warping_rule_grid", "New: max S / Standard's max and mean S / S-optimal mean of P, LogP, LiSPSM, GMNPR, GLPR and the pyramid rules over f/n 10..1e5 x fov 20..120 (2000 directions)"),
         Target("engines-comparison", "engines_comparison", "Engine schemes (issue 18): m_x along the view and critical storage over gamma, stable CSM, SDSM, UE5 VSM High/Epic, matched and exact limits (near 10 cm, far 1 km, fov 60, 1920 px)"),
+        Target("shimmer-tradeoff", "shimmer_tradeoff", "New: should I stabilize? Each engine stable preset's resolution cost (S ratio to the tight fit) beside the shimmer it removes (flips per second, boxes scene, sideways, forward and yaw paths)"),
     )
 }
 

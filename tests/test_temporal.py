@@ -258,3 +258,19 @@ def test_shimmer_fuzz(picks, garbage):
     assert "Traceback" not in text
     if code == 2 and not text.startswith("usage:"):
         assert text.count("\n") == 1, (argv, text)
+
+
+# ---------------------------------------------------------------- explorer
+
+def test_explorer_plays_a_path():
+    pytest.importorskip("ipywidgets")
+    from aliasing import explore
+
+    e = explore.shimmer(scheme="csm:log:k=3", frames=5, frame=3, image_res=48, shadow_res=128)
+    assert e.error is None and e.controls["frame"].max == 4 and e.play.max == 4
+    d = e.data
+    assert d["frame"] == 3 and d["flip_fraction"].shape == (4,)
+    _, pts, r, _ = __import__("aliasing.explore._shimmer", fromlist=["_sequence"])._sequence("boxes", "csm:log:k=3", "translate:0.05,0,0", 5, 48, 128)
+    assert int(d["flipped"].sum()) == int(r.flips[2])  # the flips between frames 2 and 3
+    assert e.set_state({"frame": 1}) and e.data["frame"] == 1
+    assert not e.set_state({"motion": "wobble:1"}) and "unknown kind" in e.error

@@ -39,9 +39,9 @@ from .render import MapCache
 
 Array = NDArray[np.float64]
 
-#: Largest frames × points of a sequence (its states: a bool and an int64 per frame and point,
-#: and the prediction's float64 temporaries, about 64 bytes each): 2·10⁸ ≈ 12 GiB is refused.
-MAX_FRAME_POINTS = 50_000_000
+#: Largest frames × points of a sequence: its states (a bool and an int64 per frame and point),
+#: eye coordinates and the prediction's temporaries take about 100 bytes each, so this is ≈ 2 GiB.
+MAX_FRAME_POINTS = 20_000_000
 
 
 @dataclass(frozen=True)
@@ -83,8 +83,9 @@ class Shimmer:
         total = int(self.flips.sum())
         sun = self.motion.kind == "sun"
         mean = float(self.flip_fraction.mean())
-        pred = None if sun else float(self.predicted.mean())
-        pred_same = None if sun else float(self.predicted_same.mean())
+        none = sun or bool(np.isnan(self.predicted).all())
+        pred = None if none else float(self.predicted.mean())
+        pred_same = None if none else float(self.predicted_same.mean())
         same = float(self.same_fraction.mean())
         return {
             "scheme": self.spec,
@@ -94,8 +95,8 @@ class Shimmer:
             "same_map_fraction": same,
             "map_change_share": float(self.changed_flips.sum() / total) if total else 0.0,
             "predicted_same_map": pred_same,
-            "predicted_over_measured": None if sun or not np.isfinite(self.ratio) else self.ratio,
-            "ratio_se": None if sun or not np.isfinite(self.ratio_se) else self.ratio_se,
+            "predicted_over_measured": None if none or not np.isfinite(self.ratio) else self.ratio,
+            "ratio_se": None if none or not np.isfinite(self.ratio_se) else self.ratio_se,
             "predicted_fraction": pred,
             "per_degree": mean / abs(float(self.motion.step[0])) if self.motion.kind in ("sun", "rotate", "zoom") else None,
             "edge_shift_px": float(self.edge_shift_px.mean()),
@@ -124,11 +125,11 @@ def check_size(frames: int, count: int) -> None:
     """Refuse a sequence whose states would not fit (:data:`MAX_FRAME_POINTS`) before any work."""
     if frames * count > MAX_FRAME_POINTS:
         raise ValueError(f"frames × points = {frames} × {count} = {frames * count:,} is over {MAX_FRAME_POINTS:,} (the states would need about "
-                         f"{frames * count * 64 / 2**30:.1f} GiB); use fewer frames or a lower image resolution")
+                         f"{frames * count * 100 / 2**30:.1f} GiB); use fewer frames or a lower image resolution")
 
 
 def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames: int, *, res: int = 256, sdsm_res: int = 64, unit: str = "m",
-            bias: float = BIAS, directions: int = predict.DIRECTIONS, shifts: int = predict.SHIFTS) -> Shimmer:
+            bias: float = BIAS, directions: int = predict.DIRECTIONS, shifts: int = predict.SHIFTS, prediction: bool = True) -> Shimmer:
     """Measure (and predict) the shimmer of scheme ``spec`` over a camera or sun path.
 
     Parameters
@@ -155,6 +156,8 @@ def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames
         Direction bins of the edge-density measurement (≥ 2).
     shifts : int
         Sub-texel grid shifts of the edge-density measurement (≥ 1; each draws the frame-0 maps again).
+    prediction : bool
+        Also predict (False: the measure alone, ``predicted`` NaN; saves the density maps).
     """
     start = time.perf_counter()
     check.instance(w, "w", World)
@@ -176,7 +179,7 @@ def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames
         for k in np.unique(part[f][part[f] >= 0]):
             sel = np.nonzero(part[f] == k)[0]
             lit[f, sel] = cache.test(lat, f, int(k), pts.position[sel], pts.normal[sel])
-        if f == 0 and m.kind != "sun":
+        if f == 0 and m.kind != "sun" and prediction:
             dens = predict.densities(cache, lat, part[0], pts.position, pts.normal, lit[0], directions=dirs, shifts=n_shifts)
         cache.next_frame()
     seen = (part[1:] >= 0) & (part[:-1] >= 0)
@@ -186,7 +189,7 @@ def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames
     denom = np.maximum(n_seen, 1)
     length = edge_length(pts, lit[0], part[0] >= 0)
     ratio, se = np.nan, np.nan
-    if dens is None:  # a turning sun: the shadows move, no grid motion to predict from
+    if dens is None:  # a turning sun (the shadows move: no grid motion to predict from), or not asked
         pred = pred_same = np.full(n - 1, np.nan)
         shift, scale = np.full((n - 1, lat.maps, 2), np.nan), np.full((n - 1, lat.maps), np.nan)
         g = np.full((lat.maps, dirs), np.nan)
