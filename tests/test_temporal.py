@@ -274,3 +274,27 @@ def test_explorer_plays_a_path():
     assert int(d["flipped"].sum()) == int(r.flips[2])  # the flips between frames 2 and 3
     assert e.set_state({"frame": 1}) and e.data["frame"] == 1
     assert not e.set_state({"motion": "wobble:1"}) and "unknown kind" in e.error
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.floats(-3, 3), st.floats(-3, 3)), min_size=1, max_size=20), st.lists(st.floats(0, 50), min_size=4, max_size=4))
+def test_flip_probability_is_a_probability_growing_with_the_motion(deltas, rates):
+    d = np.array(deltas)[None]
+    g = np.array([rates])
+    grp = np.zeros(d.shape[1], np.int64)
+    p = predict.flip_probability(d, grp, g)
+    assert np.all((p >= 0) & (p <= 0.5))
+    assert np.all(predict.flip_probability(2 * d, grp, g) >= p - 1e-12)
+
+
+@pytest.mark.parametrize("call, words", [
+    (lambda: predict.flip_probability(np.zeros((1, 3, 3)), np.zeros(3, np.int64), np.ones((1, 2))), "delta"),
+    (lambda: predict.flip_probability(np.zeros((1, 3, 2)), np.full(3, 5), np.ones((1, 2))), "group"),
+    (lambda: predict.flip_probability(np.zeros((1, 3, 2)), np.zeros(3, np.int64), -np.ones((1, 2))), "g must"),
+    (lambda: paths.rotation([0, 0, 0], 10.0), "axis"),
+    (lambda: fits.eye_coordinates(np.zeros((4, 2)), np.zeros((1, 3)), np.eye(3)[None]), "positions"),
+    (lambda: measure.check_size(0, 10), "frames"),
+])
+def test_public_functions_name_the_bad_parameter(call, words):
+    with pytest.raises(ValueError, match=words):
+        call()

@@ -44,6 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from .. import _validation as check
 from .. import geometry
 from ..engines import compare, sdsm, stable, vsm
 from ..engines.sample import sample_bounds
@@ -89,13 +90,33 @@ class Lattices:
         return self.x0.shape[1]
 
 
+def _shaped(value: object, name: str, shape: tuple) -> Array:
+    """A finite float array whose shape matches ``shape`` (None: any length)."""
+    a = check.finite(value, name)
+    if a.ndim != len(shape) or any(s is not None and s != n for s, n in zip(shape, a.shape)):
+        want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ")"
+        raise ValueError(f"{name} must have shape {want}, got {a.shape}")
+    return a
+
+
 def eye_coordinates(positions: Array, eyes: Array, rots: Array) -> Array:
-    """Eye-space coordinates (F, P, 3) of world points (P, 3) in every frame's camera."""
-    return np.einsum("fpj,fij->fpi", positions[None] - eyes[:, None], rots)
+    """Eye-space coordinates (F, P, 3) of world points (P, 3) in every frame's camera
+    (``eyes`` (F, 3) [world units], ``rots`` (F, 3, 3) rows right, up, forward)."""
+    p = _shaped(positions, "positions", (None, 3))
+    e = _shaped(eyes, "eyes", (None, 3))
+    r = _shaped(rots, "rots", (len(e), 3, 3))
+    return np.einsum("fpj,fij->fpi", p[None] - e[:, None], r)
 
 
 def assign(lat: Lattices, eye_pos: Array, fovs: Array, near: float, far: float) -> NDArray[np.int64]:
-    """The map of every point in every frame (F, P): −1 outside the view frustum or any map."""
+    """The map of every point in every frame (F, P): −1 outside the view frustum or any map.
+
+    ``eye_pos`` (F, P, 3) eye coordinates [world units], ``fovs`` (F,) [deg], ``near`` < ``far`` [world units].
+    """
+    check.instance(lat, "lat", Lattices)
+    eye_pos = _shaped(eye_pos, "eye_pos", (lat.x0.shape[0], None, 3))
+    fovs = check.fov(_shaped(fovs, "fovs", (lat.x0.shape[0],)))
+    near, far = (float(v) for v in check.frustum(near, far))
     z = eye_pos[..., 2]
     t = np.tan(half_angle(fovs))[:, None]
     inside = (z >= near) & (z <= far) & (np.abs(eye_pos[..., 0]) <= z * t) & (np.abs(eye_pos[..., 1]) <= z * t)
@@ -247,6 +268,14 @@ def plan(spec: str, w: World, poses, res: int, *, positions: Array | None = None
         The scene's length unit (VSM's constants are in cm).
     """
     r = check_resolution(res, "res")
+    check.instance(w, "w", World)
+    if not isinstance(poses, (tuple, list)) or len(poses) != 4:
+        raise ValueError("poses must be (eyes, rotations, fovs, lights) of aliasing.temporal.paths.frames")
+    eyes = _shaped(poses[0], "poses' eyes", (None, 3))
+    n = len(eyes)
+    poses = (eyes, _shaped(poses[1], "poses' rotations", (n, 3, 3)), check.fov(_shaped(poses[2], "poses' fovs", (n,))), _shaped(poses[3], "poses' lights", (n, 3)))
+    if positions is not None:
+        positions = _shaped(positions, "positions", (None, 3))
     cam = w.camera
     parsed = compare.parse_spec(spec, fov=cam.fov, near=cam.near, far=cam.far, image_res=check_resolution(image_res, "image_res"), shadow_res=r, unit=unit)
     if parsed.family in ("matched", "exact"):

@@ -108,7 +108,14 @@ class Shimmer:
 
 
 def edge_length(pts: Points, lit0: NDArray[np.bool_], seen0: NDArray[np.bool_]) -> float:
-    """Length [pixels] of the frame-0 shadow edges on the points' image (Cauchy–Crofton: count·π/4)."""
+    """Length [pixels] of the frame-0 shadow edges on the points' image (Cauchy–Crofton: count·π/4).
+
+    ``lit0`` and ``seen0`` (P,) are the points' frame-0 states and whether a map holds them.
+    """
+    check.instance(pts, "pts", Points)
+    lit0, seen0 = (np.asarray(v) for v in (lit0, seen0))
+    if lit0.shape != (pts.count,) or seen0.shape != (pts.count,) or lit0.dtype != bool or seen0.dtype != bool:
+        raise ValueError(f"lit0 and seen0 must be booleans of shape ({pts.count},), got {lit0.dtype} {lit0.shape} and {seen0.dtype} {seen0.shape}")
     r = pts.resolution
     state = np.full((r, r), -1, np.int64)
     plane = np.full((r, r), -1, np.int64)
@@ -123,6 +130,7 @@ def edge_length(pts: Points, lit0: NDArray[np.bool_], seen0: NDArray[np.bool_]) 
 
 def check_size(frames: int, count: int) -> None:
     """Refuse a sequence whose states would not fit (:data:`MAX_FRAME_POINTS`) before any work."""
+    frames, count = check.whole(frames, "frames", 1), check.whole(count, "count", 1)
     if frames * count > MAX_FRAME_POINTS:
         raise ValueError(f"frames × points = {frames} × {count} = {frames * count:,} is over {MAX_FRAME_POINTS:,} (the states would need about "
                          f"{frames * count * 100 / 2**30:.1f} GiB); use fewer frames or a lower image resolution")

@@ -135,9 +135,11 @@ def rotation(axis: ArrayLike, degrees: ArrayLike) -> Array:
     >>> (rotation([0, 1, 0], 90.0) @ [1.0, 0.0, 0.0]).round(12).tolist()
     [0.0, 0.0, -1.0]
     """
-    a = np.asarray(axis, float)
+    a = check.finite(axis, "axis")
+    if a.shape != (3,) or not np.linalg.norm(a) > 0:
+        raise ValueError(f"axis must be a non-zero vector (3,), got {check._repr(a)}")
     a = a / np.linalg.norm(a)
-    ang = np.deg2rad(np.asarray(degrees, float))[..., None, None]
+    ang = np.deg2rad(check.finite(degrees, "degrees"))[..., None, None]
     k = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
     return np.eye(3) + np.sin(ang) * k + (1 - np.cos(ang)) * (k @ k)  # Rodrigues
 

@@ -47,6 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from .. import _validation as check
 from .fits import Lattices
 from .render import MapCache
 
@@ -58,13 +59,41 @@ SHIFTS = 12
 DIRECTIONS = 8
 
 
+def _lattice_and(lat: Lattices, part: object = None) -> NDArray[np.int64] | None:
+    check.instance(lat, "lat", Lattices)
+    if part is None:
+        return None
+    p = np.asarray(part)
+    if p.dtype.kind not in "iu" or p.ndim != 2 or p.shape[0] != lat.x0.shape[0] or (p.size and (p.min() < -1 or p.max() >= lat.maps)):
+        raise ValueError(f"part must be whole map indices in [-1, {lat.maps - 1}] of shape (frames = {lat.x0.shape[0]}, points), got {p.dtype} {p.shape}")
+    return p.astype(np.int64)
+
+
+def _rows(g: object) -> Array:
+    a = check.finite(g, "g")
+    if a.ndim != 2 or a.shape[1] < 1 or a.shape[0] < 1 or (a < 0).any():
+        raise ValueError(f"g must be non-negative crossing rates of shape (rows, directions) [1/world unit], got {a.shape}")
+    return a
+
+
 def light_plane(positions: Array, lat: Lattices) -> Array:
-    """Light-plane coordinates (F, P, 2) of world points in every frame's light frame."""
+    """Light-plane coordinates (F, P, 2) of world points (P, 3) in every frame's light frame."""
+    _lattice_and(lat)
+    positions = check.finite(positions, "positions")
+    if positions.ndim != 2 or positions.shape[1] != 3:
+        raise ValueError(f"positions must have shape (P, 3), got {positions.shape}")
     return np.stack([np.einsum("pj,fj->fp", positions, lat.basis[:, 0]), np.einsum("pj,fj->fp", positions, lat.basis[:, 2])], -1)
 
 
 def centres(lat: Lattices, part: NDArray[np.int64], xy: Array) -> Array:
-    """The centre (F, P, 2) of the texel each point uses in each frame [world units] (NaN: no map)."""
+    """The centre (F, P, 2) of the texel each point uses in each frame [world units] (NaN: no map).
+
+    ``part`` (F, P) the map of each point (−1: none), ``xy`` (F, P, 2) its light-plane coordinates.
+    """
+    part = _lattice_and(lat, part)
+    xy = check.as_float_array(xy, "xy")
+    if xy.shape != part.shape + (2,):
+        raise ValueError(f"xy must have shape {part.shape + (2,)} (frames, points, 2), got {xy.shape}")
     k = np.maximum(part, 0)
     f = np.arange(part.shape[0])[:, None]
     out = np.empty(xy.shape)
@@ -84,6 +113,7 @@ def displacement(lat: Lattices, part: NDArray[np.int64], xy: Array) -> Array:
 
 def grid_motion(lat: Lattices) -> tuple[Array, Array]:
     """Per frame change and map: the corner's move [texels of the earlier frame] (F − 1, K, 2) and the scale change t′/t − 1 (F − 1, K)."""
+    _lattice_and(lat)
     with np.errstate(invalid="ignore"):
         shift = np.stack([(lat.x0[1:] - lat.x0[:-1]) / lat.tx[:-1], (lat.y0[1:] - lat.y0[:-1]) / lat.ty[:-1]], -1)
         scale = lat.tx[1:] / lat.tx[:-1] - 1
@@ -156,7 +186,11 @@ def _by_map(per_point: Array, part: NDArray[np.int64], K: int) -> Array:
 
 
 def crossing_rate(g: Array, phi: Array) -> Array:
-    """g_k at angles φ (any shape, broadcast with g's leading axes), linear and π-periodic in the measured directions."""
+    """g_k at angles φ [rad] (any shape, broadcast with g's leading axes), linear and π-periodic in the measured directions."""
+    g = check.finite(g, "g")
+    phi = check.finite(phi, "phi")
+    if g.ndim < 1 or g.shape[-1] < 1:
+        raise ValueError(f"g must have a last axis of directions, got shape {g.shape}")
     D = g.shape[-1]
     u = np.mod(phi, np.pi) / (np.pi / D) - 0.5  # bin j holds the angles [j, j + 1)·π/D: its value sits at its centre
     j0 = np.floor(u).astype(np.int64) % D
@@ -167,6 +201,10 @@ def crossing_rate(g: Array, phi: Array) -> Array:
 
 def groups(part0: NDArray[np.int64], g: Array) -> NDArray[np.int64]:
     """The density row of each point (P,): its frame-0 map, or the pooled row where it had none."""
+    g = _rows(g)
+    part0 = np.asarray(part0)
+    if part0.dtype.kind not in "iu" or part0.ndim != 1 or (part0.size and (part0.min() < -1 or part0.max() >= g.shape[0] - 1)):
+        raise ValueError(f"part0 must be frame-0 map indices (P,) in [-1, {g.shape[0] - 2}], got {part0.dtype} {part0.shape}")
     return np.where(part0 >= 0, part0, g.shape[0] - 1)
 
 
@@ -177,6 +215,16 @@ def flip_probability(delta: Array, group: NDArray[np.int64], g: Array) -> Array:
     they are in the world, so a point keeps the density measured around it in frame 0
     whichever map it uses later.
     """
+    g = _rows(g)
+    try:
+        delta = np.asarray(delta, dtype=float)  # NaN: a point without a map in one of the frames
+    except (TypeError, ValueError):
+        raise ValueError("delta must be centre displacements of shape (..., 2) [world units]") from None
+    if delta.ndim < 1 or delta.shape[-1] != 2 or np.isinf(delta).any():
+        raise ValueError(f"delta must be centre displacements of shape (..., 2) [world units] (NaN where undefined), got {delta.shape}")
+    group = np.asarray(group)
+    if group.dtype.kind not in "iu" or (group.size and (group.min() < 0 or group.max() >= g.shape[0])):
+        raise ValueError(f"group must be density rows in [0, {g.shape[0] - 1}] (aliasing.temporal.predict.groups)")
     length = np.hypot(delta[..., 0], delta[..., 1])
     phi = np.arctan2(delta[..., 1], delta[..., 0])
     k = np.broadcast_to(group, length.shape)

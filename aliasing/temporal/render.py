@@ -25,7 +25,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ..raster.draw import BIAS, frame_map, shadow_map, shadow_test
+from .. import _validation as check
+from ..raster.draw import BIAS, check_resolution, frame_map, shadow_map, shadow_test
 from .fits import Lattices
 
 Array = NDArray[np.float64]
@@ -41,8 +42,11 @@ class MapCache:
     """
 
     def __init__(self, triangles: Array, *, bias: float = BIAS) -> None:
-        self.triangles = np.asarray(triangles, float)
-        self.bias = bias
+        tri = check.as_float_array(triangles, "triangles")
+        if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri):
+            raise ValueError(f"triangles must have shape (T, 3, 3) with T >= 1 [world units], got {tri.shape}")
+        self.triangles = tri
+        self.bias = float(check.closed_range(bias, "bias", 0.0, np.inf, " world units"))
         self.maps: dict[tuple, tuple] = {}
         self.used: set[tuple] = set()
         self.drawn = 0
@@ -59,7 +63,17 @@ class MapCache:
         return self._boxes  # type: ignore[return-value]
 
     def window(self, basis: Array, x0: float, y0: float, tx: float, ty: float, n: int) -> tuple:
-        """The (light map, depth map, triangles) of one window, drawn or reused."""
+        """The (light map, depth map, triangles) of one window, drawn or reused.
+
+        ``basis`` (3, 3) the light frame (rows x̂, l̂, ŷ), (x0, y0) the corner and (tx, ty) the
+        texel sides [world units], ``n`` texels per side.
+        """
+        basis = check.finite(basis, "basis")
+        if basis.shape != (3, 3):
+            raise ValueError(f"basis must have shape (3, 3), got {basis.shape}")
+        x0, y0 = (float(check.scalar(v, name)) for v, name in ((x0, "x0"), (y0, "y0")))
+        tx, ty = (float(check.positive(v, name)) for v, name in ((tx, "tx"), (ty, "ty")))
+        n = check_resolution(n, "n")
         key = (basis.tobytes(), float(x0), float(y0), float(tx), float(ty), int(n))
         self.used.add(key)
         if key in self.maps:
