@@ -173,7 +173,7 @@ def test_prediction_scales_with_the_edge_density(scene):
     poses = _poses(w, "translate:0.037,0,0", 8)
     lat = fits.plan("csm:log:k=4", w, poses, 128)
     delta = predict.displacement(lat, r.part, predict.light_plane(pts.position, lat))
-    grp = predict.groups(r.part[0], r.g)
+    grp = r.group
     small = predict.predicted(delta * 1e-3, grp, r.g)
     assert small.max() > 0 and np.allclose(predict.predicted(delta * 1e-3, grp, 2 * r.g), 2 * small, rtol=1e-3)
 

@@ -53,7 +53,8 @@ class Shimmer:
     ``ratio`` (predicted / measured flips of points that kept their map, over the whole
     sequence) and ``ratio_se`` (its bootstrap standard error, :func:`aliasing.temporal.predict.agreement`); ``lit`` and ``part``
     (F, P) the states and maps; ``shift`` (F − 1, K, 2) and ``scale`` (F − 1, K) the grid
-    motion; ``g`` (K + 1, D) the edge densities; ``edge_length_px``; ``drawn`` and ``reused``
+    motion; ``g`` the edge densities and ``group`` each point's row of it
+    (:class:`aliasing.temporal.predict.Densities`); ``edge_length_px``; ``drawn`` and ``reused``
     maps; ``seconds``; ``motion``; ``spec``."""
 
     spec: str
@@ -74,6 +75,7 @@ class Shimmer:
     shift: Array
     scale: Array
     g: Array
+    group: NDArray[np.int64]
     drawn: int
     reused: int
     seconds: float
@@ -188,7 +190,8 @@ def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames
             sel = np.nonzero(part[f] == k)[0]
             lit[f, sel] = cache.test(lat, f, int(k), pts.position[sel], pts.normal[sel])
         if f == 0 and m.kind != "sun" and prediction:
-            dens = predict.densities(cache, lat, part[0], pts.position, pts.normal, lit[0], directions=dirs, shifts=n_shifts)
+            tile = (pts.pixel[:, 0] * predict.TILES // pts.resolution) * predict.TILES + pts.pixel[:, 1] * predict.TILES // pts.resolution
+            dens = predict.densities(cache, lat, part[0], pts.position, pts.normal, lit[0], tile, directions=dirs, shifts=n_shifts)
         cache.next_frame()
     seen = (part[1:] >= 0) & (part[:-1] >= 0)
     flipped = seen & (lit[1:] != lit[:-1])
@@ -200,11 +203,12 @@ def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames
     if dens is None:  # a turning sun (the shadows move: no grid motion to predict from), or not asked
         pred = pred_same = np.full(n - 1, np.nan)
         shift, scale = np.full((n - 1, lat.maps, 2), np.nan), np.full((n - 1, lat.maps), np.nan)
-        g = np.full((lat.maps, dirs), np.nan)
+        g = np.full((lat.maps * (predict.TILES**2 + 1) + 1, dirs), np.nan)
+        group = np.full(pts.count, len(g) - 1, np.int64)
     else:
-        g = dens.g
+        g, group = dens.g, dens.group
         delta = predict.displacement(lat, part, predict.light_plane(pts.position, lat))
-        prob = predict.flip_probability(delta, predict.groups(part[0], g), g)
+        prob = predict.flip_probability(delta, group, g)
         prob = np.where(seen, np.nan_to_num(prob), 0.0)
         pred = prob.sum(-1) / denom
         keep = seen & ~changed
@@ -213,6 +217,6 @@ def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames
         shift, scale = predict.grid_motion(lat)
     return Shimmer(
         spec, m, lit, part, flipped.sum(-1) / denom, (flipped & ~changed).sum(-1) / denom, flipped.sum(-1), (flipped & changed).sum(-1), n_seen,
-        flipped.sum(-1) / max(length, 1e-300) if length > 0 else np.zeros(n - 1), length, pred, pred_same, float(ratio), float(se), shift, scale, g, cache.drawn, cache.reused,
+        flipped.sum(-1) / max(length, 1e-300) if length > 0 else np.zeros(n - 1), length, pred, pred_same, float(ratio), float(se), shift, scale, g, group, cache.drawn, cache.reused,
         time.perf_counter() - start,
     )

@@ -20,7 +20,9 @@ Edge density
     (Cauchy–Crofton; for isotropic edges g = 2ρ/π).  :func:`densities` measures g per map
     and direction in frame 0 by moving the grid alone: it draws map k again with its grid
     shifted by sub-texel offsets, which move every point's centre by a known Δ, and divides
-    the state changes by Σ|Δ| per direction bin of Δ.
+    the state changes by Σ|Δ| per direction bin of Δ, separately for each tile of the
+    frame-0 image (edges are not spread evenly, and a path may carry part of the points
+    out of view).
 Prediction
     With λ_p = |Δ_p|·g_k(φ_Δ) edges expected between c and c′ (k the map p uses in the new
     frame), a flip needs an odd number of crossings: for crossings at random (Poisson),
@@ -57,6 +59,10 @@ Array = NDArray[np.float64]
 SHIFTS = 12
 #: Direction bins of the density measurement over [0, π) (g(φ + π) = g(φ)).
 DIRECTIONS = 8
+#: Tiles per side of the frame-0 image over which edge densities are measured apart.
+TILES = 4
+#: Points a tile needs for a density of its own (fewer: its map's).
+MIN_POINTS = 40
 
 
 def _lattice_and(lat: Lattices, part: object = None) -> NDArray[np.int64] | None:
@@ -128,32 +134,68 @@ def _shifts(count: int) -> Array:
 
 @dataclass(frozen=True)
 class Densities:
-    """Edge densities g (K + 1, D) [1/world unit] of the points of each frame-0 map (row K:
-    pooled over all points, for points outside every map in frame 0) and their per-point samples: ``counts`` and
-    ``lengths`` (P, D) (state changes and Σ|Δ| per direction bin) and ``part0`` (P,) the
-    frame-0 map of each point (−1: none), for :func:`agreement`'s resampling."""
+    """Edge densities and their samples.
+
+    ``g`` (G + K + 1, D) [1/world unit]: one row per tile group (frame-0 map k × tile of the
+    frame-0 image, G = K·:data:`TILES`²), then one per map, then the pooled row; ``group``
+    (P,) the row each point uses (its tile's, or its map's where the tile holds fewer than
+    :data:`MIN_POINTS` points, or the pooled one where no map held it in frame 0);
+    ``counts`` and ``lengths`` (P, D) the per-point samples (state changes and Σ|Δ| per
+    direction bin), ``tile_group`` (P,) the tile group of each point (−1: none), for
+    :func:`agreement`'s resampling; ``maps`` K.
+    """
 
     g: Array
+    group: NDArray[np.int64]
     counts: Array
     lengths: Array
-    part0: NDArray[np.int64]
+    tile_group: NDArray[np.int64]
+    maps: int
 
 
-def _ratio(counts: Array, lengths: Array) -> Array:
-    """g = counts/lengths per (…, K, D); empty cells take the pooled value over maps."""
-    pooled = counts.sum(-2, keepdims=True) / np.maximum(lengths.sum(-2, keepdims=True), 1e-300)
-    return np.where(lengths > 0, counts / np.maximum(lengths, 1e-300), pooled)
+def _rates(ct: Array, lt: Array, nt: Array, K: int) -> Array:
+    """Rows of g from per-tile-group sums (..., G, D) and point counts (..., G): tiles, maps, pooled.
+
+    A tile with fewer than :data:`MIN_POINTS` points, or a bin without samples, takes its map's
+    value; a map without samples the pooled one.
+    """
+    T2 = ct.shape[-2] // K
+    ck = ct.reshape(ct.shape[:-2] + (K, T2, ct.shape[-1])).sum(-2)
+    lk = lt.reshape(lt.shape[:-2] + (K, T2, lt.shape[-1])).sum(-2)
+    cp, lp = ck.sum(-2, keepdims=True), lk.sum(-2, keepdims=True)
+    gp = cp / np.maximum(lp, 1e-300)
+    gk = np.where(lk > 0, ck / np.maximum(lk, 1e-300), gp)
+    parent = np.repeat(gk, T2, axis=-2)
+    gt = np.where((lt > 0) & (nt[..., None] >= MIN_POINTS), ct / np.maximum(lt, 1e-300), parent)
+    return np.concatenate([gt, gk, gp], axis=-2)
 
 
-def densities(cache: MapCache, lat: Lattices, part0: NDArray[np.int64], positions: Array, normals: Array, lit0: NDArray[np.bool_], *, directions: int = DIRECTIONS, shifts: int = SHIFTS) -> Densities:
-    """g_k(φ_j) (K + 1, D): edge crossings per unit length [1/world unit] around the points of each map in frame 0.
+def _rows_of(tile_group: NDArray[np.int64], nt: Array, K: int) -> NDArray[np.int64]:
+    """The row of g each point uses (see :class:`Densities`)."""
+    T2 = len(nt) // K
+    own = np.maximum(tile_group, 0)
+    row = np.where(nt[own] >= MIN_POINTS, own, len(nt) + own // T2)
+    return np.where(tile_group >= 0, row, len(nt) + K).astype(np.int64)
+
+
+def densities(cache: MapCache, lat: Lattices, part0: NDArray[np.int64], positions: Array, normals: Array, lit0: NDArray[np.bool_], tile: NDArray[np.int64],
+              *, directions: int = DIRECTIONS, shifts: int = SHIFTS) -> Densities:
+    """g(φ_j): edge crossings per unit length [1/world unit] around the points, per tile of each frame-0 map.
+
+    Shadow edges are where they are in the world, and a path may carry part of a map's
+    points out of view: so the density is measured where the points are, per tile group
+    (frame-0 map × ``tile``, the point's tile of the frame-0 image in [0, :data:`TILES`²)),
+    and a point keeps its tile's density whichever map it uses later.
 
     Map k of frame 0 is drawn again with its grid shifted by each of ``shifts`` sub-texel
     offsets spread over the texel; a point's centre then moves by a known Δ (by the shift,
     or by the shift less a texel where it changes texel).  Per direction bin j of Δ
-    (``directions`` bins over [0, π)), g_kj = state changes / Σ|Δ| (the crossing model's
-    ratio estimator).  Bins or maps without samples take the pooled value of all points.
+    (``directions`` bins over [0, π)), g = state changes / Σ|Δ| (the crossing model's
+    ratio estimator); see :class:`Densities` for the fallbacks of sparse tiles.
     """
+    tile = np.asarray(tile)
+    if tile.shape != (len(positions),) or tile.dtype.kind not in "iu" or (tile.size and (tile.min() < 0 or tile.max() >= TILES**2)):
+        raise ValueError(f"tile must be tile indices in [0, {TILES**2 - 1}] of shape ({len(positions)},)")
     K, D = lat.maps, int(directions)
     P = len(positions)
     counts, lengths = np.zeros((P, D)), np.zeros((P, D))
@@ -173,16 +215,14 @@ def densities(cache: MapCache, lat: Lattices, part0: NDArray[np.int64], position
             j = np.floor(np.mod(np.arctan2(ny, nx), np.pi) / (np.pi / D)).astype(np.int64) % D
             np.add.at(counts, (sel, j), lit != lit0[sel])
             np.add.at(lengths, (sel, j), np.hypot(nx, ny))
-    # row K: the pooled value, for points outside every map in frame 0
-    return Densities(_ratio(_by_map(counts, part0, K + 1), _by_map(lengths, part0, K + 1)), counts, lengths, part0)
-
-
-def _by_map(per_point: Array, part: NDArray[np.int64], K: int) -> Array:
-    """Sum per-point rows (P, D) into their maps (K, D)."""
-    out = np.zeros((K, per_point.shape[-1]))
-    ok = part >= 0
-    np.add.at(out, part[ok], per_point[ok])
-    return out
+    G = K * TILES**2
+    tile_group = np.where(part0 >= 0, part0 * TILES**2 + tile, -1).astype(np.int64)
+    ok = tile_group >= 0
+    ct, lt = np.zeros((G, D)), np.zeros((G, D))
+    np.add.at(ct, tile_group[ok], counts[ok])
+    np.add.at(lt, tile_group[ok], lengths[ok])
+    nt = np.bincount(tile_group[ok], minlength=G).astype(float)
+    return Densities(_rates(ct, lt, nt, K), _rows_of(tile_group, nt, K), counts, lengths, tile_group, K)
 
 
 def crossing_rate(g: Array, phi: Array) -> Array:
@@ -199,21 +239,10 @@ def crossing_rate(g: Array, phi: Array) -> Array:
     return np.take_along_axis(g, j0, -1) * (1 - frac) + np.take_along_axis(g, j1, -1) * frac
 
 
-def groups(part0: NDArray[np.int64], g: Array) -> NDArray[np.int64]:
-    """The density row of each point (P,): its frame-0 map, or the pooled row where it had none."""
-    g = _rows(g)
-    part0 = np.asarray(part0)
-    if part0.dtype.kind not in "iu" or part0.ndim != 1 or (part0.size and (part0.min() < -1 or part0.max() >= g.shape[0] - 1)):
-        raise ValueError(f"part0 must be frame-0 map indices (P,) in [-1, {g.shape[0] - 2}], got {part0.dtype} {part0.shape}")
-    return np.where(part0 >= 0, part0, g.shape[0] - 1)
-
-
 def flip_probability(delta: Array, group: NDArray[np.int64], g: Array) -> Array:
     """P(flip) = (1 − exp(−2|Δ|·g_k(φ_Δ)))/2 per point (F − 1, P); NaN where Δ is undefined.
 
-    ``group`` (P,) is each point's density row (:func:`groups`): shadow edges are where
-    they are in the world, so a point keeps the density measured around it in frame 0
-    whichever map it uses later.
+    ``group`` (P,) is each point's row of ``g`` (:attr:`Densities.group`).
     """
     g = _rows(g)
     try:
@@ -224,7 +253,7 @@ def flip_probability(delta: Array, group: NDArray[np.int64], g: Array) -> Array:
         raise ValueError(f"delta must be centre displacements of shape (..., 2) [world units] (NaN where undefined), got {delta.shape}")
     group = np.asarray(group)
     if group.dtype.kind not in "iu" or (group.size and (group.min() < 0 or group.max() >= g.shape[0])):
-        raise ValueError(f"group must be density rows in [0, {g.shape[0] - 1}] (aliasing.temporal.predict.groups)")
+        raise ValueError(f"group must be rows of g in [0, {g.shape[0] - 1}] (Densities.group)")
     length = np.hypot(delta[..., 0], delta[..., 1])
     phi = np.arctan2(delta[..., 1], delta[..., 0])
     k = np.broadcast_to(group, length.shape)
@@ -253,9 +282,9 @@ def agreement(dens: Densities, delta: Array, use: NDArray[np.bool_], flips: NDAr
 
     The points are the sample: which of them lie near a shadow edge decides both the
     measured flips and the densities the prediction uses.  Each replicate draws the points
-    with replacement, estimates g again from their frame-0 samples and re-weights the
-    prediction linearly in g (λ = |Δ|·g; the Poisson saturation is kept as a fixed factor)
-    and the measured count.
+    with replacement, estimates g again from their frame-0 samples (with the same fallbacks)
+    and re-weights the prediction linearly in g (λ = |Δ|·g; the Poisson saturation is kept
+    as a fixed factor) and the measured count.
 
     Parameters
     ----------
@@ -273,28 +302,34 @@ def agreement(dens: Densities, delta: Array, use: NDArray[np.bool_], flips: NDAr
     -------
     (ratio, standard error)
     """
+    check.instance(dens, "dens", Densities)
     P, D = dens.counts.shape
-    K = dens.g.shape[0]
+    K = dens.maps
+    T2 = TILES**2
+    G = K * T2
     length, j0, j1, frac = _bin_weights(np.where(use[..., None], np.nan_to_num(delta), 0.0), D)
     length = np.where(use, length, 0.0)
-    k = np.broadcast_to(groups(dens.part0, dens.g), length.shape)
     pts = np.broadcast_to(np.arange(P), length.shape)
-    A = np.zeros((P, K, D))  # Σ over frames of |Δ| · bin weight, per point, map and bin
-    np.add.at(A, (pts, k, j0), length * (1 - frac))
-    np.add.at(A, (pts, k, j1), length * frac)
-    C, L = np.zeros((P, K, D)), np.zeros((P, K, D))
-    ok = dens.part0 >= 0
-    C[np.nonzero(ok)[0], dens.part0[ok]] = dens.counts[ok]
-    L[np.nonzero(ok)[0], dens.part0[ok]] = dens.lengths[ok]
+    A = np.zeros((P, D))  # Σ over frames of |Δ| · bin weight, per point and bin
+    np.add.at(A, (pts, j0), length * (1 - frac))
+    np.add.at(A, (pts, j1), length * frac)
     m = np.where(use, flips, False).sum(0).astype(float)  # measured flips per point
-    rng = np.random.default_rng(seed)
-    W = rng.multinomial(P, np.full(P, 1.0 / P), size=int(replicates)).astype(float)  # (R, P)
-    lam_hat = float((_ratio(C.sum(0), L.sum(0)) * A.sum(0)).sum())
-    g_rep = _ratio(np.einsum("rp,pkd->rkd", W, C), np.einsum("rp,pkd->rkd", W, L))
-    lam_rep = (g_rep * np.einsum("rp,pkd->rkd", W, A)).sum((-1, -2))
-    meas_rep = W @ m
     measured = float(m.sum())
+    lam_hat = float((dens.g[dens.group] * A).sum())
     if measured == 0 or lam_hat == 0:
         return (np.inf if predicted_total > 0 else np.nan) if measured == 0 else 0.0, np.nan
-    ratio_rep = predicted_total * (lam_rep / lam_hat) / np.maximum(meas_rep, 1e-300)
+    rng = np.random.default_rng(seed)
+    W = rng.multinomial(P, np.full(P, 1.0 / P), size=int(replicates)).astype(float)  # (R, P)
+    R = len(W)
+    ct, lt, nt, At = np.zeros((R, G, D)), np.zeros((R, G, D)), np.zeros((R, G)), np.zeros((R, G, D))
+    for grp in np.unique(dens.tile_group[dens.tile_group >= 0]):  # per tile group (not per point): its points' weighted sums
+        idx = np.nonzero(dens.tile_group == grp)[0]
+        w = W[:, idx]
+        ct[:, grp], lt[:, grp], nt[:, grp], At[:, grp] = w @ dens.counts[idx], w @ dens.lengths[idx], w.sum(1), w @ A[idx]
+    g_rep = _rates(ct, lt, nt, K)  # (R, G + K + 1, D)
+    own = nt >= MIN_POINTS  # (R, G): the tile keeps its own row, else its map's
+    lam_rep = (np.where(own[..., None], g_rep[:, :G], np.repeat(g_rep[:, G:G + K], T2, axis=1)) * At).sum((-1, -2))
+    outside = dens.tile_group < 0
+    lam_rep = lam_rep + ((W[:, outside] @ A[outside]) * g_rep[:, -1]).sum(-1)
+    ratio_rep = predicted_total * (lam_rep / lam_hat) / np.maximum(W @ m, 1e-300)
     return predicted_total / measured, float(np.std(ratio_rep, ddof=1))
