@@ -27,7 +27,7 @@ from . import measure, paths, points
 
 FIELDS = ("scheme", "flip_fraction", "flip_fraction_max", "flips_per_second", "same_map_fraction", "map_change_share", "predicted_same_map", "predicted_over_measured",
           "ratio_se", "predicted_fraction", "per_degree", "edge_shift_px", "maps_drawn", "frames", "points", "seconds")
-TABLE = ("scheme", "flip_fraction", "flips_per_second", "same_map_fraction", "map_change_share", "predicted_same_map", "predicted_over_measured", "per_degree", "edge_shift_px", "seconds")
+TABLE = ("scheme", "flip_fraction", "flips_per_second", "same_map_fraction", "map_change_share", "predicted_same_map", "predicted_over_measured", "ratio_se", "per_degree", "edge_shift_px", "seconds")
 
 
 def run(args: argparse.Namespace) -> list[dict]:
