@@ -15,7 +15,7 @@ unstabilized counterpart (the same split and cascade count, tight fit, no snap):
   of a 96² first frame, 256² texels per cascade) under three camera paths of 24 frames:
   sideways (0.05 units per frame), forward (0.1 units per frame) and a yaw turn (0.25° per
   frame), shown as flips per second at 60 frames per second; and, in the CSV only, a turning
-sun (0.25° per frame about the vertical) as flips per degree, for the tight and the stable fit.
+  sun (0.25° per frame about the vertical) as flips per degree, for the tight and the stable fit.
 
 Besides the presets as shipped, ``dxsdk-scene+snap``: the DirectX SDK sample floors the
 map's corners to texels (``m_bMoveLightTexelSize``), which its preset, a model of the fit's

@@ -117,7 +117,7 @@ def world(scene: str = "boxes", *, light: object = None, eye: object = None, tar
 
 
 def sample(w: World, resolution: int = 128) -> Points:
-    """The points the frame-0 camera sees, one per pixel of a ``resolution``² image, facing the light.
+    """The points the frame-0 camera sees, one per pixel of a square image of ``resolution`` pixels per side, facing the light.
 
     Raises ValueError when no visible point faces the light within [near, far].
     """

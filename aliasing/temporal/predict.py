@@ -137,7 +137,7 @@ class Densities:
     """Edge densities and their samples.
 
     ``g`` (G + K + 1, D) [1/world unit]: one row per tile group (frame-0 map k × tile of the
-    frame-0 image, G = K·:data:`TILES`²), then one per map, then the pooled row; ``group``
+    frame-0 image, G = K × :data:`TILES` squared), then one per map, then the pooled row; ``group``
     (P,) the row each point uses (its tile's, or its map's where the tile holds fewer than
     :data:`MIN_POINTS` points, or the pooled one where no map held it in frame 0);
     ``counts`` and ``lengths`` (P, D) the per-point samples (state changes and Σ|Δ| per
@@ -184,7 +184,7 @@ def densities(cache: MapCache, lat: Lattices, part0: NDArray[np.int64], position
 
     Shadow edges are where they are in the world, and a path may carry part of a map's
     points out of view: so the density is measured where the points are, per tile group
-    (frame-0 map × ``tile``, the point's tile of the frame-0 image in [0, :data:`TILES`²)),
+    (frame-0 map × ``tile``, the point's tile of the frame-0 image in [0, :data:`TILES` squared)),
     and a point keeps its tile's density whichever map it uses later.
 
     Map k of frame 0 is drawn again with its grid shifted by each of ``shifts`` sub-texel
@@ -300,7 +300,10 @@ def agreement(dens: Densities, delta: Array, use: NDArray[np.bool_], flips: NDAr
 
     Returns
     -------
-    (ratio, standard error)
+    ratio : float
+        Predicted over measured flips.
+    se : float
+        Its bootstrap standard error (NaN when nothing flipped or nothing was predicted).
     """
     check.instance(dens, "dens", Densities)
     P, D = dens.counts.shape
