@@ -300,6 +300,9 @@ def build_parser(full: bool = True) -> argparse.ArgumentParser:
     from .bias.command import add_bias_parser
 
     add_bias_parser(sub)
+    from .temporal.command import add_shimmer_parser
+
+    add_shimmer_parser(sub)  # aliasing shimmer
     return parser
 
 

@@ -61,6 +61,7 @@ TARGETS: dict[str, Target] = {
         Target("bias-threshold", "bias_threshold", "Depth bias: acne against the derived minimum in the rasterizer, uniform/perspective/log maps, nearest and 3x3 PCF (plane 60 deg from the light)"),
         Target("bias-presets", "bias_presets", "Engine bias rules per cascade: ground margin, acne angle and lit gap in pixels for Filament, Bevy, Godot 4, Unity URP, three.js (near 0.1, far 100, 4 cascades, 2048^2)"),
         Target("engines-comparison", "engines_comparison", "Engine schemes: m_x along the view and critical storage over gamma, stable CSM, SDSM, UE5 VSM High/Epic, matched and exact limits (near 10 cm, far 1 km, fov 60, 1920 px)"),
+        Target("shimmer-tradeoff", "shimmer_tradeoff", "New: should I stabilize? Each engine stable preset's resolution cost (S ratio to the tight fit) beside the shimmer it removes (flips per second, boxes scene, sideways, forward and yaw paths)"),
     )
 }
 

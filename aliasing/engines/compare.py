@@ -45,6 +45,7 @@ import os
 import stat
 import warnings
 from collections.abc import Sequence
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -106,16 +107,47 @@ def _cascade_row(spec: str, res: stable.StableResult, axis: stable.StableResult,
     }
 
 
-def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | np.ndarray, image_res: int, shadow_res: int, unit: str, ground: float | None = None, histogram: tuple | None = None) -> dict:
-    """The comparison row of one scheme spec (see the module docstring)."""
+@dataclass(frozen=True)
+class ParsedSpec:
+    """A scheme spec read by :func:`parse_spec`: what to evaluate, before any evaluation.
+
+    ``family`` is one of :data:`FAMILIES`.  Cascades (``csm``, ``csm-stable``, ``sdsm``):
+    ``split`` (a split method name, split distances, or SDSM's (near_i, far_i); None for
+    ``sdsm:method=adaptive|kmeans``, whose partitions come from a histogram) and ``fit``
+    (the keywords of :func:`aliasing.engines.stable.evaluate`).  ``sdsm``: ``method``,
+    ``k`` (and for ``log`` ``zmin``/``zmax``).  ``vsm``: ``clipmap`` and ``pool``.
+    """
+
+    spec: str
+    family: str
+    split: object = None
+    fit: dict = field(default_factory=dict)
+    method: str = ""
+    k: int | None = None
+    zmin: float | None = None
+    zmax: float | None = None
+    clipmap: vsm.Clipmap | None = None
+    pool: int = 0
+
+
+def parse_spec(spec: str, *, fov: float, near: float, far: float, image_res: int, shadow_res: int, unit: str) -> ParsedSpec:
+    """Read one scheme spec (the module docstring's grammar) without evaluating it.
+
+    Raises ValueError naming the spec and the bad option.
+
+    Example
+    -------
+    >>> p = parse_spec("csm-stable:log:k=3:fit=diagonal:snap=origin", fov=60.0, near=1.0, far=100.0, image_res=1920, shadow_res=1024, unit="m")
+    >>> p.family, p.split, p.fit["fit"], p.fit["snap"], p.fit["k"]
+    ('csm-stable', 'log', 'diagonal', 'origin', 3)
+    """
     text = str(spec).strip().lower()
     family, *parts = text.split(":")
     check.choice(family, "scheme family", FAMILIES)
-    t = float(tan_theta(fov))
     if family in ("matched", "exact"):
         if parts:
             raise ValueError(f"scheme {spec!r}: {family} takes no options")
-        return limits.row(family, image_res)
+        return ParsedSpec(spec, family)
     if family == "vsm":
         if not parts:
             raise ValueError(f"scheme {spec!r}: vsm needs a preset ({', '.join(vsm.PRESETS)}) or bias=B")
@@ -135,40 +167,19 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
                 raise ValueError(f"scheme {spec!r}: {key} (clipmap level) must be a whole number, got {level:g}")
         coarse = None if opts.get("coarse", "1") in ("0", "false", "no") else vsm.COARSE_LEVELS
         c = vsm.Clipmap(fov, image_res, bias, int(first), int(last), unit, _num(opts, "dilation", spec, vsm.DILATION), coarse)
-        worst = vsm.frustum_max(c, near, far)
-        lo, hi = vsm.m_axis_range(c, near, far)
-        pool_info = vsm.pool_check(c, near, far, lights, int(pool), ground)
-        texels = pool_info["pages"] * vsm.PAGE**2
-        return {
-            "scheme": spec,
-            "max_error": worst,
-            "median_error": worst,  # the clipmap is centred on the camera: no light dependence in m
-            "m_axis_min": lo,
-            "m_axis_max": hi,
-            "storage_texels": float(texels),
-            "S_bar": float(np.float64(texels) * np.float64(worst) ** 2 / image_res**2) if texels else 0.0,  # inf for a vanishing fov; no pages: no storage
-            "pages": pool_info["pages"],
-            "overflow": bool(pool_info["overflow"]),
-            "extra_bias": pool_info["extra_bias"],
-        }
+        return ParsedSpec(spec, family, clipmap=c, pool=int(pool))
     if family == "sdsm":
         opts = _options(parts, spec, {"k", "zmin", "zmax", "method", "border", "dilation", "quantize"})
         k = _k(opts, spec, 4)
         method = check.choice(opts.get("method", "log"), "sdsm method", ("log", "adaptive", "kmeans"))
         sample = {"border": _num(opts, "border", spec, 0.0), "dilation": _num(opts, "dilation", spec, 0.0), "quantize": opts.get("quantize", "0") not in ("0", "false", "no")}
+        split = None
+        zmin, zmax = _num(opts, "zmin", spec, near), _num(opts, "zmax", spec, far)
         if method == "log":
-            lo, hi = sdsm.occupied(near, far, _num(opts, "zmin", spec, near), _num(opts, "zmax", spec, far))
+            lo, hi = sdsm.occupied(near, far, zmin, zmax)
             edges = sdsm.log_partitions(near, far, lo, hi, k)
-            split, n_fit, f_fit = (edges[:-1], edges[1:]), near, far  # separate maps; the light space spans [near, far]
-        else:
-            if histogram is None:
-                raise ValueError(f"scheme {spec!r}: method={method} needs a depth histogram (--histogram CSV: z_lo,z_hi,count)")
-            parts_lo, parts_hi = (sdsm.adaptive_log if method == "adaptive" else sdsm.kmeans)(histogram[0], histogram[1], k)
-            sdsm.occupied(near, far, parts_lo[0], parts_hi[-1])  # the histogram must lie in [near, far]
-            split, n_fit, f_fit = (parts_lo, parts_hi), near, far
-        res = stable.evaluate(split, n_fit, f_fit, fov, lights, **sample)
-        axis = stable.evaluate(split, n_fit, f_fit, fov, "overhead", **sample)
-        return _cascade_row(spec, res, axis, t, image_res, shadow_res)
+            split = (edges[:-1], edges[1:])  # separate maps; the light space spans [near, far]
+        return ParsedSpec(spec, family, split, sample, method, k, zmin if "zmin" in opts else None, zmax if "zmax" in opts else None)
     if not parts:
         raise ValueError(f"scheme {spec!r}: {family} needs a split method or preset (see aliasing splits --list)")
     name, rest = parts[0], parts[1:]
@@ -200,6 +211,48 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
         name = partitioning.resolve_name(name)
         if name == "bevy":  # Bevy's first cascade bound is 10 m: in the scene's unit
             kw["first"] = partitioning.BEVY_FIRST_BOUND * 100.0 / vsm.CM_PER_UNIT[unit.lower()]
+    return ParsedSpec(spec, family, name, kw)
+
+
+def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | np.ndarray, image_res: int, shadow_res: int, unit: str, ground: float | None = None, histogram: tuple | None = None) -> dict:
+    """The comparison row of one scheme spec (see the module docstring)."""
+    ps = parse_spec(spec, fov=fov, near=near, far=far, image_res=image_res, shadow_res=shadow_res, unit=unit)
+    family = ps.family
+    t = float(tan_theta(fov))
+    if family in ("matched", "exact"):
+        return limits.row(family, image_res)
+    if family == "vsm":
+        c = ps.clipmap
+        worst = vsm.frustum_max(c, near, far)
+        lo, hi = vsm.m_axis_range(c, near, far)
+        pool_info = vsm.pool_check(c, near, far, lights, ps.pool, ground)
+        texels = pool_info["pages"] * vsm.PAGE**2
+        return {
+            "scheme": spec,
+            "max_error": worst,
+            "median_error": worst,  # the clipmap is centred on the camera: no light dependence in m
+            "m_axis_min": lo,
+            "m_axis_max": hi,
+            "storage_texels": float(texels),
+            "S_bar": float(np.float64(texels) * np.float64(worst) ** 2 / image_res**2) if texels else 0.0,  # inf for a vanishing fov; no pages: no storage
+            "pages": pool_info["pages"],
+            "overflow": bool(pool_info["overflow"]),
+            "extra_bias": pool_info["extra_bias"],
+        }
+    if family == "sdsm":
+        sample = ps.fit
+        if ps.method == "log":
+            split, n_fit, f_fit = ps.split, near, far
+        else:
+            if histogram is None:
+                raise ValueError(f"scheme {spec!r}: method={ps.method} needs a depth histogram (--histogram CSV: z_lo,z_hi,count)")
+            parts_lo, parts_hi = (sdsm.adaptive_log if ps.method == "adaptive" else sdsm.kmeans)(histogram[0], histogram[1], ps.k)
+            sdsm.occupied(near, far, parts_lo[0], parts_hi[-1])  # the histogram must lie in [near, far]
+            split, n_fit, f_fit = (parts_lo, parts_hi), near, far
+        res = stable.evaluate(split, n_fit, f_fit, fov, lights, **sample)
+        axis = stable.evaluate(split, n_fit, f_fit, fov, "overhead", **sample)
+        return _cascade_row(spec, res, axis, t, image_res, shadow_res)
+    name, kw = ps.split, dict(ps.fit)
     res = stable.evaluate(name, near, far, fov, lights, **kw)
     axis = stable.evaluate(name, near, far, fov, "overhead", **kw)
     row = _cascade_row(spec, res, axis, t, image_res, shadow_res)

@@ -9,7 +9,8 @@ Each explorer is a function returning a displayable ipywidgets container (an
 * :func:`cascades`: split methods and engine presets, texel budgets and allocations;
 * :func:`faces`: the face partition (FP, FPc, FPcs; Lloyd 2007 §6.1.3, §6.5) for a light;
 * :func:`raster`: the rasterizer's shadows, texel grid, per-pixel error and measured/bound;
-* :func:`bias`: an engine's depth bias per cascade against the derived minimum (acne, lit gap).
+* :func:`bias`: an engine's depth bias per cascade against the derived minimum (acne, lit gap);
+* :func:`shimmer`: a camera or sun path played over a still scene, the points whose shadow flips.
 
 The computation of every explorer is a plain function (``compute``, returning a dict) kept
 apart from its drawing, so what is drawn can be checked against the API.  Needs the
@@ -34,7 +35,7 @@ if TYPE_CHECKING:  # the widget base needs ipywidgets (the explore extra)
 
 EXTRA_MESSAGE = "aliasing.explore needs the 'explore' extra: pip install \".[explore]\" (ipywidgets>=8, ipympl, jupyterlab)"
 
-__all__ = ["EXTRA_MESSAGE", "available", "bias", "cascades", "directions", "faces", "overhead", "raster"]
+__all__ = ["EXTRA_MESSAGE", "available", "bias", "cascades", "directions", "faces", "overhead", "raster", "shimmer"]
 
 
 def __getattr__(name: str) -> Any:
@@ -198,3 +199,27 @@ def bias(**values: Any) -> Explorer:
     [1.24, 1.02, 0.93, 0.87]
     """
     return _module("_bias").BiasExplorer(**values)
+
+
+def shimmer(**values: Any) -> Explorer:
+    """Shimmer explorer: plays a camera or sun path over a still scene and marks the points whose shadow flips.
+
+    Parameters
+    ----------
+    **values
+        ``scene`` (a built-in scene), ``scheme`` (the engines grammar), ``motion``
+        (:func:`aliasing.temporal.paths.parse_motion`), ``frames``, ``frame``, ``image_res``
+        (points: one per pixel of the first frame), ``shadow_res`` [texels per cascade].
+
+    Returns
+    -------
+    Explorer
+        With a play button stepping the ``frame`` control.
+
+    Example
+    -------
+    >>> e = shimmer(scheme="csm-stable:log:k=3:fit=sphere:snap=origin", frames=4, frame=2, image_res=48, shadow_res=128)
+    >>> int(e.data["flipped"].sum()), e.error     # a snapped sphere under sideways motion: no flips
+    (0, None)
+    """
+    return _module("_shimmer").ShimmerExplorer(**values)

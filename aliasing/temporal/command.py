@@ -1,0 +1,111 @@
+"""The ``aliasing shimmer`` subcommand: shimmer of engine schemes along a camera or sun path.
+
+::
+
+    aliasing shimmer --schemes SPEC[,SPEC...] --motion MOTION --frames N
+                     [--scene NAME|FILE] [--format table|csv|json]
+
+``SPEC`` is the engines command's scheme grammar (:mod:`aliasing.engines.compare`);
+``MOTION`` is :func:`aliasing.temporal.paths.parse_motion`'s.  One row per scheme
+(:meth:`aliasing.temporal.measure.Shimmer.row`).  Bad input (an unknown motion or scheme,
+a non-finite step, too few or too many frames) is refused before any map is drawn, with
+one line on stderr and exit status 2 (:func:`aliasing.cli.main`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+
+from .. import _validation as check
+from ..engines import compare
+from ..raster.draw import check_resolution
+from ..raster.scenes.world import json_safe
+from . import measure, paths, points
+
+FIELDS = ("scheme", "flip_fraction", "flip_fraction_max", "flips_per_second", "same_map_fraction", "map_change_share", "predicted_same_map", "predicted_over_measured",
+          "ratio_se", "predicted_fraction", "per_degree", "edge_shift_px", "maps_drawn", "frames", "points", "seconds")
+TABLE = ("scheme", "flip_fraction", "flips_per_second", "same_map_fraction", "map_change_share", "predicted_same_map", "predicted_over_measured", "ratio_se", "per_degree", "edge_shift_px", "seconds")
+
+
+def run(args: argparse.Namespace) -> list[dict]:
+    """The rows of ``aliasing shimmer`` (everything checked before the first map is drawn)."""
+    motion = paths.parse_motion(args.motion)
+    frames = paths.check_frames(args.frames)
+    image_res = check_resolution(args.image_res, "--image-res")
+    shadow_res = check_resolution(args.shadow_res, "--shadow-res")
+    measure.check_size(frames, image_res**2)  # at most one point per pixel
+    fps = float(check.positive(args.fps, "--fps"))
+    specs = [s.strip() for s in (args.schemes or "").split(",") if s.strip()]
+    if not specs:
+        raise ValueError("--schemes is empty: name at least one scheme (e.g. csm:log:k=4,csm-stable:log:k=4:fit=sphere:snap=origin)")
+    w = points.world(args.scene, light=args.light_dir, eye=args.eye, target=args.target, camera=args.camera, near=args.near, far=args.far, fov=args.fov)
+    cam = w.camera
+    for spec in specs:  # every spec read before any work
+        ps = compare.parse_spec(spec, fov=cam.fov, near=cam.near, far=cam.far, image_res=image_res, shadow_res=shadow_res, unit=args.unit)
+        if ps.family in ("matched", "exact"):
+            raise ValueError(f"scheme {spec!r}: {ps.family} is a limit without a texel grid; shimmer needs csm, csm-stable, sdsm or vsm")
+    paths.frames(motion, cam.eye, cam.rotation, cam.fov, w.light, frames)  # a zoom leaving (0, 180) deg is refused here
+    pts = points.sample(w, image_res)
+    return [measure.shimmer(w, pts, spec, motion, frames, res=shadow_res, unit=args.unit).row(fps) for spec in specs]
+
+
+def format_rows(rows: list[dict], fmt: str) -> str:
+    """Rows as ``table``, ``csv`` or ``json`` text."""
+    if fmt == "json":
+        return json.dumps(json_safe(rows), indent=1) + "\n"
+    if fmt == "csv":
+        buf = io.StringIO()
+        wr = csv.DictWriter(buf, fieldnames=FIELDS, lineterminator="\n")
+        wr.writeheader()
+        wr.writerows({k: ("" if r.get(k) is None else r[k]) for k in FIELDS} for r in rows)
+        return buf.getvalue()
+    cells = [list(TABLE)] + [[_cell(r.get(k)) for k in TABLE] for r in rows]
+    widths = [max(len(c[i]) for c in cells) for i in range(len(TABLE))]
+    return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(TABLE))) + "\n" for c in cells)
+
+
+def _cell(v: object) -> str:
+    if v is None:
+        return "-"
+    if isinstance(v, float):
+        return f"{v:.4g}"
+    return str(v)
+
+
+def _run(args: argparse.Namespace) -> int:
+    print(format_rows(run(args), args.format), end="")
+    return 0
+
+
+def add_shimmer_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    """Add the ``shimmer`` subcommand to the ``aliasing`` command's subparsers ``sub``."""
+    p = sub.add_parser(
+        "shimmer",
+        help="shadow shimmer of a still world under a moving camera or a turning sun, measured and predicted, per scheme",
+        description="Fixed points on the surfaces the first frame sees are shadow-tested through every frame's maps; the shimmer is the "
+        "fraction of points whose lit/shadowed state flips between consecutive frames (an artefact: the world is still).  Flips of points "
+        "that change cascade or clipmap level are reported apart; the prediction is the grid motion times the density of shadow edges.",
+        epilog="motions: " + "; ".join(f"{k}:{e.args} ({e.help})" for k, e in paths.MOTIONS.items())
+        + ".  schemes: the engines grammar (aliasing engines --list): csm:SPLIT[:k=N] | csm-stable:SPLIT|PRESET[:fit=..][:snap=..] | sdsm[:k=N] | vsm:PRESET | vsm:bias=B.",
+    )
+    p.add_argument("--schemes", required=True, help="comma list of scheme specs, e.g. csm:log:k=4,csm-stable:log:k=4:fit=sphere:snap=origin")
+    p.add_argument("--motion", required=True, help="translate:DX,DY,DZ | rotate:yaw|pitch,DEG | zoom:DEG | sun:DEG (per frame)")
+    p.add_argument("--frames", required=True, type=float, help=f"frames of the sequence, 2 to {paths.MAX_FRAMES}")
+    p.add_argument("--scene", default="boxes", help=f"a built-in scene ({', '.join(points.SCENES)}; default boxes) or a scene file (.glb, .gltf, .obj, .ply, .stl)")
+    p.add_argument("--eye", metavar="X,Y,Z", help="camera position, world space (a scene file needs it or --camera; write --eye=-5,2,0 when X is negative)")
+    p.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at, world space")
+    p.add_argument("--camera", metavar="NAME", help="a glTF camera of the file")
+    p.add_argument("--near", type=float, help="near distance [scene units]")
+    p.add_argument("--far", type=float, help="far (shadow) distance [scene units]")
+    p.add_argument("--fov", type=float, help="FULL field of view in degrees of the first frame")
+    p.add_argument("--light-dir", metavar="X,Y,Z", help=f"world direction towards the light (default {','.join(f'{v:g}' for v in points.DEFAULT_LIGHT)}; write --light-dir=-1,2,0 when X is negative)")
+    p.add_argument("--image-res", type=int, default=128, help="points: one per pixel of this square first-frame image (default 128); also VSM's viewport width")
+    p.add_argument("--shadow-res", type=int, default=256, help="texels per side of each cascade (default 256)")
+    p.add_argument("--fps", type=float, default=60.0, help="frame rate for flips per second (default 60)")
+    p.add_argument("--unit", default="m", help="scene length unit for VSM's constants: m (default), cm, mm, in, ft")
+    p.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
+    p.set_defaults(run=_run)
+    return p
