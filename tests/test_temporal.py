@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import io
 import json
+import os
 import math
 
 import numpy as np
@@ -204,6 +205,24 @@ def test_cli_json(capsys):
     assert rows[1]["flip_fraction"] == 0.0 and rows[0]["flip_fraction"] >= 0.0
 
 
+def test_cli_backend_gl_flips_as_numpy(capsys):
+    """--backend gl draws the same maps as numpy (to edge texels: the flips agree within a point or two)."""
+    from aliasing.raster.draw import gl
+
+    if not gl.available() and os.environ.get("CI") != "true":
+        pytest.skip(f"the gl backend cannot draw here: {gl._setup()[1]}")
+    argv = ["shimmer", "--schemes", "csm:log:k=3,csm-stable:log:k=3:fit=sphere:snap=origin", "--motion", "translate:0.05,0,0", "--frames", "6",
+            "--image-res", "48", "--shadow-res", "128", "--format", "json"]
+    rows = {}
+    for backend in ("numpy", "gl"):
+        assert cli.main(argv + ["--backend", backend]) == 0
+        rows[backend] = json.loads(capsys.readouterr().out)
+    points = 48 * 48
+    for a, b in zip(rows["numpy"], rows["gl"]):
+        assert abs(a["flip_fraction"] - b["flip_fraction"]) * points <= 2, (a, b)
+    assert rows["gl"][1]["flip_fraction"] == 0.0
+
+
 @pytest.mark.parametrize("args, words", [
     (["--motion", "wobble:1"], "unknown kind"),
     (["--motion", "translate:nan,0,0"], "finite"),
@@ -213,6 +232,7 @@ def test_cli_json(capsys):
     (["--schemes", "csm:nosuch"], "split method"),
     (["--schemes", "warp:log"], "scheme family"),
     (["--scene", "/nonexistent.glb"], "scene"),
+    (["--backend", "vulkan"], "backend"),
 ])
 def test_cli_bad_input_one_line_exit_2(capsys, args, words):
     base = {"--schemes": "csm:log:k=3", "--motion": "translate:0.05,0,0", "--frames": "3"}

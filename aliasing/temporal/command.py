@@ -21,7 +21,7 @@ import json
 
 from .. import _validation as check
 from ..engines import compare
-from ..raster.draw import check_resolution
+from ..raster.draw import backends, check_resolution
 from ..raster.scenes.world import json_safe
 from . import measure, paths, points
 
@@ -38,6 +38,7 @@ def run(args: argparse.Namespace) -> list[dict]:
     shadow_res = check_resolution(args.shadow_res, "--shadow-res")
     measure.check_size(frames, image_res**2)  # at most one point per pixel
     fps = float(check.positive(args.fps, "--fps"))
+    backend = backends.check(args.backend, "eye_pass")  # refused before any work
     specs = [s.strip() for s in (args.schemes or "").split(",") if s.strip()]
     if not specs:
         raise ValueError("--schemes is empty: name at least one scheme (e.g. csm:log:k=4,csm-stable:log:k=4:fit=sphere:snap=origin)")
@@ -48,8 +49,8 @@ def run(args: argparse.Namespace) -> list[dict]:
         if ps.family in ("matched", "exact"):
             raise ValueError(f"scheme {spec!r}: {ps.family} is a limit without a texel grid; shimmer needs csm, csm-stable, sdsm or vsm")
     paths.frames(motion, cam.eye, cam.rotation, cam.fov, w.light, frames)  # a zoom leaving (0, 180) deg is refused here
-    pts = points.sample(w, image_res)
-    return [measure.shimmer(w, pts, spec, motion, frames, res=shadow_res, unit=args.unit).row(fps) for spec in specs]
+    pts = points.sample(w, image_res, backend=backend)
+    return [measure.shimmer(w, pts, spec, motion, frames, res=shadow_res, unit=args.unit, backend=backend).row(fps) for spec in specs]
 
 
 def format_rows(rows: list[dict], fmt: str) -> str:
@@ -106,6 +107,7 @@ def add_shimmer_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPars
     p.add_argument("--shadow-res", type=int, default=256, help="texels per side of each cascade (default 256)")
     p.add_argument("--fps", type=float, default=60.0, help="frame rate for flips per second (default 60)")
     p.add_argument("--unit", default="m", help="scene length unit for VSM's constants: m (default), cm, mm, in, ft")
+    p.add_argument("--backend", default="numpy", help="how the eye pass and the depth maps are drawn: numpy (default, the reference), numba (the eye pass; fast extra) or gl (OpenGL, gl extra)")
     p.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
     p.set_defaults(run=_run)
     return p

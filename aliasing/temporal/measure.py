@@ -139,7 +139,7 @@ def check_size(frames: int, count: int) -> None:
 
 
 def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames: int, *, res: int = 256, sdsm_res: int = 64, unit: str = "m",
-            bias: float = BIAS, directions: int = predict.DIRECTIONS, shifts: int = predict.SHIFTS, prediction: bool = True) -> Shimmer:
+            bias: float = BIAS, directions: int = predict.DIRECTIONS, shifts: int = predict.SHIFTS, prediction: bool = True, backend: str = "numpy") -> Shimmer:
     """Measure (and predict) the shimmer of scheme ``spec`` over a camera or sun path.
 
     Parameters
@@ -168,6 +168,8 @@ def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames
         Sub-texel grid shifts of the edge-density measurement (≥ 1; each draws the frame-0 maps again).
     prediction : bool
         Also predict (False: the measure alone, ``predicted`` NaN; saves the density maps).
+    backend : {"numpy", "numba", "gl"}
+        How the depth maps are drawn (:mod:`aliasing.raster.draw.backends`; numpy, the reference).
     """
     start = time.perf_counter()
     check.instance(w, "w", World)
@@ -183,7 +185,7 @@ def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames
     eye_pos = fits.eye_coordinates(pts.position, poses[0], poses[1])
     part = fits.assign(lat, eye_pos, poses[2], cam.near, cam.far)
     lit = np.ones(part.shape, bool)
-    cache = MapCache(w.triangles, bias=bias)
+    cache = MapCache(w.triangles, bias=bias, backend=backend)
     dens = None
     for f in range(n):  # per frame: one vectorized shadow test per map, maps reused while their grid holds
         for k in np.unique(part[f][part[f] >= 0]):

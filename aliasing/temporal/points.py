@@ -116,15 +116,16 @@ def world(scene: str = "boxes", *, light: object = None, eye: object = None, tar
     return World(ws.triangles, cam, lv, os.path.basename(str(scene)))
 
 
-def sample(w: World, resolution: int = 128) -> Points:
+def sample(w: World, resolution: int = 128, *, backend: str = "numpy") -> Points:
     """The points the frame-0 camera sees, one per pixel of a square image of ``resolution`` pixels per side, facing the light.
 
-    Raises ValueError when no visible point faces the light within [near, far].
+    ``backend`` draws the eye pass (:mod:`aliasing.raster.draw.backends`).  Raises ValueError
+    when no visible point faces the light within [near, far].
     """
     r = check_resolution(resolution, "resolution")
     check.instance(w, "w", World)
     cam = w.camera
-    eb = eye_pass(cam.to_eye(w.triangles), cam.fov, r, near=cam.near)
+    eb = eye_pass(cam.to_eye(w.triangles), cam.fov, r, near=cam.near, backend=backend)
     pos_e, nrm_e = eb.position.reshape(-1, 3), eb.normal.reshape(-1, 3)
     hit = eb.triangle.reshape(-1) >= 0
     pos = np.where(hit[:, None], np.nan_to_num(pos_e), 0.0) @ cam.rotation + cam.eye  # eye → world

@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .. import _validation as check
-from ..raster.draw import BIAS, check_resolution, frame_map, shadow_map, shadow_test
+from ..raster.draw import BIAS, backends, check_resolution, frame_map, shadow_map, shadow_test
 from .fits import Lattices
 
 Array = NDArray[np.float64]
@@ -38,15 +38,17 @@ class MapCache:
     :meth:`test` draws (or reuses) map ``k`` of frame ``f`` of a :class:`Lattices` and
     returns the shadow test (:func:`aliasing.raster.draw.shadow_test`) of points through it;
     :meth:`next_frame` forgets the maps the finished frame did not use.  ``drawn`` counts
-    the maps drawn, ``reused`` the tests that found their map.
+    the maps drawn, ``reused`` the tests that found their map.  ``backend`` draws the depth
+    maps (:mod:`aliasing.raster.draw.backends`: numpy, the reference, or gl).
     """
 
-    def __init__(self, triangles: Array, *, bias: float = BIAS) -> None:
+    def __init__(self, triangles: Array, *, bias: float = BIAS, backend: str = "numpy") -> None:
         tri = check.as_float_array(triangles, "triangles")
         if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri):
             raise ValueError(f"triangles must have shape (T, 3, 3) with T >= 1 [world units], got {tri.shape}")
         self.triangles = tri
         self.bias = float(check.closed_range(bias, "bias", 0.0, np.inf, " world units"))
+        self.backend = backends.pair(backend)[1]  # numba draws eye passes only: its maps are numpy's
         self.maps: dict[tuple, tuple] = {}
         self.used: set[tuple] = set()
         self.drawn = 0
@@ -84,7 +86,7 @@ class MapCache:
         keep = (hx >= x0) & (lx <= x1) & (hy >= y0) & (ly <= y1)
         sub = self.triangles[keep] if keep.any() else self.triangles[:1]
         lm = frame_map(basis[1], basis[2], y0, y1, np.inf, x0, x1, "uniform")
-        sm = shadow_map(sub, lm, int(n))
+        sm = shadow_map(sub, lm, int(n), backend=self.backend)
         self.maps[key] = (lm, sm, sub)
         self.drawn += 1
         return self.maps[key]
