@@ -15,6 +15,7 @@ from scipy import optimize
 from aliasing import logpsm
 from aliasing.symbolic import equivalent
 from aliasing.symbolic import lloyd2007 as L
+from aliasing.symbolic import lloyd2007_jacobians as J
 
 from conftest import assert_close, exact
 
@@ -505,18 +506,18 @@ def test_validation_names_parameter_and_range(call, word):
 
 
 def test_eqs8_9_jacobians_equal_printed():
-    pj = L.printed_jacobians()
-    assert sp.simplify(L.jacobian_eye() - pj["eq8"]) == sp.zeros(2, 2)
-    assert sp.simplify(L.jacobian_light() - pj["eq9"]) == sp.zeros(2, 2)
+    pj = J.printed_jacobians()
+    assert sp.simplify(J.jacobian_eye() - pj["eq8"]) == sp.zeros(2, 2)
+    assert sp.simplify(J.jacobian_light() - pj["eq9"]) == sp.zeros(2, 2)
 
 
 def test_L11_eq26_directional_jacobian_lost_its_outer_product():
-    pj = L.printed_jacobians()
-    assert sp.simplify(L.jacobian_directional() - pj["eq26_corrected"]) == sp.zeros(2, 2)
-    assert sp.simplify(L.jacobian_directional() - pj["eq26"]) != sp.zeros(2, 2)
+    pj = J.printed_jacobians()
+    assert sp.simplify(J.jacobian_directional() - pj["eq26_corrected"]) == sp.zeros(2, 2)
+    assert sp.simplify(J.jacobian_directional() - pj["eq26"]) != sp.zeros(2, 2)
     # the corrected Jacobian sends the light direction to 0 (points along a ray share p)
-    nh, X, ell, _, _ = L._plane_2d()
-    assert sp.simplify(L.jacobian_directional() * ell) == sp.zeros(2, 1)
+    nh, X, ell, _, _ = J._plane_2d()
+    assert sp.simplify(J.jacobian_directional() * ell) == sp.zeros(2, 1)
     assert sp.simplify(pj["eq26"] * ell) != sp.zeros(2, 1)
 
 
@@ -544,4 +545,4 @@ def test_eqs63_65_72_rho_bound_is_largest_for_the_overhead_light():
 
 def test_eq19_point_light_tends_to_directional_light():
     # §3.2: as the light recedes (image plane fixed), n_l/d_l → 1 and the point-light m becomes eq. 25's
-    assert sp.cancel(sp.together(L.m_point_far_limit() / L.m_directional_2d())) == 1
+    assert sp.cancel(sp.together(J.m_point_far_limit() / L.m_directional_2d())) == 1

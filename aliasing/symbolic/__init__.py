@@ -31,5 +31,5 @@ def get(name: str) -> Derivation:
 
 def _load() -> None:
     """Import the paper modules so that their derivations register."""
-    from . import lloyd2006, lloyd2007, lloyd2007_matrix, wimmer2004, zhang2007  # noqa: F401
+    from . import lloyd2006, lloyd2007, lloyd2007_jacobians, lloyd2007_matrix, wimmer2004, zhang2007  # noqa: F401
     from . import aspect, bias, engines  # noqa: F401
