@@ -98,8 +98,14 @@ def resolve_name(name: str, table: dict | None = None, what: str = "split method
     ...
     ValueError: split method 'threejs-csm@r100': unknown release 'r100' of 'threejs-csm'; known releases: r184, r185, r186, r187
     """
+    if table is not None:
+        check.instance(table, "table", dict)
     table = SPLIT_METHODS if table is None else table
-    if not isinstance(name, str) or "@" not in name:
+    if not isinstance(what, str):
+        raise ValueError(f"what (the kind of name, for messages) must be a string, got {what!r}")
+    if not isinstance(name, str):
+        raise ValueError(f"name (a {what}) must be a string, one of: {', '.join(table)}; got {name!r}")
+    if "@" not in name:
         return check.choice(name, what, table)
     base, _, rel = name.strip().lower().partition("@")
     family = [e for e in table.values() if e.name.partition("@")[0] == base]

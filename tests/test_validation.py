@@ -24,7 +24,7 @@ CASES = [
     (lambda: error.resolution_for_budget(-1, 10, 10), r"budget must be in \(0, inf\)"),
     (lambda: error.m_x("deep", 1.0, 5.0), r"z must be a real number"),
     (lambda: warping.n_prime_from_eta(1.5, 1.0, 5.0), r"eta must be in \[-1, 1\]"),
-    (lambda: warping.warping_parameter("lisp", 1.0, 5.0), r"unknown warping method 'lisp'; choose one of: uniform, psm, lispsm, "),
+    (lambda: warping.warping_parameter("lisp", 1.0, 5.0), r"unknown warping method 'lisp' \(did you mean 'lispsm' or 'lispsm-dz'\?\); choose one of: uniform, psm, lispsm, "),
     (lambda: warping.warping_parameter("psm", 1.0, 5.0, eta=0.3), r"takes options none, not \['eta'\]"),
     (lambda: parameterizations.t_logarithmic(0.9, 1.0, 5.0), r"z must lie in \[near, far\]"),
 ]

@@ -114,6 +114,19 @@ OTHER_ANGLES = {
     ("warping.py", "check.closed_range(gamma, \"gamma\", 0.0, 180.0, \" degrees\")"): "the light angle γ",
     ("logpsm.py", "ang"): "the light angles of the logpsm sample directions",
     ("lloyd2007_fig30.py", "g"): "the light angle γ of the figure's axis",
+    ("plane.py", "_angle(angle, \"angle\", \"between the receiver's normal and the direction to the light\")"): "the receiver's angle to the light",
+    ("plane.py", "check.finite(azimuth, \"azimuth\")"): "the receiver's azimuth on the map",
+    ("plane.py", "el"): "the light's elevation above the ground",
+    ("presets.py", "_angle(angle, \"angle\", \"between the receiver's normal and the direction to the light\")"): "the receiver's angle to the light",
+    ("presets.py", "check.finite(azimuth, \"azimuth\")"): "the receiver's azimuth on the map",
+    ("projection.py", "el"): "the light's elevation above the ground",
+    ("cascades.py", "89.9"): "the grazing limit of the light over the ground",
+    ("cascades.py", "ANGLES"): "the sampled receiver angles to the light",
+    ("cascades.py", "AZIMUTHS"): "the sampled receiver azimuths",
+    ("_bias.py", "np.arange(0.0, 91.0, 5.0)"): "the explorer's receiver azimuths",
+    ("_bias.py", "ANGLES"): "the explorer's receiver angles to the light",
+    ("bias_threshold.py", "THETA"): "the figure's receiver angles to the light",
+    ("bias_threshold.py", "PHI"): "the figure's receiver azimuths",
 }
 
 

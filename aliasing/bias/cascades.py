@@ -78,7 +78,7 @@ def cascade_bias(near: float, far: float, fov: float, light: str | ArrayLike, pr
     cs = cascade_set(near, far, fov, light, scheme, splits=splits, k=k, **params)
     up = np.array([0.0, 1.0, 0.0])
     lookup = f"pcf{p.pcf}"
-    half = np.tan(np.radians(float(fov)) / 2.0)
+    half = float(cs.maps.view.tan_theta)  # the view of the cascades, validated once
     rows, texels = [], []
     for i, lm in enumerate(cs.maps.maps):
         lo, hi = float(cs.near_i[i]), float(cs.far_i[i])

@@ -17,7 +17,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..temporal import fits, measure, paths, points
-from ..view import half_angle
+from ..view import tan_theta
 from . import widget as w
 
 _CACHE: dict[tuple, tuple] = {}
@@ -55,7 +55,7 @@ def compute(scene: str, scheme: str, motion: str, frames: int, frame: int, image
     world, pts, r, poses = _sequence(scene, scheme, motion, frames, image_res, shadow_res)
     f = int(np.clip(frame, 0, int(frames) - 1))
     eye = fits.eye_coordinates(pts.position, poses[0][f:f + 1], poses[1][f:f + 1])[0]
-    t = np.tan(half_angle(poses[2][f]))
+    t = tan_theta(poses[2][f])
     seen = r.part[f] >= 0
     with np.errstate(divide="ignore", invalid="ignore"):
         uv = np.where(seen[:, None], eye[:, :2] / (eye[:, 2:3] * t), np.nan)

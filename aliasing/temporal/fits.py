@@ -50,7 +50,7 @@ from ..engines import compare, sdsm, stable, vsm
 from ..engines.sample import sample_bounds
 from ..engines.validate import eye_histogram
 from ..raster.draw import MAX_RESOLUTION, check_resolution
-from ..view import half_angle
+from ..view import tan_theta
 from .points import World
 
 Array = NDArray[np.float64]
@@ -118,7 +118,7 @@ def assign(lat: Lattices, eye_pos: Array, fovs: Array, near: float, far: float) 
     fovs = check.fov(_shaped(fovs, "fovs", (lat.x0.shape[0],)))
     near, far = (float(v) for v in check.frustum(near, far))
     z = eye_pos[..., 2]
-    t = np.tan(half_angle(fovs))[:, None]
+    t = np.asarray(tan_theta(fovs))[:, None]
     inside = (z >= near) & (z <= far) & (np.abs(eye_pos[..., 0]) <= z * t) & (np.abs(eye_pos[..., 1]) <= z * t)
     key = np.linalg.norm(eye_pos, axis=-1) if lat.by_distance else z
     out = np.full(z.shape, -1, np.int64)
@@ -182,7 +182,7 @@ def _cascades(parsed: compare.ParsedSpec, w: World, poses, res: int, sdsm_res: i
             whole = eyes[f] + geometry.frustum_vertices(np.array([near]), np.array([far]), fovs[f])[0] @ rots[f]
             wx = sample_bounds(wx, np.ptp(whole @ B[0]), **sample)
             wy = sample_bounds(wy, np.ptp(whole @ B[2]), **sample)
-        tan = np.tan(float(half_angle(fovs[f])))
+        tan = float(tan_theta(fovs[f]))
         if fit == "sphere":
             zc = np.minimum((a + b) * (1 + 2 * tan**2) / 2, b)
             centre = eyes[f] + zc[:, None] * rots[f][2]
