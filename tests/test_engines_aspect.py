@@ -16,7 +16,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from aliasing import View, geometry, partitioning, schemes
-from aliasing.engines import stable
+from aliasing.engines import compare, stable
 
 BAD_ASPECTS = st.one_of(st.floats(max_value=0.0, allow_nan=False), st.sampled_from([math.nan, math.inf, -math.inf]))
 LIGHTS = geometry.lights("sphere:60")
@@ -122,3 +122,63 @@ def test_wide_view_coverage_uses_the_wide_corners():
     assert wide < square < 1.0
     c = stable.cost("log", 1.0, 100.0, 60.0, "hemisphere:100", k=3, fit="sphere", aspect=2.0)
     assert c["S_ratio_min"] > 1.0
+
+
+# --- aliasing engines --aspect ---------------------------------------------------------------
+
+SCHEMES = ["csm:log:k=4", "csm-stable:babylon", "csm-stable:threejs", "csm:bevy-bounds", "sdsm:k=3", "sdsm:k=3:border=1:dilation=0.05:quantize=1", "vsm:high", "matched", "exact"]
+
+
+def test_engines_aspect_one_is_byte_identical(capsys):
+    from aliasing import cli
+
+    base = ["engines", "--schemes", ",".join(SCHEMES), "--light", "hemisphere:40,gamma:30", "--format", "json"]
+    assert cli.main(base) == 0
+    loose = capsys.readouterr().out
+    assert cli.main(base + ["--aspect", "1"]) == 0
+    assert capsys.readouterr().out == loose
+    rows = compare.compare(SCHEMES, lights="hemisphere:40", near=1.0, far=1000.0, unit="m")
+    assert rows == compare.compare(SCHEMES, lights="hemisphere:40", near=1.0, far=1000.0, unit="m", aspect=1.0)
+
+
+@pytest.mark.parametrize("aspect", [2.0, 16 / 9, 0.5])
+def test_engines_aspect_overhead_as_derived(aspect):
+    """Overhead light, image W pixels wide and W/aspect high (square pixels, fov vertical).
+
+    Tight maps: the x-extent of every slice is 2 b tan θ_x = aspect × the square one, the
+    z-extent unchanged; the pixel is aspect × larger (W/aspect rows over 2 d tan θ_y).  So
+    m_x is unchanged, m_z is divided by aspect, S_bar (per image area) is unchanged and
+    the matched limit's storage is divided by aspect.  Babylon's sphere: side 2·ceil16(r)
+    with r the wide centroid radius, m = side/(2 tan θ_y u_1) × (W/aspect)/R.
+    """
+    near, far, fov, W, R = 1.0, 500.0, 60.0, 1920, 2048
+    kw = {"near": near, "far": far, "fov": fov, "lights": "overhead", "image_res": W, "shadow_res": R, "unit": "m"}
+    sq = {r["scheme"]: r for r in compare.compare(["csm:log:k=4", "csm-stable:babylon", "matched", "exact"], **kw)}
+    wide = {r["scheme"]: r for r in compare.compare(["csm:log:k=4", "csm-stable:babylon", "matched", "exact"], aspect=aspect, **kw)}
+    t = math.tan(math.radians(fov) / 2)
+    res = stable.evaluate("log", near, far, fov, "overhead", k=4)
+    m_x, m_z = res.M_x.max() * W / R, res.M_z.max() * W / R
+    assert wide["csm:log:k=4"]["max_error"] == pytest.approx(max(m_x, m_z / aspect), rel=1e-12)
+    assert sq["csm:log:k=4"]["max_error"] == pytest.approx(max(m_x, m_z), rel=1e-12)
+    for key in ("m_axis_min", "m_axis_max", "S_bar"):
+        assert wide["csm:log:k=4"][key] == pytest.approx(sq["csm:log:k=4"][key], rel=1e-12), key
+    for name in ("matched", "exact"):
+        assert wide[name]["storage_texels"] == pytest.approx(sq[name]["storage_texels"] / aspect, rel=1e-15)
+        assert wide[name]["max_error"] == sq[name]["max_error"] == 1.0
+    assert wide["csm:log:k=4"]["storage_ratio"] == pytest.approx(aspect * sq["csm:log:k=4"]["storage_ratio"], rel=1e-12)
+    u1 = partitioning.split_distances("babylon", near, far, 4)[0]
+    side = 2 * math.ceil(16 * float(stable.centroid_radius(u1, partitioning.split_distances("babylon", near, far, 4)[1], fov, aspect))) / 16
+    assert wide["csm-stable:babylon"]["max_error"] == pytest.approx(side / (2 * t * u1) * (W / aspect) / R, rel=1e-12)
+
+
+def test_engines_aspect_refusals(capsys):
+    from aliasing import cli
+
+    with pytest.raises(ValueError, match="^aspect must be 1 for vsm schemes"):
+        compare.compare(["vsm:high"], aspect=2.0)
+    for bad in ("0", "-1", "nan", "inf"):
+        assert cli.main(["engines", "--schemes", "csm:log:k=3", "--aspect", bad]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "aspect" in err and "Traceback" not in err
+    assert cli.main(["engines", "--schemes", "vsm:epic", "--aspect", "1.5"]) == 2
+    assert "aspect must be 1 for vsm" in capsys.readouterr().err
