@@ -61,6 +61,11 @@ Fits
     all cascades then have the last one's texel size, and the sphere (radius far, on the
     camera) does not contain the far corners at distance far·√(1 + 2t²): :func:`coverage`
     below 1 for grazing lights.
+Non-square views (``aspect``)
+    ``fov`` is the vertical field of view and ``aspect`` = width/height (:class:`aliasing.View`):
+    ``tight`` fits the wide slices' eight corners, the other fits take the radii with
+    c² = tan²θ_x + tan²θ_y in place of 2t²; the errors stay per square pixel of unit vertical
+    resolution (W/(2 tanθ_y d)).  Aspect 1 is the square view, bit for bit.
 Fit to scene (``scene=True``)
     Every cascade's fit range starts at the near plane: [near, b_k] (DirectX SDK
     FIT_TO_SCENE, same source: "interval 1 is covered by cascades 1 to 8").
