@@ -15,8 +15,8 @@ in node (``tests/engines_js/*.mjs``) and compare, at 1e-9 relative:
   :func:`aliasing.engines.stable.evaluate` of the stable preset;
 * the engines' cascade counts (default, and Babylon's clamp to 2–4) with the presets'.
 
-Non-square views (aspect ≠ 1) are run in the engines too; they are compared where
-:class:`aliasing.view.View` takes an ``aspect`` and are skipped with that reason otherwise.
+Non-square views (aspect 16:9 and 2:1) are run in the engines too and compared the same way
+(:class:`aliasing.view.View` and :func:`aliasing.engines.stable.evaluate` take ``aspect``).
 Without node (or npm) the tests skip with one line, except under CI (``CI=true``), where a
 missing node is a failure.
 """
@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import fcntl
 import hashlib
-import inspect
 import json
 import os
 import shutil
@@ -58,7 +57,6 @@ CASES = [
 ]
 THREE_CASES = CASES + [(1.0, 100.0, 60.0, (1, 1), 8), (0.1, 50.0, 50.0, (1, 1), 1)]
 BABYLON_CLAMPED = [(1.0, 100.0, 60.0, (1, 1), 1), (1.0, 100.0, 60.0, (1, 1), 6)]
-HAS_ASPECT = "aspect" in inspect.signature(View).parameters
 
 
 def _cache() -> Path:
@@ -145,19 +143,11 @@ def babylon_run() -> dict:
 
 
 def _view(near: float, far: float, fov: float, aspect: float) -> View:
-    if aspect == 1.0:
-        return View(near, far, fov)
-    if not HAS_ASPECT:
-        pytest.skip(f"aliasing.view.View has no aspect yet: the engines' cascades at aspect {aspect:.4g} are computed, not compared")
-    return View(near, far, fov, aspect=aspect)  # type: ignore[call-arg]
+    return View(near, far, fov) if aspect == 1.0 else View(near, far, fov, aspect=aspect)
 
 
 def _fit_options(aspect: float) -> dict:
-    if aspect == 1.0:
-        return {}
-    if "aspect" not in inspect.signature(stable.evaluate).parameters:
-        pytest.skip(f"aliasing.engines.stable.evaluate takes no aspect yet: box sides at aspect {aspect:.4g} not compared")
-    return {"aspect": aspect}
+    return {} if aspect == 1.0 else {"aspect": aspect}  # aspect 1: the square defaults, as before
 
 
 def _rel(got, want) -> float:

@@ -17,13 +17,15 @@ with the toolkit's default stable fit (a minimal bounding sphere, unsnapped: the
 choice, not an engine's).
 
 Row fields (errors at the given resolutions: ``--image-res`` pixels across, ``--shadow-res``
-texels per cascade): ``max_error`` (max over lights and receivers of max(m_x, m_z)),
+texels per cascade; the image is ``--image-res``/``--aspect`` pixels high, and a pixel is
+square: its beam is 2 d tan θ_y over those rows, ``--fov`` being vertical): ``max_error``
+(max over lights and receivers of max(m_x, m_z)),
 ``median_error`` (median over lights of each light's max), ``m_axis_min``/``m_axis_max``
 (m_x along the view axis over [near, far], light overhead), ``storage_texels``, ``S_bar``
 (the papers' critical storage in image areas: Σ_maps texels·M_x·M_z / W², the maximum over
 lights; for VSM a bound: texels·M²/W²), ``pages`` (VSM: the frustum bound, or with ``ground``
 the ground plane's closed form; worst light),
-``overflow`` and ``extra_bias`` (VSM pool), ``coverage`` (cascades: the fraction of light
+``overflow`` and ``extra_bias`` (VSM pool; square views only), ``coverage`` (cascades: the fraction of light
 directions for which every map covers its slice; below 1 the row's error is not a valid
 bound, see :func:`aliasing.engines.stable.coverage`), ``storage_ratio`` and ``error_ratio`` to the
 matched limit (:mod:`aliasing.engines.limits`).
@@ -89,8 +91,9 @@ def _k(opts: dict[str, str], spec: str, default: int | None) -> int | None:
     return int(k)
 
 
-def _cascade_row(spec: str, res: stable.StableResult, axis: stable.StableResult, t: float, image_res: int, shadow_res: int) -> dict:
-    scale = image_res / shadow_res  # unit-resolution m → m at W pixels and R texels
+def _cascade_row(spec: str, res: stable.StableResult, axis: stable.StableResult, t: float, image_res: int, shadow_res: int, aspect: float = 1.0) -> dict:
+    rows = image_res / aspect  # the image's height in pixels (= image_res for a square view, bit for bit)
+    scale = rows / shadow_res  # unit-resolution m (per row of the image) → m at W/aspect rows and R texels
     per_dir = np.maximum(res.M_x, res.M_z).max(axis=-1) * scale
     u, v = axis.used
     wx = axis.width_x[0]
@@ -102,7 +105,7 @@ def _cascade_row(spec: str, res: stable.StableResult, axis: stable.StableResult,
         "m_axis_min": float((wx / (2 * t * v)).min() * scale),  # m_x = W_x/(2 tanθ d), smallest at each cascade's far end
         "m_axis_max": float((wx / (2 * t * u)).max() * scale),
         "storage_texels": float(k * shadow_res**2),
-        "S_bar": float(res.S.max()),
+        "S_bar": float(res.S.max()) / aspect,  # Σ M_x M_z per R_y² → per image area (aspect·R_y² pixels)
         "coverage": 1.0,  # tight fits cover their slices by construction
     }
 
@@ -130,10 +133,12 @@ class ParsedSpec:
     pool: int = 0
 
 
-def parse_spec(spec: str, *, fov: float, near: float, far: float, image_res: int, shadow_res: int, unit: str) -> ParsedSpec:
+def parse_spec(spec: str, *, fov: float, near: float, far: float, image_res: int, shadow_res: int, unit: str, aspect: float = 1.0) -> ParsedSpec:
     """Read one scheme spec (the module docstring's grammar) without evaluating it.
 
-    Raises ValueError naming the spec and the bad option.
+    Raises ValueError naming the spec and the bad option.  ``aspect`` (width/height) goes
+    into the cascades' fits (``fit["aspect"]``); ``vsm`` refuses a non-square view: its
+    clipmap's page marking is modelled for a square image ``image_res`` pixels across.
 
     Example
     -------
@@ -148,7 +153,10 @@ def parse_spec(spec: str, *, fov: float, near: float, far: float, image_res: int
         if parts:
             raise ValueError(f"scheme {spec!r}: {family} takes no options")
         return ParsedSpec(spec, family)
+    r = stable._aspect(aspect)
     if family == "vsm":
+        if r != 1.0:
+            raise ValueError(f"aspect must be 1 for vsm schemes (the clipmap model is of a square image), got {r:g} in {spec!r}")
         if not parts:
             raise ValueError(f"scheme {spec!r}: vsm needs a preset ({', '.join(vsm.PRESETS)}) or bias=B")
         if "=" not in parts[0]:
@@ -172,7 +180,7 @@ def parse_spec(spec: str, *, fov: float, near: float, far: float, image_res: int
         opts = _options(parts, spec, {"k", "zmin", "zmax", "method", "border", "dilation", "quantize"})
         k = _k(opts, spec, 4)
         method = check.choice(opts.get("method", "log"), "sdsm method", ("log", "adaptive", "kmeans"))
-        sample = {"border": _num(opts, "border", spec, 0.0), "dilation": _num(opts, "dilation", spec, 0.0), "quantize": opts.get("quantize", "0") not in ("0", "false", "no")}
+        sample = {"aspect": r, "border": _num(opts, "border", spec, 0.0), "dilation": _num(opts, "dilation", spec, 0.0), "quantize": opts.get("quantize", "0") not in ("0", "false", "no")}
         split = None
         zmin, zmax = _num(opts, "zmin", spec, near), _num(opts, "zmax", spec, far)
         if method == "log":
@@ -185,7 +193,7 @@ def parse_spec(spec: str, *, fov: float, near: float, far: float, image_res: int
     name, rest = parts[0], parts[1:]
     if family == "csm":
         opts = _options(rest, spec, {"k"})
-        kw = {"k": _k(opts, spec, None)}
+        kw = {"k": _k(opts, spec, None), "aspect": r}
     else:
         opts = _options(rest, spec, {"k", "fit", "snap", "scene", "overlap"})
         if name.partition("@")[0] in {q.name.partition("@")[0] for q in stable.PRESETS.values()}:
@@ -205,6 +213,7 @@ def parse_spec(spec: str, *, fov: float, near: float, far: float, image_res: int
         if "overlap" in opts:
             kw["overlap"] = _num(opts, "overlap", spec)
         kw["resolution"] = float(shadow_res)
+        kw["aspect"] = r
     if name == "bevy-bounds":  # Bevy's own split, its first bound 5 m in the scene's unit
         name = stable.bevy_bounds(near, far, kw.pop("k") or 4, stable.BEVY_FIRST_BOUND_M * 100.0 / vsm.CM_PER_UNIT[unit.lower()])
     else:
@@ -214,13 +223,14 @@ def parse_spec(spec: str, *, fov: float, near: float, far: float, image_res: int
     return ParsedSpec(spec, family, name, kw)
 
 
-def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | np.ndarray, image_res: int, shadow_res: int, unit: str, ground: float | None = None, histogram: tuple | None = None) -> dict:
-    """The comparison row of one scheme spec (see the module docstring)."""
-    ps = parse_spec(spec, fov=fov, near=near, far=far, image_res=image_res, shadow_res=shadow_res, unit=unit)
+def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | np.ndarray, image_res: int, shadow_res: int, unit: str, ground: float | None = None, histogram: tuple | None = None, aspect: float = 1.0) -> dict:
+    """The comparison row of one scheme spec (see the module docstring); ``aspect`` = width/height, ``fov`` vertical."""
+    ps = parse_spec(spec, fov=fov, near=near, far=far, image_res=image_res, shadow_res=shadow_res, unit=unit, aspect=aspect)
+    r = stable._aspect(aspect)
     family = ps.family
     t = float(tan_theta(fov))
     if family in ("matched", "exact"):
-        return limits.row(family, image_res)
+        return limits.row(family, image_res, r)
     if family == "vsm":
         c = ps.clipmap
         worst = vsm.frustum_max(c, near, far)
@@ -251,16 +261,16 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
             split, n_fit, f_fit = (parts_lo, parts_hi), near, far
         res = stable.evaluate(split, n_fit, f_fit, fov, lights, **sample)
         axis = stable.evaluate(split, n_fit, f_fit, fov, "overhead", **sample)
-        return _cascade_row(spec, res, axis, t, image_res, shadow_res)
+        return _cascade_row(spec, res, axis, t, image_res, shadow_res, r)
     name, kw = ps.split, dict(ps.fit)
     res = stable.evaluate(name, near, far, fov, lights, **kw)
     axis = stable.evaluate(name, near, far, fov, "overhead", **kw)
-    row = _cascade_row(spec, res, axis, t, image_res, shadow_res)
+    row = _cascade_row(spec, res, axis, t, image_res, shadow_res, r)
     row["coverage"] = stable.coverage(name, near, far, fov, lights, **kw) if family == "csm-stable" else 1.0
     return row
 
 
-def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, far: float = 100000.0, lights: str | np.ndarray = "hemisphere:200", image_res: int = 1920, shadow_res: int = 2048, unit: str = "cm", ground: float | None = None, histogram: tuple | None = None) -> list[dict]:
+def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, far: float = 100000.0, lights: str | np.ndarray = "hemisphere:200", image_res: int = 1920, shadow_res: int = 2048, unit: str = "cm", ground: float | None = None, histogram: tuple | None = None, aspect: float = 1.0) -> list[dict]:
     """Rows for ``schemes`` with their ratios to the matched limit.
 
     Parameters
@@ -268,13 +278,13 @@ def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, fa
     schemes : sequence of str
         Scheme specs (module docstring).
     fov : float
-        Full field of view [deg].
+        Vertical full field of view [deg].
     near, far : float
         Eye near and shadow distance [scene units].
     lights : str or array_like
         Light specs, comma-separated (the sweep's), or vectors ``(N, 3)``.
     image_res : int
-        Eye image width [pixels].
+        Eye image width [pixels]; the image is ``image_res / aspect`` pixels high.
     shadow_res : int
         Texels per side of each cascade.
     unit : str
@@ -284,9 +294,17 @@ def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, fa
         from the ground plane's closed form instead of the frustum's upper bound.
     histogram : (edges, counts), optional
         A depth histogram for ``sdsm:method=adaptive|kmeans`` (:func:`aliasing.engines.sdsm.histogram`).
+    aspect : float
+        Image width/height, 0 < aspect < inf (default 1, the square view; aspect 1 gives the
+        square rows bit for bit).  Square pixels: errors are per pixel of ``image_res/aspect``
+        rows (the beam 2 d tan θ_y over them), so a wider view at the same width has larger
+        pixels and smaller m; the cascades' fits take the wider slices; ``S_bar`` is per image
+        area; the limits' storage is per pixel of the W × W/aspect image.  ``vsm`` schemes
+        refuse aspect ≠ 1.
     """
     check.fov(fov)
     check.frustum(near, far)
+    r = stable._aspect(aspect)
     for value, name in ((image_res, "image_res"), (shadow_res, "shadow_res")):
         if not (float(value) >= 1 and float(value).is_integer()):
             raise ValueError(f"{name} must be a whole number >= 1 (pixels/texels per side), got {value!r}")
@@ -297,11 +315,11 @@ def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, fa
         from ..sweep import expand_lights
 
         lights = expand_lights(lights)[1]
-    ref = limits.row("matched", int(image_res))
+    ref = limits.row("matched", int(image_res), r)
     rows = []
     for spec in schemes:
         row = {key: None for key in FIELDS}
-        row.update(scheme_row(spec, fov=float(fov), near=float(near), far=float(far), lights=lights, image_res=int(image_res), shadow_res=int(shadow_res), unit=unit, ground=ground, histogram=histogram))
+        row.update(scheme_row(spec, fov=float(fov), near=float(near), far=float(far), lights=lights, image_res=int(image_res), shadow_res=int(shadow_res), unit=unit, ground=ground, histogram=histogram, aspect=r))
         row["storage_ratio"] = row["storage_texels"] / ref["storage_texels"]
         row["error_ratio"] = row["max_error"] / ref["max_error"]
         rows.append(row)
@@ -353,7 +371,7 @@ def _run(args: argparse.Namespace) -> int:
         return 0
     schemes = [s for s in (args.schemes or "").split(",") if s.strip()]
     histogram = _read_histogram(args.histogram) if args.histogram else None
-    rows = compare(schemes, fov=args.fov, near=args.near, far=args.far, lights=args.light, image_res=args.image_res, shadow_res=args.shadow_res, unit=args.unit, ground=args.ground, histogram=histogram)
+    rows = compare(schemes, fov=args.fov, near=args.near, far=args.far, lights=args.light, image_res=args.image_res, shadow_res=args.shadow_res, unit=args.unit, ground=args.ground, histogram=histogram, aspect=args.aspect)
     print(format_rows(rows, args.format), end="")
     return 0
 
@@ -400,7 +418,8 @@ def add_engines_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPars
         "vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P] | matched | exact (see --list).",
     )
     p.add_argument("--schemes", default="csm:filament,csm-stable:filament,sdsm:k=4,vsm:high,vsm:epic,matched,exact", help="comma list of scheme specs")
-    p.add_argument("--fov", type=float, default=60.0, help="FULL field of view in degrees (default 60)")
+    p.add_argument("--fov", type=float, default=60.0, help="VERTICAL full field of view in degrees (default 60)")
+    p.add_argument("--aspect", type=float, default=1.0, help="image width/height (default 1; the image is --image-res pixels wide, --image-res/aspect high); vsm schemes need 1")
     p.add_argument("--near", type=float, default=10.0, help="near distance in --unit (default 10)")
     p.add_argument("--far", type=float, default=100000.0, help="shadow distance in --unit (default 100000)")
     p.add_argument("--image-res", type=int, default=1920, help="eye image width in pixels (default 1920)")

@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 
 from .. import _validation as check
+from ..view import check_aspect
 
 MATCHED_TEXELS_PER_PIXEL = 3 / math.log(4)  # ∫₀¹ 4^φ dφ
 LIMITS = {
@@ -30,8 +31,11 @@ LIMITS = {
 }
 
 
-def row(name: str, image_res: int) -> dict[str, float | str]:
-    """The comparison row of a limit at ``image_res`` pixels per side.
+def row(name: str, image_res: int, aspect: float = 1.0) -> dict[str, float | str]:
+    """The comparison row of a limit for an image ``image_res`` pixels wide and ``image_res/aspect`` high.
+
+    ``aspect`` (width/height, default 1: ``image_res`` pixels per side) scales the pixel count
+    and so the storage; the errors and S̄ (per pixel, per image area) do not change.
 
     Example
     -------
@@ -47,6 +51,6 @@ def row(name: str, image_res: int) -> dict[str, float | str]:
         "median_error": lim["max_error"],
         "m_axis_min": lim["m_axis_min"],
         "m_axis_max": lim["m_axis_max"],
-        "storage_texels": float(lim["texels_per_pixel"] * image_res**2),
+        "storage_texels": float(lim["texels_per_pixel"] * image_res**2) / float(check_aspect(aspect)),  # W × W/aspect pixels
         "S_bar": lim["S_bar"],
     }

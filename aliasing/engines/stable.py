@@ -61,6 +61,11 @@ Fits
     all cascades then have the last one's texel size, and the sphere (radius far, on the
     camera) does not contain the far corners at distance far·√(1 + 2t²): :func:`coverage`
     below 1 for grazing lights.
+Non-square views (``aspect``)
+    ``fov`` is the vertical field of view and ``aspect`` = width/height (:class:`aliasing.View`):
+    ``tight`` fits the wide slices' eight corners, the other fits take the radii with
+    c² = tan²θ_x + tan²θ_y in place of 2t²; the errors stay per square pixel of unit vertical
+    resolution (W/(2 tanθ_y d)).  Aspect 1 is the square view, bit for bit.
 Fit to scene (``scene=True``)
     Every cascade's fit range starts at the near plane: [near, b_k] (DirectX SDK
     FIT_TO_SCENE, same source: "interval 1 is covered by cascades 1 to 8").
@@ -102,7 +107,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import directional, geometry, partitioning
-from ..view import check_aspect, tan_theta
+from ..view import View, check_aspect, tan_theta
 from .sample import sample_bounds
 
 Array = NDArray[np.float64]
@@ -355,8 +360,24 @@ def body_diagonal(a: ArrayLike, b: ArrayLike, fov: ArrayLike, aspect: ArrayLike 
     return np.sqrt((b - a) ** 2 + c2 * (a + b) ** 2)
 
 
-def coverage(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "hemisphere:200", **options) -> float:
+def _aspect(aspect: ArrayLike) -> float:
+    """One image width/height, 0 < aspect < inf (ValueError naming ``aspect``)."""
+    r = check_aspect(aspect)
+    if r.ndim != 0:
+        raise ValueError(f"aspect must be a single number (image width/height in (0, inf)), got shape {r.shape}")
+    return float(r)
+
+
+def _slices(a: ArrayLike, b: ArrayLike, fov: ArrayLike, aspect: float) -> Array:
+    """The 8 corners of the slices [a, b] of a view with vertical ``fov`` [deg] and ``aspect``, ``(K, 8, 3)``."""
+    return geometry.frustum_vertices(View(a, b, fov, aspect))  # aspect 1: the square corners, bit for bit
+
+
+def coverage(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "hemisphere:200", *, aspect: float = 1.0, **options) -> float:
     """Fraction of light directions for which every cascade's map covers its slice (tight extents ≤ sides).
+
+    ``aspect`` is the view's width/height (``fov`` vertical), as in :func:`evaluate`; the
+    other options are :func:`evaluate`'s.
 
     Example
     -------
@@ -368,12 +389,13 @@ def coverage(split: str | ArrayLike, near: float, far: float, fov: float, light:
     for key in ("scene", "overlap"):
         if key in options:
             base[key] = options[key]
-    tight = evaluate(split, near, far, fov, light, **base)  # same fit ranges, tight extents
-    other = evaluate(split, near, far, fov, light, **options)
+    r = _aspect(aspect)
+    tight = evaluate(split, near, far, fov, light, aspect=r, **base)  # same fit ranges, tight extents
+    other = evaluate(split, near, far, fov, light, aspect=r, **options)
     ok = (other.width_x >= tight.width_x * (1 - 1e-12)) & (other.width_y >= tight.width_y * (1 - 1e-12))
     if options.get("fit") == "far":  # centred on the camera, not on the slice: every corner within ±side/2
         a, b = tight.fit_range
-        corners = geometry.frustum_vertices(a, b, fov)  # (K, 8, 3), camera at the origin
+        corners = _slices(a, b, fov, r)  # (K, 8, 3), camera at the origin
         basis = geometry.light_space(geometry.lights(light))  # (N, 3, 3)
         half_x = np.abs(np.einsum("kvj,nj->nkv", corners, basis[:, 0])).max(axis=-1)
         half_y = np.abs(np.einsum("kvj,nj->nkv", corners, basis[:, 2])).max(axis=-1)
@@ -412,7 +434,7 @@ def cascade_ranges(split: str | ArrayLike, near: float, far: float, k: int | Non
     return (np.maximum(lo, n), hi), (edges[:-1], edges[1:])
 
 
-def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "overhead", *, k: int | None = None, fit: str = "tight", snap: str = "none", resolution: float = 2048.0, scene: bool = False, overlap: float = 0.0, border: float = 0.0, dilation: float = 0.0, quantize: bool = False, **params: float) -> StableResult:
+def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "overhead", *, k: int | None = None, aspect: float = 1.0, fit: str = "tight", snap: str = "none", resolution: float = 2048.0, scene: bool = False, overlap: float = 0.0, border: float = 0.0, dilation: float = 0.0, quantize: bool = False, **params: float) -> StableResult:
     """M_x, M_z, S̄ (unit resolutions) of a cascade set with a given fit, per light direction.
 
     Parameters
@@ -423,11 +445,17 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
     near, far : float
         Eye near and shadow distance [world units], 0 < near < far.
     fov : float
-        Full field of view [deg].
+        Vertical full field of view [deg].
     light : str or array_like
         Light spec (:data:`aliasing.geometry.LIGHT_SPEC`) or vectors ``(N, 3)``.
     k : int, optional
         Number of cascades (the preset's default when omitted).
+    aspect : float
+        Image width/height, 0 < aspect < inf (default 1, the square view): tan θ_x =
+        aspect·tan θ_y.  The slices' corners (``tight``) and the radii of the other fits
+        (:func:`sphere_radius` …) take it; the errors stay per pixel of unit vertical
+        resolution (square pixels), M = W/(2 tan θ_y u).  Aspect 1 gives the square view's
+        numbers bit for bit.
     fit : {"tight", "sphere", "diagonal", "diagonal-unrounded", "body", "centroid", "centroid16", "far"}
     snap : {"none", "origin", "border", "bevy", "pad", "godot"}
     resolution : float
@@ -442,44 +470,47 @@ def evaluate(split: str | ArrayLike, near: float, far: float, fov: float, light:
         after the fit, the light space L being the tight box of the whole [near, far].
     """
     kind = check.choice(fit, "fit", FITS)
+    r = _aspect(aspect)
     snapping = check.choice(snap, "snap", SNAPS)
     res = float(check.closed_range(resolution, "resolution", 3.0, np.inf, " texels"))
     (a, b), (u, v) = cascade_ranges(split, near, far, k, scene=scene, overlap=overlap, **params)
     lv = geometry.lights(light)
     t = tan_theta(fov)
     if kind == "tight":
-        lf = directional.fit(geometry.frustum_vertices(a, b, fov), lv)
+        lf = directional.fit(_slices(a, b, fov, r), lv)
         wx, wy = np.ptp(lf.x, axis=-1), lf.depth
     else:
         if kind == "sphere":
-            side = 2 * sphere_radius(a, b, fov)
+            side = 2 * sphere_radius(a, b, fov, r)
         elif kind == "centroid":
-            side = 2 * centroid_radius(a, b, fov)
+            side = 2 * centroid_radius(a, b, fov, r)
         elif kind == "centroid16":
-            side = 2 * np.ceil(centroid_radius(a, b, fov) * 16) / 16  # Babylon.js: ceil(r·16)/16
+            side = 2 * np.ceil(centroid_radius(a, b, fov, r) * 16) / 16  # Babylon.js: ceil(r·16)/16
         elif kind == "far":
             side = np.full_like(a, 2 * float(far))  # Filament shadowFar: sphere {camera, shadowFar}
         elif kind == "diagonal":
-            side = np.ceil(diagonal(a, b, fov))  # Bevy rounds up to a whole unit
+            side = np.ceil(diagonal(a, b, fov, r))  # Bevy rounds up to a whole unit
         elif kind == "diagonal-unrounded":
-            side = diagonal(a, b, fov)  # three.js CSM: the longer diagonal as it is
+            side = diagonal(a, b, fov, r)  # three.js CSM: the longer diagonal as it is
         else:
-            side = body_diagonal(a, b, fov)
+            side = body_diagonal(a, b, fov, r)
         wx = wy = np.broadcast_to(side, (len(lv), len(a)))
     if snapping == "pad":
         wx, wy = wx * res / (res - 1), wy * res / (res - 1)  # one texel more, W′ = W + W′/R
     elif snapping in ("godot", "border"):
         wx, wy = wx * res / (res - 2), wy * res / (res - 2)  # a texel on each side: W spans R − 2 texels
     if border or dilation or quantize:
-        whole = directional.fit(geometry.frustum_vertices(np.array([float(near)]), np.array([float(far)]), fov), lv)  # App.cpp: the view's extents
+        whole = directional.fit(_slices(np.array([float(near)]), np.array([float(far)]), fov, r), lv)  # App.cpp: the view's extents
         wx = sample_bounds(wx, np.ptp(whole.x, axis=-1), border=border, dilation=dilation, quantize=quantize)
         wy = sample_bounds(wy, whole.depth, border=border, dilation=dilation, quantize=quantize)
     M_x, M_z = wx / (2 * t * u), wy / (2 * t * u)  # eq. (2) with a uniform map, maximal at u_k
     return StableResult(M_x, M_z, (M_x * M_z).sum(axis=-1), np.asarray(wx, float), np.asarray(wy, float), (u, v), (a, b))
 
 
-def cost(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "hemisphere:200", **options) -> dict[str, float]:
+def cost(split: str | ArrayLike, near: float, far: float, fov: float, light: str | ArrayLike = "hemisphere:200", *, aspect: float = 1.0, **options) -> dict[str, float]:
     """Cost of a stable fit as ratios to the tight fit of the same cascades.
+
+    ``aspect`` is the view's width/height (``fov`` vertical), as in :func:`evaluate`.
 
     Returns per-direction ratios summarised over the given directions: ``S_ratio_min``,
     ``S_ratio_max``, ``M_ratio_min``, ``M_ratio_max`` (M = max over maps of max(M_x, M_z)),
@@ -493,8 +524,9 @@ def cost(split: str | ArrayLike, near: float, far: float, fov: float, light: str
     """
     fit_keys = {"fit", "snap", "resolution", "scene", "overlap", "border", "dilation", "quantize"}
     params = {key: v for key, v in options.items() if key not in fit_keys}
-    tight = evaluate(split, near, far, fov, light, **params)  # today's fit: tight, no snap, no overlap
-    other = evaluate(split, near, far, fov, light, **options)
+    r = _aspect(aspect)
+    tight = evaluate(split, near, far, fov, light, aspect=r, **params)  # today's fit: tight, no snap, no overlap
+    other = evaluate(split, near, far, fov, light, aspect=r, **options)
     rs = other.S / tight.S
     m_t = np.maximum(tight.M_x, tight.M_z).max(axis=-1)
     m_o = np.maximum(other.M_x, other.M_z).max(axis=-1)
