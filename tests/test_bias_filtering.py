@@ -157,3 +157,11 @@ def test_command_bad_filter_input(argv, word, capsys):
     assert main(["bias", "--presets", "filament", *argv]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and word in err[0]
+
+
+@given(st.one_of(st.floats(-1.0, 0.0), st.floats(1.0001, 10.0)))
+@settings(max_examples=20, deadline=None)
+def test_filter_rows_validates_fraction_even_without_a_boundary(bad):
+    rows = cascade_bias(1.0, 100.0, 60.0, "gamma:60", "filament", k=1, resolution=256)
+    with pytest.raises(ValueError, match="fraction"):
+        filtering.filter_rows(rows, 60.0, fraction=bad)

@@ -226,6 +226,9 @@ def filter_rows(rows: list[dict], fov: float, image: int = 1080, fraction: float
     """
     if not rows:
         raise ValueError("rows must hold at least one cascade row (from cascade_bias)")
+    blend_band(1.0, fraction)  # validates fraction, whether or not a boundary follows
+    if radius is not None:
+        _positive(radius, "radius", "world width of the kernel [world units]")
     out = []
     ref = {}
     for r in rows:
