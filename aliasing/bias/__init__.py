@@ -9,6 +9,8 @@ One concern, modules by source and method:
 * :mod:`.projection`: projection aliasing, the full error m·cos ψ_e / cos ψ_l;
 * :mod:`.presets`: the engines' bias rules, read from their source;
 * :mod:`.cascades`: per cascade of a setup, the minimal biases against a preset's;
+* :mod:`.filtering`: the filter's reach and the cascade seams: PCF footprints, the texel step at a
+  boundary, the blend band that hides it, kernels fixed in texels or in world units;
 * :mod:`.scene`: a preset's acne and peter-panning pixels per cascade of a rendered scene,
   and the per-pixel margin;
 * :mod:`.command`: the ``aliasing bias`` command.

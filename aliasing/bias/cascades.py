@@ -16,7 +16,8 @@ the map) gives
   (:func:`aliasing.bias.lit_gap` of the bias along the light), in world units and in pixels
   of an ``image``-pixel view at the cascade's middle depth;
 * ``pcf_px``: the filter's footprint, k texels, in those pixels, and ``step``: the texel's growth
-  from this cascade to the next at their boundary (the visible seam of the filter's width);
+  from this cascade to the next at their boundary (the visible seam of the filter's width), both
+  from :mod:`aliasing.bias.filtering` (its blend band: ``aliasing bias --filter``);
 * ``partial``: "yes" where part of the engine's rule is not modelled (the preset's ``partial``).
 
 Example
@@ -35,6 +36,7 @@ from .. import _validation as check
 from ..raster.draw import cascade_set
 from ..raster.draw.lookup import light_gradient, texel_edges
 from . import presets as _presets
+from .filtering import pcf_footprint, seam_step
 from .plane import lit_gap, map_bias
 
 #: Receiver angles θ [deg] and azimuths φ [deg] searched for ``acne_from``.
@@ -107,12 +109,12 @@ def cascade_bias(near: float, far: float, fov: float, light: str | ArrayLike, pr
             "ground_angle": theta, "need_depth": float(need.depth[0]), "need_normal": float(need.normal[0]),
             "preset_depth": float(have), "margin": float(have) / float(need.depth[0]) if need.depth[0] > 0 else float("inf"),
             "acne_from": float(ANGLES[short.argmax()]) if short.any() else float("nan"),
-            "gap": gap, "gap_px": float(gap / pix), "pcf_px": float(p.pcf * w / pix), "step": float("nan"),
+            "gap": gap, "gap_px": float(gap / pix), "pcf_px": float(pcf_footprint(p.pcf, w, pix)), "step": float("nan"),
             "partial": "yes" if p.partial else "no",
         })
     for i in range(len(rows) - 1):  # texel growth across the boundary at far_i, both maps evaluated there
         at = np.array([[0.0, 0.0, rows[i]["far"]]])
         here = max(np.hypot(*v[0]) for v in texel_edges(texels[i][1], res, at))
         there = max(np.hypot(*v[0]) for v in texel_edges(texels[i + 1][1], res, at))
-        rows[i]["step"] = float(there / here)
+        rows[i]["step"] = float(seam_step(here, there))
     return rows

@@ -21,6 +21,7 @@ from .. import _validation as check
 from ..sweep import format_rows
 from . import presets as _presets
 from .cascades import cascade_bias
+from .filtering import filter_rows
 from .plane import plane_bias
 
 
@@ -51,6 +52,8 @@ def _run(args: argparse.Namespace) -> int:
             print(f"{p.name:15s} {p.engine}: {p.source}{note}")
         return 0
     if args.plane:
+        if args.filter:
+            raise ValueError("--filter works per cascade, not with --plane")
         if args.texel is None or args.angle is None:
             raise ValueError("--plane needs --texel and --angle")
         rows = []
@@ -63,10 +66,18 @@ def _run(args: argparse.Namespace) -> int:
         names = [t.strip() for t in str(args.presets).split(",")]
         chosen = [_presets.get(n).name for n in names]  # validate every name before any work
         params = {} if args.lam is None else {"lam": float(check.closed_range(args.lam, "--lambda", 0.0, 1.0))}
+        if args.fraction is not None and not args.filter or args.radius is not None and not args.filter:
+            raise ValueError("--fraction and --radius need --filter")
+        fraction = 0.1 if args.fraction is None else float(check.closed_range(args.fraction, "--fraction", 0.0, 1.0))
+        if not fraction > 0:
+            raise ValueError(f"--fraction must be in (0, 1] (change of the blur width per pixel), got {fraction}")
+        if args.radius is not None and not (args.radius > 0 and args.radius < float("inf")):
+            raise ValueError(f"--radius must be a finite world width > 0, got {args.radius}")
         rows = []
         for name in chosen:
-            rows.extend(cascade_bias(args.near, args.far, args.fov, args.light, name, scheme=args.scheme, splits=args.splits,
-                                     k=args.k, resolution=args.resolution, image=args.image, **params))
+            got = cascade_bias(args.near, args.far, args.fov, args.light, name, scheme=args.scheme, splits=args.splits,
+                               k=args.k, resolution=args.resolution, image=args.image, **params)
+            rows.extend(filter_rows(got, args.fov, args.image, fraction, args.radius) if args.filter else got)
     sys.stdout.write(_table(rows) if args.format == "table" else format_rows(rows, args.format))
     return 0
 
@@ -102,6 +113,13 @@ def add_bias_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument("--angle", help="angles between the receiver's normal and the light in degrees, comma list (with --plane)")
     p.add_argument("--azimuth", default="0", help="azimuths of the receiver's slope from the map's s axis in degrees, comma list (default 0)")
     p.add_argument("--lookup", default="nearest", help="nearest, pcf<k> or receiver-plane (default nearest; with --plane)")
+    p.add_argument("--filter", action="store_true", help="per cascade, the filter instead: its kernel in world units and pixels, "
+                   "texels of a world-constant kernel, the texel step at the boundary, the blend band that hides it, "
+                   "the bias of plain PCF and of receiver-plane PCF")
+    p.add_argument("--fraction", type=float, help="with --filter: largest change of the blur width per pixel in the blend band, "
+                   "a fraction of the narrower width (default 0.1)")
+    p.add_argument("--radius", type=float, help="with --filter: width of the world-constant kernel in world units "
+                   "(default the first cascade's k texels)")
     p.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
     p.set_defaults(run=_run)
     return p

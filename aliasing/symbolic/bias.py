@@ -39,6 +39,15 @@ width [world units]); it stores the receiver's depth on the ray through c.
   caster's surface nearest the light: for a caster of thickness D (a box) the ray leaves it
   (g + D)/cos α nearer the light, and the gap is b·cos α − D (while positive, and for casters
   taller than b·sin α; a shorter one casts no shadow at all).
+* ``bias.pcf_footprint``: a k×k PCF kernel reaches k texels of width w: k·w world units, k·w/p
+  pixels where a pixel covers p world units (across the view at depth z: p = 2 z tan(fov/2)/N for N
+  pixels across).
+* ``bias.blend_band``: the seam between cascades i and i + 1.  At their boundary the two maps'
+  texels are w_i and w_{i+1} = s·w_i (s: the step); a kernel fixed in texels jumps from k·w_i to
+  k·s·w_i.  Blending the two filtered results with a weight t that ramps linearly from 0 to 1
+  over N pixels filters with the mixture (1 − t)·K_i + t·K_{i+1}, whose mean radius is
+  (1 − t)·r_i + t·r_{i+1}: the blur width changes by (s − 1)·k·w_i/N per pixel.  Keeping that
+  below a fraction f of the narrower width k·w_i needs N ≥ (s − 1)/f pixels, whatever k.
 
 Example
 -------
@@ -63,6 +72,10 @@ o = sp.Symbol("o", positive=True)  # normal offset [world units]
 alpha = sp.Symbol("alpha", positive=True)  # light elevation above the ground
 b = sp.Symbol("b", positive=True)  # constant depth bias [world units]
 g = sp.Symbol("g", positive=True)  # distance along the ground from the caster's foot
+p_px = sp.Symbol("p", positive=True)  # a pixel's width at the receiver [world units]
+s_step = sp.Symbol("s", positive=True)  # texel step across a cascade boundary, w_{i+1}/w_i
+f_rate = sp.Symbol("f", positive=True)  # allowed change of the blur width per pixel, a fraction of the narrower
+n_px = sp.Symbol("N", positive=True)  # width of the blend band [pixels]
 D = sp.Symbol("D", nonnegative=True)  # the caster's thickness along the light's horizontal direction (0: a wall)
 
 
@@ -153,3 +166,17 @@ def projection_ground() -> sp.Expr:
     to_eye = sp.Matrix([0, h, -dd]) / sp.sqrt(h**2 + dd**2)
     to_light = sp.Matrix([0, sp.sin(alpha), sp.cos(alpha)])
     return sp.simplify(n.dot(to_eye) / n.dot(to_light))
+
+
+@derivation("bias.pcf_footprint", "derived (texel geometry)", "k×k PCF footprint in pixels: k·w/p (k texels of width w, pixels p world units wide)")
+def pcf_footprint() -> sp.Expr:
+    return k * w / p_px
+
+
+@derivation("bias.blend_band", "derived (mixture of two kernels)", "blend band hiding a cascade seam: N ≥ (s − 1)/f pixels for a blur width changing by at most f per pixel")
+def blend_band() -> sp.Expr:
+    t = sp.Symbol("t", nonnegative=True)  # blend weight, 0 at the band's start, 1 at its end
+    width = (1 - t) * k * w + t * k * s_step * w  # mean radius of the mixture (1 − t)K_i + t K_{i+1}, × 2
+    per_pixel = sp.diff(width, t) / n_px  # t = x/N over the band's N pixels
+    (n,) = sp.solve(sp.Eq(per_pixel, f_rate * k * w), n_px)
+    return sp.simplify(n)
