@@ -58,3 +58,24 @@ def save(fig, out_dir: str | Path, name: str, columns: Mapping[str, Sequence[flo
         np.savetxt(csv, table, delimiter=",", header=",".join(names), comments="", fmt="%.10g")
         paths.append(csv)
     return paths
+
+
+def write_table(columns: Mapping[str, Sequence[object]], path: str | Path, digits: int = 10) -> Path:
+    """Write columns of mixed text and numbers as CSV (floats as ``%.<digits>g``); returns the path.
+
+    Example
+    -------
+    >>> import tempfile
+    >>> p = write_table({"preset": ["a", "b"], "S": [1.0, 2.5]}, Path(tempfile.mkdtemp()) / "t.csv")
+    >>> p.read_text().splitlines()
+    ['preset,S', 'a,1', 'b,2.5']
+    """
+    import csv
+
+    path = Path(path)
+    with path.open("w", newline="") as fh:
+        writer = csv.writer(fh, lineterminator="\n")
+        writer.writerow(list(columns))
+        for row in zip(*columns.values()):
+            writer.writerow([f"{v:.{digits}g}" if isinstance(v, float) else v for v in row])
+    return path

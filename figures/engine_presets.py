@@ -35,14 +35,13 @@ split: the presets stay 1.7–11× above the log split, whose cascades are alrea
 
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 
 import numpy as np
 
 from aliasing import budgets
 from aliasing.partitioning import SPLIT_METHODS
-from aliasing.plotting import save, subplots
+from aliasing.plotting import save, subplots, write_table
 
 NAME = "engine-presets"
 NEAR, FAR, FOV = 0.5, 500.0, 60.0
@@ -77,13 +76,6 @@ def data(light: str = LIGHT) -> dict[str, list]:
     return cols
 
 
-def _write_csv(cols: dict[str, list], path: Path) -> Path:
-    with path.open("w", newline="") as fh:
-        writer = csv.writer(fh, lineterminator="\n")
-        writer.writerow(list(cols))
-        for row in zip(*cols.values()):
-            writer.writerow([f"{v:.10g}" if isinstance(v, float) else v for v in row])
-    return path
 
 
 def main(out_dir: Path) -> list[Path]:
@@ -115,7 +107,7 @@ def main(out_dir: Path) -> list[Path]:
         fontsize=9,
     )
     paths = save(fig, out_dir, NAME)
-    return paths + [_write_csv(cols, Path(out_dir) / f"{NAME}.csv")]
+    return paths + [write_table(cols, Path(out_dir) / f"{NAME}.csv", digits=10)]
 
 
 if __name__ == "__main__":

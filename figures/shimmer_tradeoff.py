@@ -30,13 +30,12 @@ boundaries more does worse.  The numbers are in the CSV.
 
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 
 import numpy as np
 
 from aliasing.engines import compare, stable
-from aliasing.plotting import save, subplots
+from aliasing.plotting import save, subplots, write_table
 from aliasing.temporal import measure, points
 
 NAME = "shimmer-tradeoff"
@@ -93,13 +92,6 @@ def data() -> dict[str, list]:
     return cols
 
 
-def _write_csv(cols: dict[str, list], path: Path) -> Path:
-    with path.open("w", newline="") as fh:
-        writer = csv.writer(fh, lineterminator="\n")
-        writer.writerow(list(cols))
-        for row in zip(*cols.values()):
-            writer.writerow([f"{v:.6g}" if isinstance(v, float) else v for v in row])
-    return path
 
 
 def main(out_dir: Path) -> list[Path]:
@@ -136,7 +128,7 @@ def main(out_dir: Path) -> list[Path]:
     bx.set_title("What stabilizing costs (bars) and buys\n(shimmer removed: " + ", ".join(m for m, _ in MOTIONS) + ")", fontsize=9)
     fig.suptitle(f"Boxes scene, {FRAMES} frames per path, one point per pixel of a {IMAGE_RES}² first frame, {SHADOW_RES}² texels per cascade", fontsize=9)
     paths = save(fig, out_dir, NAME)
-    return paths + [_write_csv(cols, Path(out_dir) / f"{NAME}.csv")]
+    return paths + [write_table(cols, Path(out_dir) / f"{NAME}.csv", digits=6)]
 
 
 if __name__ == "__main__":

@@ -76,6 +76,17 @@ def _angle(value: ArrayLike, name: str, what: str) -> Array:
     return arr
 
 
+def _receiver(texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike) -> tuple[Array, Array, Array]:
+    """(w, θ [rad], φ [rad]) of a planar receiver, validated and broadcast: the texel width
+    [world units] > 0, θ to the light in [0°, 90°), φ from the map's s axis."""
+    w = check.as_float_array(texel, "texel")
+    if not np.isfinite(w).all() or (w <= 0).any():
+        raise ValueError(f"texel must be a finite texel width > 0 [world units], got {check._show(w)}")
+    theta = np.radians(_angle(angle, "angle", "between the receiver's normal and the direction to the light"))
+    phi = np.radians(check.finite(azimuth, "azimuth"))
+    return np.broadcast_arrays(w, theta, phi)
+
+
 def _out(arr: Array) -> float | Array:
     return float(arr) if arr.ndim == 0 else arr
 
@@ -112,12 +123,7 @@ def plane_bias(texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0, loo
     0.0
     """
     k, _ = kernel(lookup)
-    w = check.as_float_array(texel, "texel")
-    if not np.isfinite(w).all() or (w <= 0).any():
-        raise ValueError(f"texel must be a finite texel width > 0 [world units], got {check._show(w)}")
-    theta = np.radians(_angle(angle, "angle", "between the receiver's normal and the direction to the light"))
-    phi = np.radians(check.finite(azimuth, "azimuth"))
-    w, theta, phi = np.broadcast_arrays(w, theta, phi)
+    w, theta, phi = _receiver(texel, angle, azimuth)
     spread = 0.5 * k * w * (np.abs(np.cos(phi)) + np.abs(np.sin(phi)))
     return PlaneBias(_out(spread * np.tan(theta)), _out(spread * np.sin(theta)))
 

@@ -34,6 +34,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
+from .plane import _receiver
 
 Array = NDArray[np.float64]
 
@@ -152,14 +153,7 @@ def equivalent_depth(preset: BiasPreset | str, texel: ArrayLike, angle: ArrayLik
     """
     p = get(preset) if isinstance(preset, str) else preset
     check.instance(p, "preset", BiasPreset)
-    from .plane import _angle
-
-    w = check.as_float_array(texel, "texel")
-    if not np.isfinite(w).all() or (w <= 0).any():
-        raise ValueError(f"texel must be a finite texel width > 0 [world units], got {check._show(w)}")
-    th = np.radians(_angle(angle, "angle", "between the receiver's normal and the direction to the light"))
-    ph = np.radians(check.finite(azimuth, "azimuth"))
-    w, th, ph = np.broadcast_arrays(w, th, ph)
+    w, th, ph = _receiver(texel, angle, azimuth)
     steep = np.maximum(np.abs(np.cos(ph)), np.abs(np.sin(ph)))
     b = (p.depth + p.depth_texels * w + p.normal_texels * w * _normal_scale(p, th) / np.cos(th)
          + p.across_texels * w * np.sin(th) * np.tan(th) + p.slope * w * np.tan(th) * steep)
