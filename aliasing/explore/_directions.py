@@ -97,6 +97,8 @@ def draw(fig: Figure, d: dict[str, Any]) -> dict:
     used = d["M_x"] > 0
     bx = b.bar(k[used] - 0.2, d["M_x"][used], 0.4, label="M_x")
     bz = b.bar(k[used] + 0.2, d["M_z"][used], 0.4, label="M_z")
+    heights = np.concatenate([d["M_x"][used], d["M_z"][used]])
+    b.set_ylim(heights.min() / 1.5, heights.max() * 6.0)  # as redraw sets it; before the log scale, never a singular range
     b.set_yscale("log")
     w.readable_log_ticks(b.yaxis)
     step = -(-int(used.sum()) // 10)  # at most 10 labelled maps (FPcs+ZP4 has up to 29 slots): the labels never overlap
