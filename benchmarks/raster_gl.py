@@ -33,16 +33,7 @@ import numpy as np  # noqa: E402
 
 from aliasing import raster  # noqa: E402
 from aliasing.raster.draw import gl  # noqa: E402
-from aliasing.raster.scenes import procedural  # noqa: E402
-
-LIGHT_WORLD = (-1.0, 0.8, 0.3)
-
-
-def scene(count: int):
-    cam = procedural.street_camera()
-    tri = cam.to_eye(procedural.city(count, seed=1))
-    lm = raster.light_map(cam.near, cam.far, cam.fov, cam.direction_to_eye(LIGHT_WORLD), "P")
-    return tri, lm
+from scenes import scene  # noqa: E402 - the city and its P map of benchmarks/scenes.py
 
 
 def timed(fn):
