@@ -36,17 +36,21 @@ SCHEMES = ("Standard", "P", "LogP")
 LOOKUPS = ("nearest", "pcf3")
 
 
-def _plane(scheme: str):
+def tilted_plane(scheme: str, theta: float, phi: float, res: int, n: int = 30000, seed: int = 0):
+    """(light map, depth map, points, normals) of a plane at ``theta`` [deg] from the light, its steepest depth change
+    at ``phi`` [deg] in light space, filling a ``res``² map of ``scheme``; ``n`` seeded points on it (also the
+    scene of tests/test_bias.py's threshold tests)."""
     lm = light_map(1.0, 20.0, 60.0, "gamma:60", scheme)
     xl, up, zl = lm.basis
-    th, ph = np.radians(THETA), np.radians(PHI)
+    th, ph = np.radians(theta), np.radians(phi)
     nrm = np.cos(th) * up + np.sin(th) * (np.cos(ph) * xl + np.sin(ph) * zl)
     p0 = np.array([0.0, -1.0, 8.0])
     a = np.cross(nrm, [0.3, 0.5, 0.7])
     a /= np.linalg.norm(a)
     b = np.cross(nrm, a)
-    sm = shadow_map(np.array([[p0 + 400.0 * (np.cos(t) * a + np.sin(t) * b) for t in (0.0, 2.1, 4.2)]]), lm, RES)
-    s, t = np.random.default_rng(0).uniform(0.02, 0.98, (2, POINTS))
+    tri = np.array([[p0 + 400.0 * (np.cos(t) * a + np.sin(t) * b) for t in (0.0, 2.1, 4.2)]])
+    sm = shadow_map(tri, lm, res)
+    s, t = np.random.default_rng(seed).uniform(0.02, 0.98, (2, n))
     c0 = lm.plane_point(*lm.inverse(s, t))
     p = c0 + (((p0 - c0) @ nrm) / (nrm @ up))[:, None] * up
     return lm, sm, p, np.broadcast_to(nrm, p.shape)
@@ -56,7 +60,7 @@ def data() -> dict[str, np.ndarray]:
     """``factor`` and one acne-fraction column per scheme and lookup."""
     cols = {"factor": FACTORS}
     for scheme in SCHEMES:
-        lm, sm, p, n = _plane(scheme)
+        lm, sm, p, n = tilted_plane(scheme, THETA, PHI, RES, POINTS)
         for lookup in LOOKUPS:
             k, rp = kernel(lookup)
             need = map_bias(lm, RES, p, n, lookup).depth

@@ -20,6 +20,7 @@ import pytest
 import sympy as sp
 
 from aliasing import symbolic
+from aliasing.figures.bias_threshold import tilted_plane  # the plane the figure draws, too
 from aliasing.bias import kernel, lit_gap, map_bias, plane_bias, slope_factor
 from aliasing.raster.draw import depth_test, light_map, shadow_map, texel_edges
 from aliasing.symbolic import bias as sb
@@ -94,24 +95,6 @@ def test_lit_gap_matches_the_derivation():
 # --------------------------------------------------------------------------- rasterizer thresholds
 
 
-def _plane(scheme: str, theta: float, phi: float, res: int, n: int = 30000, seed: int = 0):
-    """A plane at θ from the light (steepest depth change at φ in light space) filling the map; points on it."""
-    lm = light_map(1.0, 20.0, 60.0, "gamma:60", scheme)
-    xl, up, zl = lm.basis
-    th, ph = np.radians(theta), np.radians(phi)
-    nrm = np.cos(th) * up + np.sin(th) * (np.cos(ph) * xl + np.sin(ph) * zl)
-    p0 = np.array([0.0, -1.0, 8.0])
-    a = np.cross(nrm, [0.3, 0.5, 0.7])
-    a /= np.linalg.norm(a)
-    b = np.cross(nrm, a)
-    tri = np.array([[p0 + 400.0 * (np.cos(t) * a + np.sin(t) * b) for t in (0.0, 2.1, 4.2)]])
-    sm = shadow_map(tri, lm, res)
-    s, t = np.random.default_rng(seed).uniform(0.02, 0.98, (2, n))
-    c0 = lm.plane_point(*lm.inverse(s, t))
-    p = c0 + (((p0 - c0) @ nrm) / (nrm @ up))[:, None] * up
-    return lm, sm, p, np.broadcast_to(nrm, p.shape)
-
-
 CASES = [(scheme, theta, phi) for scheme in ("Standard", "P", "LogP") for theta, phi in ((30.0, 0.0), (60.0, 30.0), (75.0, 100.0), (45.0, 225.0))]
 
 
@@ -119,7 +102,7 @@ CASES = [(scheme, theta, phi) for scheme in ("Standard", "P", "LogP") for theta,
 @pytest.mark.parametrize("lookup,pcf", [("nearest", 1), ("pcf3", 3), ("receiver-plane", 3)])
 def test_derived_minimum_is_the_acne_threshold(scheme, theta, phi, lookup, pcf):
     res = 128
-    lm, sm, p, n = _plane(scheme, theta, phi, res)
+    lm, sm, p, n = tilted_plane(scheme, theta, phi, res)
     mb = map_bias(lm, res, p, n, lookup)
     _, rp = kernel(lookup)
     acne = {}
@@ -133,7 +116,7 @@ def test_derived_minimum_is_the_acne_threshold(scheme, theta, phi, lookup, pcf):
 
 def test_square_texel_map_bias_is_plane_bias():
     # a uniform map's texel at a point, the plane's angle and azimuth in light space: plane_bias
-    lm, _, p, n = _plane("Standard", 50.0, 0.0, 64, n=5)
+    lm, _, p, n = tilted_plane("Standard", 50.0, 0.0, 64, n=5)
     e_s, e_t = texel_edges(lm, 64, p)
     assert np.allclose(e_s[:, 1], 0) and np.allclose(e_t[:, 0], 0)
     np.testing.assert_allclose(map_bias(lm, 64, p, n).depth, plane_bias(e_s[:, 0], 50.0, 0.0).depth, rtol=1e-6)
@@ -143,7 +126,7 @@ def test_slope_scaled_bias_threshold():
     # a slope-scaled bias with the derived factor (and nothing else) clears acne at 1.1x, not at 0.9x
     res = 128
     for theta, phi in ((40.0, 0.0), (65.0, 90.0)):
-        lm, sm, p, n = _plane("Standard", theta, phi, res)
+        lm, sm, p, n = tilted_plane("Standard", theta, phi, res)
         f = slope_factor(phi)
         assert (depth_test(lm, sm, p, n, slope=0.9 * f) < 1).mean() > 1e-3
         assert (depth_test(lm, sm, p, n, slope=1.1 * f) < 1).mean() == 0.0
@@ -258,7 +241,7 @@ def test_quantized_depth_adds_its_rounding_to_the_threshold():
     from aliasing.bias import quantization_bias
 
     res = 128
-    lm, sm, p, n = _plane("Standard", 30.0, 0.0, res, n=60000)
+    lm, sm, p, n = tilted_plane("Standard", 30.0, 0.0, res, n=60000)
     d = sm.depth[np.isfinite(sm.depth)]
     lo, span = float(d.min()) - 1.0, 10000.0  # a light depth range of 10 000 world units around the plane
     q = quantization_bias(span, 16)
