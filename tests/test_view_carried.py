@@ -125,8 +125,8 @@ OTHER_ANGLES = {
     ("cascades.py", "AZIMUTHS"): "the sampled receiver azimuths",
     ("_bias.py", "np.arange(0.0, 91.0, 5.0)"): "the explorer's receiver azimuths",
     ("_bias.py", "ANGLES"): "the explorer's receiver angles to the light",
-    ("bias_threshold.py", "THETA"): "the figure's receiver angles to the light",
-    ("bias_threshold.py", "PHI"): "the figure's receiver azimuths",
+    ("bias_threshold.py", "theta"): "the receiver plane's angle to the light",
+    ("bias_threshold.py", "phi"): "the receiver plane's azimuth",
 }
 
 
