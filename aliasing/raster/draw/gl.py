@@ -12,27 +12,43 @@ depth test.
 
 How a map is drawn
 ------------------
+The triangles are uploaded once per call, in double precision.  A compute pass prepares
+them on the device: the float32 vertices that the hardware rasterizes (a triangle with a
+non-finite coordinate becomes a point, which draws nothing) and each triangle's plane
+(n, −n·a), n = (b − a) × (c − a), in double precision and as a float32 copy scaled to
+its largest component.
+
 A projective light map is one 4×4 matrix H (:meth:`aliasing.raster.LightMap.matrix`:
-H·(p, 1) = (s·w, t·w, depth, w)).  The vertex shader puts x = 2s − 1, y = 2t − 1 into clip
-space and, for the depth test, z = k·(depth − d₀) − w with d₀ the smallest depth over the
-scene's bounding box and k = 2/range: every point a light ray through a texel meets has the
-same w (s and t fix the light-plane point), so ordering by z/w orders by depth, and w ≥ 1
-on the map (t ∈ [0, 1] ⇔ 0 ≤ y ≤ W_ly) keeps z/w within [−1, 1].  The first pass keeps, per
-texel, the nearest triangle's ``gl_PrimitiveID`` (a 32-bit integer target; 24-bit hardware
-depth test, ties to the last drawn, the highest index).  A second pass, once per texel,
-computes the depth of that triangle's plane at the texel centre in double precision (the
-light ray through (s, t) met with the plane; no interpolated attribute, so the value does
-not depend on the vertices' snapping), stores it as two float32 (hi + lo, 48 bits) beside
-the id (−1 where empty), and both are read back into float64 / int64 arrays.  Triangles behind the warp's centre of
-projection are clipped by the hardware (w > 0), where numpy clips them at y = −n′/2: both
-leave the map's texels alone.
+H·(p, 1) = (s·w, t·w, depth, w)).  A second compute pass finds the scene's depth range
+[d₀, d₀ + Δ] (rounded outwards, widened by :data:`DEPTH_PAD` on each side); H's depth row
+is rescaled to dₙ = (depth − d₀)/Δ ∈ (0, 1).  The vertex shader puts x = 2s − 1,
+y = 2t − 1 into clip space and, for the depth test, z = 2dₙ − w: every point a light ray
+through a texel meets has the same w (s and t fix the light-plane point), so ordering by
+z/w orders by depth, and w ≥ 1 on the map (t ∈ [0, 1] ⇔ 0 ≤ y ≤ W_ly) keeps z/w within
+[−1, 1].  The hardware's 24-bit depth test keeps the nearest triangle per texel (ties to
+the last drawn, the highest index), and the fragment shader writes its index and its depth
+at the texel centre.
+
+That depth is not the hardware's interpolated one, which follows the snapped vertices
+(measured up to 1.6e-4 of the depth range off on grazing triangles).  The light ray through
+(s, t) is p~ = w q + dₙ e (q = H⁻¹(s, t, 0, 1), e = H⁻¹(0, 0, 1, 0), H with the rescaled
+depth row); it meets the triangle's plane n~·p~ = 0 at dₙ = A/(A e_w − B q_w), A = n~·q,
+B = n~·e, with (α, β, γ, B) = (n~·c₀, n~·c₁, n~·c₃, n~·c₂) per triangle from a third compute
+pass (c_j the columns of H⁻¹), so that A = αs + βt + γ.  The shader evaluates this in double
+precision (a float32 evaluation with a double-precision fallback where its error bound is
+too large was tried: llvmpipe runs both branches, so it cost more).  The value is stored as
+1/(1 + dₙ) in a float32 target (:data:`DEPTH_ERROR`) (0 where empty, which reads back as ``inf``), the index as its bitwise
+complement in a 32-bit integer target (0 where empty, −1 once complemented back); both are
+read back into the DepthMap's float64 / int64 arrays.  Triangles behind the warp's centre
+of projection are clipped by the hardware (w > 0), where numpy clips them at y = −n′/2:
+both leave the map's texels alone.
 
 Example
 -------
 >>> import numpy as np
 >>> tri = np.array([[[0.0, 0.0, 0.5], [1.0, 0.0, 0.5], [0.0, 1.0, 0.5]]])   # (s, t, depth): H = I
 >>> if available():
-...     depth, ident = draw_maps(tri, [np.eye(4)], [8])[0]
+...     (depth, ident), = draw_maps(tri, [np.eye(4)], [8])[0]
 ... else:   # without an EGL device: the numpy reference, whose buffers these are
 ...     from aliasing.raster.draw.core import rasterize
 ...     m = rasterize(tri, 8)
@@ -52,17 +68,95 @@ from numpy.typing import NDArray
 
 Array = NDArray[np.float64]
 
-#: Relative margin of the depth-test range (keeps window depths below 1, the cleared value).
+#: Relative margin of the depth-test range on each side (keeps window depths inside (−1, 1)).
 DEPTH_PAD = 1e-3
 
-#: Bytes per texel of one resolution's render targets (ids, depth buffer, depth hi/lo, visible ids).
-TARGET_BYTES = 20
+#: Largest depth error of a map [fraction of the scene's depth range]: the float32 storage of
+#: 1/(1 + dₙ), at most 2⁻²³·(1 + dₙ)² ≤ 2.4e-7 for dₙ ≤ 1 (dₙ itself is computed in double precision).
+DEPTH_ERROR = 5e-7
+
+#: Bytes per texel of one resolution's render targets (ids, depth buffer, depth).
+TARGET_BYTES = 12
 #: Render targets are kept for the next draw at the same resolution up to this many bytes in all
 #: (an 8192² and a 2048² set; :func:`release` frees them).
 KEEP_BYTES = 3 * 2**29
 
+#: Bytes per triangle of the scene buffers kept for the next draw (double-precision input,
+#: float32 vertices, planes, per-map coefficients; :func:`release` frees them).
+SCENE_BYTES = 72 + 36 + 32 + 32
+
 #: What to install when there is no EGL device (Debian's Mesa packages: llvmpipe on the CPU).
 EGL_PACKAGES = "libegl1 libegl-mesa0 libgl1-mesa-dri"
+
+_GROUP = 64  # compute shader work-group size
+
+# Once per call: float32 vertices for the rasterizer (a point where a coordinate is not
+# finite) and each triangle's plane (n, −n·a) in double precision.
+_PREPARE = """
+#version 430
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Triangles { double v[]; };
+layout(std430, binding = 1) writeonly buffer Vertices { float p[]; };
+layout(std430, binding = 2) writeonly buffer Planes { dvec4 plane[]; };
+layout(std430, binding = 4) buffer Counts { uint bad; };
+uniform uint count;
+bool finite(double x) { return (unpackDouble2x32(x).y & 0x7ff00000u) != 0x7ff00000u; }   // exponent bits: not inf or NaN
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= count) return;
+    dvec3 a = dvec3(v[9 * i], v[9 * i + 1], v[9 * i + 2]);
+    dvec3 b = dvec3(v[9 * i + 3], v[9 * i + 4], v[9 * i + 5]);
+    dvec3 c = dvec3(v[9 * i + 6], v[9 * i + 7], v[9 * i + 8]);
+    bool ok = true;
+    for (uint k = 0u; k < 9u; k++) ok = ok && finite(v[9 * i + k]);
+    for (uint k = 0u; k < 9u; k++) p[9 * i + k] = ok ? float(v[9 * i + k]) : 0.0;
+    dvec3 n = cross(b - a, c - a);
+    plane[i] = ok ? dvec4(n, -dot(n, a)) : dvec4(0.0LF);
+    if (!ok) atomicAdd(bad, 1u);
+}
+"""
+
+# Once per map: the smallest and largest depth row·(p, 1) over the finite triangles' vertices,
+# as order-preserving unsigned keys of float32 values rounded outwards.
+_RANGE = """
+#version 430
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Triangles { double v[]; };
+layout(std430, binding = 4) buffer Range { uint bad; uint lo; uint hi; };
+uniform uint count;
+uniform dvec4 row;
+bool finite(double x) { return (unpackDouble2x32(x).y & 0x7ff00000u) != 0x7ff00000u; }   // exponent bits: not inf or NaN
+uint key(float f) { uint u = floatBitsToUint(f); return (u & 0x80000000u) != 0u ? ~u : u | 0x80000000u; }
+float down(double d) { float f = float(d); return double(f) <= d ? f : (f > 0.0 ? uintBitsToFloat(floatBitsToUint(f) - 1u) : (f < 0.0 ? uintBitsToFloat(floatBitsToUint(f) + 1u) : -1.4e-45)); }
+float up(double d) { return -down(-d); }
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= count) return;
+    double lo_d = 1.0LF / 0.0LF, hi_d = -1.0LF / 0.0LF;
+    for (uint k = 0u; k < 9u; k++) if (!finite(v[9 * i + k])) return;   // a triangle that is not drawn
+    for (uint k = 0u; k < 3u; k++) {
+        double d = dot(row.xyz, dvec3(v[9 * i + 3 * k], v[9 * i + 3 * k + 1], v[9 * i + 3 * k + 2])) + row.w;
+        lo_d = min(lo_d, d);
+        hi_d = max(hi_d, d);
+    }
+    atomicMin(lo, key(down(lo_d)));
+    atomicMax(hi, key(up(hi_d)));
+}
+"""
+
+# Once per map: each triangle's (α, β, γ, B) = (n~·c₀, n~·c₁, n~·c₃, n~·c₂), c_j the columns of H⁻¹.
+_COEFFICIENTS = """
+#version 430
+layout(local_size_x = 64) in;
+layout(std430, binding = 2) readonly buffer Planes { dvec4 plane[]; };
+layout(std430, binding = 3) writeonly buffer Coefficients { dvec4 coef[]; };
+uniform uint count;
+uniform dmat4 columns;
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i < count) coef[i] = plane[i] * columns;
+}
+"""
 
 _VERTEX = """
 #version 430
@@ -73,53 +167,32 @@ void main() {
 }
 """
 
-# First pass: the hardware z-buffer keeps the nearest triangle per texel; its index is stored.
-_FRAGMENT = """
+# The eye pass: the nearest triangle's index only.
+_IDS = """
 #version 430
 layout(location = 0) out int id_out;
 void main() {
-    id_out = gl_PrimitiveID;
+    id_out = ~gl_PrimitiveID;
 }
 """
 
-# Second pass, once per texel: the depth of the visible triangle at the texel centre, in double
-# precision.  The light ray through (s, t) is p~ = w q + d e (q = H⁻¹(s, t, 0, 1),
-# e = H⁻¹(0, 0, 1, 0)); it meets the triangle's plane n~.p~ = 0, p~ homogeneous (last
-# coordinate 1), at d = A/(A e_w − B q_w), A = n~.q = αs + βt + γ, B = n~.e; (α, β, γ, B) per
-# triangle and map come from the host (``_coefficients``).  No interpolated attribute: the
-# value does not depend on the vertices' snapping.  Stored as float32 hi + lo (48 bits).
-_RESOLVE_VERTEX = """
+# A depth map: the nearest triangle's index, and its plane's depth at the texel centre in
+# double precision, stored as 1/(1 + dₙ) = den/(den + A).
+_DEPTH = """
 #version 430
-void main() {
-    vec2 corner = vec2(float((gl_VertexID & 1) << 2), float((gl_VertexID & 2) << 1)) - 1.0;
-    gl_Position = vec4(corner, 0.0, 1.0);   // one triangle over the whole viewport
-}
-"""
-
-_RESOLVE = """
-#version 430
-layout(std430, binding = 0) readonly buffer Coefficients { dvec4 coef[]; };
-uniform isampler2D ids;
-uniform sampler2D zbuffer;
+layout(std430, binding = 3) readonly buffer Coefficients { dvec4 coef[]; };
 uniform dvec4 ray;        // q_w = ray.x s + ray.y t + ray.z; e_w = ray.w
 uniform double texel;     // 1/R
-layout(location = 0) out vec2 depth_out;
-layout(location = 1) out int id_out;
+layout(location = 0) out int id_out;
+layout(location = 1) out float depth_out;
 void main() {
-    ivec2 c = ivec2(gl_FragCoord.xy);
-    if (texelFetch(zbuffer, c, 0).r == 1.0) {   // the cleared value: nothing drawn here
-        depth_out = vec2(uintBitsToFloat(0x7f800000u), 0.0);
-        id_out = -1;
-        return;
-    }
-    int id = texelFetch(ids, c, 0).r;
+    int id = gl_PrimitiveID;
     double s = double(gl_FragCoord.x) * texel, t = double(gl_FragCoord.y) * texel;
     dvec4 k = coef[id];
     double a = k.x * s + k.y * t + k.z;
-    double d = a / (a * ray.w - k.w * (ray.x * s + ray.y * t + ray.z));
-    float hi = float(d);
-    depth_out = vec2(hi, float(d - double(hi)));
-    id_out = id;
+    double den = a * ray.w - k.w * (ray.x * s + ray.y * t + ray.z);
+    depth_out = float(den / (den + a));
+    id_out = ~id;
 }
 """
 
@@ -130,40 +203,42 @@ class _Targets:
 
     res: int
     ids: object
-    zbuffer: object
-    draw: object
     depth: object
-    visible: object
-    resolve: object
+    zbuffer: object
+    maps: object   # framebuffer: ids, depth, z-buffer
+    eye: object    # framebuffer: ids, z-buffer
 
     def release(self) -> None:
-        for obj in (self.resolve, self.draw, self.depth, self.visible, self.ids, self.zbuffer):
+        for obj in (self.maps, self.eye, self.ids, self.depth, self.zbuffer):
             obj.release()
 
 
 @functools.lru_cache(maxsize=1)
 def _setup() -> tuple[object | None, str]:
-    """(moderngl context, programs, target cache) or None, and why there is none; made once per process."""
+    """(moderngl context, programs, kept targets, kept buffers) or None, and why there is none; made once per process."""
     try:
         import moderngl
     except ImportError:
         return None, 'moderngl is not installed (pip install "aliasing[gl]")'
     try:
-        ctx = moderngl.create_context(standalone=True, backend="egl")
-    except Exception as exc:  # no libEGL, no device, no driver: one line of why
+        ctx = moderngl.create_context(standalone=True, backend="egl", require=430)
+    except Exception as exc:  # no libEGL, no device, no driver, no OpenGL 4.3: one line of why
         why = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        return None, f"no EGL device could be opened ({why}); install a GPU driver or Mesa's llvmpipe (Debian: {EGL_PACKAGES})"
-    draw = ctx.program(vertex_shader=_VERTEX, fragment_shader=_FRAGMENT)
-    resolve = ctx.program(vertex_shader=_RESOLVE_VERTEX, fragment_shader=_RESOLVE)
-    resolve["ids"].value = 0
-    resolve["zbuffer"].value = 1
-    return (ctx, draw, resolve, []), ""
+        return None, f"no EGL device with OpenGL 4.3 could be opened ({why}); install a GPU driver or Mesa's llvmpipe (Debian: {EGL_PACKAGES})"
+    programs = {
+        "prepare": ctx.compute_shader(_PREPARE),
+        "range": ctx.compute_shader(_RANGE),
+        "coefficients": ctx.compute_shader(_COEFFICIENTS),
+        "ids": ctx.program(vertex_shader=_VERTEX, fragment_shader=_IDS),
+        "depth": ctx.program(vertex_shader=_VERTEX, fragment_shader=_DEPTH),
+    }
+    return (ctx, programs, [], {}), ""
 
 
 def _targets(ctx, res: int) -> _Targets:
     """The targets for resolution ``res``: kept ones, or new ones (the least recently used
     others are freed while all would exceed :data:`KEEP_BYTES`)."""
-    cache = _setup()[0][3]
+    cache = _setup()[0][2]
     for i, t in enumerate(cache):
         if t.res == res:
             cache.append(cache.pop(i))  # most recently used last
@@ -171,20 +246,32 @@ def _targets(ctx, res: int) -> _Targets:
     while cache and TARGET_BYTES * (res * res + sum(t.res * t.res for t in cache)) > KEEP_BYTES:
         cache.pop(0).release()
     ids = ctx.texture((res, res), 1, dtype="i4")
-    zbuf = ctx.depth_texture((res, res))
-    zbuf.compare_func = ""  # read the stored depth, not a comparison
-    depth = ctx.texture((res, res), 2, dtype="f4")
-    visible = ctx.texture((res, res), 1, dtype="i4")
-    t = _Targets(res, ids, zbuf, ctx.framebuffer([ids], zbuf), depth, visible, ctx.framebuffer([depth, visible]))
+    depth = ctx.texture((res, res), 1, dtype="f4")
+    zbuf = ctx.depth_renderbuffer((res, res))
+    t = _Targets(res, ids, depth, zbuf, ctx.framebuffer([ids, depth], zbuf), ctx.framebuffer([ids], zbuf))
     cache.append(t)
     return t
 
 
 def release() -> None:
-    """Free the kept render targets (:data:`TARGET_BYTES` per texel of each resolution kept)."""
+    """Free the kept render targets (:data:`TARGET_BYTES` per texel of each resolution kept)
+    and the kept scene buffers (:data:`SCENE_BYTES` per triangle of the largest scene drawn)."""
     state = _setup()[0]
+    while state is not None and state[2]:
+        state[2].pop().release()
     while state is not None and state[3]:
-        state[3].pop().release()
+        state[3].popitem()[1].release()
+
+
+def _buffer(ctx, name: str, nbytes: int):
+    """The kept buffer ``name`` of at least ``nbytes`` bytes (made, or grown, when needed)."""
+    kept = _setup()[0][3]
+    if name in kept and kept[name].size >= nbytes:
+        return kept[name]
+    if name in kept:
+        kept.pop(name).release()
+    kept[name] = ctx.buffer(reserve=max(nbytes, 16))
+    return kept[name]
 
 
 def available() -> bool:
@@ -205,121 +292,136 @@ def renderer() -> str:
     return "" if state is None else str(state[0].info["GL_RENDERER"])
 
 
-def _finite(tri: Array) -> tuple[Array, NDArray[np.int64] | None]:
-    """The finite triangles, and their input indices (None when all are)."""
-    good = np.isfinite(tri).all(axis=(1, 2))
-    if good.all():
-        return tri, None
-    idx = np.nonzero(good)[0]
-    return tri[idx], idx
+def _decode(key: int) -> float:
+    """The float32 value of an order-preserving key of :data:`_RANGE`."""
+    u = key & 0x7FFFFFFF if key & 0x80000000 else ~key & 0xFFFFFFFF
+    return float(np.array([u], np.uint32).view(np.float32)[0])
 
 
-def _planes(tri: Array) -> Array:
-    """Each triangle's plane (n, −n·a) [eye space], n = (b − a) × (c − a), float64 (T, 4)."""
-    a = tri[:, 0]
-    n = np.cross(tri[:, 1] - a, tri[:, 2] - a)
-    return np.concatenate([n, -(n * a).sum(axis=1, keepdims=True)], axis=1)
+class _Scene:
+    """The triangles on the device: double-precision input, float32 vertices, planes, and counts."""
+
+    def __init__(self, ctx, programs, tri: Array):
+        self.ctx, self.programs, self.count = ctx, programs, tri.shape[0]
+        t = self.count
+        self.source = _buffer(ctx, "source", 72 * t)
+        self.source.write(np.ascontiguousarray(tri, dtype=np.float64))
+        self.vertices = _buffer(ctx, "vertices", 36 * t)
+        self.planes = _buffer(ctx, "planes", 32 * t)
+        self.coefficients = _buffer(ctx, "coefficients", 32 * t)
+        self.counts = _buffer(ctx, "counts", 12)
+        self.counts.write(np.zeros(3, np.uint32))
+        for binding, buf in enumerate((self.source, self.vertices, self.planes, self.coefficients, self.counts)):
+            buf.bind_to_storage_buffer(binding)
+        prep = programs["prepare"]
+        prep["count"].value = t
+        prep.run(group_x=(t + _GROUP - 1) // _GROUP)
+        self.bad = int(np.frombuffer(self.counts.read(4), np.uint32)[0])
+        self.arrays = {}
+
+    def draw(self, name: str) -> None:
+        """Draw the triangles with program ``name`` (the kept vertex buffer may be longer)."""
+        import moderngl
+
+        if name not in self.arrays:
+            self.arrays[name] = self.ctx.vertex_array(self.programs[name], [(self.vertices, "3f", "p")])
+        self.arrays[name].render(moderngl.TRIANGLES, vertices=3 * self.count)
+
+    def depth_range(self, row: Array) -> tuple[float, float]:
+        """(d₀, Δ): the finite vertices' depths ``row``·(p, 1) lie strictly inside (d₀, d₀ + Δ)."""
+        self.counts.write(np.array([0, 0xFFFFFFFF, 0], np.uint32))
+        rng = self.programs["range"]
+        rng["count"].value = self.count
+        rng["row"].write(np.asarray(row, np.float64).tobytes())
+        rng.run(group_x=(self.count + _GROUP - 1) // _GROUP)
+        _, lo, hi = (int(x) for x in np.frombuffer(self.counts.read(12), np.uint32))
+        d_lo, d_hi = _decode(lo), _decode(hi)
+        if not d_lo <= d_hi:  # no finite triangle reached the shader
+            return 0.0, 1.0
+        width = max(d_hi - d_lo, 1e-6 * max(abs(d_lo), abs(d_hi)), 1e-30)
+        return d_lo - DEPTH_PAD * width, width * (1.0 + 2.0 * DEPTH_PAD)
+
+    def release(self) -> None:
+        for vao in self.arrays.values():  # the buffers are kept for the next call (:func:`release` frees them)
+            vao.release()
 
 
-def _draw(tri: Array, jobs: Sequence[tuple[Array, Array | None, int]]) -> list[tuple[Array, NDArray[np.int64]]]:
-    """Draw the finite triangles ``tri`` (T, 3, 3) once per job (clip 4×4, H⁻¹ or None, R).
+def _ortho_clip(h: Array, d_lo: float, span: float) -> tuple[Array, Array]:
+    """(clip matrix, H with its depth row rescaled to (depth − d₀)/Δ)."""
+    hn = np.array(h, float)
+    hn[2] = (h[2] - d_lo * np.array([0.0, 0.0, 0.0, 1.0])) / span
+    return np.stack([2 * hn[0] - hn[3], 2 * hn[1] - hn[3], 2 * hn[2] - hn[3], hn[3]]), hn
 
-    With H⁻¹, the depth at each texel centre is computed from the visible triangle's plane
-    (second pass); without, only ids are drawn (depth 0 where covered).  Returns per job the
-    depth (R, R) float64 (``inf`` where empty) and the primitive index (R, R) int64 (−1
-    where empty).
-    """
+
+def _uniform(prog, name: str, value: np.ndarray) -> None:
+    """Set a uniform from an array of its type, unless the driver optimized it away."""
+    member = prog.get(name, None)
+    if member is not None:
+        member.write(np.ascontiguousarray(value).tobytes())
+
+
+def _draw_map(scene: _Scene, h: Array, res: int) -> tuple[Array, NDArray[np.int64]]:
     import moderngl
 
+    ctx, prog = scene.ctx, scene.programs["depth"]
+    d_lo, span = scene.depth_range(h[2])
+    clip, hn = _ortho_clip(h, d_lo, span)
+    inverse = np.linalg.inv(hn)
+    coef = scene.programs["coefficients"]
+    coef["count"].value = scene.count
+    _uniform(coef, "columns", inverse[:, [0, 1, 3, 2]].T.astype(np.float64))  # GLSL: column-major
+    coef.run(group_x=(scene.count + _GROUP - 1) // _GROUP)
+    _uniform(prog, "clip", np.ascontiguousarray(clip.T, dtype=np.float32))
+    _uniform(prog, "ray", inverse[3, [0, 1, 3, 2]].astype(np.float64))
+    _uniform(prog, "texel", np.float64(1.0 / res))
+    tg = _targets(ctx, res)
+    tg.maps.use()
+    tg.maps.viewport = (0, 0, res, res)
+    tg.maps.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)  # ids 0 (−1 complemented), depth 0 (inf)
+    ctx.enable(moderngl.DEPTH_TEST)
+    ctx.depth_func = "<="  # ties to the last drawn, the highest index, as in numpy
+    scene.draw("depth")
+    raw = np.empty((res, res), np.int32)
+    tg.ids.read_into(raw)
+    ids = np.subtract(-1, raw, dtype=np.int64)  # ~id = −1 − id; the cleared 0 gives −1
+    stored = np.empty((res, res), np.float32)
+    tg.depth.read_into(stored)
+    del raw
+    depth = np.empty((res, res))
+    with np.errstate(divide="ignore"):
+        np.divide(span, stored, out=depth, dtype=np.float64)  # Δ (1 + dₙ); inf where empty (0 stored)
+    depth += d_lo - span
+    return depth, ids
+
+
+def _context():
+    """The context, made current by ``with``; scenes and targets are made inside it."""
     require()
-    ctx, draw, resolve, _ = _setup()[0]
-    exact = any(j[1] is not None for j in jobs)
-    out = []
-    with ctx:
-        vbo = ctx.buffer(np.ascontiguousarray(tri, dtype=np.float32).tobytes())
-        planes = _planes(tri) if exact else None
-        coef = ctx.buffer(reserve=planes.nbytes) if exact else None
-        vao = ctx.vertex_array(draw, [(vbo, "3f", "p")])
-        quad = ctx.vertex_array(resolve, [])
-        ctx.disable(moderngl.CULL_FACE)
-        try:
-            for clip, inverse, res in jobs:
-                tg = _targets(ctx, res)
-                tg.draw.use()
-                tg.draw.viewport = (0, 0, res, res)
-                tg.draw.clear(depth=1.0)
-                ctx.enable(moderngl.DEPTH_TEST)
-                ctx.depth_func = "<="  # ties to the last drawn, the highest index, as in numpy
-                draw["clip"].write(np.ascontiguousarray(clip.T, dtype=np.float32).tobytes())  # GLSL: column-major
-                vao.render(moderngl.TRIANGLES)
-                ids32 = np.empty((res, res), np.int32)
-                if inverse is None:
-                    tg.ids.read_into(ids32)
-                    zb = np.empty((res, res), np.float32)
-                    tg.zbuffer.read_into(zb)
-                    empty = zb == 1.0
-                    depth = np.where(empty, np.inf, 0.0)
-                    ids = ids32.astype(np.int64)
-                    ids[empty] = -1
-                else:
-                    ctx.disable(moderngl.DEPTH_TEST)
-                    tg.resolve.use()
-                    tg.resolve.viewport = (0, 0, res, res)
-                    tg.ids.use(0)
-                    tg.zbuffer.use(1)
-                    coef.write(planes @ inverse[:, [0, 1, 3, 2]])  # (α, β, γ, B) per triangle
-                    coef.bind_to_storage_buffer(0)
-                    resolve["ray"].write(inverse[3, [0, 1, 3, 2]].astype(np.float64).tobytes())
-                    resolve["texel"].write(np.float64(1.0 / res).tobytes())
-                    quad.render(moderngl.TRIANGLES, vertices=3)
-                    hilo = np.empty((res, res, 2), np.float32)
-                    tg.depth.read_into(hilo)
-                    depth = np.add(hilo[..., 0], hilo[..., 1], dtype=np.float64)  # inf + 0 where empty
-                    del hilo
-                    tg.visible.read_into(ids32)  # −1 where empty
-                    ids = ids32.astype(np.int64)
-                out.append((depth, ids))
-        finally:
-            quad.release()
-            vao.release()
-            vbo.release()
-            if coef is not None:
-                coef.release()
-    return out
+    return _setup()[0][0]
 
 
-def _depth_range(tri: Array, row: Array) -> tuple[float, float]:
-    """Smallest depth and depth range of ``row``·(p, 1) over the triangles' bounding box."""
-    lo, hi = tri.min(axis=(0, 1)), tri.max(axis=(0, 1))
-    corners = np.array(np.meshgrid(*zip(lo, hi), indexing="ij")).reshape(3, -1).T
-    d = corners @ row[:3] + row[3]
-    d_lo, span = float(d.min()), float(d.max() - d.min())
-    return d_lo, span if span > 0 else 1.0
-
-
-def draw_maps(triangles: Array, matrices: Sequence[Array], resolutions: Sequence[int]) -> list[tuple[Array, NDArray[np.int64]]]:
+def draw_maps(triangles: Array, matrices: Sequence[Array], resolutions: Sequence[int]) -> tuple[list[tuple[Array, NDArray[np.int64]]], int]:
     """Depth maps of eye-space ``triangles`` (T, 3, 3, checked) through projective maps.
 
     ``matrices``: each map's H (:meth:`aliasing.raster.LightMap.matrix`); ``resolutions``:
-    each map's R.  The triangles are uploaded once.  Returns per map (depth, triangle): the
-    depth (R, R) [the map's depth units], ``inf`` where empty, and the visible triangle's
-    index into ``triangles``, −1 where empty.  Non-finite triangles are not drawn.
+    each map's R.  The triangles are uploaded and prepared once.  Returns the maps and the
+    number of triangles not drawn because a coordinate is not finite; per map (depth,
+    triangle): the depth (R, R) [the map's depth units], ``inf`` where empty, and the visible
+    triangle's index into ``triangles``, −1 where empty.
     """
-    tri, idx = _finite(np.asarray(triangles, float))
-    if tri.shape[0] == 0:
-        return [(np.full((r, r), np.inf), np.full((r, r), -1, np.int64)) for r in resolutions]
-    jobs = []
-    e3 = np.array([0.0, 0.0, 0.0, 1.0])
-    for h, res in zip(matrices, resolutions):
-        h = np.asarray(h, float)
-        d_lo, span = _depth_range(tri, h[2])
-        k = 2.0 / (span * (1.0 + DEPTH_PAD))
-        clip = np.stack([2 * h[0] - h[3], 2 * h[1] - h[3], k * (h[2] - d_lo * e3) - h[3], h[3]])
-        jobs.append((clip, np.linalg.inv(h), int(res)))
-    out = _draw(tri, jobs)
-    if idx is not None:
-        out = [(d, np.where(i >= 0, idx[np.maximum(i, 0)], -1)) for d, i in out]
-    return out
+    tri = np.asarray(triangles, float)
+    blank = [(np.full((r, r), np.inf), np.full((r, r), -1, np.int64)) for r in resolutions] if tri.shape[0] == 0 else None
+    if blank is not None:
+        return blank, 0
+    ctx = _context()
+    with ctx:
+        scene = _Scene(ctx, _setup()[0][1], tri)
+        try:
+            if scene.bad == scene.count:
+                return [(np.full((r, r), np.inf), np.full((r, r), -1, np.int64)) for r in resolutions], scene.bad
+            return [_draw_map(scene, np.asarray(h, float), int(r)) for h, r in zip(matrices, resolutions)], scene.bad
+        finally:
+            scene.release()
 
 
 def eye_ids(triangles: Array, tan_half: float, resolution: int, near: float, *, tan_y: float | None = None) -> NDArray[np.int64]:
@@ -331,16 +433,35 @@ def eye_ids(triangles: Array, tan_half: float, resolution: int, near: float, *, 
     perspective one between ``near`` (or the nearest vertex, if farther) and the farthest
     vertex, ties to the highest index.
     """
-    tri, idx = _finite(np.asarray(triangles, float))
-    z = tri[..., 2]
-    if tri.shape[0] == 0 or not (z > near).any():
-        return np.full((resolution, resolution), -1, np.int64)
-    z_far = float(z.max()) * (1.0 + DEPTH_PAD) + DEPTH_PAD
-    z_near = max(float(near), float(z.min()) * (1.0 - DEPTH_PAD))  # the nearest vertex, or the clipping plane
-    a, b = (z_far + z_near) / (z_far - z_near), -2.0 * z_far * z_near / (z_far - z_near)
-    ty = tan_half if tan_y is None else tan_y
-    clip = np.array([[1 / tan_half, 0, 0, 0], [0, 1 / ty, 0, 0], [0, 0, a, b], [0, 0, 1, 0]], float)
-    (_, ids), = _draw(tri, [(clip, None, int(resolution))])
-    if idx is not None:
-        ids = np.where(ids >= 0, idx[np.maximum(ids, 0)], -1)
-    return ids
+    import moderngl
+
+    tri = np.asarray(triangles, float)
+    empty = np.full((resolution, resolution), -1, np.int64)
+    if tri.shape[0] == 0:
+        return empty
+    ctx = _context()
+    with ctx:
+        scene = _Scene(ctx, _setup()[0][1], tri)
+        try:
+            z_lo, z_span = scene.depth_range(np.array([0.0, 0.0, 1.0, 0.0]))
+            z_far = z_lo + z_span
+            if scene.bad == scene.count or not z_far > near:
+                return empty
+            z_near = max(float(near), z_lo)  # the nearest vertex, or the clipping plane
+            a, b = (z_far + z_near) / (z_far - z_near), -2.0 * z_far * z_near / (z_far - z_near)
+            ty = tan_half if tan_y is None else tan_y
+            clip = np.array([[1 / tan_half, 0, 0, 0], [0, 1 / ty, 0, 0], [0, 0, a, b], [0, 0, 1, 0]], float)
+            prog = scene.programs["ids"]
+            _uniform(prog, "clip", np.ascontiguousarray(clip.T, dtype=np.float32))
+            tg = _targets(ctx, int(resolution))
+            tg.eye.use()
+            tg.eye.viewport = (0, 0, resolution, resolution)
+            tg.eye.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
+            ctx.enable(moderngl.DEPTH_TEST)
+            ctx.depth_func = "<="
+            scene.draw("ids")
+            raw = np.empty((resolution, resolution), np.int32)
+            tg.ids.read_into(raw)
+            return np.subtract(-1, raw, dtype=np.int64)
+        finally:
+            scene.release()

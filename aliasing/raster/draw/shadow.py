@@ -58,7 +58,8 @@ def shadow_map(triangles: ArrayLike, lm: LightMap, resolution: int, *, chunk: in
 
     ``backend="gl"`` draws the map with OpenGL (:mod:`.gl`, the optional ``gl`` extra) through
     its 4×4 matrix (:meth:`LightMap.matrix`): the same depth (computed per texel centre from
-    the visible triangle's plane, in double precision) and the same visible triangles up to
+    the visible triangle's plane in double precision, stored as float32: within
+    ``gl.DEPTH_ERROR`` of the scene's depth range) and the same visible triangles up to
     the hardware's sub-texel snapping of edges; there ``rasterized`` counts the finite
     triangles sent and ``degenerate`` the non-finite ones, and a scene wholly behind the
     warp's centre of projection gives an empty map (numpy: a ``ValueError``).
@@ -88,9 +89,8 @@ def _logarithmic(lm: LightMap) -> bool:
 
 def _gl_maps(tri: Array, maps: Sequence[LightMap], resolutions: Sequence[int]) -> list[DepthMap]:
     """Projective maps drawn by :func:`.gl.draw_maps` (the triangles uploaded once)."""
-    finite = int(np.isfinite(tri).all(axis=(1, 2)).sum())
-    drawn = gl.draw_maps(tri, [lm.matrix() for lm in maps], resolutions)
-    return [DepthMap(d, i, r, finite, tri.shape[0] - finite) for (d, i), r in zip(drawn, resolutions)]
+    drawn, skipped = gl.draw_maps(tri, [lm.matrix() for lm in maps], resolutions)
+    return [DepthMap(d, i, r, tri.shape[0] - skipped, skipped) for (d, i), r in zip(drawn, resolutions)]
 
 
 def _numpy_map(tri: Array, lm: LightMap, resolution: int, chunk: int) -> DepthMap:
