@@ -60,6 +60,8 @@ Example
 from __future__ import annotations
 
 import functools
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Sequence
 
@@ -75,11 +77,12 @@ DEPTH_PAD = 1e-3
 #: 1/(1 + dₙ), at most 2⁻²³·(1 + dₙ)² ≤ 2.4e-7 for dₙ ≤ 1 (dₙ itself is computed in double precision).
 DEPTH_ERROR = 5e-7
 
-#: Bytes per texel of one resolution's render targets (ids, depth buffer, depth).
-TARGET_BYTES = 12
+#: Bytes per texel of one resolution's render targets (ids, depth buffer, depth), of their
+#: pixel buffers (ids, depth) and of their host copies (ids, depth).
+TARGET_BYTES = 28
 #: Render targets are kept for the next draw at the same resolution up to this many bytes in all
 #: (an 8192² and a 2048² set; :func:`release` frees them).
-KEEP_BYTES = 3 * 2**29
+KEEP_BYTES = 2**31 + 2**28
 
 #: Bytes per triangle of the scene buffers kept for the next draw (double-precision input,
 #: float32 vertices, planes, per-map coefficients; :func:`release` frees them).
@@ -98,7 +101,7 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Triangles { double v[]; };
 layout(std430, binding = 1) writeonly buffer Vertices { float p[]; };
 layout(std430, binding = 2) writeonly buffer Planes { dvec4 plane[]; };
-layout(std430, binding = 4) buffer Counts { uint bad; };
+layout(std430, binding = 4) buffer Counts { uint bad; };   // triangles with a coordinate not finite
 uniform uint count;
 bool finite(double x) { return (unpackDouble2x32(x).y & 0x7ff00000u) != 0x7ff00000u; }   // exponent bits: not inf or NaN
 void main() {
@@ -116,31 +119,45 @@ void main() {
 }
 """
 
-# Once per map: the smallest and largest depth row·(p, 1) over the finite triangles' vertices,
-# as order-preserving unsigned keys of float32 values rounded outwards.
+# Once per map: the smallest and largest depth row·(p, 1) over each work group's finite
+# triangles' vertices, as order-preserving unsigned keys of float32 values rounded outwards
+# (a tree in shared memory, no atomics; the host reduces the groups' keys).
 _RANGE = """
 #version 430
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Triangles { double v[]; };
-layout(std430, binding = 4) buffer Range { uint bad; uint lo; uint hi; };
+layout(std430, binding = 5) writeonly buffer Groups { uvec2 groups[]; };
 uniform uint count;
 uniform dvec4 row;
 bool finite(double x) { return (unpackDouble2x32(x).y & 0x7ff00000u) != 0x7ff00000u; }   // exponent bits: not inf or NaN
 uint key(float f) { uint u = floatBitsToUint(f); return (u & 0x80000000u) != 0u ? ~u : u | 0x80000000u; }
 float down(double d) { float f = float(d); return double(f) <= d ? f : (f > 0.0 ? uintBitsToFloat(floatBitsToUint(f) - 1u) : (f < 0.0 ? uintBitsToFloat(floatBitsToUint(f) + 1u) : -1.4e-45)); }
 float up(double d) { return -down(-d); }
+shared uint lo[64], hi[64];
 void main() {
-    uint i = gl_GlobalInvocationID.x;
-    if (i >= count) return;
-    double lo_d = 1.0LF / 0.0LF, hi_d = -1.0LF / 0.0LF;
-    for (uint k = 0u; k < 9u; k++) if (!finite(v[9 * i + k])) return;   // a triangle that is not drawn
-    for (uint k = 0u; k < 3u; k++) {
-        double d = dot(row.xyz, dvec3(v[9 * i + 3 * k], v[9 * i + 3 * k + 1], v[9 * i + 3 * k + 2])) + row.w;
-        lo_d = min(lo_d, d);
-        hi_d = max(hi_d, d);
+    uint i = gl_GlobalInvocationID.x, j = gl_LocalInvocationIndex;
+    bool ok = i < count;
+    if (ok) for (uint k = 0u; k < 9u; k++) ok = ok && finite(v[9 * i + k]);   // a triangle that is drawn
+    lo[j] = 0xffffffffu;   // no triangle: the keys' identities
+    hi[j] = 0u;
+    if (ok) {
+        double lo_d = dot(row.xyz, dvec3(v[9 * i], v[9 * i + 1], v[9 * i + 2])) + row.w, hi_d = lo_d;
+        for (uint k = 1u; k < 3u; k++) {
+            double d = dot(row.xyz, dvec3(v[9 * i + 3 * k], v[9 * i + 3 * k + 1], v[9 * i + 3 * k + 2])) + row.w;
+            lo_d = min(lo_d, d);
+            hi_d = max(hi_d, d);
+        }
+        lo[j] = key(down(lo_d));
+        hi[j] = key(up(hi_d));
     }
-    atomicMin(lo, key(down(lo_d)));
-    atomicMax(hi, key(up(hi_d)));
+    for (uint half_ = 32u; half_ > 0u; half_ >>= 1) {
+        barrier();
+        if (j < half_) {
+            lo[j] = min(lo[j], lo[j + half_]);
+            hi[j] = max(hi[j], hi[j + half_]);
+        }
+    }
+    if (j == 0u) groups[gl_WorkGroupID.x] = uvec2(lo[0], hi[0]);
 }
 """
 
@@ -207,9 +224,13 @@ class _Targets:
     zbuffer: object
     maps: object   # framebuffer: ids, depth, z-buffer
     eye: object    # framebuffer: ids, z-buffer
+    ids_copy: object     # pixel buffers: the targets are copied into them on the device, then read
+    depth_copy: object
+    raw: np.ndarray      # host copies of the targets (int32, float32), read into and converted from
+    stored: np.ndarray
 
     def release(self) -> None:
-        for obj in (self.maps, self.eye, self.ids, self.depth, self.zbuffer):
+        for obj in (self.maps, self.eye, self.ids, self.depth, self.zbuffer, self.ids_copy, self.depth_copy):
             obj.release()
 
 
@@ -248,7 +269,9 @@ def _targets(ctx, res: int) -> _Targets:
     ids = ctx.texture((res, res), 1, dtype="i4")
     depth = ctx.texture((res, res), 1, dtype="f4")
     zbuf = ctx.depth_renderbuffer((res, res))
-    t = _Targets(res, ids, depth, zbuf, ctx.framebuffer([ids, depth], zbuf), ctx.framebuffer([ids], zbuf))
+    copies = (ctx.buffer(reserve=4 * res * res, dynamic=True), ctx.buffer(reserve=4 * res * res, dynamic=True))
+    host = (np.zeros((res, res), np.int32), np.zeros((res, res), np.float32))  # zeros: touched once, here
+    t = _Targets(res, ids, depth, zbuf, ctx.framebuffer([ids, depth], zbuf), ctx.framebuffer([ids], zbuf), *copies, *host)
     cache.append(t)
     return t
 
@@ -309,13 +332,14 @@ class _Scene:
         self.vertices = _buffer(ctx, "vertices", 36 * t)
         self.planes = _buffer(ctx, "planes", 32 * t)
         self.coefficients = _buffer(ctx, "coefficients", 32 * t)
-        self.counts = _buffer(ctx, "counts", 12)
-        self.counts.write(np.zeros(3, np.uint32))
+        self.counts = _buffer(ctx, "counts", 4)
+        self.counts.write(np.zeros(1, np.uint32))
         for binding, buf in enumerate((self.source, self.vertices, self.planes, self.coefficients, self.counts)):
             buf.bind_to_storage_buffer(binding)
         prep = programs["prepare"]
         prep["count"].value = t
         prep.run(group_x=(t + _GROUP - 1) // _GROUP)
+        ctx.memory_barrier()  # the vertices, planes and count are read next (draw, shaders, host)
         self.bad = int(np.frombuffer(self.counts.read(4), np.uint32)[0])
         self.arrays = {}
 
@@ -329,15 +353,19 @@ class _Scene:
 
     def depth_range(self, row: Array) -> tuple[float, float]:
         """(d₀, Δ): the finite vertices' depths ``row``·(p, 1) lie strictly inside (d₀, d₀ + Δ)."""
-        self.counts.write(np.array([0, 0xFFFFFFFF, 0], np.uint32))
         rng = self.programs["range"]
         rng["count"].value = self.count
         rng["row"].write(np.asarray(row, np.float64).tobytes())
-        rng.run(group_x=(self.count + _GROUP - 1) // _GROUP)
-        _, lo, hi = (int(x) for x in np.frombuffer(self.counts.read(12), np.uint32))
-        d_lo, d_hi = _decode(lo), _decode(hi)
-        if not d_lo <= d_hi:  # no finite triangle reached the shader
+        groups = (self.count + _GROUP - 1) // _GROUP
+        out = _buffer(self.ctx, "groups", 8 * groups)
+        out.bind_to_storage_buffer(5)
+        rng.run(group_x=groups)
+        self.ctx.memory_barrier()
+        keys = np.frombuffer(out.read(8 * groups), np.uint32).reshape(groups, 2)
+        lo, hi = int(keys[:, 0].min()), int(keys[:, 1].max())
+        if lo == 0xFFFFFFFF:  # no finite triangle
             return 0.0, 1.0
+        d_lo, d_hi = _decode(lo), _decode(hi)
         width = max(d_hi - d_lo, 1e-6 * max(abs(d_lo), abs(d_hi)), 1e-30)
         return d_lo - DEPTH_PAD * width, width * (1.0 + 2.0 * DEPTH_PAD)
 
@@ -360,6 +388,50 @@ def _uniform(prog, name: str, value: np.ndarray) -> None:
         member.write(np.ascontiguousarray(value).tobytes())
 
 
+#: Threads that convert the read-back targets into the DepthMap's arrays.
+THREADS = min(os.cpu_count() or 1, 8)
+
+
+@functools.lru_cache(maxsize=1)
+def _pool() -> ThreadPoolExecutor:
+    """Threads for the host's conversions (numpy releases the GIL in them)."""
+    return ThreadPoolExecutor(max_workers=THREADS, thread_name_prefix="aliasing-gl")
+
+
+def _blocks(res: int) -> list[slice]:
+    """Row blocks of a map, four per thread of :func:`_pool`."""
+    step = max(64, -(-res // (4 * THREADS)))
+    return [slice(i, i + step) for i in range(0, res, step)]
+
+
+def _read(tg: _Targets, span: float, offset: float) -> tuple[Array, NDArray[np.int64]]:
+    """Read the targets back into the DepthMap's new arrays: ids −1 − raw (the cleared 0 gives
+    −1), depth Δ/stored + offset (``inf`` where 0 is stored).  :func:`_pool`'s threads convert
+    in row blocks (their first touch of the new memory is most of the cost), the ids while
+    the depth is read."""
+    res = tg.res
+    ids = np.empty((res, res), np.int64)
+    depth = np.empty((res, res))
+
+    def convert_ids(block: slice) -> None:
+        np.subtract(-1, tg.raw[block], out=ids[block], dtype=np.int64)  # ~id = −1 − id
+
+    def convert_depth(block: slice) -> None:
+        with np.errstate(divide="ignore"):
+            np.divide(span, tg.stored[block], out=depth[block], dtype=np.float64)  # Δ (1 + dₙ)
+        depth[block] += offset
+
+    tg.ids.read_into(tg.ids_copy)  # on the device; a GPU's driver reads a pixel buffer faster than a texture
+    tg.depth.read_into(tg.depth_copy)
+    tg.ids_copy.read_into(tg.raw)
+    pending = [_pool().submit(convert_ids, b) for b in _blocks(res)]
+    tg.depth_copy.read_into(tg.stored)
+    pending += [_pool().submit(convert_depth, b) for b in _blocks(res)]
+    for job in pending:
+        job.result()
+    return depth, ids
+
+
 def _draw_map(scene: _Scene, h: Array, res: int) -> tuple[Array, NDArray[np.int64]]:
     import moderngl
 
@@ -371,6 +443,7 @@ def _draw_map(scene: _Scene, h: Array, res: int) -> tuple[Array, NDArray[np.int6
     coef["count"].value = scene.count
     _uniform(coef, "columns", inverse[:, [0, 1, 3, 2]].T.astype(np.float64))  # GLSL: column-major
     coef.run(group_x=(scene.count + _GROUP - 1) // _GROUP)
+    ctx.memory_barrier()  # the fragment shader reads the coefficients
     _uniform(prog, "clip", np.ascontiguousarray(clip.T, dtype=np.float32))
     _uniform(prog, "ray", inverse[3, [0, 1, 3, 2]].astype(np.float64))
     _uniform(prog, "texel", np.float64(1.0 / res))
@@ -381,17 +454,7 @@ def _draw_map(scene: _Scene, h: Array, res: int) -> tuple[Array, NDArray[np.int6
     ctx.enable(moderngl.DEPTH_TEST)
     ctx.depth_func = "<="  # ties to the last drawn, the highest index, as in numpy
     scene.draw("depth")
-    raw = np.empty((res, res), np.int32)
-    tg.ids.read_into(raw)
-    ids = np.subtract(-1, raw, dtype=np.int64)  # ~id = −1 − id; the cleared 0 gives −1
-    stored = np.empty((res, res), np.float32)
-    tg.depth.read_into(stored)
-    del raw
-    depth = np.empty((res, res))
-    with np.errstate(divide="ignore"):
-        np.divide(span, stored, out=depth, dtype=np.float64)  # Δ (1 + dₙ); inf where empty (0 stored)
-    depth += d_lo - span
-    return depth, ids
+    return _read(tg, span, d_lo - span)
 
 
 def _context():
@@ -460,8 +523,8 @@ def eye_ids(triangles: Array, tan_half: float, resolution: int, near: float, *, 
             ctx.enable(moderngl.DEPTH_TEST)
             ctx.depth_func = "<="
             scene.draw("ids")
-            raw = np.empty((resolution, resolution), np.int32)
-            tg.ids.read_into(raw)
-            return np.subtract(-1, raw, dtype=np.int64)
+            tg.ids.read_into(tg.ids_copy)
+            tg.ids_copy.read_into(tg.raw)
+            return np.subtract(-1, tg.raw, dtype=np.int64)
         finally:
             scene.release()
