@@ -141,15 +141,15 @@ def _sweep(args: argparse.Namespace) -> int:
             raise ValueError(f"--param takes KEY=VALUES (numbers or ranges), got {item!r}")
         params[key.strip()] = value
     axes = {}
-    for name, flag, default in (("f_over_n", "--f-over-n", "1000"), ("fov", "--fov", "60")):
+    for name, flag, default in (("f_over_n", "--f-over-n", "1000"), ("fov", "--fov", "60"), ("aspect", "--aspect", "1")):
         given = getattr(args, name)
         axes[name] = given if given is not None else cfg.get(name, default)
     light = args.light if args.light is not None else cfg.get("light", "overhead")
     k = args.k if args.k is not None else cfg.get("k")
     summary = args.summary or cfg.get("summary", False)
     held = out is None or summary or fmt == "netcdf" or sweep.store.resolve_out(out) is None
-    limits.check_request(schemes, axes["f_over_n"], axes["fov"], light, k=k, params=params, block=opts["block"], jobs=jobs, in_memory=held, limit=opts["max_memory"])
-    for name, flag in (("f_over_n", "--f-over-n"), ("fov", "--fov")):
+    limits.check_request(schemes, axes["f_over_n"], axes["fov"], light, aspect=axes["aspect"], k=k, params=params, block=opts["block"], jobs=jobs, in_memory=held, limit=opts["max_memory"])
+    for name, flag in (("f_over_n", "--f-over-n"), ("fov", "--fov"), ("aspect", "--aspect")):
         if getattr(args, name) is not None:
             axes[name] = sweep.grid_values(axes[name], flag)
     grid = sweep.plan(
@@ -157,6 +157,7 @@ def _sweep(args: argparse.Namespace) -> int:
         axes["f_over_n"],
         axes["fov"],
         light,
+        aspect=axes["aspect"],
         k=k,
         params=params,
         near=opts["near"],
@@ -234,14 +235,14 @@ def build_parser(full: bool = True) -> argparse.ArgumentParser:
 
     swp = sub.add_parser(
         "sweep",
-        help="evaluate schemes over depth ratios, fields of view and light directions",
+        help="evaluate schemes over depth ratios, fields of view, aspect ratios and light directions",
         description="M_x, M_z and S of shadow-map schemes for directional lights (unit resolutions), over the product "
         "of every parameter's values. Numbers take lists and ranges START:STOP:lin|log:COUNT (e.g. 10:10000:log:7). "
         "With --out, finished chunks are kept in <out>.parts until the output is complete (see --resume).",
         epilog="schemes: Standard | P | Po | LogP (Log) | Sopt | LogSopt | <warping rule> | ZP<k> | ZP<k>+<any>.  "
         "lights: overhead | behind | front | gamma:DEG[@azimuth:DEG] | sphere:N | hemisphere:N, comma-separated; "
         "gamma and azimuth also take ranges, e.g. gamma:0:180:lin:19@azimuth:0:90:lin:4.  "
-        "Config keys: schemes, k, f_over_n, fov, light, near, params (table), summary, format, out, block, jobs, dask; "
+        "Config keys: schemes, k, f_over_n, fov, aspect, light, near, params (table), summary, format, out, block, jobs, dask; "
         "command-line options override them.",
     )
     swp.add_argument("--config", metavar="TOML", help="read the sweep's parameters from a TOML file")
@@ -249,7 +250,9 @@ def build_parser(full: bool = True) -> argparse.ArgumentParser:
     swp.add_argument("--k", help="numbers of z-partitions (list or range): each scheme B becomes ZP<k>+B (k = 1 keeps B)")
     swp.add_argument("--param", action="append", default=[], metavar="KEY=VALUES", help="warping-rule option swept for the schemes that take it, e.g. eta=-1:1:lin:5, c_fraction=0.2,0.4")
     swp.add_argument("--f-over-n", help="depth ratios far/near: list or range (default 1000)")
-    swp.add_argument("--fov", help="FULL fields of view in degrees, list or range (the papers' θ is half: θ = 30° is --fov 60; default 60)")
+    swp.add_argument("--fov", help="FULL fields of view in degrees, list or range (the papers' θ is half: θ = 30° is --fov 60; default 60); vertical when --aspect is not 1")
+    swp.add_argument("--aspect", help="image width/height, > 0, list or range (default 1, a square view; 16:9 is 1.777777778); "
+                     "other values add an aspect column after fov; a scheme of square views only (face partitions, rules written with θ alone) is then refused")
     swp.add_argument("--light", help="light directions, comma-separated specs (default overhead)")
     swp.add_argument("--near", help="near distance (default 1; results depend on f/n only)")
     swp.add_argument("--summary", action="store_true", help="min, max, max/min and mean of S over the directions (Lloyd 2007 Table 3 layout)")

@@ -89,7 +89,7 @@ def test_engine_helpers_check_their_input():
 
 def test_plan_counts_the_product_and_chunks():
     g = S.plan("P,LogP", f_over_n="10:1000:log:3", fov="30:90:lin:4", light="sphere:25", k=[1, 5], block=10)
-    assert g.shape == (4, 3, 4, 25) and g.size == 4 * 3 * 4 * 25
+    assert g.shape == (4, 3, 4, 1, 25) and g.size == 4 * 3 * 4 * 25  # (variants, f/n, fov, aspect, directions)
     assert g.blocks == 3 and g.chunks == 4 * 3 * 4 * 3
     last = g.chunk(g.chunks - 1, "csv")
     assert (last.name, last.ratio, last.fov, len(last.light)) == ("ZP5+LogP", 1000.0, 90.0, 5)

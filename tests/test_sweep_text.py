@@ -88,7 +88,7 @@ def test_batch_payloads_equal_chunk_payloads_bit_for_bit():
 
 def test_batches_group_schemes_of_the_same_directions_and_options():
     g = S.plan("P,LogP,eta", params={"eta": [-1.0, 0.5]}, light="sphere:30", block=10)
-    assert g.shape == (4, 1, 1, 30) and g.chunks == 12
+    assert g.shape == (4, 1, 1, 1, 30) and g.chunks == 12  # (variants, f/n, fov, aspect, directions)
     batches = g.batches(range(g.chunks))
     assert sorted(i for b in batches for i in b) == list(range(12))
     for b in batches:

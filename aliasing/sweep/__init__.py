@@ -1,4 +1,4 @@
-"""Vectorized sweeps of schemes over depth ratios, fields of view and light directions.
+"""Vectorized sweeps of schemes over depth ratios, fields of view, aspect ratios and light directions.
 
 A package with one concern per module, lower modules never importing higher ones:
 

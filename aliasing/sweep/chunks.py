@@ -1,7 +1,7 @@
 """The work of a sweep's chunks: one chunk (:func:`compute_chunk`) or a batch sharing light frames.
 
-A chunk is one scheme variant × one f/n × one fov × a block of light directions.  Chunks
-that differ only in the scheme (same f/n, fov, block and warping-rule options) form a
+A chunk is one scheme variant × one f/n × one fov × one aspect × a block of light directions.
+Chunks that differ only in the scheme (same f/n, fov, aspect, block and warping-rule options) form a
 batch: :func:`compute_batch` evaluates them with one :func:`aliasing.schemes.evaluate_many`
 call, so every scheme shares the directions' light frames, and formats the light angles'
 CSV text once.  Payloads are the same, bit for bit, as chunk by chunk.
@@ -18,7 +18,7 @@ import numpy as np
 
 from .. import geometry, schemes
 from . import formats
-from .rows import _csv_cells, _direction_rows, _json_value, _with_cells
+from .rows import _csv_cells, _direction_rows, _json_value, _with_cells, view_of
 
 __all__ = ["compute_batch", "compute_chunk"]
 
@@ -39,6 +39,15 @@ class _Task:
     light: np.ndarray
     angles: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False, compare=False)  # γ, azimuth as typed
     shared: dict[str, Any] | None = field(default=None, repr=False, compare=False)  # set by a batch: the Result, angle text
+    aspect: float = 1.0  # image width/height of the view
+    aspect_shown: bool = False  # the grid has an aspect column (an aspect axis other than the single value 1)
+
+    @property
+    def view(self) -> tuple:
+        """The arguments of ``schemes.evaluate`` before the light: ``(near, far, fov)``, or a View when aspect ≠ 1."""
+        if self.aspect == 1.0:  # exactly the call of a square sweep
+            return (self.near, self.near * self.ratio, self.fov)
+        return (view_of(self.near, self.ratio, self.fov, self.aspect),)
 
     def compute(self) -> str | dict[str, np.ndarray]:
         """This chunk's payload (:func:`compute_chunk`)."""
@@ -65,15 +74,15 @@ def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
     (2, 2)
     """
     shared = task.shared or {}
-    r = shared["result"] if "result" in shared else schemes.evaluate(task.name, task.near, task.near * task.ratio, task.fov, task.light, **dict(task.options))
+    r = shared["result"] if "result" in shared else schemes.evaluate(task.name, *task.view, task.light, **dict(task.options))
     if task.kind == "arrays":
         return {"S": r.S, "M_x": r.M_x, "M_z": r.M_z, "n_prime": r.n_prime, "eta": r.eta}
     gamma, azimuth = shared["angles"] if "angles" in shared else _angles(task)
     if task.kind == "json":
-        rows = _direction_rows(r.scheme.name, task.ratio, task.fov, gamma, azimuth, r)
+        rows = _direction_rows(r.scheme.name, task.ratio, task.fov, gamma, azimuth, r, task.aspect if task.aspect_shown else None)
         rows = [_with_cells(row, task) for row in rows]
         return ",\n".join(" " + json.dumps({k: _json_value(v) for k, v in row.items()}, indent=1).replace("\n", "\n ") for row in rows)
-    head = _csv_cells([r.scheme.name, *task.cells, float(task.ratio), float(task.fov)])
+    head = _csv_cells([r.scheme.name, *task.cells, float(task.ratio), float(task.fov), *([float(task.aspect)] if task.aspect_shown else [])])
     angles = shared.get("angle_cells")
     if angles is None:
         angles = formats.cells([gamma, azimuth])
@@ -84,7 +93,7 @@ def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
 
 @dataclass(frozen=True)
 class _Batch:
-    """Chunks of the same f/n, fov, direction block and rule options, differing only in the scheme."""
+    """Chunks of the same f/n, fov, aspect, direction block and rule options, differing only in the scheme."""
 
     tasks: tuple[_Task, ...]
 
@@ -94,7 +103,7 @@ class _Batch:
 
 
 def compute_batch(tasks: tuple[_Task, ...]) -> list[str | dict[str, np.ndarray]]:
-    """Payloads of chunks that share f/n, fov, directions and options: one ``evaluate_many`` for all their schemes.
+    """Payloads of chunks that share f/n, fov, aspect, directions and options: one ``evaluate_many`` for all their schemes.
 
     Example
     -------
@@ -104,9 +113,10 @@ def compute_batch(tasks: tuple[_Task, ...]) -> list[str | dict[str, np.ndarray]]
     True
     """
     t0 = tasks[0]
-    if any((t.kind, t.options, t.near, t.ratio, t.fov) != (t0.kind, t0.options, t0.near, t0.ratio, t0.fov) or t.light is not t0.light and not np.array_equal(t.light, t0.light) for t in tasks):
-        raise ValueError("a batch's chunks must share kind, options, f/n, fov and light directions")
-    results = schemes.evaluate_many([t.name for t in tasks], t0.near, t0.near * t0.ratio, t0.fov, t0.light, **dict(t0.options))
+    same = ("kind", "options", "near", "ratio", "fov", "aspect", "aspect_shown")
+    if any(tuple(getattr(t, k) for k in same) != tuple(getattr(t0, k) for k in same) or t.light is not t0.light and not np.array_equal(t.light, t0.light) for t in tasks):
+        raise ValueError("a batch's chunks must share kind, options, f/n, fov, aspect and light directions")
+    results = schemes.evaluate_many([t.name for t in tasks], *t0.view, t0.light, **dict(t0.options))
     shared: dict[str, Any] = {}
     if t0.kind != "arrays":
         shared["angles"] = _angles(t0)

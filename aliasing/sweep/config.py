@@ -46,6 +46,7 @@ CONFIG_KEYS: dict[str, tuple[tuple[type, ...], str]] = {
     "k": ((int, list, str), "a whole number, a list or a range string"),
     "f_over_n": ((int, float, list, str), _NUM),
     "fov": ((int, float, list, str), _NUM),
+    "aspect": ((int, float, list, str), _NUM),
     "light": ((str, list), "a string or a list of strings"),
     "near": ((int, float), "a number"),
     "params": ((dict,), "a table of option = values"),
@@ -72,7 +73,7 @@ def read_config(path: str | os.PathLike) -> dict:
     >>> _ = path.write_text('schemes = "P"\nfovv = 60\n')
     >>> read_config(path)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
-    ValueError: config '...sweep.toml': unknown key 'fovv' (did you mean 'fov'?); allowed: schemes, k, f_over_n, fov, light, near, params, summary, format, out, block, jobs, dask
+    ValueError: config '...sweep.toml': unknown key 'fovv' (did you mean 'fov'?); allowed: schemes, k, f_over_n, fov, aspect, light, near, params, summary, format, out, block, jobs, dask
     """
     doc = _load_toml(path)
     where = f"config {str(path)!r}"
@@ -86,7 +87,7 @@ def read_config(path: str | os.PathLike) -> dict:
         items = value if isinstance(value, list) else []
         if key in ("schemes", "light") and not all(isinstance(v, str) for v in items):
             raise ValueError(f"{where}: key {key!r} must be {says}, got {value!r}")
-        if key in ("f_over_n", "fov", "k") and any(isinstance(v, bool) or not isinstance(v, (int, float, str)) for v in items):
+        if key in ("f_over_n", "fov", "aspect", "k") and any(isinstance(v, bool) or not isinstance(v, (int, float, str)) for v in items):
             raise ValueError(f"{where}: key {key!r} must be {says}, got {value!r}")
         if key == "params":
             for name, v in value.items():

@@ -230,6 +230,7 @@ def table(
     fov: ArrayLike | str = (60.0,),
     light: str | Sequence[str] | ArrayLike = "overhead",
     *,
+    aspect: ArrayLike | str = (1.0,),
     k: ArrayLike | str | None = None,
     params: dict | None = None,
     near: float = 1.0,
@@ -255,6 +256,6 @@ def table(
     ('ZP5+LogP', 1000.0, 5.98)
     """
     limit = None if max_memory is None else limits.parse_memory(max_memory)
-    limits.check_request(schemes, f_over_n, fov, light, k=k, params=params, block=block, jobs=jobs, in_memory=True, limit=limit)
-    grid = plan(schemes, f_over_n, fov, light, k=k, params=params, near=near, summary=summary, block=block, max_memory=max_memory)
+    limits.check_request(schemes, f_over_n, fov, light, aspect=aspect, k=k, params=params, block=block, jobs=jobs, in_memory=True, limit=limit)
+    grid = plan(schemes, f_over_n, fov, light, aspect=aspect, k=k, params=params, near=near, summary=summary, block=block, max_memory=max_memory)
     return grid.table(collect(grid, "arrays", jobs=jobs, dask=dask, progress=progress))

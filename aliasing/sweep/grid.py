@@ -1,8 +1,11 @@
 """The sweep grid: axes from numbers, lists and ranges; scheme variants; light specs; chunks.
 
-A :class:`Grid` is the product scheme variants × f/n × fov × light directions, split into
-chunks of one variant, one f/n, one fov and a block of directions; :func:`compute_chunk`
-evaluates one chunk (vectorized).
+A :class:`Grid` is the product scheme variants × f/n × fov × aspect × light directions, split
+into chunks of one variant, one f/n, one fov, one aspect and a block of directions;
+:func:`compute_chunk` evaluates one chunk (vectorized).  The aspect axis (image width/height,
+:class:`aliasing.View`) is the single value 1 unless asked for; only then does it show in
+the output, the parameters and the command (:func:`~aliasing.sweep.rows.aspect_shown`), so
+that a square sweep's output and manifest are what they were before views had an aspect.
 """
 
 from __future__ import annotations
@@ -24,10 +27,12 @@ from numpy.typing import ArrayLike
 from .. import _validation as check
 from .._version import __version__
 from .. import geometry, schemes, warping
+from ..view import check_aspect
 from . import limits
 from .limits import split_lights  # noqa: F401  (re-exported: part of this module's API)
 from .tables import SweepTable, _assemble_stream
 from .chunks import _Batch, _Task, compute_chunk  # noqa: F401 - compute_chunk: part of this module's API before the split
+from .rows import SQUARE, aspect_shown, refuse_square_only
 
 
 RANGE = "START:STOP:lin|log:COUNT"
@@ -105,7 +110,8 @@ def _range(text: str, name: str) -> list[float]:
             raise ValueError
         start, stop, count = float(parts[0]), float(parts[1]), int(parts[3])
     except ValueError:
-        raise ValueError(f"{name}: malformed range {text!r}; expected {RANGE}, e.g. 10:10000:log:7") from None
+        ratio = " (a width:height such as 16:9 is written as its quotient, e.g. 1.777777778)" if "aspect" in name and len(parts) == 2 else ""
+        raise ValueError(f"{name}: malformed range {text!r}; expected {RANGE}, e.g. 10:10000:log:7{ratio}") from None
     if count < 1:
         raise ValueError(f"{name}: range {text!r} has COUNT {count}; it must be >= 1 (the sweep grid would be empty)")
     if count > MAX_COUNT:
@@ -179,7 +185,7 @@ def expand_schemes(names: str | Iterable[str], k: ArrayLike | str | None = None,
     grids = {key: grid_values(value, f"param {key}") for key, value in params.items()}
     for key in grids:
         if key in warping.CONTEXT:
-            raise ValueError(f"param {key!r} is swept by the grid itself (f_over_n, fov, light), not a rule option")
+            raise ValueError(f"param {key!r} is swept by the grid itself (f_over_n, fov, aspect, light), not a rule option")
     used: set[str] = set()
     out: list[Variant] = []
     for text in listed:
@@ -293,12 +299,14 @@ def spread(count: int, most: int = 8) -> list[int]:
 
 @dataclass(frozen=True)
 class Grid:
-    """A planned sweep: the product scheme variants × f/n × fov × light directions.
+    """A planned sweep: the product scheme variants × f/n × fov × aspect × light directions.
 
-    Build it with :func:`plan`; it is split into chunks of one variant, one f/n, one fov
-    and a block of at most ``block`` directions.  Chunks are numbered by f/n, fov, block and
-    then variant, so that the chunks of the same directions are neighbours (a batch,
-    :meth:`batches`); the output is in row order, variant first (:meth:`output_order`).
+    Build it with :func:`plan`; it is split into chunks of one variant, one f/n, one fov,
+    one aspect and a block of at most ``block`` directions.  Chunks are numbered by f/n,
+    fov, aspect, block and then variant, so that the chunks of the same directions are
+    neighbours (a batch, :meth:`batches`); the output is in row order, variant first
+    (:meth:`output_order`).  With the default aspect axis (the single value 1) the numbering
+    is the one of a grid without aspect.
     """
 
     variants: tuple[Variant, ...]
@@ -310,6 +318,7 @@ class Grid:
     summary: bool = False
     block: int = DEFAULT_BLOCK
     angles: np.ndarray | None = field(default=None, repr=False, compare=False)  # (N, 2) γ, azimuth as typed
+    aspect: tuple[float, ...] = SQUARE  # image width/height of the views
 
     formats: ClassVar[tuple[str, ...]] = OUTPUT_FORMATS
 
@@ -330,9 +339,14 @@ class Grid:
         return tuple(dict(var.options).get(key) for key in self.param_names)
 
     @property
-    def shape(self) -> tuple[int, int, int, int]:
-        """(variants, f/n values, fovs, directions)."""
-        return (len(self.variants), len(self.f_over_n), len(self.fov), len(self.directions))
+    def aspect_shown(self) -> bool:
+        """Whether the aspect axis shows (a column, a parameter): any axis but the single value 1."""
+        return aspect_shown(self.aspect)
+
+    @property
+    def shape(self) -> tuple[int, int, int, int, int]:
+        """(variants, f/n values, fovs, aspects, directions)."""
+        return (len(self.variants), len(self.f_over_n), len(self.fov), len(self.aspect), len(self.directions))
 
     @property
     def size(self) -> int:
@@ -341,13 +355,13 @@ class Grid:
 
     @property
     def blocks(self) -> int:
-        """Direction blocks per (variant, f/n, fov)."""
+        """Direction blocks per (variant, f/n, fov, aspect)."""
         return -(-len(self.directions) // self.block)
 
     @property
     def chunks(self) -> int:
         """Number of chunks."""
-        return len(self.variants) * len(self.f_over_n) * len(self.fov) * self.blocks
+        return len(self.variants) * len(self.f_over_n) * len(self.fov) * len(self.aspect) * self.blocks
 
     def direction_angles(self, start: int = 0, stop: int | None = None) -> tuple[np.ndarray, np.ndarray]:
         """(γ, azimuth) [deg] of directions ``start:stop``: the light specs' numbers as typed."""
@@ -358,14 +372,16 @@ class Grid:
     def chunk(self, index: int, kind: str) -> _Task:
         """The work of chunk ``index`` (0 ≤ index < :attr:`chunks`) for a payload ``kind``."""
         cell, v = divmod(index, len(self.variants))
-        r, rest = divmod(cell, len(self.fov) * self.blocks)
-        f, b = divmod(rest, self.blocks)
+        r, rest = divmod(cell, len(self.fov) * len(self.aspect) * self.blocks)
+        f, rest = divmod(rest, len(self.aspect) * self.blocks)
+        a, b = divmod(rest, self.blocks)
         var = self.variants[v]
         lo, hi = b * self.block, (b + 1) * self.block
-        return _Task(index, kind, var.name, var.options, self.columns, self._cells(var), self.near, self.f_over_n[r], self.fov[f], self.directions[lo:hi], self.direction_angles(lo, hi))
+        return _Task(index, kind, var.name, var.options, self.columns, self._cells(var), self.near, self.f_over_n[r], self.fov[f], self.directions[lo:hi], self.direction_angles(lo, hi),
+                     aspect=self.aspect[a], aspect_shown=self.aspect_shown)
 
     def batches(self, todo: Sequence[int], workers: int = 1) -> list[list[int]]:
-        """The chunks ``todo`` grouped into batches that share f/n, fov, direction block and rule options.
+        """The chunks ``todo`` grouped into batches that share f/n, fov, aspect, direction block and rule options.
 
         A batch is evaluated at once (:func:`~aliasing.sweep.chunks.compute_batch`: light
         frames shared by its schemes), at most :data:`MAX_BATCH` chunks.  With several ``workers``, batches are halved until there
@@ -391,7 +407,7 @@ class Grid:
         return out
 
     def output_order(self) -> list[int]:
-        """Chunk indices in the order of the output rows: variant, f/n, fov, block.
+        """Chunk indices in the order of the output rows: variant, f/n, fov, aspect, block.
 
         Example
         -------
@@ -406,13 +422,20 @@ class Grid:
         return _Batch(tuple(self.chunk(i, kind) for i in indices))
 
     def parameters(self) -> dict:
-        """Every parameter of the sweep, JSON-ready (what the manifest's hash covers)."""
+        """Every parameter of the sweep, JSON-ready (what the manifest's hash covers).
+
+        ``aspect`` (and the aspect in ``chunk_order``) only when :attr:`aspect_shown`: a square
+        sweep has the parameters, and so the digest, it had before views had an aspect
+        (its interrupted runs resume), and any other aspect axis a different digest.
+        """
+        order = "f_over_n,fov,aspect,block,variant" if self.aspect_shown else "f_over_n,fov,block,variant"
         return {
-            "chunk_order": "f_over_n,fov,block,variant",  # the numbering of chunk files (work directories of other numberings are refused)
+            "chunk_order": order,  # the numbering of chunk files (work directories of other numberings are refused)
             "schemes": [v.name for v in self.variants],
             "options": [dict(v.options) for v in self.variants],
             "f_over_n": list(self.f_over_n),
             "fov": list(self.fov),
+            **({"aspect": list(self.aspect)} if self.aspect_shown else {}),
             "light": list(self.light),
             "directions": len(self.directions),
             "near": self.near,
@@ -432,13 +455,16 @@ class Grid:
             values = dict.fromkeys(dict(v.options)[key] for v in self.variants if key in dict(v.options))
             parts += ["--param", f"{key}=" + ",".join(f"{x:.10g}" for x in values)]
         parts += ["--f-over-n", ",".join(f"{x:.10g}" for x in self.f_over_n), "--fov", ",".join(f"{x:.10g}" for x in self.fov)]
+        if self.aspect_shown:
+            parts += ["--aspect", ",".join(f"{x:.10g}" for x in self.aspect)]
         parts += ["--light", ",".join(self.light), "--near", f"{self.near:.10g}", "--block", str(self.block), "--format", fmt]
         return shlex.join(parts + (["--summary"] if self.summary else []))
 
     def describe(self) -> str:
         """One line: the grid's axes, size and chunks."""
-        v, r, f, n = self.shape
-        return f"grid: {v} schemes × {r} f/n × {f} fov × {n} directions = {self.size:,} evaluations in {self.chunks:,} chunks"
+        v, r, f, a, n = self.shape
+        aspects = f" × {a} aspect" if self.aspect_shown else ""
+        return f"grid: {v} schemes × {r} f/n × {f} fov{aspects} × {n} directions = {self.size:,} evaluations in {self.chunks:,} chunks"
 
     def payload_kind(self, fmt: str) -> str:
         """How chunks are kept for output ``fmt``: CSV or JSON text, or arrays (summaries, NetCDF)."""
@@ -454,7 +480,7 @@ class Grid:
 
     def timing(self, kind: str, sample: int = 500) -> tuple[list[tuple[_Task, int]], str]:
         """Chunks to time for :func:`estimate` (``sample`` directions of up to 8 schemes), with their evaluations."""
-        small = Grid(self.variants, self.f_over_n[:1], self.fov[:1], self.light, self.directions[:sample], self.near, self.summary, sample, None if self.angles is None else self.angles[:sample])
+        small = Grid(self.variants, self.f_over_n[:1], self.fov[:1], self.light, self.directions[:sample], self.near, self.summary, sample, None if self.angles is None else self.angles[:sample], self.aspect[:1])
         tasks = [(small.chunk(v, kind), len(small.directions)) for v in spread(len(self.variants))]
         return tasks, f"timed on {len(small.directions)} directions per scheme"
 
@@ -465,6 +491,7 @@ def plan(
     fov: ArrayLike | str = (60.0,),
     light: str | Sequence[str] | ArrayLike = "overhead",
     *,
+    aspect: ArrayLike | str = SQUARE,
     k: ArrayLike | str | None = None,
     params: dict | None = None,
     near: float = 1.0,
@@ -481,15 +508,20 @@ def plan(
     schemes : str or iterable of str
         Scheme names (:data:`aliasing.schemes.GRAMMAR`).
     f_over_n, fov : array_like or str
-        Depth ratios far/near (> 1) and full fields of view [deg] in (0, 180).
+        Depth ratios far/near (> 1) and full (vertical) fields of view [deg] in (0, 180).
     light : str, sequence of str or array_like
         Light specs (:func:`expand_lights`) or vectors ``(N, 3)``.
+    aspect : array_like or str
+        Image width/height of the views, in (0, inf) (:class:`aliasing.View`; default: one
+        square view).  Any other axis adds an ``aspect`` column after ``fov``.  A scheme
+        that takes square views only (face partitions, the rules written with θ alone) is
+        refused with aspect ≠ 1, before any work.
     k, params
         See :func:`expand_schemes`.
     near : float
         Near distance [world units].
     summary : bool
-        One row per scheme, f/n and fov (min, max, max/min, mean of S̄).
+        One row per scheme, f/n, fov (and aspect) (min, max, max/min, mean of S̄).
     block : int
         Directions per chunk.
     max_memory : int or str, optional
@@ -501,17 +533,22 @@ def plan(
     -------
     >>> g = plan("P,LogP", f_over_n="10:1000:log:3", fov=[60], light="hemisphere:100", k=[1, 5])
     >>> g.shape, g.size, g.chunks
-    ((4, 3, 1, 100), 1200, 12)
+    ((4, 3, 1, 1, 100), 1200, 12)
+    >>> plan("P", aspect="1,2", light="overhead").describe()
+    'grid: 1 schemes × 1 f/n × 1 fov × 2 aspect × 1 directions = 2 evaluations in 2 chunks'
     """
     limit = None if max_memory is None else limits.parse_memory(max_memory)
-    limits.check_request(schemes, f_over_n, fov, light, k=k, params=params, block=block, limit=limit)  # before allocating
+    limits.check_request(schemes, f_over_n, fov, light, aspect=aspect, k=k, params=params, block=block, limit=limit)  # before allocating
     variants = expand_schemes(schemes, k, params)
     ratios = grid_values(f_over_n, "f_over_n")
     check.depth_ratio(ratios)
     fovs = grid_values(fov, "fov")
     check.fov(fovs)
+    aspects = grid_values(aspect, "aspect")
+    check_aspect(aspects)
     specs, lv, angles = expand_lights(light, angles=True)
     near = float(check.positive(near, "near"))
     if isinstance(block, bool) or int(block) != block or block < 1:
         raise ValueError(f"block must be a whole number >= 1 (directions per chunk), got {block!r}")
-    return Grid(variants, ratios, fovs, specs, lv, near, bool(summary), int(block), angles)
+    refuse_square_only([(v.label, v.name, dict(v.options)) for v in variants], near, ratios[0], fovs[0], aspects, lv[:1])
+    return Grid(variants, ratios, fovs, specs, lv, near, bool(summary), int(block), angles, aspects)

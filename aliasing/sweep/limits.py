@@ -109,7 +109,7 @@ def grid_bytes(grid: object, jobs: int = 1, in_memory: bool = False) -> tuple[in
         return None
     maps = max(schemes.parse(v.name).k * (FACE_MAPS if schemes.parse(v.name).faces else 1) for v in variants)
     g = grid
-    return estimate_bytes(len(variants), len(g.f_over_n), len(g.fov), len(g.directions), maps, g.block, jobs, in_memory)  # type: ignore[attr-defined]
+    return estimate_bytes(len(variants), len(g.f_over_n), len(g.fov), len(g.directions), maps, g.block, jobs, in_memory, aspects=len(getattr(g, "aspect", (1.0,))))  # type: ignore[attr-defined]
 
 
 def axis_count(value: object) -> int:
@@ -187,8 +187,11 @@ def scheme_counts(names: object, k: object = None, params: dict | None = None) -
     return len(listed) * axis_count(k if k is not None else 1) * combos, most
 
 
-def estimate_bytes(variants: int, ratios: int, fovs: int, directions: int, maps: int, block: int, jobs: int = 1, in_memory: bool = False) -> tuple[int, str]:
+def estimate_bytes(variants: int, ratios: int, fovs: int, directions: int, maps: int, block: int, jobs: int = 1, in_memory: bool = False, *, aspects: int = 1) -> tuple[int, str]:
     """Estimated peak bytes of a sweep, and the parameter that drives it most.
+
+    ``aspects``: values of the aspect axis (1, the default square view, adds no term: the
+    estimate of a square sweep is what it was before views had an aspect).
 
     Example
     -------
@@ -204,10 +207,12 @@ def estimate_bytes(variants: int, ratios: int, fovs: int, directions: int, maps:
         "schemes": per_chunk if maps > 1 else 0,
         "jobs": per_chunk if maps <= 1 else 0,
     }
+    if aspects > 1:
+        terms["aspect"] = aspects * 40
     if in_memory:
-        axes = {"schemes": variants, "f_over_n": ratios, "fov": fovs, "light": directions}
+        axes = {"schemes": variants, "f_over_n": ratios, "fov": fovs, "aspect": aspects, "light": directions}
         biggest = max(axes, key=axes.get)  # type: ignore[arg-type]
-        terms[biggest] += variants * ratios * fovs * directions * maps * 5 * 8
+        terms[biggest] = terms.get(biggest, 0) + variants * ratios * fovs * aspects * directions * maps * 5 * 8
     total = sum(terms.values())
     return int(total), max(terms, key=terms.get)  # type: ignore[arg-type]
 
@@ -219,7 +224,7 @@ def check_bytes(size: int, what: str, limit: int | None, flag: str = "--max-memo
         raise ValueError(f"{what}: this request needs about {human(size)} of memory, above the limit {human(cap)}; reduce it or raise {flag}")
 
 
-def check_request(schemes: object, f_over_n: object, fov: object, light: object, *, k: object = None, params: dict | None = None, block: int = 20_000, jobs: int = 1, in_memory: bool = False, limit: int | None = None) -> int:
+def check_request(schemes: object, f_over_n: object, fov: object, light: object, *, aspect: object = 1, k: object = None, params: dict | None = None, block: int = 20_000, jobs: int = 1, in_memory: bool = False, limit: int | None = None) -> int:
     """Estimate a sweep request from its counts and refuse it above ``limit``; the estimate [bytes].
 
     Example
@@ -230,7 +235,7 @@ def check_request(schemes: object, f_over_n: object, fov: object, light: object,
     """
     variants, maps = scheme_counts(schemes, k, params)
     blk = block if isinstance(block, int) and block >= 1 else 20_000
-    size, what = estimate_bytes(variants, axis_count(f_over_n), axis_count(fov), light_count(light), maps, blk, jobs if isinstance(jobs, int) else 1, in_memory)
+    size, what = estimate_bytes(variants, axis_count(f_over_n), axis_count(fov), light_count(light), maps, blk, jobs if isinstance(jobs, int) else 1, in_memory, aspects=axis_count(aspect))
     check_bytes(size, what, limit)
     return size
 

@@ -1,6 +1,6 @@
 """Rows of a sweep as plain dicts, and their CSV/JSON text.
 
-The small, direct API: :func:`sweep` evaluates every scheme × f/n × fov over the light
+The small, direct API: :func:`sweep` evaluates every scheme × f/n × fov (× aspect) over the light
 directions into rows (ready for ``pandas.DataFrame(rows)``); :func:`format_rows` writes
 them as CSV or JSON.  Per-map quantities (M_x, M_z, n′, η) are lists, one value per map (of a
 ``ZP<k>`` or face-partition scheme, or the one map of the others): arrays in JSON, and in CSV
@@ -26,16 +26,45 @@ from numpy.typing import ArrayLike
 
 from .. import _validation as check
 from .. import geometry, schemes
+from ..view import View, check_aspect
 
 
 FORMATS = ("csv", "json")
 ROW_FIELDS = ("scheme", "f_over_n", "fov", "gamma", "azimuth", "M_x", "M_z", "S", "maps", "n_prime", "eta")
 CSV_FIELDS = ("scheme", "f_over_n", "fov", "gamma", "azimuth", "map", "M_x", "M_z", "S", "maps", "n_prime", "eta")  # per-direction CSV
 SUMMARY_FIELDS = ("scheme", "f_over_n", "fov", "directions", "maps", "S_min", "S_max", "S_max_over_min", "S_mean")
+SQUARE = (1.0,)
+"""The default aspect axis: one square view.  Only another axis adds an ``aspect`` column
+after ``fov`` (:func:`with_aspect`), so that the output of a square sweep is what it was
+before views had an aspect, byte for byte."""
 
 
-def sweep(scheme_names: Iterable[str], f_over_n: ArrayLike = (1000.0,), fov: ArrayLike = (60.0,), light: str | ArrayLike = "overhead", *, near: float = 1.0, summary: bool = False, **options) -> list[dict]:
-    """Evaluate every scheme × f/n × fov over the light directions.
+def aspect_shown(aspects: Sequence[float]) -> bool:
+    """Whether an aspect axis is shown as a column: any axis but the single value 1.
+
+    Example
+    -------
+    >>> aspect_shown((1.0,)), aspect_shown((1.0, 2.0)), aspect_shown((2.0,))
+    (False, True, True)
+    """
+    return tuple(float(a) for a in aspects) != SQUARE
+
+
+def with_aspect(fields: Sequence[str]) -> tuple[str, ...]:
+    """``fields`` with ``aspect`` after ``fov`` (the columns of a sweep over non-square views).
+
+    Example
+    -------
+    >>> with_aspect(SUMMARY_FIELDS)[:4]
+    ('scheme', 'f_over_n', 'fov', 'aspect')
+    """
+    out = list(fields)
+    out.insert(out.index("fov") + 1, "aspect")
+    return tuple(out)
+
+
+def sweep(scheme_names: Iterable[str], f_over_n: ArrayLike = (1000.0,), fov: ArrayLike = (60.0,), light: str | ArrayLike = "overhead", *, aspect: ArrayLike = SQUARE, near: float = 1.0, summary: bool = False, **options) -> list[dict]:
+    """Evaluate every scheme × f/n × fov × aspect over the light directions.
 
     Parameters
     ----------
@@ -44,13 +73,17 @@ def sweep(scheme_names: Iterable[str], f_over_n: ArrayLike = (1000.0,), fov: Arr
     f_over_n : array_like
         Depth ratios far/near, each > 1.
     fov : array_like
-        Full fields of view [deg], each in (0, 180).
+        Full (vertical) fields of view [deg], each in (0, 180).
     light : str or array_like
         Light spec (:data:`aliasing.geometry.LIGHT_SPEC`) or vectors ``(N, 3)``.
+    aspect : array_like
+        Image width/height of the views, each in (0, inf) (default: one square view).  Any
+        other axis adds an ``aspect`` key after ``fov`` (:func:`aspect_shown`); schemes
+        of square views only (face partitions, θ-only rules) refuse aspect ≠ 1.
     near : float
         Near distance [world units]; results depend on f/n only.
     summary : bool
-        One row per scheme, f/n and fov with min, max, max/min and mean of S̄ over the
+        One row per scheme, f/n, fov (and aspect) with min, max, max/min and mean of S̄ over the
         directions (the layout of Lloyd et al. 2007 Table 3) instead of one row per direction.
     **options
         Passed to the warping rules.
@@ -65,25 +98,86 @@ def sweep(scheme_names: Iterable[str], f_over_n: ArrayLike = (1000.0,), fov: Arr
         raise ValueError("schemes must name at least one scheme")
     ratios = np.atleast_1d(check.depth_ratio(f_over_n))
     fovs = np.atleast_1d(check.fov(fov))
+    aspects = np.atleast_1d(check_aspect(aspect))
+    shown = aspect_shown(aspects.tolist())
     lv = geometry.lights(light)
     gamma, azimuth = geometry._typed_angles(light)  # as typed: gamma:30 is 30
-    # every scheme of a (f/n, fov) cell shares its directions' light frames (schemes.evaluate_many)
-    cells = {(i, j): schemes.evaluate_many(parsed, near, near * ratio, fv, lv, **options) for i, ratio in enumerate(ratios) for j, fv in enumerate(fovs)}
+    refuse_square_only([(sch.name, sch, options) for sch in parsed], near, ratios[0], fovs[0], aspects.tolist(), lv[:1])
+    # every scheme of a (f/n, fov, aspect) cell shares its directions' light frames (schemes.evaluate_many)
+    cells = {(i, j, a): schemes.evaluate_many(parsed, view_of(near, ratio, fv, av), lv, **options)
+             for i, ratio in enumerate(ratios) for j, fv in enumerate(fovs) for a, av in enumerate(aspects)}
     rows: list[dict] = []
     for s, sch in enumerate(parsed):
         for i, ratio in enumerate(ratios):
             for j, fv in enumerate(fovs):
-                r = cells[i, j][s]
-                if summary:
-                    rows.append(_summary_row(sch.name, ratio, fv, r))
-                else:
-                    rows.extend(_direction_rows(sch.name, ratio, fv, gamma, azimuth, r))
+                for a, av in enumerate(aspects):
+                    r = cells[i, j, a][s]
+                    shown_aspect = float(av) if shown else None
+                    if summary:
+                        rows.append(_summary_row(sch.name, ratio, fv, r, shown_aspect))
+                    else:
+                        rows.extend(_direction_rows(sch.name, ratio, fv, gamma, azimuth, r, shown_aspect))
     return rows
 
 
-def _summary_row(name: str, ratio: float, fov: float, r: schemes.Result) -> dict:
+def refuse_square_only(variants: Iterable[tuple[str, str | schemes.Scheme, dict]], near: float, ratio: float, fov: float, aspects: Sequence[float], light: ArrayLike) -> None:
+    """Refuse, before any work, a scheme that takes square views only in a sweep with aspect ≠ 1.
+
+    Face partitions and the rules written with θ alone (:meth:`aliasing.View.require_square`)
+    have no value at a non-square view: a sweep that crosses them with aspect ≠ 1 is refused
+    in one line naming the scheme and the aspect, instead of failing part-way.  Each
+    ``(label, scheme, options)`` is evaluated on the direction(s) ``light`` at the first
+    aspect ≠ 1 of the axis and, if that raises, at aspect 1: only a scheme that works at
+    aspect 1 is refused here (another error is left to the sweep itself, as before).
+
+    Example
+    -------
+    >>> refuse_square_only([("FP+P", "FP+P", {})], 1.0, 100.0, 60.0, (1.0, 2.0), [[0.0, 1.0, 0.0]])
+    Traceback (most recent call last):
+    ...
+    ValueError: aspect 2 is not possible with scheme 'FP+P', which takes square views only: aspect must be 1 for face partitions (Lloyd et al. 2007 §6.1.3: the four side faces of a square frustum) (a square view), got 2
+    """
+    wide = next((float(a) for a in aspects if float(a) != 1.0), None)
+    if wide is None:
+        return
+    for label, scheme, options in variants:
+        try:
+            schemes.evaluate(scheme, view_of(near, ratio, fov, wide), light, **options)
+        except ValueError as exc:
+            try:
+                schemes.evaluate(scheme, view_of(near, ratio, fov), light, **options)
+            except ValueError:
+                continue  # wrong at aspect 1 too: not the aspect's doing
+            raise ValueError(f"aspect {wide:g} is not possible with scheme {label!r}, which takes square views only: {exc}") from None
+
+
+def view_of(near: float, ratio: float, fov: float, aspect: float = 1.0) -> View:
+    """The View of one sweep cell: near, far = near·ratio, fov [deg] and aspect (validated by View).
+
+    Example
+    -------
+    >>> view_of(1.0, 100.0, 60.0, 2.0)
+    View(near=1.0, far=100.0, fov=60.0, aspect=2.0)
+    """
+    return View(near, near * ratio, fov, aspect)
+
+
+def _aspect_after_fov(row: dict, aspect: float | None) -> dict:
+    """``row`` with ``aspect`` after ``fov`` when an aspect is shown (not None)."""
+    if aspect is None:
+        return row
+    out: dict = {}
+    for key, value in row.items():
+        out[key] = value
+        if key == "fov":
+            out["aspect"] = float(aspect)
+    return out
+
+
+def _summary_row(name: str, ratio: float, fov: float, r: schemes.Result, aspect: float | None = None) -> dict:
     s_min, s_max = float(r.S.min()), float(r.S.max())
-    return {"scheme": name, "f_over_n": float(ratio), "fov": float(fov), "directions": int(r.S.size), "maps": _mean_maps(r), "S_min": s_min, "S_max": s_max, "S_max_over_min": s_max / s_min, "S_mean": float(r.S.mean())}
+    row = {"scheme": name, "f_over_n": float(ratio), "fov": float(fov), "directions": int(r.S.size), "maps": _mean_maps(r), "S_min": s_min, "S_max": s_max, "S_max_over_min": s_max / s_min, "S_mean": float(r.S.mean())}
+    return _aspect_after_fov(row, aspect)
 
 
 def _mean_maps(r: schemes.Result) -> int | float:
@@ -92,14 +186,15 @@ def _mean_maps(r: schemes.Result) -> int | float:
     return int(used[0]) if np.all(used == used[0]) else float(used.mean())
 
 
-def _direction_rows(name: str, ratio: float, fov: float, gamma: np.ndarray, azimuth: np.ndarray, r: schemes.Result) -> list[dict]:
+def _direction_rows(name: str, ratio: float, fov: float, gamma: np.ndarray, azimuth: np.ndarray, r: schemes.Result, aspect: float | None = None) -> list[dict]:
     per_map = {"M_x": r.M_x.tolist(), "M_z": r.M_z.tolist(), "n_prime": r.n_prime.tolist(), "eta": r.eta.tolist()}  # lists, one per map
     used = r.maps_used.tolist()
+    view = {"fov": float(fov)} if aspect is None else {"fov": float(fov), "aspect": float(aspect)}
     return [
         {
             "scheme": name,
             "f_over_n": float(ratio),
-            "fov": float(fov),
+            **view,
             "gamma": float(gamma[i]),
             "azimuth": float(azimuth[i]),
             "M_x": per_map["M_x"][i],

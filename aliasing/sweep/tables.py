@@ -12,7 +12,7 @@ import numpy as np
 from .. import geometry, schemes
 from .._version import __version__
 from .chunks import _Task
-from .rows import CSV_FIELDS, ROW_FIELDS, _csv_cells, _direction_rows, _summary_row, _with_cells, format_rows
+from .rows import CSV_FIELDS, ROW_FIELDS, _csv_cells, _direction_rows, _summary_row, _with_cells, format_rows, with_aspect
 from .store import atomic_target
 
 if TYPE_CHECKING:  # annotations only: the grid imports this module
@@ -24,7 +24,8 @@ def _assemble_stream(grid: Grid, payload_kind: str, fmt: str, payloads: Iterable
     if payload_kind == "arrays":  # summary rows (small)
         yield format_rows(SweepTable._from_payloads(grid, list(payloads)).rows(), fmt)
         return
-    header = _with_cells(dict.fromkeys(CSV_FIELDS if fmt == "csv" else ROW_FIELDS), grid.chunk(0, fmt))
+    fields = CSV_FIELDS if fmt == "csv" else ROW_FIELDS
+    header = _with_cells(dict.fromkeys(with_aspect(fields) if grid.aspect_shown else fields), grid.chunk(0, fmt))
     if fmt == "csv":
         yield _csv_cells(list(header)) + "\n"
         yield from payloads  # type: ignore[misc]
@@ -53,7 +54,7 @@ class SweepTable:
     """A finished sweep in memory: rows, pandas, xarray.
 
     ``S`` and the per-map arrays are kept per scheme variant with shape
-    ``(f/n, fov, directions[, maps])``.  Build it with :func:`table` (also reachable as
+    ``(f/n, fov, aspect, directions[, maps])``.  Build it with :func:`table` (also reachable as
     ``aliasing.sweep(...)``).
 
     Example
@@ -71,21 +72,21 @@ class SweepTable:
 
     @classmethod
     def _from_payloads(cls, grid: Grid, payloads: list, command: str | None = None) -> SweepTable:
-        _, nr, nf, _ = grid.shape
-        per = nr * nf * grid.blocks
+        _, nr, nf, na, _ = grid.shape
+        per = nr * nf * na * grid.blocks
         data = []
         for v in range(len(grid.variants)):
             chunk = payloads[v * per : (v + 1) * per]
             merged = {}
             for key in chunk[0]:
-                arr = np.concatenate([c[key] for c in chunk])  # blocks in order, per (r, f)
-                merged[key] = arr.reshape((nr, nf, -1) + arr.shape[1:])
+                arr = np.concatenate([c[key] for c in chunk])  # blocks in order, per (r, f, a)
+                merged[key] = arr.reshape((nr, nf, na, -1) + arr.shape[1:])
             data.append(merged)
         return cls(grid, data, command)
 
     def __len__(self) -> int:
-        v, r, f, n = self.grid.shape
-        return v * r * f if self.grid.summary else self.grid.size
+        v, r, f, a, n = self.grid.shape
+        return v * r * f * a if self.grid.summary else self.grid.size
 
     def rows(self) -> list[dict]:
         """Rows as :func:`sweep` gives them (plus a column per swept rule option)."""
@@ -98,9 +99,11 @@ class SweepTable:
             sch = schemes.parse(var.name)
             for r, ratio in enumerate(g.f_over_n):
                 for f, fv in enumerate(g.fov):
-                    res = schemes.Result(sch, d["M_x"][r, f], d["M_z"][r, f], d["S"][r, f], d["n_prime"][r, f], d["eta"][r, f], maps)
-                    new = [_summary_row(sch.name, ratio, fv, res)] if g.summary else _direction_rows(sch.name, ratio, fv, gamma, azimuth, res)
-                    rows.extend(_with_cells(row, task) for row in new)
+                    for a, av in enumerate(g.aspect):
+                        res = schemes.Result(sch, d["M_x"][r, f, a], d["M_z"][r, f, a], d["S"][r, f, a], d["n_prime"][r, f, a], d["eta"][r, f, a], maps)
+                        shown = av if g.aspect_shown else None
+                        new = [_summary_row(sch.name, ratio, fv, res, shown)] if g.summary else _direction_rows(sch.name, ratio, fv, gamma, azimuth, res, shown)
+                        rows.extend(_with_cells(row, task) for row in new)
         return rows
 
     def format(self, fmt: str = "csv") -> str:
@@ -118,7 +121,10 @@ class SweepTable:
         return pd.DataFrame(self.rows())
 
     def to_xarray(self):
-        """An ``xarray.Dataset`` with dims scheme, f_over_n, fov, direction (and map).
+        """An ``xarray.Dataset`` with dims scheme, f_over_n, fov, (aspect,) direction (and map).
+
+        The ``aspect`` dimension is there when the grid has an aspect axis other than the
+        single value 1 (:attr:`Grid.aspect_shown`), as the ``aspect`` column of the other formats.
 
         Per-map variables (M_x, M_z, n_prime, eta) have a ``map`` dimension padded with NaN
         up to the largest number of maps; attributes hold every parameter, the toolkit
@@ -130,27 +136,34 @@ class SweepTable:
         gamma, azimuth = g.direction_angles()
         kmax = max(d["M_x"].shape[-1] for d in self.data)
         coords: dict = {"scheme": [v.label for v in g.variants], "f_over_n": list(g.f_over_n), "fov": list(g.fov)}
+        shown = g.aspect_shown
+        if shown:
+            coords["aspect"] = list(g.aspect)
+        views = ("scheme", "f_over_n", "fov", "aspect") if shown else ("scheme", "f_over_n", "fov")
         coords["scheme_name"] = ("scheme", [v.name for v in g.variants])
         coords["maps"] = ("scheme", [d["M_x"].shape[-1] for d in self.data])
         for key, column in zip(g.param_names, g.columns):
             coords[column] = ("scheme", [float(dict(v.options).get(key, np.nan)) for v in g.variants])
         S = np.stack([d["S"] for d in self.data])
+        if not shown:  # the one square view: no aspect dimension (the Dataset of a sweep without aspect)
+            S = S[:, :, :, 0]
         attrs = self.attributes()
         attrs.update(near=g.near, light=",".join(g.light), summary=int(g.summary), block=g.block)
         attrs.update(units_fov="degrees (full field of view)", units_gamma="degrees", units_S="image areas (unit resolutions)")
+        if shown:
+            attrs.update(units_aspect="image width/height (fov is the vertical field of view)")
         if g.summary:
             s_min, s_max = S.min(axis=-1), S.max(axis=-1)
-            data = {"S_min": (("scheme", "f_over_n", "fov"), s_min), "S_max": (("scheme", "f_over_n", "fov"), s_max),
-                    "S_max_over_min": (("scheme", "f_over_n", "fov"), s_max / s_min), "S_mean": (("scheme", "f_over_n", "fov"), S.mean(axis=-1))}
+            data = {"S_min": (views, s_min), "S_max": (views, s_max), "S_max_over_min": (views, s_max / s_min), "S_mean": (views, S.mean(axis=-1))}
             coords["directions"] = len(g.directions)
             return xr.Dataset(data, coords=coords, attrs=attrs)
         coords.update(direction=np.arange(len(g.directions)), gamma=("direction", gamma), azimuth=("direction", azimuth), map=np.arange(kmax))
-        dims = ("scheme", "f_over_n", "fov", "direction", "map")
-        data = {"S": (dims[:4], S)}
+        dims = (*views, "direction", "map")
+        data = {"S": (dims[:-1], S)}
         for key in ("M_x", "M_z", "n_prime", "eta"):
             padded = np.full(S.shape + (kmax,), np.nan)
             for i, d in enumerate(self.data):
-                padded[i, ..., : d[key].shape[-1]] = d[key]
+                padded[i, ..., : d[key].shape[-1]] = d[key] if shown else d[key][:, :, 0]
             data[key] = (dims, padded)
         return xr.Dataset(data, coords=coords, attrs=attrs)
 
@@ -168,7 +181,7 @@ def import_pyarrow() -> types.ModuleType:
 def _parquet_schema(pa: types.ModuleType, grid: Grid, listed: bool):
     per_map = pa.list_(pa.float64()) if listed else pa.float64()
     fields = [("scheme", pa.string())] + [(c, pa.float64()) for c in grid.columns]
-    fields += [("f_over_n", pa.float64()), ("fov", pa.float64()), ("gamma", pa.float64()), ("azimuth", pa.float64())]
+    fields += [("f_over_n", pa.float64()), ("fov", pa.float64())] + ([("aspect", pa.float64())] if grid.aspect_shown else []) + [("gamma", pa.float64()), ("azimuth", pa.float64())]
     fields += [("M_x", per_map), ("M_z", per_map), ("S", pa.float64()), ("maps", pa.int64()), ("n_prime", per_map), ("eta", per_map)]
     return pa.schema(fields)
 
@@ -177,7 +190,7 @@ def parquet_batches(grid: Grid, payloads: Iterable[object]) -> Iterator:
     """``pyarrow.RecordBatch`` es of the per-direction rows, one per chunk, in order.
 
     The columns of :data:`~aliasing.sweep.rows.ROW_FIELDS` (with ``param_<name>`` after
-    ``scheme``); per-map quantities are ``list<double>`` when some scheme has more than one
+    ``scheme``, and ``aspect`` after ``fov`` when the grid shows it); per-map quantities are ``list<double>`` when some scheme has more than one
     map, else ``double``.
     """
     pa = import_pyarrow()
@@ -196,7 +209,8 @@ def parquet_batches(grid: Grid, payloads: Iterable[object]) -> Iterator:
             return pa.ListArray.from_arrays(pa.array(np.arange(0, a.size + 1, a.shape[1], dtype=np.int32)), pa.array(a.ravel()))
 
         cells = [pa.nulls(n, pa.float64()) if c is None else pa.array(np.full(n, float(c))) for c in task.cells]
-        columns = [pa.array([task.name] * n, pa.string()), *cells, pa.array(np.full(n, float(task.ratio))), pa.array(np.full(n, float(task.fov))), pa.array(gamma), pa.array(azimuth)]
+        view = [pa.array(np.full(n, float(task.ratio))), pa.array(np.full(n, float(task.fov)))] + ([pa.array(np.full(n, float(task.aspect)))] if grid.aspect_shown else [])
+        columns = [pa.array([task.name] * n, pa.string()), *cells, *view, pa.array(gamma), pa.array(azimuth)]
         columns += [per_map(d["M_x"]), per_map(d["M_z"]), pa.array(np.asarray(d["S"], dtype=float)), pa.array(np.count_nonzero(np.asarray(d["M_x"]).reshape(n, -1) > 0, axis=-1).astype(np.int64))]
         columns += [per_map(d["n_prime"]), per_map(d["eta"])]
         yield pa.RecordBatch.from_arrays(columns, schema=schema)
@@ -205,7 +219,7 @@ def parquet_batches(grid: Grid, payloads: Iterable[object]) -> Iterator:
 def write_parquet(grid: Grid, payloads: Iterable[object], target) -> None:
     """Write a grid's ``arrays`` payloads as Parquet at ``target`` (atomically; a row group per chunk, streamed).
 
-    Summaries are one row per scheme, f/n and fov (:data:`~aliasing.sweep.rows.SUMMARY_FIELDS`).
+    Summaries are one row per scheme, f/n, fov (and aspect) (:data:`~aliasing.sweep.rows.SUMMARY_FIELDS`).
     """
     pa = import_pyarrow()
     pq = pa.parquet
@@ -219,7 +233,7 @@ def write_parquet(grid: Grid, payloads: Iterable[object], target) -> None:
                 if writer is None:
                     # dictionary encoding only for the columns constant within a chunk: tried on the float
                     # columns of every row (pyarrow's default) it took 2.7x the time and gave a larger file
-                    constant = ["scheme", "f_over_n", "fov", *grid.columns]
+                    constant = ["scheme", "f_over_n", "fov", *(["aspect"] if grid.aspect_shown else []), *grid.columns]
                     writer = pq.ParquetWriter(tmp, batch.schema, use_dictionary=constant)
                 writer.write_batch(batch)
         finally:
