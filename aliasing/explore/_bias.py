@@ -89,6 +89,8 @@ def draw(fig: Figure, d: dict[str, Any]) -> None:
     b.bar(i - 0.2, margin, width=0.4, color=["C3" if m < 1 else "C0" for m in margin], label="ground margin (bias / minimum)")
     b.bar(i + 0.2, [r["gap_px"] for r in d["rows"]], width=0.4, color="0.6", label="lit gap [pixels]")
     b.axhline(1.0, color="k", lw=0.8)
+    top = max(float(margin.max()), max(r["gap_px"] for r in d["rows"]), 1.0)
+    b.set_ylim(0.0, top * 1.3)  # headroom: the legend above the bars, however tall they are
     b.set(xlabel="cascade", xticks=i, title="below 1: the ground acnes")
     b.legend(fontsize=7)
     note = f" (not modelled: {d['partial']})" if d["partial"] else ""
