@@ -128,6 +128,30 @@ def test_cascade_rows_are_consistent():
     assert np.isnan(rows[-1]["step"]) and all(r["step"] > 1 for r in rows[:-1])
 
 
+@pytest.mark.parametrize("aspect", [0.5, 16 / 9])
+def test_cascade_rows_of_a_non_square_view(aspect):
+    """aspect (width/height, fov vertical): the splits stay, each map is fitted to the wider slice.
+    A light ahead in the view's yz plane: the map's s axis is the view's width, so texel_s scales by
+    the aspect and texel_t, the ground's minimal bias (its slope is along t) and the lit gap do not."""
+    sq = cascade_bias(0.5, 200.0, 60.0, "gamma:50", "bevy", k=3, resolution=1024)
+    np.testing.assert_equal(cascade_bias(0.5, 200.0, 60.0, "gamma:50", "bevy", k=3, resolution=1024, aspect=1.0), sq)
+    wide = cascade_bias(0.5, 200.0, 60.0, "gamma:50", "bevy", k=3, resolution=1024, aspect=aspect)
+    for w, r in zip(wide, sq):
+        assert (w["near"], w["far"]) == (r["near"], r["far"])
+        # texel_edges differences the map coordinates over h = 1e-6: rounding up to ~1e-16/1e-6 (measured 2e-11 at 16:9, 0 at 0.5)
+        assert w["texel_s"] == pytest.approx(aspect * r["texel_s"], rel=1e-9) and w["texel_t"] == pytest.approx(r["texel_t"], rel=1e-12)
+        assert w["need_depth"] == pytest.approx(r["need_depth"], rel=1e-12) and w["gap_px"] == pytest.approx(r["gap_px"], rel=1e-12)
+        assert w["margin"] == pytest.approx(w["preset_depth"] / w["need_depth"])
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.one_of(st.floats(max_value=0.0, allow_nan=False), st.sampled_from([float("nan"), float("inf"), float("-inf")])))
+def test_cascade_bias_refuses_a_bad_aspect_naming_it(aspect):
+    with pytest.raises(ValueError, match="^aspect") as info:
+        cascade_bias(0.5, 200.0, 60.0, "gamma:50", "bevy", k=2, resolution=256, aspect=aspect)
+    assert "\n" not in str(info.value)
+
+
 def test_unknown_preset_names_preset():
     with pytest.raises(ValueError, match="preset"):
         presets.get("unreal")

@@ -194,7 +194,8 @@ def test_without_the_extra_import_works_and_explorers_say_which_extra():
     assert len(lines) == 1 and "pip install \".[explore]\"" in lines[0]
 
 
-@pytest.mark.parametrize("name, change", [("overhead", {"f_over_n": 300.0}), ("directions", {"f_over_n": 300.0, "resolution": 24}),
+@pytest.mark.parametrize("name, change", [("overhead", {"f_over_n": 300.0}), ("overhead", {"aspect": 2.0}), ("cascades", {"aspect": 16 / 9}),
+                                          ("directions", {"f_over_n": 300.0, "resolution": 24}),
                                           ("faces", {"gamma": 58.0}), ("cascades", {"lam": 0.3, "allocation": "error"})])
 def test_redraw_in_place_gives_the_picture_of_a_fresh_explorer(name, change):
     make = getattr(explore, name)

@@ -21,17 +21,21 @@ WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
 #: Settings at the ends of the sliders' ranges (and the defaults, {}), per explorer.
 EXTREMES = {
     "overhead": [{}, {"f_over_n": 1.5}, {"f_over_n": 1e5, "fov": 150.0}, {"f_over_n": 1.5, "fov": 5.0, "rule": "eta", "eta": 1.0},
-                 {"rule": "eta", "eta": -1.0}],
+                 {"rule": "eta", "eta": -1.0}, {"aspect": 4.0, "f_over_n": 1e5, "fov": 150.0}, {"aspect": 0.25, "f_over_n": 1.5, "fov": 5.0, "rule": "uniform"}],
     "directions": [{"resolution": 16}, {"f_over_n": 1.5, "fov": 5.0, "gamma": 0.0, "azimuth": -90.0, "resolution": 8},
                    {"f_over_n": 1e5, "fov": 150.0, "gamma": 180.0, "azimuth": 90.0, "resolution": 16},
-                   {"scheme": "FPcs+ZP4+LogP", "resolution": 16}],
-    "cascades": [{}, {"k": 1}, {"k": 8, "far": 1e6}, {"k": 8, "near": 1e-3, "far": 1.5e-3, "fov": 150.0}, {"method": "log", "k": 8, "budget": 512**2}],
+                   {"scheme": "FPcs+ZP4+LogP", "resolution": 16}, {"scheme": "ZP4+LogP", "aspect": 4.0, "f_over_n": 1e5, "fov": 150.0, "resolution": 16},
+                   {"aspect": 0.25, "f_over_n": 1.5, "fov": 5.0, "resolution": 8}],
+    "cascades": [{}, {"k": 1}, {"k": 8, "far": 1e6}, {"k": 8, "near": 1e-3, "far": 1.5e-3, "fov": 150.0}, {"method": "log", "k": 8, "budget": 512**2},
+                 {"k": 8, "far": 1e6, "aspect": 4.0, "fov": 150.0}, {"aspect": 0.25, "k": 1}],
     "faces": [{}, {"variant": "fp"}, {"variant": "fpcs", "gamma": 0.0, "azimuth": -180.0, "f_over_n": 1.5, "fov": 150.0},
               {"variant": "fpcs", "gamma": 30.0, "azimuth": 45.0, "f_over_n": 1e5, "fov": 150.0},
               {"variant": "fpc", "gamma": 180.0, "azimuth": 180.0, "f_over_n": 1e5, "fov": 5.0},
               {"variant": "fpcs", "gamma": 20.0, "azimuth": 30.0, "f_over_n": 100.0}],  # the notebook's: arrows past the outline
     "raster": [{"image_res": 32}, {"f_over_n": 1.5, "fov": 10.0, "image_res": 32, "every": 1},
-               {"f_over_n": 1e4, "fov": 120.0, "image_res": 32, "scheme": "FPcs+LogP", "budget": 64**2, "every": 64}],
+               {"f_over_n": 1e4, "fov": 120.0, "image_res": 32, "scheme": "FPcs+LogP", "budget": 64**2, "every": 64},
+               {"aspect": 4.0, "image_res": 32, "scheme": "ZP3+P", "f_over_n": 1e4, "fov": 120.0}, {"aspect": 0.25, "image_res": 32, "fov": 10.0}],
+    "bias": [{}, {"aspect": 4.0, "k": 6, "far": 1e5, "elevation": 5.0}, {"aspect": 0.25, "k": 1, "far": 1.0, "elevation": 85.0}],
 }
 CASES = [(name, values) for name, settings in EXTREMES.items() for values in settings]
 

@@ -35,6 +35,7 @@ from numpy.typing import ArrayLike
 from .. import _validation as check
 from ..raster.draw import cascade_set
 from ..raster.draw.lookup import light_gradient, texel_edges
+from ..view import View
 from . import presets as _presets
 from .filtering import pcf_footprint, seam_step
 from .plane import lit_gap, map_bias
@@ -45,7 +46,8 @@ AZIMUTHS = np.arange(0.0, 91.0, 5.0)
 
 
 def cascade_bias(near: float, far: float, fov: float, light: str | ArrayLike, preset: str = "filament", *, scheme: str = "Standard",
-                 splits: str = "practical", k: int | None = 4, resolution: int = 2048, image: int = 1080, **params: float) -> list[dict]:
+                 splits: str = "practical", k: int | None = 4, resolution: int = 2048, image: int = 1080, aspect: float = 1.0,
+                 **params: float) -> list[dict]:
     """Rows, one per cascade, of the minimal biases against ``preset`` (module docstring).
 
     Parameters
@@ -53,7 +55,7 @@ def cascade_bias(near: float, far: float, fov: float, light: str | ArrayLike, pr
     near, far : float
         Eye near and shadow far distances [world units].
     fov : float
-        Full field of view [deg].
+        Full (vertical) field of view [deg].
     light : str or array_like
         One light direction (spec or eye-space vector towards the light), above the ground
         (eye-space y is up).
@@ -68,7 +70,11 @@ def cascade_bias(near: float, far: float, fov: float, light: str | ArrayLike, pr
     resolution : int
         Texels per side of each cascade's map.
     image : int
-        Pixels across the view (for ``gap_px`` and ``pcf_px``).
+        Pixels across the view, top to bottom (for ``gap_px`` and ``pcf_px``; the image's rows,
+        square pixels: aspect·image columns).
+    aspect : float
+        Image width/height, 0 < aspect < inf (:class:`aliasing.View`; default 1, the square
+        view): each cascade's map is fitted to its slice of the wider (or taller) frustum.
     **params
         The split method's parameters (``lam`` for practical, default 0.5).
     """
@@ -77,7 +83,7 @@ def cascade_bias(near: float, far: float, fov: float, light: str | ArrayLike, pr
     img = check.whole(image, "image", 1, 1 << 16, " (pixels across the view)")
     if splits == "practical" and "lam" not in params:
         params["lam"] = 0.5
-    cs = cascade_set(near, far, fov, light, scheme, splits=splits, k=k, **params)
+    cs = cascade_set(View(near, far, fov, aspect), light, scheme, splits=splits, k=k, **params)  # validated once
     up = np.array([0.0, 1.0, 0.0])
     lookup = f"pcf{p.pcf}"
     half = float(cs.maps.view.tan_theta)  # the view of the cascades, validated once

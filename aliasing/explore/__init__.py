@@ -67,9 +67,11 @@ def overhead(**values: Any) -> Explorer:
     Parameters
     ----------
     **values
-        Initial control values: ``f_over_n`` (log slider, 1.5–10⁵), ``fov`` [deg], ``rule``
-        (``uniform``, ``psm``, ``lispsm``, ``eta``, ``n_prime``), ``eta`` (−1…1), ``n_prime``
-        (text [world units] or ``inf``), ``res_image`` [pixels]; ``debounce`` [s].
+        Initial control values: ``f_over_n`` (log slider, 1.5–10⁵), ``fov`` [deg, vertical],
+        ``aspect`` (width/height, log slider 0.25–4; ≠ 1: the general evaluation, Lloyd 2006's
+        closed forms being square), ``rule`` (``uniform``, ``psm``, ``lispsm``, ``eta``,
+        ``n_prime``), ``eta`` (−1…1), ``n_prime`` (text [world units] or ``inf``),
+        ``res_image`` [pixels]; ``debounce`` [s].
 
     Returns
     -------
@@ -91,8 +93,9 @@ def directions(**values: Any) -> Explorer:
     Parameters
     ----------
     **values
-        ``scheme`` (text, :data:`aliasing.schemes.GRAMMAR`), ``f_over_n``, ``fov`` [deg],
-        ``gamma``, ``azimuth`` [deg] (the chosen direction), ``resolution`` (map cells per side).
+        ``scheme`` (text, :data:`aliasing.schemes.GRAMMAR`), ``f_over_n``, ``fov`` [deg, vertical],
+        ``aspect`` (width/height, 0.25–4), ``gamma``, ``azimuth`` [deg] (the chosen direction),
+        ``resolution`` (map cells per side).
 
     Returns
     -------
@@ -117,8 +120,8 @@ def cascades(**values: Any) -> Explorer:
     ----------
     **values
         ``method`` (split method or engine preset), ``k``, ``lam`` (λ), ``near``, ``far``
-        [world units], ``fov`` [deg], ``warp`` (text), ``budget`` [texels], ``allocation``,
-        ``res_image`` [pixels].
+        [world units], ``fov`` [deg, vertical], ``aspect`` (width/height, 0.25–4), ``warp``
+        (text), ``budget`` [texels], ``allocation``, ``res_image`` [pixels, rows].
 
     Returns
     -------
@@ -140,7 +143,8 @@ def faces(**values: Any) -> Explorer:
     ----------
     **values
         ``variant`` (``fp``, ``fpc``, ``fpcs``), ``parameterization`` of the side faces,
-        ``f_over_n``, ``fov`` [deg], ``gamma``, ``azimuth`` [deg].
+        ``f_over_n``, ``fov`` [deg], ``gamma``, ``azimuth`` [deg].  No aspect: face partitions
+        are of a square frustum.
 
     Returns
     -------
@@ -161,8 +165,9 @@ def raster(**values: Any) -> Explorer:
     Parameters
     ----------
     **values
-        ``scheme`` (text), ``light`` (text, one direction), ``f_over_n``, ``fov`` [deg],
-        ``image_res`` [pixels], ``budget`` [texels over all maps], ``every`` [texels between grid lines].
+        ``scheme`` (text), ``light`` (text, one direction), ``f_over_n``, ``fov`` [deg, vertical],
+        ``aspect`` (width/height, 0.25–4: the R × R pixels aspect : 1 wide), ``image_res``
+        [pixels], ``budget`` [texels over all maps], ``every`` [texels between grid lines].
 
     Returns
     -------
@@ -184,8 +189,9 @@ def bias(**values: Any) -> Explorer:
     ----------
     **values
         ``preset`` (:data:`aliasing.bias.presets.PRESETS`), ``elevation`` (light above the
-        ground [deg]), ``k`` (cascades), ``lam`` (λ), ``far`` [world units], ``resolution``
-        (texels per cascade side), ``image`` [pixels].
+        ground [deg]), ``k`` (cascades), ``lam`` (λ), ``far`` [world units], ``aspect``
+        (width/height, 0.25–4), ``resolution`` (texels per cascade side), ``image`` [pixels,
+        the image's rows].
 
     Returns
     -------
@@ -209,7 +215,8 @@ def shimmer(**values: Any) -> Explorer:
     **values
         ``scene`` (a built-in scene), ``scheme`` (the engines grammar), ``motion``
         (:func:`aliasing.temporal.paths.parse_motion`), ``frames``, ``frame``, ``image_res``
-        (points: one per pixel of the first frame), ``shadow_res`` [texels per cascade].
+        (points: one per pixel of the first frame), ``shadow_res`` [texels per cascade].  No
+        aspect: :mod:`aliasing.temporal` follows a square view.
 
     Returns
     -------

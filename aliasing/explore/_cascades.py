@@ -5,7 +5,9 @@ log splits, Lloyd et al. 2006 eqs. 15–16 / Lloyd et al. 2007 eqs. 80–82; the
 of Zhang et al. 2006; the engines' presets with their padding and overlaps), each
 partition's S̄ and, for a texel budget shared by an allocation (equal squares as engines
 ship, or Lloyd 2007 eq. 83's error-based shares), its resolution and worst error over
-light directions from :func:`aliasing.budgets.splits_report`.
+light directions from :func:`aliasing.budgets.splits_report`, for a view of any ``aspect``
+(width/height, ``fov`` vertical: :class:`aliasing.View`): the splits do not depend on it, each
+partition's map is fitted to its wider slice.
 """
 
 from __future__ import annotations
@@ -34,7 +36,8 @@ def method_takes_lambda(method: str) -> bool:
     return "lam" in inspect.signature(entry.func).parameters
 
 
-def compute(method: str, k: int, lam: float, near: float, far: float, fov: float, warp: str, budget: int, allocation: str, res_image: int) -> dict[str, Any]:
+def compute(method: str, k: int, lam: float, near: float, far: float, fov: float, warp: str, budget: int, allocation: str, res_image: int,
+            aspect: float = 1.0) -> dict[str, Any]:
     """Splits, per-partition S̄, resolution and worst error of a cascade setting.
 
     Parameters
@@ -48,7 +51,7 @@ def compute(method: str, k: int, lam: float, near: float, far: float, fov: float
     near, far : float
         Eye near and far (shadow) distance [world units].
     fov : float
-        Full field of view [deg].
+        Full vertical field of view [deg].
     warp : str
         Warp inside each partition (``Standard``, ``P``, ``LogP``, a warping rule, …).
     budget : int
@@ -56,7 +59,9 @@ def compute(method: str, k: int, lam: float, near: float, far: float, fov: float
     allocation : str
         :data:`aliasing.budgets.ALLOCATIONS` name.
     res_image : int
-        Image resolution [pixels per side].
+        Image resolution [pixels per side; rows of a non-square image, square pixels].
+    aspect : float
+        Image width/height, > 0 (1: the square view of the papers).
 
     Returns
     -------
@@ -70,15 +75,18 @@ def compute(method: str, k: int, lam: float, near: float, far: float, fov: float
     >>> d = compute("log", 4, 0.5, 1.0, 1000.0, 60.0, "P", 4096**2, "error", 1024)
     >>> d["far_i"].round(3).tolist()
     [5.623, 31.623, 177.828, 1000.0]
+    >>> wide = compute("log", 4, 0.5, 1.0, 1000.0, 60.0, "P", 4096**2, "error", 1024, aspect=16 / 9)
+    >>> bool((wide["far_i"] == d["far_i"]).all() and (wide["S_max"] > d["S_max"]).all())   # the same splits, wider maps
+    True
     """
     params = {"lam": float(lam)} if method_takes_lambda(method) else {}
-    rows = budgets.splits_report(method, float(near), float(far), int(k), fov=float(fov), light=LIGHTS, warp=warp, budget=float(budget),
-                                 res_image=float(res_image), allocations=(allocation,), **params)
+    rows = budgets.splits_report(method, float(near), float(far), int(k), fov=float(fov), aspect=aspect, light=LIGHTS, warp=warp,
+                                 budget=float(budget), res_image=float(res_image), allocations=(allocation,), **params)
     parts, total = rows[:-1], rows[-1]
     col = lambda key: np.array([r[key] for r in parts], float)  # noqa: E731
     return {
         "method": method, "k": len(parts), "lam": float(lam) if params else None, "near": float(near), "far": float(far),
-        "fov": float(fov), "warp": warp, "budget": int(budget), "allocation": allocation, "res_image": int(res_image),
+        "fov": float(fov), "aspect": float(aspect), "warp": warp, "budget": int(budget), "allocation": allocation, "res_image": int(res_image),
         "rows": rows, "near_i": col("near"), "far_i": col("far"), "S_max": col("S_max"),
         "res_s": col(f"res_s[{allocation}]"), "res_t": col(f"res_t[{allocation}]"), "error": col(f"max_error[{allocation}]"),
         "worst": float(total[f"max_error[{allocation}]"]), "S_total": float(total["S_max"]),
@@ -149,7 +157,8 @@ def redraw(artists: dict, d: dict[str, Any]) -> bool:
     b.set_ylim(0, max(d["error"].max(), 1.0) * 1.35)
     b.set_title(f"{d['allocation']}: worst {d['worst']:.3g} over {LIGHTS}", fontsize=10)
     lam = f", λ = {d['lam']:g}" if d["lam"] is not None else ""
-    artists["suptitle"].set_text(f"{d['method']} k = {d['k']}{lam}, [{d['near']:g}, {d['far']:g}], warp {d['warp']}, "
+    wide = "" if d.get("aspect", 1.0) == 1.0 else f", aspect {d['aspect']:.3g}"
+    artists["suptitle"].set_text(f"{d['method']} k = {d['k']}{lam}, [{d['near']:g}, {d['far']:g}]{wide}, warp {d['warp']}, "
                                  f"budget {d['budget']:,} texels, image {d['res_image']}")
     return True
 
@@ -168,6 +177,7 @@ class CascadesExplorer(w.Explorer):
             "near": w.widgets.BoundedFloatText(value=1.0, min=1e-6, max=1e9, description="near", style={"description_width": "initial"}),
             "far": w.widgets.BoundedFloatText(value=1000.0, min=1e-6, max=1e12, description="far", style={"description_width": "initial"}),
             "fov": w.slider("fov [deg]", 60.0, 5.0, 150.0),
+            "aspect": w.log_slider("aspect", 1.0, 0.25, 4.0),
             "warp": w.text("warp", "Standard", "Standard, P, LogP, lispsm, …"),
             "budget": w.dropdown("texel budget", BUDGETS, 4096 * 4096),
             "allocation": w.dropdown("allocation", list(budgets.ALLOCATIONS), "equal"),

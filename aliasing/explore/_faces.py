@@ -5,6 +5,7 @@ each get a map (exit faces for a light in front, entry faces behind; the near fa
 §6.1.3 (FP) fixes each side map's frame to its face, §6.5 adjusts it to the light image
 plane (FPc) and splits wide faces (FPcs).  Numbers from :func:`aliasing.faces.face_errors`
 and :func:`aliasing.faces.face_frames`; the picture is the frustum seen from the light.
+No aspect control: face partitions are built on the four side faces of a square frustum (§6.1.3), so :mod:`aliasing.faces` refuses aspect ≠ 1.
 """
 
 from __future__ import annotations

@@ -7,6 +7,9 @@ error is :func:`aliasing.raster.pictures.error_field` (finite differences of the
 coordinates, texels per pixel); the measured/bound ratios are
 :func:`aliasing.raster.validate.validate`'s (probes' measured M_x, M_z over the analytic
 bounds of :func:`aliasing.schemes.evaluate`; ≤ 1 up to sampling, near 1 when the bound is tight).
+A view of ``aspect`` ≠ 1 (width/height, ``fov`` vertical: :class:`aliasing.View`) is drawn on
+the same R × R pixels, aspect : 1 wide (:func:`aliasing.raster.eye_pass`), and shown at its
+width; its measured error is per pixel of the R rows.
 """
 
 from __future__ import annotations
@@ -16,19 +19,34 @@ from typing import Any
 import numpy as np
 from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
+from matplotlib.transforms import Bbox
 
 from ..raster import pictures
 from ..raster.validate import validate
+from ..view import View
 from . import widget as w
 
 BUDGETS = [(f"{s}²", s * s) for s in (64, 128, 256, 512)]
 #: Probe cells per side of the ratio measurement.
 PROBES = 8
-#: Smallest eye resolution of the ratio measurement [pixels] (8 probe cells need it).
+#: Smallest eye resolution of the ratio measurement [pixels] (8 probe cells need it), times max(aspect, 1/aspect)
+#: for a non-square view: its pixels are stretched aspect : 1, and at 64 pixels its probe cells hold too few
+#: to measure (aspect 2: none measured) or under-measure (aspect 4 at 128 pixels: 0.2–0.35 of the bound).
 MIN_VALIDATE_RES = 64
 
 
-def compute(scheme: str, light: str, f_over_n: float, fov: float, image_res: int, budget: int, every: int) -> dict[str, Any]:
+def validate_resolution(image_res: int, aspect: float) -> int:
+    """Eye resolution [pixels per side] of the ratio measurement: at least ⌈MIN_VALIDATE_RES·max(aspect, 1/aspect)⌉.
+
+    Example
+    -------
+    >>> validate_resolution(32, 1.0), validate_resolution(96, 1.0), validate_resolution(96, 4.0), validate_resolution(96, 0.5)
+    (64, 96, 256, 128)
+    """
+    return max(int(image_res), int(np.ceil(MIN_VALIDATE_RES * max(aspect, 1.0 / aspect) - 1e-9)))
+
+
+def compute(scheme: str, light: str, f_over_n: float, fov: float, image_res: int, budget: int, every: int, aspect: float = 1.0) -> dict[str, Any]:
     """Render, error field and measured/bound ratios for near = 1, far = f/n.
 
     Parameters
@@ -38,13 +56,15 @@ def compute(scheme: str, light: str, f_over_n: float, fov: float, image_res: int
     light : str
         One light direction (``overhead``, ``gamma:DEG[@azimuth:DEG]``, …).
     f_over_n, fov : float
-        far/near and the full field of view [deg].
+        far/near and the full vertical field of view [deg].
     image_res : int
         Eye image [pixels per side].
     budget : int
         Texels shared by the scheme's maps.
     every : int
         Texels between drawn grid lines.
+    aspect : float
+        Image width/height, > 0 (1: the square view); face partitions need 1.
 
     Returns
     -------
@@ -61,10 +81,12 @@ def compute(scheme: str, light: str, f_over_n: float, fov: float, image_res: int
     """
     if isinstance(every, bool) or int(every) != every or every < 1:
         raise ValueError(f"every must be a whole number >= 1 (texels between grid lines), got {every!r}")
-    v = pictures.view(1.0, float(f_over_n), fov, light, scheme, image_res=int(image_res), budget=int(budget))
-    val = validate(scheme, float(f_over_n), fov, light, res=max(int(image_res), MIN_VALIDATE_RES), probes=PROBES)
+    view = View(1.0, float(f_over_n), fov, aspect)  # validated once, for the picture; validate takes the same numbers
+    v = pictures.view(view, light, scheme, image_res=int(image_res), budget=int(budget))
+    res = validate_resolution(image_res, float(view.aspect))
+    val = validate(scheme, float(f_over_n), fov, light, res=res, probes=PROBES, aspect=float(view.aspect))
     return {
-        "scheme": scheme, "light": light, "f_over_n": float(f_over_n), "fov": float(fov), "image_res": int(image_res),
+        "scheme": scheme, "light": light, "f_over_n": float(f_over_n), "fov": float(fov), "aspect": float(view.aspect), "image_res": int(image_res),
         "budget": int(budget), "every": int(every), "map_res": int(v.map_res), "maps": len(v.maps),
         "shaded": pictures.shade(v), "s": v.s, "t": v.t, "partition": v.partition, "error": pictures.error_field(v),
         "ratio_M_x": np.atleast_1d(val["ratio_M_x"]), "ratio_M_z": np.atleast_1d(val["ratio_M_z"]),
@@ -74,8 +96,12 @@ def compute(scheme: str, light: str, f_over_n: float, fov: float, image_res: int
 
 def draw(fig: Figure, d: dict[str, Any]) -> None:
     """Shadows with the texel grid; the per-pixel error; the ratios."""
+    wide = d.get("aspect", 1.0)
     a, b = fig.subplots(1, 2)
     a.imshow(np.clip(d["shaded"], 0, 1), origin="lower", interpolation="nearest")
+    if wide != 1.0:  # the R × R pixels are aspect : 1 wide: the pictures take the view's width/height
+        a.set_aspect(1.0 / wide)
+        b.set_aspect(1.0 / wide)  # (an error picture's imshow sets it again)
     levels = np.arange(0, d["map_res"] + 1, d["every"])
     for part in range(d["maps"]):
         sel = d["partition"] == part
@@ -88,13 +114,28 @@ def draw(fig: Figure, d: dict[str, Any]) -> None:
     ok = np.isfinite(err) & (err > 0)
     if ok.any():
         im = b.imshow(np.where(ok, err, np.nan), origin="lower", norm=Normalize(*_range(err[ok])),
-                      cmap="jet", interpolation="nearest")
-        fig.colorbar(im, ax=b, fraction=0.046, pad=0.02, label="pixels per texel")
+                      cmap="jet", interpolation="nearest", **({} if wide == 1.0 else {"aspect": 1.0 / wide}))
+        if wide == 1.0:
+            fig.colorbar(im, ax=b, fraction=0.046, pad=0.02, label="pixels per texel")
+        else:  # beside the picture, at its height
+            cax = fig.add_axes((0.0, 0.0, 0.01, 0.01))  # placed at each draw by _beside
+            cax.set_axes_locator(_beside(b))
+            fig.colorbar(im, cax=cax, label="pixels per texel")
     b.set(xticks=[], yticks=[], title="per-pixel error")
     fig.text(0.5, 0.03, ratio_line(d["ratio_M_x"], d["ratio_M_z"]), ha="center", fontsize=8)
-    fig.suptitle(f"{d['scheme']}, light {d['light']}, f/n = {d['f_over_n']:.4g}, fov = {d['fov']:g}°, {d['image_res']}² pixels, "
+    pixels = f"{d['image_res']}² pixels" if wide == 1.0 else f"aspect = {wide:.3g}, {d['image_res']}² pixels {wide:.3g} : 1 wide"
+    fig.suptitle(f"{d['scheme']}, light {d['light']}, f/n = {d['f_over_n']:.4g}, fov = {d['fov']:g}°, {pixels}, "
                  f"{d['maps']} map(s)", fontsize=10)
     fig.subplots_adjust(left=0.02, right=0.9, bottom=0.1, top=0.86, wspace=0.1)  # right: room for the colour bar's label
+
+
+def _beside(ax):
+    """An axes locator: a thin bar right of ``ax``'s picture as drawn (after its aspect), as high as it."""
+    def locate(cax, renderer):
+        ax.apply_aspect()
+        p = ax.get_position(original=False)
+        return Bbox.from_bounds(p.x1 + 0.01, p.y0, 0.015, p.height)
+    return locate
 
 
 #: Most maps whose ratios are listed one by one (more: their range).
@@ -124,7 +165,7 @@ def _range(values: np.ndarray) -> tuple[float, float]:
 
 
 class RasterExplorer(w.Explorer):
-    """The rasterizer's view of a scheme; controls scheme, light, f/n, fov, image size, texel budget, grid spacing."""
+    """The rasterizer's view of a scheme; controls scheme, light, f/n, fov, aspect, image size, texel budget, grid spacing."""
 
     title = "Rasterizer (shadows, texel grid, per-pixel error, measured/bound)"
     figsize = (9.0, 4.4)
@@ -135,6 +176,7 @@ class RasterExplorer(w.Explorer):
             "light": w.text("light", "gamma:60@azimuth:30", "overhead | gamma:DEG[@azimuth:DEG]"),
             "f_over_n": w.log_slider("f/n", 100.0, 1.5, 1e4),
             "fov": w.slider("fov [deg]", 60.0, 10.0, 120.0),
+            "aspect": w.log_slider("aspect", 1.0, 0.25, 4.0),
             "image_res": w.widgets.IntSlider(value=96, min=32, max=256, step=16, description="image [px]", continuous_update=False),
             "budget": w.dropdown("texels", BUDGETS, 128 * 128),
             "every": w.widgets.IntSlider(value=8, min=1, max=64, description="grid every", continuous_update=False),

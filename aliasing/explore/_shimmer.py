@@ -6,6 +6,7 @@ play button) steps through it.  Left: the points from frame f's camera, lit or s
 those whose state changed since frame f − 1 in red (orange: they also changed cascade or
 clipmap level).  Right: the flip fraction per frame, measured and predicted
 (:mod:`aliasing.temporal.predict`).
+No aspect control: :mod:`aliasing.temporal` follows a camera by its field of view alone (the points' eye pass, each frame's fits, the cascade and clipmap lookups), a square view.
 """
 
 from __future__ import annotations
