@@ -159,3 +159,29 @@ def test_scene_cli_bad_aspect_one_line(glb, tmp_path, capsys, command, extra, me
 def test_camera_with_range_keeps_the_aspect():
     cam = scenes.setup(np.array([[[0.0, 0.0, 5.0], [1.0, 0.0, 5.0], [0.0, 1.0, 5.0]]]), eye="0,0,0", target="0,0,1", aspect=16 / 9).camera
     assert cam.with_range(far=50.0).aspect == 16 / 9
+
+
+# ----------------------------------------------------------------------------- render --what cdf at aspect != 1
+
+
+def test_cdf_of_a_wide_image_is_over_its_area(glb, tmp_path, capsys):
+    """Every one of the R × R pixels of a wide view covers the same share of the image (aspect : 1 wide),
+    so their distribution is the distribution over the image: the same as over the picture's
+    2R × R square pixels at aspect 2 (each column shown twice)."""
+    from aliasing.raster.pictures.images import cdf
+
+    wide = scenes.setup(str(glb), camera="view", light_dir="-1,0.8,0.3", aspect=2.0)
+    r = scenerender.render(wide, ["ZP2+LogP"], budget=128**2, image_res=48)[0]
+    xs, ys = cdf(r.error)
+    shown_x, shown_y = cdf(np.repeat(r.error, 2, axis=1))
+    assert xs.size > 100 and shown_x.size == 2 * xs.size
+    np.testing.assert_array_equal(shown_x[1::2], xs)
+    np.testing.assert_array_equal(shown_y[1::2], ys)
+    fig = scenerender.figure([r], "cdf")
+    np.testing.assert_array_equal(fig.axes[0].lines[0].get_xdata(), xs)  # the plotted curve is that distribution
+    out = tmp_path / "cdf.png"
+    code, text, err = run(capsys, "render", "--scheme", "Standard,ZP2+LogP", "--scene", str(glb), *SCENE, "--res", "128", "--image-res", "48",
+                          "--aspect", "2", "--what", "cdf", "--format", "json", "--out", str(out))
+    assert code == 0 and err == "" and out.stat().st_size > 0
+    got = json.loads(text)["schemes"][1]
+    assert got["p50"] == pytest.approx(float(np.percentile(xs, 50)), rel=1e-12) and got["max"] == xs[-1]

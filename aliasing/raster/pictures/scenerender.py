@@ -151,7 +151,9 @@ def figure(renders: list[SchemeRender], what: str = "shadows", *, every: int = 1
 
     Each panel is titled with its scheme and statistics and is at least the image's size at
     :data:`DPI` (no pixel of the render is lost when saved at that resolution); ``error`` has a
-    colour bar, ``grid`` a legend of the maps.
+    colour bar, ``grid`` a legend of the maps.  A non-square view's R × R pixels are aspect : 1
+    wide: its panels show round(aspect·R) × R square pixels, and its ``cdf`` is over the R × R
+    pixels, each covering the same share of the image's area (the distribution over the area).
     """
     from .biasmargin import SPAN, margin_of
     import matplotlib.pyplot as plt
