@@ -197,3 +197,16 @@ def test_engine_cascades_on_a_scene_refuse_a_wide_camera():
                  lambda: engine_scene.vsm_on_scene(wide, res=32)):
         with pytest.raises(ValueError, match="^aspect must be 1 for the engines' cascades"):
             call()
+
+
+def test_to_glb_writes_the_camera_aspect(tmp_path):
+    import dataclasses
+    import struct
+
+    cam = camera.look_at([-40.0, 6.0, -35.0], [0.0, 0.0, 0.0], near=0.5, far=90.0, fov=60.0)
+    path = tmp_path / "wide.glb"
+    procedural.to_glb(procedural.city(1000, seed=1, size=40.0), path, {"square": cam, "wide": dataclasses.replace(cam, aspect=16 / 9)})
+    glb = path.read_bytes()
+    length = struct.unpack_from("<I", glb, 12)[0]
+    doc = json.loads(glb[20:20 + length])
+    assert {c["name"]: c["perspective"]["aspectRatio"] for c in doc["cameras"]} == {"square": 1.0, "wide": 16 / 9}
