@@ -24,6 +24,8 @@ per combination, in that order) into a :class:`ValidationGrid`, one validation p
 which runs through the engine of ``aliasing sweep`` (:func:`aliasing.sweep.execute`): in
 ``jobs`` local processes or on a Dask cluster, with output files written chunk by chunk
 (atomically, resumable without redoing finished validations) and identical however it ran.
+``aspect`` (image width/height, one value) applies to every validation of a grid; rows of a
+non-square view carry it, and at aspect 1 the grid and its output are those without it.
 :func:`validate_sweep` runs a grid in memory and returns a :class:`ValidationTable` (a
 :class:`~aliasing.sweep.SweepTable`: rows, CSV/JSON/text, pandas, xarray);
 :func:`validate_rows` is its rows.  :func:`add_validate_parser` adds the ``validate``
