@@ -39,6 +39,9 @@ LIGHT_SPECS = ["overhead", "behind", "front", "gamma:30", "gamma:150@azimuth:45"
                "gamma:30@tilt:5", "gamma:", "gamma:1x", "a,,b", "sphere:5", "hemisphere:3", "sphere:-4", "sphere:0", "sphere:100000000000", "sphere:", ""]
 
 
+ASPECTS = ["1", "2", "0.5", "1.7778", "0", "-1", "nan", "inf", "1e-300", "1e300", "1,2"]  # --aspect: image width/height
+
+
 def _garbage(digits: bool = True):
     """Arbitrary short text; without digits where a parsed number could mean a huge (slow) request."""
     text = st.text(max_size=12)
@@ -213,6 +216,7 @@ def test_render_fuzz(folder, capsysbinary, monkeypatch):
         _opt("--param", ["ratio=2", "bias=0", "ratio=nan", "=1", "ratio", "exponent=1e400"]),
         _opt("--allocation", ["equal", "error", "pow2"]),
         _opt("--format", ["text", "json", "xml", ""]),
+        _opt("--aspect", ASPECTS),
     ]
     cheap = ["--res", "32", "--image-res", "32"]  # generated options may override these
     sink = st.sampled_from([["--format", "json"], ["--out", str(folder / "o.png")], ["--out", str(folder / "o.png"), "--format", "json"], []])
@@ -240,6 +244,7 @@ def test_validate_fuzz(folder, capsysbinary):
         _opt("--jobs", ["1", "0", "-1", "nan", "99999999999"], digits=False),  # never 2+: process start-up is slow here
         st.tuples(st.just("--out"), st.sampled_from([str(folder / "v.csv"), str(folder / "ro"), "/dev/null", "", str(folder / ("n" * 250 + ".csv"))])),
         _opt("--dask", ["", "nope", "tcp://"]),
+        _opt("--aspect", ASPECTS),
     ]
     scene = [
         st.tuples(st.just("--scene"), st.sampled_from([str(folder / "s.obj"), str(folder / "bad.obj"), str(folder / "empty.obj"), str(folder / "nope.obj"), "/dev/null"])),
@@ -258,7 +263,7 @@ def test_validate_fuzz(folder, capsysbinary):
     base = ["--scheme", "P", "--f-over-n", "100", "--res", "32", "--probes", "4"]  # cheap defaults, overridable
     probes = _argv(options).map(lambda a: ["validate", *base, *a])
     grid = _argv(options, max_size=4).map(lambda a: ["validate", "--grid", *base, *a])
-    scenes = _argv(scene + options[:5], max_size=6).map(lambda a: ["validate", *base, "--scene", str(folder / "s.obj"), "--eye", "0,3,-8", "--target", "0,0,0", *a])
+    scenes = _argv(scene + options[:5] + options[-1:], max_size=6).map(lambda a: ["validate", *base, "--scene", str(folder / "s.obj"), "--eye", "0,3,-8", "--target", "0,0,0", *a])
     bare = _argv(options + scene, max_size=4).map(lambda a: ["validate", *a])  # missing required options too
     _fuzz(st.one_of(probes, grid, scenes, bare), capsysbinary, _scale(260), ok_fail=True)
 

@@ -50,6 +50,12 @@ from ..view import tan_theta
 TOLERANCE = 1e-3
 
 
+def _camera(st: SceneSetup):
+    """The scene's camera; a non-square one is refused (its eye pass would be wide, the fits here square)."""
+    st.camera.view.require_square("the engines' cascades measured on a scene (a square camera)")
+    return st.camera
+
+
 def _pixels(st: SceneSetup, res: int, assign) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Measurable pixels of the scene (:func:`aliasing.raster.validate.scene.measurable_pixels`), also not before near."""
     eb, pos, part, ok = measurable_pixels(st, res, assign)
@@ -96,7 +102,7 @@ def cascades_on_scene(st: SceneSetup, split: str | ArrayLike | tuple, *, res: in
         ``pixels``; ``max_ratio``, ``tolerance``, ``passed``, ``near_i``, ``far_i``.
     """
     r = check_resolution(res, "res")
-    cam = st.camera
+    cam = _camera(st)
     lv = st.light[None]
     fit_result = stable.evaluate(split, cam.near, cam.far, cam.fov, lv, k=k, fit=fit, **options)
     u, v = fit_result.used
@@ -154,7 +160,7 @@ def sdsm_on_scene(st: SceneSetup, method: str = "adaptive", k: int = 4, *, res: 
     from .validate import eye_histogram
 
     kind = check.choice(method, "method", ("log", "adaptive", "kmeans"))
-    cam = st.camera
+    cam = _camera(st)
     edges, counts = eye_histogram(st.scene.triangles, cam.near, cam.far, cam.fov, resolution=check_resolution(res, "res"), bins=bins)
     filled = np.nonzero(counts)[0]
     if not filled.size:
@@ -187,7 +193,7 @@ def vsm_on_scene(st: SceneSetup, *, bias: float = 0.0, res: int = 128, first: in
     True
     """
     r = check_resolution(res, "res")
-    cam = st.camera
+    cam = _camera(st)
     c = vsm.Clipmap(cam.fov, r, bias, first, last, unit)
 
     def assign(pos, hit):

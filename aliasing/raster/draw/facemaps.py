@@ -348,6 +348,7 @@ def _map_set(view: View, lv: Array, sch: schemes.Scheme, options: dict) -> MapSe
         # light_maps normalizes its light once more (geometry.lights is not idempotent to the last bit)
         maps, edges = _light_maps(view, geometry.lights(lv), schemes.parse(sch.name), options)
         return MapSet(maps, np.arange(len(maps)), edges, "", view, lv[0])
+    view.require_square("face partitions (Lloyd et al. 2007 §6.1.3: the four side faces of a square frustum)")  # as faces.face_errors says it
     unknown = set(options) - {"tau0", "tau1"}
     if unknown:
         raise ValueError(f"unknown options for {sch.name}: {', '.join(sorted(unknown))}; face partitions take tau0, tau1")

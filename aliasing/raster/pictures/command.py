@@ -24,8 +24,6 @@ def _render(args: argparse.Namespace) -> int:
     if args.what == "bias-margin":
         bias_presets.get(args.bias_preset)
     args.aspect = float(check_aspect(args.aspect))
-    if args.aspect != 1.0 and (args.scene is not None or args.what == "cdf"):
-        raise ValueError("--aspect applies to the seeded scene's pictures (a loaded scene's camera has its own; cdf has no image)")
     return run(args)
 
 
@@ -45,7 +43,8 @@ def add_render_parser(sub) -> argparse.ArgumentParser:
     ren.add_argument("--scheme", default="Standard", help="scheme(s), comma-separated (default Standard)")
     ren.add_argument("--f-over-n", default="100", help="seeded scene: depth ratio far/near (default 100)")
     ren.add_argument("--fov", type=float, default=None, help="FULL (vertical) field of view in degrees (default 60, or the glTF camera's)")
-    ren.add_argument("--aspect", type=float, default=1.0, help="image width/height, > 0 (default 1): one scheme's picture of the seeded scene, IMAGE_RES rows")
+    ren.add_argument("--aspect", type=float, default=1.0, help="image width/height, > 0 (default 1; --fov is then the vertical field of view): the seeded scene's or the --scene camera's image, "
+                     "IMAGE_RES rows, shown with square pixels; cdf: over the image's area (every pixel covers the same area)")
     ren.add_argument("--light", default="gamma:60@azimuth:30", help="one eye-space light direction (default gamma:60@azimuth:30)")
     ren.add_argument("--what", choices=["shadows", "grid", "error", "cdf", "bias-margin"], default="shadows",
                      help="picture (default shadows); bias-margin: an engine's bias over each pixel's minimal bias (red: acne, blue: to spare)")

@@ -151,7 +151,9 @@ def figure(renders: list[SchemeRender], what: str = "shadows", *, every: int = 1
 
     Each panel is titled with its scheme and statistics and is at least the image's size at
     :data:`DPI` (no pixel of the render is lost when saved at that resolution); ``error`` has a
-    colour bar, ``grid`` a legend of the maps.
+    colour bar, ``grid`` a legend of the maps.  A non-square view's R × R pixels are aspect : 1
+    wide: its panels show round(aspect·R) × R square pixels, and its ``cdf`` is over the R × R
+    pixels, each covering the same share of the image's area (the distribution over the area).
     """
     from .biasmargin import SPAN, margin_of
     import matplotlib.pyplot as plt
@@ -171,10 +173,17 @@ def figure(renders: list[SchemeRender], what: str = "shadows", *, every: int = 1
         ax.legend(fontsize=7, loc="lower right")
         return fig
     n = len(renders)
-    side = max(renders[0].view.position.shape[0] / DPI * 1.04, PANEL_MIN)  # [inches]: the image's pixels and some room
+    rows = renders[0].view.position.shape[0]
+    side = max(rows / DPI * 1.04, PANEL_MIN)  # [inches]: the image's pixels and some room
+    tall = side
+    shown = float(renders[0].cascades.maps.view.aspect)
+    if shown != 1.0:  # a non-square image (round(aspect·R) × R square pixels): the panel takes its shape, no pixel lost, none side under PANEL_MIN
+        columns = max(1, round(shown * rows))
+        scale = max(1.04 / DPI, PANEL_MIN / min(columns, rows))
+        side, tall = columns * scale, rows * scale
     legend = 0.2 + 0.16 * np.ceil(max(len(r.resolutions) for r in renders) / 2) if kind == "grid" else 0.0
     width = n * (side + 0.15) + (1.1 if kind in ("error", "bias-margin") else 0.0)
-    fig, axes = plt.subplots(1, n, figsize=(width, side + 0.55 + legend), dpi=DPI, layout="constrained", squeeze=False)
+    fig, axes = plt.subplots(1, n, figsize=(width, tall + 0.55 + legend), dpi=DPI, layout="constrained", squeeze=False)
     for ax, r in zip(axes[0], renders):
         if kind == "shadows":
             img = np.clip(shade(r.view)[::-1], 0, 1)
@@ -225,7 +234,7 @@ def report(st: SceneSetup, renders: list[SchemeRender], *, budget: int, allocati
     return {
         "source": st.source, "triangles": int(len(st.scene.triangles)), "degenerate_skipped": st.degenerate,
         "camera": {"name": cam.name, "eye": cam.eye.tolist(), "forward": cam.rotation[2].tolist(), "up": cam.rotation[1].tolist(),
-                   "near": cam.near, "far": cam.far, "fov": cam.fov},
+                   "near": cam.near, "far": cam.far, "fov": cam.fov} | ({} if cam.aspect == 1.0 else {"aspect": float(cam.aspect)}),
         "light_eye_space": st.light.tolist(), "gamma": float(geometry._typed_angles(light)[0][0]) if isinstance(light, str) else float(np.degrees(np.arccos(np.clip(st.light[2], -1, 1)))),
         "budget": int(budget), "allocation": allocation, "splits": splits, "image_res": int(renders[0].view.position.shape[0]),
         "schemes": [json_safe(r.stats) for r in renders],
@@ -286,7 +295,7 @@ def run(args) -> int:
     light = None if args.light_dir is not None else args.light
     if args.scene is not None:
         st = setup(args.scene, eye=args.eye, target=args.target, up=args.up, camera=args.camera, near=args.near, far=args.far, fov=args.fov,
-                   light_dir=args.light_dir, light=light)
+                   light_dir=args.light_dir, light=light, aspect=args.aspect)
     else:
         for flag, value in (("--eye", args.eye), ("--target", args.target), ("--camera", args.camera), ("--light-dir", args.light_dir)):
             if value is not None:

@@ -81,12 +81,12 @@ class Camera:
         return (d / np.linalg.norm(d)) @ self.rotation.T
 
     def with_range(self, near: float | None = None, far: float | None = None, fov: float | None = None) -> "Camera":
-        """The same camera with another near, far or field of view (None keeps the value)."""
+        """The same camera (aspect included) with another near, far or field of view (None keeps the value)."""
         n = self.near if near is None else near
         f = self.far if far is None else far
         n, f = (float(v) for v in check.frustum(n, f))
         fv = float(check.fov(self.fov if fov is None else fov))
-        return Camera(self.eye, self.rotation, n, f, fv, self.name)
+        return Camera(self.eye, self.rotation, n, f, fv, self.name, self.aspect)
 
 
 def vector(value: ArrayLike | str, name: str) -> Array:

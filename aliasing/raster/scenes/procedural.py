@@ -153,7 +153,7 @@ def add_cameras(glb: bytes, cameras: dict[str, Camera]) -> bytes:
     scene = doc.setdefault("scenes", [{"nodes": []}])[doc.get("scene", 0)]
     for label, cam in cameras.items():
         doc.setdefault("cameras", []).append({"type": "perspective", "name": label, "perspective": {
-            "yfov": float(2 * theta_of(cam.fov)), "znear": cam.near, "zfar": cam.far, "aspectRatio": 1.0}})
+            "yfov": float(2 * theta_of(cam.fov)), "znear": cam.near, "zfar": cam.far, "aspectRatio": float(cam.aspect)}})
         local = np.stack([cam.rotation[0], cam.rotation[1], -cam.rotation[2]], 1)  # columns: local x, y, z
         doc.setdefault("nodes", []).append({"name": f"{label}-node", "camera": len(doc["cameras"]) - 1,
                                              "translation": [float(v) for v in cam.eye], "rotation": _quaternion(local)})

@@ -18,13 +18,14 @@ Example
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ... import _validation as check
 from ... import geometry
+from ...view import check_aspect
 from .builtin import Scene
 from .camera import Camera, check_raster_frustum, look_at, vector
 from .loading import WorldScene, load_scene
@@ -80,7 +81,7 @@ def plane_ids(triangles: ArrayLike) -> NDArray[np.int64]:
 
 def setup(scene: str | WorldScene | ArrayLike, *, eye: ArrayLike | str | None = None, target: ArrayLike | str | None = None, up: ArrayLike | str = (0.0, 1.0, 0.0),
           camera: str | None = None, near: float | None = None, far: float | None = None, fov: float | None = None,
-          light_dir: ArrayLike | str | None = None, light: str | ArrayLike | None = None) -> SceneSetup:
+          light_dir: ArrayLike | str | None = None, light: str | ArrayLike | None = None, aspect: float = 1.0) -> SceneSetup:
     """Load (if a path), place the camera, convert to eye space.
 
     Parameters
@@ -100,7 +101,13 @@ def setup(scene: str | WorldScene | ArrayLike, *, eye: ArrayLike | str | None = 
     light : str or array_like, optional
         Or an eye-space light (:data:`aliasing.geometry.LIGHT_SPEC`, one direction);
         default ``gamma:60@azimuth:30`` when neither is given.
+    aspect : float
+        The camera's image width/height, 0 < aspect < inf (default 1: square); ``fov`` is
+        the vertical field of view.  The camera's :attr:`~Camera.view` carries it into the
+        eye pass, the cascades and the measured error.  A glTF camera's own aspectRatio is
+        not read: this value replaces it.
     """
+    wide = float(check_aspect(check.scalar(aspect, "aspect")))  # checked once, where it enters
     if isinstance(scene, WorldScene):
         ws = scene
     elif isinstance(scene, str) or hasattr(scene, "__fspath__"):
@@ -127,6 +134,8 @@ def setup(scene: str | WorldScene | ArrayLike, *, eye: ArrayLike | str | None = 
         if ls.shape[0] != 1:
             raise ValueError(f"light must be a single direction, got {ls.shape[0]}")
         lv = ls[0]
+    if wide != 1.0:
+        cam = replace(cam, aspect=wide)
     sc = ws.in_eye_space(cam)
     check_raster_frustum(cam.near, cam.far, cam.fov)
     return SceneSetup(sc, plane_ids(sc.triangles), cam, lv, ws.degenerate, ws.source)

@@ -24,6 +24,8 @@ per combination, in that order) into a :class:`ValidationGrid`, one validation p
 which runs through the engine of ``aliasing sweep`` (:func:`aliasing.sweep.execute`): in
 ``jobs`` local processes or on a Dask cluster, with output files written chunk by chunk
 (atomically, resumable without redoing finished validations) and identical however it ran.
+``aspect`` (image width/height, one value) applies to every validation of a grid; rows of a
+non-square view carry it, and at aspect 1 the grid and its output are those without it.
 :func:`validate_sweep` runs a grid in memory and returns a :class:`ValidationTable` (a
 :class:`~aliasing.sweep.SweepTable`: rows, CSV/JSON/text, pandas, xarray);
 :func:`validate_rows` is its rows.  :func:`add_validate_parser` adds the ``validate``
@@ -59,6 +61,7 @@ import numpy as np
 
 from ... import _validation as check
 from ... import sweep
+from ...view import check_aspect
 from ..draw import backends
 from .single import (  # noqa: F401  (re-exported: the public names of one validation)
     DEFAULT_PROBES,
@@ -154,7 +157,9 @@ class ValidationGrid:
 
     Build it with :func:`plan`; run it with :func:`aliasing.sweep.execute` (chunked, resumable
     output files, processes or Dask, as ``aliasing sweep``) or :func:`validate_sweep` (in
-    memory).  Chunks are in row order: scheme (outer), f/n, fov, light (inner).
+    memory).  Chunks are in row order: scheme (outer), f/n, fov, light (inner).  ``aspect``
+    (image width/height) is one value for every validation; at 1 (the default) the grid,
+    its parameters and its rows are those of a grid without it.
     """
 
     schemes: tuple[str, ...]
@@ -166,6 +171,7 @@ class ValidationGrid:
     probes: int = DEFAULT_PROBES
     seed: int = 0
     reach: float = DEFAULT_REACH
+    aspect: float = 1.0
 
     formats: ClassVar[tuple[str, ...]] = GRID_FORMATS
 
@@ -185,6 +191,8 @@ class ValidationGrid:
         """The validation of chunk ``index`` (0 ≤ index < :attr:`chunks`)."""
         s, r, f, l = (int(i) for i in np.unravel_index(index, self.shape))
         args = dict(scheme=self.schemes[s], f_over_n=self.f_over_n[r], fov=self.fov[f], light=self.lights[l], res=self.res, image_res=self.image_res, probes=self.probes, seed=self.seed, reach=self.reach)
+        if self.aspect != 1.0:
+            args["aspect"] = self.aspect
         return ValidationTask(index, tuple(args.items()))
 
     def payload_kind(self, fmt: str) -> str:
@@ -192,9 +200,10 @@ class ValidationGrid:
         return "rows"
 
     def parameters(self) -> dict:
-        """Every parameter of the grid, JSON-ready (what the manifest's hash covers)."""
-        return {"validate": True, "schemes": list(self.schemes), "f_over_n": list(self.f_over_n), "fov": list(self.fov), "lights": list(self.lights),
-                "res": self.res, "image_res": self.image_res, "probes": self.probes, "seed": self.seed, "reach": self.reach}
+        """Every parameter of the grid, JSON-ready (what the manifest's hash covers; ``aspect`` only when not 1)."""
+        out = {"validate": True, "schemes": list(self.schemes), "f_over_n": list(self.f_over_n), "fov": list(self.fov), "lights": list(self.lights),
+               "res": self.res, "image_res": self.image_res, "probes": self.probes, "seed": self.seed, "reach": self.reach}
+        return out if self.aspect == 1.0 else out | {"aspect": self.aspect}
 
     def digest(self, fmt: str) -> str:
         """SHA-256 of the parameters, the output format and the toolkit version."""
@@ -206,6 +215,7 @@ class ValidationGrid:
             return ",".join(f"{x:.10g}" for x in values)
 
         parts = ["aliasing", "validate", "--grid", "--scheme", ",".join(self.schemes), "--f-over-n", nums(self.f_over_n), "--fov", nums(self.fov), "--light", ",".join(self.lights)]
+        parts += ["--aspect", f"{self.aspect:.17g}"] if self.aspect != 1.0 else []
         parts += ["--res", str(self.res)] + (["--image-res", str(self.image_res)] if self.image_res is not None else [])
         parts += ["--probes", str(self.probes), "--seed", str(self.seed), "--reach", f"{self.reach:.10g}", "--format", fmt]
         return shlex.join(parts)
@@ -213,7 +223,8 @@ class ValidationGrid:
     def describe(self) -> str:
         """One line: the grid's axes, size and chunks."""
         s, r, f, l = self.shape
-        return f"grid: {s} schemes × {r} f/n × {f} fov × {l} lights = {self.size:,} validations in {self.chunks:,} chunks (res {self.res}, {self.probes}x{self.probes} probes)"
+        wide = f", aspect {self.aspect:g}" if self.aspect != 1.0 else ""
+        return f"grid: {s} schemes × {r} f/n × {f} fov × {l} lights = {self.size:,} validations in {self.chunks:,} chunks (res {self.res}, {self.probes}x{self.probes} probes{wide})"
 
     def assemble(self, payload_kind: str, fmt: str, payloads: Iterable[list[dict]]) -> Iterator[str]:
         """The output text (:func:`format_rows`) of every chunk's rows, in order."""
@@ -269,7 +280,7 @@ class ValidationTable(sweep.SweepTable):
 
         Per-map variables are padded with NaN up to the largest number of maps; ``gamma`` is a
         coordinate of ``light``, ``maps`` of ``scheme``; res, probes, seed, reach and the other
-        parameters, the toolkit version and the command are attributes.
+        parameters (``aspect`` when not 1), the toolkit version and the command are attributes.
         """
         xr = sweep.import_xarray()
         g, rows = self.grid, self.data
@@ -278,7 +289,7 @@ class ValidationTable(sweep.SweepTable):
         coords: dict = {"scheme": list(g.schemes), "f_over_n": list(g.f_over_n), "fov": list(g.fov), "light": list(g.lights), "map": np.arange(kmax)}
         coords["gamma"] = ("light", [r["gamma"] for r in rows[: len(g.lights)]])
         coords["maps"] = ("scheme", [r["maps"] for r in rows[:: self.grid.chunks // len(g.schemes)]])
-        skip = {*dims, "gamma", "maps", "res", "image_res", "probes", "seed", "reach"}
+        skip = {*dims, "gamma", "maps", "res", "image_res", "probes", "seed", "reach", "aspect"}
         data: dict = {}
         for key in (k for k in rows[0] if k not in skip):
             if key in PER_MAP:
@@ -291,11 +302,14 @@ class ValidationTable(sweep.SweepTable):
                 data[key] = (dims, np.array([r[key] for r in rows]).reshape(g.shape))
         attrs = self.attributes()
         attrs.update(res=g.res, image_res=rows[0]["image_res"], probes=g.probes, seed=g.seed, reach=g.reach)
+        if g.aspect != 1.0:
+            attrs.update(aspect=g.aspect)
         attrs.update(units_fov="degrees (full field of view)", units_gamma="degrees", units_S="image areas (unit resolutions)")
         return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
-def plan(schemes: str | Iterable[str], f_over_n: object, fov: object, lights: str | Iterable[str], res: int = DEFAULT_RES, *, image_res: int | None = None, probes: int = DEFAULT_PROBES, seed: int = 0, reach: float = DEFAULT_REACH) -> ValidationGrid:
+def plan(schemes: str | Iterable[str], f_over_n: object, fov: object, lights: str | Iterable[str], res: int = DEFAULT_RES, *, image_res: int | None = None, probes: int = DEFAULT_PROBES, seed: int = 0, reach: float = DEFAULT_REACH,
+         aspect: float = 1.0) -> ValidationGrid:
     """Check and expand a validation grid's parameters into a :class:`ValidationGrid`.
 
     Every combination is checked before any work: a bad value anywhere raises ``ValueError``.
@@ -311,6 +325,10 @@ def plan(schemes: str | Iterable[str], f_over_n: object, fov: object, lights: st
         Light specs, each one direction (see :func:`expand_light_specs`).
     res, image_res, probes, seed, reach
         As in :func:`validate`, for every validation.
+    aspect : float
+        Image width/height of every validation, 0 < aspect < inf (default 1: square; ``fov``
+        is the vertical field of view).  Schemes of a square view only (face partitions,
+        θ-only warping rules) are refused at aspect ≠ 1, as by :func:`validate`.
 
     Returns
     -------
@@ -327,17 +345,19 @@ def plan(schemes: str | Iterable[str], f_over_n: object, fov: object, lights: st
     fovs = _numbers(fov, "fov")
     specs = expand_light_specs(lights)
     seed = _whole(seed, "seed", 0, 2**32 - 1)
+    aspect = float(check_aspect(check.scalar(aspect, "aspect")))  # one value for the whole grid, checked once here
     canonical: dict[str, None] = {}
     for name, ratio, fv, spec in itertools.product(names, ratios, fovs, specs):  # fail fast, before any work
-        canonical[_check(name, ratio, fv, spec, res, image_res, probes, reach)["scheme"].name] = None
+        canonical[_check(name, ratio, fv, spec, res, image_res, probes, reach, aspect)["scheme"].name] = None
     if len(canonical) != len(names):
         raise ValueError(f"schemes: a scheme appears more than once in {', '.join(names)}")
-    c = _check(names[0], ratios[0], fovs[0], specs[0], res, image_res, probes, reach)
+    c = _check(names[0], ratios[0], fovs[0], specs[0], res, image_res, probes, reach, aspect)
     ri = None if image_res is None else c["image_res"]
-    return ValidationGrid(tuple(canonical), tuple(ratios), tuple(fovs), tuple(specs), c["res"], ri, c["probes"], seed, c["reach"])
+    return ValidationGrid(tuple(canonical), tuple(ratios), tuple(fovs), tuple(specs), c["res"], ri, c["probes"], seed, c["reach"], aspect)
 
 
-def validate_sweep(schemes: str | Iterable[str], f_over_n: object, fov: object, lights: str | Iterable[str], res: int = DEFAULT_RES, *, image_res: int | None = None, probes: int = DEFAULT_PROBES, seed: int = 0, reach: float = DEFAULT_REACH, jobs: int = 1, dask: str | None = None, progress: sweep.Progress | None = None) -> ValidationTable:
+def validate_sweep(schemes: str | Iterable[str], f_over_n: object, fov: object, lights: str | Iterable[str], res: int = DEFAULT_RES, *, image_res: int | None = None, probes: int = DEFAULT_PROBES, seed: int = 0, reach: float = DEFAULT_REACH,
+                   aspect: float = 1.0, jobs: int = 1, dask: str | None = None, progress: sweep.Progress | None = None) -> ValidationTable:
     """Validations over the product schemes × f/n × fov × lights, in memory, as a :class:`ValidationTable`.
 
     The Python side of ``aliasing validate --grid`` (which writes files chunk by chunk
@@ -346,7 +366,7 @@ def validate_sweep(schemes: str | Iterable[str], f_over_n: object, fov: object, 
 
     Parameters
     ----------
-    schemes, f_over_n, fov, lights, res, image_res, probes, seed, reach
+    schemes, f_over_n, fov, lights, res, image_res, probes, seed, reach, aspect
         As in :func:`plan`.
     jobs : int
         Local worker processes.
@@ -365,11 +385,12 @@ def validate_sweep(schemes: str | Iterable[str], f_over_n: object, fov: object, 
     >>> len(t), t.rows()[0]["scheme"], all(r["within_bound"] for r in t.rows())
     (8, 'Standard', True)
     """
-    grid = plan(schemes, f_over_n, fov, lights, res, image_res=image_res, probes=probes, seed=seed, reach=reach)
+    grid = plan(schemes, f_over_n, fov, lights, res, image_res=image_res, probes=probes, seed=seed, reach=reach, aspect=aspect)
     return grid.table(sweep.collect(grid, "rows", jobs=jobs, dask=dask, progress=progress))
 
 
-def validate_rows(schemes: str | Iterable[str], f_over_n: object, fov: object, lights: str | Iterable[str], res: int = DEFAULT_RES, *, image_res: int | None = None, probes: int = DEFAULT_PROBES, seed: int = 0, reach: float = DEFAULT_REACH, jobs: int = 1) -> list[dict]:
+def validate_rows(schemes: str | Iterable[str], f_over_n: object, fov: object, lights: str | Iterable[str], res: int = DEFAULT_RES, *, image_res: int | None = None, probes: int = DEFAULT_PROBES, seed: int = 0, reach: float = DEFAULT_REACH,
+                  aspect: float = 1.0, jobs: int = 1) -> list[dict]:
     """Validations over the product schemes × f/n × fov × lights: one row per combination.
 
     ``validate_sweep(...).rows()`` (see :func:`validate_sweep` for the parameters).
@@ -385,7 +406,7 @@ def validate_rows(schemes: str | Iterable[str], f_over_n: object, fov: object, l
     >>> len(rows), all(r["within_bound"] for r in rows)
     (8, True)
     """
-    return validate_sweep(schemes, f_over_n, fov, lights, res, image_res=image_res, probes=probes, seed=seed, reach=reach, jobs=jobs).rows()
+    return validate_sweep(schemes, f_over_n, fov, lights, res, image_res=image_res, probes=probes, seed=seed, reach=reach, aspect=aspect, jobs=jobs).rows()
 
 
 # --------------------------------------------------------------------------- command line
@@ -409,7 +430,7 @@ def _number(value: str, flag: str) -> float:
 def _run_grid(args: argparse.Namespace, fmt: str) -> int:
     if args.backend != "numpy":
         raise ValueError(f"--backend {args.backend} draws one validation (without --grid); a grid is drawn by numpy, the reference")
-    grid = plan(args.scheme, args.f_over_n, args.fov, args.light, args.res, image_res=args.image_res, probes=args.probes, seed=args.seed, reach=args.reach)
+    grid = plan(args.scheme, args.f_over_n, args.fov, args.light, args.res, image_res=args.image_res, probes=args.probes, seed=args.seed, reach=args.reach, aspect=args.aspect)
     if args.dry_run:
         sys.stdout.write(sweep.dry_run(grid, fmt, args.jobs))
         return 0
@@ -426,8 +447,6 @@ def _run(args: argparse.Namespace) -> int:
     fmt = args.format or ("csv" if args.grid else "text")
     backends.check(args.backend, "eye_pass")
     if args.grid:
-        if args.aspect != 1.0:
-            raise ValueError("--aspect other than 1 validates one case (without --grid)")
         return _run_grid(args, fmt)
     for flag, given in (("--jobs", args.jobs != 1), ("--out", args.out), ("--resume", args.resume), ("--dask", args.dask), ("--dry-run", args.dry_run)):
         if given:
@@ -479,7 +498,8 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
     p.add_argument("--scheme", required=True, help="scheme name, e.g. P or ZP4+LogP (with --grid: comma list)")
     p.add_argument("--f-over-n", required=True, help="depth ratio far/near > 1 (with --grid: list or range)")
     p.add_argument("--fov", default="60", help="FULL field of view in degrees (the papers' theta is half; default 60; with --grid: list or range)")
-    p.add_argument("--aspect", type=float, default=1.0, help="image width/height, > 0 (default 1: square; --fov is then the vertical field of view); one case, not --grid")
+    p.add_argument("--aspect", type=float, default=1.0, help="image width/height, > 0 (default 1: square; --fov is then the vertical field of view); one value, with --grid for every case, "
+                   "with --scene for its camera; face partitions (FP...) and the theta-only warping rules take 1 only")
     p.add_argument("--light", default="overhead", help="one light direction, e.g. gamma:150 (default overhead; with --grid: comma list)")
     p.add_argument("--res", type=int, default=DEFAULT_RES, help=f"measurement (eye-pass) resolution in pixels per side, {MIN_RES}..{MAX_RES} (default {DEFAULT_RES})")
     p.add_argument("--image-res", type=int, help="image resolution for the critical shadow-map resolutions (default --res)")

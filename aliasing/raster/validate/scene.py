@@ -55,7 +55,7 @@ def measurable_pixels(st: SceneSetup, res: int, assign: Callable[[np.ndarray, np
     ``backend`` draws the eye pass (:func:`aliasing.raster.eye_pass`).
     """
     cam = st.camera
-    eb = eye_pass(st.scene.triangles, cam.fov, res, backend=backend)
+    eb = eye_pass(st.scene.triangles, cam.view, res, backend=backend)  # the camera's View: its aspect widens the pass
     hit = eb.triangle >= 0
     if not hit.any():
         raise ValueError("no triangles in front of the camera: the image is empty")
@@ -96,11 +96,11 @@ def validate_scene(st: SceneSetup, scheme: str, *, res: int = 384, splits: str |
         ``pixels`` (measured per map); ``max_ratio``, ``tolerance``, ``passed``;
         ``projection_p10``, ``projection_median``, ``projection_p90`` (cos ψ_e / cos ψ_l over the
         measured pixels); ``image_ratio_s``, ``image_ratio_t`` (max of m_s/M_x, m_t/M_z);
-        the camera and light.
+        the camera and light; ``aspect`` (image width/height) when the camera's is not 1.
     """
     r = check_resolution(res, "res")
     cam = st.camera
-    cs = cascade_set(cam.near, cam.far, cam.fov, st.light, scheme, splits=splits, k=k, **params)
+    cs = cascade_set(cam.view, st.light, scheme, splits=splits, k=k, **params)
     eb, pos, part, ok = measurable_pixels(st, r, lambda pos, hit: cs.maps.assign(pos), backend=backend)
     k_maps = len(cs.maps.maps)
     mx, mz, ms_, mt_, count = (np.full(k_maps, np.nan) for _ in range(5))
@@ -109,7 +109,7 @@ def validate_scene(st: SceneSetup, scheme: str, *, res: int = 384, splits: str |
         count[i] = sel.sum()
         if not sel.any():
             continue
-        got = pixel_errors(lm, pos, sel, r, cam.fov)
+        got = pixel_errors(lm, pos, sel, r, cam.view)
         mx[i], mz[i] = np.nanmax(got["m_x"]), np.nanmax(got["m_z"])
         ms_[i], mt_[i] = np.nanmax(got["m_s"]), np.nanmax(got["m_t"])
     if not count.sum():
@@ -130,14 +130,14 @@ def validate_scene(st: SceneSetup, scheme: str, *, res: int = 384, splits: str |
         "projection_p90": float(np.nanpercentile(proj, 90)),
         "image_ratio_s": float(np.nanmax(ms_ / cs.M_x)), "image_ratio_t": float(np.nanmax(mt_ / cs.M_z)),
     }
-    return out
+    return out if cam.aspect == 1.0 else out | {"aspect": float(cam.aspect)}
 
 
 def format_text(r: dict) -> str:
     """A scene validation as a short plain-text report."""
     lines = [
         f"scene {r['source'] or '(arrays)'}: {r['triangles']} triangles ({r['degenerate_skipped']} degenerate skipped), camera {r['camera']}, "
-        f"near {r['near']:g}, far {r['far']:g}, fov {r['fov']:g} deg, light gamma {r['gamma']:.4g} deg",
+        f"near {r['near']:g}, far {r['far']:g}, fov {r['fov']:g} deg{', aspect %g' % r['aspect'] if 'aspect' in r else ''}, light gamma {r['gamma']:.4g} deg",
         f"scheme {r['scheme']}  maps {r['maps']}  res {r['res']} px",
         f"{'map':>4s}{'near':>10s}{'far':>10s}{'pixels':>9s}{'M_x':>11s}{'measured':>11s}{'ratio':>9s}{'M_z':>11s}{'measured':>11s}{'ratio':>9s}",
     ]
@@ -174,8 +174,6 @@ def add_scene_options(p: argparse.ArgumentParser) -> None:
             return probes_run(args)
         if args.grid:
             raise ValueError("--grid validates probes over parameter grids; it does not take --scene")
-        if getattr(args, "aspect", 1.0) != 1.0:
-            raise ValueError("--aspect applies to the probe validation; a --scene camera is square here")
         fmt = args.format or "text"
         if fmt not in ("text", "json"):
             raise ValueError(f"--format with --scene must be text or json, got {fmt!r}")
@@ -185,7 +183,7 @@ def add_scene_options(p: argparse.ArgumentParser) -> None:
             raise ValueError(f"--fov must be a number, got {args.fov!r}") from None
         light = None if args.light_dir is not None else args.light
         st = setup(args.scene, eye=args.eye, target=args.target, up=args.up, camera=args.camera, near=args.near, far=args.far, fov=fov,
-                   light_dir=args.light_dir, light=light)
+                   light_dir=args.light_dir, light=light, aspect=getattr(args, "aspect", 1.0))
         r = validate_scene(st, args.scheme, res=args.res, splits=args.splits, k=args.k, backend=args.backend, **partitioning.split_params(args.lam, args.param))
         if fmt == "json":
             sys.stdout.write(json.dumps(json_safe(r), indent=1) + "\n")

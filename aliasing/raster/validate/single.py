@@ -87,6 +87,11 @@ def _check(scheme: str, f_over_n: float | View, fov: float | None, light: object
     fv = view.fov
     check_raster_frustum(view.near, view.far, fv)
     label, lv = _light(light)
+    if not view.square:  # before any work: face partitions and the θ-only warping rules have square closed forms only
+        try:
+            schemes.evaluate(sch.name, view, lv)
+        except ValueError as exc:
+            raise ValueError(f"scheme {sch.name}: {exc}") from None
     r = _whole(res, "res", MIN_RES, MAX_RES, " pixels per side (larger does not fit in memory)")
     ri = r if image_res is None else _whole(image_res, "image_res", 1, 1 << 20, " pixels per side")
     cells = _whole(probes, "probes", 2, min(MAX_PROBES, r // 4), f" probe cells per side (at most res/4 = {r // 4}, so that probes span pixels)")
@@ -159,7 +164,9 @@ def validate(scheme: str, f_over_n: float | View, fov: float | None = None, ligh
     ------
     ValueError
         Unknown scheme, f/n ≤ 1, fov outside (0, 180), a light giving no or several
-        directions, res outside [16, 2048], probes outside [2, min(256, res/4)].
+        directions, res outside [16, 2048], probes outside [2, min(256, res/4)], aspect ≤ 0
+        or not finite, or aspect ≠ 1 with a scheme of a square view only (face partitions,
+        the θ-only warping rules).
 
     Example
     -------
@@ -282,7 +289,9 @@ def format_text(r: dict) -> str:
 
 def _table(rows: list[dict]) -> str:
     keys = ["scheme", "f_over_n", "fov", "light", "maps", "ratio_M_x", "ratio_M_z", "ratio_S", "max_ratio", "min_ratio", "projection_min", "projection_max", "passed"]
-    cells = [keys] + [[_fmt(r[k]).replace(", ", ";") for k in keys] for r in rows]
+    if any("aspect" in r for r in rows):  # a non-square view's column, after the field of view
+        keys.insert(keys.index("fov") + 1, "aspect")
+    cells = [keys] + [[_fmt(r.get(k, 1.0)).replace(", ", ";") for k in keys] for r in rows]
     widths = [max(len(c[i]) for c in cells) for i in range(len(keys))]
     return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells)
 
