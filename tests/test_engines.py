@@ -675,12 +675,13 @@ def test_stable_presets_on_the_city_with_a_wide_camera(preset, aspect):
     assert (wide.width_x > square.width_x).all()
 
 
+@pytest.mark.parametrize("aspect", [2.0, 16 / 9])
 @pytest.mark.parametrize("method", ["log", "adaptive", "kmeans"])
-def test_sdsm_partitions_on_the_city_with_a_wide_camera(method):
+def test_sdsm_partitions_on_the_city_with_a_wide_camera(method, aspect):
     from aliasing.engines.scene import sdsm_on_scene
 
-    r = sdsm_on_scene(_city(2.0), method, 4, res=128)
-    assert r["aspect"] == 2.0 and 0.5 < r["occupied"][0] < r["occupied"][1] < 90.0
+    r = sdsm_on_scene(_city(aspect), method, 4, res=128)
+    assert r["aspect"] == aspect and 0.5 < r["occupied"][0] < r["occupied"][1] < 90.0
     _dense_checks(r)
 
 
