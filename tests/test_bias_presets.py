@@ -171,7 +171,7 @@ def test_command_formats(capsys):
     assert "bevyengine/bevy" in capsys.readouterr().out
 
 
-VOCAB = ["--presets", "--near", "--far", "--fov", "--light", "--scheme", "--splits", "-k", "--lambda", "--resolution", "--image",
+VOCAB = ["--presets", "--near", "--far", "--fov", "--aspect", "--light", "--scheme", "--splits", "-k", "--lambda", "--resolution", "--image",
          "--texel", "--angle", "--azimuth", "--lookup", "--format"]
 VALUES = ["0", "-1", "1", "0.5", "45", "90", "nan", "inf", "1e400", "", "x", "filament", "bevy,nope", "gamma:45", "overhead", "gamma:0",
           "Standard", "P", "practical", "log", "pcf3", "pcf99", "receiver-plane", "csv", "json", "table", "32", "1,2", ",,"]

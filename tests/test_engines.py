@@ -612,6 +612,103 @@ def test_vsm_levels_on_the_city(city_setup, bias):
     assert all(1 - r["tolerance"] <= r["pointwise_min"][i] <= r["pointwise_max"][i] <= 1 + r["tolerance"] for i in live)
 
 
+
+# --- a wide camera on the city: the fits take the camera's aspect, the error is measured through its View
+
+
+def _city(aspect):
+    from aliasing.raster import scenes
+    from aliasing.raster.scenes import procedural
+
+    return scenes.setup(procedural.city(2000, seed=1, size=60.0), eye="-40,6,-35", target="0,0,0", near=0.5, far=90.0, light_dir="-1,0.8,0.3", aspect=aspect)
+
+
+def test_square_camera_on_the_city_is_the_square_path_bit_for_bit(city_setup):
+    """aspect 1 given explicitly: every result as without it; and each call that now takes the camera's
+    View (the slices' corners, the measured error, SDSM's eye histogram) gives the float-fov numbers."""
+    from aliasing import View
+    from aliasing.engines import scene
+    from aliasing.engines.validate import eye_histogram
+    from aliasing.raster.draw import frame_map
+    from aliasing.raster.validate.measure import pixel_errors
+    from aliasing.raster.validate.scene import measurable_pixels
+
+    one = _city(1.0)
+    assert one.camera.view == city_setup.camera.view and one.camera.aspect == 1.0
+    for run in (lambda st: scene.cascades_on_scene(st, "bevy", k=4, fit="diagonal", snap="bevy", overlap=0.2, resolution=1024, res=96),
+                lambda st: scene.cascades_on_scene(st, "log", k=3, res=96),
+                lambda st: scene.sdsm_on_scene(st, "kmeans", 3, res=96),
+                lambda st: scene.vsm_on_scene(st, bias=-1.0, res=96, unit="m")):
+        plain, given = run(city_setup), run(one)
+        assert json.dumps(given) == json.dumps(plain) and "aspect" not in plain
+    np.testing.assert_array_equal(geometry.frustum_vertices(View(0.5, 7.5, 60.0, 1.0)), geometry.frustum_vertices(0.5, 7.5, 60.0))
+    _, pos, part, ok = measurable_pixels(one, 96, lambda pos, hit: np.zeros(hit.shape, np.int64))
+    basis = geometry.light_space(one.light[None])[0]
+    lm = frame_map(one.light, basis[2], -40.0, 40.0, np.inf, -40.0, 40.0, "uniform")
+    by_view, by_fov = pixel_errors(lm, pos, ok, 96, one.camera.view), pixel_errors(lm, pos, ok, 96, 60.0)
+    for key in by_fov:
+        np.testing.assert_array_equal(by_view[key], by_fov[key])
+    tri = one.scene.triangles
+    for a, b in zip(eye_histogram(tri, 0.5, 90.0, one.camera.view, resolution=96), eye_histogram(tri, 0.5, 90.0, 60.0, resolution=96)):
+        np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("aspect", [2.0, 16 / 9])
+@pytest.mark.parametrize("preset", ["filament", "babylon", "bevy", "dxsdk-scene"])
+def test_stable_presets_on_the_city_with_a_wide_camera(preset, aspect):
+    """A wide camera: the measured error stays within the analytic bound and reaches it, pointwise the
+    uniform map's W/(2 tanθ_y d), every measured pixel inside its map; each cascade's fitted box is at
+    least as wide as the square camera's (wider across the view for every fit)."""
+    from aliasing.engines.scene import cascades_on_scene
+
+    st = _city(aspect)
+    p = stable.PRESETS[preset]
+    split = stable.bevy_bounds(0.5, 90.0, 4, 5.0) if p.split == "bevy-bounds" else p.split
+    kw = dict(k=None if p.split == "bevy-bounds" else 4, fit=p.fit, snap=p.snap, overlap=p.overlap, scene=p.scene, resolution=1024)
+    r = cascades_on_scene(st, split, res=128, **kw)
+    assert r["aspect"] == aspect and sum(r["pixels"]) > 500
+    _dense_checks(r)
+    wide = stable.evaluate(split, 0.5, 90.0, 60.0, st.light[None], aspect=aspect, **kw)
+    square = stable.evaluate(split, 0.5, 90.0, 60.0, st.light[None], **kw)
+    assert r["near_i"] == wide.used[0].tolist() and r["far_i"] == wide.used[1].tolist()  # the same splits as the square camera's
+    assert (wide.width_x >= square.width_x).all() and (wide.width_y >= square.width_y).all()
+    assert (wide.width_x > square.width_x).all()
+
+
+@pytest.mark.parametrize("aspect", [2.0, 16 / 9])
+@pytest.mark.parametrize("method", ["log", "adaptive", "kmeans"])
+def test_sdsm_partitions_on_the_city_with_a_wide_camera(method, aspect):
+    from aliasing.engines.scene import sdsm_on_scene
+
+    r = sdsm_on_scene(_city(aspect), method, 4, res=128)
+    assert r["aspect"] == aspect and 0.5 < r["occupied"][0] < r["occupied"][1] < 90.0
+    _dense_checks(r)
+
+
+def test_wide_camera_on_the_city_needs_the_wide_fit(monkeypatch):
+    """The control: the same wide camera with the fits of the square view (stable.evaluate at aspect 1)
+    leaves pixels of the last tight log cascade outside its map; with the camera's aspect none."""
+    from aliasing.engines.scene import cascades_on_scene
+
+    st = _city(2.0)
+    good = cascades_on_scene(st, "log", k=4, res=128)
+    _dense_checks(good)
+    evaluate = stable.evaluate
+    monkeypatch.setattr(stable, "evaluate", lambda *a, aspect=1.0, **kw: evaluate(*a, aspect=1.0, **kw))
+    bad = cascades_on_scene(st, "log", k=4, res=128)
+    assert not bad["passed"] and bad["inside"][-1] < 0.95 and good["inside"][-1] == 1.0
+
+
+def test_wide_camera_refusals_on_the_city():
+    from aliasing.engines.scene import cascades_on_scene, vsm_on_scene
+
+    st = _city(2.0)
+    with pytest.raises(ValueError, match=r"^aspect must be 1 for vsm_on_scene") as info:
+        vsm_on_scene(st, res=96, unit="m")
+    assert "\n" not in str(info.value)
+    with pytest.raises(ValueError, match=r"^aspect is the camera's"):
+        cascades_on_scene(st, "log", k=3, res=96, aspect=2.0)
+
 def test_centroid_sphere_and_far_corner_closed_forms():
     r = sym.centroid_radius()
     near_sq = ((sym.b - sym.a) / 2) ** 2 + 2 * sym.t**2 * sym.a**2

@@ -187,16 +187,18 @@ def test_cdf_of_a_wide_image_is_over_its_area(glb, tmp_path, capsys):
     assert got["p50"] == pytest.approx(float(np.percentile(xs, 50)), rel=1e-12) and got["max"] == xs[-1]
 
 
-def test_engine_cascades_on_a_scene_refuse_a_wide_camera():
-    """aliasing.engines.scene fits square cascades: a wide camera (whose eye pass is now wide) is refused, not mixed."""
+def test_engine_cascades_on_a_scene_take_a_wide_camera_and_vsm_refuses_it():
+    """aliasing.engines.scene fits the cascades to the wide camera (its aspect, as the eye pass); VSM's
+    clipmap model is of a square image: a wide camera is refused there, naming aspect."""
     from aliasing.engines import scene as engine_scene
 
     world = procedural.city(1000, seed=1, size=40.0)
     wide = scenes.setup(world, eye="-30,6,-25", target="0,0,0", near=0.5, far=60.0, light_dir="-1,0.8,0.3", aspect=2.0)
-    for call in (lambda: engine_scene.cascades_on_scene(wide, "log", k=2, res=32), lambda: engine_scene.sdsm_on_scene(wide, res=32),
-                 lambda: engine_scene.vsm_on_scene(wide, res=32)):
-        with pytest.raises(ValueError, match="^aspect must be 1 for the engines' cascades"):
-            call()
+    for call in (lambda: engine_scene.cascades_on_scene(wide, "log", k=2, res=64), lambda: engine_scene.sdsm_on_scene(wide, res=64)):
+        got = call()
+        assert got["aspect"] == 2.0 and got["passed"] and sum(got["pixels"]) > 0
+    with pytest.raises(ValueError, match="^aspect must be 1 for vsm_on_scene"):
+        engine_scene.vsm_on_scene(wide, res=32)
 
 
 def test_to_glb_writes_the_camera_aspect(tmp_path):

@@ -19,6 +19,7 @@ import sys
 
 from .. import _validation as check
 from ..sweep import format_rows
+from ..view import check_aspect
 from . import presets as _presets
 from .cascades import cascade_bias
 from .filtering import filter_rows
@@ -45,6 +46,13 @@ def _numbers(text: str, flag: str) -> list[float]:
     return out
 
 
+def _wide(rows: list[dict], aspect: float) -> list[dict]:
+    """Rows of a non-square view carry ``aspect`` after ``preset``; at aspect 1 the rows are returned as they are."""
+    if aspect == 1.0:
+        return rows
+    return [{"preset": r["preset"], "aspect": aspect} | {key: value for key, value in r.items() if key != "preset"} for r in rows]
+
+
 def _run(args: argparse.Namespace) -> int:
     if args.list:
         for p in _presets.PRESETS.values():
@@ -54,6 +62,8 @@ def _run(args: argparse.Namespace) -> int:
     if args.plane:
         if args.filter:
             raise ValueError("--filter works per cascade, not with --plane")
+        if args.aspect is not None:
+            raise ValueError("--aspect is the view's width/height: it works per cascade, not with --plane (a receiver's texel is given by --texel)")
         if args.texel is None or args.angle is None:
             raise ValueError("--plane needs --texel and --angle")
         rows = []
@@ -65,6 +75,7 @@ def _run(args: argparse.Namespace) -> int:
     else:
         names = [t.strip() for t in str(args.presets).split(",")]
         chosen = [_presets.get(n).name for n in names]  # validate every name before any work
+        aspect = 1.0 if args.aspect is None else float(check_aspect(check.scalar(args.aspect, "aspect")))
         params = {} if args.lam is None else {"lam": float(check.closed_range(args.lam, "--lambda", 0.0, 1.0))}
         if args.fraction is not None and not args.filter or args.radius is not None and not args.filter:
             raise ValueError("--fraction and --radius need --filter")
@@ -76,8 +87,8 @@ def _run(args: argparse.Namespace) -> int:
         rows = []
         for name in chosen:
             got = cascade_bias(args.near, args.far, args.fov, args.light, name, scheme=args.scheme, splits=args.splits,
-                               k=args.k, resolution=args.resolution, image=args.image, **params)
-            rows.extend(filter_rows(got, args.fov, args.image, fraction, args.radius) if args.filter else got)
+                               k=args.k, resolution=args.resolution, image=args.image, aspect=aspect, **params)
+            rows.extend(_wide(filter_rows(got, args.fov, args.image, fraction, args.radius) if args.filter else got, aspect))
     sys.stdout.write(_table(rows) if args.format == "table" else format_rows(rows, args.format))
     return 0
 
@@ -100,14 +111,16 @@ def add_bias_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument("--presets", default=",".join(_presets.PRESETS), help="comma list of bias presets (default all)")
     p.add_argument("--near", type=float, default=0.1, help="near distance (default 0.1)")
     p.add_argument("--far", type=float, default=100.0, help="shadow distance (default 100)")
-    p.add_argument("--fov", type=float, default=60.0, help="FULL field of view in degrees (default 60)")
+    p.add_argument("--fov", type=float, default=60.0, help="FULL (vertical) field of view in degrees (default 60)")
+    p.add_argument("--aspect", type=float, help="image width/height, > 0 (default 1: square; --fov is then the vertical field of view): "
+                   "each cascade's map is fitted to its slice of the wider view; rows carry it when not 1 (not with --plane)")
     p.add_argument("--light", default="gamma:45", help="one light direction above the ground (default gamma:45: 45° elevation ahead)")
     p.add_argument("--scheme", default="Standard", help="warp inside each cascade: Standard, P, LogP or a warping rule (default Standard)")
     p.add_argument("--splits", default="practical", help="split method or engine split preset (default practical, λ = 0.5)")
     p.add_argument("-k", type=int, default=4, help="number of cascades (default 4)")
     p.add_argument("--lambda", dest="lam", type=float, help="λ of practical-style splits (default 0.5)")
     p.add_argument("--resolution", type=int, default=2048, help="texels per side of each cascade (default 2048)")
-    p.add_argument("--image", type=int, default=1080, help="pixels across the view (default 1080)")
+    p.add_argument("--image", type=int, default=1080, help="pixels across the view, top to bottom (default 1080; square pixels)")
     p.add_argument("--plane", action="store_true", help="minimal biases of planar receivers instead (with --texel, --angle)")
     p.add_argument("--texel", help="texel widths in world units, comma list (with --plane)")
     p.add_argument("--angle", help="angles between the receiver's normal and the light in degrees, comma list (with --plane)")

@@ -9,7 +9,12 @@ neighbours on the same planar face and map, inside [near, far], facing the light
 
 For a uniform (orthographic) map of side W the perspective error of a pixel at eye depth d
 is m = W / (2 tanθ d) at unit resolutions (Lloyd et al. 2006, eq. 2), whatever the
-surface's orientation (the projection factor is separate).  Three checks per map:
+surface's orientation (the projection factor is separate).  A camera of aspect ≠ 1
+(width/height, its fov vertical): the cascades are fitted to the wide slices
+(:func:`stable.evaluate` with the camera's ``aspect``), the eye pass and the measured error go
+through the camera's :class:`~aliasing.View`, and θ stays the vertical half angle (square
+pixels of unit vertical resolution); the result then carries ``aspect``.  VSM's clipmap
+model is of a square image: :func:`vsm_on_scene` refuses a wide camera.  Three checks per map:
 
 ``ratio``
     max measured / the map's analytic maximum (at its first used depth u_k, or for VSM the
@@ -43,17 +48,16 @@ from ..raster.draw import check_resolution, frame_map
 from ..raster.scenes import SceneSetup
 from ..raster.validate.measure import pixel_errors
 from ..raster.validate.scene import measurable_pixels
+from ..view import View, tan_theta
 from . import sdsm, stable, vsm
-from ..view import tan_theta
 
 #: Relative tolerance of the finite differences (:data:`aliasing.raster.validate.scene.TOLERANCE`).
 TOLERANCE = 1e-3
 
 
-def _camera(st: SceneSetup):
-    """The scene's camera; a non-square one is refused (its eye pass would be wide, the fits here square)."""
-    st.camera.view.require_square("the engines' cascades measured on a scene (a square camera)")
-    return st.camera
+def _wide(out: dict, cam) -> dict:
+    """A non-square camera's result carries ``aspect`` (as :func:`aliasing.raster.validate.validate_scene`)."""
+    return out if cam.aspect == 1.0 else out | {"aspect": float(cam.aspect)}
 
 
 def _pixels(st: SceneSetup, res: int, assign) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -99,12 +103,15 @@ def cascades_on_scene(st: SceneSetup, split: str | ArrayLike | tuple, *, res: in
     dict
         Per map ``ratio_x``, ``ratio_z``, ``reach_x``, ``reach_z``, ``pointwise_min``,
         ``pointwise_max``, ``inside`` (fraction of the map's pixels inside [0, 1]²),
-        ``pixels``; ``max_ratio``, ``tolerance``, ``passed``, ``near_i``, ``far_i``.
+        ``pixels``; ``max_ratio``, ``tolerance``, ``passed``, ``near_i``, ``far_i``;
+        ``aspect`` when the camera's is not 1 (the fits take it).
     """
     r = check_resolution(res, "res")
-    cam = _camera(st)
+    if "aspect" in options:
+        raise ValueError("aspect is the camera's: give it to the scene's setup (aliasing.raster.scenes.setup(..., aspect=...)), not again")
+    cam = st.camera
     lv = st.light[None]
-    fit_result = stable.evaluate(split, cam.near, cam.far, cam.fov, lv, k=k, fit=fit, **options)
+    fit_result = stable.evaluate(split, cam.near, cam.far, cam.fov, lv, k=k, fit=fit, aspect=cam.aspect, **options)
     u, v = fit_result.used
     a_fit, b_fit = fit_result.fit_range
 
@@ -119,7 +126,7 @@ def cascades_on_scene(st: SceneSetup, split: str | ArrayLike | tuple, *, res: in
     rows = []
     for i in range(len(v)):
         wx, wy = float(fit_result.width_x[0, i]), float(fit_result.width_y[0, i])
-        corners = geometry.frustum_vertices(a_fit[i], b_fit[i], cam.fov)
+        corners = geometry.frustum_vertices(View(a_fit[i], b_fit[i], cam.fov, cam.aspect))  # the camera's slice, wide or square
         xc, yc = (0.5 * (np.min(corners @ basis[j]) + np.max(corners @ basis[j])) for j in (0, 2))  # centred on the slice's box
         if fit == "far":  # Filament's shadowFar sphere is centred on the camera
             xc = yc = 0.0
@@ -128,7 +135,7 @@ def cascades_on_scene(st: SceneSetup, split: str | ArrayLike | tuple, *, res: in
         if not sel.any():
             rows.append(dict(ratio_x=np.nan, ratio_z=np.nan, reach_x=np.nan, reach_z=np.nan, pointwise_min=np.nan, pointwise_max=np.nan, inside=np.nan, pixels=0))
             continue
-        m = pixel_errors(lm, pos, sel, r, cam.fov)
+        m = pixel_errors(lm, pos, sel, r, cam.view)
         d = pos[..., 2]
         px, pz = m["m_x"] / (wx / (2 * t * d)), m["m_z"] / (wy / (2 * t * d))  # eq. (2), uniform map
         d_min = d[sel].min()
@@ -139,7 +146,7 @@ def cascades_on_scene(st: SceneSetup, split: str | ArrayLike | tuple, *, res: in
             pointwise_min=float(min(np.nanmin(px), np.nanmin(pz))), pointwise_max=float(max(np.nanmax(px), np.nanmax(pz))),
             inside=float(np.mean((s_all >= -1e-9) & (s_all <= 1 + 1e-9) & (t_all >= -1e-9) & (t_all <= 1 + 1e-9))), pixels=int(sel.sum()),
         ))
-    return _summary(rows, {"near_i": u.tolist(), "far_i": v.tolist()})
+    return _wide(_summary(rows, {"near_i": u.tolist(), "far_i": v.tolist()}), cam)
 
 
 def sdsm_on_scene(st: SceneSetup, method: str = "adaptive", k: int = 4, *, res: int = 128, bins: int = 64, **options) -> dict:
@@ -160,8 +167,8 @@ def sdsm_on_scene(st: SceneSetup, method: str = "adaptive", k: int = 4, *, res: 
     from .validate import eye_histogram
 
     kind = check.choice(method, "method", ("log", "adaptive", "kmeans"))
-    cam = _camera(st)
-    edges, counts = eye_histogram(st.scene.triangles, cam.near, cam.far, cam.fov, resolution=check_resolution(res, "res"), bins=bins)
+    cam = st.camera
+    edges, counts = eye_histogram(st.scene.triangles, cam.near, cam.far, cam.view, resolution=check_resolution(res, "res"), bins=bins)
     filled = np.nonzero(counts)[0]
     if not filled.size:
         raise ValueError("the histogram has no samples: nothing visible within [near, far]")
@@ -179,7 +186,8 @@ def sdsm_on_scene(st: SceneSetup, method: str = "adaptive", k: int = 4, *, res: 
 def vsm_on_scene(st: SceneSetup, *, bias: float = 0.0, res: int = 128, first: int = 6, last: int = 22, unit: str = "m") -> dict:
     """A VSM clipmap on the scene: each pixel's level from its camera distance, measured vs analytic.
 
-    The clipmap's viewport width is ``res`` (the eye image), the scene's unit ``unit``.  Per
+    The clipmap's viewport width is ``res`` (the eye image), the scene's unit ``unit``; a camera
+    of aspect ≠ 1 is refused (the clipmap model is of a square image).  Per
     level (as a map): ``ratio`` against :func:`vsm.frustum_max` (the clipmap's supremum over
     the frustum), ``reach`` and ``pointwise`` against m = t_L·W/(2 tanθ d) (:func:`vsm.m_at`).
     Adds ``levels`` (the levels seen) and ``bound``.
@@ -193,7 +201,8 @@ def vsm_on_scene(st: SceneSetup, *, bias: float = 0.0, res: int = 128, first: in
     True
     """
     r = check_resolution(res, "res")
-    cam = _camera(st)
+    cam = st.camera
+    cam.view.require_square("vsm_on_scene (the clipmap model is of a square image, as in aliasing engines)")
     c = vsm.Clipmap(cam.fov, r, bias, first, last, unit)
 
     def assign(pos, hit):

@@ -32,6 +32,7 @@ from .. import geometry
 from ..raster.draw import eye_pass, frame_map
 from ..raster.scenes import probes
 from ..raster.validate.measure import pixel_errors
+from ..view import View
 from . import vsm
 
 TOLERANCE = 0.02  # finite differences across a probe: relative error of the central difference
@@ -149,11 +150,13 @@ def validate_stable(split: str | ArrayLike, near: float, far: float, fov: float,
     return {"ratio_x": rx, "ratio_z": rz, "inside": inside, "tolerance": TOLERANCE}
 
 
-def eye_histogram(triangles: ArrayLike, near: float, far: float, fov: float, *, resolution: int = 128, bins: int = 64) -> tuple[np.ndarray, np.ndarray]:
+def eye_histogram(triangles: ArrayLike, near: float, far: float, fov: float | View, *, resolution: int = 128, bins: int = 64) -> tuple[np.ndarray, np.ndarray]:
     """Depth histogram of a scene's visible pixels from the rasterizer's eye pass (SDSM's input).
 
     Log-spaced bins over [near, far] (the Intel sample's histogram uses a configurable power
-    mapping; log spacing here); pixels outside [near, far] or empty are not counted.
+    mapping; log spacing here); pixels outside [near, far] or empty are not counted.  ``fov``
+    is the full (vertical) field of view [deg] or a camera's :class:`~aliasing.View`, whose
+    aspect widens the eye pass (:func:`aliasing.raster.eye_pass`).
 
     Example
     -------
