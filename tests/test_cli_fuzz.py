@@ -46,6 +46,7 @@ def _option(tmp):
         st.tuples(st.just("--light"), _value(LIGHTS)),
         st.tuples(st.just("--f-over-n"), _value(NUMBERS + RANGES)),
         st.tuples(st.just("--fov"), _value(NUMBERS + RANGES)),
+        st.tuples(st.just("--aspect"), _value(NUMBERS + RANGES + ["1", "2", "1.7778", "16:9", "0.25,4"])),
         st.tuples(st.just("--k"), _value(["1", "3", "1,3", "1:3:lin:2", "inf", "0", "0.5", "99999999", "1e400"])),
         st.tuples(st.just("--param"), _value(PARAMS)),
         st.tuples(st.just("--near"), _value(NUMBERS)),
