@@ -231,3 +231,11 @@ def test_edge_length_of_a_disc_in_pixel_heights(aspect):
     pts = points.Points(np.zeros((r * r, 3)), np.zeros((r * r, 3)), pix, np.zeros(r * r, np.int64), r, aspect)
     lit = (aspect * (pix[:, 1] - r / 2)) ** 2 + (pix[:, 0] - r / 2) ** 2 < rho**2
     assert measure.edge_length(pts, lit, np.ones(r * r, bool)) == pytest.approx(2 * np.pi * rho, rel=0.03)
+
+
+def test_a_handful_of_flips_gives_an_unbounded_error_without_a_warning(recwarn):
+    """Few flips (here 1 at aspect 2): a bootstrap replicate may draw none of them, so the ratio's error is unbounded (inf, shown "-")."""
+    w = points.world("boxes", boxes=60, seed=2, aspect=2.0)
+    r = measure.shimmer(w, points.sample(w, 48), "csm-stable:log:k=4:fit=tight:snap=origin", "rotate:pitch,0.15", 5, res=64, shifts=3)
+    assert r.flips.sum() == 1 and r.ratio_se == np.inf and r.row()["ratio_se"] is None
+    assert not [x for x in recwarn if issubclass(x.category, RuntimeWarning)]
