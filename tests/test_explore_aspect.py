@@ -13,9 +13,10 @@ pytest.importorskip("ipywidgets")
 
 from aliasing import View, budgets, error, explore, schemes, warping  # noqa: E402
 from aliasing.bias.cascades import cascade_bias  # noqa: E402
-from aliasing.explore import _bias, _cascades, _overhead, _raster  # noqa: E402
+from aliasing.explore import _bias, _cascades, _overhead, _raster, _shimmer  # noqa: E402
 from aliasing.raster import pictures  # noqa: E402
 from aliasing.raster.validate import validate  # noqa: E402
+from aliasing.temporal import measure, points  # noqa: E402
 
 BAD_ASPECTS = st.one_of(st.floats(max_value=0.0, allow_nan=False), st.sampled_from([math.nan, math.inf, -math.inf]))
 
@@ -25,6 +26,7 @@ SETTINGS = {
     _cascades: (("practical", 3, 0.5, 1.0, 300.0, 60.0, "P", 2048**2, "error", 1024), ()),
     _raster: (("ZP2+P", "gamma:60@azimuth:30", 50.0, 60.0, 32, 64 * 64, 8), ()),
     _bias: (("bevy", 30.0, 3, 0.5, 100.0, 1024, 1080), ()),
+    _shimmer: (("boxes", "csm:log:k=3", "translate:0.05,0,0", 3, 1, 32, 64), ()),
 }
 
 
@@ -178,3 +180,35 @@ def test_bias_wide_view_equals_cascade_bias():
         assert w["texel_s"] == pytest.approx(2.0 * r["texel_s"], rel=1e-12) and w["texel_t"] == pytest.approx(r["texel_t"], rel=1e-12)
     e = explore.bias(aspect=2.0, k=3)
     assert e.error is None and "aspect = 2" in e.figure._suptitle.get_text()
+
+
+# ------------------------------------------------------------------------------------------- shimmer
+
+
+def test_shimmer_wide_view_equals_the_temporal_measure():
+    d = _shimmer.compute("boxes", "csm:log:k=3", "translate:0.05,0,0", 4, 2, 32, 64, aspect=2.0)
+    w = points.world("boxes", aspect=2.0)
+    r = measure.shimmer(w, points.sample(w, 32), "csm:log:k=3", "translate:0.05,0,0", 4, res=64)
+    row, want = dict(d["row"]), r.row()
+    row.pop("seconds"), want.pop("seconds")
+    assert row == want and row["aspect"] == 2.0
+    np.testing.assert_array_equal(d["flip_fraction"], r.flip_fraction)
+    uv = d["uv"][np.isfinite(d["uv"][:, 0])]
+    assert np.abs(uv[:, 0]).max() > 1.5 and np.abs(uv[:, 0]).max() <= 2.0 + 1e-9 and np.abs(uv[:, 1]).max() <= 1.0 + 1e-9  # the wide image
+
+
+def test_shimmer_picture_keeps_the_view_shape_and_names_the_aspect():
+    e = explore.shimmer(scheme="csm:log:k=3", frames=4, frame=2, image_res=48, shadow_res=128, aspect=2.0)
+    assert e.error is None
+    e.figure.canvas.draw()
+    box = e.figure.axes[0].get_window_extent()
+    assert box.width / box.height == pytest.approx(2.0, rel=0.02)
+    assert "aspect = 2" in e.figure._suptitle.get_text()
+    assert e.set_state({"aspect": 1.0}) and "aspect" not in e.figure._suptitle.get_text()
+
+
+def test_shimmer_vsm_refuses_a_wide_view_in_one_line():
+    e = explore.shimmer(scheme="vsm:bias=0", frames=3, image_res=48, shadow_res=128)
+    good = e.data
+    assert not e.set_state({"aspect": 2.0})
+    assert e.error.startswith("aspect must be 1 for vsm") and e.data is good

@@ -36,6 +36,9 @@ EXTREMES = {
                {"f_over_n": 1e4, "fov": 120.0, "image_res": 32, "scheme": "FPcs+LogP", "budget": 64**2, "every": 64},
                {"aspect": 4.0, "image_res": 32, "scheme": "ZP3+P", "f_over_n": 1e4, "fov": 120.0}, {"aspect": 0.25, "image_res": 32, "fov": 10.0}],
     "bias": [{}, {"aspect": 4.0, "k": 6, "far": 1e5, "elevation": 5.0}, {"aspect": 0.25, "k": 1, "far": 1.0, "elevation": 85.0}],
+    "shimmer": [{"frames": 6, "image_res": 48, "shadow_res": 128}, {"aspect": 2.0, "frames": 6, "image_res": 48, "shadow_res": 128},
+                {"aspect": 4.0, "frames": 6, "image_res": 48, "shadow_res": 128, "scheme": "csm-stable:log:k=4:fit=sphere:snap=origin", "motion": "zoom:1"},
+                {"aspect": 0.25, "frames": 6, "image_res": 48, "shadow_res": 128, "scene": "city", "scheme": "sdsm:k=3"}],
 }
 CASES = [(name, values) for name, settings in EXTREMES.items() for values in settings]
 

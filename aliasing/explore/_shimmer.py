@@ -6,7 +6,10 @@ play button) steps through it.  Left: the points from frame f's camera, lit or s
 those whose state changed since frame f − 1 in red (orange: they also changed cascade or
 clipmap level).  Right: the flip fraction per frame, measured and predicted
 (:mod:`aliasing.temporal.predict`).
-No aspect control: :mod:`aliasing.temporal` follows a camera by its field of view alone (the points' eye pass, each frame's fits, the cascade and clipmap lookups), a square view.
+The ``aspect`` slider is the camera's width/height (its field of view is vertical): the points
+are one per pixel of an R × R image whose pixels are aspect : 1 wide, every frame's maps are
+fitted to the wider slices, and the left panel shows the view at its shape (the title names
+the aspect when it is not 1).  ``vsm`` schemes need aspect 1.
 """
 
 from __future__ import annotations
@@ -17,17 +20,19 @@ import ipywidgets as widgets
 import numpy as np
 from matplotlib.figure import Figure
 
+from .. import _validation as check
 from ..temporal import fits, measure, paths, points
-from ..view import tan_theta
+from ..view import check_aspect, tan_theta
 from . import widget as w
 
 _CACHE: dict[tuple, tuple] = {}
 
 
-def _sequence(scene: str, scheme: str, motion: str, frames: int, image_res: int, shadow_res: int) -> tuple:
-    key = (scene, scheme, motion, int(frames), int(image_res), int(shadow_res))
+def _sequence(scene: str, scheme: str, motion: str, frames: int, image_res: int, shadow_res: int, aspect: float = 1.0) -> tuple:
+    wide = float(check_aspect(check.scalar(aspect, "aspect")))  # refused before the cache is looked at
+    key = (scene, scheme, motion, int(frames), int(image_res), int(shadow_res), wide)
     if key not in _CACHE:
-        world = points.world(scene)
+        world = points.world(scene, aspect=wide)
         pts = points.sample(world, int(image_res))
         r = measure.shimmer(world, pts, scheme, motion, int(frames), res=int(shadow_res))
         cam = world.camera
@@ -37,13 +42,16 @@ def _sequence(scene: str, scheme: str, motion: str, frames: int, image_res: int,
     return _CACHE[key]
 
 
-def compute(scene: str, scheme: str, motion: str, frames: int, frame: int, image_res: int, shadow_res: int) -> dict[str, Any]:
+def compute(scene: str, scheme: str, motion: str, frames: int, frame: int, image_res: int, shadow_res: int, aspect: float = 1.0) -> dict[str, Any]:
     """The points of frame ``frame`` in its image, their states and flips, and the per-frame curves.
+
+    ``aspect`` is the camera's width/height (0 < aspect < inf; the field of view is vertical).
 
     Returns
     -------
     dict
-        ``uv`` (P, 2) image coordinates in [−1, 1]² of the points in view (NaN otherwise),
+        ``uv`` (P, 2) image coordinates in [−aspect, aspect] × [−1, 1] of the points in view
+        (x and y over z·tan θ, θ the vertical half angle; NaN otherwise), ``aspect``,
         ``lit``, ``flipped``, ``changed`` (P,) bools, ``flip_fraction`` and ``predicted``
         (F − 1,), ``frame``, ``row`` (:meth:`aliasing.temporal.measure.Shimmer.row`).
 
@@ -52,8 +60,11 @@ def compute(scene: str, scheme: str, motion: str, frames: int, frame: int, image
     >>> d = compute("boxes", "csm:log:k=3", "translate:0.05,0,0", 3, 1, 32, 64)
     >>> d["uv"].shape[1], d["flip_fraction"].shape
     (2, (2,))
+    >>> wide = compute("boxes", "csm:log:k=3", "translate:0.05,0,0", 3, 1, 32, 64, aspect=2.0)
+    >>> bool(np.nanmax(np.abs(wide["uv"][:, 0])) > 1.5), bool(np.nanmax(np.abs(wide["uv"][:, 1])) <= 1.0)
+    (True, True)
     """
-    world, pts, r, poses = _sequence(scene, scheme, motion, frames, image_res, shadow_res)
+    world, pts, r, poses = _sequence(scene, scheme, motion, frames, image_res, shadow_res, aspect)
     f = int(np.clip(frame, 0, int(frames) - 1))
     eye = fits.eye_coordinates(pts.position, poses[0][f:f + 1], poses[1][f:f + 1])[0]
     t = tan_theta(poses[2][f])
@@ -67,12 +78,13 @@ def compute(scene: str, scheme: str, motion: str, frames: int, frame: int, image
     else:
         flipped = changed = np.zeros(pts.count, bool)
     return {"uv": uv, "lit": r.lit[f], "flipped": flipped, "changed": changed, "flip_fraction": r.flip_fraction, "predicted": r.predicted,
-            "frame": f, "row": r.row(), "scheme": scheme, "motion": motion}
+            "frame": f, "row": r.row(), "scheme": scheme, "motion": motion, "aspect": float(world.camera.aspect)}
 
 
 def draw(fig: Figure, d: dict[str, Any]) -> None:
     """Points of the frame (lit grey, shadowed dark, flips red/orange) and the flip fraction over frames."""
-    a, b = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.0, 1.3]})
+    wide = d.get("aspect", 1.0)
+    a, b = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.0 if wide == 1.0 else float(np.clip(wide, 1.0, 2.0)), 1.3]})
     uv, lit, flipped, changed = d["uv"], d["lit"], d["flipped"], d["changed"]
     calm = ~flipped
     a.set_facecolor("#dde6f0")  # no point: sky, beyond far, or a face turned from the light (in its own shadow)
@@ -81,7 +93,7 @@ def draw(fig: Figure, d: dict[str, Any]) -> None:
     a.scatter(*uv[calm & ~lit].T, s=5, c="#3a3f4b", lw=0, label="shadowed")
     a.scatter(*uv[flipped & ~changed].T, s=14, c="#d62728", lw=0, label="flipped")
     a.scatter(*uv[changed].T, s=14, c="#ff7f0e", lw=0, label="flipped, changed map")
-    a.set(xlim=(-1, 1), ylim=(-1, 1), aspect="equal", xticks=[], yticks=[], title=f"frame {d['frame']} seen by its camera: {int(flipped.sum())} flips", )
+    a.set(xlim=(-wide, wide), ylim=(-1, 1), aspect="equal", xticks=[], yticks=[], title=f"frame {d['frame']} seen by its camera: {int(flipped.sum())} flips", )
     a.title.set_fontsize(9)
     a.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=2, markerscale=1.5, frameon=False, columnspacing=0.8)
     x = np.arange(1, len(d["flip_fraction"]) + 1)
@@ -94,13 +106,13 @@ def draw(fig: Figure, d: dict[str, Any]) -> None:
     row = d["row"]
     ratio = row["predicted_over_measured"]
     b.set_title(f"mean {row['flip_fraction']:.3g} = {row['flips_per_second']:.3g}/s at 60 fps"
-                + (f"; predicted/measured {ratio:.2f} ± {row['ratio_se']:.2f}" if ratio is not None else ""), fontsize=8)
-    fig.suptitle(f"{d['scheme']} under {d['motion']}", fontsize=10)
-    fig.subplots_adjust(left=0.03, right=0.98, bottom=0.2, top=0.86, wspace=0.18)
+                + (("; " if wide == 1.0 else "\n") + f"predicted/measured {ratio:.2f} ± {row['ratio_se']:.2f}" if ratio is not None else ""), fontsize=8)
+    fig.suptitle(f"{d['scheme']} under {d['motion']}" + ("" if wide == 1.0 else f", aspect = {wide:.3g} (width/height)"), fontsize=10)
+    fig.subplots_adjust(left=0.03, right=0.98, bottom=0.2, top=0.86, wspace=0.18 if wide == 1.0 else 0.3)  # room for the curve's axis labels
 
 
 class ShimmerExplorer(w.Explorer):
-    """Plays a camera or sun path; controls scene, scheme, motion, frames, frame, resolutions."""
+    """Plays a camera or sun path; controls scene, scheme, motion, frames, frame, resolutions, aspect."""
 
     title = "Shimmer of a still world along a camera path (aliasing.temporal)"
     figsize = (10.0, 4.2)
@@ -128,6 +140,7 @@ class ShimmerExplorer(w.Explorer):
             "frame": widgets.IntSlider(value=1, min=0, max=239, description="frame"),  # max follows frames
             "image_res": w.dropdown("points", [("48²", 48), ("64²", 64), ("96²", 96), ("128²", 128)], 96),
             "shadow_res": w.dropdown("texels", [("128²", 128), ("256²", 256), ("512²", 512)], 256),
+            "aspect": w.log_slider("aspect", 1.0, 0.25, 4.0),
         }
 
     compute = staticmethod(compute)

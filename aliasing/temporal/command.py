@@ -3,12 +3,15 @@
 ::
 
     aliasing shimmer --schemes SPEC[,SPEC...] --motion MOTION --frames N
-                     [--scene NAME|FILE] [--format table|csv|json]
+                     [--scene NAME|FILE] [--aspect A] [--format table|csv|json]
 
 ``SPEC`` is the engines command's scheme grammar (:mod:`aliasing.engines.compare`);
 ``MOTION`` is :func:`aliasing.temporal.paths.parse_motion`'s.  One row per scheme
-(:meth:`aliasing.temporal.measure.Shimmer.row`).  Bad input (an unknown motion or scheme,
-a non-finite step, too few or too many frames) is refused before any map is drawn, with
+(:meth:`aliasing.temporal.measure.Shimmer.row`).  ``--aspect`` is the camera's width/height
+(``--fov`` vertical; the points are one per pixel of an R × R image whose pixels are
+aspect : 1 wide); the rows gain an ``aspect`` column only when it is not 1.  Bad input (an
+unknown motion or scheme, a non-finite step, too few or too many frames, an aspect that is
+not in (0, inf), a ``vsm`` scheme at aspect ≠ 1) is refused before any map is drawn, with
 one line on stderr and exit status 2 (:func:`aliasing.cli.main`).
 """
 
@@ -42,10 +45,10 @@ def run(args: argparse.Namespace) -> list[dict]:
     specs = [s.strip() for s in (args.schemes or "").split(",") if s.strip()]
     if not specs:
         raise ValueError("--schemes is empty: name at least one scheme (e.g. csm:log:k=4,csm-stable:log:k=4:fit=sphere:snap=origin)")
-    w = points.world(args.scene, light=args.light_dir, eye=args.eye, target=args.target, camera=args.camera, near=args.near, far=args.far, fov=args.fov)
+    w = points.world(args.scene, light=args.light_dir, eye=args.eye, target=args.target, camera=args.camera, near=args.near, far=args.far, fov=args.fov, aspect=args.aspect)
     cam = w.camera
-    for spec in specs:  # every spec read before any work
-        ps = compare.parse_spec(spec, fov=cam.fov, near=cam.near, far=cam.far, image_res=image_res, shadow_res=shadow_res, unit=args.unit)
+    for spec in specs:  # every spec read before any work (vsm refuses a wide camera here)
+        ps = compare.parse_spec(spec, fov=cam.fov, near=cam.near, far=cam.far, image_res=image_res, shadow_res=shadow_res, unit=args.unit, aspect=cam.aspect)
         if ps.family in ("matched", "exact"):
             raise ValueError(f"scheme {spec!r}: {ps.family} is a limit without a texel grid; shimmer needs csm, csm-stable, sdsm or vsm")
     paths.frames(motion, cam.eye, cam.rotation, cam.fov, w.light, frames)  # a zoom leaving (0, 180) deg is refused here
@@ -54,18 +57,20 @@ def run(args: argparse.Namespace) -> list[dict]:
 
 
 def format_rows(rows: list[dict], fmt: str) -> str:
-    """Rows as ``table``, ``csv`` or ``json`` text."""
+    """Rows as ``table``, ``csv`` or ``json`` text (an ``aspect`` column after ``scheme`` when a row has one)."""
     if fmt == "json":
         return json.dumps(json_safe(rows), indent=1) + "\n"
+    wide = any("aspect" in r for r in rows)
+    fields, table = ((f[:1] + ("aspect",) + f[1:]) if wide else f for f in (FIELDS, TABLE))
     if fmt == "csv":
         buf = io.StringIO()
-        wr = csv.DictWriter(buf, fieldnames=FIELDS, lineterminator="\n")
+        wr = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")
         wr.writeheader()
-        wr.writerows({k: ("" if r.get(k) is None else r[k]) for k in FIELDS} for r in rows)
+        wr.writerows({k: ("" if r.get(k) is None else r[k]) for k in fields} for r in rows)
         return buf.getvalue()
-    cells = [list(TABLE)] + [[_cell(r.get(k)) for k in TABLE] for r in rows]
-    widths = [max(len(c[i]) for c in cells) for i in range(len(TABLE))]
-    return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(TABLE))) + "\n" for c in cells)
+    cells = [list(table)] + [[_cell(r.get(k)) for k in table] for r in rows]
+    widths = [max(len(c[i]) for c in cells) for i in range(len(table))]
+    return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(table))) + "\n" for c in cells)
 
 
 def _cell(v: object) -> str:
@@ -101,9 +106,10 @@ def add_shimmer_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPars
     p.add_argument("--camera", metavar="NAME", help="a glTF camera of the file")
     p.add_argument("--near", type=float, help="near distance [scene units]")
     p.add_argument("--far", type=float, help="far (shadow) distance [scene units]")
-    p.add_argument("--fov", type=float, help="FULL field of view in degrees of the first frame")
+    p.add_argument("--fov", type=float, help="VERTICAL full field of view in degrees of the first frame")
+    p.add_argument("--aspect", type=float, default=1.0, help="the camera's image width/height, > 0 (default 1: square; --fov is the vertical field of view; 16:9 is 1.7778); vsm schemes need 1")
     p.add_argument("--light-dir", metavar="X,Y,Z", help=f"world direction towards the light (default {','.join(f'{v:g}' for v in points.DEFAULT_LIGHT)}; write --light-dir=-1,2,0 when X is negative)")
-    p.add_argument("--image-res", type=int, default=128, help="points: one per pixel of this square first-frame image (default 128); also VSM's viewport width")
+    p.add_argument("--image-res", type=int, default=128, help="points: one per pixel of this R x R first-frame image (default 128; its pixels are aspect : 1 wide); also VSM's viewport width")
     p.add_argument("--shadow-res", type=int, default=256, help="texels per side of each cascade (default 256)")
     p.add_argument("--fps", type=float, default=60.0, help="frame rate for flips per second (default 60)")
     p.add_argument("--unit", default="m", help="scene length unit for VSM's constants: m (default), cm, mm, in, ft")

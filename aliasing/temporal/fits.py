@@ -13,7 +13,8 @@ are fitted as :func:`aliasing.engines.stable.evaluate` fits them, here placed in
   with the snap's size factor (``pad``, ``border``, ``godot``) for all fits alike;
 * the centre: ``tight``, ``diagonal``, ``body`` — the corners' light-plane box centre;
   ``sphere`` — the minimal sphere's centre on the view axis (z_c of
-  :func:`aliasing.engines.stable.sphere_radius`, at most b); ``centroid``, ``centroid16``
+  :func:`aliasing.engines.stable.sphere_radius`, at most b, with c² = tan²θ_x + tan²θ_y:
+  2 tan²θ for a square view); ``centroid``, ``centroid16``
   — the corners' average ((a + b)/2 on the axis); ``far`` — the camera;
 * snapping, in the world-fixed light frame: ``origin`` and ``pad`` floor the map's corner
   to a whole texel, ``border`` and ``godot`` to two texels (Filament's even texels,
@@ -26,6 +27,14 @@ texels never move with the camera; a point's level follows its distance to the c
 Only the window of texels a level's points use is drawn (the stored depth of a texel
 depends only on its centre, so a window of the lattice holds the same texels as the
 whole virtual map).
+
+The camera's aspect (width/height, :attr:`aliasing.raster.scenes.Camera.view`; the field of
+view is vertical) widens every slice: the tight fits take the wide slice's corners, the
+other fits the radii of :func:`aliasing.engines.stable.evaluate` at that aspect, SDSM's
+eye pass is the wide view, and :func:`assign` tests |x| ≤ z·tan θ_x.  It stays fixed along
+a path (a zoom changes the vertical field of view at that aspect).  ``vsm`` refuses an
+aspect ≠ 1 (:func:`aliasing.engines.compare.parse_spec`).  Aspect 1 gives the square
+view's lattices bit for bit.
 
 Example
 -------
@@ -50,7 +59,7 @@ from ..engines import compare, sdsm, stable, vsm
 from ..engines.sample import sample_bounds
 from ..engines.validate import eye_histogram
 from ..raster.draw import MAX_RESOLUTION, check_resolution
-from ..view import tan_theta
+from ..view import View, check_aspect, tan_theta
 from .points import World
 
 Array = NDArray[np.float64]
@@ -70,7 +79,8 @@ class Lattices:
     the map is not drawn in that frame); ``lo``, ``hi`` (F, K) each map's used eye-depth
     range (cascades) or distance range (VSM levels) [world units]; ``family``; ``levels``
     (VSM: the clipmap level of each map); ``by_distance`` (maps chosen by distance to the
-    camera, VSM, rather than eye depth).
+    camera, VSM, rather than eye depth); ``aspect`` the view's width/height (the
+    camera's, :func:`assign`'s frustum test).
     """
 
     basis: Array
@@ -84,6 +94,7 @@ class Lattices:
     family: str
     levels: NDArray[np.int64]
     by_distance: bool
+    aspect: float = 1.0
 
     @property
     def maps(self) -> int:
@@ -111,15 +122,17 @@ def eye_coordinates(positions: Array, eyes: Array, rots: Array) -> Array:
 def assign(lat: Lattices, eye_pos: Array, fovs: Array, near: float, far: float) -> NDArray[np.int64]:
     """The map of every point in every frame (F, P): −1 outside the view frustum or any map.
 
-    ``eye_pos`` (F, P, 3) eye coordinates [world units], ``fovs`` (F,) [deg], ``near`` < ``far`` [world units].
+    ``eye_pos`` (F, P, 3) eye coordinates [world units], ``fovs`` (F,) vertical [deg], ``near`` < ``far``
+    [world units]; the view's width is ``lat.aspect`` times its height (|x| ≤ z·aspect·tan θ).
     """
     check.instance(lat, "lat", Lattices)
     eye_pos = _shaped(eye_pos, "eye_pos", (lat.x0.shape[0], None, 3))
     fovs = check.fov(_shaped(fovs, "fovs", (lat.x0.shape[0],)))
     near, far = (float(v) for v in check.frustum(near, far))
+    wide = float(check_aspect(check.scalar(lat.aspect, "lat.aspect"), "aspect"))
     z = eye_pos[..., 2]
     t = np.asarray(tan_theta(fovs))[:, None]
-    inside = (z >= near) & (z <= far) & (np.abs(eye_pos[..., 0]) <= z * t) & (np.abs(eye_pos[..., 1]) <= z * t)
+    inside = (z >= near) & (z <= far) & (np.abs(eye_pos[..., 0]) <= z * (wide * t)) & (np.abs(eye_pos[..., 1]) <= z * t)
     key = np.linalg.norm(eye_pos, axis=-1) if lat.by_distance else z
     out = np.full(z.shape, -1, np.int64)
     for f in range(z.shape[0]):  # per frame, vectorized over points (K ≤ a few dozen maps)
@@ -142,7 +155,7 @@ def _snap(x0: Array, xc: Array, side: Array, texel: Array, snap: str) -> Array:
 def _cascades(parsed: compare.ParsedSpec, w: World, poses, res: int, sdsm_res: int) -> Lattices:
     eyes, rots, fovs, lights = poses
     cam = w.camera
-    near, far = cam.near, cam.far
+    near, far, wide = cam.near, cam.far, float(cam.aspect)
     kw = dict(parsed.fit)
     sample = {key: kw.pop(key) for key in ("border", "dilation", "quantize") if key in kw}
     fit, snap = kw.get("fit", "tight"), kw.get("snap", "none")
@@ -154,7 +167,7 @@ def _cascades(parsed: compare.ParsedSpec, w: World, poses, res: int, sdsm_res: i
         split = parsed.split
         if parsed.family == "sdsm":
             tri_e = (w.triangles - eyes[f]) @ rots[f].T
-            edges, counts = eye_histogram(tri_e, near, far, fovs[f], resolution=sdsm_res, bins=64)
+            edges, counts = eye_histogram(tri_e, near, far, View(near, far, fovs[f], wide), resolution=sdsm_res, bins=64)  # the wide eye pass
             filled = np.nonzero(counts)[0]
             if not filled.size:
                 raise ValueError(f"frame {f}: the camera sees nothing within [near, far] (SDSM has no depth bounds)")
@@ -168,7 +181,7 @@ def _cascades(parsed: compare.ParsedSpec, w: World, poses, res: int, sdsm_res: i
         light_e = rots[f] @ lights[f]
         r = stable.evaluate(split, near, far, fovs[f], light_e[None], **kw)
         (a, b), (u, v) = r.fit_range, r.used
-        corners = eyes[f] + geometry.frustum_vertices(a, b, fovs[f]) @ rots[f]  # (K, 8, 3) world
+        corners = eyes[f] + geometry.frustum_vertices(View(a, b, fovs[f], wide)) @ rots[f]  # (K, 8, 3) world
         B = basis[f]
         px, py = corners @ B[0], corners @ B[2]
         box_x, box_y = (px.min(-1) + px.max(-1)) / 2, (py.min(-1) + py.max(-1)) / 2
@@ -179,12 +192,13 @@ def _cascades(parsed: compare.ParsedSpec, w: World, poses, res: int, sdsm_res: i
         else:
             wx, wy = r.width_x[0].copy(), r.width_y[0].copy()
         if sample:
-            whole = eyes[f] + geometry.frustum_vertices(np.array([near]), np.array([far]), fovs[f])[0] @ rots[f]
+            whole = eyes[f] + geometry.frustum_vertices(View(np.array([near]), np.array([far]), fovs[f], wide))[0] @ rots[f]
             wx = sample_bounds(wx, np.ptp(whole @ B[0]), **sample)
             wy = sample_bounds(wy, np.ptp(whole @ B[2]), **sample)
         tan = float(tan_theta(fovs[f]))
+        c2 = 2 * tan**2 if wide == 1.0 else (wide * tan) ** 2 + tan**2  # tan²θ_x + tan²θ_y (stable.sphere_radius's c²)
         if fit == "sphere":
-            zc = np.minimum((a + b) * (1 + 2 * tan**2) / 2, b)
+            zc = np.minimum((a + b) * (1 + c2) / 2, b)
             centre = eyes[f] + zc[:, None] * rots[f][2]
             xc, yc = centre @ B[0], centre @ B[2]
         elif fit in ("centroid", "centroid16"):
@@ -203,7 +217,7 @@ def _cascades(parsed: compare.ParsedSpec, w: World, poses, res: int, sdsm_res: i
         rows = [tuple(np.concatenate([x, np.full(K - len(x), np.nan)]) for x in row) for row in rows]
     x0, y0, tx, ty, lo, hi = (np.array([row[i] for row in rows]) for i in range(6))
     n = np.where(np.isfinite(x0), res, 0).astype(np.int64)
-    return Lattices(basis, x0, y0, tx, ty, n, np.nan_to_num(lo, nan=np.inf), np.nan_to_num(hi, nan=np.inf), parsed.family, np.zeros(0, np.int64), False)
+    return Lattices(basis, x0, y0, tx, ty, n, np.nan_to_num(lo, nan=np.inf), np.nan_to_num(hi, nan=np.inf), parsed.family, np.zeros(0, np.int64), False, wide)
 
 
 def _vsm(parsed: compare.ParsedSpec, w: World, poses, positions: Array, eye_pos: Array) -> Lattices:
@@ -224,7 +238,7 @@ def _vsm(parsed: compare.ParsedSpec, w: World, poses, positions: Array, eye_pos:
     basis = geometry.light_space(lights)
     tex = vsm.texel(c, levels)  # (K,) world units
     lat = Lattices(basis, np.zeros((F, len(levels))), np.zeros((F, len(levels))), np.broadcast_to(tex, (F, len(levels))).copy(),
-                   np.broadcast_to(tex, (F, len(levels))).copy(), np.zeros((F, len(levels)), np.int64), lo, hi, "vsm", levels, True)
+                   np.broadcast_to(tex, (F, len(levels))).copy(), np.zeros((F, len(levels)), np.int64), lo, hi, "vsm", levels, True, float(w.camera.aspect))
     part = assign(lat, eye_pos, fovs, w.camera.near, w.camera.far)
     still = np.allclose(lights, lights[0])  # a world-fixed lattice: one window per level for the whole sequence
     px = np.einsum("pj,fj->fp", positions, basis[:, 0])
@@ -253,7 +267,7 @@ def plan(spec: str, w: World, poses, res: int, *, positions: Array | None = None
     spec : str
         A scheme of the engines grammar: ``csm:…``, ``csm-stable:…``, ``sdsm…``, ``vsm:…``.
     w : World
-        The scene, its frame-0 camera (near, far) and light.
+        The scene, its frame-0 camera (near, far, aspect) and light.
     poses : tuple
         (eyes, rotations, fovs, lights) per frame.
     res : int
@@ -277,7 +291,8 @@ def plan(spec: str, w: World, poses, res: int, *, positions: Array | None = None
     if positions is not None:
         positions = _shaped(positions, "positions", (None, 3))
     cam = w.camera
-    parsed = compare.parse_spec(spec, fov=cam.fov, near=cam.near, far=cam.far, image_res=check_resolution(image_res, "image_res"), shadow_res=r, unit=unit)
+    view = cam.view  # validates the camera's aspect (a World built by hand)
+    parsed = compare.parse_spec(spec, fov=cam.fov, near=cam.near, far=cam.far, image_res=check_resolution(image_res, "image_res"), shadow_res=r, unit=unit, aspect=view.aspect)
     if parsed.family in ("matched", "exact"):
         raise ValueError(f"scheme {spec!r}: {parsed.family} is a limit without a texel grid; shimmer needs csm, csm-stable, sdsm or vsm")
     if parsed.family == "vsm":

@@ -10,7 +10,10 @@ two frames is an artefact.  :func:`shimmer` runs a sequence and returns, per fra
 * the shadow edges' displacement [pixels of the frame-0 image]: the flipped area (a point
   is a pixel) over the frame-0 edge length, measured by counting neighbouring pixels of
   different state on the same planar face (a curve of length L crosses 4L/π grid edges,
-  Cauchy–Crofton, so L = count·π/4);
+  Cauchy–Crofton, so L = count·π/4).  A wide camera's pixels are aspect : 1 wide
+  (:func:`aliasing.temporal.points.sample`): lengths and areas are then in pixel heights
+  (the square pixels of an image of the same rows), a pixel has area aspect, and a change
+  between two pixels of a column counts aspect times (L = (c_h + aspect·c_v)·π/4);
 * the prediction of :mod:`aliasing.temporal.predict` (not under a turning sun).
 
 Example
@@ -55,7 +58,7 @@ class Shimmer:
     (F, P) the states and maps; ``shift`` (F − 1, K, 2) and ``scale`` (F − 1, K) the grid
     motion; ``g`` the edge densities and ``group`` each point's row of it
     (:class:`aliasing.temporal.predict.Densities`); ``edge_length_px``; ``drawn`` and ``reused``
-    maps; ``seconds``; ``motion``; ``spec``."""
+    maps; ``seconds``; ``motion``; ``spec``; ``aspect`` the camera's width/height."""
 
     spec: str
     motion: paths.Motion
@@ -79,9 +82,10 @@ class Shimmer:
     drawn: int
     reused: int
     seconds: float
+    aspect: float = 1.0
 
     def row(self, fps: float = 60.0) -> dict:
-        """One summary row (the CLI's): means over frame changes."""
+        """One summary row (the CLI's): means over frame changes; an ``aspect`` entry after ``scheme`` only when ≠ 1."""
         total = int(self.flips.sum())
         sun = self.motion.kind == "sun"
         mean = float(self.flip_fraction.mean())
@@ -91,6 +95,7 @@ class Shimmer:
         same = float(self.same_fraction.mean())
         return {
             "scheme": self.spec,
+            **({} if self.aspect == 1.0 else {"aspect": float(self.aspect)}),
             "flip_fraction": mean,
             "flip_fraction_max": float(self.flip_fraction.max()),
             "flips_per_second": mean * fps,
@@ -113,6 +118,21 @@ def edge_length(pts: Points, lit0: NDArray[np.bool_], seen0: NDArray[np.bool_]) 
     """Length [pixels] of the frame-0 shadow edges on the points' image (Cauchy–Crofton: count·π/4).
 
     ``lit0`` and ``seen0`` (P,) are the points' frame-0 states and whether a map holds them.
+    For a wide image (``pts.aspect`` ≠ 1: pixels aspect : 1 wide) the length is in pixel
+    heights: the changes between horizontal neighbours, c_h, are the curve's crossings of
+    the rows' centre lines (1 apart), (2/π)·L on average over orientations, and those
+    between vertical neighbours, c_v, its crossings of the columns' (aspect apart),
+    (2/π)·L/aspect; so L = (c_h + aspect·c_v)·π/4.
+
+    Example
+    -------
+    >>> r, rho = 200, 60.0                      # a disc of radius 60 pixel heights on a 2:1 image
+    >>> rows, cols = np.mgrid[0:r, 0:r]
+    >>> pix = np.stack([rows.ravel(), cols.ravel()], -1)
+    >>> pts = Points(np.zeros((r * r, 3)), np.zeros((r * r, 3)), pix, np.zeros(r * r, np.int64), r, 2.0)
+    >>> lit = (2.0 * (pix[:, 1] - r / 2)) ** 2 + (pix[:, 0] - r / 2) ** 2 < rho**2
+    >>> round(edge_length(pts, lit, np.ones(r * r, bool)) / (2 * np.pi * rho), 2)   # ≈ 1 (Cauchy–Crofton)
+    1.0
     """
     check.instance(pts, "pts", Points)
     lit0, seen0 = (np.asarray(v) for v in (lit0, seen0))
@@ -124,10 +144,11 @@ def edge_length(pts: Points, lit0: NDArray[np.bool_], seen0: NDArray[np.bool_]) 
     ok = seen0
     state[pts.pixel[ok, 0], pts.pixel[ok, 1]] = lit0[ok]
     plane[pts.pixel[ok, 0], pts.pixel[ok, 1]] = pts.plane[ok]
-    count = 0
-    for a, b, pa, pb in ((state[:, 1:], state[:, :-1], plane[:, 1:], plane[:, :-1]), (state[1:], state[:-1], plane[1:], plane[:-1])):
-        count += int(np.count_nonzero((a >= 0) & (b >= 0) & (pa == pb) & (a != b)))
-    return count * np.pi / 4
+    ch, cv = (int(np.count_nonzero((a >= 0) & (b >= 0) & (pa == pb) & (a != b)))
+              for a, b, pa, pb in ((state[:, 1:], state[:, :-1], plane[:, 1:], plane[:, :-1]), (state[1:], state[:-1], plane[1:], plane[:-1])))
+    if pts.aspect == 1.0:
+        return (ch + cv) * np.pi / 4
+    return (ch + pts.aspect * cv) * np.pi / 4
 
 
 def check_size(frames: int, count: int) -> None:
@@ -145,9 +166,10 @@ def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames
     Parameters
     ----------
     w : World
-        The still scene, its frame-0 camera and light (:func:`aliasing.temporal.points.world`).
+        The still scene, its frame-0 camera and light (:func:`aliasing.temporal.points.world`);
+        the camera's aspect (width/height) holds for every frame.
     pts : Points
-        The fixed points (:func:`aliasing.temporal.points.sample`).
+        The fixed points (:func:`aliasing.temporal.points.sample`), sampled at the camera's aspect.
     spec : str
         A scheme of the engines grammar (``csm:…``, ``csm-stable:…``, ``sdsm…``, ``vsm:…``).
     motion : str or Motion
@@ -180,6 +202,8 @@ def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames
     dirs = check.whole(directions, "directions", 2)
     n_shifts = check.whole(shifts, "shifts", 1)
     cam = w.camera
+    if pts.aspect != cam.aspect:
+        raise ValueError(f"pts were sampled at aspect {pts.aspect:g}, the camera of w has aspect {cam.aspect:g}: sample the points from this world")
     poses = paths.frames(m, cam.eye, cam.rotation, cam.fov, w.light, n)
     lat = fits.plan(spec, w, poses, res, positions=pts.position, sdsm_res=sdsm_res, image_res=pts.resolution, unit=unit)
     eye_pos = fits.eye_coordinates(pts.position, poses[0], poses[1])
@@ -219,6 +243,6 @@ def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames
         shift, scale = predict.grid_motion(lat)
     return Shimmer(
         spec, m, lit, part, flipped.sum(-1) / denom, (flipped & ~changed).sum(-1) / denom, flipped.sum(-1), (flipped & changed).sum(-1), n_seen,
-        flipped.sum(-1) / max(length, 1e-300) if length > 0 else np.zeros(n - 1), length, pred, pred_same, float(ratio), float(se), shift, scale, g, group, cache.drawn, cache.reused,
-        time.perf_counter() - start,
+        flipped.sum(-1) * pts.aspect / max(length, 1e-300) if length > 0 else np.zeros(n - 1), length, pred, pred_same, float(ratio), float(se), shift, scale, g, group, cache.drawn, cache.reused,
+        time.perf_counter() - start, pts.aspect,
     )

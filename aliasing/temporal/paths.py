@@ -8,7 +8,7 @@ A motion is a text ``KIND:ARGS`` (:data:`MOTIONS`):
 ``rotate:yaw|pitch,DEG``
     The camera turns about its own up (yaw) or right (pitch) axis by DEG per frame [deg].
 ``zoom:DEG``
-    The full field of view changes by DEG per frame [deg].
+    The full (vertical) field of view changes by DEG per frame [deg]; the aspect stays.
 ``sun:DEG``
     The light turns by DEG per frame [deg] about the world's vertical (y).
 
@@ -64,7 +64,7 @@ class _Entry:
 MOTIONS: dict[str, _Entry] = {
     "translate": _Entry("DX,DY,DZ", "the camera moves by this eye-space step per frame [world units]"),
     "rotate": _Entry("yaw|pitch,DEG", "the camera turns about its up (yaw) or right (pitch) axis by DEG per frame"),
-    "zoom": _Entry("DEG", "the full field of view changes by DEG per frame"),
+    "zoom": _Entry("DEG", "the full (vertical) field of view changes by DEG per frame"),
     "sun": _Entry("DEG", "the light turns by DEG per frame about the world's vertical"),
 }
 
@@ -146,7 +146,7 @@ def rotation(axis: ArrayLike, degrees: ArrayLike) -> Array:
 
 def frames(motion: Motion, eye: ArrayLike, rot: ArrayLike, fov: float, light: ArrayLike, count: int) -> tuple[Array, Array, Array, Array]:
     """Per-frame camera positions ``(F, 3)``, rotations ``(F, 3, 3)`` (rows right, up, forward),
-    full fields of view ``(F,)`` [deg] and unit world lights ``(F, 3)`` (towards the light).
+    vertical full fields of view ``(F,)`` [deg] and unit world lights ``(F, 3)`` (towards the light).
 
     Frame 0 is the given pose; frame f has moved f steps.  ValueError when a zoom leaves
     (0, 180) deg within the sequence.

@@ -303,7 +303,8 @@ def agreement(dens: Densities, delta: Array, use: NDArray[np.bool_], flips: NDAr
     ratio : float
         Predicted over measured flips.
     se : float
-        Its bootstrap standard error (NaN when nothing flipped or nothing was predicted).
+        Its bootstrap standard error (NaN when nothing flipped or nothing was predicted; inf
+        when so few flipped that a replicate draws none of them).
     """
     check.instance(dens, "dens", Densities)
     P, D = dens.counts.shape
@@ -335,4 +336,5 @@ def agreement(dens: Densities, delta: Array, use: NDArray[np.bool_], flips: NDAr
     outside = dens.tile_group < 0
     lam_rep = lam_rep + ((W[:, outside] @ A[outside]) * g_rep[:, -1]).sum(-1)
     ratio_rep = predicted_total * (lam_rep / lam_hat) / np.maximum(W @ m, 1e-300)
-    return predicted_total / measured, float(np.std(ratio_rep, ddof=1))
+    with np.errstate(over="ignore"):  # a replicate without a measured flip (a handful of flips in all): the error is unbounded, inf
+        return predicted_total / measured, float(np.std(ratio_rep, ddof=1))
