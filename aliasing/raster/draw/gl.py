@@ -93,17 +93,22 @@ EGL_PACKAGES = "libegl1 libegl-mesa0 libgl1-mesa-dri"
 
 _GROUP = 64  # compute shader work-group size
 
-# Once per call: float32 vertices for the rasterizer (a point where a coordinate is not
-# finite) and each triangle's plane (n, −n·a) in double precision.
-_PREPARE = """
+# The start of every compute pass: one invocation per triangle, 64 to a work group, the
+# double-precision input triangles, their count, and the test of a finite coordinate.
+_COMPUTE = """
 #version 430
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Triangles { double v[]; };
+uniform uint count;
+bool finite(double x) { return (unpackDouble2x32(x).y & 0x7ff00000u) != 0x7ff00000u; }   // exponent bits: not inf or NaN
+"""
+
+# Once per call: float32 vertices for the rasterizer (a point where a coordinate is not
+# finite) and each triangle's plane (n, −n·a) in double precision.
+_PREPARE = _COMPUTE + """
 layout(std430, binding = 1) writeonly buffer Vertices { float p[]; };
 layout(std430, binding = 2) writeonly buffer Planes { dvec4 plane[]; };
 layout(std430, binding = 4) buffer Counts { uint bad; };   // triangles with a coordinate not finite
-uniform uint count;
-bool finite(double x) { return (unpackDouble2x32(x).y & 0x7ff00000u) != 0x7ff00000u; }   // exponent bits: not inf or NaN
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= count) return;
@@ -122,14 +127,9 @@ void main() {
 # Once per map: the smallest and largest depth row·(p, 1) over each work group's finite
 # triangles' vertices, as order-preserving unsigned keys of float32 values rounded outwards
 # (a tree in shared memory, no atomics; the host reduces the groups' keys).
-_RANGE = """
-#version 430
-layout(local_size_x = 64) in;
-layout(std430, binding = 0) readonly buffer Triangles { double v[]; };
+_RANGE = _COMPUTE + """
 layout(std430, binding = 5) writeonly buffer Groups { uvec2 groups[]; };
-uniform uint count;
 uniform dvec4 row;
-bool finite(double x) { return (unpackDouble2x32(x).y & 0x7ff00000u) != 0x7ff00000u; }   // exponent bits: not inf or NaN
 uint key(float f) { uint u = floatBitsToUint(f); return (u & 0x80000000u) != 0u ? ~u : u | 0x80000000u; }
 float down(double d) { float f = float(d); return double(f) <= d ? f : (f > 0.0 ? uintBitsToFloat(floatBitsToUint(f) - 1u) : (f < 0.0 ? uintBitsToFloat(floatBitsToUint(f) + 1u) : -1.4e-45)); }
 float up(double d) { return -down(-d); }
@@ -162,12 +162,9 @@ void main() {
 """
 
 # Once per map: each triangle's (α, β, γ, B) = (n~·c₀, n~·c₁, n~·c₃, n~·c₂), c_j the columns of H⁻¹.
-_COEFFICIENTS = """
-#version 430
-layout(local_size_x = 64) in;
+_COEFFICIENTS = _COMPUTE + """
 layout(std430, binding = 2) readonly buffer Planes { dvec4 plane[]; };
 layout(std430, binding = 3) writeonly buffer Coefficients { dvec4 coef[]; };
-uniform uint count;
 uniform dmat4 columns;
 void main() {
     uint i = gl_GlobalInvocationID.x;
