@@ -38,9 +38,11 @@ rect's width in pixels (raised to ``r.Shadow.Virtual.Clipmap.MinCameraViewportWi
 that is set; orthographic cameras are not modelled).  ``ProjectionScale.X`` is
 |``ProjectionMatrix.M[0][0]``| (``FViewMatrices::Init`` in
 ``Engine/Source/Runtime/Engine/Private/SceneView.cpp``, same copy; a stereo eye doubles it),
-the horizontal entry: ``FReversedZPerspectiveMatrix`` (``PerspectiveMatrix.h``) puts
-1/tan(HalfFOV) there and Width/tan(HalfFOV)/Height in M[1][1], i.e. M[0][0] = 1/tan θ_x and
-M[1][1] = 1/tan θ_y with square pixels.  So for the toolkit's camera — ``fov`` the
+the horizontal entry: it maps the image's left and right edges to clip x = ±1, so it is
+1/tan θ_x whatever the field of view was given as (``TReversedZPerspectiveMatrix`` in
+``Engine/Source/Runtime/Core/Public/Math/PerspectiveMatrix.h``, read in the copy
+chenyong2github/UnrealEngine as the UE 5.8 copy does not store it, puts 1/tan(HalfFOV) in
+M[0][0] and Width/tan(HalfFOV)/Height in M[1][1]: M[1][1] = 1/tan θ_y with square pixels).  So for the toolkit's camera — ``fov`` the
 vertical full field of view, ``aspect`` = width/height, as in :class:`aliasing.View` —
 
     tan θ_y = tan(fov/2),   tan θ_x = aspect·tan θ_y   (:attr:`aliasing.View.tan_theta_x`),
