@@ -246,3 +246,23 @@ def test_engines_command_takes_a_wide_camera_for_vsm():
     sq = compare.compare(["vsm:high"], near=near, far=far, lights="hemisphere:20")[0]
     assert sq["max_error"] == pytest.approx(2.0 * math.sqrt(1 + 2 * t**2), rel=1e-9)
     assert rows["vsm:high"]["m_axis_max"] == sq["m_axis_max"] == pytest.approx(2.0, rel=1e-9)  # the axis saw-tooth is the square one
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(0.2, 5.0), st.floats(20.0, 150.0), st.integers(64, 4096), st.floats(-3.0, 2.0), st.floats(1.0, 1e4))
+def test_generated_wide_clipmaps_bound_their_sampled_receivers(aspect, fov, width, bias, near):
+    """Any valid aspect: every receiver sampled in the wide frustum stays under frustum_max, the axis
+    stays under it too, and B′ moves by log2(aspect) against the square camera unless clamped at 0."""
+    c = vsm.Clipmap(fov=fov, width=width, bias=bias, aspect=aspect)
+    sq = vsm.Clipmap(fov=fov, width=width, bias=bias)
+    raw = lambda k: k.bias + math.log2(0.5 * k.tan_x * vsm.VIRTUAL_RES / k.width)  # noqa: E731
+    assert raw(c) == pytest.approx(raw(sq) + math.log2(aspect), abs=1e-9) and c.lod_bias == max(0.0, raw(c))
+    far = near * 1e3
+    bound = vsm.frustum_max(c, near, far)
+    v = View(near, far, fov, aspect)
+    rng = np.random.default_rng(0)
+    rays = np.concatenate([v.corner_rays, np.stack([rng.uniform(-1, 1, 500) * v.tan_theta_x, rng.uniform(-1, 1, 500) * v.tan_theta, np.ones(500)], -1)])
+    pts = np.geomspace(near, far, 200)[:, None, None] * rays[None]
+    m = vsm.m_at(c, pts[..., 2], np.linalg.norm(pts, axis=-1))
+    assert np.nanmax(m) <= bound * (1 + 1e-12)
+    assert vsm.m_axis_range(c, near, far)[1] <= bound * (1 + 1e-12)
