@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -699,13 +700,22 @@ def test_wide_camera_on_the_city_needs_the_wide_fit(monkeypatch):
     assert not bad["passed"] and bad["inside"][-1] < 0.95 and good["inside"][-1] == 1.0
 
 
-def test_wide_camera_refusals_on_the_city():
+def test_vsm_on_the_city_with_a_wide_camera(city_setup):
+    """A 2:1 camera: W = 2·res pixels across, tan θ_x = 2 tan θ_y.  The measured error per level is
+    t_L·W/(2 tanθ_x d) pixel by pixel, and the bound is the clipmap's wide supremum
+    2^(1+bias)·√(1 + tan²θ_x + tan²θ_y), reached within the level flips the scene has."""
     from aliasing.engines.scene import cascades_on_scene, vsm_on_scene
 
     st = _city(2.0)
-    with pytest.raises(ValueError, match=r"^aspect must be 1 for vsm_on_scene") as info:
-        vsm_on_scene(st, res=96, unit="m")
-    assert "\n" not in str(info.value)
+    for bias in (0.0, -1.0):
+        r = vsm_on_scene(st, bias=bias, res=96, unit="m")
+        t = math.tan(math.radians(30.0))
+        assert r["aspect"] == 2.0 and r["passed"] and len(r["levels"]) >= 2
+        assert r["bound"] == pytest.approx(vsm.frustum_max(vsm.Clipmap(60.0, 192, bias, unit="m", aspect=2.0), 0.5, 90.0))
+        assert r["bound"] == pytest.approx(2.0 ** (1 + bias) * math.sqrt(1 + 5 * t**2), rel=1e-9)
+        live = range(len(r["levels"]))
+        assert all(1 - r["tolerance"] <= r["pointwise_min"][i] <= r["pointwise_max"][i] <= 1 + r["tolerance"] for i in live)
+    assert repr(vsm_on_scene(_city(1.0), bias=-1.0, res=96, unit="m")) == repr(vsm_on_scene(city_setup, bias=-1.0, res=96, unit="m"))  # aspect 1: bit for bit
     with pytest.raises(ValueError, match=r"^aspect is the camera's"):
         cascades_on_scene(st, "log", k=3, res=96, aspect=2.0)
 

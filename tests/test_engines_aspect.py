@@ -174,11 +174,23 @@ def test_engines_aspect_overhead_as_derived(aspect):
 def test_engines_aspect_refusals(capsys):
     from aliasing import cli
 
-    with pytest.raises(ValueError, match="^aspect must be 1 for vsm schemes"):
-        compare.compare(["vsm:high"], aspect=2.0)
     for bad in ("0", "-1", "nan", "inf"):
-        assert cli.main(["engines", "--schemes", "csm:log:k=3", "--aspect", bad]) == 2
-        err = capsys.readouterr().err
-        assert err.count("\n") == 1 and "aspect" in err and "Traceback" not in err
-    assert cli.main(["engines", "--schemes", "vsm:epic", "--aspect", "1.5"]) == 2
-    assert "aspect must be 1 for vsm" in capsys.readouterr().err
+        for chosen in ("csm:log:k=3", "vsm:epic"):
+            assert cli.main(["engines", "--schemes", chosen, "--aspect", bad]) == 2
+            err = capsys.readouterr().err
+            assert err.count("\n") == 1 and "aspect" in err and "Traceback" not in err
+
+
+def test_vsm_takes_the_wide_camera(capsys):
+    """vsm at aspect 1.5 (no longer refused): the clipmap's LOD from tan θ_x (tests/test_vsm_aspect.py
+    checks the model); the row's frustum maximum is 2^(1+bias)·√(1 + tan²θ_x + tan²θ_y)."""
+    from aliasing import cli
+    from aliasing.engines import vsm
+
+    row = compare.compare(["vsm:high"], near=100.0, aspect=1.5, lights="hemisphere:20")[0]
+    t = math.tan(math.radians(30.0))
+    assert row["max_error"] == pytest.approx(2.0 * math.sqrt(1 + (1.5 * t) ** 2 + t**2), rel=1e-9)
+    assert row["pages"] == float(vsm.pages(vsm.Clipmap(60.0, 1920, 0.0, aspect=1.5), 100.0, 1e5, "hemisphere:20").max())
+    assert cli.main(["engines", "--schemes", "vsm:epic", "--aspect", "1.5"]) == 0
+    out, err = capsys.readouterr()
+    assert err == "" and out.count("vsm:epic") == 1

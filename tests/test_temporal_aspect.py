@@ -101,10 +101,21 @@ def test_bad_aspect_on_the_command_line_one_line(text):
     assert err.getvalue().count("\n") == 1 and "aspect" in err.getvalue() and "Traceback" not in err.getvalue(), (text, err.getvalue())
 
 
-def test_vsm_refuses_a_wide_camera_in_one_line(capsys):
+def test_vsm_takes_a_wide_camera(capsys):
+    """At the same viewport width a 2:1 view has pixels twice as large (tan θ_x = 2 tan θ_y): B′ grows by
+    one octave, so every level's distance bound comes twice as near the camera."""
     code = cli.main(["shimmer", "--schemes", "csm:log:k=2,vsm:bias=0", "--motion", "translate:0.1,0,0", "--frames", "2", "--image-res", "16", "--shadow-res", "16", "--aspect", "2"])
-    err = capsys.readouterr().err
-    assert code == 2 and err.count("\n") == 1 and "aspect must be 1 for vsm" in err
+    out, err = capsys.readouterr()
+    assert code == 0 and err == "" and "vsm:bias=0" in out
+    lats = []
+    for aspect in (1.0, 2.0):
+        w = points.world("boxes", boxes=40, seed=1, aspect=aspect)
+        pts = points.sample(w, 32)
+        lats.append(fits.plan("vsm:bias=0", w, _poses(w, "translate:0.05,0,0", 3), 64, positions=pts.position, image_res=96))
+    sq, wide = lats
+    assert wide.aspect == 2.0 and sq.aspect == 1.0
+    np.testing.assert_allclose(wide.hi[:, :-1], sq.hi[:, :-1] / 2, rtol=1e-12)  # B′ unclamped here: log2(0.5·tanθ_x·16384/96) > 0
+    np.testing.assert_array_equal(wide.hi[:, -1], sq.hi[:, -1])  # the last level's radius is the engine's, whatever the view
 
 
 def test_points_of_another_aspect_are_refused():

@@ -22,10 +22,10 @@ square: its beam is 2 d tan θ_y over those rows, ``--fov`` being vertical): ``m
 (max over lights and receivers of max(m_x, m_z)),
 ``median_error`` (median over lights of each light's max), ``m_axis_min``/``m_axis_max``
 (m_x along the view axis over [near, far], light overhead), ``storage_texels``, ``S_bar``
-(the papers' critical storage in image areas: Σ_maps texels·M_x·M_z / W², the maximum over
-lights; for VSM a bound: texels·M²/W²), ``pages`` (VSM: the frustum bound, or with ``ground``
+(the papers' critical storage in image areas: Σ_maps texels·M_x·M_z / (W·W/aspect), the maximum over
+lights; for VSM a bound: texels·M²/(W·W/aspect)), ``pages`` (VSM: the frustum bound, or with ``ground``
 the ground plane's closed form; worst light),
-``overflow`` and ``extra_bias`` (VSM pool; square views only), ``coverage`` (cascades: the fraction of light
+``overflow`` and ``extra_bias`` (VSM pool), ``coverage`` (cascades: the fraction of light
 directions for which every map covers its slice; below 1 the row's error is not a valid
 bound, see :func:`aliasing.engines.stable.coverage`), ``storage_ratio`` and ``error_ratio`` to the
 matched limit (:mod:`aliasing.engines.limits`).
@@ -137,8 +137,8 @@ def parse_spec(spec: str, *, fov: float, near: float, far: float, image_res: int
     """Read one scheme spec (the module docstring's grammar) without evaluating it.
 
     Raises ValueError naming the spec and the bad option.  ``aspect`` (width/height) goes
-    into the cascades' fits (``fit["aspect"]``); ``vsm`` refuses a non-square view: its
-    clipmap's page marking is modelled for a square image ``image_res`` pixels across.
+    into the cascades' fits (``fit["aspect"]``) and into the ``vsm`` clipmap (its LOD takes
+    tan θ_x = aspect·tan θ_y and the ``image_res`` pixels across, as the engine's does).
 
     Example
     -------
@@ -155,8 +155,6 @@ def parse_spec(spec: str, *, fov: float, near: float, far: float, image_res: int
         return ParsedSpec(spec, family)
     r = stable._aspect(aspect)
     if family == "vsm":
-        if r != 1.0:
-            raise ValueError(f"aspect must be 1 for vsm schemes (the clipmap model is of a square image), got {r:g} in {spec!r}")
         if not parts:
             raise ValueError(f"scheme {spec!r}: vsm needs a preset ({', '.join(vsm.PRESETS)}) or bias=B")
         if "=" not in parts[0]:
@@ -174,7 +172,7 @@ def parse_spec(spec: str, *, fov: float, near: float, far: float, image_res: int
             if not float(level).is_integer():  # type: ignore[arg-type]
                 raise ValueError(f"scheme {spec!r}: {key} (clipmap level) must be a whole number, got {level:g}")
         coarse = None if opts.get("coarse", "1") in ("0", "false", "no") else vsm.COARSE_LEVELS
-        c = vsm.Clipmap(fov, image_res, bias, int(first), int(last), unit, _num(opts, "dilation", spec, vsm.DILATION), coarse)
+        c = vsm.Clipmap(fov, image_res, bias, int(first), int(last), unit, _num(opts, "dilation", spec, vsm.DILATION), coarse, r)
         return ParsedSpec(spec, family, clipmap=c, pool=int(pool))
     if family == "sdsm":
         opts = _options(parts, spec, {"k", "zmin", "zmax", "method", "border", "dilation", "quantize"})
@@ -244,7 +242,7 @@ def scheme_row(spec: str, *, fov: float, near: float, far: float, lights: str | 
             "m_axis_min": lo,
             "m_axis_max": hi,
             "storage_texels": float(texels),
-            "S_bar": float(np.float64(texels) * np.float64(worst) ** 2 / image_res**2) if texels else 0.0,  # inf for a vanishing fov; no pages: no storage
+            "S_bar": float(np.float64(texels) * np.float64(worst) ** 2 / (image_res**2 / r)) if texels else 0.0,  # per image area (W·W/aspect pixels); inf for a vanishing fov; no pages: no storage
             "pages": pool_info["pages"],
             "overflow": bool(pool_info["overflow"]),
             "extra_bias": pool_info["extra_bias"],
@@ -300,7 +298,8 @@ def compare(schemes: Sequence[str], *, fov: float = 60.0, near: float = 10.0, fa
         rows (the beam 2 d tan θ_y over them), so a wider view at the same width has larger
         pixels and smaller m; the cascades' fits take the wider slices; ``S_bar`` is per image
         area; the limits' storage is per pixel of the W × W/aspect image.  ``vsm`` schemes
-        refuse aspect ≠ 1.
+        take it into the clipmap (:class:`aliasing.engines.vsm.Clipmap`: the engine's LOD
+        from tan θ_x and W).
     """
     check.fov(fov)
     check.frustum(near, far)
@@ -419,7 +418,7 @@ def add_engines_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPars
     )
     p.add_argument("--schemes", default="csm:filament,csm-stable:filament,sdsm:k=4,vsm:high,vsm:epic,matched,exact", help="comma list of scheme specs")
     p.add_argument("--fov", type=float, default=60.0, help="VERTICAL full field of view in degrees (default 60)")
-    p.add_argument("--aspect", type=float, default=1.0, help="image width/height (default 1; the image is --image-res pixels wide, --image-res/aspect high); vsm schemes need 1")
+    p.add_argument("--aspect", type=float, default=1.0, help="image width/height (default 1; the image is --image-res pixels wide, --image-res/aspect high)")
     p.add_argument("--near", type=float, default=10.0, help="near distance in --unit (default 10)")
     p.add_argument("--far", type=float, default=100000.0, help="shadow distance in --unit (default 100000)")
     p.add_argument("--image-res", type=int, default=1920, help="eye image width in pixels (default 1920)")

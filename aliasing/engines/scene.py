@@ -13,8 +13,9 @@ surface's orientation (the projection factor is separate).  A camera of aspect �
 (width/height, its fov vertical): the cascades are fitted to the wide slices
 (:func:`stable.evaluate` with the camera's ``aspect``), the eye pass and the measured error go
 through the camera's :class:`~aliasing.View`, and θ stays the vertical half angle (square
-pixels of unit vertical resolution); the result then carries ``aspect``.  VSM's clipmap
-model is of a square image: :func:`vsm_on_scene` refuses a wide camera.  Three checks per map:
+pixels of unit vertical resolution); the result then carries ``aspect``.  VSM's clipmap takes
+the camera's aspect (:class:`vsm.Clipmap`: the engine's LOD from tan θ_x and the image's
+pixels across).  Three checks per map:
 
 ``ratio``
     max measured / the map's analytic maximum (at its first used depth u_k, or for VSM the
@@ -186,11 +187,13 @@ def sdsm_on_scene(st: SceneSetup, method: str = "adaptive", k: int = 4, *, res: 
 def vsm_on_scene(st: SceneSetup, *, bias: float = 0.0, res: int = 128, first: int = 6, last: int = 22, unit: str = "m") -> dict:
     """A VSM clipmap on the scene: each pixel's level from its camera distance, measured vs analytic.
 
-    The clipmap's viewport width is ``res`` (the eye image), the scene's unit ``unit``; a camera
-    of aspect ≠ 1 is refused (the clipmap model is of a square image).  Per
-    level (as a map): ``ratio`` against :func:`vsm.frustum_max` (the clipmap's supremum over
-    the frustum), ``reach`` and ``pointwise`` against m = t_L·W/(2 tanθ d) (:func:`vsm.m_at`).
-    Adds ``levels`` (the levels seen) and ``bound``.
+    The eye image has ``res`` rows; the clipmap's viewport width is the image's pixels
+    across, W = round(aspect·res) (``res`` for a square camera), its aspect the camera's;
+    the scene's unit is ``unit``.  Per level (as a map): ``ratio`` against
+    :func:`vsm.frustum_max` (the clipmap's supremum over the frustum, per pixel of W/aspect
+    rows), ``reach`` and ``pointwise`` against m = t_L·W/(2 tanθ_x d) = t_L·(W/aspect)/(2 tanθ_y d)
+    (:func:`vsm.m_at`).  Adds ``levels`` (the levels seen) and ``bound``; ``aspect`` when the
+    camera's is not 1.
 
     Example
     -------
@@ -202,8 +205,9 @@ def vsm_on_scene(st: SceneSetup, *, bias: float = 0.0, res: int = 128, first: in
     """
     r = check_resolution(res, "res")
     cam = st.camera
-    cam.view.require_square("vsm_on_scene (the clipmap model is of a square image, as in aliasing engines)")
-    c = vsm.Clipmap(cam.fov, r, bias, first, last, unit)
+    wide = float(cam.view.aspect)  # validated by the camera's View
+    width = r if wide == 1.0 else max(1, int(round(wide * r)))  # the image's pixels across
+    c = vsm.Clipmap(cam.fov, width, bias, first, last, unit, aspect=wide)
 
     def assign(pos, hit):
         lv = vsm.level(c, np.linalg.norm(pos, axis=-1))
@@ -218,8 +222,8 @@ def vsm_on_scene(st: SceneSetup, *, bias: float = 0.0, res: int = 128, first: in
         side = float(vsm.texel(c, L)) * vsm.VIRTUAL_RES  # 4·R_l, centred on the camera
         lm = frame_map(st.light, basis[2], -side / 2, side / 2, np.inf, -side / 2, side / 2, "uniform")
         sel, mine = ok & (level == L), level == L
-        m = pixel_errors(lm, pos, sel, r, cam.fov)
-        scale = r / vsm.VIRTUAL_RES  # unit resolutions → W pixels, 16384 texels
+        m = pixel_errors(lm, pos, sel, r, cam.view)  # per unit vertical resolution (2 d tanθ_y)
+        scale = (width / wide) / vsm.VIRTUAL_RES  # unit resolutions → W/aspect rows (square pixels of W across), 16384 texels
         d = pos[..., 2]
         exact = side / (2 * t * d)  # = vsm.m_at / scale
         px, pz = m["m_x"] / exact, m["m_z"] / exact
@@ -234,4 +238,4 @@ def vsm_on_scene(st: SceneSetup, *, bias: float = 0.0, res: int = 128, first: in
         seen.append(int(L))
     if not rows:
         raise ValueError("no measurable pixels: no lit planar surface within [near, far] covers 3 x 3 pixels; raise res or move the camera")
-    return _summary(rows, {"levels": seen, "bound": bound})
+    return _wide(_summary(rows, {"levels": seen, "bound": bound}), cam)

@@ -182,7 +182,8 @@ def scene_pages(triangles: ArrayLike, clipmap: vsm.Clipmap, light: str | ArrayLi
     Each visible point takes its level from its camera distance and its page from its
     light-plane coordinates on a grid of 128·t_l (aligned at the camera; the engine snaps
     the level's origin to the grid, which shifts pages but not their number by more than the
-    border).  ``resolution`` is the sampling image (a page spans tens of pixels at the
+    border).  ``resolution`` is the sampling image (R × R pixels over the clipmap's view, its
+    ``aspect`` included; a page spans tens of pixels at the
     engine's width, so a few hundred pixels per side find every page); the levels use
     ``clipmap.width``.  Sampled at the engine's own width this is what its page marking
     marks: each pixel also marks the pages at floor(p ± δ·d) (``clipmap.dilation`` δ, d the
@@ -209,7 +210,7 @@ def scene_pages(triangles: ArrayLike, clipmap: vsm.Clipmap, light: str | ArrayLi
     lv = geometry.lights(light)
     if len(lv) != 1:
         raise ValueError(f"light must be one direction, got {len(lv)}")
-    eb = eye_pass(triangles, clipmap.fov, resolution)
+    eb = eye_pass(triangles, View(1.0, 2.0, clipmap.fov, clipmap.aspect), resolution)  # the clipmap's angles (near and far do not clip)
     hit = eb.triangle >= 0
     col = np.broadcast_to(np.arange(hit.shape[1]), hit.shape)[hit]  # the thread index's low bits: the pixel column
     pos = eb.position[hit]

@@ -7,8 +7,9 @@ Read from ``Engine/Source/Runtime/Renderer/Private/VirtualShadowMaps/VirtualShad
   (``VirtualMaxResolutionXY``) spanning 2·``HalfLevelDim`` = 4·R_l, so its texel is
   t_l = 2^(l+3)/16384 = 2^(l−11) [cm; the engine's unit] and its page (128² texels) is
   2^(l−4) wide;
-* ``LodScale = 0.5/ProjectionScale.X · 16384/ViewportWidth`` with ProjectionScale.X =
-  1/tan(θ) (θ = fov/2, the x half-angle); the resolution LOD bias is
+* ``LodScale = 0.5/ProjectionScale.X · 16384/CameraViewportWidth`` (the engine's comment:
+  the roll invariance of the directional light depends on square pixels, "so we just base
+  everything on the camera X scales/resolution"); the resolution LOD bias is
   B′ = max(0, bias + log2(LodScale)) (the clamp is the engine's);
 * a receiver at distance d_c from the camera takes level L = floor(log2 d_c + B′)
   (``VirtualShadowMapProjectionCommon.ush``, same copy: ``CalcAbsoluteClipmapLevel`` =
@@ -32,6 +33,27 @@ Read from ``Engine/Source/Runtime/Renderer/Private/VirtualShadowMaps/VirtualShad
 * defaults in this version: FirstLevel 6, LastLevel 22, ``ResolutionLodBiasDirectional``
   0.0 (−0.5 in older 5.x copies, e.g. reza-shahriari/UnrealEngine-lite).
 
+A camera of any aspect.  ``CameraViewportWidth`` is ``CameraViewRectSize.X``, the view
+rect's width in pixels (raised to ``r.Shadow.Virtual.Clipmap.MinCameraViewportWidth`` when
+that is set; orthographic cameras are not modelled).  ``ProjectionScale.X`` is
+|``ProjectionMatrix.M[0][0]``| (``FViewMatrices::Init`` in
+``Engine/Source/Runtime/Engine/Private/SceneView.cpp``, same copy; a stereo eye doubles it),
+the horizontal entry: it maps the image's left and right edges to clip x = ±1, so it is
+1/tan θ_x whatever the field of view was given as (``TReversedZPerspectiveMatrix`` in
+``Engine/Source/Runtime/Core/Public/Math/PerspectiveMatrix.h``, read in the copy
+chenyong2github/UnrealEngine as the UE 5.8 copy does not store it, puts 1/tan(HalfFOV) in
+M[0][0] and Width/tan(HalfFOV)/Height in M[1][1]: M[1][1] = 1/tan θ_y with square pixels).  So for the toolkit's camera — ``fov`` the
+vertical full field of view, ``aspect`` = width/height, as in :class:`aliasing.View` —
+
+    tan θ_y = tan(fov/2),   tan θ_x = aspect·tan θ_y   (:attr:`aliasing.View.tan_theta_x`),
+    W = the image's pixels across (its height W/aspect),
+    LodScale = ½·tan θ_x·16384/W,
+
+and a pixel at eye depth d spans 2 tan θ_x d/W = 2 tan θ_y d/(W/aspect) across and up.
+:class:`Clipmap` takes ``fov`` (vertical), ``width`` (W) and ``aspect``; at aspect 1 the
+vertical and horizontal angles are one θ and every result is the square model's bit for
+bit.
+
 Scalability: Epic's "Hillside sample" documentation quotes the Epic level's original
 ``r.Shadow.Virtual.ResolutionLodBiasDirectional=-1.5``; the Low–High bias 0 and the pool
 sizes 512/512/2048/4096/8192 (Low…Cinematic) are the issue's list — ``BaseScalability.ini``
@@ -41,11 +63,13 @@ Result derived here (not stated by the engine; :mod:`aliasing.symbolic.engines` 
 the tests check it): with W eye pixels across and d_c = d (on the view axis), outside the
 clamps,
 
-    m(d) = t_L / (2 tanθ d / W) = 2^(1 + bias − φ),   φ = frac(log2 d + B′),
+    m(d) = t_L / (2 tanθ_x d / W) = 2^(1 + bias − φ),   φ = frac(log2 d + B′),
 
 so m saw-tooths between 2^bias (exclusive) and 2^(1+bias) once per octave of distance,
-independent of fov, W and the scene unit.  Off the axis d_c = d/cos ψ, so over the
-frustum M = 2^(1+bias)·√(1 + 2 tan²θ) (square image corners; a supremum).
+independent of fov, aspect, W and the scene unit (a wider view moves the level flips, by
+log2 of its tan θ_x, not the saw-tooth's range).  Off the axis d_c = d/cos ψ, so over the
+frustum M = 2^(1+bias)·√(1 + tan²θ_x + tan²θ_y) (the image corners; a supremum;
+√(1 + 2 tan²θ) for a square image).
 
 Example
 -------
@@ -63,7 +87,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import geometry
-from ..view import tan_theta, theta_of
+from ..view import View, check_aspect
 
 Array = NDArray[np.float64]
 VIRTUAL_RES = 16384  # FVirtualShadowMap::VirtualMaxResolutionXY
@@ -102,9 +126,11 @@ class Clipmap:
     Parameters
     ----------
     fov : float
-        Full horizontal field of view [deg] (square pixels; the engine uses the x scale).
+        Full vertical field of view [deg], in (0, 180) (the toolkit's convention; at
+        ``aspect`` 1 also the horizontal one).
     width : int
-        Viewport width [pixels], ≥ 1.
+        Viewport width W [pixels across], ≥ 1; the image is W/aspect pixels high (square
+        pixels).
     bias : float
         ``r.Shadow.Virtual.ResolutionLodBiasDirectional`` [octaves], in [−8, 8].
     first, last : int
@@ -115,6 +141,15 @@ class Clipmap:
         Page-marking dilation δ [pages], in [0, 0.5] (0.05: the engine's).
     coarse : tuple of int or None
         (first, last) coarse level whose 4 central pages are always marked; None: no coarse pages.
+    aspect : float
+        Image width/height, 0 < aspect < inf (default 1: square): tan θ_x = aspect·tan θ_y,
+        and the engine's LOD scale takes tan θ_x (module docstring).
+
+    Example
+    -------
+    >>> wide = Clipmap(fov=60.0, width=1920, aspect=16 / 9)
+    >>> round(wide.tan_x / wide.tan_y, 12), round(wide.lod_bias - Clipmap(fov=60.0, width=1920).lod_bias, 12)
+    (1.777777777778, 0.830074998558)
     """
 
     fov: float = 90.0
@@ -125,6 +160,7 @@ class Clipmap:
     unit: str = "cm"
     dilation: float = DILATION
     coarse: tuple[int, int] | None = COARSE_LEVELS
+    aspect: float = 1.0
 
     def __post_init__(self) -> None:
         check.closed_range(self.dilation, "dilation", 0.0, 0.5, " pages")
@@ -140,14 +176,40 @@ class Clipmap:
         if int(self.first) > int(self.last):
             raise ValueError(f"first level must be <= last level, got first={self.first}, last={self.last}")
         check.choice(self.unit, "unit", CM_PER_UNIT)
+        check.scalar(self.aspect, "aspect")
+        # the angles, as every View has them (the one degrees → radians conversion is there;
+        # near and far do not enter them): validates aspect once, naming it
+        object.__setattr__(self, "_view", View(1.0, 2.0, float(self.fov), float(self.aspect)))
+        with np.errstate(over="ignore"):
+            tx = self.tan_x
+        if not np.isfinite(0.5 * tx * VIRTUAL_RES):  # LodScale = ½·tanθ_x·16384/W must be a number
+            raise ValueError(f"aspect (image width/height) is too large for fov {float(self.fov):g}: aspect·tan(fov/2) overflows the LOD scale, got {float(self.aspect):g}")
+
+    @property
+    def tan_y(self) -> float:
+        """tan θ_y [dimensionless]: the vertical half-width of the image at unit eye depth."""
+        return float(self._view.tan_theta)  # type: ignore[attr-defined]
+
+    @property
+    def tan_x(self) -> float:
+        """tan θ_x = aspect·tan θ_y [dimensionless]: 1/``ProjectionMatrix.M[0][0]``, the engine's X scale."""
+        return float(self._view.tan_theta_x)  # type: ignore[attr-defined]
 
     @property
     def tan(self) -> float:
-        return float(tan_theta(self.fov))
+        """The engine's tan θ (its LOD takes the X scale): :attr:`tan_x`."""
+        return self.tan_x
+
+    @property
+    def corner(self) -> float:
+        """d_c/d at the image corners, √(1 + tan²θ_x + tan²θ_y) [dimensionless] (√(1 + 2tan²θ) at aspect 1, bit for bit)."""
+        tx, ty = np.float64(self.tan_x), np.float64(self.tan_y)
+        with np.errstate(over="ignore"):  # a view wide enough to overflow: the corner is at infinity
+            return float(np.sqrt(1 + (tx**2 + ty**2)))
 
     @property
     def lod_bias(self) -> float:
-        """B′ = max(0, bias + log2(0.5·tanθ·16384/W)) [octaves] (VirtualShadowMapClipmap.cpp)."""
+        """B′ = max(0, bias + log2(0.5·tanθ_x·16384/W)) [octaves] (VirtualShadowMapClipmap.cpp)."""
         lod_scale = 0.5 * self.tan * VIRTUAL_RES / self.width
         return max(0.0, self.bias + float(np.log2(lod_scale)))
 
@@ -175,9 +237,12 @@ def texel(c: Clipmap, lv: ArrayLike) -> Array:
 
 
 def m_at(c: Clipmap, depth: ArrayLike, distance: ArrayLike) -> Array:
-    """Error m = texel / pixel footprint at eye depth and camera distance [scene units]."""
+    """Error m = texel / pixel footprint at eye depth and camera distance [scene units].
+
+    The pixel spans 2 tanθ_x d/W across (= 2 tanθ_y d/(W/aspect) up: square pixels).
+    """
     d = check.positive(depth, "depth")
-    return texel(c, level(c, distance)) * c.width / (2 * c.tan * d)  # eq. (2) of Lloyd 2006 at W pixels
+    return texel(c, level(c, distance)) * c.width / (2 * c.tan_x * d)  # eq. (2) of Lloyd 2006 at W pixels
 
 
 def m_axis(c: Clipmap, depth: ArrayLike) -> Array:
@@ -188,7 +253,7 @@ def m_axis(c: Clipmap, depth: ArrayLike) -> Array:
 def m_axis_range(c: Clipmap, near: float, far: float) -> tuple[float, float]:
     """(inf, sup) of m on the axis over [near, far] [scene units], from the closed form.
 
-    Inside the unclamped levels m ∈ (2^(b′), 2^(1+b′)] with b′ = B′ − log2(0.5·tanθ·16384/W)
+    Inside the unclamped levels m ∈ (2^(b′), 2^(1+b′)] with b′ = B′ − log2(0.5·tanθ_x·16384/W)
     (= bias unless B′ was clamped at 0); at the first level's clamp m grows as 1/d towards
     the camera.  Breakpoints d = 2^(L − B′) are evaluated from both sides.
     """
@@ -205,13 +270,25 @@ def m_axis_range(c: Clipmap, near: float, far: float) -> tuple[float, float]:
 
 
 def frustum_max(c: Clipmap, near: float, far: float, samples: int = 4096) -> float:
-    """Max m over the frustum (corner rays, where d_c/d = √(1 + 2tan²θ) is largest) [dimensionless]."""
+    """Max m over the frustum [dimensionless]: on the corner rays, where d_c/d = √(1 + tan²θ_x + tan²θ_y) is largest.
+
+    At a given eye depth m grows with the camera distance d_c (through the level) up to the
+    last level's radius R = 2^(last+1) cm, beyond which nothing is shadowed by the clipmap;
+    so each depth is evaluated at d_c = min(k·d, R⁻), the corner ray while it is covered.
+    NaN when no receiver in [near, far] is covered (near ≥ R).
+    """
     n, f = (float(x) for x in check.frustum(near, far))
     d = np.geomspace(n, f, samples)
-    k = np.sqrt(1 + 2 * c.tan**2)
-    br = 2.0 ** (np.arange(c.first, c.last + 1) - c.lod_bias) / CM_PER_UNIT[c.unit.lower()] / k  # level flips on the corner ray
+    k = c.corner
+    scale = CM_PER_UNIT[c.unit.lower()]
+    br = 2.0 ** (np.arange(c.first, c.last + 1) - c.lod_bias) / scale / k  # level flips on the corner ray
     d = np.sort(np.concatenate([d, br[(br > n) & (br < f)]]))
-    return float(np.nanmax(m_at(c, d, d * k)))
+    covered = 2.0 ** (c.last + 1) / scale * (1 - 1e-12)  # just inside the last level's radius
+    with np.errstate(over="ignore", invalid="ignore"):
+        dc = np.minimum(d * k, covered)  # = d·k bit for bit wherever the corner ray is covered
+    if not (n < covered):
+        return float("nan")
+    return float(np.nanmax(m_at(c, d, np.maximum(dc, d))))
 
 
 def coarse_pages(c: Clipmap) -> int:
@@ -233,14 +310,14 @@ def pages(c: Clipmap, near: float, far: float, light: str | ArrayLike = "overhea
 
     For each level, the receivers using it have camera distance in [2^(L−B′), 2^(L+1−B′))
     (the first level from 0, the last to its radius); they lie in the frustum slice with eye
-    depth in [d_lo·cos ψ_max, d_hi] (cos ψ_max = 1/√(1 + 2tan²θ)).  The slice's light-space
+    depth in [d_lo·cos ψ_max, d_hi] (cos ψ_max = 1/√(1 + tan²θ_x + tan²θ_y), the corner ray).  The slice's light-space
     box (:func:`aliasing.directional.fit`) in pages, grown by the marking's dilation δ page on
     each side, +1 per axis for its alignment to the page grid, capped at 128 per axis, summed
     over levels; plus the coarse pages (:func:`coarse_pages`; counted apart, so a bound).
     """
     n, f = (float(x) for x in check.frustum(near, far))
     scale = CM_PER_UNIT[c.unit.lower()]
-    cos_max = 1 / np.sqrt(1 + 2 * c.tan**2)
+    cos_max = 1 / c.corner
     lv = np.arange(c.first, c.last + 1)
     d_lo = np.where(lv == c.first, 0.0, 2.0 ** (lv - c.lod_bias)) / scale
     d_hi = np.where(lv == c.last, 2.0 ** (c.last + 1), 2.0 ** (lv + 1 - c.lod_bias)) / scale
@@ -253,21 +330,30 @@ def pages(c: Clipmap, near: float, far: float, light: str | ArrayLike = "overhea
     basis = geometry.light_space(lights)  # (N, 3, 3): rows x, −, y of the light image plane
     page = PAGE * texel(c, lvk)
     grow = 2 * c.dilation  # MarkPage: ± δ page around every marked point
-    px = np.minimum(np.ceil(slice_extent(a, b, c.tan, basis[:, 0]) / page + grow) + 1, VIRTUAL_RES // PAGE)
-    py = np.minimum(np.ceil(slice_extent(a, b, c.tan, basis[:, 2]) / page + grow) + 1, VIRTUAL_RES // PAGE)
+    px = np.minimum(np.ceil(slice_extent(a, b, c.tan_y, basis[:, 0], c.aspect) / page + grow) + 1, VIRTUAL_RES // PAGE)
+    py = np.minimum(np.ceil(slice_extent(a, b, c.tan_y, basis[:, 2], c.aspect) / page + grow) + 1, VIRTUAL_RES // PAGE)
     return (px * py).sum(axis=-1) + coarse_pages(c)
 
 
-def slice_extent(a: ArrayLike, b: ArrayLike, tan: float, axis: ArrayLike) -> Array:
-    """Extent [scene units] of square frustum slices [a, b] ``(K,)`` along unit axes ``(N, 3)``: ``(N, K)``.
+def slice_extent(a: ArrayLike, b: ArrayLike, tan: float, axis: ArrayLike, aspect: float = 1.0) -> Array:
+    """Extent [scene units] of frustum slices [a, b] ``(K,)`` along unit eye-space axes ``(N, 3)``: ``(N, K)``.
 
-    A corner (±d·t, ±d·t, d) projects to d·(e_z ± t e_x ± t e_y), so with q = t(|e_x| + |e_y|)
-    the extent is max(a, b·(e_z + q)…) − min(…): max(a(e_z + q), b(e_z + q)) − min(a(e_z − q),
-    b(e_z − q)).  Closed form of :func:`aliasing.directional.fit`'s ptp (tested against it).
+    ``tan`` is tan θ_y (the vertical half-angle), ``aspect`` the image's width/height, so the
+    slice's corners are (±d·aspect·t, ±d·t, d).  A corner projects to
+    d·(e_z ± aspect·t e_x ± t e_y), so with q = t(aspect·|e_x| + |e_y|) the extent is
+    max(a(e_z + q), b(e_z + q)) − min(a(e_z − q), b(e_z − q)) (q = t(|e_x| + |e_y|) at
+    aspect 1, bit for bit).  Closed form of :func:`aliasing.directional.fit`'s ptp (tested
+    against it).
+
+    Example
+    -------
+    >>> slice_extent(1.0, 2.0, 1.0, [[1.0, 0.0, 0.0]]).tolist(), slice_extent(1.0, 2.0, 1.0, [[1.0, 0.0, 0.0]], 2.0).tolist()
+    ([[4.0]], [[8.0]])
     """
     e = np.atleast_2d(np.asarray(axis, float))[:, None, :]
     aa, bb = np.asarray(a, float)[None], np.asarray(b, float)[None]
-    q = tan * (np.abs(e[..., 0]) + np.abs(e[..., 1]))
+    r = float(check_aspect(check.scalar(aspect, "aspect")))
+    q = tan * (r * np.abs(e[..., 0]) + np.abs(e[..., 1]))  # r·|e_x| is |e_x| exactly at aspect 1
     hi, lo = e[..., 2] + q, e[..., 2] - q
     return np.maximum(aa * hi, bb * hi) - np.minimum(aa * lo, bb * lo)
 
@@ -317,14 +403,18 @@ def pool_check(c: Clipmap, near: float, far: float, light: str | ArrayLike, pool
     return {"pages": need, "budget": budget, "overflow": need > budget, "extra_bias": extra}
 
 
-def ground_area(rho: ArrayLike, height: float, fov: float) -> Array:
+def ground_area(rho: ArrayLike, height: float, fov: float, aspect: float = 1.0) -> Array:
     """Visible ground area within horizontal distance ρ [scene units²], closed form.
 
-    Camera at ``height`` above a plane, looking horizontally (square image, half-angle θ):
-    the plane is seen from z₀ = h/tanθ on, inside the wedge |x| ≤ z tanθ.  Then
-    A(ρ) = 0 for ρ ≤ z₀; ρ² acos(z₀/ρ) − z₀√(ρ² − z₀²) (a circular segment) for
-    z₀ < ρ ≤ z₀/cosθ; θρ² − z₀² tanθ (the wedge minus its unseen triangle) beyond.
-    Derived here; tested against a Monte Carlo count.
+    Camera at ``height`` above a plane, looking horizontally, vertical half-angle θ_y
+    (``fov``/2) and tan θ_x = ``aspect``·tan θ_y: a ground point (x, −h, z) is in the image
+    when h ≤ z tanθ_y and |x| ≤ z tanθ_x, so the plane is seen from z₀ = h/tanθ_y on, inside
+    the wedge of half-angle φ = atan(tanθ_x).  Then A(ρ) = 0 for ρ ≤ z₀;
+    ρ² acos(z₀/ρ) − z₀√(ρ² − z₀²) (a circular segment, inside the wedge while the chord
+    √(ρ² − z₀²) ≤ z₀ tanθ_x) for z₀ < ρ ≤ z₀/cos φ; φρ² − z₀² tanθ_x (the wedge minus its
+    unseen triangle) beyond.  φ is computed as θ_y + atan((tanθ_x − tanθ_y)/(1 + tanθ_x tanθ_y)),
+    which is θ_y exactly at aspect 1 (the square image's θ, bit for bit).  Derived here;
+    tested against a Monte Carlo count.
 
     Example
     -------
@@ -333,12 +423,16 @@ def ground_area(rho: ArrayLike, height: float, fov: float) -> Array:
     """
     r = np.asarray(check.as_float_array(rho, "rho"), float)
     h = float(check.positive(height, "height"))
-    th = float(theta_of(fov))
-    z0 = h / np.tan(th)
+    v = View(1.0, 2.0, fov, check.scalar(aspect, "aspect"))  # the angles only: near and far do not enter
+    th, ty, tx = float(v.theta), float(v.tan_theta), float(v.tan_theta_x)
+    with np.errstate(over="ignore", invalid="ignore"):
+        delta = float(np.arctan((tx - ty) / (1 + tx * ty)))  # atan(tx) − atan(ty), 0 at aspect 1
+    phi = th + delta if np.isfinite(delta) else float(np.arctan(tx))  # (tan θ_x overflowing: φ = π/2)
+    z0 = h / ty
     with np.errstate(invalid="ignore"):
         seg = r**2 * np.arccos(np.clip(z0 / np.maximum(r, z0), -1, 1)) - z0 * np.sqrt(np.maximum(r**2 - z0**2, 0))
-    wedge = th * r**2 - z0**2 * np.tan(th)
-    return np.where(r <= z0, 0.0, np.where(r <= z0 / np.cos(th), seg, wedge))
+    wedge = phi * r**2 - z0**2 * tx
+    return np.where(r <= z0, 0.0, np.where(r <= z0 / np.cos(phi), seg, wedge))
 
 
 def ground_pages(c: Clipmap, height: float, far: float, light: str | ArrayLike = "overhead") -> Array:
@@ -361,7 +455,7 @@ def ground_pages(c: Clipmap, height: float, far: float, light: str | ArrayLike =
     d_hi = np.where(levels == c.last, 2.0 ** (c.last + 1), 2.0 ** (levels + 1 - c.lod_bias)) / scale
     d_lo, d_hi = np.minimum(d_lo, f), np.minimum(d_hi, f)
     rho = lambda d: np.sqrt(np.maximum((d - h) * (d + h), 0.0))  # noqa: E731  (d**2 - h**2 overflowed for a huge h)
-    area = ground_area(rho(d_hi), h, c.fov) - ground_area(rho(d_lo), h, c.fov)  # (L,)
+    area = ground_area(rho(d_hi), h, c.fov, c.aspect) - ground_area(rho(d_lo), h, c.fov, c.aspect)  # (L,)
     page = PAGE * texel(c, levels)
     cos_l = np.clip(lv[:, 1] / np.linalg.norm(lv, axis=-1), 0.0, None)  # projected area factor
     return cos_l * (area / page**2).sum() + coarse_pages(c)

@@ -9,7 +9,7 @@ clipmap level).  Right: the flip fraction per frame, measured and predicted
 The ``aspect`` slider is the camera's width/height (its field of view is vertical): the points
 are one per pixel of an R × R image whose pixels are aspect : 1 wide, every frame's maps are
 fitted to the wider slices, and the left panel shows the view at its shape (the title names
-the aspect when it is not 1).  ``vsm`` schemes need aspect 1.
+the aspect when it is not 1).  ``vsm`` schemes take it into the clipmap's LOD.
 """
 
 from __future__ import annotations

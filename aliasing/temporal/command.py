@@ -11,7 +11,7 @@
 (``--fov`` vertical; the points are one per pixel of an R × R image whose pixels are
 aspect : 1 wide); the rows gain an ``aspect`` column only when it is not 1.  Bad input (an
 unknown motion or scheme, a non-finite step, too few or too many frames, an aspect that is
-not in (0, inf), a ``vsm`` scheme at aspect ≠ 1) is refused before any map is drawn, with
+not in (0, inf)) is refused before any map is drawn, with
 one line on stderr and exit status 2 (:func:`aliasing.cli.main`).
 """
 
@@ -47,7 +47,7 @@ def run(args: argparse.Namespace) -> list[dict]:
         raise ValueError("--schemes is empty: name at least one scheme (e.g. csm:log:k=4,csm-stable:log:k=4:fit=sphere:snap=origin)")
     w = points.world(args.scene, light=args.light_dir, eye=args.eye, target=args.target, camera=args.camera, near=args.near, far=args.far, fov=args.fov, aspect=args.aspect)
     cam = w.camera
-    for spec in specs:  # every spec read before any work (vsm refuses a wide camera here)
+    for spec in specs:  # every spec read before any work
         ps = compare.parse_spec(spec, fov=cam.fov, near=cam.near, far=cam.far, image_res=image_res, shadow_res=shadow_res, unit=args.unit, aspect=cam.aspect)
         if ps.family in ("matched", "exact"):
             raise ValueError(f"scheme {spec!r}: {ps.family} is a limit without a texel grid; shimmer needs csm, csm-stable, sdsm or vsm")
@@ -107,7 +107,7 @@ def add_shimmer_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPars
     p.add_argument("--near", type=float, help="near distance [scene units]")
     p.add_argument("--far", type=float, help="far (shadow) distance [scene units]")
     p.add_argument("--fov", type=float, help="VERTICAL full field of view in degrees of the first frame")
-    p.add_argument("--aspect", type=float, default=1.0, help="the camera's image width/height, > 0 (default 1: square; --fov is the vertical field of view; 16:9 is 1.7778); vsm schemes need 1")
+    p.add_argument("--aspect", type=float, default=1.0, help="the camera's image width/height, > 0 (default 1: square; --fov is the vertical field of view; 16:9 is 1.7778)")
     p.add_argument("--light-dir", metavar="X,Y,Z", help=f"world direction towards the light (default {','.join(f'{v:g}' for v in points.DEFAULT_LIGHT)}; write --light-dir=-1,2,0 when X is negative)")
     p.add_argument("--image-res", type=int, default=128, help="points: one per pixel of this R x R first-frame image (default 128; its pixels are aspect : 1 wide); also VSM's viewport width")
     p.add_argument("--shadow-res", type=int, default=256, help="texels per side of each cascade (default 256)")

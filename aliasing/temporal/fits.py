@@ -32,9 +32,12 @@ The camera's aspect (width/height, :attr:`aliasing.raster.scenes.Camera.view`; t
 view is vertical) widens every slice: the tight fits take the wide slice's corners, the
 other fits the radii of :func:`aliasing.engines.stable.evaluate` at that aspect, SDSM's
 eye pass is the wide view, and :func:`assign` tests |x| ≤ z·tan θ_x.  It stays fixed along
-a path (a zoom changes the vertical field of view at that aspect).  ``vsm`` refuses an
-aspect ≠ 1 (:func:`aliasing.engines.compare.parse_spec`).  Aspect 1 gives the square
-view's lattices bit for bit.
+a path (a zoom changes the vertical field of view at that aspect).  ``vsm`` takes it into
+the clipmap's LOD (:class:`aliasing.engines.vsm.Clipmap`: tan θ_x = aspect·tan θ_y, the
+viewport ``image_res`` pixels across): at the same width a view ``aspect`` times wider
+has pixels ``aspect`` times larger, and each level's distance bound moves nearer the camera
+by that factor (while B′ is not clamped).
+Aspect 1 gives the square view's lattices bit for bit.
 
 Example
 -------
@@ -48,7 +51,7 @@ Example
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -229,7 +232,7 @@ def _vsm(parsed: compare.ParsedSpec, w: World, poses, positions: Array, eye_pos:
     lo = np.zeros((F, len(levels)))
     hi = np.zeros((F, len(levels)))
     for f in range(F):  # the level boundaries depend on the frame's fov (the LOD bias)
-        cf = vsm.Clipmap(float(fovs[f]), c.width, c.bias, c.first, c.last, c.unit, c.dilation, c.coarse)
+        cf = replace(c, fov=float(fovs[f]))  # the camera's aspect and width kept: tan θ_x = aspect·tan θ_y of this frame
         # level L holds distances with floor(log2 d_cm + B′) = L (clamped to [first, last])
         edge = 2.0 ** (levels + 1 - cf.lod_bias) / cm
         lo[f] = np.concatenate([[0.0], edge[:-1]])
