@@ -18,6 +18,7 @@ from typing import Any
 
 import ipywidgets as widgets
 import numpy as np
+from matplotlib.ticker import MaxNLocator
 from matplotlib.figure import Figure
 
 from .. import _validation as check
@@ -102,7 +103,12 @@ def draw(fig: Figure, d: dict[str, Any]) -> None:
         b.plot(x, d["predicted"], "--", label="predicted (grid motion × edge density)")
     b.axvline(d["frame"], color="0.5", lw=0.8)
     b.set(xlabel="frame", ylabel="flip fraction (points seen in both frames)")
-    b.legend(fontsize=7)
+    shown = np.concatenate([np.asarray(d["flip_fraction"], float), np.asarray(d["predicted"], float)])
+    peak = float(shown[np.isfinite(shown)].max(initial=0.0))
+    top = 1.4 * peak if peak > 0 else 0.01
+    b.set_ylim(-0.03 * top, top)  # fractions are ≥ 0 (a curve at 0 is shown, not clipped); headroom above for the legend
+    b.xaxis.set_major_locator(MaxNLocator(integer=True))  # whole frames
+    b.legend(fontsize=7, loc="upper center", ncols=1)
     row = d["row"]
     ratio = row["predicted_over_measured"]
     b.set_title(f"mean {row['flip_fraction']:.3g} = {row['flips_per_second']:.3g}/s at 60 fps"
