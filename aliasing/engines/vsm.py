@@ -428,7 +428,7 @@ def ground_area(rho: ArrayLike, height: float, fov: float, aspect: float = 1.0) 
     with np.errstate(over="ignore", invalid="ignore"):
         delta = float(np.arctan((tx - ty) / (1 + tx * ty)))  # atan(tx) − atan(ty), 0 at aspect 1
     phi = th + delta if np.isfinite(delta) else float(np.arctan(tx))  # (tan θ_x overflowing: φ = π/2)
-    z0 = h / ty
+    z0 = np.float64(h) / ty  # numpy's float: an enormous height overflows to inf, as numpy does, not OverflowError
     with np.errstate(invalid="ignore"):
         seg = r**2 * np.arccos(np.clip(z0 / np.maximum(r, z0), -1, 1)) - z0 * np.sqrt(np.maximum(r**2 - z0**2, 0))
     wedge = phi * r**2 - z0**2 * tx
