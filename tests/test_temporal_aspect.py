@@ -17,6 +17,7 @@ from hypothesis import strategies as st
 from aliasing import View, cli
 from aliasing.engines import stable
 from aliasing.temporal import fits, measure, paths, points, predict
+from test_temporal import AGREEMENT, assert_agreement  # the square test's cases and bound
 
 BAD_ASPECTS = st.one_of(st.floats(max_value=0.0, allow_nan=False), st.sampled_from([math.nan, math.inf, -math.inf]))
 
@@ -216,19 +217,9 @@ def test_wide_tight_fit_moves_its_grid_by_the_step_over_its_wider_texel(wide):
 
 # The bound of tests/test_temporal.py's agreement test, unchanged: the prediction and the measure
 # agree within three bootstrap standard errors, the error below 0.2 (so that the check can fail).
-@pytest.mark.parametrize("spec, motion", [
-    ("csm:log:k=4", "translate:0.037,0,0"),
-    ("csm:log:k=4", "rotate:yaw,0.2"),
-    ("csm-stable:log:k=4:fit=tight:snap=origin", "rotate:pitch,0.15"),
-    ("csm-stable:log:k=4:fit=sphere:snap=origin", "zoom:0.2"),
-    ("sdsm:k=4", "translate:0,0,0.1"),
-])
+@pytest.mark.parametrize("spec, motion", AGREEMENT)
 def test_wide_measure_and_prediction_agree(wide, spec, motion):
-    w, pts = wide
-    r = measure.shimmer(w, pts, spec, motion, 16, res=128)
-    assert r.flips.sum() > 100
-    assert r.ratio_se < 0.2
-    assert abs(r.ratio - 1) <= 3 * r.ratio_se, (r.ratio, r.ratio_se)
+    assert_agreement(*wide, spec, motion)
 
 
 # ---------------------------------------------------------------- the edge length on aspect : 1 pixels
