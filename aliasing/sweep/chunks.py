@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from .. import geometry, schemes
+from ..view import View
 from . import formats
 from .rows import _csv_cells, _direction_rows, _json_value, _with_cells, view_of
 
@@ -43,11 +44,9 @@ class _Task:
     aspect_shown: bool = False  # the grid has an aspect column (an aspect axis other than the single value 1)
 
     @property
-    def view(self) -> tuple:
-        """The arguments of ``schemes.evaluate`` before the light: ``(near, far, fov)``, or a View when aspect ≠ 1."""
-        if self.aspect == 1.0:  # exactly the call of a square sweep
-            return (self.near, self.near * self.ratio, self.fov)
-        return (view_of(self.near, self.ratio, self.fov, self.aspect),)
+    def view(self) -> View:
+        """The chunk's view (``schemes.evaluate`` makes the same View of loose near, far, fov)."""
+        return view_of(self.near, self.ratio, self.fov, self.aspect)
 
     def compute(self) -> str | dict[str, np.ndarray]:
         """This chunk's payload (:func:`compute_chunk`)."""
@@ -74,7 +73,7 @@ def compute_chunk(task: _Task) -> str | dict[str, np.ndarray]:
     (2, 2)
     """
     shared = task.shared or {}
-    r = shared["result"] if "result" in shared else schemes.evaluate(task.name, *task.view, task.light, **dict(task.options))
+    r = shared["result"] if "result" in shared else schemes.evaluate(task.name, task.view, task.light, **dict(task.options))
     if task.kind == "arrays":
         return {"S": r.S, "M_x": r.M_x, "M_z": r.M_z, "n_prime": r.n_prime, "eta": r.eta}
     gamma, azimuth = shared["angles"] if "angles" in shared else _angles(task)
@@ -116,7 +115,7 @@ def compute_batch(tasks: tuple[_Task, ...]) -> list[str | dict[str, np.ndarray]]
     same = ("kind", "options", "near", "ratio", "fov", "aspect", "aspect_shown")
     if any(tuple(getattr(t, k) for k in same) != tuple(getattr(t0, k) for k in same) or t.light is not t0.light and not np.array_equal(t.light, t0.light) for t in tasks):
         raise ValueError("a batch's chunks must share kind, options, f/n, fov, aspect and light directions")
-    results = schemes.evaluate_many([t.name for t in tasks], *t0.view, t0.light, **dict(t0.options))
+    results = schemes.evaluate_many([t.name for t in tasks], t0.view, t0.light, **dict(t0.options))
     shared: dict[str, Any] = {}
     if t0.kind != "arrays":
         shared["angles"] = _angles(t0)
