@@ -206,7 +206,7 @@ def vsm_on_scene(st: SceneSetup, *, bias: float = 0.0, res: int = 128, first: in
     r = check_resolution(res, "res")
     cam = st.camera
     wide = float(cam.view.aspect)  # validated by the camera's View
-    width = r if wide == 1.0 else max(1, int(round(wide * r)))  # the image's pixels across
+    width = max(1, int(round(wide * r)))  # the image's pixels across (r for a square camera)
     c = vsm.Clipmap(cam.fov, width, bias, first, last, unit, aspect=wide)
 
     def assign(pos, hit):

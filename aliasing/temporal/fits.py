@@ -199,7 +199,7 @@ def _cascades(parsed: compare.ParsedSpec, w: World, poses, res: int, sdsm_res: i
             wx = sample_bounds(wx, np.ptp(whole @ B[0]), **sample)
             wy = sample_bounds(wy, np.ptp(whole @ B[2]), **sample)
         tan = float(tan_theta(fovs[f]))
-        c2 = 2 * tan**2 if wide == 1.0 else (wide * tan) ** 2 + tan**2  # tan²θ_x + tan²θ_y (stable.sphere_radius's c²)
+        c2 = (wide * tan) ** 2 + tan**2  # tan²θ_x + tan²θ_y (stable.sphere_radius's c²; 2 tan²θ exactly at aspect 1)
         if fit == "sphere":
             zc = np.minimum((a + b) * (1 + c2) / 2, b)
             centre = eyes[f] + zc[:, None] * rots[f][2]

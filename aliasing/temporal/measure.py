@@ -146,9 +146,7 @@ def edge_length(pts: Points, lit0: NDArray[np.bool_], seen0: NDArray[np.bool_]) 
     plane[pts.pixel[ok, 0], pts.pixel[ok, 1]] = pts.plane[ok]
     ch, cv = (int(np.count_nonzero((a >= 0) & (b >= 0) & (pa == pb) & (a != b)))
               for a, b, pa, pb in ((state[:, 1:], state[:, :-1], plane[:, 1:], plane[:, :-1]), (state[1:], state[:-1], plane[1:], plane[:-1])))
-    if pts.aspect == 1.0:
-        return (ch + cv) * np.pi / 4
-    return (ch + pts.aspect * cv) * np.pi / 4
+    return (ch + pts.aspect * cv) * np.pi / 4  # (ch + cv)·π/4 exactly at aspect 1
 
 
 def check_size(frames: int, count: int) -> None:
