@@ -134,8 +134,7 @@ def setup(scene: str | WorldScene | ArrayLike, *, eye: ArrayLike | str | None = 
         if ls.shape[0] != 1:
             raise ValueError(f"light must be a single direction, got {ls.shape[0]}")
         lv = ls[0]
-    if wide != 1.0:
-        cam = replace(cam, aspect=wide)
+    cam = replace(cam, aspect=wide)  # a glTF camera's aspectRatio is not read: this value replaces it
     sc = ws.in_eye_space(cam)
     check_raster_frustum(cam.near, cam.far, cam.fov)
     return SceneSetup(sc, plane_ids(sc.triangles), cam, lv, ws.degenerate, ws.source)
