@@ -371,7 +371,7 @@ class _Scene:
             vao.release()
 
 
-def _ortho_clip(h: Array, d_lo: float, span: float) -> tuple[Array, Array]:
+def _map_clip(h: Array, d_lo: float, span: float) -> tuple[Array, Array]:
     """(clip matrix, H with its depth row rescaled to (depth − d₀)/Δ)."""
     hn = np.array(h, float)
     hn[2] = (h[2] - d_lo * np.array([0.0, 0.0, 0.0, 1.0])) / span
@@ -434,7 +434,7 @@ def _draw_map(scene: _Scene, h: Array, res: int) -> tuple[Array, NDArray[np.int6
 
     ctx, prog = scene.ctx, scene.programs["depth"]
     d_lo, span = scene.depth_range(h[2])
-    clip, hn = _ortho_clip(h, d_lo, span)
+    clip, hn = _map_clip(h, d_lo, span)
     inverse = np.linalg.inv(hn)
     coef = scene.programs["coefficients"]
     coef["count"].value = scene.count
