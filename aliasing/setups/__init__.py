@@ -1,0 +1,138 @@
+"""Engines in their own words: one profile per engine and release, and the setup value built from it.
+
+An engine developer comes with the engine's own settings (three.js ``shadowBias``, Babylon's
+``lambda``, Godot's ``shadow_normal_bias``, Unity's cascade splits).  A profile holds those
+settings as the engine spells them, with units, defaults and the clamps the engine applies,
+each read from the engine's source at a pinned release, and says what shadow pipeline they
+build for a camera: the splits, the fit and snap, the map layout, the blend band, the bias rule
+with the faces that cast, and the filter.  A :class:`Setup` (engine, release, settings, camera
+with image size, sun) is built and validated once and carried through every command.
+
+Modules
+-------
+profile
+    The types: :class:`Setting`, :class:`BiasTerm`, :class:`BiasRule`, :class:`Filter`,
+    :class:`Pipeline`, :class:`Profile`.
+spec
+    The setup value (:class:`Setup`) and the camera and sun specs of the command line.
+threejs, babylon, playcanvas, godot, unity_urp, bevy, filament, unreal
+    One module per engine: its profiles (one per release that differs), each citing the
+    files it was read from.
+
+Example
+-------
+>>> s = build("threejs", camera="near=0.1,far=500,fov=50,aspect=16:9,height=1080", sun="15..60")
+>>> s.release, s.settings["cascades"], s.pipeline.k
+('r187', 3, 3)
+>>> get("threejs@r184").release
+'r184'
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+from collections.abc import Mapping
+from typing import Any
+
+from .. import _validation as check
+from .profile import FACES, KINDS, BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
+from .spec import (CAMERA_SPEC, SUN_SPEC, Camera, RadiansWarning, Setup, Sun, load_settings, parse_camera, parse_set,
+                   parse_sun)
+
+#: The engines, by the toolkit's name, and the module that holds their profiles (newest release first).
+ENGINES: dict[str, str] = {
+    "threejs": "threejs",
+    "babylon": "babylon",
+    "playcanvas": "playcanvas",
+    "godot": "godot",
+    "unity-urp": "unity_urp",
+    "bevy": "bevy",
+    "filament": "filament",
+    "unreal": "unreal",
+}
+
+__all__ = ["ENGINES", "FACES", "KINDS", "BiasRule", "BiasTerm", "CAMERA_SPEC", "Camera", "Filter", "Pipeline", "Profile",
+           "RadiansWarning", "SUN_SPEC", "Setting", "Setup", "Sun", "add_arguments", "build", "from_args", "get", "load_settings",
+           "parse_camera", "parse_set", "parse_sun", "profiles"]
+
+
+def profiles(engine: str) -> tuple[Profile, ...]:
+    """Every profile of ``engine`` (newest release first)."""
+    name = check.choice(engine, "engine", [e for e in ENGINES if _available(e)])
+    return importlib.import_module(f"{__name__}.{ENGINES[name]}").PROFILES
+
+
+def _available(engine: str) -> bool:
+    try:
+        importlib.import_module(f"{__name__}.{ENGINES[engine]}")
+    except ModuleNotFoundError:
+        return False
+    return True
+
+
+def get(spec: str) -> Profile:
+    """The profile of ``NAME[@RELEASE]`` (no release: the newest the toolkit knows).
+
+    Raises
+    ------
+    ValueError
+        Naming ``engine`` (with the known engines) or ``release`` (with the engine's releases).
+
+    Example
+    -------
+    >>> get("threejs").name
+    'threejs@r187'
+    """
+    if not isinstance(spec, str) or not spec.strip():
+        raise ValueError(f"engine must be NAME[@RELEASE] with NAME one of: {', '.join(e for e in ENGINES if _available(e))}; got {spec!r}")
+    name, _, release = spec.strip().partition("@")
+    options = profiles(name.strip().lower())
+    if not release:
+        return options[0]
+    want = release.strip().lower()
+    for p in options:
+        if want in {p.release.lower(), *map(str.lower, p.releases)}:
+            return p
+    known = [r for p in options for r in (p.release, *p.releases)]
+    raise ValueError(f"unknown {options[0].title} release {release!r}{check.did_you_mean(release, known)}; "
+                     f"the toolkit reproduces: {', '.join(known)}")
+
+
+def build(engine: str | Profile, settings: Mapping[str, Any] | None = None, camera: str | Mapping | Camera | None = None,
+          sun: str | Sun | float = "15..60") -> Setup:
+    """The :class:`Setup` of an engine with ``settings`` (engine keys; the rest at the defaults).
+
+    Parameters
+    ----------
+    engine : str or Profile
+        ``NAME[@RELEASE]`` (:data:`ENGINES`).
+    settings : mapping, optional
+        The engine's settings by the engine's own keys; values are typed and range-checked.
+    camera : str, mapping or Camera, optional
+        :data:`CAMERA_SPEC` (default near 0.1, far 500, fov 50°, 16:9, 1080 rows).
+    sun : str, float or Sun
+        :data:`SUN_SPEC` (default the band 15..60° ahead).
+    """
+    profile = engine if isinstance(engine, Profile) else get(engine)
+    return Setup(profile, dict(settings or {}), parse_camera(camera), parse_sun(sun))
+
+
+def add_arguments(parser: argparse.ArgumentParser, *, sun: str | None = "15..60", required: bool = False) -> None:
+    """The setup vocabulary on a subcommand: ``--engine``, ``--settings``, ``--set``, ``--camera``, ``--sun``."""
+    parser.add_argument("--engine", required=required, metavar="NAME[@RELEASE]",
+                        help="the engine and release: " + ", ".join(ENGINES) + " (no release: the newest known)")
+    parser.add_argument("--settings", metavar="FILE", help="the engine's settings, JSON or TOML, in the engine's own keys")
+    parser.add_argument("--set", dest="set_", action="append", metavar="KEY=VALUE", help="one setting in the engine's own key (repeatable)")
+    parser.add_argument("--camera", metavar="SPEC", help=f"camera: {CAMERA_SPEC} (fov vertical in degrees; default "
+                        "near=0.1,far=500,fov=50,aspect=16:9,height=1080)")
+    parser.add_argument("--sun", default=sun, metavar="ELEV[..ELEV][@AZ]", help=f"sun: {SUN_SPEC} (default {sun})")
+
+
+def from_args(args: argparse.Namespace) -> Setup:
+    """The :class:`Setup` of parsed :func:`add_arguments` options (the settings file first, ``--set`` over it)."""
+    settings: dict[str, Any] = {}
+    if getattr(args, "settings", None):
+        settings.update(load_settings(args.settings))
+    settings.update(parse_set(getattr(args, "set_", None)))
+    return build(args.engine, settings, getattr(args, "camera", None), getattr(args, "sun", None) or "15..60")

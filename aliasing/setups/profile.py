@@ -1,0 +1,427 @@
+"""An engine's shadow settings and the shadow pipeline they give: the types every profile fills in.
+
+A :class:`Profile` is one engine at one release.  It holds the engine's user-facing shadow
+settings (:class:`Setting`: the key as the engine spells it, unit, default, the values the
+engine accepts and the clamp it applies, and the source file and line they were read from),
+and one function from the settings and the camera to the :class:`Pipeline` the engine builds:
+
+* the cascades: their count and eye-depth ranges (overlap included), the fit and snap of each
+  map (names of :data:`aliasing.engines.stable.FITS` and ``SNAPS``), the map size and layout;
+* the blend band between cascades;
+* the bias rule (:class:`BiasRule`): every offset the engine applies, one :class:`BiasTerm` per
+  setting, with its conversion from the engine's units to world units, and which faces cast;
+* the filter (:class:`Filter`).
+
+Bias terms in world units
+-------------------------
+For a planar receiver at θ from the light (the angle between its normal and the direction to
+the light), each kind of offset is a depth bias along the light in disguise
+(:mod:`aliasing.symbolic.bias`); a term of value v and scale c contributes
+
+* ``depth``: c·v (a constant along the light [world units per unit]);
+* ``depth_texels``: c·v·w (× the cascade's texel w);
+* ``normal``: c·v·g(θ)/cos θ (an offset along the receiver's normal; c in world units per unit);
+* ``normal_texels``: c·v·w·g(θ)/cos θ;
+* ``across_texels``: c·v·w·sin θ·tan θ (the normal's part across the light);
+* ``slope``: c·v·w·tan θ·max(|cos φ|, |sin φ|) (slope-scaled bias of the rasterizer state);
+
+with g(θ) = 1, sin θ or 1 − cos θ (``scale``).  A negative c says the engine's sign: three.js
+adds ``shadow.bias`` to the receiver's depth, so a negative value lifts it towards the light.
+
+Example
+-------
+>>> rule = BiasRule((BiasTerm("bias", -0.001, "depth", -1000.0), BiasTerm("normalBias", 0.0, "normal")))
+>>> float(rule.depth(0.1, 45.0))          # -0.001 · -1000 = 1 world unit along the light
+1.0
+>>> round(rule.minimal("normalBias", 3.0, 0.1, 45.0), 6)   # 1 + v/cos 45° = 3: v = 2·cos 45°
+1.414214
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .. import _validation as check
+
+Array = NDArray[np.float64]
+
+KINDS = ("depth", "depth_texels", "normal", "normal_texels", "across_texels", "slope")
+SCALES = ("one", "sin", "one-minus-cos")
+FACES = ("front", "back", "both")
+TYPES = ("float", "int", "bool", "choice")
+
+
+@dataclass(frozen=True)
+class Setting:
+    """One shadow setting of an engine, as the engine spells it.
+
+    Attributes
+    ----------
+    key : str
+        The engine's own name (``shadowBias``, ``shadow.normalBias``, ``lambda``).
+    default : float, int, bool or str
+        The engine's default at the profile's release.
+    unit : str
+        What one unit means (``world units``, ``normalized light depth``, ``texels``, ``m``, ``""``).
+    kind : str
+        ``float``, ``int``, ``bool`` or ``choice``.
+    accepts : tuple
+        ``(low, high)``: the values the engine accepts (inclusive; ``None`` for open), or, for
+        ``choice``, the choices.
+    clamp : tuple or None
+        ``(low, high)`` the engine clamps an accepted value to, silently (Babylon clamps
+        ``numCascades`` to 2–4), or None.
+    source : str
+        The file and line it was read from, at the pinned release.
+    doc : str
+        What the setting does, in a line.
+    """
+
+    key: str
+    default: Any
+    unit: str
+    kind: str
+    accepts: tuple = (None, None)
+    clamp: tuple | None = None
+    source: str = ""
+    doc: str = ""
+
+    def __post_init__(self) -> None:
+        if self.kind not in TYPES:
+            raise ValueError(f"kind must be one of {', '.join(TYPES)}, got {self.kind!r}")
+
+    def allowed(self) -> str:
+        """The values the engine accepts, in words (for error messages)."""
+        if self.kind == "bool":
+            return "true or false"
+        if self.kind == "choice":
+            return "one of " + ", ".join(map(repr, self.accepts))
+        lo, hi = self.accepts
+        what = "a whole number" if self.kind == "int" else "a number"
+        if lo is None and hi is None:
+            return what
+        if hi is None:
+            return f"{what} >= {lo:g}"
+        if lo is None:
+            return f"{what} <= {hi:g}"
+        return f"{what} in [{lo:g}, {hi:g}]"
+
+    def coerce(self, value: object) -> Any:
+        """``value`` (from JSON, TOML or a ``--set`` text) as this setting's type, validated.
+
+        Raises
+        ------
+        ValueError
+            Naming the key and what it accepts.
+        """
+        bad = ValueError(f"{self.key} must be {self.allowed()}" + (f" [{self.unit}]" if self.unit else "") + f", got {value!r}")
+        if isinstance(value, str) and self.kind != "choice":
+            text = value.strip()
+            if self.kind == "bool":
+                if text.lower() not in ("true", "false"):
+                    raise bad
+                return text.lower() == "true"
+            try:
+                value = int(text) if self.kind == "int" and text.lstrip("+-").isdigit() else float(text)
+            except ValueError:
+                raise bad from None
+        if self.kind == "bool":
+            if not isinstance(value, (bool, np.bool_)):
+                raise bad
+            return bool(value)
+        if self.kind == "choice":
+            if not isinstance(value, str):
+                raise bad
+            for c in self.accepts:
+                if value.strip().lower() == str(c).lower():
+                    return c
+            raise ValueError(f"{self.key} must be {self.allowed()}, got {value!r}{check.did_you_mean(value, map(str, self.accepts))}")
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+            raise bad
+        number = float(value)
+        if not math.isfinite(number):
+            raise bad
+        if self.kind == "int":
+            if not number.is_integer():
+                raise bad
+            number = int(number)
+        lo, hi = self.accepts
+        if lo is not None and number < lo or hi is not None and number > hi:
+            raise bad
+        return number
+
+    def clamped(self, value: Any) -> Any:
+        """The value as the engine uses it, after its own clamp."""
+        if self.clamp is None:
+            return value
+        lo, hi = self.clamp
+        out = value if lo is None else max(lo, value)
+        return out if hi is None else min(hi, out)
+
+
+@dataclass(frozen=True)
+class BiasTerm:
+    """One of the engine's offsets against acne: a setting's value and how it acts (module docstring).
+
+    Attributes
+    ----------
+    key : str
+        The setting it comes from (the engine's spelling), or a name for a fixed part of the rule.
+    value : float
+        Its value in the engine's units.
+    kind : str
+        One of :data:`KINDS`.
+    scale : float
+        World units (or texels) per unit of the setting; negative where the engine's sign lowers
+        the receiver for positive values.
+    normal_scale : str
+        g(θ) of the normal kinds: ``one``, ``sin`` or ``one-minus-cos``.
+    contact : bool
+        Whether the term moves the surface along the light and so opens a lit gap at a contact
+        (constant and texel depth terms: True; normal offsets cancel against a vertical caster).
+    """
+
+    key: str
+    value: float
+    kind: str
+    scale: float = 1.0
+    normal_scale: str = "one"
+    contact: bool | None = None
+
+    def __post_init__(self) -> None:
+        check.choice(self.kind, "kind", KINDS)
+        check.choice(self.normal_scale, "normal_scale", SCALES)
+        if self.contact is None:
+            object.__setattr__(self, "contact", self.kind in ("depth", "depth_texels"))
+
+    def per_unit(self, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0) -> float | Array:
+        """World depth bias along the light per unit of the setting, for a texel w [world] and θ, φ [deg]."""
+        w = check.positive(texel, "texel")
+        th = np.radians(check.closed_range(angle, "angle", 0.0, 90.0, " degrees"))
+        ph = np.radians(check.finite(azimuth, "azimuth"))
+        w, th, ph = np.broadcast_arrays(w, th, ph)
+        g = np.sin(th) if self.normal_scale == "sin" else 1.0 - np.cos(th) if self.normal_scale == "one-minus-cos" else np.ones_like(th)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            k = {
+                "depth": np.ones_like(w),
+                "depth_texels": w,
+                "normal": g / np.cos(th),
+                "normal_texels": w * g / np.cos(th),
+                "across_texels": w * np.sin(th) * np.tan(th),
+                "slope": w * np.tan(th) * np.maximum(np.abs(np.cos(ph)), np.abs(np.sin(ph))),
+            }[self.kind]
+        out = self.scale * np.where(np.isfinite(k), k, np.inf)
+        return float(out) if out.ndim == 0 else out
+
+
+@dataclass(frozen=True)
+class BiasRule:
+    """An engine's whole bias rule: its terms and which faces are drawn into the map.
+
+    ``faces`` is ``front`` (the lit side casts: lit surfaces compare against themselves and
+    acne without bias), ``back`` (the side away from the light casts: a closed or one-sided
+    lit surface compares against the far side of its object, so it does not acne; the gap at
+    a contact and light leaks move instead) or ``both``.
+    """
+
+    terms: tuple[BiasTerm, ...] = ()
+    faces: str = "front"
+
+    def __post_init__(self) -> None:
+        check.choice(self.faces, "faces", FACES)
+        object.__setattr__(self, "terms", tuple(self.terms))
+
+    def term(self, key: str) -> BiasTerm:
+        for t in self.terms:
+            if t.key == key:
+                return t
+        raise ValueError(f"unknown bias setting {key!r}{check.did_you_mean(key, [t.key for t in self.terms])}; "
+                         f"this rule has: {', '.join(t.key for t in self.terms) or 'none'}")
+
+    def depth(self, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0) -> float | Array:
+        """All terms as one depth bias along the light [world units] (positive: towards the light)."""
+        total = sum((t.value * np.asarray(t.per_unit(texel, angle, azimuth)) for t in self.terms), np.zeros(()))
+        total = np.broadcast_to(total, np.broadcast_shapes(np.shape(texel), np.shape(angle), np.shape(azimuth))) if not self.terms else total
+        return float(total) if np.ndim(total) == 0 else np.asarray(total, float)
+
+    def contact(self, texel: ArrayLike) -> float | Array:
+        """The part along the light [world units]: what opens a lit gap at the foot of a caster."""
+        w = check.positive(texel, "texel")
+        total = np.zeros_like(w)
+        for t in self.terms:
+            if t.contact:
+                total = total + t.value * np.asarray(t.per_unit(w, 0.0))
+        return float(total) if total.ndim == 0 else total
+
+    def minimal(self, key: str, need: ArrayLike, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0) -> float | Array:
+        """The value of setting ``key`` that, the other terms kept, gives the depth bias ``need`` [world units].
+
+        A bound from below where the term's scale is positive, from above where it is negative
+        (three.js's ``shadow.bias``); ±inf where the term cannot help (a normal offset on a
+        receiver facing the light, θ = 0).
+        """
+        t = self.term(key)
+        need = check.finite(need, "need")
+        rest = np.asarray(self.depth(texel, angle, azimuth)) - t.value * np.asarray(t.per_unit(texel, angle, azimuth))
+        per = np.asarray(t.per_unit(texel, angle, azimuth), float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out = np.where(per != 0, (need - rest) / np.where(per != 0, per, 1.0), np.where(need - rest <= 0, 0.0, np.inf))
+        return float(out) if np.ndim(out) == 0 else out
+
+
+@dataclass(frozen=True)
+class Filter:
+    """The engine's shadow filter: ``hard`` (one comparison), ``pcf`` (k×k comparisons over ``taps``
+    texels; hardware 2×2 comparison sampling is k = 2), ``pcss``, ``vsm``, ``esm``; ``radius``
+    a world or texel radius where the engine sets one; ``taps`` the kernel's width [texels]."""
+
+    kind: str = "pcf"
+    taps: int = 1
+    radius: float = 0.0
+    note: str = ""
+
+
+@dataclass(frozen=True)
+class Pipeline:
+    """What the engine builds from its settings and a camera.
+
+    Attributes
+    ----------
+    near_i, far_i : tuple of float
+        Eye depths where each cascade's map starts and ends (overlap included) [world units].
+    fit, snap : str
+        Names of :data:`aliasing.engines.stable.FITS` and ``SNAPS`` (``tight`` and ``none``:
+        the papers' fit). ``fit="fixed"``: a world box of ``box`` sides that does not follow
+        the view (three.js's single DirectionalLight shadow camera).
+    resolution : int
+        Texels per side of each cascade's map.
+    layout : str
+        How the maps are stored (``separate``, ``array``, ``atlas 2x2 of 4096``).
+    blend : float
+        The blend band between cascades as a fraction of each cascade's depth range (0: none).
+    bias : BiasRule
+        The offsets and faces.
+    filter : Filter
+        The lookup filter.
+    stable : bool
+        Whether the fit is stabilized (snapped and rotation-invariant): no shimmer under motion.
+    box : tuple or None
+        ``(width, height)`` of a fixed world box [world units] when ``fit == "fixed"``.
+    depth_range : tuple of float or None
+        The light's depth range (near, far) [world units] where the engine's depth unit is a
+        fraction of it.
+    memory : int
+        Bytes of the depth maps.
+    notes : tuple of str
+        What the profile does not model, in words (empty when all of it is).
+    """
+
+    near_i: tuple
+    far_i: tuple
+    fit: str
+    snap: str
+    resolution: int
+    bias: BiasRule
+    filter: Filter
+    layout: str = "separate"
+    blend: float = 0.0
+    stable: bool = False
+    box: tuple | None = None
+    depth_range: tuple | None = None
+    memory: int = 0
+    split: str = ""
+    notes: tuple = ()
+
+    def __post_init__(self) -> None:
+        n, f = np.asarray(self.near_i, float), np.asarray(self.far_i, float)
+        if n.shape != f.shape or n.ndim != 1 or n.size < 1:
+            raise ValueError("near_i and far_i must be equal-length lists of cascade depths")
+        if not (np.all(np.isfinite(n)) and np.all(np.isfinite(f)) and np.all(n > 0) and np.all(f > n)):
+            raise ValueError(f"cascade depths must be finite with 0 < near_i < far_i, got {n.tolist()}, {f.tolist()}")
+        object.__setattr__(self, "near_i", tuple(map(float, n)))
+        object.__setattr__(self, "far_i", tuple(map(float, f)))
+        object.__setattr__(self, "notes", tuple(self.notes))
+        if not self.memory:
+            object.__setattr__(self, "memory", int(len(n) * self.resolution ** 2 * 4))
+
+    @property
+    def k(self) -> int:
+        """Number of cascades."""
+        return len(self.near_i)
+
+
+@dataclass(frozen=True)
+class Profile:
+    """One engine at one release: its settings and the pipeline they build.
+
+    Attributes
+    ----------
+    engine : str
+        The toolkit's name (``threejs``, ``babylon``, ...).
+    title : str
+        The engine's own name and what part of it (``three.js CSM addon``).
+    release : str
+        The release as the engine numbers it (``r187``, ``9.35``).
+    releases : tuple of str
+        Other spellings ``NAME@RELEASE`` accepts for this profile.
+    settings : tuple of Setting
+        Every user-facing shadow setting.
+    build : callable
+        ``build(settings, camera) -> Pipeline``; ``settings`` has every key, validated.
+    snippet : callable or None
+        ``snippet(settings) -> str``: code in the engine's language that sets them.
+    language : str
+        The snippet's language.
+    source : str
+        Where the engine's code was read (repository and commit or npm package and version).
+    """
+
+    engine: str
+    title: str
+    release: str
+    settings: tuple
+    build: Callable[[Mapping[str, Any], Any], Pipeline]
+    releases: tuple = ()
+    snippet: Callable[[Mapping[str, Any]], str] | None = None
+    language: str = ""
+    source: str = ""
+    npm: str = ""
+    _by_key: Mapping[str, Setting] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        keys = [s.key for s in self.settings]
+        if len(set(keys)) != len(keys):
+            raise ValueError(f"{self.engine}@{self.release}: duplicate setting keys")
+        object.__setattr__(self, "settings", tuple(self.settings))
+        object.__setattr__(self, "_by_key", MappingProxyType({s.key: s for s in self.settings}))
+
+    @property
+    def name(self) -> str:
+        return f"{self.engine}@{self.release}"
+
+    def setting(self, key: str) -> Setting:
+        """The setting ``key``; a ValueError with a did-you-mean from this engine's keys."""
+        if isinstance(key, str) and key in self._by_key:
+            return self._by_key[key]
+        hint = check.did_you_mean(key, self._by_key) if isinstance(key, str) else ""
+        raise ValueError(f"unknown {self.title} setting {key!r}{hint}; its settings are: {', '.join(self._by_key)}")
+
+    def defaults(self) -> dict[str, Any]:
+        """Every setting at the engine's default."""
+        return {s.key: s.default for s in self.settings}
+
+    def resolve(self, settings: Mapping[str, Any] | None = None) -> dict[str, Any]:
+        """The defaults with ``settings`` applied, every value validated (ValueError naming the key)."""
+        if settings is not None and not isinstance(settings, Mapping):
+            raise ValueError(f"settings must be a mapping of {self.title} setting names to values, got {type(settings).__name__}")
+        out = self.defaults()
+        for key, value in (settings or {}).items():
+            out[key] = self.setting(key).coerce(value)
+        return out
