@@ -1,0 +1,60 @@
+"""An engine's pipeline (:class:`aliasing.setups.Pipeline`) through the toolkit's fits: texels and errors.
+
+The engine's own cascades (their eye-depth ranges, fit and snap) are evaluated by
+:func:`aliasing.engines.stable.evaluate`; a fixed world box (three.js's single
+DirectionalLight) has the same texel everywhere and covers what it covers.
+
+Example
+-------
+>>> from aliasing import setups
+>>> s = setups.build("threejs", camera="near=0.1,far=500,fov=50,aspect=16:9,height=1080", sun=30)
+>>> w = texels(s.pipeline, s.camera, s.sun.direction()[None])
+>>> w.shape, bool(w[0, 0, 0] == w[0, 0, 1])      # (directions, cascades, [s, t]); square boxes
+((1, 3, 2), True)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .. import geometry
+from ..setups import Camera, Pipeline
+from . import stable
+
+Array = NDArray[np.float64]
+
+
+def _lights(light: str | ArrayLike) -> Array:
+    return geometry.lights(light)
+
+
+def result(pipeline: Pipeline, camera: Camera, light: str | ArrayLike) -> stable.StableResult:
+    """:func:`aliasing.engines.stable.evaluate` of the pipeline's cascades (not for ``fit="fixed"``)."""
+    if pipeline.fit == "fixed":
+        raise ValueError("a fixed shadow box has no cascade fit: use texels()")
+    a, b = np.asarray(pipeline.near_i), np.asarray(pipeline.far_i)
+    return stable.evaluate((a, b), camera.near, float(b.max()), camera.fov, _lights(light), aspect=camera.aspect,
+                           fit=pipeline.fit, snap=pipeline.snap, resolution=float(pipeline.resolution))
+
+
+def texels(pipeline: Pipeline, camera: Camera, light: str | ArrayLike) -> Array:
+    """World texel sides [s, t] of each cascade's map per light direction [world units], shape ``(N, K, 2)``.
+
+    Parameters
+    ----------
+    pipeline : Pipeline
+        What the engine builds (:attr:`aliasing.setups.Setup.pipeline`).
+    camera : Camera
+        The camera it was built for.
+    light : str or array_like
+        Light spec or eye-space vectors towards the light ``(N, 3)``.
+    """
+    lv = _lights(light)
+    if pipeline.fit == "fixed":
+        w, h = pipeline.box
+        out = np.empty((len(lv), 1, 2))
+        out[..., 0], out[..., 1] = w / pipeline.resolution, h / pipeline.resolution
+        return out
+    r = result(pipeline, camera, lv)
+    return np.stack([r.width_x, r.width_y], axis=-1) / pipeline.resolution
