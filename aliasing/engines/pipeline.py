@@ -41,6 +41,8 @@ def result(pipeline: Pipeline, camera: Camera, light: str | ArrayLike) -> stable
 def texels(pipeline: Pipeline, camera: Camera, light: str | ArrayLike) -> Array:
     """World texel sides [s, t] of each cascade's map per light direction [world units], shape ``(N, K, 2)``.
 
+    A map with ``rows`` (Godot's two splits: halves of a square atlas) has its t texel over ``rows``.
+
     Parameters
     ----------
     pipeline : Pipeline
@@ -54,7 +56,7 @@ def texels(pipeline: Pipeline, camera: Camera, light: str | ArrayLike) -> Array:
     if pipeline.fit == "fixed":
         w, h = pipeline.box
         out = np.empty((len(lv), 1, 2))
-        out[..., 0], out[..., 1] = w / pipeline.resolution, h / pipeline.resolution
+        out[..., 0], out[..., 1] = w / pipeline.resolution, h / (pipeline.rows or pipeline.resolution)
         return out
     r = result(pipeline, camera, lv)
-    return np.stack([r.width_x, r.width_y], axis=-1) / pipeline.resolution
+    return np.stack([r.width_x / pipeline.resolution, r.width_y / (pipeline.rows or pipeline.resolution)], axis=-1)
