@@ -29,6 +29,7 @@ from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
 
 OPTIONS = "filament/include/filament/LightManager.h ShadowOptions (google/filament as stored)"
 TYPES = ("PCF", "VSM", "DPCF", "PCSS")
+STABLE_FIT, FAR_FIT, SNAP = "centroid", "far", "border"  # stable mode without / with shadowFar; the one-texel border
 
 SETTINGS = (
     Setting("mapSize", 1024, "texels", "int", (8, 16384), source=OPTIONS, doc="side of each cascade's map (a power of two, >= 8)"),
@@ -88,14 +89,14 @@ def build(s: Mapping[str, Any], camera) -> Pipeline:
              "memory assumes 4 bytes per texel (the depth format was not read)",
              "faces: the material's culling (default back faces culled) is assumed in the shadow pass"]
     if s["stable"]:
-        fit, stable = ("far", True) if s["shadowFar"] > 0 else ("centroid", True)
+        fit, stable = (FAR_FIT, True) if s["shadowFar"] > 0 else (STABLE_FIT, True)
     else:
         fit, stable = "tight", False
         if s["lispsm"]:
             notes.append("lispsm: each map is warped (LiSPSM, Wimmer 2004) from the hints; the pipeline's texels are the unwarped box's (not modelled)")
     if s["screenSpaceContactShadows"]:
         notes.append("screen-space contact shadows are not modelled")
-    return Pipeline(tuple(edges[:-1]), tuple(edges[1:]), fit, "border", res, rule(s), _filter(s), layout=f"array: {k} layers of {res}²",
+    return Pipeline(tuple(edges[:-1]), tuple(edges[1:]), fit, SNAP, res, rule(s), _filter(s), layout=f"array: {k} layers of {res}²",
                     stable=stable, split="filament", notes=tuple(notes))
 
 

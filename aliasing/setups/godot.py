@@ -109,7 +109,7 @@ def _distances(s: Mapping[str, Any], camera) -> tuple[list[float], int]:
     return [float(x) for x in edges], k
 
 
-def _filter(s: Mapping[str, Any]) -> Filter:
+def filter_of(s: Mapping[str, Any]) -> Filter:
     quality = int(s[QUALITY])
     radius, samples = QUALITY_RADIUS[quality]
     if s["light_angular_distance"] > 0:
@@ -173,7 +173,7 @@ def build(s: Mapping[str, Any], camera) -> Pipeline:
         notes.append(f"2 splits: each split's map is {res}×{rows} texels, so its texel along t is twice that along s")
     if blend:
         notes.append("blend splits: split i ≥ 1 is fitted from the start of split i − 1, so its map covers both")
-    return Pipeline(tuple(near_i), tuple(far_i), FIT, SNAP, res, rule(s, res), _filter(s), layout=words, blend=frac,
+    return Pipeline(tuple(near_i), tuple(far_i), FIT, SNAP, res, rule(s, res), filter_of(s), layout=words, blend=frac,
                     stable=True, memory=size * size * (2 if s[BITS] else 4), split="godot", notes=tuple(notes), rows=rows if rows != res else 0,
                     bands=bands)
 
