@@ -42,6 +42,8 @@ def result(pipeline: Pipeline, camera: Camera, light: str | ArrayLike) -> stable
 def texels(pipeline: Pipeline, camera: Camera, light: str | ArrayLike) -> Array:
     """World texel sides [s, t] of each cascade's map per light direction [world units], shape ``(N, K, 2)``.
 
+    A map with ``rows`` (Godot's two splits: halves of a square atlas) has its t texel over ``rows``.
+
     Parameters
     ----------
     pipeline : Pipeline
@@ -55,13 +57,13 @@ def texels(pipeline: Pipeline, camera: Camera, light: str | ArrayLike) -> Array:
     if pipeline.fit == "fixed":
         w, h = pipeline.box
         out = np.empty((len(lv), 1, 2))
-        out[..., 0], out[..., 1] = w / pipeline.resolution, h / pipeline.resolution
+        out[..., 0], out[..., 1] = w / pipeline.resolution, h / (pipeline.rows or pipeline.resolution)
         return out
     r = result(pipeline, camera, lv)
     sides = np.stack([r.width_x, r.width_y], axis=-1)
     if pipeline.grow:  # three.js CSM fade: a margin added to the side after the fit
         sides = sides + np.asarray(pipeline.grow)[None, :, None]
-    return sides / pipeline.resolution
+    return np.stack([sides[..., 0] / pipeline.resolution, sides[..., 1] / (pipeline.rows or pipeline.resolution)], axis=-1)
 
 
 def extents(pipeline: Pipeline, camera: Camera, light: str | ArrayLike) -> Array:

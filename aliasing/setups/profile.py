@@ -27,8 +27,12 @@ the light), each kind of offset is a depth bias along the light in disguise
 * ``normal_texels``: c·v·w·g(θ)/cos θ;
 * ``across_texels``: c·v·w·sin θ·tan θ (the normal's part across the light);
 * ``slope``: c·v·w·tan θ·max(|cos φ|, |sin φ|) (slope-scaled bias of the rasterizer state);
+* ``tan_texels``: c·v·w·min(tan θ, cap) (a slope bias computed per vertex from the normal and
+  clamped, Unreal's ``ShadowMaxSlopeScaleDepthBias``);
 
-with g(θ) = 1, sin θ or 1 − cos θ (``scale``).  A negative c says the engine's sign: three.js
+with g(θ) = 1, sin θ or 1 − cos θ (``scale``); in the texel kinds w may carry a fixed ``offset``
+(w + offset: Godot's constant bias is a fraction of the map's side plus its pancake depth).
+A negative c says the engine's sign: three.js
 adds ``shadow.bias`` to the receiver's depth, so a negative value lifts it towards the light.
 
 Example
@@ -55,7 +59,7 @@ from .. import _validation as check
 
 Array = NDArray[np.float64]
 
-KINDS = ("depth", "depth_texels", "depth_range", "normal", "normal_texels", "across_texels", "slope")
+KINDS = ("depth", "depth_texels", "depth_range", "normal", "normal_texels", "across_texels", "slope", "tan_texels")
 SCALES = ("one", "sin", "one-minus-cos")
 FACES = ("front", "back", "both")
 TYPES = ("float", "int", "bool", "choice")
@@ -193,6 +197,10 @@ class BiasTerm:
     contact : bool
         Whether the term moves the surface along the light and so opens a lit gap at a contact
         (constant and texel depth terms: True; normal offsets cancel against a vertical caster).
+    cap : float
+        The clamp of tan θ in ``tan_texels``, >= 0 (inf: none).
+    offset : float
+        Added to the texel w in the texel kinds [world units] (0: none).
     """
 
     key: str
@@ -201,10 +209,14 @@ class BiasTerm:
     scale: float = 1.0
     normal_scale: str = "one"
     contact: bool | None = None
+    cap: float = math.inf
+    offset: float = 0.0
 
     def __post_init__(self) -> None:
         check.choice(self.kind, "kind", KINDS)
         check.choice(self.normal_scale, "normal_scale", SCALES)
+        if not (isinstance(self.cap, (int, float)) and self.cap >= 0) or not (isinstance(self.offset, (int, float)) and math.isfinite(self.offset)):
+            raise ValueError(f"cap must be >= 0 and offset finite, got cap={self.cap!r}, offset={self.offset!r}")
         if self.contact is None:
             object.__setattr__(self, "contact", self.kind in ("depth", "depth_texels", "depth_range"))
 
@@ -225,6 +237,7 @@ class BiasTerm:
         else:
             d = np.ones(())
         w, th, ph, d = np.broadcast_arrays(w, th, ph, d)
+        w = w + self.offset
         g = np.sin(th) if self.normal_scale == "sin" else 1.0 - np.cos(th) if self.normal_scale == "one-minus-cos" else np.ones_like(th)
         with np.errstate(divide="ignore", invalid="ignore"):
             k = {
@@ -235,6 +248,7 @@ class BiasTerm:
                 "normal_texels": w * g / np.cos(th),
                 "across_texels": w * np.sin(th) * np.tan(th),
                 "slope": w * np.tan(th) * np.maximum(np.abs(np.cos(ph)), np.abs(np.sin(ph))),
+                "tan_texels": w * np.minimum(np.tan(th), self.cap),
             }[self.kind]
         out = self.scale * np.where(np.isfinite(k), k, np.inf)
         return float(out) if out.ndim == 0 else out
@@ -351,6 +365,13 @@ class Pipeline:
         fraction of it.
     memory : int
         Bytes of the depth maps.
+    rows : int
+        Texels along the map's t axis where they differ from ``resolution`` (Godot's two splits
+        are halves of a square atlas: each split ``resolution`` wide, ``resolution/2`` tall);
+        0: square maps.
+    bands : tuple of (float, float)
+        The eye-depth range (start, end) of each blend band between cascade i and i + 1
+        [world units]; empty when the engine does not blend.
     notes : tuple of str
         What the profile does not model, in words (empty when all of it is).
     """
@@ -371,6 +392,8 @@ class Pipeline:
     memory: int = 0
     split: str = ""
     notes: tuple = ()
+    rows: int = 0
+    bands: tuple = ()
 
     def __post_init__(self) -> None:
         n, f = np.asarray(self.near_i, float), np.asarray(self.far_i, float)
@@ -385,8 +408,9 @@ class Pipeline:
         if grow.size and (grow.shape != n.shape or not np.all(np.isfinite(grow)) or np.any(grow < 0)):
             raise ValueError(f"grow must be one finite value >= 0 per cascade, got {self.grow!r}")
         object.__setattr__(self, "grow", tuple(map(float, grow)))
+        object.__setattr__(self, "bands", tuple((float(a), float(b)) for a, b in self.bands))
         if not self.memory:
-            object.__setattr__(self, "memory", int(len(n) * self.resolution ** 2 * 4))
+            object.__setattr__(self, "memory", int(len(n) * self.resolution * (self.rows or self.resolution) * 4))
 
     @property
     def k(self) -> int:
