@@ -349,6 +349,9 @@ class Pipeline:
     depth_range : tuple of float or None
         The light's depth range (near, far) [world units] where the engine's depth unit is a
         fraction of it.
+    min_extent : float
+        The smallest depth range the engine gives a cascade's map [world units] where it fits
+        near..far per cascade (Babylon.js with depthClamp: 1); 0: none.
     memory : int
         Bytes of the depth maps.
     notes : tuple of str
@@ -368,6 +371,7 @@ class Pipeline:
     box: tuple | None = None
     grow: tuple = ()
     depth_range: tuple | None = None
+    min_extent: float = 0.0
     memory: int = 0
     split: str = ""
     notes: tuple = ()
