@@ -315,3 +315,21 @@ def test_bias_presets_are_views_of_the_profiles():
     assert np.allclose(got, s.pipeline.bias.depth(w, 40.0, 10.0, extent=e), rtol=1e-13)
     with pytest.raises(ValueError, match="resolution .* is needed for the babylon preset"):
         presets.equivalent_depth(bab, 0.1, 30.0)
+
+
+def test_errata_numbers():
+    """The numbers docs/ERRATA.md quotes in TJ2, BJ1 and PC1, at the precision printed there."""
+    cam = "near=0.1,far=500,fov=50,aspect=16:9,height=1080"
+    s = setups.build("threejs", {"fade": True}, cam)  # TJ2
+    assert [round(g, 3) for g in s.pipeline.grow] == [0.018, 0.082, 0.625]
+    sides = pipeline.texels(s.pipeline, s.camera, LIGHTS[:1])[0, :, 0] * s.pipeline.resolution
+    assert [round(x) for x in sides] == [160, 345, 952]
+    b = setups.build("babylon", {}, cam, sun="30")  # BJ1: the sun 30° up, ahead
+    light = b.sun.direction(30.0)[None]
+    ext = pipeline.extents(b.pipeline, b.camera, light)[0]
+    w = pipeline.texels(b.pipeline, b.camera, light)[0]
+    assert [round(x) for x in ext] == [69, 101, 157, 412]
+    assert [round(1000 * x, 1) for x in b.pipeline.bias.depth(w[:, 0], 0.0, extent=ext)] == [5.2, 7.6, 11.8, 30.9]
+    assert (round(w[:, 0].min(), 2), round(w[:, 0].max(), 2)) == (0.10, 0.81)
+    t = setups.build("playcanvas").pipeline.bias.term("shadowBias")  # PC1: the default rasterizer bias
+    assert t.value * t.scale == pytest.approx(0.5, rel=1e-15)
