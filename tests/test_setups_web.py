@@ -333,3 +333,11 @@ def test_errata_numbers():
     assert (round(w[:, 0].min(), 2), round(w[:, 0].max(), 2)) == (0.10, 0.81)
     t = setups.build("playcanvas").pipeline.bias.term("shadowBias")  # PC1: the default rasterizer bias
     assert t.value * t.scale == pytest.approx(0.5, rel=1e-15)
+
+
+def test_errata_tj1_rows():
+    """TJ1: the threejs rows (front faces casting) keep their numbers; only `partial` says the faces are not modelled."""
+    from aliasing.bias.cascades import cascade_bias
+
+    rows = cascade_bias(0.1, 100.0, 60.0, "gamma:45", "threejs", k=4, resolution=2048)
+    assert [(r["margin"], r["acne_from"], r["partial"]) for r in rows] == [(0.0, 0.5, "yes")] * 4
