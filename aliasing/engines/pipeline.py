@@ -96,5 +96,5 @@ def extents(pipeline: Pipeline, camera: Camera, light: str | ArrayLike) -> Array
         a, b = np.asarray(pipeline.near_i), np.asarray(pipeline.far_i)
         corners = geometry.frustum_vertices(View(a, b, camera.fov, camera.aspect))  # (K, 8, 3) eye space
         along = np.einsum("kcj,nj->nkc", corners, lv / np.linalg.norm(lv, axis=-1, keepdims=True))
-        return np.ptp(along, axis=-1)
-    return texels(pipeline, camera, lv)[..., 0] * pipeline.resolution
+        return np.maximum(np.ptp(along, axis=-1), pipeline.min_extent)
+    return np.maximum(texels(pipeline, camera, lv)[..., 0] * pipeline.resolution, pipeline.min_extent)

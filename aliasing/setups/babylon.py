@@ -45,8 +45,8 @@ depth, and with ``depthClamp`` (not with PCSS) the fragment shader writes the me
 from that z plus ``bias`` again (``shadowMapFragment.js``): the stored depth grows by 1.5·bias
 for CSM with PCF (its default), 0.5·bias with PCSS or without depthClamp, 1·bias for the
 float maps.  The cascade's light near..far (``_computeMatrices``, lines 364–416) is its box's
-extent along the light, tightened to the shadow casters' bounds: the rule takes the box (the
-casters filling it).  ``normalBias`` moves the caster's vertices inwards along their normal by
+extent along the light, tightened to the shadow casters' bounds and, with depthClamp, at least
+1 world unit (line 417): the rule takes the box (the casters filling it).  ``normalBias`` moves the caster's vertices inwards along their normal by
 normalBias·sin θ (``shadowMapVertexNormalBias.js``), world units.  Faces
 (``SG`` lines 927, 1002–1020): the material's culling (front faces cast), ``forceBackFacesOnly``
 reverses it (back faces cast), ``backFaceCulling`` false casts both.
@@ -227,14 +227,15 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
     a, b = splits(s, camera.near, camera.far)
     stable = bool(s["stabilizeCascades"])
     rule = BiasRule((BiasTerm("bias", float(s["bias"]), "depth_range", factor), normal), side)
+    clamp = bool(s["depthClamp"]) and filter_name(s) != "FILTER_PCSS"
     notes.append("the cascade's light near..far shrinks to the shadow casters' bounds: the bias rule takes the fitted box's extent "
-                 "along the light (casters filling it), an upper bound of the world bias")
+                 "along the light (casters filling it)" + (", at least 1 world unit (depthClamp, line 417)" if clamp else ""))
     if s["autoCalcDepthBounds"]:
         notes.append("autoCalcDepthBounds sets minDistance/maxDistance from the depth buffer each frame: the given ones are used")
     if float(s["frustumEdgeFalloff"]):
         notes.append(f"frustumEdgeFalloff {s['frustumEdgeFalloff']:g} fades the shadows near the map's edges (not modelled)")
     return Pipeline(tuple(a), tuple(b), "centroid16" if stable else "tight", "origin", res, rule, _filter(s),
-                    layout=f"array of {len(a)}", blend=float(s["cascadeBlendPercentage"]), stable=stable,
+                    layout=f"array of {len(a)}", blend=float(s["cascadeBlendPercentage"]), stable=stable, min_extent=1.0 if clamp else 0.0,
                     split="babylon" if float(s["lambda"]) == 0.5 and s["minDistance"] == 0 and s["maxDistance"] == 1 else "",
                     notes=tuple(notes))
 

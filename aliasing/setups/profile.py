@@ -131,8 +131,8 @@ class Setting:
         """
         bad = ValueError(f"{self.key} must be {self.allowed()}" + (f" [{self.unit}]" if self.unit else "")
                          + (" or null (the engine's derived default)" if self.default is None else "") + f", got {value!r}")
-        if value is None and self.default is None:
-            return None
+        if self.default is None and (value is None or isinstance(value, str) and value.strip().lower() in ("null", "none")):
+            return None  # the engine's derived default (JSON null, --set KEY=null)
         if isinstance(value, str) and self.kind != "choice":
             text = value.strip()
             if self.kind == "bool":
@@ -153,7 +153,8 @@ class Setting:
             for c in self.accepts:
                 if value.strip().lower() == str(c).lower():
                     return c
-            raise ValueError(f"{self.key} must be {self.allowed()}, got {value!r}{check.did_you_mean(value, map(str, self.accepts))}")
+            null = " or null (the engine's derived default)" if self.default is None else ""
+            raise ValueError(f"{self.key} must be {self.allowed()}{null}, got {value!r}{check.did_you_mean(value, map(str, self.accepts))}")
         if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
             raise bad
         number = float(value)
@@ -363,6 +364,9 @@ class Pipeline:
     depth_range : tuple of float or None
         The light's depth range (near, far) [world units] where the engine's depth unit is a
         fraction of it.
+    min_extent : float
+        The smallest depth range the engine gives a cascade's map [world units] where it fits
+        near..far per cascade (Babylon.js with depthClamp: 1); 0: none.
     memory : int
         Bytes of the depth maps.
     rows : int
@@ -389,6 +393,7 @@ class Pipeline:
     box: tuple | None = None
     grow: tuple = ()
     depth_range: tuple | None = None
+    min_extent: float = 0.0
     memory: int = 0
     split: str = ""
     notes: tuple = ()

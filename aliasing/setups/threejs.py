@@ -181,7 +181,7 @@ def _build(split_form: str):
         else:
             ends = partitioning.split_distances("uniform" if mode == "uniform" else "log", camera.near, far, k)
         if split_form == "r184":  # CSMFrustum.split lerps the corners by the breaks C/F from near (r184 and earlier)
-            ends = camera.near + ends / far * (far - camera.near)
+            ends = np.concatenate([[camera.near], camera.near + ends[1:] / far * (far - camera.near)])
         rule = BiasRule((BiasTerm("shadowBias", bias, "depth", -(light_far - light_near)),
                          BiasTerm("shadow.normalBias", float(s["shadow.normalBias"]), "normal")), side)
         notes = ["the shader picks cascade i for eye depths in [b_(i−1), b_i)·(far − near) (CSMShader.js: linearDepth = "
