@@ -82,7 +82,7 @@ class BiasPreset:
 
 
 def from_rule(name: str, engine: str, source: str, rule, pcf: int, partial: str = "") -> BiasPreset:
-    """A preset from an engine profile's bias rule (:class:`aliasing.setups.BiasRule`): each term's
+    """A preset from an engine profile's bias rule (``aliasing.setups.BiasRule``): each term's
     value × scale to the preset's field of its kind (a texel term's ``offset`` o adds c·v·o to ``depth``).
 
     Raises
