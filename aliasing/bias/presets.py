@@ -115,7 +115,7 @@ def from_profile(name: str, engine: str, source: str, spec: str, settings: dict 
 
 
 def from_rule(name: str, engine: str, source: str, rule, pcf: int, partial: str = "") -> BiasPreset:
-    """A preset from an engine profile's bias rule (:class:`aliasing.setups.BiasRule`): each term's
+    """A preset from an engine profile's bias rule (``aliasing.setups.BiasRule``): each term's
     value × scale to the preset's field of its kind (``depth_range`` to ``depth_map``; a texel
     term's ``offset`` o adds c·v·o to ``depth``), and the rule's faces.
 

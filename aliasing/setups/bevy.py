@@ -2,7 +2,7 @@
 
 Read from bevyengine/bevy as stored in the index (the current layout with ``crates/bevy_light``):
 
-* ``crates/bevy_light/src/cascade.rs`` (commit 0876f40a, :data:`aliasing.partitioning.BEVY_RELEASE`):
+* ``crates/bevy_light/src/cascade.rs`` (commit 0876f40a, ``aliasing.partitioning.BEVY_RELEASE``):
   ``CascadeShadowConfigBuilder::default`` (4 cascades, ``minimum_distance`` 0.1,
   ``maximum_distance`` 150, ``first_cascade_far_bound`` 10, ``overlap_proportion`` 0.2),
   ``calculate_cascade_bounds`` (geometric from the first bound) and ``build`` (near bound of
