@@ -45,6 +45,7 @@ def _reproduce(args: argparse.Namespace) -> int:
         return 0
     for path in reproduce.reproduce(args.targets, args.out):
         print(path)
+    print(reproduce.NEXT, file=sys.stderr)  # stdout stays the list of files written
     return 0
 
 
