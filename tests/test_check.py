@@ -263,3 +263,17 @@ def test_guide_page_states_what_the_commands_compute():
     assert np.allclose(cost, math.sqrt(1 + (9 / 16) ** 2), rtol=1e-12)
     log = check(setups.build("threejs", base | {"mode": "logarithmic"}, CAMERA, "15..60"))
     assert all(f"{c['error_max']:.3g}" == "9.05" for c in log.cascades) and "same ``error_max``, 9.05" in page
+
+
+def test_engine_fit_against_the_bias_preset():
+    """docs/ERRATA.md G3: the tight fit of `bias --presets threejs` against three.js's own box, and the face rule."""
+    from aliasing.bias.cascades import cascade_bias
+
+    rows = cascade_bias(0.1, 500.0, 50.0, "gamma:30", "threejs", splits="threejs-csm", k=4, resolution=2048, image=1080, aspect=16 / 9)
+    r = check(setups.build("threejs", {"cascades": 4}, CAMERA, "30"))
+    ratio_t = [c["texel"][1] / a["texel_t"] for a, c in zip(rows, r.cascades)]
+    ratio_s = [c["texel"][0] / a["texel_s"] for a, c in zip(rows, r.cascades)]
+    assert [a["near"] for a in rows] == pytest.approx([c["near"] for c in r.cascades], rel=1e-12)
+    assert 2.1 <= min(ratio_t) and max(ratio_t) <= 2.25
+    assert ratio_s == pytest.approx([math.sqrt(1 + (9 / 16) ** 2)] * 4, rel=1e-9)
+    assert all(a["margin"] == 0.0 for a in rows) and all(c["acne"] == 0.0 for c in r.cascades)
