@@ -341,3 +341,21 @@ def test_errata_tj1_rows():
 
     rows = cascade_bias(0.1, 100.0, 60.0, "gamma:45", "threejs", k=4, resolution=2048)
     assert [(r["margin"], r["acne_from"], r["partial"]) for r in rows] == [(0.0, 0.5, "yes")] * 4
+
+
+def test_blend_bands():
+    from aliasing.setups.profile import Pipeline  # noqa: F401  (the bands are (start, end) eye depths, as Pipeline.bands)
+
+    s = setups.build("babylon", {}, CAMERA)
+    bands = babylon.blend_bands(s.settings, 0.1, 500.0)
+    p = s.pipeline
+    assert len(bands) == p.k - 1
+    for (start, end), a, b in zip(bands, p.near_i, p.far_i):
+        assert end == b and (end - start) / (b - a) == pytest.approx(p.blend, rel=1e-12)
+    assert babylon.blend_bands({**s.settings, "cascadeBlendPercentage": 0.0}, 0.1, 500.0) == ()
+    pc = setups.build("playcanvas", {"numCascades": 3, "cascadeBlend": 0.2}, CAMERA)
+    assert playcanvas.blend_bands(pc.settings, 0.1, 500.0) == tuple((0.8 * e, e) for e in pc.pipeline.far_i[:-1])
+    th = setups.build("threejs", {"fade": True}, CAMERA).pipeline
+    b = np.asarray(th.far_i[:-1]) / 500.0
+    got = threejs.blend_bands(b, 0.1, 500.0)
+    assert all(s0 < e * 500.0 / 499.9 < e1 for (s0, e1), e in zip(got, th.far_i[:-1]))

@@ -204,6 +204,26 @@ def splits(s: Mapping[str, Any], near: float, far: float) -> tuple[np.ndarray, n
     return np.concatenate([[z0], ends[:-1]]), ends
 
 
+def blend_bands(s: Mapping[str, Any], near: float, far: float) -> tuple:
+    """The eye-depth range (start, end) of each blend band between cascade i and i + 1 [world units].
+
+    The receivers blend cascade i into i + 1 over the last ``cascadeBlendPercentage`` of cascade
+    i's depth range (``lightFragment.js``: ``diff < frustumLength·cascadeBlendPercentage``;
+    ``CSG`` line 730); none at 0 or for a ShadowGenerator.
+
+    Example
+    -------
+    >>> s = PROFILES[0].resolve({"lambda": 0})
+    >>> [tuple(round(x, 9) for x in band) for band in blend_bands(s, 1.0, 101.0)]
+    [(23.5, 26.0), (48.5, 51.0), (73.5, 76.0)]
+    """
+    p = float(s["cascadeBlendPercentage"])
+    if s["class"] != "CascadedShadowGenerator" or p == 0:
+        return ()
+    a, b = splits(s, near, far)
+    return tuple((float(bi - p * (bi - ai)), float(bi)) for ai, bi in zip(a[:-1], b[:-1]))
+
+
 def _build(s: Mapping[str, Any], camera) -> Pipeline:
     side = faces(s)
     res = int(s["mapSize"])

@@ -114,6 +114,26 @@ def splits(s: Mapping[str, Any], near: float, far: float) -> tuple[np.ndarray, n
     return np.concatenate([[near], ends[:-1]]), ends
 
 
+def blend_bands(s: Mapping[str, Any], near: float, far: float) -> tuple:
+    """The eye-depth range (start, end) of each blend band between cascade i and i + 1 [world units].
+
+    ``shadowCascades.js`` ``ditherShadowCascadeIndex``: from (1 − cascadeBlend)·end_i to end_i
+    the receivers pick cascade i + 1 with a dithered probability rising by smoothstep; the
+    start is not clipped to the cascade's own start.  None at cascadeBlend 0.
+
+    Example
+    -------
+    >>> s = PROFILES[0].resolve({"numCascades": 2, "cascadeDistribution": 0, "cascadeBlend": 0.1})
+    >>> blend_bands(s, 1.0, 500.0)
+    ((18.45, 20.5),)
+    """
+    blend = float(PROFILES[0].setting("cascadeBlend").clamped(s["cascadeBlend"]))
+    if blend == 0:
+        return ()
+    _, b = splits(s, near, far)
+    return tuple((float((1.0 - blend) * e), float(e)) for e in b[:-1])
+
+
 def _filter(s: Mapping[str, Any]) -> Filter:
     kind = s["shadowType"]
     if "PCF" in kind:

@@ -149,6 +149,23 @@ def fade_margins(ends: np.ndarray, near: float, camera_far: float, max_far: floa
     return 0.25 * (np.asarray(ends, float) / (big - near)) ** 2 * (big - near)
 
 
+def blend_bands(breaks: np.ndarray, near: float, shadow_far: float) -> tuple:
+    """The eye-depth range (start, end) of CSM's fade band around each inner break [world units].
+
+    ``CSMShader.js``: in linear depth z/(shadowFar − cameraNear) the cascades meet at the breaks b
+    (split/shadowFar) and overlap by 0.25·b² around each: the band is b ∓ 0.125·b², times
+    (shadowFar − near) in eye depth.
+
+    Example
+    -------
+    >>> blend_bands(np.array([0.5]), 0.0, 100.0)
+    ((46.875, 53.125),)
+    """
+    b = np.asarray(breaks, float)
+    half = 0.125 * b**2
+    return tuple((float((x - h) * (shadow_far - near)), float((x + h) * (shadow_far - near))) for x, h in zip(b, half))
+
+
 def _build(split_form: str):
     def build(s: Mapping[str, Any], camera) -> Pipeline:
         side = faces(s)
@@ -190,7 +207,7 @@ def _build(split_form: str):
         if s["fade"]:
             grow = tuple(fade_margins(ends[1:], camera.near, camera.far, max_far))
             notes.append("fade blends across 0.25·b²·(far − near) of eye depth around each break b (CSMShader.js), "
-                         "not a fixed fraction of the cascade: the blend band is not modelled (blend 0)")
+                         "not a fixed fraction of the cascade (blend 0): blend_bands() gives the bands")
         return Pipeline(tuple(ends[:-1]), tuple(ends[1:]), "diagonal-unrounded", "bevy", res, rule, _filter(s),
                         layout="separate", blend=0.0, stable=True, depth_range=(light_near, light_far), grow=grow,
                         split=f"threejs-csm{'@r184' if split_form == 'r184' else ''}" if mode == "practical" else mode, notes=tuple(notes))
