@@ -358,4 +358,5 @@ def test_blend_bands():
     th = setups.build("threejs", {"fade": True}, CAMERA).pipeline
     b = np.asarray(th.far_i[:-1]) / 500.0
     got = threejs.blend_bands(b, 0.1, 500.0)
-    assert all(s0 < e * 500.0 / 499.9 < e1 for (s0, e1), e in zip(got, th.far_i[:-1]))
+    for (s0, e1), x in zip(got, b):  # centred on the break in linear depth z/(far − near), 0.25·b² wide
+        assert (s0 + e1) / 2 == pytest.approx(x * 499.9, rel=1e-14) and e1 - s0 == pytest.approx(0.25 * x**2 * 499.9, rel=1e-12)
