@@ -268,8 +268,12 @@ def test_playcanvas_rule():
     # slope factor 10·0.05 per texel·tan θ, constant 10·0.05 steps of 2^-24 and the 0.0001 lift of the range
     want = 0.5 * w * math.tan(math.radians(45.0)) + 0.5 * 2.0**-24 * ext + 1e-4 * ext
     assert rule.depth(w, 45.0, 0.0, extent=ext) == pytest.approx(want, rel=1e-14)
-    sixteen = setups.build("playcanvas", {"shadowType": "SHADOW_PCF3_16F"}).pipeline.bias.term("shadowBias (constant)")
-    assert sixteen.scale == pytest.approx(10.0 / 65535)
+    sixteen = [t for t in setups.build("playcanvas", {"shadowType": "SHADOW_PCF3_16F"}).pipeline.bias.terms if t.kind == "depth_range"]
+    assert sixteen[0].key == "shadowBias" and sixteen[0].scale == pytest.approx(10.0 / 65535)
+    # the needed shadowBias counts both of its terms (slope and constant); the 0.0001 lift stays
+    need = rule.minimal("shadowBias", 0.2, w, 45.0, 0.0, extent=ext)
+    per = 10 * w * math.tan(math.radians(45.0)) + 10 * 2.0**-24 * ext
+    assert need == pytest.approx((0.2 - 1e-4 * ext) / per, rel=1e-12)
     # the component clamps shadowBias to [0, 1]: 3 is 1
     assert setups.build("playcanvas", {"shadowBias": 3.0}).pipeline.bias.term("shadowBias").value == 1.0
 

@@ -162,7 +162,7 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
         notes.append(f"an odd shadowResolution ({res}) gives cascades of {res / 2:g} texels: the profile uses {per}")
     step = 2.0 ** -24 if kind.endswith("32F") else 1.0 / 65535
     terms = (BiasTerm("shadowBias", v, "slope", 10.0),
-             BiasTerm("shadowBias (constant)", v, "depth_range", 10.0 * step),
+             BiasTerm("shadowBias", v, "depth_range", 10.0 * step),  # the same setting's constant factor
              BiasTerm("receiver lift 0.0001", 1e-4, "depth_range", 1.0),
              BiasTerm("normalOffsetBias", float(PROFILES[0].setting("normalOffsetBias").clamped(s["normalOffsetBias"])), "normal"))
     rule = BiasRule(terms, CULL[s["material.cull"]])

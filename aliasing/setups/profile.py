@@ -295,12 +295,15 @@ class BiasRule:
 
         A bound from below where the term's scale is positive, from above where it is negative
         (three.js's ``shadow.bias``); ±inf where the term cannot help (a normal offset on a
-        receiver facing the light, θ = 0).
+        receiver facing the light, θ = 0).  A setting that acts through several terms (PlayCanvas's
+        ``shadowBias``: a slope and a constant rasterizer bias) counts with all of them.
         """
-        t = self.term(key)
+        self.term(key)  # the ValueError with a did-you-mean
         need = check.finite(need, "need")
-        rest = np.asarray(self.depth(texel, angle, azimuth, extent)) - t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent))
-        per = np.asarray(t.per_unit(texel, angle, azimuth, extent), float)
+        own = [t for t in self.terms if t.key == key]
+        per = sum((np.asarray(t.per_unit(texel, angle, azimuth, extent), float) for t in own), np.zeros(()))
+        part = sum((t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent)) for t in own), np.zeros(()))
+        rest = np.asarray(self.depth(texel, angle, azimuth, extent)) - part
         with np.errstate(divide="ignore", invalid="ignore"):
             out = np.where(per != 0, (need - rest) / np.where(per != 0, per, 1.0), np.where(need - rest <= 0, 0.0, np.inf))
         return float(out) if np.ndim(out) == 0 else out
