@@ -228,9 +228,17 @@ def test_babylon_bias_factor(changes, factor):
 
 def test_depth_range_terms_need_the_extent():
     rule = setups.build("babylon").pipeline.bias
-    assert rule.needs_extent
+    assert rule.needs_extent and rule.resolution == 1024
+    bare = setups.BiasRule(rule.terms, rule.faces)  # no resolution to fall back on
     with pytest.raises(ValueError, match="^extent is needed for the bias term 'bias'"):
-        rule.depth(0.1, 30.0)
+        bare.depth(0.1, 30.0)
+    # without an extent the rule takes the map's side w·mapSize (exact for stabilized cascades)
+    assert rule.depth(0.1, 30.0) == rule.depth(0.1, 30.0, extent=0.1 * 1024) == pytest.approx(1.5 * 0.00005 * 102.4, rel=1e-14)
+    assert rule.minimal("bias", 0.03, 0.1, 30.0) == pytest.approx(0.03 / (1.5 * 102.4), rel=1e-12)
+    s = setups.build("babylon", {"stabilizeCascades": True}, CAMERA)
+    w = pipeline.texels(s.pipeline, s.camera, LIGHTS)[..., 0]
+    assert np.allclose(s.pipeline.bias.depth(w, 20.0), s.pipeline.bias.depth(w, 20.0, extent=pipeline.extents(s.pipeline, s.camera, LIGHTS)),
+                       rtol=1e-13)
     # 1.5 × 0.00005 × 200 world units of range; normalBias 0
     assert rule.depth(0.1, 30.0, extent=200.0) == pytest.approx(0.015, rel=1e-14)
     assert rule.contact(0.1, extent=200.0) == pytest.approx(0.015, rel=1e-14)

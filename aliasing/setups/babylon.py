@@ -246,10 +246,13 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
                         notes=tuple(notes + ["the shadow box is fixed (light.shadowFrustumSize): shadows outside it are lost"]))
     a, b = splits(s, camera.near, camera.far)
     stable = bool(s["stabilizeCascades"])
-    rule = BiasRule((BiasTerm("bias", float(s["bias"]), "depth_range", factor), normal), side)
+    rule = BiasRule((BiasTerm("bias", float(s["bias"]), "depth_range", factor), normal), side, resolution=res)
     clamp = bool(s["depthClamp"]) and filter_name(s) != "FILTER_PCSS"
     notes.append("the cascade's light near..far shrinks to the shadow casters' bounds: the bias rule takes the fitted box's extent "
                  "along the light (casters filling it)" + (", at least 1 world unit (depthClamp, line 417)" if clamp else ""))
+    if not stable:
+        notes.append("given no extent (aliasing.engines.pipeline.extents), the bias rule takes the map's side w·mapSize for the "
+                     "cascade's depth range: the tight box's own range along the light differs")
     if s["autoCalcDepthBounds"]:
         notes.append("autoCalcDepthBounds sets minDistance/maxDistance from the depth buffer each frame: the given ones are used")
     if float(s["frustumEdgeFalloff"]):

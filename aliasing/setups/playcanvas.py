@@ -165,7 +165,7 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
              BiasTerm("shadowBias", v, "depth_range", 10.0 * step),  # the same setting's constant factor
              BiasTerm("receiver lift 0.0001", 1e-4, "depth_range", 1.0),
              BiasTerm("normalOffsetBias", float(PROFILES[0].setting("normalOffsetBias").clamped(s["normalOffsetBias"])), "normal"))
-    rule = BiasRule(terms, CULL[s["material.cull"]])
+    rule = BiasRule(terms, CULL[s["material.cull"]], resolution=per)  # the sphere's cube: its side w·per is the extent taken
     bytes_per = 2 if kind.endswith("16F") else 4 * (2 if "VSM" in kind else 1)
     return Pipeline(tuple(a), tuple(b), "centroid", "bevy", per, rule, _filter(s), layout="separate" if k == 1 else f"atlas 2x2 of {res}",
                     blend=float(PROFILES[0].setting("cascadeBlend").clamped(s["cascadeBlend"])), stable=True,
