@@ -35,6 +35,13 @@ The filter (PCFShadowMap): 5 Vogel-disk taps within ``shadow.radius`` texels (th
 √(4.5/5) = 0.949 of it), each a hardware 2×2 comparison, rotated per pixel by interleaved
 gradient noise.
 
+r184 and r187 differ in the split only (``CSMFrustum.split``, docs/ERRATA.md G1): the filter,
+the bias and the face rule are the same code (r187 adds a reversed-depth branch that subtracts
+the bias from the reversed depth: the same lift).  ``mode: 'custom'`` runs any
+``customSplitsCallback``; the profile models the callback that lerps uniform and logarithmic
+breaks by ``customSplitsLambda`` (the ``practical`` mode's own formula with another λ).  Not
+modelled: r187's ``examples/jsm/lights/SunLight.js`` (a new two-cascade sun light in one atlas).
+
 Example
 -------
 >>> from aliasing.setups import build
