@@ -256,6 +256,8 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
         rule = BiasRule((BiasTerm("bias", float(s["bias"]), "depth", factor * (hi - lo)), normal), side)
         return Pipeline((camera.near,), (camera.far,), "fixed", "none", res, rule, _filter(s), box=(size, size), depth_range=(lo, hi),
                         notes=tuple(notes + ["the shadow box is fixed (light.shadowFrustumSize): shadows outside it are lost"]))
+    if res < 3:
+        raise ValueError(f"mapSize must be at least 3 texels for the toolkit's cascade fits, got {res}")
     a, b = splits(s, camera.near, camera.far)
     stable = bool(s["stabilizeCascades"])
     rule = BiasRule((BiasTerm("bias", float(s["bias"]), "depth_range", factor), normal), side, resolution=res)

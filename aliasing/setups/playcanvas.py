@@ -154,6 +154,9 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
     k = len(a)
     res = int(s["shadowResolution"])
     per = res if k == 1 else res // 2  # light.js:46–51: a 2×2 grid of half-size viewports
+    if per < 3:
+        raise ValueError(f"shadowResolution must give each cascade at least 3 texels for the toolkit's fits ({'' if k == 1 else 'half of '}"
+                         f"shadowResolution with {k} cascades), got {res}")
     kind = s["shadowType"]
     v = float(PROFILES[0].setting("shadowBias").clamped(s["shadowBias"]))
     notes = ["the shadow camera's depth range spans the shadow casters' bounds + 0.2: the depth_range terms take the cascade's "

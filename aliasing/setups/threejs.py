@@ -189,6 +189,8 @@ def _build(split_form: str):
                             depth_range=(near, far), notes=("the shadow camera is a fixed world box: shadows outside it are lost",))
         k = int(_or(s["cascades"], 3))
         res = int(_or(s["shadowMapSize"], 2048))
+        if res < 3:
+            raise ValueError(f"shadowMapSize must be 0 (read as 2048) or at least 3 texels for the toolkit's cascade fits, got {res}")
         bias = float(_or(s["shadowBias"], 0.000001))
         light_near, light_far = float(_or(s["lightNear"], 1.0)), float(_or(s["lightFar"], 2000.0))
         if not light_far > light_near:
