@@ -142,6 +142,23 @@ def test_fuzzed_settings_build_or_fail_in_one_line(engine, data):
     assert isinstance(profile.snippet(setup.settings), str)
 
 
+@pytest.mark.parametrize("engine", ENGINES)
+@settings(max_examples=30, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
+@given(near=st.floats(1e-3, 50.0), ratio=st.floats(1.0 + 1e-6, 1e5), fov=st.floats(1.0, 170.0), aspect=st.floats(0.1, 10.0))
+def test_any_camera_builds_or_fails_in_one_line(engine, near, ratio, fov, aspect):
+    """Degenerate cameras included (far/near → 1, narrow and wide fields of view)."""
+    camera = setups.Camera(near, near * ratio, fov, aspect, 1080)
+    try:
+        setup = setups.build(engine, {}, camera)
+    except ValueError as err:
+        assert "\n" not in str(err)
+        return
+    p = setup.pipeline
+    assert all(0 < a < b for a, b in zip(p.near_i, p.far_i)) and min(p.near_i) >= camera.near * (1 - 1e-12)
+    w = engine_pipeline.texels(p, camera, setup.sun.direction()[None])
+    assert np.all(np.isfinite(w)) and np.all(w > 0)
+
+
 # --- splits, fits and layouts ----------------------------------------------------------------
 
 

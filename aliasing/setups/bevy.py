@@ -99,6 +99,10 @@ def build(s: Mapping[str, Any], camera) -> Pipeline:
     if lo[0] < camera.near:
         notes.append(f"minimum_distance {near:g} is before the camera's near {camera.near:g}: the first map is fitted from the near plane here")
         lo = np.maximum(lo, camera.near)
+        if np.any(lo >= hi):
+            i = int(np.argmax(lo >= hi))
+            raise ValueError(f"the camera's near ({camera.near:g}) is beyond the end of cascade {i} ({hi[i]:g} m): "
+                             "raise first_cascade_far_bound or lower the camera's near")
     if hi[-1] > camera.far:
         notes.append(f"the cascades end at {hi[-1]:g} m, beyond the camera's far {camera.far:g}: Bevy fits them all the same")
     bands = tuple(((1 - p) * edges[i + 1], edges[i + 1]) for i in range(k - 1))
