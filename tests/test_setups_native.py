@@ -371,3 +371,23 @@ def test_snippets_carry_the_settings(engine, key, value, text):
     code = profile.snippet(profile.resolve({key: value}))
     assert text in code
     assert profile.language in ("gdscript", "rust", "csharp", "cpp", "ini")
+
+
+def test_guide_table():
+    """docs/guide/engines.rst, 'Engine profiles read from source': its table at the printed precision."""
+    web = "near=0.1,far=500,fov=50,aspect=16:9,height=1080"
+    rows = {"godot": (4, 100.0, 32, (7.9, 4.5), (10.9, 7.5), 1), "bevy": (4, 150.0, 64, (3.8, 1.9), (5.6, 3.7), 1),
+            "unity-urp": (1, 50.0, 8, (1.0, 1.0), (6.3, 6.3), 1), "filament": (1, 500.0, 4, (0.0012, 0.0012), (5.2, 5.2), None),
+            "unreal": (3, 20000.0, 48, (2.5, 2.5), (6.25, 6.25), 2)}
+    for engine, (k, end, mib, facing, tilted, nd) in rows.items():
+        s = setups.build(engine, camera="near=10,far=100000,fov=50,aspect=16:9,height=1080" if engine == "unreal" else web, sun=30)
+        p = s.pipeline
+        w = engine_pipeline.texels(p, s.camera, s.sun.direction()[None])[0, :, 0]
+        per = lambda th: (float(p.bias.depth(w[0], th) / w[0]), float(p.bias.depth(w[-1], th) / w[-1]))  # noqa: E731
+        got0, got60 = per(0.0), per(60.0)
+        if nd is None:
+            assert tuple(float(f"{v:.2g}") for v in got0) == facing
+        else:
+            assert tuple(round(v, nd) for v in got0) == facing
+        assert tuple(round(v, 2 if engine == "unreal" else 1) for v in got60) == tilted
+        assert (p.k, p.far_i[-1], p.memory / 2**20) == (k, end, mib)
