@@ -14,7 +14,7 @@ Read from bevyengine/bevy as stored in the index (the current layout with ``crat
   ``DirectionalLightShadowMap::default`` 2048, ``ShadowFilteringMethod::default`` Gaussian (the
   bias preset ``bevy`` already cites them);
 * ``crates/bevy_pbr/src/render/light.rs`` ``prepare_lights`` (as stored): the light's biases
-  go to the GPU unchanged, the maps are layers of one ``Depth32Float`` array of ``size``², at
+  go to the GPU unchanged, the maps are layers of one ``Depth32Float`` array of ``size`` × ``size`` texels, at
   most ``MAX_CASCADES_PER_LIGHT`` (4) cascades per light;
 * ``crates/bevy_pbr/src/render/shadows.wgsl`` ``sample_directional_cascade``: the receiver moves
   by ``shadow_normal_bias · texel_size`` along its normal and ``shadow_depth_bias`` towards the

@@ -138,7 +138,7 @@ def rule(s: Mapping[str, Any], resolution: int) -> BiasRule:
 
 
 def layout(size: int, k: int) -> tuple[int, int, str]:
-    """(texels across, texels along t, words) of each split in Godot's one directional atlas of ``size``² texels.
+    """(texels across, texels along t, words) of each split in Godot's one directional atlas of ``size`` × ``size`` texels.
 
     Example
     -------
