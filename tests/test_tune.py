@@ -1,0 +1,189 @@
+"""aliasing.tune: the search against an exhaustive grid, the closed-form bias, the limits and their errors."""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+import pytest
+
+from aliasing import setups
+from aliasing.bias import plane_bias
+from aliasing.tune import closed_form_bias, limits, measure, tune
+
+CAMERA = "near=0.1,far=500,fov=50,aspect=16:9,height=1080"
+
+
+def _setup(**settings):
+    return setups.build("threejs", {"cascades": 4, **settings}, CAMERA, "15..60")
+
+
+def _grid(start, lim, fixed=(), step_scale=0.5):
+    """Every combination of the profile's non-bias tunables (continuous ones at half the profile's step)."""
+    prof = start.profile
+    free = [t for t in prof.tunable if t.role not in ("bias", "distance") and t.key not in fixed]
+    out = []
+    base = dict(start.settings)
+    discrete = [t for t in free if t.range is None and t.active(base)]
+    for combo in itertools.product(*(t.values for t in discrete)):
+        s = {**base, **{t.key: v for t, v in zip(discrete, combo)}}
+        cont = [t for t in free if t.range is not None and t.active(s)]
+        grids = [np.arange(t.range[0], t.range[1] + 1e-12, t.step * step_scale) for t in cont]
+        for values in itertools.product(*grids) if cont else [()]:
+            out.append({**s, **{t.key: float(v) for t, v in zip(cont, values)}})
+    return out
+
+
+def _best(start, lim, fixed=()):
+    """The grid's best objective among the settings within the texel budget (biases do not move the error)."""
+    best = math.inf
+    for s in _grid(start, lim, fixed):
+        su = setups.Setup(start.profile, s, start.camera, start.sun)
+        if su.pipeline.k * su.pipeline.resolution ** 2 > lim.max_texels:
+            continue
+        best = min(best, measure(su, lim).objective)
+    return best
+
+
+@pytest.mark.parametrize("fixed", [("cascades", "shadowMapSize"), ("shadowMapSize",)])
+def test_tune_no_worse_than_the_grid(fixed):
+    start = _setup()
+    t = tune(start, fixed=fixed)
+    lim = t.limits
+    best = _best(start, lim, fixed)
+    assert t.feasible and not t.measure.violations(lim)
+    assert t.objective <= best * 1.01
+    assert t.objective <= t.before.objective
+
+
+def test_issue_case_numbers():
+    """The three.js developer's case: λ 0.5 gives 677 px per texel at 10 cm; 0.95 gives 76; the search goes further."""
+    start = _setup()
+    lim = limits(start)
+    assert round(measure(start, lim).objective, 1) == 677.2
+    assert round(measure(start.with_settings(mode="custom", customSplitsLambda=0.95), lim).objective, 1) == 75.9
+    t = tune(start, fixed=("cascades", "shadowMapSize"))
+    assert t.setup.settings["mode"] == "logarithmic" and round(t.objective, 2) == 9.05
+
+
+def test_receivers_end_the_shadows_and_move_the_split():
+    start = _setup()
+    t = tune(start, receivers=(1.0, 200.0), fixed=("cascades", "shadowMapSize"))
+    assert t.setup.settings["maxFar"] == 200.0
+    assert t.setup.settings["mode"] == "custom" and 0.8 < t.setup.settings["customSplitsLambda"] < 1.0
+    lim = t.limits
+    assert t.objective <= _best(setups.Setup(start.profile, {**start.settings, "maxFar": 200.0}, start.camera, start.sun), lim,
+                                ("cascades", "shadowMapSize")) * 1.01
+
+
+@pytest.mark.parametrize("slope", [0.0, 5.0, 20.0])
+def test_bias_is_the_closed_form(slope):
+    """Front faces cast: the normal offset is (k/2)·w·sin θ at the steepest receiver in the largest texel (θ ≤ 85°)."""
+    start = _setup(**{"material.shadowSide": "FrontSide"})
+    t = tune(start, max_slope=slope, fixed=("cascades", "shadowMapSize"))
+    s = t.setup
+    theta = min(90 - 15 + slope, 85.0)
+    w = t.measure.texel.max()
+    k = s.pipeline.filter.taps
+    need = float(plane_bias(w, theta, 90.0, f"pcf{k}").depth)
+    assert need == pytest.approx(0.5 * k * w * math.tan(math.radians(theta)), rel=1e-12)
+    # shadowBias 0 reads as 1e-6 over lightFar − lightNear (pushing the receiver away): the offset covers it too
+    exact = (need + 1e-6 * (2000.0 - 1.0)) * math.cos(math.radians(theta))
+    assert closed_form_bias(s, "shadow.normalBias", max_slope=slope) == pytest.approx(exact, rel=1e-12)
+    got = s.settings["shadow.normalBias"]
+    assert exact <= got <= exact * (1 + 1e-3)  # rounded up to 4 significant digits
+    assert s.settings["shadowBias"] == 0.0  # the depth bias opens a gap; the normal offset does not
+    # a hair less leaves acne
+    lower = s.with_settings(**{"shadow.normalBias": exact * (1 - 1e-6)})
+    assert "max_slope" in measure(lower, t.limits).violations(t.limits)
+
+
+def test_back_faces_need_no_bias():
+    t = tune(_setup(), fixed=("cascades", "shadowMapSize"))
+    assert t.setup.settings["shadow.normalBias"] == 0.0 and t.setup.settings["shadowBias"] == pytest.approx(1e-6)
+
+
+def test_depth_bias_alone_when_the_normal_offset_is_fixed():
+    start = _setup(**{"material.shadowSide": "FrontSide"})
+    t = tune(start, fixed=("cascades", "shadowMapSize", "shadow.normalBias"))
+    s = t.setup
+    # three.js adds shadowBias to the receiver's depth over lightFar − lightNear: a negative value lifts it
+    w = t.measure.texel.max()
+    need = float(plane_bias(w, 75.0, 90.0, f"pcf{s.pipeline.filter.taps}").depth)
+    exact = -need / (2000.0 - 1.0)
+    assert exact * (1 + 1e-3) <= s.settings["shadowBias"] <= exact
+    assert t.feasible and np.nanmax(t.measure.gap_px) > 1
+
+
+def test_infeasible_gap_says_what_binds_and_the_tradeoff():
+    start = _setup(**{"material.shadowSide": "FrontSide"})
+    t = tune(start, receivers=(2.0, 500.0), max_gap_px=1.0, fixed=("cascades", "shadowMapSize", "shadow.normalBias"))
+    assert not t.feasible
+    assert set(t.binding) == {"max_gap_px", "max_slope"}
+    assert "max_slope" not in t.measure.violations(t.limits)  # the closest keeps the acne away
+    gaps = [p["gap_px"] for p in t.tradeoff]
+    angles = [p["angle"] for p in t.tradeoff]
+    assert angles[0] == 0.0 and angles[-1] == 75.0
+    assert all(b >= a for a, b in zip(gaps, gaps[1:]))  # steeper acne-free receivers cost more gap
+    assert gaps[-1] == pytest.approx(np.nanmax(t.measure.gap_px), rel=1e-9)
+    assert gaps[0] <= 1.0 < gaps[-1]
+
+
+def test_texel_budget_binds():
+    start = _setup()
+    t = tune(start, max_texels=2 * 1024 ** 2)
+    assert t.measure.texels <= 2 * 1024 ** 2 and "max_texels" in t.binding
+    small = tune(start, max_texels=1000)  # below any map the engine allows: the closest, and what binds
+    assert not small.feasible and small.binding == ("max_texels",)
+    assert small.setup.pipeline.resolution == 512 and small.setup.pipeline.k == 1
+
+
+def test_fixed_settings_are_kept():
+    start = _setup(mode="uniform", shadowMapSize=1024)
+    t = tune(start, fixed=("mode", "cascades", "shadowMapSize"))
+    assert (t.setup.settings["mode"], t.setup.settings["cascades"], t.setup.settings["shadowMapSize"]) == ("uniform", 4, 1024)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"receivers": (5.0, 1.0)}, "receivers"),
+    ({"receivers": (600.0, 900.0)}, "receivers"),
+    ({"receivers": "near"}, "receivers"),
+    ({"max_gap_px": -1.0}, "max_gap_px"),
+    ({"max_gap_px": float("nan")}, "max_gap_px"),
+    ({"max_slope": 90.0}, "max_slope"),
+    ({"max_texels": 0}, "max_texels"),
+    ({"max_texels": 2.5}, "max_texels"),
+    ({"moving": "yes"}, "moving"),
+    ({"fixed": ("cascade",)}, "cascades"),
+])
+def test_bad_limits_name_the_parameter(kwargs, match):
+    with pytest.raises((ValueError, TypeError), match=match):
+        tune(_setup(), **kwargs)
+
+
+def test_bad_setup():
+    with pytest.raises(ValueError, match="setup"):
+        tune("threejs")
+
+
+hypothesis = pytest.importorskip("hypothesis")
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@settings(max_examples=8, deadline=None, derandomize=True)
+@given(near=st.floats(0.01, 50.0), span=st.floats(1.01, 1e4), gap=st.one_of(st.none(), st.floats(0.0, 1e3)),
+       slope=st.floats(0.0, 89.9), lo=st.floats(1.0, 90.0), width=st.floats(0.0, 60.0))
+def test_fuzz_limits(near, span, gap, slope, lo, width):
+    """Any valid limits: a result whose violations are exactly what it reports as infeasible."""
+    start = setups.build("threejs", {"cascades": 2, "material.shadowSide": "FrontSide"}, CAMERA, f"{lo}..{min(lo + width, 90.0)}")
+    try:
+        t = tune(start, receivers=(near, near * span), max_gap_px=gap, max_slope=slope, fixed=("cascades", "shadowMapSize", "mode"))
+    except ValueError as exc:  # receivers that miss the camera's near..far
+        assert "receivers" in str(exc) and (near * span <= 0.1 or near >= 500)
+        return
+    assert t.feasible == (not t.measure.violations(t.limits))
+    assert math.isfinite(t.objective) and t.objective > 0
+    if t.feasible:
+        assert t.objective <= t.before.objective * (1 + 1e-9) or t.before.violations(t.limits)
