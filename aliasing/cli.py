@@ -306,6 +306,9 @@ def build_parser(full: bool = True) -> argparse.ArgumentParser:
     from .temporal.command import add_shimmer_parser
 
     add_shimmer_parser(sub)  # aliasing shimmer
+    from .check.command import add_check_parser
+
+    add_check_parser(sub)  # aliasing check
     return parser
 
 
@@ -314,9 +317,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     words = list(sys.argv[1:] if argv is None else argv)
     parser = build_parser(full=words[:1] != ["derive"])
     args = parser.parse_args(argv)
+    def one_line(message, category, filename, lineno, file=None, line=None) -> None:  # noqa: ANN001
+        print(_one_line(f"aliasing {args.command}: warning: {message}"), file=sys.stderr)
+
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)  # numpy's warning text never precedes the one error line
+            warnings.showwarning = one_line  # the toolkit's warnings: one line each, as the errors
             return args.run(args)
     except ValueError as exc:
         message = str(exc)
