@@ -10,6 +10,7 @@ import pytest
 
 from aliasing import setups
 from aliasing.bias import plane_bias
+from aliasing.check import check
 from aliasing.tune import closed_form_bias, limits, measure, tune
 
 CAMERA = "near=0.1,far=500,fov=50,aspect=16:9,height=1080"
@@ -19,42 +20,81 @@ def _setup(**settings):
     return setups.build("threejs", {"cascades": 4, **settings}, CAMERA, "15..60")
 
 
-def _grid(start, lim, fixed=(), step_scale=0.5):
-    """Every combination of the profile's non-bias tunables (continuous ones at half the profile's step)."""
-    prof = start.profile
-    free = [t for t in prof.tunable if t.role not in ("bias", "distance") and t.key not in fixed]
+def _engines():
     out = []
+    for engine in setups.ENGINES:
+        try:
+            setups.profiles(engine)
+        except ValueError:  # no profile yet
+            continue
+        out.append(engine)
+    return out
+
+
+def _grid(start, fixed=(), scale=1.0, roles=("cascades", "size", "split", "stable", "blend")):
+    """Every combination of the profile's tunables of ``roles`` not in ``fixed`` (continuous ones at ``scale`` × the profile's step)."""
+    free = [t for t in start.profile.tunable if t.role in roles and t.key not in fixed]
     base = dict(start.settings)
-    discrete = [t for t in free if t.range is None and t.active(base)]
+    discrete = [t for t in free if t.range is None and t.values and t.active(base)]
+    out = []
     for combo in itertools.product(*(t.values for t in discrete)):
         s = {**base, **{t.key: v for t, v in zip(discrete, combo)}}
         cont = [t for t in free if t.range is not None and t.active(s)]
-        grids = [np.arange(t.range[0], t.range[1] + 1e-12, t.step * step_scale) for t in cont]
-        for values in itertools.product(*grids) if cont else [()]:
+        grids = [np.linspace(t.range[0], t.range[1], int(round((t.range[1] - t.range[0]) / (t.step * scale))) + 1) for t in cont]
+        for values in itertools.product(*grids):
             out.append({**s, **{t.key: float(v) for t, v in zip(cont, values)}})
     return out
 
 
-def _best(start, lim, fixed=()):
-    """The grid's best objective among the settings within the texel budget (biases do not move the error)."""
+def _grid_best(start, budget, fixed=(), scale=1.0):
+    """The grid's best worst error by check (the largest error_max over cascades), within the texel budget.
+
+    Biases do not move the error: each grid point is feasible with its biases at check's ``needed``.
+    """
     best = math.inf
-    for s in _grid(start, lim, fixed):
-        su = setups.Setup(start.profile, s, start.camera, start.sun)
-        if su.pipeline.k * su.pipeline.resolution ** 2 > lim.max_texels:
+    for s in _grid(start, fixed, scale):
+        try:
+            su = setups.Setup(start.profile, s, start.camera, start.sun)
+        except ValueError:  # a combination the engine refuses
             continue
-        best = min(best, measure(su, lim).objective)
+        if su.pipeline.k * su.pipeline.resolution ** 2 > budget:
+            continue
+        best = min(best, max(c["error_max"] for c in check(su).cascades))
     return best
 
 
-@pytest.mark.parametrize("fixed", [("cascades", "shadowMapSize"), ("shadowMapSize",)])
-def test_tune_no_worse_than_the_grid(fixed):
-    start = _setup()
+def _holds(t, max_slope=0.0):
+    """Every limit holds for the tuned setup, measured by check."""
+    r = check(t.setup, receivers=[0.0, max_slope])
+    assert all(c["acne"] == 0.0 for c in r.cascades)
+    if math.isfinite(t.limits.max_gap_px):
+        assert max(c["gap_px"] for c in r.cascades) <= t.limits.max_gap_px * (1 + 1e-9)
+    assert sum(c["memory"] for c in r.cascades) <= 4 * t.limits.max_texels
+    if t.limits.moving:
+        assert all(c["shimmer_px"] == 0.0 for c in r.cascades)
+    assert t.objective == pytest.approx(max(c["error_max"] for c in r.cascades), rel=1e-12)  # receivers: the camera's range
+
+
+@pytest.mark.parametrize("engine", _engines())
+def test_tune_no_worse_than_the_grid(engine):
+    """Count and size at the engine's defaults, the splits free: tune against a grid at a quarter of the profile's step."""
+    start = setups.build(engine, None, CAMERA, "15..60")
+    fixed = tuple(t.key for t in start.profile.tunable if t.role in ("cascades", "size"))
     t = tune(start, fixed=fixed)
-    lim = t.limits
-    best = _best(start, lim, fixed)
-    assert t.feasible and not t.measure.violations(lim)
-    assert t.objective <= best * 1.01
+    assert t.feasible and not t.measure.violations(t.limits)
+    _holds(t)
+    assert t.objective <= _grid_best(start, t.limits.max_texels, fixed, scale=0.25) * 1.01
     assert t.objective <= t.before.objective
+
+
+def test_tune_no_worse_than_the_grid_of_counts_and_sizes():
+    """three.js with a texel budget of 4 × 1024²: counts, sizes, modes and λ (at four times the profile's step) on the grid."""
+    start = _setup(**{"material.shadowSide": "FrontSide"})
+    budget = 4 * 1024 ** 2
+    t = tune(start, max_texels=budget, max_slope=10.0, max_gap_px=0.5)
+    _holds(t, 10.0)
+    assert t.objective <= _grid_best(start, budget, scale=4.0) * 1.01
+    assert "max_texels" in t.binding
 
 
 def test_issue_case_numbers():
@@ -69,12 +109,13 @@ def test_issue_case_numbers():
 
 def test_receivers_end_the_shadows_and_move_the_split():
     start = _setup()
-    t = tune(start, receivers=(1.0, 200.0), fixed=("cascades", "shadowMapSize"))
+    fixed = ("cascades", "shadowMapSize")
+    t = tune(start, receivers=(1.0, 200.0), fixed=fixed)
     assert t.setup.settings["maxFar"] == 200.0
     assert t.setup.settings["mode"] == "custom" and 0.8 < t.setup.settings["customSplitsLambda"] < 1.0
-    lim = t.limits
-    assert t.objective <= _best(setups.Setup(start.profile, {**start.settings, "maxFar": 200.0}, start.camera, start.sun), lim,
-                                ("cascades", "shadowMapSize")) * 1.01
+    ends = start.with_settings(maxFar=200.0)
+    grid = [measure(setups.Setup(start.profile, s, start.camera, start.sun), t.limits).objective for s in _grid(ends, fixed, 0.25)]
+    assert t.objective <= min(grid) * 1.01
 
 
 @pytest.mark.parametrize("slope", [0.0, 5.0, 20.0])
@@ -93,7 +134,7 @@ def test_bias_is_the_closed_form(slope):
     assert closed_form_bias(s, "shadow.normalBias", max_slope=slope) == pytest.approx(exact, rel=1e-12)
     got = s.settings["shadow.normalBias"]
     assert exact <= got <= exact * (1 + 1e-3)  # rounded up to 4 significant digits
-    assert s.settings["shadowBias"] == 0.0  # the depth bias opens a gap; the normal offset does not
+    assert s.pipeline.bias.term("shadowBias").value == 1e-6  # three.js's least (0 reads as 1e-6): it opens a gap, the offset does not
     # a hair less leaves acne
     lower = s.with_settings(**{"shadow.normalBias": exact * (1 - 1e-6)})
     assert "max_slope" in measure(lower, t.limits).violations(t.limits)

@@ -1,0 +1,80 @@
+"""``aliasing tune``: the JSON contract, the round trip through ``aliasing check --settings``, bad input."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from aliasing.cli import main
+
+CAMERA = "near=0.1,far=500,fov=50,aspect=16:9,height=1080"
+BASE = ["tune", "--engine", "threejs", "--camera", CAMERA, "--sun", "15..60", "--set", "cascades=4", "--set", "shadowMapSize=2048"]
+
+
+def _json(capsys, argv):
+    assert main(argv + ["--format", "json"]) == 0
+    out = capsys.readouterr()
+    return json.loads(out.out), out.err
+
+
+def test_json_contract_and_round_trip(capsys, tmp_path):
+    got, err = _json(capsys, BASE + ["--set", "material.shadowSide=FrontSide", "--receivers", "1..200", "--max-slope", "5"])
+    assert err == ""
+    for key in ("engine", "release", "settings", "cascades", "verdicts", "objective", "binding", "defaults"):
+        assert key in got
+    assert got["engine"] == "threejs" and got["binding"] == [] and got["feasible"] is True
+    assert got["settings"]["cascades"] == 4 and got["settings"]["maxFar"] == 200.0  # fixed kept; shadows end at the receivers
+    assert got["defaults"]["settings"]["mode"] == "practical" and got["settings"]["mode"] == "custom"
+    assert got["objective"] < got["measured"]["objective_before"] / 10
+    assert "customSplitsCallback" in got["snippet"] and "normalBias" in got["snippet"]
+    # feeding the settings back through check gives every number of the check object
+    path = tmp_path / "tuned.json"
+    path.write_text(json.dumps(got["settings"]))
+    assert main(["check", "--engine", "threejs", "--settings", str(path), "--camera", CAMERA, "--sun", "15..60", "--format", "json"]) == 0
+    again = json.loads(capsys.readouterr().out)
+    assert {k: got[k] for k in again} == again
+    assert all(c["acne"] == 0.0 for c in again["cascades"])
+
+
+def test_unmeetable_limits_exit_zero_with_binding(capsys):
+    got, err = _json(capsys, BASE + ["--set", "material.shadowSide=FrontSide", "--set", "shadow.normalBias=0", "--receivers", "2..500",
+                                     "--max-gap-px", "1"])
+    assert got["feasible"] is False and set(got["binding"]) == {"max_gap_px", "max_slope"}
+    assert err.count("\n") == 1 and "--max-gap-px" in err
+    assert len(got["tradeoff"]) == 10 and got["tradeoff"][0]["gap_px"] <= 1.0 < got["tradeoff"][-1]["gap_px"]
+
+
+def test_table(capsys):
+    assert main(BASE) == 0
+    out = capsys.readouterr().out
+    assert "677.2 -> 9.045 px per texel" in out and "mode = 'logarithmic'" in out and "new CSM(" in out
+
+
+@pytest.mark.parametrize("extra, words", [
+    (["--receivers", "5..1"], "--receivers"),
+    (["--receivers", "near"], "--receivers"),
+    (["--receivers", "600..700"], "--receivers"),
+    (["--max-gap-px", "-1"], "--max-gap-px"),
+    (["--max-gap-px", "x"], "--max-gap-px"),
+    (["--max-slope", "95"], "--max-slope"),
+    (["--max-texels", "0"], "--max-texels"),
+    (["--max-texels", "4y2048"], "--max-texels"),
+    (["--set", "customSplitsLambda=2"], "customSplitsLambda must be a number in [0, 1]"),
+    (["--set", "cascade=3"], "did you mean 'cascades'"),
+    (["--receivers", "1..2", "--scene", "a.glb"], "--receivers and --scene"),
+])
+def test_bad_input_is_one_line(capsys, extra, words):
+    try:
+        status = main(BASE + extra)
+    except SystemExit as exc:  # argparse's own usage errors
+        status = exc.code
+    assert status == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and words in err and "Traceback" not in err
+
+
+def test_max_texels_as_maps_of_a_size(capsys):
+    got, _ = _json(capsys, ["tune", "--engine", "threejs", "--camera", CAMERA, "--sun", "15..60", "--max-texels", "2x1024"])
+    assert got["limits"]["max_texels"] == 2 * 1024 ** 2
+    assert sum(c["memory"] for c in got["cascades"]) <= 4 * 2 * 1024 ** 2
