@@ -223,3 +223,57 @@ def test_fuzz_api(receivers, walk, samples):
         return
     assert isinstance(r, Report) and all(0.0 <= c["acne"] <= 1.0 for c in r.cascades)
     json.dumps(r.to_dict(), allow_nan=False)
+
+
+def test_readme_states_what_check_says():
+    """The README's first screen: its verdict line and the figure's numbers are what check computes."""
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    s = setups.build("threejs", {"cascades": 4, "shadowMapSize": 2048, "material.shadowSide": "FrontSide"}, CAMERA, "15..60")
+    r = check(s)
+    line = next(v for v in r.verdicts if v.startswith("cascade 3 acnes"))
+    assert f"- {line}\n" in readme
+    assert "`shadow.normalBias` ≥ 0.68" in readme and line.endswith("shadow.normalBias ≥ 0.68")
+    common = min(c["needed"]["shadowBias"] for c in r.cascades)
+    gap = check(s.with_settings(shadowBias=common)).cascades[0]["gap_px"]
+    assert f"{gap:.0f}-pixel gap" in readme and round(gap) == 92
+
+
+def test_guide_page_states_what_the_commands_compute():
+    """docs/guide/engines-check.rst: every number it states, recomputed."""
+    from pathlib import Path
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "guide" / "engines-check.rst").read_text()
+    flat = " ".join(page.split())
+    base = {"cascades": 4, "shadowMapSize": 2048}
+    r = check(setups.build("threejs", base, CAMERA, "15..60"))
+    cm = ", ".join(f"{max(c['texel']) * 100:.1f} cm" for c in r.cascades[:3]) + f" and {max(r.cascades[3]['texel']) * 100:.1f} cm"
+    assert cm in flat
+    errs = [f"{c['error_max']:.3g}" for c in r.cascades]
+    assert f"{errs[0]}, {errs[1]}, {errs[2]} and {errs[3]}" in flat and errs == ["677", "2.2", "1.82", "2.48"]
+    front = check(setups.build("threejs", base | {"material.shadowSide": "FrontSide"}, CAMERA, "15..60"))
+    nb = [c["needed"]["shadow.normalBias"] for c in front.cascades]
+    assert [f"{v:.2g}" for v in nb] == ["0.085", "0.17", "0.29", "0.67"]  # the page gives them rounded up (safe side)
+    assert "(0.086, 0.18, 0.3 and 0.68 m;" in flat and all(float(x) >= v for x, v in zip(("0.086", "0.18", "0.3", "0.68"), nb))
+    sb = min(c["needed"]["shadowBias"] for c in front.cascades)
+    assert "at or below −0.0014" in flat and -0.0014 <= sb < -0.0013
+    cost = [c["stable_cost"] for c in r.cascades]
+    assert all(f"{c:.4g}" == "1.147" for c in cost) and "1.147 in every cascade" in flat
+    assert np.allclose(cost, math.sqrt(1 + (9 / 16) ** 2), rtol=1e-12)
+    log = check(setups.build("threejs", base | {"mode": "logarithmic"}, CAMERA, "15..60"))
+    assert all(f"{c['error_max']:.3g}" == "9.05" for c in log.cascades) and "same ``error_max``, 9.05" in page
+
+
+def test_engine_fit_against_the_bias_preset():
+    """docs/ERRATA.md G3: the tight fit of `bias --presets threejs` against three.js's own box, and the face rule."""
+    from aliasing.bias.cascades import cascade_bias
+
+    rows = cascade_bias(0.1, 500.0, 50.0, "gamma:30", "threejs", splits="threejs-csm", k=4, resolution=2048, image=1080, aspect=16 / 9)
+    r = check(setups.build("threejs", {"cascades": 4}, CAMERA, "30"))
+    ratio_t = [c["texel"][1] / a["texel_t"] for a, c in zip(rows, r.cascades)]
+    ratio_s = [c["texel"][0] / a["texel_s"] for a, c in zip(rows, r.cascades)]
+    assert [a["near"] for a in rows] == pytest.approx([c["near"] for c in r.cascades], rel=1e-12)
+    assert 2.1 <= min(ratio_t) and max(ratio_t) <= 2.25
+    assert ratio_s == pytest.approx([math.sqrt(1 + (9 / 16) ** 2)] * 4, rel=1e-9)
+    assert all(a["margin"] == 0.0 for a in rows) and all(c["acne"] == 0.0 for c in r.cascades)

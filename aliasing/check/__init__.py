@@ -131,7 +131,7 @@ def _safe(value: float, upper: bool) -> float:
 
 
 def _fmt(value: float) -> str:
-    return f"{value:.2g}" if abs(value) >= 1e-3 or value == 0 else f"{value:.1e}"
+    return f"{value:.2g}"
 
 
 @dataclass(frozen=True)

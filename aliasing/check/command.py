@@ -14,6 +14,9 @@ engine does not accept, a camera or sun typo) is one line on stderr and exit sta
 from __future__ import annotations
 
 import argparse
+import csv
+import io
+import json
 import sys
 
 from .. import setups
@@ -44,6 +47,33 @@ def _run(args: argparse.Namespace) -> int:
     report = run(args)
     text = {"json": report.to_json, "csv": report.to_csv}.get(args.format, report.text)()
     sys.stdout.write(text)
+    return 0
+
+
+BIAS_COLUMNS = ("cascade", "near", "far", "texel_s", "texel_t", "acne", "gap_px", "footprint_px", "seam_step")
+
+
+def run_bias(args: argparse.Namespace) -> int:
+    """``aliasing bias --engine ...``: the bias columns of the check (the engine's own fit, filter and bias rule,
+    the needed settings in the engine's units), then the bias verdicts."""
+    report = check(setups.from_args(args))
+    rows = [{k: r[k] for k in BIAS_COLUMNS} | {k: v for k, v in r.items() if k.startswith("needed_")} for r in report.to_rows()]
+    if args.format == "json":
+        sys.stdout.write(json.dumps({"engine": report.setup.engine, "release": report.setup.release, "rows": rows,
+                                     "verdicts": [v for v in report.verdicts if "acne" in v or "faces" in v or "detach" in v]}, indent=1) + "\n")
+        return 0
+    if args.format == "csv":
+        buf = io.StringIO()
+        wr = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
+        wr.writeheader()
+        wr.writerows({k: "" if v is None else v for k, v in r.items()} for r in rows)
+        sys.stdout.write(buf.getvalue())
+        return 0
+    keys = list(rows[0])
+    cells = [keys] + [["-" if r[k] is None else f"{r[k]:.4g}" if isinstance(r[k], float) else str(r[k]) for k in keys] for r in rows]
+    widths = [max(len(c[i]) for c in cells) for i in range(len(keys))]
+    sys.stdout.write("".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells))
+    sys.stdout.write("".join(f"- {v}\n" for v in report.verdicts if "acne" in v or "faces" in v or "detach" in v))
     return 0
 
 

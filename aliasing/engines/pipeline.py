@@ -58,3 +58,23 @@ def texels(pipeline: Pipeline, camera: Camera, light: str | ArrayLike) -> Array:
         return out
     r = result(pipeline, camera, lv)
     return np.stack([r.width_x, r.width_y], axis=-1) / pipeline.resolution
+
+
+def scheme_spec(pipeline: Pipeline) -> str:
+    """The pipeline's cascades as a scheme of the engines grammar (:mod:`aliasing.engines.compare`):
+    ``csm-stable:ranges=A..B/...:fit=FIT:snap=SNAP`` (``csm:ranges=...`` for the tight, unsnapped fit),
+    for ``aliasing engines`` and ``aliasing shimmer`` with ``--engine``.
+
+    Example
+    -------
+    >>> from aliasing import setups
+    >>> s = setups.build("threejs", {"cascades": 2, "mode": "uniform"}, "near=1,far=101,fov=50")
+    >>> scheme_spec(s.pipeline)
+    'csm-stable:ranges=1.0..51.0/51.0..101.0:fit=diagonal-unrounded:snap=bevy'
+    """
+    if pipeline.fit == "fixed":
+        raise ValueError("a fixed shadow box (one DirectionalLight) has no cascades to compare or to move: use aliasing check")
+    ranges = "/".join(f"{a!r}..{b!r}" for a, b in zip(pipeline.near_i, pipeline.far_i))
+    if pipeline.fit == "tight" and pipeline.snap == "none":
+        return f"csm:ranges={ranges}"
+    return f"csm-stable:ranges={ranges}:fit={pipeline.fit}:snap={pipeline.snap}"
