@@ -20,6 +20,9 @@ the light), each kind of offset is a depth bias along the light in disguise
 
 * ``depth``: c·v (a constant along the light [world units per unit]);
 * ``depth_texels``: c·v·w (× the cascade's texel w);
+* ``depth_range``: c·v·D (× the cascade's map depth range D along the light [world units], where
+  the engine fits the shadow camera's near..far to each cascade: Babylon.js, PlayCanvas; D is
+  passed as ``extent``, :func:`aliasing.engines.pipeline.extents` gives it);
 * ``normal``: c·v·g(θ)/cos θ (an offset along the receiver's normal; c in world units per unit);
 * ``normal_texels``: c·v·w·g(θ)/cos θ;
 * ``across_texels``: c·v·w·sin θ·tan θ (the normal's part across the light);
@@ -52,7 +55,7 @@ from .. import _validation as check
 
 Array = NDArray[np.float64]
 
-KINDS = ("depth", "depth_texels", "normal", "normal_texels", "across_texels", "slope")
+KINDS = ("depth", "depth_texels", "depth_range", "normal", "normal_texels", "across_texels", "slope")
 SCALES = ("one", "sin", "one-minus-cos")
 FACES = ("front", "back", "both")
 TYPES = ("float", "int", "bool", "choice")
@@ -67,8 +70,9 @@ class Setting:
     ----------
     key : str
         The engine's own name (``shadowBias``, ``shadow.normalBias``, ``lambda``).
-    default : float, int, bool or str
-        The engine's default at the profile's release.
+    default : float, int, bool, str or None
+        The engine's default at the profile's release; None where the engine derives it from
+        something else (Babylon's ``shadowMaxZ`` is the camera's ``maxZ``: ``doc`` says what).
     unit : str
         What one unit means (``world units``, ``normalized light depth``, ``texels``, ``m``, ``""``).
     kind : str
@@ -122,7 +126,10 @@ class Setting:
         ValueError
             Naming the key and what it accepts.
         """
-        bad = ValueError(f"{self.key} must be {self.allowed()}" + (f" [{self.unit}]" if self.unit else "") + f", got {value!r}")
+        bad = ValueError(f"{self.key} must be {self.allowed()}" + (f" [{self.unit}]" if self.unit else "")
+                         + (" or null (the engine's derived default)" if self.default is None else "") + f", got {value!r}")
+        if self.default is None and (value is None or isinstance(value, str) and value.strip().lower() in ("null", "none")):
+            return None  # the engine's derived default (JSON null, --set KEY=null)
         if isinstance(value, str) and self.kind != "choice":
             text = value.strip()
             if self.kind == "bool":
@@ -143,7 +150,8 @@ class Setting:
             for c in self.accepts:
                 if value.strip().lower() == str(c).lower():
                     return c
-            raise ValueError(f"{self.key} must be {self.allowed()}, got {value!r}{check.did_you_mean(value, map(str, self.accepts))}")
+            null = " or null (the engine's derived default)" if self.default is None else ""
+            raise ValueError(f"{self.key} must be {self.allowed()}{null}, got {value!r}{check.did_you_mean(value, map(str, self.accepts))}")
         if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
             raise bad
         number = float(value)
@@ -200,19 +208,31 @@ class BiasTerm:
         check.choice(self.kind, "kind", KINDS)
         check.choice(self.normal_scale, "normal_scale", SCALES)
         if self.contact is None:
-            object.__setattr__(self, "contact", self.kind in ("depth", "depth_texels"))
+            object.__setattr__(self, "contact", self.kind in ("depth", "depth_texels", "depth_range"))
 
-    def per_unit(self, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0) -> float | Array:
-        """World depth bias along the light per unit of the setting, for a texel w [world] and θ, φ [deg]."""
+    def per_unit(self, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0, extent: ArrayLike | None = None) -> float | Array:
+        """World depth bias along the light per unit of the setting, for a texel w [world] and θ, φ [deg].
+
+        ``extent``: the cascade's map depth range along the light [world units], needed by
+        ``depth_range`` terms only (ValueError naming ``extent`` when it is missing there).
+        """
         w = check.positive(texel, "texel")
         th = np.radians(check.closed_range(angle, "angle", 0.0, 90.0, " degrees"))
         ph = np.radians(check.finite(azimuth, "azimuth"))
-        w, th, ph = np.broadcast_arrays(w, th, ph)
+        if self.kind == "depth_range":
+            if extent is None:
+                raise ValueError(f"extent is needed for the bias term {self.key!r} (depth_range: the cascade's map depth range along "
+                                 "the light [world units], aliasing.engines.pipeline.extents)")
+            d = check.positive(extent, "extent")
+        else:
+            d = np.ones(())
+        w, th, ph, d = np.broadcast_arrays(w, th, ph, d)
         g = np.sin(th) if self.normal_scale == "sin" else 1.0 - np.cos(th) if self.normal_scale == "one-minus-cos" else np.ones_like(th)
         with np.errstate(divide="ignore", invalid="ignore"):
             k = {
                 "depth": np.ones_like(w),
                 "depth_texels": w,
+                "depth_range": d,
                 "normal": g / np.cos(th),
                 "normal_texels": w * g / np.cos(th),
                 "across_texels": w * np.sin(th) * np.tan(th),
@@ -230,14 +250,28 @@ class BiasRule:
     acne without bias), ``back`` (the side away from the light casts: a closed or one-sided
     lit surface compares against the far side of its object, so it does not acne; the gap at
     a contact and light leaks move instead) or ``both``.
+
+    ``resolution`` (texels per side of each map, 0: none): where it is set, a ``depth_range``
+    term given no ``extent`` takes the map's side w·resolution for the cascade's depth range
+    (the cube around a sphere fit: exact for Babylon.js's stabilized cascades and PlayCanvas;
+    the tight box's own range along the light differs: :func:`aliasing.engines.pipeline.extents`).
     """
 
     terms: tuple[BiasTerm, ...] = ()
     faces: str = "front"
+    resolution: int = 0
 
     def __post_init__(self) -> None:
         check.choice(self.faces, "faces", FACES)
         object.__setattr__(self, "terms", tuple(self.terms))
+        if isinstance(self.resolution, bool) or not isinstance(self.resolution, (int, np.integer)) or self.resolution < 0:
+            raise ValueError(f"resolution must be a whole number of texels >= 0, got {self.resolution!r}")
+
+    def _extent(self, texel: ArrayLike, extent: ArrayLike | None) -> ArrayLike | None:
+        """``extent``, or the map's side w·resolution where the rule has one and a depth_range term needs it."""
+        if extent is None and self.resolution and self.needs_extent:
+            return check.positive(texel, "texel") * self.resolution
+        return extent
 
     def term(self, key: str) -> BiasTerm:
         for t in self.terms:
@@ -246,32 +280,48 @@ class BiasRule:
         raise ValueError(f"unknown bias setting {key!r}{check.did_you_mean(key, [t.key for t in self.terms])}; "
                          f"this rule has: {', '.join(t.key for t in self.terms) or 'none'}")
 
-    def depth(self, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0) -> float | Array:
-        """All terms as one depth bias along the light [world units] (positive: towards the light)."""
-        total = sum((t.value * np.asarray(t.per_unit(texel, angle, azimuth)) for t in self.terms), np.zeros(()))
+    @property
+    def needs_extent(self) -> bool:
+        """Whether a term scales with the cascade's map depth range (pass ``extent`` to the methods)."""
+        return any(t.kind == "depth_range" for t in self.terms)
+
+    def depth(self, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0, extent: ArrayLike | None = None) -> float | Array:
+        """All terms as one depth bias along the light [world units] (positive: towards the light).
+
+        ``extent``: the cascade's map depth range along the light [world units], for rules with
+        ``depth_range`` terms (:attr:`needs_extent`).
+        """
+        extent = self._extent(texel, extent)
+        total = sum((t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent)) for t in self.terms), np.zeros(()))
         total = np.broadcast_to(total, np.broadcast_shapes(np.shape(texel), np.shape(angle), np.shape(azimuth))) if not self.terms else total
         return float(total) if np.ndim(total) == 0 else np.asarray(total, float)
 
-    def contact(self, texel: ArrayLike) -> float | Array:
+    def contact(self, texel: ArrayLike, extent: ArrayLike | None = None) -> float | Array:
         """The part along the light [world units]: what opens a lit gap at the foot of a caster."""
         w = check.positive(texel, "texel")
-        total = np.zeros_like(w)
+        extent = self._extent(w, extent)
+        total = np.zeros(np.broadcast_shapes(w.shape, np.shape(extent)) if extent is not None else w.shape)
         for t in self.terms:
             if t.contact:
-                total = total + t.value * np.asarray(t.per_unit(w, 0.0))
+                total = total + t.value * np.asarray(t.per_unit(w, 0.0, 0.0, extent))
         return float(total) if total.ndim == 0 else total
 
-    def minimal(self, key: str, need: ArrayLike, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0) -> float | Array:
+    def minimal(self, key: str, need: ArrayLike, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0,
+                extent: ArrayLike | None = None) -> float | Array:
         """The value of setting ``key`` that, the other terms kept, gives the depth bias ``need`` [world units].
 
         A bound from below where the term's scale is positive, from above where it is negative
         (three.js's ``shadow.bias``); ±inf where the term cannot help (a normal offset on a
-        receiver facing the light, θ = 0).
+        receiver facing the light, θ = 0).  A setting that acts through several terms (PlayCanvas's
+        ``shadowBias``: a slope and a constant rasterizer bias) counts with all of them.
         """
-        t = self.term(key)
+        self.term(key)  # the ValueError with a did-you-mean
         need = check.finite(need, "need")
-        rest = np.asarray(self.depth(texel, angle, azimuth)) - t.value * np.asarray(t.per_unit(texel, angle, azimuth))
-        per = np.asarray(t.per_unit(texel, angle, azimuth), float)
+        extent = self._extent(texel, extent)
+        own = [t for t in self.terms if t.key == key]
+        per = sum((np.asarray(t.per_unit(texel, angle, azimuth, extent), float) for t in own), np.zeros(()))
+        part = sum((t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent)) for t in own), np.zeros(()))
+        rest = np.asarray(self.depth(texel, angle, azimuth, extent)) - part
         with np.errstate(divide="ignore", invalid="ignore"):
             out = np.where(per != 0, (need - rest) / np.where(per != 0, per, 1.0), np.where(need - rest <= 0, 0.0, np.inf))
         return float(out) if np.ndim(out) == 0 else out
@@ -370,9 +420,15 @@ class Pipeline:
         Whether the fit is stabilized (snapped and rotation-invariant): no shimmer under motion.
     box : tuple or None
         ``(width, height)`` of a fixed world box [world units] when ``fit == "fixed"``.
+    grow : tuple of float
+        World units the engine adds to each cascade's box side after the fit (three.js CSM's
+        ``fade`` margin), one per cascade; empty: none.
     depth_range : tuple of float or None
         The light's depth range (near, far) [world units] where the engine's depth unit is a
         fraction of it.
+    min_extent : float
+        The smallest depth range the engine gives a cascade's map [world units] where it fits
+        near..far per cascade (Babylon.js with depthClamp: 1); 0: none.
     memory : int
         Bytes of the depth maps.
     notes : tuple of str
@@ -390,7 +446,9 @@ class Pipeline:
     blend: float = 0.0
     stable: bool = False
     box: tuple | None = None
+    grow: tuple = ()
     depth_range: tuple | None = None
+    min_extent: float = 0.0
     memory: int = 0
     split: str = ""
     notes: tuple = ()
@@ -404,6 +462,10 @@ class Pipeline:
         object.__setattr__(self, "near_i", tuple(map(float, n)))
         object.__setattr__(self, "far_i", tuple(map(float, f)))
         object.__setattr__(self, "notes", tuple(self.notes))
+        grow = np.asarray(self.grow, float)
+        if grow.size and (grow.shape != n.shape or not np.all(np.isfinite(grow)) or np.any(grow < 0)):
+            raise ValueError(f"grow must be one finite value >= 0 per cascade, got {self.grow!r}")
+        object.__setattr__(self, "grow", tuple(map(float, grow)))
         if not self.memory:
             object.__setattr__(self, "memory", int(len(n) * self.resolution ** 2 * 4))
 
