@@ -101,10 +101,8 @@ class BiasPreset:
 
 
 def from_profile(name: str, engine: str, source: str, spec: str, settings: dict | None = None, partial: str = "") -> BiasPreset:
-    """The bias preset of an engine profile's rule at ``settings`` (defaults: the engine's).
-
-    Each :class:`aliasing.setups.BiasTerm` becomes the preset's field of its kind (its value ×
-    its scale); the filter's width is ``pcf``; the rule's faces are ``faces``.
+    """The bias preset of an engine profile's rule at ``settings`` (defaults: the engine's): :func:`from_rule`
+    of its pipeline's rule, with the filter's width as ``pcf``.
 
     Example
     -------
@@ -112,38 +110,81 @@ def from_profile(name: str, engine: str, source: str, spec: str, settings: dict 
     >>> round(p.depth_map, 12), p.pcf, p.faces          # 1.5 × bias 0.00005 (PCF with depthClamp); PCF5; front faces
     (7.5e-05, 5, 'front')
     """
-    setup = setups.build(spec, settings or {})
-    rule = setup.pipeline.bias
+    pipeline = setups.build(spec, settings or {}).pipeline
+    return from_rule(name, engine, source, pipeline.bias, max(1, pipeline.filter.taps), partial)
+
+
+def from_rule(name: str, engine: str, source: str, rule, pcf: int, partial: str = "") -> BiasPreset:
+    """A preset from an engine profile's bias rule (``aliasing.setups.BiasRule``): each term's
+    value × scale to the preset's field of its kind (``depth_range`` to ``depth_map``; a texel
+    term's ``offset`` o adds c·v·o to ``depth``), and the rule's faces.
+
+    Raises
+    ------
+    ValueError
+        For a term the preset cannot hold (a clamped slope, an offset outside a depth texel
+        term, two normal scales), naming the term.
+
+    Example
+    -------
+    >>> from aliasing.setups import bevy
+    >>> p = from_rule("b", "Bevy", "", bevy.rule(bevy.PROFILES[0].defaults()), 5)
+    >>> p.depth, p.normal_texels
+    (0.02, 1.8)
+    """
     fields = {"depth": 0.0, "depth_texels": 0.0, "depth_map": 0.0, "normal": 0.0, "normal_texels": 0.0, "across_texels": 0.0, "slope": 0.0}
-    field_of = {"depth": "depth", "depth_texels": "depth_texels", "depth_range": "depth_map", "normal": "normal",
-                "normal_texels": "normal_texels", "across_texels": "across_texels", "slope": "slope"}
-    scales = {t.normal_scale for t in rule.terms if t.kind in ("normal", "normal_texels") and t.value}
-    if len(scales) > 1:
-        raise ValueError(f"{spec}: normal offsets with different scales ({', '.join(sorted(scales))}) do not fit one preset")
+    field_of = {"depth_range": "depth_map"}
+    scales = set()
     for t in rule.terms:
-        fields[field_of[t.kind]] += t.value * t.scale
-    normal_scale = scales.pop() if scales else next((t.normal_scale for t in rule.terms if t.kind in ("normal", "normal_texels")), "one")
-    return BiasPreset(name, engine, source, normal_scale=normal_scale, pcf=max(1, setup.pipeline.filter.taps), partial=partial,
-                      faces=rule.faces, **fields)
+        c = float(t.value) * float(t.scale)
+        if t.kind == "tan_texels" or t.offset and t.kind != "depth_texels":
+            raise ValueError(f"bias term {t.key!r} of kind {t.kind!r} has no preset field; use the engine's profile (aliasing.setups)")
+        fields[field_of.get(t.kind, t.kind)] += c
+        if t.kind == "depth_texels":
+            fields["depth"] += c * t.offset
+        if t.kind in ("normal", "normal_texels") and t.value:
+            scales.add(t.normal_scale)
+    if len(scales) > 1:
+        raise ValueError(f"bias rule of {name!r} mixes normal scales {sorted(scales)}; a preset holds one")
+    scale = scales.pop() if scales else next((t.normal_scale for t in rule.terms if t.kind in ("normal", "normal_texels")), "one")
+    return BiasPreset(name, engine, source, normal_scale=scale, pcf=int(pcf), partial=partial, faces=rule.faces, **fields)
+
+
+def _engine_presets() -> tuple[BiasPreset, ...]:
+    """The engines' presets as views of their profiles at the defaults (:mod:`aliasing.setups`)."""
+    from ..setups import bevy, filament, godot, unity_urp
+
+    gd = godot.PROFILES[0].defaults()
+    gd_res = godot.layout(int(gd[godot.SIZE]), 4)[0]
+    unity, soft = unity_urp.PROFILES[0].defaults(), {**unity_urp.PROFILES[0].defaults(), "supportsSoftShadows": True}
+    return (
+        from_rule("filament", "Filament (1.5x)", "google/filament shaders/src/common_shadowing.fs computeLightSpacePosition (p += n·sinθ·b); "
+                  "filament/src/ShadowMapManager.cpp (b = normalBias · texelSizeWorldSpace); include/filament/LightManager.h ShadowOptions (constantBias 0.001, normalBias 1, polygonOffsetSlope 2); PCF by hardware comparison "
+                  "(profile aliasing.setups.filament)",
+                  filament.rule(filament.PROFILES[0].defaults()), 2),
+        from_rule("bevy", "Bevy (0.13+)", "bevyengine/bevy crates/bevy_pbr/src/render/shadows.wgsl sample_directional_cascade (normal_bias · cascade texel_size · n, "
+                  "depth_bias · direction_to_light); DirectionalLight::DEFAULT_SHADOW_DEPTH_BIAS 0.02, DEFAULT_SHADOW_NORMAL_BIAS 1.8; default filter Gaussian (Castaño 13-tap, 5×5) "
+                  "(profile aliasing.setups.bevy)",
+                  bevy.rule(bevy.PROFILES[0].defaults()), 5),
+        from_rule("godot", "Godot 4", "godotengine/godot scene_forward_clustered.glsl BIAS_FUNC (along the light: shadow_bias[j]; across it: "
+                  "n·shadow_normal_bias[j] less its along-light part); light_storage.cpp (shadow_bias[j] = shadow_bias/100 · bias_scale · shadow_blur · "
+                  "quality radius, shadow_normal_bias[j] = shadow_normal_bias · texel); renderer_scene_cull.cpp (bias_scale = 2r + pancake_size); "
+                  f"defaults shadow_bias 0.1, shadow_normal_bias 2.0, pancake 20, Soft Low (radius 2); evaluated for {gd_res}² splits (the default "
+                  "4096 atlas's quadrants) (profile aliasing.setups.godot)",
+                  godot.rule(gd, gd_res), godot.filter_of(gd).taps,
+                  partial=f"the constant term scales with the map's side: exact for {gd_res}² splits (the default atlas); other sizes: the godot profile"),
+        from_rule("unity-urp", "Unity URP (12–17), hard shadows", "Unity-Technologies/Graphics Packages/com.unity.render-pipelines.universal/Runtime/ShadowUtils.cs GetShadowBias "
+                  "(bias × frustumSize/resolution); ShaderLibrary/Shadows.hlsl ApplyShadowBias (caster moved along the light, and along −n by (1 − N·L)·normalBias); RenderShadowSlice SetGlobalDepthBias(1, 2.5); asset defaults 1, 1 "
+                  "(profile aliasing.setups.unity_urp)",
+                  unity_urp.rule(unity), 2),
+        from_rule("unity-urp-soft", "Unity URP (12–17), soft shadows", "as unity-urp; GetShadowBias multiplies both by 2.5 when soft shadows are supported; 5×5 tent filter "
+                  "(profile aliasing.setups.unity_urp, supportsSoftShadows)",
+                  unity_urp.rule(soft), 5),
+    )
 
 
 PRESETS: dict[str, BiasPreset] = {p.name: p for p in (
-    BiasPreset("filament", "Filament (1.5x)", "google/filament shaders/src/common_shadowing.fs computeLightSpacePosition (p += n·sinθ·b); "
-               "filament/src/ShadowMapManager.cpp (b = normalBias · texelSizeWorldSpace); include/filament/LightManager.h ShadowOptions (constantBias 0.001, normalBias 1, polygonOffsetSlope 2); PCF by hardware comparison",
-               depth=0.001, normal_texels=1.0, normal_scale="sin", slope=2.0, pcf=2),
-    BiasPreset("bevy", "Bevy (0.13+)", "bevyengine/bevy crates/bevy_pbr/src/render/shadows.wgsl sample_directional_cascade (normal_bias · cascade texel_size · n, "
-               "depth_bias · direction_to_light); DirectionalLight::DEFAULT_SHADOW_DEPTH_BIAS 0.02, DEFAULT_SHADOW_NORMAL_BIAS 1.8; default filter Gaussian (Castaño 13-tap, 5×5)",
-               depth=0.02, normal_texels=1.8, normal_scale="one", pcf=5),
-    BiasPreset("godot", "Godot 4", "godotengine/godot servers/rendering/renderer_rd/forward_clustered/scene_shader_forward_clustered (scene_forward_lights_inc.glsl BIAS_FUNC: "
-               "n·(1 − max(0, dot(L, −n))) · shadow_normal_bias, minus its along-light part); light_data.shadow_normal_bias = normal_bias · shadow_texel_size; "
-               "DirectionalLight3D shadow_normal_bias 2.0",
-               across_texels=2.0, pcf=2,
-               partial="the constant term shadow_bias/100 × a per-split bias_scale (from the split's depth range and pancake size) is not modelled"),
-    BiasPreset("unity-urp", "Unity URP (12–17), hard shadows", "Unity-Technologies/Graphics Packages/com.unity.render-pipelines.universal/Runtime/ShadowUtils.cs GetShadowBias "
-               "(bias × frustumSize/resolution); ShaderLibrary/Shadows.hlsl ApplyShadowBias (caster moved along the light, and along −n by (1 − N·L)·normalBias); RenderShadowSlice SetGlobalDepthBias(1, 2.5); asset defaults 1, 1",
-               depth_texels=1.0, normal_texels=1.0, normal_scale="one-minus-cos", slope=2.5, pcf=2),
-    BiasPreset("unity-urp-soft", "Unity URP (12–17), soft shadows", "as unity-urp; GetShadowBias multiplies both by 2.5 when soft shadows are supported; 5×5 tent filter",
-               depth_texels=2.5, normal_texels=2.5, normal_scale="one-minus-cos", slope=2.5, pcf=5),
+    *_engine_presets(),
     from_profile("threejs", "three.js (r150+)", "the three.js profile (aliasing.setups.threejs, npm three 0.187.0): a DirectionalLight's "
                  "src/lights/LightShadow.js bias 0, normalBias 0 (world units along n, shadowmap_vertex.glsl.js); PCFShadowMap filter "
                  "(5 Vogel taps within radius 1, modelled as 3×3 PCF)", "threejs", {"class": "DirectionalLight"},

@@ -27,8 +27,12 @@ the light), each kind of offset is a depth bias along the light in disguise
 * ``normal_texels``: c·v·w·g(θ)/cos θ;
 * ``across_texels``: c·v·w·sin θ·tan θ (the normal's part across the light);
 * ``slope``: c·v·w·tan θ·max(|cos φ|, |sin φ|) (slope-scaled bias of the rasterizer state);
+* ``tan_texels``: c·v·w·min(tan θ, cap) (a slope bias computed per vertex from the normal and
+  clamped, Unreal's ``ShadowMaxSlopeScaleDepthBias``);
 
-with g(θ) = 1, sin θ or 1 − cos θ (``scale``).  A negative c says the engine's sign: three.js
+with g(θ) = 1, sin θ or 1 − cos θ (``scale``); in the texel kinds w may carry a fixed ``offset``
+(w + offset: Godot's constant bias is a fraction of the map's side plus its pancake depth).
+A negative c says the engine's sign: three.js
 adds ``shadow.bias`` to the receiver's depth, so a negative value lifts it towards the light.
 
 Example
@@ -55,7 +59,7 @@ from .. import _validation as check
 
 Array = NDArray[np.float64]
 
-KINDS = ("depth", "depth_texels", "depth_range", "normal", "normal_texels", "across_texels", "slope")
+KINDS = ("depth", "depth_texels", "depth_range", "normal", "normal_texels", "across_texels", "slope", "tan_texels")
 SCALES = ("one", "sin", "one-minus-cos")
 FACES = ("front", "back", "both")
 TYPES = ("float", "int", "bool", "choice")
@@ -195,6 +199,10 @@ class BiasTerm:
     contact : bool
         Whether the term moves the surface along the light and so opens a lit gap at a contact
         (constant and texel depth terms: True; normal offsets cancel against a vertical caster).
+    cap : float
+        The clamp of tan θ in ``tan_texels``, >= 0 (inf: none).
+    offset : float
+        Added to the texel w in the texel kinds [world units] (0: none).
     """
 
     key: str
@@ -203,10 +211,14 @@ class BiasTerm:
     scale: float = 1.0
     normal_scale: str = "one"
     contact: bool | None = None
+    cap: float = math.inf
+    offset: float = 0.0
 
     def __post_init__(self) -> None:
         check.choice(self.kind, "kind", KINDS)
         check.choice(self.normal_scale, "normal_scale", SCALES)
+        if not (isinstance(self.cap, (int, float)) and self.cap >= 0) or not (isinstance(self.offset, (int, float)) and math.isfinite(self.offset)):
+            raise ValueError(f"cap must be >= 0 and offset finite, got cap={self.cap!r}, offset={self.offset!r}")
         if self.contact is None:
             object.__setattr__(self, "contact", self.kind in ("depth", "depth_texels", "depth_range"))
 
@@ -227,6 +239,7 @@ class BiasTerm:
         else:
             d = np.ones(())
         w, th, ph, d = np.broadcast_arrays(w, th, ph, d)
+        w = w + self.offset
         g = np.sin(th) if self.normal_scale == "sin" else 1.0 - np.cos(th) if self.normal_scale == "one-minus-cos" else np.ones_like(th)
         with np.errstate(divide="ignore", invalid="ignore"):
             k = {
@@ -237,6 +250,7 @@ class BiasTerm:
                 "normal_texels": w * g / np.cos(th),
                 "across_texels": w * np.sin(th) * np.tan(th),
                 "slope": w * np.tan(th) * np.maximum(np.abs(np.cos(ph)), np.abs(np.sin(ph))),
+                "tan_texels": w * np.minimum(np.tan(th), self.cap),
             }[self.kind]
         out = self.scale * np.where(np.isfinite(k), k, np.inf)
         return float(out) if out.ndim == 0 else out
@@ -250,28 +264,14 @@ class BiasRule:
     acne without bias), ``back`` (the side away from the light casts: a closed or one-sided
     lit surface compares against the far side of its object, so it does not acne; the gap at
     a contact and light leaks move instead) or ``both``.
-
-    ``resolution`` (texels per side of each map, 0: none): where it is set, a ``depth_range``
-    term given no ``extent`` takes the map's side w·resolution for the cascade's depth range
-    (the cube around a sphere fit: exact for Babylon.js's stabilized cascades and PlayCanvas;
-    the tight box's own range along the light differs: :func:`aliasing.engines.pipeline.extents`).
     """
 
     terms: tuple[BiasTerm, ...] = ()
     faces: str = "front"
-    resolution: int = 0
 
     def __post_init__(self) -> None:
         check.choice(self.faces, "faces", FACES)
         object.__setattr__(self, "terms", tuple(self.terms))
-        if isinstance(self.resolution, bool) or not isinstance(self.resolution, (int, np.integer)) or self.resolution < 0:
-            raise ValueError(f"resolution must be a whole number of texels >= 0, got {self.resolution!r}")
-
-    def _extent(self, texel: ArrayLike, extent: ArrayLike | None) -> ArrayLike | None:
-        """``extent``, or the map's side w·resolution where the rule has one and a depth_range term needs it."""
-        if extent is None and self.resolution and self.needs_extent:
-            return check.positive(texel, "texel") * self.resolution
-        return extent
 
     def term(self, key: str) -> BiasTerm:
         for t in self.terms:
@@ -291,7 +291,6 @@ class BiasRule:
         ``extent``: the cascade's map depth range along the light [world units], for rules with
         ``depth_range`` terms (:attr:`needs_extent`).
         """
-        extent = self._extent(texel, extent)
         total = sum((t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent)) for t in self.terms), np.zeros(()))
         total = np.broadcast_to(total, np.broadcast_shapes(np.shape(texel), np.shape(angle), np.shape(azimuth))) if not self.terms else total
         return float(total) if np.ndim(total) == 0 else np.asarray(total, float)
@@ -299,7 +298,6 @@ class BiasRule:
     def contact(self, texel: ArrayLike, extent: ArrayLike | None = None) -> float | Array:
         """The part along the light [world units]: what opens a lit gap at the foot of a caster."""
         w = check.positive(texel, "texel")
-        extent = self._extent(w, extent)
         total = np.zeros(np.broadcast_shapes(w.shape, np.shape(extent)) if extent is not None else w.shape)
         for t in self.terms:
             if t.contact:
@@ -312,16 +310,12 @@ class BiasRule:
 
         A bound from below where the term's scale is positive, from above where it is negative
         (three.js's ``shadow.bias``); ±inf where the term cannot help (a normal offset on a
-        receiver facing the light, θ = 0).  A setting that acts through several terms (PlayCanvas's
-        ``shadowBias``: a slope and a constant rasterizer bias) counts with all of them.
+        receiver facing the light, θ = 0).
         """
-        self.term(key)  # the ValueError with a did-you-mean
+        t = self.term(key)
         need = check.finite(need, "need")
-        extent = self._extent(texel, extent)
-        own = [t for t in self.terms if t.key == key]
-        per = sum((np.asarray(t.per_unit(texel, angle, azimuth, extent), float) for t in own), np.zeros(()))
-        part = sum((t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent)) for t in own), np.zeros(()))
-        rest = np.asarray(self.depth(texel, angle, azimuth, extent)) - part
+        rest = np.asarray(self.depth(texel, angle, azimuth, extent)) - t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent))
+        per = np.asarray(t.per_unit(texel, angle, azimuth, extent), float)
         with np.errstate(divide="ignore", invalid="ignore"):
             out = np.where(per != 0, (need - rest) / np.where(per != 0, per, 1.0), np.where(need - rest <= 0, 0.0, np.inf))
         return float(out) if np.ndim(out) == 0 else out
@@ -431,6 +425,13 @@ class Pipeline:
         near..far per cascade (Babylon.js with depthClamp: 1); 0: none.
     memory : int
         Bytes of the depth maps.
+    rows : int
+        Texels along the map's t axis where they differ from ``resolution`` (Godot's two splits
+        are halves of a square atlas: each split ``resolution`` wide, ``resolution/2`` tall);
+        0: square maps.
+    bands : tuple of (float, float)
+        The eye-depth range (start, end) of each blend band between cascade i and i + 1
+        [world units]; empty when the engine does not blend.
     notes : tuple of str
         What the profile does not model, in words (empty when all of it is).
     """
@@ -452,6 +453,8 @@ class Pipeline:
     memory: int = 0
     split: str = ""
     notes: tuple = ()
+    rows: int = 0
+    bands: tuple = ()
 
     def __post_init__(self) -> None:
         n, f = np.asarray(self.near_i, float), np.asarray(self.far_i, float)
@@ -466,8 +469,9 @@ class Pipeline:
         if grow.size and (grow.shape != n.shape or not np.all(np.isfinite(grow)) or np.any(grow < 0)):
             raise ValueError(f"grow must be one finite value >= 0 per cascade, got {self.grow!r}")
         object.__setattr__(self, "grow", tuple(map(float, grow)))
+        object.__setattr__(self, "bands", tuple((float(a), float(b)) for a, b in self.bands))
         if not self.memory:
-            object.__setattr__(self, "memory", int(len(n) * self.resolution ** 2 * 4))
+            object.__setattr__(self, "memory", int(len(n) * self.resolution * (self.rows or self.resolution) * 4))
 
     @property
     def k(self) -> int:
