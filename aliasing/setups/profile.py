@@ -264,14 +264,28 @@ class BiasRule:
     acne without bias), ``back`` (the side away from the light casts: a closed or one-sided
     lit surface compares against the far side of its object, so it does not acne; the gap at
     a contact and light leaks move instead) or ``both``.
+
+    ``resolution`` (texels per side of each map, 0: none): where it is set, a ``depth_range``
+    term given no ``extent`` takes the map's side w·resolution for the cascade's depth range
+    (the cube around a sphere fit: exact for Babylon.js's stabilized cascades and PlayCanvas;
+    the tight box's own range along the light differs: :func:`aliasing.engines.pipeline.extents`).
     """
 
     terms: tuple[BiasTerm, ...] = ()
     faces: str = "front"
+    resolution: int = 0
 
     def __post_init__(self) -> None:
         check.choice(self.faces, "faces", FACES)
         object.__setattr__(self, "terms", tuple(self.terms))
+        if isinstance(self.resolution, bool) or not isinstance(self.resolution, (int, np.integer)) or self.resolution < 0:
+            raise ValueError(f"resolution must be a whole number of texels >= 0, got {self.resolution!r}")
+
+    def _extent(self, texel: ArrayLike, extent: ArrayLike | None) -> ArrayLike | None:
+        """``extent``, or the map's side w·resolution where the rule has one and a depth_range term needs it."""
+        if extent is None and self.resolution and self.needs_extent:
+            return check.positive(texel, "texel") * self.resolution
+        return extent
 
     def term(self, key: str) -> BiasTerm:
         for t in self.terms:
@@ -291,6 +305,7 @@ class BiasRule:
         ``extent``: the cascade's map depth range along the light [world units], for rules with
         ``depth_range`` terms (:attr:`needs_extent`).
         """
+        extent = self._extent(texel, extent)
         total = sum((t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent)) for t in self.terms), np.zeros(()))
         total = np.broadcast_to(total, np.broadcast_shapes(np.shape(texel), np.shape(angle), np.shape(azimuth))) if not self.terms else total
         return float(total) if np.ndim(total) == 0 else np.asarray(total, float)
@@ -298,6 +313,7 @@ class BiasRule:
     def contact(self, texel: ArrayLike, extent: ArrayLike | None = None) -> float | Array:
         """The part along the light [world units]: what opens a lit gap at the foot of a caster."""
         w = check.positive(texel, "texel")
+        extent = self._extent(w, extent)
         total = np.zeros(np.broadcast_shapes(w.shape, np.shape(extent)) if extent is not None else w.shape)
         for t in self.terms:
             if t.contact:
@@ -310,12 +326,16 @@ class BiasRule:
 
         A bound from below where the term's scale is positive, from above where it is negative
         (three.js's ``shadow.bias``); ±inf where the term cannot help (a normal offset on a
-        receiver facing the light, θ = 0).
+        receiver facing the light, θ = 0).  A setting that acts through several terms (PlayCanvas's
+        ``shadowBias``: a slope and a constant rasterizer bias) counts with all of them.
         """
-        t = self.term(key)
+        self.term(key)  # the ValueError with a did-you-mean
         need = check.finite(need, "need")
-        rest = np.asarray(self.depth(texel, angle, azimuth, extent)) - t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent))
-        per = np.asarray(t.per_unit(texel, angle, azimuth, extent), float)
+        extent = self._extent(texel, extent)
+        own = [t for t in self.terms if t.key == key]
+        per = sum((np.asarray(t.per_unit(texel, angle, azimuth, extent), float) for t in own), np.zeros(()))
+        part = sum((t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent)) for t in own), np.zeros(()))
+        rest = np.asarray(self.depth(texel, angle, azimuth, extent)) - part
         with np.errstate(divide="ignore", invalid="ignore"):
             out = np.where(per != 0, (need - rest) / np.where(per != 0, per, 1.0), np.where(need - rest <= 0, 0.0, np.inf))
         return float(out) if np.ndim(out) == 0 else out
