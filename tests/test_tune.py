@@ -21,14 +21,29 @@ def _setup(**settings):
 
 
 def _engines():
+    """Every engine with a profile; those whose profile declares no tunable settings are skipped."""
     out = []
     for engine in setups.ENGINES:
         try:
-            setups.profiles(engine)
+            prof = setups.get(engine)
         except ValueError:  # no profile yet
             continue
-        out.append(engine)
+        out.append(pytest.param(engine, marks=() if prof.tunable else pytest.mark.skip(reason=f"{engine}: no tunable settings declared")))
     return out
+
+
+@pytest.mark.parametrize("engine", list(setups.ENGINES))
+def test_measure_is_check(engine):
+    """The search's measure of a setup is check's: error and gap per cascade, and acne where the bias falls short."""
+    try:
+        s = setups.build(engine, None, CAMERA, "15..60")
+    except ValueError:
+        pytest.skip(f"{engine}: no profile")
+    r = check(s, receivers=[0.0, 10.0])
+    m = measure(s, limits(s, max_slope=10.0))
+    assert m.error == pytest.approx([c["error_max"] for c in r.cascades], rel=1e-12)
+    assert m.gap_px == pytest.approx([c["gap_px"] for c in r.cascades], rel=1e-12)
+    assert list(m.have >= m.need) == [c["acne"] == 0.0 for c in r.cascades]
 
 
 def _grid(start, fixed=(), scale=1.0, roles=("cascades", "size", "split", "stable", "blend")):

@@ -161,8 +161,8 @@ def limits(setup: Setup, *, receivers: Iterable[float] | None = None, max_texels
            max_slope: float = 0.0, moving: bool = False) -> Limits:
     """The validated :class:`Limits` of :func:`tune` (defaults filled from ``setup``)."""
     cam = setup.camera
-    if receivers is None:
-        rn, rf = cam.near, cam.far
+    if receivers is None:  # where the setup casts shadows now: the camera's near to the shadows' end
+        rn, rf = cam.near, min(cam.far, float(max(setup.pipeline.far_i)))
     else:
         try:
             rn, rf = (float(x) for x in receivers)

@@ -297,7 +297,8 @@ def tune(setup: Setup, *, receivers: Iterable[float] | None = None, scene: Any =
         The engine, its settings (the start, and the values of the fixed settings), the camera
         and the sun band.
     receivers : (float, float), optional
-        Eye depths of the receivers, NEAR..FAR [world units] (default the camera's near..far).
+        Eye depths of the receivers, NEAR..FAR [world units] (default the camera's near to where
+        ``setup``'s shadows end).
     scene : Scene or str, optional
         A scene whose visible depths give the receivers (instead of ``receivers``).
     max_texels : int, optional
