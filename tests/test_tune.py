@@ -243,3 +243,19 @@ def test_fuzz_limits(near, span, gap, slope, lo, width):
     assert math.isfinite(t.objective) and t.objective > 0
     if t.feasible:
         assert t.objective <= t.before.objective * (1 + 1e-9) or t.before.violations(t.limits)
+
+
+def test_splits_against_the_papers():
+    """Receivers 1..200 m: three.js's λ family against the log, practical, equal-error and eq. 83 budget splits."""
+    from aliasing.tune.theory import _errors, compare_splits
+
+    t = tune(_setup(), receivers=(1.0, 200.0), fixed=("cascades", "shadowMapSize"))
+    rows = {r["method"]: r for r in compare_splits(t)}
+    best = rows["equal-error"]
+    assert best["error"] <= min(rows[m]["error"] for m in ("tuned", "log", "practical")) * (1 + 1e-3)
+    pipe, cam = t.setup.pipeline, t.setup.camera
+    c = np.array(best["splits"])
+    each = _errors(pipe, cam, t.setup.sun.direction(t.setup.sun.elevations(7)), c[:-1], c[1:], t.limits.receivers)
+    assert np.nanmax(each) <= np.nanmin(each) * 1.005  # every cascade at the same error
+    assert rows["tuned"]["error"] == pytest.approx(t.objective, rel=1e-12)
+    assert 1.2 < rows["tuned"]["ratio"] < 1.4  # the λ family stays about a third above the best split

@@ -15,6 +15,10 @@ measure
     The objective and the constraints of one setup.
 search
     The search and the closed-form bias.
+theory
+    The tuned split against the papers' splits for the same budget.
+command
+    The ``aliasing tune`` subcommand.
 
 Example
 -------
@@ -28,6 +32,8 @@ Example
 from __future__ import annotations
 
 from .measure import LIMITS, MAX_ANGLE, Limits, Measure, limits, measure
-from .search import Tuned, closed_form_bias, tune
+from .search import Tuned, closed_form_bias, scene_receivers, tune
+from .theory import compare_splits, equal_error_split
 
-__all__ = ["LIMITS", "MAX_ANGLE", "Limits", "Measure", "Tuned", "closed_form_bias", "limits", "measure", "tune"]
+__all__ = ["LIMITS", "MAX_ANGLE", "Limits", "Measure", "Tuned", "closed_form_bias", "compare_splits", "equal_error_split", "limits",
+           "measure", "scene_receivers", "tune"]
