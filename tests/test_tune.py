@@ -259,3 +259,25 @@ def test_splits_against_the_papers():
     assert np.nanmax(each) <= np.nanmin(each) * 1.005  # every cascade at the same error
     assert rows["tuned"]["error"] == pytest.approx(t.objective, rel=1e-12)
     assert 1.2 < rows["tuned"]["ratio"] < 1.4  # the λ family stays about a third above the best split
+
+
+def test_guide_numbers():
+    """The numbers of the guide's 'Tune your engine' page, at the precision printed there."""
+    from aliasing.tune import compare_splits
+
+    front = _setup(**{"material.shadowSide": "FrontSide"})
+    fixed = ("cascades", "shadowMapSize")
+    t = tune(front, receivers=(1.0, 200.0), max_slope=10.0, fixed=fixed)
+    assert t.changed == {"maxFar": 200.0, "mode": "custom", "customSplitsLambda": 0.9132, "shadow.normalBias": 0.2778}
+    assert (round(t.before.objective, 1), round(t.objective, 2)) == (67.7, 5.33)
+    assert t.measure.texels * 4 == 64 * 2**20
+    rows = {r["method"]: r for r in compare_splits(t)}
+    assert {m: float(f"{rows[m]['error']:.3g}") for m in rows} == {"start": 67.7, "tuned": 5.33, "log": 7.19, "practical": 27.3,
+                                                                   "equal-error": 4.05, "budget": 5.64}
+    assert {m: round(rows[m]["ratio"], 2) for m in ("tuned", "log", "practical", "budget")} == {"tuned": 1.32, "log": 1.78, "practical": 6.75,
+                                                                                              "budget": 1.39}
+    bad = tune(front.with_settings(**{"shadow.normalBias": 0.0}), receivers=(1.0, 200.0), max_gap_px=1.0, fixed=fixed + ("shadow.normalBias",))
+    assert round(float(np.nanmax(bad.measure.gap_px)), 1) == 15.2 and set(bad.binding) == {"max_gap_px", "max_slope"}
+    assert (bad.setup.settings["mode"], bad.setup.settings["renderer.shadowMap.type"]) == ("uniform", "BasicShadowMap")
+    curve = [(round(p["angle"], 1), float(f"{p['gap_px']:.3g}")) for p in bad.tradeoff]
+    assert curve[1] == (8.3, 0.596) and curve[2] == (16.7, 1.22) and curve[-1] == (75.0, 15.2)
