@@ -78,3 +78,18 @@ def test_max_texels_as_maps_of_a_size(capsys):
     got, _ = _json(capsys, ["tune", "--engine", "threejs", "--camera", CAMERA, "--sun", "15..60", "--max-texels", "2x1024"])
     assert got["limits"]["max_texels"] == 2 * 1024 ** 2
     assert sum(c["memory"] for c in got["cascades"]) <= 4 * 2 * 1024 ** 2
+
+
+def test_explorer_shows_the_tuned_settings():
+    """The explorer's data is tune's, and follows the limits; a bad gap entry keeps the last good state."""
+    pytest.importorskip("ipywidgets")
+    from aliasing import explore, setups
+    from aliasing.tune import tune
+
+    e = explore.tune(receivers_near=1.0, receivers_far=200.0, max_slope=10.0)
+    assert e.error is None and e.png().startswith(b"\x89PNG")
+    start = setups.build("threejs", {"cascades": 4, "shadowMapSize": 2048, "material.shadowSide": "FrontSide"}, CAMERA, "15..60")
+    t = tune(start, receivers=(1.0, 200.0), max_slope=10.0, max_texels=4 * 2048**2, fixed=("cascades", "shadowMapSize"))
+    assert e.data["changed"] == t.changed and e.data["objective"] == t.objective
+    assert e.set_state({"max_slope": 0.0}) and e.data["changed"]["shadow.normalBias"] < t.changed["shadow.normalBias"]
+    assert not e.set_state({"max_gap_px": "-1"}) and "max_gap_px" in e.error and e.data["changed"]["shadow.normalBias"] < 0.2778
