@@ -93,3 +93,35 @@ def test_explorer_shows_the_tuned_settings():
     assert e.data["changed"] == t.changed and e.data["objective"] == t.objective
     assert e.set_state({"max_slope": 0.0}) and e.data["changed"]["shadow.normalBias"] < t.changed["shadow.normalBias"]
     assert not e.set_state({"max_gap_px": "-1"}) and "max_gap_px" in e.error and e.data["changed"]["shadow.normalBias"] < 0.2778
+
+
+hypothesis = pytest.importorskip("hypothesis")
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+_GARBAGE = st.sampled_from(["nan", "inf", "-inf", "1e400", "", "-0", "0", "1", "2.5", "x", "1..", "..2", "3..1", "0.5..50", "1e-300..1",
+                            "4x", "2x1024", "1e9", "-5", "89.99", "90", "ü"])
+_FLAGS = st.lists(st.tuples(st.sampled_from(["--receivers", "--max-texels", "--max-gap-px", "--max-slope", "--set"]), _GARBAGE),
+                  min_size=1, max_size=3)
+
+
+@settings(max_examples=12, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(flags=_FLAGS, moving=st.booleans())
+def test_fuzz_limits_exit_zero_or_one_line(flags, moving, capsys):
+    argv = ["tune", "--engine", "threejs", "--sun", "15..60", "--set", "cascades=2", "--set", "shadowMapSize=512", "--set", "mode=uniform"]
+    for flag, value in flags:
+        argv += [flag, f"shadow.normalBias={value}" if flag == "--set" else value]
+    argv += ["--moving"] if moving else []
+    capsys.readouterr()  # what an earlier example left
+    try:
+        status = main(argv + ["--format", "json"])
+    except SystemExit as exc:
+        status = exc.code
+    out = capsys.readouterr()
+    assert status in (0, 2) and "Traceback" not in out.err
+    if status == 2:
+        assert out.err.count("\n") == 1
+    else:
+        got = json.loads(out.out)
+        assert got["feasible"] or got["binding"]  # an unmet limit is named
+        assert (out.err == "") == got["feasible"]  # one line on stderr says which
