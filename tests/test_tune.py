@@ -282,3 +282,27 @@ def test_guide_numbers():
     assert (bad.setup.settings["mode"], bad.setup.settings["renderer.shadowMap.type"]) == ("uniform", "BasicShadowMap")
     curve = [(round(p["angle"], 1), float(f"{p['gap_px']:.3g}")) for p in bad.tradeoff]
     assert curve[1] == (8.3, 0.596) and curve[2] == (16.7, 1.22) and curve[-1] == (75.0, 15.2)
+
+
+def test_generic_search_on_a_profile_with_stabilization():
+    """Babylon.js's profile given tunable settings here (tight fit, stabilization, a bias over the map's depth range):
+    a moving camera takes the stabilized fit, and the result is no worse than check's grid of λ and stabilization."""
+    import dataclasses
+
+    from aliasing.setups import Tunable
+
+    tunable = (Tunable("lambda", "split", range=(0.0, 1.0), step=0.05), Tunable("stabilizeCascades", "stable", values=(False, True)),
+               Tunable("bias", "bias"), Tunable("normalBias", "bias"),
+               Tunable("filteringQuality", "filter", values=("QUALITY_HIGH", "QUALITY_MEDIUM", "QUALITY_LOW")))
+    profile = dataclasses.replace(setups.get("babylon"), tunable=tunable)
+    start = setups.build(profile, None, CAMERA, "15..60")
+    still, moving = tune(start), tune(start, moving=True)
+    assert still.setup.settings["stabilizeCascades"] is False and moving.setup.settings["stabilizeCascades"] is True
+    assert moving.binding == ("moving",) and moving.objective > still.objective
+    for t in (still, moving):
+        _holds(t)
+    best = {m: math.inf for m in (False, True)}
+    for s in _grid(start, scale=2.0, roles=("split", "stable")):
+        su = setups.Setup(profile, s, start.camera, start.sun)
+        best[s["stabilizeCascades"]] = min(best[s["stabilizeCascades"]], max(c["error_max"] for c in check(su).cascades))
+    assert still.objective <= min(best.values()) * 1.01 and moving.objective <= best[True] * 1.01

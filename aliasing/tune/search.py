@@ -221,23 +221,38 @@ def _round_safe(value: float, up: bool) -> float:
     return float(f"{(math.ceil(value / q) if up else math.floor(value / q)) * q:.{_DIGITS}g}")
 
 
+def _per_sign(rule, key: str, need: np.ndarray, texel: np.ndarray, angle: float) -> np.ndarray:
+    """The sign of the depth bias one unit of ``key`` gives, per cascade (0: it cannot help).
+
+    From the rule's own :meth:`~aliasing.setups.BiasRule.minimal`, linear in the need: a unit
+    more need moves the value by 1/per (every term of the setting, and the map's depth range
+    where a term scales with it, counted as the rule counts them).
+    """
+    with np.errstate(invalid="ignore"):
+        step = np.asarray(rule.minimal(key, need + 1.0, texel, angle, AZIMUTH), float) - np.asarray(rule.minimal(key, need, texel, angle, AZIMUTH), float)
+    return np.where(np.isfinite(step), np.sign(step), 0.0)
+
+
+def _extreme(rule, key: str, need: np.ndarray, texel: np.ndarray, angle: float) -> tuple[float, bool] | None:
+    """The minimal value of ``key`` over the cascades and whether it is a bound from below (None: it cannot help)."""
+    sign = _per_sign(rule, key, need, texel, angle)
+    if not (np.all(sign > 0) or np.all(sign < 0)):
+        return None
+    values = np.asarray(rule.minimal(key, need, texel, angle, AZIMUTH), float)
+    up = bool(np.all(sign > 0))
+    value = float(values.max() if up else values.min())
+    return (value, up) if math.isfinite(value) else None
+
+
 def _minimal(setup: Setup, key: str, m: Measure, angle: float) -> float | None:
     """The closed-form minimum of bias setting ``key`` over the cascades, in the engine's units (None: it cannot help)."""
     rule = setup.pipeline.bias
-    try:
-        term = rule.term(key)
-    except ValueError:
+    if key not in {t.key for t in rule.terms}:
         return None
-    per = np.asarray(term.per_unit(m.texel, angle, AZIMUTH), float)
-    if np.any(per == 0):
+    got = _extreme(rule, key, m.need, m.texel, angle)
+    if got is None:
         return None
-    values = np.asarray(rule.minimal(key, m.need, m.texel, angle, AZIMUTH), float)
-    up = bool(np.all(per > 0))
-    if not (np.all(per > 0) or np.all(per < 0)):
-        return None
-    value = float(values.max() if up else values.min())
-    if not math.isfinite(value):
-        return None
+    value, up = got
     value = _round_safe(value, up)
     for v in (value, 1e-9 if up else -1e-9) if value == 0 else (value,):  # an engine may read 0 as its default (three.js)
         try:
@@ -270,13 +285,8 @@ def closed_form_bias(setup: Setup, key: str, *, max_slope: float = 0.0, receiver
     free = [t.key for t in setup.profile.tunable if t.role == "bias" and t.active(setup.settings)]
     s = setup.with_settings(**{k: _neutral(setup.profile.setting(k)) for k in free if k != key})
     m = measure(s, lim)
-    angle = steepest(s, lim.max_slope)
-    per = np.asarray(s.pipeline.bias.term(key).per_unit(m.texel, angle, AZIMUTH), float)
-    values = np.asarray(s.pipeline.bias.minimal(key, m.need, m.texel, angle, AZIMUTH), float)
-    if not (np.all(per > 0) or np.all(per < 0)):
-        return None
-    value = float(values.max() if np.all(per > 0) else values.min())
-    return value if math.isfinite(value) else None
+    got = _extreme(s.pipeline.bias, key, m.need, m.texel, steepest(s, lim.max_slope))
+    return None if got is None else got[0]
 
 
 def _changes(a: Mapping[str, Any], b: Mapping[str, Any]) -> int:
