@@ -125,3 +125,11 @@ def test_fuzz_limits_exit_zero_or_one_line(flags, moving, capsys):
         got = json.loads(out.out)
         assert got["feasible"] or got["binding"]  # an unmet limit is named
         assert (out.err == "") == got["feasible"]  # one line on stderr says which
+
+
+def test_scene_without_a_camera_is_one_line(capsys, tmp_path):
+    obj = tmp_path / "ground.obj"
+    obj.write_text("v -10 0 -10\nv 10 0 -10\nv 0 0 10\nf 1 2 3\n")
+    assert main(BASE + ["--scene", str(obj)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--scene" in err and "no glTF camera" in err and "receivers NEAR..FAR" in err
