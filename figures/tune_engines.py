@@ -1,7 +1,7 @@
 """What ``aliasing tune`` changes, per engine: the engine's defaults against the tuned settings.
 
 Not a paper figure.  One figure per engine whose profile declares its tunable settings
-(:attr:`aliasing.setups.Profile.tunable`), ``tune-<engine>.png``: a 16:9 camera (near 0.1 m, far
+(the ``tunable`` of :class:`aliasing.setups.Profile`), ``tune-<engine>.png``: a 16:9 camera (near 0.1 m, far
 500 m, vertical fov 50°, 1920×1080), the sun 15–60° above the ground, 4 cascades at the engine's
 default map size (the count and the size kept, so the memory is the same), front faces casting
 (three.js: ``material.shadowSide = FrontSide``) so that the ground can acne, receivers up to a

@@ -4,7 +4,7 @@
 the camera and the sun band) and the limits (receivers' depths, a texel budget, the steepest
 receiver that must stay free of acne, the largest lit gap in pixels, a moving camera), and
 searches only the settings the engine's profile declares tunable
-(:attr:`aliasing.setups.Profile.tunable`) for the lowest worst-case perspective error.
+(the ``tunable`` of :class:`aliasing.setups.Profile`) for the lowest worst-case perspective error.
 Biases are not searched: they are set to the closed-form minimum that leaves no acne.  Where
 the limits cannot all be met, :attr:`Tuned.binding` says which break and
 :attr:`Tuned.tradeoff` gives the curve between acne and gap.

@@ -13,8 +13,8 @@ setting is set the cheapest way that is exact:
   :meth:`aliasing.setups.BiasRule.minimal`, the extreme over the cascades, rounded to four
   significant digits on the safe side; where the engine has several bias settings, each is
   tried alone (the others at zero) and the one whose lit gap is smallest kept;
-* cascade counts, split modes, filters, stabilization: enumerated over the profile's
-  :attr:`aliasing.setups.Profile.tunable` values;
+* cascade counts, split modes, filters, stabilization: enumerated over the values of the
+  profile's ``tunable`` (:class:`aliasing.setups.Tunable`);
 * continuous split parameters (λ, split fractions): a scan at the profile's step, then a bounded
   Brent search (:func:`scipy.optimize.minimize_scalar`) around the best point of the scan, one
   parameter at a time until none moves.
@@ -297,7 +297,7 @@ def tune(setup: Setup, *, receivers: Iterable[float] | None = None, scene: Any =
          max_gap_px: float | None = None, max_slope: float = 0.0, moving: bool = False, fixed: Iterable[str] = ()) -> Tuned:
     """The engine's own settings with the lowest worst perspective error within the limits.
 
-    Searches only the settings the profile declares tunable (:attr:`aliasing.setups.Profile.tunable`)
+    Searches only the settings the profile declares tunable (the ``tunable`` of :class:`aliasing.setups.Profile`)
     and not in ``fixed``; the rest keep ``setup``'s values.  How each kind is set: the module
     docstring.
 
