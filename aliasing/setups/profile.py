@@ -63,6 +63,7 @@ KINDS = ("depth", "depth_texels", "depth_range", "normal", "normal_texels", "acr
 SCALES = ("one", "sin", "one-minus-cos")
 FACES = ("front", "back", "both")
 TYPES = ("float", "int", "bool", "choice")
+ROLES = ("cascades", "size", "split", "distance", "bias", "filter", "stable", "blend")
 
 
 @dataclass(frozen=True)
@@ -341,6 +342,61 @@ class BiasRule:
 
 
 @dataclass(frozen=True)
+class Tunable:
+    """A setting that :func:`aliasing.tune.tune` may choose, and the values it searches.
+
+    Attributes
+    ----------
+    key : str
+        The setting's key (a :class:`Setting` of the same profile).
+    role : str
+        What it does to the shadows (:data:`ROLES`): ``cascades`` (their count), ``size`` (texels
+        per side of each map), ``split`` (the split mode or a split parameter), ``distance``
+        (where shadows end), ``bias`` (a term of the bias rule: set to its minimum, not searched),
+        ``filter``, ``stable`` (stabilization) or ``blend`` (the blend band).
+    values : tuple
+        The values searched, for discrete settings (map sizes, counts, modes, booleans).
+    range : tuple or None
+        ``(low, high)`` searched for a continuous setting (a split λ or fraction).
+    step : float
+        The resolution of a grid over ``range`` (the exhaustive grid of the tests; the search
+        itself refines below it).
+    when : tuple of (key, value)
+        The other settings this one acts under (three.js's λ only with ``mode: "custom"``).
+    """
+
+    key: str
+    role: str
+    values: tuple = ()
+    range: tuple | None = None
+    step: float = 0.0
+    when: tuple = ()
+
+    def __post_init__(self) -> None:
+        check.choice(self.role, "role", ROLES)
+        object.__setattr__(self, "values", tuple(self.values))
+        object.__setattr__(self, "when", tuple(tuple(w) for w in self.when))
+        if self.range is not None:
+            lo, hi = self.range
+            if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+                raise ValueError(f"tunable {self.key!r}: range must be (low, high) with low < high, got {self.range!r}")
+            if not self.step > 0:
+                raise ValueError(f"tunable {self.key!r}: a continuous range needs a step > 0, got {self.step!r}")
+
+    def active(self, settings: Mapping[str, Any]) -> bool:
+        """Whether the setting acts under ``settings`` (every ``when`` pair holds)."""
+        return all(settings.get(k) == v for k, v in self.when)
+
+    def grid(self) -> tuple:
+        """The values of an exhaustive grid: ``values``, or ``range`` at ``step`` (ends included)."""
+        if self.range is None:
+            return self.values
+        lo, hi = self.range
+        n = int(round((hi - lo) / self.step))
+        return tuple(float(v) for v in np.linspace(lo, hi, n + 1))
+
+
+@dataclass(frozen=True)
 class Filter:
     """The engine's shadow filter: ``hard`` (one comparison), ``pcf`` (k×k comparisons over ``taps``
     texels; hardware 2×2 comparison sampling is k = 2), ``pcss``, ``vsm``, ``esm``; ``radius``
@@ -467,6 +523,8 @@ class Profile:
         The snippet's language.
     source : str
         Where the engine's code was read (repository and commit or npm package and version).
+    tunable : tuple of Tunable
+        The settings :func:`aliasing.tune.tune` may choose, with the values it searches.
     """
 
     engine: str
@@ -479,6 +537,7 @@ class Profile:
     language: str = ""
     source: str = ""
     npm: str = ""
+    tunable: tuple = ()
     _by_key: Mapping[str, Setting] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -487,6 +546,10 @@ class Profile:
             raise ValueError(f"{self.engine}@{self.release}: duplicate setting keys")
         object.__setattr__(self, "settings", tuple(self.settings))
         object.__setattr__(self, "_by_key", MappingProxyType({s.key: s for s in self.settings}))
+        object.__setattr__(self, "tunable", tuple(self.tunable))
+        for t in self.tunable:
+            if t.key not in self._by_key:
+                raise ValueError(f"{self.engine}@{self.release}: tunable {t.key!r} is not one of its settings")
 
     @property
     def name(self) -> str:

@@ -58,7 +58,7 @@ from typing import Any
 import numpy as np
 
 from .. import partitioning
-from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
+from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
 
 CSM = "examples/jsm/csm/CSM.js"
 SHADOW = "src/lights/LightShadow.js"
@@ -257,11 +257,30 @@ def _js(v: Any) -> str:
     return f"{v:g}" if isinstance(v, float) else str(v)
 
 
+_CSM = (("class", "CSM"),)
+_LIGHT = (("class", "DirectionalLight"),)
+#: What :func:`aliasing.tune.tune` may set: the CSM addon's count, map size, split (the named modes
+#: and a custom callback's λ), where shadows end, the bias pair and the filter; one DirectionalLight's
+#: map size and biases (its fixed box is the user's).  ``fade`` is not searched: its grown boxes
+#: are not in the fit (the profile's notes).
+TUNABLE = (
+    Tunable("cascades", "cascades", values=tuple(range(1, 9)), when=_CSM),
+    Tunable("shadowMapSize", "size", values=(512, 1024, 2048, 4096, 8192, 16384), when=_CSM),
+    Tunable("mode", "split", values=("practical", "uniform", "logarithmic", "custom"), when=_CSM),
+    Tunable("customSplitsLambda", "split", range=(0.0, 1.0), step=0.05, when=(("class", "CSM"), ("mode", "custom"))),
+    Tunable("maxFar", "distance", when=_CSM),
+    Tunable("shadowBias", "bias", when=_CSM),
+    Tunable("shadow.normalBias", "bias"),
+    Tunable("shadow.mapSize.width", "size", values=(512, 1024, 2048, 4096, 8192, 16384), when=_LIGHT),
+    Tunable("shadow.bias", "bias", when=_LIGHT),
+    Tunable("renderer.shadowMap.type", "filter", values=("PCFShadowMap", "BasicShadowMap")),
+)
+
 PROFILES = (
     Profile("threejs", "three.js", "r187", _settings("0.187.0"), _build("r185"), releases=("r185", "r186", "0.187.0", "0.187"),
             snippet=snippet, language="javascript", source="npm three 0.187.0 (examples/jsm/csm, src/lights, src/renderers/webgl)",
-            npm="three@0.187.0"),
+            npm="three@0.187.0", tunable=TUNABLE),
     Profile("threejs", "three.js", "r184", _settings("0.184.0"), _build("r184"), releases=("0.184.0", "0.184"),
             snippet=snippet, language="javascript", source="npm three 0.184.0 (CSMFrustum.split lerps by the break itself)",
-            npm="three@0.184.0"),
+            npm="three@0.184.0", tunable=TUNABLE),
 )
