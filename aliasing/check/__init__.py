@@ -2,7 +2,7 @@
 
 For a :class:`aliasing.setups.Setup` (an engine at a release, its settings, a camera with its
 image height, a sun band), :func:`check` evaluates the pipeline the engine builds
-(:attr:`aliasing.setups.Setup.pipeline`) analytically, per cascade:
+(``Setup.pipeline`` of :class:`aliasing.setups.Setup`) analytically, per cascade:
 
 ``near``, ``far``
     The cascade's eye depths [world units] (overlap included).
