@@ -1,0 +1,254 @@
+"""Maps resident on the gl device: drawn there, kept there, read texel by texel.
+
+A depth map of the ``gl`` backend (:mod:`aliasing.raster.draw.gl`) that its callers only look
+up need not come back whole: :func:`draw_device_map` draws the visible triangle's index per
+texel on the device (the depth test of :func:`aliasing.raster.draw.gl.draw_maps`, over the
+whole map or a box of it) and keeps it there with the triangles' depth coefficients;
+:meth:`DeviceMap.fetch` runs a compute pass that evaluates the depth of the asked texels
+there (the expression the map's fragment shader stores, in double precision, stored as
+float32: within ``gl.DEPTH_ERROR`` of the scene's depth range) and returns those texels
+only.  The values are ``draw_maps``'s, bit for bit on llvmpipe (checked in the tests).
+
+Memory stays bounded: at most :data:`DEVICE_BYTES` of maps are kept (the least recently
+drawn are freed first, and their render targets are reused for the next map of the same
+size: making a texture costs more than drawing it on llvmpipe).  A map bigger than the
+device allows is refused in one line before any work (:func:`check_size`).
+
+Example
+-------
+>>> import numpy as np
+>>> from aliasing.raster.draw import gl
+>>> tri = np.array([[[0.0, 0.0, 0.5], [1.0, 0.0, 0.5], [0.0, 1.0, 0.5]]])   # (s, t, depth): H = I
+>>> if gl.available():
+...     m = draw_device_map(tri, np.eye(4), 8)
+...     depth, ident = m.fetch(np.array([0, 7, 63]))   # texels (0, 0), (0, 7), (7, 7)
+...     m.release()
+... else:   # without an EGL device: the numpy reference, whose values these are
+...     from aliasing.raster.draw.core import rasterize
+...     r = rasterize(tri, 8)
+...     depth, ident = r.depth.ravel()[[0, 7, 63]], r.triangle.ravel()[[0, 7, 63]]
+>>> ident.tolist(), bool(np.isinf(depth[2]))
+([0, -1, -1], True)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..gl import _GROUP, _Scene, _buffer, _context, _info, _render, _setup, _uniform, renderer, require
+
+Array = NDArray[np.float64]
+
+#: Bytes per texel of a map kept on the device (:class:`DeviceMap`: the triangle ids, 4 bytes).
+DEVICE_TEXEL_BYTES = 4
+#: Device maps are kept up to this many bytes in all (eight 2048² maps); beyond it the least
+#: recently drawn are freed (their samplers draw them again if asked for a texel they lack).
+DEVICE_BYTES = 2**27
+#: Texels per pass of :meth:`DeviceMap.fetch` (its buffers: 12 bytes per texel).
+FETCH_BLOCK = 1 << 22
+
+
+# A device map's texels at the asked flat indices row·R + column: the stored id, and the depth
+# that :data:`_DEPTH` stores there (the same expression of the visible triangle's
+# coefficients at the texel centre, in double precision), as its float32 bits; (0, 0) where empty.
+_FETCH = """
+#version 430
+layout(local_size_x = 64) in;
+layout(std430, binding = 6) readonly buffer Asked { int asked[]; };
+layout(std430, binding = 7) writeonly buffer Found { ivec2 found[]; };
+layout(std430, binding = 8) readonly buffer Coefficients { dvec4 coef[]; };
+uniform isampler2D ids_map;
+uniform dvec4 ray;        // q_w = ray.x s + ray.y t + ray.z; e_w = ray.w
+uniform double texel;     // 1/R
+uniform uint count;
+uniform int res;
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= count) return;
+    ivec2 at = ivec2(asked[i] % res, asked[i] / res);   // (column, row): row 0 at the bottom
+    int raw = texelFetch(ids_map, at, 0).r;
+    float stored = 0.0;
+    if (raw != 0) {
+        dvec4 k = coef[~raw];
+        double s = (double(at.x) + 0.5LF) * texel, t = (double(at.y) + 0.5LF) * texel;   // gl_FragCoord of the texel centre
+        double a = k.x * s + k.y * t + k.z;
+        double den = a * ray.w - k.w * (ray.x * s + ray.y * t + ray.z);
+        stored = float(den / (den + a));
+    }
+    found[i] = ivec2(raw, floatBitsToInt(stored));
+}
+"""
+
+
+def max_resolution() -> int:
+    """The largest map side this device can draw [texels] (its texture, render-buffer and
+    viewport limits), 0 when the backend is unavailable."""
+    info = _info()
+    if not info:
+        return 0
+    dims = info.get("GL_MAX_VIEWPORT_DIMS", (2**31, 2**31))
+    return int(min(info.get("GL_MAX_TEXTURE_SIZE", 2**31), info.get("GL_MAX_RENDERBUFFER_SIZE", 2**31), *dims))
+
+
+def check_size(resolution: int, name: str = "resolution") -> None:
+    """Raise ``ValueError`` (one line, with the limit) if a ``resolution``² map is bigger than
+    the device allows (:func:`max_resolution`), before any work; :func:`require` first."""
+    require()
+    limit = max_resolution()
+    if int(resolution) > limit:
+        raise ValueError(f"{name} {int(resolution)} is over the largest map the gl device draws, {limit}² texels ({renderer()})")
+
+
+class DeviceMap:
+    """A depth map that stays on the device where it was drawn (:func:`draw_device_map`).
+
+    The device holds the visible triangle's index per texel of the drawn box and the
+    triangles' depth coefficients.  :meth:`fetch` returns the depth and triangle of asked
+    texels: a compute pass evaluates the depth there (the expression the map's fragment
+    shader stores, :data:`_DEPTH`, in double precision, stored as float32) and only those
+    texels come back; :meth:`read` is the same for every texel.  The values are
+    :func:`draw_maps`'s (checked in the tests).  ``box`` (x, y, width, height) [texels] is
+    the part drawn; a ``released`` map (:meth:`release`, or freed beyond :data:`DEVICE_BYTES`)
+    holds nothing.
+    """
+
+    def __init__(self, ids, fbo, coef, res: int, box: tuple[int, int, int, int], span: float, offset: float, ray: Array) -> None:
+        self._ids, self._fbo, self._coef = ids, fbo, coef
+        self.resolution, self.box, self.span, self.offset, self._ray = res, box, span, offset, ray
+        self.released = False
+
+    def covers(self, texels: NDArray[np.int64]) -> bool:
+        """Whether every flat texel index of ``texels`` lies in the drawn box."""
+        flat = np.asarray(texels, np.int64)
+        x, y, w, h = self.box
+        row, col = flat // self.resolution, flat % self.resolution
+        return bool(((row >= y) & (row < y + h) & (col >= x) & (col < x + w)).all())
+
+    def fetch(self, texels: NDArray[np.int64]) -> tuple[Array, NDArray[np.int64]]:
+        """(depth [the map's depth units, ``inf`` where empty], triangle (−1 where empty)) of
+        flat texel indices ``texels`` (row·R + column) inside the drawn box."""
+        if self.released:
+            raise ValueError("this device map was released: draw it again")
+        flat = np.asarray(texels, np.int64).ravel()
+        if flat.size and (flat.min() < 0 or flat.max() >= self.resolution**2 or not self.covers(flat)):
+            raise ValueError(f"texels must be flat indices in [0, {self.resolution**2 - 1}] inside the drawn box {self.box}")
+        raw = np.empty(flat.size, np.int32)
+        stored = np.empty(flat.size, np.float32)
+        ctx = _context()
+        with ctx:
+            programs = _setup()[0][1]
+            if "fetch" not in programs:
+                programs["fetch"] = ctx.compute_shader(_FETCH)
+            prog = programs["fetch"]
+            self._ids.use(0)
+            prog["ids_map"].value = 0
+            _uniform(prog, "ray", self._ray)
+            _uniform(prog, "texel", np.float64(1.0 / self.resolution))
+            prog["res"].value = self.resolution
+            self._coef.bind_to_storage_buffer(8)
+            for a in range(0, flat.size, FETCH_BLOCK):
+                block = flat[a:a + FETCH_BLOCK]
+                asked = _buffer(ctx, "asked", 4 * block.size)
+                asked.write(block.astype(np.int32))
+                found = _buffer(ctx, "found", 8 * block.size)
+                asked.bind_to_storage_buffer(6)
+                found.bind_to_storage_buffer(7)
+                prog["count"].value = block.size
+                prog.run(group_x=(block.size + _GROUP - 1) // _GROUP)
+                ctx.memory_barrier()
+                out = np.frombuffer(found.read(8 * block.size), np.int32).reshape(-1, 2)
+                raw[a:a + block.size] = out[:, 0]
+                stored[a:a + block.size] = out[:, 1].view(np.float32)
+        ids = np.subtract(-1, raw, dtype=np.int64)  # ~id = −1 − id
+        with np.errstate(divide="ignore"):
+            depth = np.divide(self.span, stored, dtype=np.float64)  # Δ (1 + dₙ); inf where 0 is stored
+        depth += self.offset
+        return depth, ids
+
+    def read(self) -> tuple[Array, NDArray[np.int64]]:
+        """The whole map (drawn whole): (depth, triangle), each (R, R)."""
+        res = self.resolution
+        depth, ids = self.fetch(np.arange(res * res, dtype=np.int64))
+        return depth.reshape(res, res), ids.reshape(res, res)
+
+    def release(self) -> None:
+        """Free the map's device memory (a released map cannot be read)."""
+        if self.released:
+            return
+        self.released = True
+        state = _setup()[0]
+        if state is not None and self in state[4]:
+            state[4].remove(self)
+        spare = state[5] if state is not None else []
+        with _context():
+            self._coef.release()
+            if state is not None and DEVICE_TEXEL_BYTES * (self.resolution**2 + sum(r * r for r, _, _ in spare)) <= DEVICE_BYTES:
+                spare.append((self.resolution, self._ids, self._fbo))  # kept for the next map of this size (making one costs more than drawing it on llvmpipe)
+            else:
+                self._fbo.release()
+                self._ids.release()
+
+
+def draw_device_map(triangles: Array, matrix: Array, resolution: int, *, box: tuple[int, int, int, int] | None = None) -> DeviceMap:
+    """The depth map of eye-space ``triangles`` (T, 3, 3) through the projective map ``matrix``
+    (4×4, :meth:`aliasing.raster.LightMap.matrix`) at ``resolution``, kept on the device.
+
+    Only the visible triangles' indices are drawn (the depth test is :func:`draw_maps`'s),
+    within ``box`` (x, y, width, height) [texels] if given (default: the whole map); the
+    depths are evaluated where they are fetched (:class:`DeviceMap`).  Raises ``ValueError``
+    (one line) when there is no device or the map is bigger than it allows
+    (:func:`check_size`), before any work.
+    """
+    import moderngl
+
+    res = int(resolution)
+    check_size(res)
+    tri = np.asarray(triangles, float)
+    if tri.ndim != 3 or tri.shape[1:] != (3, 3):
+        raise ValueError(f"triangles must have shape (T, 3, 3), got {tri.shape}")
+    box = (0, 0, res, res) if box is None else tuple(int(v) for v in box)
+    if len(box) != 4 or box[0] < 0 or box[1] < 0 or box[2] < 1 or box[3] < 1 or box[0] + box[2] > res or box[1] + box[3] > res:
+        raise ValueError(f"box must be (x, y, width, height) inside the {res}² map, got {box}")
+    state = _setup()[0]
+    ctx, live = state[0], state[4]
+    while live and DEVICE_TEXEL_BYTES * res * res + sum(DEVICE_TEXEL_BYTES * m.resolution**2 for m in live) > DEVICE_BYTES:
+        live[0].release()  # the least recently drawn
+    spare = state[5]
+    with ctx:
+        kept = [i for i, (r, _, _) in enumerate(spare) if r == res]
+        if kept:
+            _, ids, fbo = spare.pop(kept[-1])
+        else:
+            while spare and DEVICE_TEXEL_BYTES * (res * res + sum(r * r for r, _, _ in spare) + sum(m.resolution**2 for m in live)) > DEVICE_BYTES:
+                _, old_ids, old_fbo = spare.pop(0)
+                old_fbo.release()
+                old_ids.release()
+            ids = ctx.texture((res, res), 1, dtype="i4")
+            ids.filter = (moderngl.NEAREST, moderngl.NEAREST)  # an integer texture is complete only so
+            fbo = ctx.framebuffer([ids], _zbuffer(ctx, res))
+        coef = ctx.buffer(reserve=max(32 * tri.shape[0], 16))
+        span, offset, ray = 1.0, 0.0, np.zeros(4)
+        scene = _Scene(ctx, state[1], tri) if tri.shape[0] else None
+        try:
+            if scene is not None and scene.bad < scene.count:
+                span, offset, ray = _render(scene, np.asarray(matrix, float), res, fbo, program="ids", box=box)
+                ctx.copy_buffer(coef, scene.coefficients, 32 * tri.shape[0])  # the next map's draw overwrites the kept ones
+            else:
+                fbo.use()
+                fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0, viewport=box)
+        finally:
+            if scene is not None:
+                scene.release()
+    m = DeviceMap(ids, fbo, coef, res, box, span, offset, ray)
+    live.append(m)
+    return m
+
+
+def _zbuffer(ctx, res: int):
+    """The z-buffer shared by the device maps of resolution ``res`` (kept; :func:`release` frees it)."""
+    kept = _setup()[0][3]
+    name = f"zbuffer{res}"
+    if name not in kept:
+        kept[name] = ctx.depth_renderbuffer((res, res))
+    return kept[name]
