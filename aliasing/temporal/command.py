@@ -24,7 +24,7 @@ import json
 
 from .. import _validation as check
 from ..engines import compare
-from ..raster.draw import backends, check_resolution
+from ..raster.draw import backends, check_resolution, resident
 from ..raster.scenes.world import json_safe
 from . import measure, paths, points
 
@@ -42,6 +42,8 @@ def run(args: argparse.Namespace) -> list[dict]:
     measure.check_size(frames, image_res**2)  # at most one point per pixel
     fps = float(check.positive(args.fps, "--fps"))
     backend = backends.check(args.backend, "eye_pass")  # refused before any work
+    if backends.pair(backend)[1] == "gl":
+        resident.check_size(shadow_res, "--shadow-res")  # a map the device cannot hold: refused before any work
     specs = [s.strip() for s in (args.schemes or "").split(",") if s.strip()]
     if not specs:
         raise ValueError("--schemes is empty: name at least one scheme (e.g. csm:log:k=4,csm-stable:log:k=4:fit=sphere:snap=origin)")

@@ -108,6 +108,7 @@ def shadow_map(triangles: ArrayLike, lm: LightMap, resolution: int, *, chunk: in
     res = check_resolution(resolution)
     chunk = check_chunk(chunk)
     if backends.check(backend, "shadow_map") == "gl" and not _logarithmic(lm):
+        resident.check_size(res)  # before any work
         return _gl_maps(tri, [lm], [res])[0]
     return _numpy_map(tri, lm, res, chunk)
 
@@ -195,6 +196,8 @@ def shadow_maps(triangles: ArrayLike, maps: MapSet | Sequence[LightMap], resolut
     out: list[DepthMap | None] = [None] * len(lms)
     if backends.check(backend, "shadow_map") == "gl":
         todo = [i for i, lm in enumerate(lms) if not _logarithmic(lm)]
+        for i in todo:
+            resident.check_size(rs[i])  # every map before any work
         if todo:
             for i, m in zip(todo, _gl_maps(tri, [lms[i] for i in todo], [rs[i] for i in todo])):
                 out[i] = m
