@@ -183,3 +183,17 @@ def test_shimmer_at_4_x_1024_squared_stays_under_half_a_gigabyte(backend):
     row, peak = shimmer_peak(backend, 1024, 3)
     assert row["maps_drawn"] >= 4 * 3 and row["predicted_over_measured"] is not None  # the maps and the prediction's were drawn
     assert peak <= 0.5 * 2**30, f"peak resident memory {peak / 2**30:.2f} GiB"
+
+
+@GL
+def test_gl_depth_maps_are_read_back_only_when_asked_and_before_the_device_frees_them():
+    lm = _maps()[1][2]
+    (depth, ident), = gl.draw_maps(SCENE, [lm.matrix()], [1024])[0]  # the eager reference
+    first = shadow_map(SCENE, lm, 1024, backend="gl")
+    assert first._arrays is None  # drawn, still on the device
+    crowd = raster.shadow_maps(SCENE, [lm] * (2 + resident.DEVICE_BYTES // (resident.DEVICE_TEXEL_BYTES * 1024**2)), 1024, backend="gl")
+    assert first._arrays is not None and first._device.released  # the device needed the room: read back first
+    later = crowd[-1]
+    assert later._arrays is None
+    assert np.array_equal(later.depth, depth) and np.array_equal(later.triangle, ident) and later._device.released
+    assert all(np.array_equal(m.depth, depth) and np.array_equal(m.triangle, ident) for m in [first] + crowd)

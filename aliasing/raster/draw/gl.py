@@ -298,7 +298,7 @@ def release() -> None:
     the device maps (:class:`DeviceMap`)."""
     state = _setup()[0]
     while state is not None and state[4]:
-        state[4][-1].release()
+        state[4][-1].evict()  # a pending reader reads its map back first
     while state is not None and state[5]:
         _, ids, fbo = state[5].pop()
         fbo.release()

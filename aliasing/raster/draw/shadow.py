@@ -45,6 +45,8 @@ Example
 
 from __future__ import annotations
 
+import weakref
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -118,9 +120,35 @@ def _logarithmic(lm: LightMap) -> bool:
 
 
 def _gl_maps(tri: Array, maps: Sequence[LightMap], resolutions: Sequence[int]) -> list[DepthMap]:
-    """Projective maps drawn by :func:`.gl.draw_maps` (the triangles uploaded once)."""
-    drawn, skipped = gl.draw_maps(tri, [lm.matrix() for lm in maps], resolutions)
-    return [DepthMap(d, i, r, tri.shape[0] - skipped, skipped) for (d, i), r in zip(drawn, resolutions)]
+    """Projective maps drawn on the device (:func:`.resident.draw_device_maps`, the triangles
+    uploaded once), kept there until their arrays are asked for (:class:`_DeviceDepthMap`)."""
+    drawn, skipped = resident.draw_device_maps(tri, [lm.matrix() for lm in maps], resolutions)
+    return [_DeviceDepthMap(m, tri.shape[0] - skipped, skipped) for m in drawn]
+
+
+class _DeviceDepthMap(DepthMap):
+    """A gl :class:`DepthMap` whose ``depth`` and ``triangle`` stay on the device until one of
+    them is read (:meth:`.resident.DeviceMap.read`, which frees the device map), or until the
+    device needs the room (then they are read back first)."""
+
+    def __init__(self, device: resident.DeviceMap, rasterized: int, degenerate: int) -> None:
+        for name, value in (("_device", device), ("_arrays", None), ("resolution", device.resolution), ("rasterized", rasterized), ("degenerate", degenerate)):
+            object.__setattr__(self, name, value)
+        device.on_evict = weakref.WeakMethod(self._load)
+
+    def _load(self) -> tuple[Array, NDArray[np.int64]]:
+        if self._arrays is None:
+            object.__setattr__(self, "_arrays", self._device.read())
+            self._device.release()
+        return self._arrays
+
+    @property
+    def depth(self) -> Array:  # type: ignore[override]
+        return self._load()[0]
+
+    @property
+    def triangle(self) -> NDArray[np.int64]:  # type: ignore[override]
+        return self._load()[1]
 
 
 def _numpy_map(tri: Array, lm: LightMap, resolution: int, chunk: int) -> DepthMap:

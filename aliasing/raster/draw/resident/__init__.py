@@ -33,6 +33,8 @@ Example
 
 from __future__ import annotations
 
+from typing import Sequence
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -45,8 +47,9 @@ DEVICE_TEXEL_BYTES = 4
 #: Device maps are kept up to this many bytes in all (eight 2048² maps); beyond it the least
 #: recently drawn are freed (their samplers draw them again if asked for a texel they lack).
 DEVICE_BYTES = 2**27
-#: Texels per pass of :meth:`DeviceMap.fetch` (its buffers: 12 bytes per texel).
-FETCH_BLOCK = 1 << 22
+#: Texels per pass of :meth:`DeviceMap.fetch` (its buffers: 12 bytes per texel; 2²¹ / 64 =
+#: 32768 work groups, within the 65535 that OpenGL guarantees per dispatch).
+FETCH_BLOCK = 1 << 21
 
 
 # A device map's texels at the asked flat indices row·R + column: the stored id, and the depth
@@ -63,10 +66,13 @@ uniform dvec4 ray;        // q_w = ray.x s + ray.y t + ray.z; e_w = ray.w
 uniform double texel;     // 1/R
 uniform uint count;
 uniform int res;
+uniform int first;        // every: the texels first, first + 1, … (no asked buffer)
+uniform bool every;
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= count) return;
-    ivec2 at = ivec2(asked[i] % res, asked[i] / res);   // (column, row): row 0 at the bottom
+    int flat_ = every ? first + int(i) : asked[i];
+    ivec2 at = ivec2(flat_ % res, flat_ / res);   // (column, row): row 0 at the bottom
     int raw = texelFetch(ids_map, at, 0).r;
     float stored = 0.0;
     if (raw != 0) {
@@ -117,6 +123,16 @@ class DeviceMap:
         self._ids, self._fbo, self._coef = ids, fbo, coef
         self.resolution, self.box, self.span, self.offset, self._ray = res, box, span, offset, ray
         self.released = False
+        #: Called (if set, and if it returns a callable: e.g. a ``weakref.WeakMethod``) before
+        #: the map is freed by :meth:`evict`: a reader that still needs the map reads it then.
+        self.on_evict = None
+
+    def evict(self) -> None:
+        """Free the map, after its pending reader (:attr:`on_evict`), if any, has read it back."""
+        reader = self.on_evict() if self.on_evict is not None and not self.released else None
+        if reader is not None:
+            reader()
+        self.release()
 
     def covers(self, texels: NDArray[np.int64]) -> bool:
         """Whether every flat texel index of ``texels`` lies in the drawn box."""
@@ -128,13 +144,27 @@ class DeviceMap:
     def fetch(self, texels: NDArray[np.int64]) -> tuple[Array, NDArray[np.int64]]:
         """(depth [the map's depth units, ``inf`` where empty], triangle (−1 where empty)) of
         flat texel indices ``texels`` (row·R + column) inside the drawn box."""
-        if self.released:
-            raise ValueError("this device map was released: draw it again")
         flat = np.asarray(texels, np.int64).ravel()
         if flat.size and (flat.min() < 0 or flat.max() >= self.resolution**2 or not self.covers(flat)):
             raise ValueError(f"texels must be flat indices in [0, {self.resolution**2 - 1}] inside the drawn box {self.box}")
-        raw = np.empty(flat.size, np.int32)
-        stored = np.empty(flat.size, np.float32)
+        return self._convert(*self._run(flat, flat.size))
+
+    def read(self) -> tuple[Array, NDArray[np.int64]]:
+        """The whole map (drawn whole): (depth, triangle), each (R, R), as :func:`draw_maps` returns them."""
+        res = self.resolution
+        if self.box != (0, 0, res, res):
+            raise ValueError(f"only a map drawn whole can be read whole; this one holds the box {self.box}")
+        depth, ids = self._convert(*self._run(None, res * res))
+        return depth.reshape(res, res), ids.reshape(res, res)
+
+    def _run(self, flat: NDArray[np.int64] | None, count: int) -> tuple[np.ndarray, np.ndarray]:
+        """The stored (id, depth) of ``flat`` texels, or of the first ``count`` ones (``flat`` None), as int32 and float32."""
+        if self.released:
+            raise ValueError("this device map was released: draw it again")
+        raw = np.empty(count, np.int32)
+        stored = np.empty(count, np.float32)
+        if not count:
+            return raw, stored
         ctx = _context()
         with ctx:
             programs = _setup()[0][1]
@@ -146,31 +176,33 @@ class DeviceMap:
             _uniform(prog, "ray", self._ray)
             _uniform(prog, "texel", np.float64(1.0 / self.resolution))
             prog["res"].value = self.resolution
+            prog["every"].value = flat is None
             self._coef.bind_to_storage_buffer(8)
-            for a in range(0, flat.size, FETCH_BLOCK):
-                block = flat[a:a + FETCH_BLOCK]
-                asked = _buffer(ctx, "asked", 4 * block.size)
-                asked.write(block.astype(np.int32))
-                found = _buffer(ctx, "found", 8 * block.size)
-                asked.bind_to_storage_buffer(6)
+            for a in range(0, count, FETCH_BLOCK):
+                n = min(FETCH_BLOCK, count - a)
+                if flat is not None:
+                    asked = _buffer(ctx, "asked", 4 * n)
+                    asked.write(flat[a:a + n].astype(np.int32))
+                    asked.bind_to_storage_buffer(6)
+                else:
+                    _buffer(ctx, "asked", 4).bind_to_storage_buffer(6)  # not read
+                    prog["first"].value = a
+                found = _buffer(ctx, "found", 8 * n)
                 found.bind_to_storage_buffer(7)
-                prog["count"].value = block.size
-                prog.run(group_x=(block.size + _GROUP - 1) // _GROUP)
+                prog["count"].value = n
+                prog.run(group_x=(n + _GROUP - 1) // _GROUP)
                 ctx.memory_barrier()
-                out = np.frombuffer(found.read(8 * block.size), np.int32).reshape(-1, 2)
-                raw[a:a + block.size] = out[:, 0]
-                stored[a:a + block.size] = out[:, 1].view(np.float32)
+                out = np.frombuffer(found.read(8 * n), np.int32).reshape(-1, 2)
+                raw[a:a + n] = out[:, 0]
+                stored[a:a + n] = out[:, 1].view(np.float32)
+        return raw, stored
+
+    def _convert(self, raw: np.ndarray, stored: np.ndarray) -> tuple[Array, NDArray[np.int64]]:
         ids = np.subtract(-1, raw, dtype=np.int64)  # ~id = −1 − id
         with np.errstate(divide="ignore"):
             depth = np.divide(self.span, stored, dtype=np.float64)  # Δ (1 + dₙ); inf where 0 is stored
         depth += self.offset
         return depth, ids
-
-    def read(self) -> tuple[Array, NDArray[np.int64]]:
-        """The whole map (drawn whole): (depth, triangle), each (R, R)."""
-        res = self.resolution
-        depth, ids = self.fetch(np.arange(res * res, dtype=np.int64))
-        return depth.reshape(res, res), ids.reshape(res, res)
 
     def release(self) -> None:
         """Free the map's device memory (a released map cannot be read)."""
@@ -200,49 +232,73 @@ def draw_device_map(triangles: Array, matrix: Array, resolution: int, *, box: tu
     (one line) when there is no device or the map is bigger than it allows
     (:func:`check_size`), before any work.
     """
+    return draw_device_maps(triangles, [matrix], [resolution], boxes=[box])[0][0]
+
+
+def draw_device_maps(triangles: Array, matrices: Sequence[Array], resolutions: Sequence[int], *,
+                     boxes: Sequence[tuple[int, int, int, int] | None] | None = None) -> tuple[list[DeviceMap], int]:
+    """:func:`draw_device_map` of several maps, the triangles uploaded and prepared once; and the
+    number of triangles not drawn because a coordinate is not finite.
+
+    Maps kept from earlier calls are freed, least recently drawn first, until this call's maps
+    fit in :data:`DEVICE_BYTES` with the others (a map with a pending reader, such as a
+    :class:`~aliasing.raster.draw.DepthMap` of ``shadow_map(..., backend="gl")``, is read back
+    to the host first: :meth:`DeviceMap.evict`).
+    """
     import moderngl
 
-    res = int(resolution)
-    check_size(res)
+    rs = [int(r) for r in resolutions]
+    for r in rs:
+        check_size(r)
     tri = np.asarray(triangles, float)
     if tri.ndim != 3 or tri.shape[1:] != (3, 3):
         raise ValueError(f"triangles must have shape (T, 3, 3), got {tri.shape}")
-    box = (0, 0, res, res) if box is None else tuple(int(v) for v in box)
-    if len(box) != 4 or box[0] < 0 or box[1] < 0 or box[2] < 1 or box[3] < 1 or box[0] + box[2] > res or box[1] + box[3] > res:
-        raise ValueError(f"box must be (x, y, width, height) inside the {res}² map, got {box}")
+    if len(matrices) != len(rs):
+        raise ValueError(f"matrices and resolutions must have one entry per map, got {len(matrices)} and {len(rs)}")
+    given = [None] * len(rs) if boxes is None else list(boxes)
+    chosen = []
+    for res, box in zip(rs, given):
+        box = (0, 0, res, res) if box is None else tuple(int(v) for v in box)
+        if len(box) != 4 or box[0] < 0 or box[1] < 0 or box[2] < 1 or box[3] < 1 or box[0] + box[2] > res or box[1] + box[3] > res:
+            raise ValueError(f"box must be (x, y, width, height) inside the {res}² map, got {box}")
+        chosen.append(box)
     state = _setup()[0]
-    ctx, live = state[0], state[4]
-    while live and DEVICE_TEXEL_BYTES * res * res + sum(DEVICE_TEXEL_BYTES * m.resolution**2 for m in live) > DEVICE_BYTES:
-        live[0].release()  # the least recently drawn
-    spare = state[5]
+    ctx, live, spare = state[0], state[4], state[5]
+    need = DEVICE_TEXEL_BYTES * sum(r * r for r in rs)
+    while live and need + sum(DEVICE_TEXEL_BYTES * m.resolution**2 for m in live) > DEVICE_BYTES:
+        live[0].evict()  # the least recently drawn
+    out = []
     with ctx:
-        kept = [i for i, (r, _, _) in enumerate(spare) if r == res]
-        if kept:
-            _, ids, fbo = spare.pop(kept[-1])
-        else:
-            while spare and DEVICE_TEXEL_BYTES * (res * res + sum(r * r for r, _, _ in spare) + sum(m.resolution**2 for m in live)) > DEVICE_BYTES:
-                _, old_ids, old_fbo = spare.pop(0)
-                old_fbo.release()
-                old_ids.release()
-            ids = ctx.texture((res, res), 1, dtype="i4")
-            ids.filter = (moderngl.NEAREST, moderngl.NEAREST)  # an integer texture is complete only so
-            fbo = ctx.framebuffer([ids], _zbuffer(ctx, res))
-        coef = ctx.buffer(reserve=max(32 * tri.shape[0], 16))
-        span, offset, ray = 1.0, 0.0, np.zeros(4)
         scene = _Scene(ctx, state[1], tri) if tri.shape[0] else None
+        bad = scene.bad if scene is not None else 0
         try:
-            if scene is not None and scene.bad < scene.count:
-                span, offset, ray = _render(scene, np.asarray(matrix, float), res, fbo, program="ids", box=box)
-                ctx.copy_buffer(coef, scene.coefficients, 32 * tri.shape[0])  # the next map's draw overwrites the kept ones
-            else:
-                fbo.use()
-                fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0, viewport=box)
+            for h, res, box in zip(matrices, rs, chosen):
+                kept = [i for i, (r, _, _) in enumerate(spare) if r == res]
+                if kept:
+                    _, ids, fbo = spare.pop(kept[-1])
+                else:
+                    while spare and DEVICE_TEXEL_BYTES * (res * res + sum(r * r for r, _, _ in spare) + sum(m.resolution**2 for m in live)) > DEVICE_BYTES:
+                        _, old_ids, old_fbo = spare.pop(0)
+                        old_fbo.release()
+                        old_ids.release()
+                    ids = ctx.texture((res, res), 1, dtype="i4")
+                    ids.filter = (moderngl.NEAREST, moderngl.NEAREST)  # an integer texture is complete only so
+                    fbo = ctx.framebuffer([ids], _zbuffer(ctx, res))
+                coef = ctx.buffer(reserve=max(32 * tri.shape[0], 16))
+                span, offset, ray = 1.0, 0.0, np.zeros(4)
+                if scene is not None and scene.bad < scene.count:
+                    span, offset, ray = _render(scene, np.asarray(h, float), res, fbo, program="ids", box=box)
+                    ctx.copy_buffer(coef, scene.coefficients, 32 * tri.shape[0])  # the next map's draw overwrites the kept ones
+                else:
+                    fbo.use()
+                    fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0, viewport=box)
+                m = DeviceMap(ids, fbo, coef, res, box, span, offset, ray)
+                live.append(m)
+                out.append(m)
         finally:
             if scene is not None:
                 scene.release()
-    m = DeviceMap(ids, fbo, coef, res, box, span, offset, ray)
-    live.append(m)
-    return m
+    return out, bad
 
 
 def _zbuffer(ctx, res: int):
