@@ -88,7 +88,7 @@ def summary(name: str, out: str) -> str:
         r = data[0]
         return f"flips {r['flip_fraction']:.5f}, predicted/measured {r['predicted_over_measured']:.3f}, maps {r['maps_drawn']}"
     if name == "validate":
-        return f"max ratio {data['max_ratio']:.6f}, self-lit {data.get('self_lit', float('nan')):.4f}"
+        return f"max ratio {data['max_ratio']:.6f}, pixels {sum(data['pixels'])}"
     s = data["schemes"][0]
     return f"p50 {s['p50']:.4f}, p99 {s['p99']:.4f}, max {s['max']:.4f}"
 
