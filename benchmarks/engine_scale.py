@@ -1,8 +1,8 @@
 """Engine scale: shimmer, validation and rendering with 2048² maps, wall time and peak memory per backend.
 
 Run by hand, not under pytest.  Each case runs the command line (``aliasing.cli.main``) in a
-fresh subprocess, which reports its own peak resident memory (``resource.getrusage``,
-``ru_maxrss``) when it ends; the wall time is the parent's ``time.perf_counter`` around the
+fresh subprocess, which reports its own peak resident memory when it ends (``VmHWM`` of
+``/proc/self/status``: the peak of its own address space; ``ru_maxrss`` elsewhere); the wall time is the parent's ``time.perf_counter`` around the
 subprocess (interpreter start-up and imports included).  The backends run side by side in
 the same run, case by case, alternating, best of ``--repeats``:
 
@@ -37,11 +37,17 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
+# The child's own peak: VmHWM of its address space (Linux).  ru_maxrss is not used: after a
+# fork and exec it keeps the forking parent's peak (this script holds a gl context).
 PEAK = """
 import resource, sys
 from aliasing.cli import main
 code = main(sys.argv[1:])
-print("peak-bytes", resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * (1 if sys.platform == "darwin" else 1024), file=sys.stderr)
+try:
+    peak = next(int(line.split()[1]) * 1024 for line in open("/proc/self/status") if line.startswith("VmHWM:"))
+except OSError:
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * (1 if sys.platform == "darwin" else 1024)
+print("peak-bytes", peak, file=sys.stderr)
 sys.exit(code)
 """
 

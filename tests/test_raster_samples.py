@@ -159,11 +159,17 @@ def test_gl_map_bigger_than_the_device_allows_is_refused_in_one_line_before_work
 
 # --- memory: the shimmer case at engine scale ------------------------------------------------
 
+# The child's own peak: VmHWM of its address space (Linux).  ru_maxrss is not used: after a
+# fork and exec it keeps the forking parent's peak (a pytest process that ran the gl tests).
 PEAK = """
 import resource, sys
 from aliasing.cli import main
 code = main(sys.argv[1:])
-print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * (1 if sys.platform == "darwin" else 1024), file=sys.stderr)
+try:
+    peak = next(int(line.split()[1]) * 1024 for line in open("/proc/self/status") if line.startswith("VmHWM:"))
+except OSError:
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * (1 if sys.platform == "darwin" else 1024)
+print(peak, file=sys.stderr)
 sys.exit(code)
 """
 

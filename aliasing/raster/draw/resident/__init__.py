@@ -38,7 +38,7 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from ..gl import _GROUP, _Scene, _buffer, _context, _info, _render, _setup, _uniform, renderer, require
+from ..gl import _GROUP, THREADS, _Scene, _buffer, _context, _info, _pool, _read, _render, _setup, _targets, _uniform, renderer, require
 
 Array = NDArray[np.float64]
 
@@ -83,6 +83,38 @@ void main() {
         stored = float(den / (den + a));
     }
     found[i] = ivec2(raw, floatBitsToInt(stored));
+}
+"""
+
+
+# The whole map at once (:meth:`DeviceMap.read`): one full-screen triangle whose fragments do what
+# :data:`_FETCH` does per texel, written to the targets that :func:`.gl.draw_maps` reads back.
+_RESOLVE_VERTEX = """
+#version 430
+void main() {
+    gl_Position = vec4(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0, 0.0, 1.0);
+}
+"""
+_RESOLVE = """
+#version 430
+layout(std430, binding = 8) readonly buffer Coefficients { dvec4 coef[]; };
+uniform isampler2D ids_map;
+uniform dvec4 ray;
+uniform double texel;
+layout(location = 0) out int id_out;
+layout(location = 1) out float depth_out;
+void main() {
+    int raw = texelFetch(ids_map, ivec2(gl_FragCoord.xy), 0).r;
+    float stored = 0.0;
+    if (raw != 0) {
+        dvec4 k = coef[~raw];
+        double s = double(gl_FragCoord.x) * texel, t = double(gl_FragCoord.y) * texel;
+        double a = k.x * s + k.y * t + k.z;
+        double den = a * ray.w - k.w * (ray.x * s + ray.y * t + ray.z);
+        stored = float(den / (den + a));
+    }
+    id_out = raw;
+    depth_out = stored;
 }
 """
 
@@ -147,24 +179,61 @@ class DeviceMap:
         flat = np.asarray(texels, np.int64).ravel()
         if flat.size and (flat.min() < 0 or flat.max() >= self.resolution**2 or not self.covers(flat)):
             raise ValueError(f"texels must be flat indices in [0, {self.resolution**2 - 1}] inside the drawn box {self.box}")
-        return self._convert(*self._run(flat, flat.size))
+        return self._run(flat, flat.size)
 
     def read(self) -> tuple[Array, NDArray[np.int64]]:
-        """The whole map (drawn whole): (depth, triangle), each (R, R), as :func:`draw_maps` returns them."""
+        """The whole map (drawn whole): (depth, triangle), each (R, R), as :func:`.gl.draw_maps` returns them.
+
+        A full-screen pass evaluates every texel's depth (the fetch pass's expression, run as
+        fragments: llvmpipe runs those faster than a compute pass) into the render targets
+        that :func:`.gl.draw_maps` reads back, and they are read back and converted the same way."""
+        import moderngl
+
         res = self.resolution
         if self.box != (0, 0, res, res):
             raise ValueError(f"only a map drawn whole can be read whole; this one holds the box {self.box}")
-        depth, ids = self._convert(*self._run(None, res * res))
-        return depth.reshape(res, res), ids.reshape(res, res)
-
-    def _run(self, flat: NDArray[np.int64] | None, count: int) -> tuple[np.ndarray, np.ndarray]:
-        """The stored (id, depth) of ``flat`` texels, or of the first ``count`` ones (``flat`` None), as int32 and float32."""
         if self.released:
             raise ValueError("this device map was released: draw it again")
-        raw = np.empty(count, np.int32)
-        stored = np.empty(count, np.float32)
+        ctx = _context()
+        with ctx:
+            programs = _setup()[0][1]
+            if "resolve" not in programs:
+                programs["resolve"] = ctx.program(vertex_shader=_RESOLVE_VERTEX, fragment_shader=_RESOLVE)
+                programs["resolve-array"] = ctx.vertex_array(programs["resolve"], [])
+            prog = programs["resolve"]
+            self._ids.use(0)
+            prog["ids_map"].value = 0
+            _uniform(prog, "ray", self._ray)
+            _uniform(prog, "texel", np.float64(1.0 / res))
+            self._coef.bind_to_storage_buffer(8)
+            tg = _targets(ctx, res)
+            tg.maps.use()
+            tg.maps.viewport = (0, 0, res, res)
+            ctx.disable(moderngl.DEPTH_TEST)
+            programs["resolve-array"].render(moderngl.TRIANGLES, vertices=3)
+            depth, ids = _read(tg, self.span, self.offset)
+        return depth, ids
+
+    def _run(self, flat: NDArray[np.int64] | None, count: int) -> tuple[Array, NDArray[np.int64]]:
+        """(depth, triangle) of ``flat`` texels, or of the first ``count`` ones (``flat`` None).
+
+        Each block's stored (id, depth) pairs are converted by :func:`.gl._pool`'s threads
+        while the next block is evaluated: ids −1 − raw (the cleared 0 gives −1), depth
+        Δ/stored + offset (``inf`` where 0 is stored), as :func:`.gl.draw_maps` converts them."""
+        if self.released:
+            raise ValueError("this device map was released: draw it again")
+        depth = np.empty(count)
+        ids = np.empty(count, np.int64)
         if not count:
-            return raw, stored
+            return depth, ids
+
+        def convert(host: np.ndarray, a: int, lo: int, hi: int) -> None:
+            np.subtract(-1, host[lo:hi, 0], out=ids[a + lo:a + hi], dtype=np.int64)  # ~id = −1 − id
+            with np.errstate(divide="ignore"):
+                np.divide(self.span, host[lo:hi, 1].view(np.float32), out=depth[a + lo:a + hi], dtype=np.float64)  # Δ (1 + dₙ)
+            depth[a + lo:a + hi] += self.offset
+
+        pending = []
         ctx = _context()
         with ctx:
             programs = _setup()[0][1]
@@ -192,16 +261,12 @@ class DeviceMap:
                 prog["count"].value = n
                 prog.run(group_x=(n + _GROUP - 1) // _GROUP)
                 ctx.memory_barrier()
-                out = np.frombuffer(found.read(8 * n), np.int32).reshape(-1, 2)
-                raw[a:a + n] = out[:, 0]
-                stored[a:a + n] = out[:, 1].view(np.float32)
-        return raw, stored
-
-    def _convert(self, raw: np.ndarray, stored: np.ndarray) -> tuple[Array, NDArray[np.int64]]:
-        ids = np.subtract(-1, raw, dtype=np.int64)  # ~id = −1 − id
-        with np.errstate(divide="ignore"):
-            depth = np.divide(self.span, stored, dtype=np.float64)  # Δ (1 + dₙ); inf where 0 is stored
-        depth += self.offset
+                host = np.empty((n, 2), np.int32)
+                found.read_into(host, 8 * n)
+                step = max(1 << 16, -(-n // (4 * THREADS)))
+                pending += [_pool().submit(convert, host, a, lo, min(lo + step, n)) for lo in range(0, n, step)]
+        for job in pending:
+            job.result()
         return depth, ids
 
     def release(self) -> None:
