@@ -93,7 +93,9 @@ def shadow_map(triangles: ArrayLike, lm: LightMap, resolution: int, *, chunk: in
     ``gl.DEPTH_ERROR`` of the scene's depth range) and the same visible triangles up to
     the hardware's sub-texel snapping of edges; there ``rasterized`` counts the finite
     triangles sent and ``degenerate`` the non-finite ones, and a scene wholly behind the
-    warp's centre of projection gives an empty map (numpy: a ``ValueError``).
+    warp's centre of projection gives an empty map (numpy: a ``ValueError``).  The map stays
+    on the device until ``depth`` or ``triangle`` is first read (:mod:`.resident`); a map
+    bigger than the device allows is refused in one line before any work.
     Log+perspective maps have no matrix: they are rasterized by numpy whichever backend is
     asked.
 
