@@ -24,7 +24,7 @@ from hypothesis import strategies as st
 
 from aliasing import raster
 from aliasing.cli import main
-from aliasing.raster.draw import MapSampler, gl, light_map, resident, shadow_map, shadow_test
+from aliasing.raster.draw import MapSampler, depth_test, gl, light_map, resident, shadow_map, shadow_test
 from aliasing.raster.scenes import ground_and_boxes, procedural
 from aliasing.temporal import measure, points
 
@@ -203,3 +203,14 @@ def test_gl_depth_maps_are_read_back_only_when_asked_and_before_the_device_frees
     assert later._arrays is None
     assert np.array_equal(later.depth, depth) and np.array_equal(later.triangle, ident) and later._device.released
     assert all(np.array_equal(m.depth, depth) and np.array_equal(m.triangle, ident) for m in [first] + crowd)
+
+
+@pytest.mark.parametrize("options", [{}, {"bias": 0.01, "pcf": 3}, {"slope": 1.5, "normal_offset": 0.02, "pcf": 5, "receiver_plane": True}])
+def test_the_engines_depth_test_through_a_sampler_is_the_test_through_the_map(options):
+    name, scene, lm = _maps()[0]
+    rng = np.random.default_rng(4)
+    p = np.stack([rng.uniform(-20, 20, 2000), np.full(2000, -1.0), rng.uniform(2, 58, 2000)], -1)
+    nrm = np.tile([0.0, 1.0, 0.0], (2000, 1))
+    want = depth_test(lm, shadow_map(scene, lm, 256), p, nrm, **options)
+    assert 0.0 < want.mean() < 1.0
+    assert np.array_equal(depth_test(lm, MapSampler(scene, lm, 256), p, nrm, **options), want)

@@ -229,8 +229,10 @@ def depth_test(lm: LightMap, sm: DepthMap, points: ArrayLike, normals: ArrayLike
     ----------
     lm : LightMap
         The map the depth map was rendered through.
-    sm : DepthMap
-        :func:`aliasing.raster.shadow_map` of the scene through ``lm``.
+    sm : DepthMap or MapSampler
+        :func:`aliasing.raster.shadow_map` of the scene through ``lm``, or a
+        :class:`~aliasing.raster.draw.shadow.MapSampler` of it (drawn at the taps' texels
+        only: the same result).
     points, normals : array_like, shape (..., 3)
         Surface points [world units] and their surfaces' outward normals (any length).
     bias : array_like
@@ -261,7 +263,7 @@ def depth_test(lm: LightMap, sm: DepthMap, points: ArrayLike, normals: ArrayLike
     (True, False)
     """
     check.instance(lm, "lm", LightMap)
-    check.instance(sm, "sm", DepthMap)
+    check.instance(sm, "sm", (DepthMap, MapSampler))
     p, n = _points(points, normals)
     k = check.whole(pcf, "pcf", 1, PCF_MAX, " (kernel width [texels])")
     rp = check.flag(receiver_plane, "receiver_plane")
@@ -286,7 +288,11 @@ def depth_test(lm: LightMap, sm: DepthMap, points: ArrayLike, normals: ArrayLike
             inside = (st >= 0) & (st < 1) & (tt >= 0) & (tt < 1)
             col = np.clip(np.floor(np.nan_to_num(st) * res), 0, res - 1).astype(np.int64)
             row = np.clip(np.floor(np.nan_to_num(tt) * res), 0, res - 1).astype(np.int64)
-            stored = sm.depth[row, col]
+            if isinstance(sm, MapSampler):  # drawn at the taps' texels only (taps outside the map are lit)
+                stored = np.full(inside.shape, np.inf)
+                stored[inside] = sm.at(row[inside], col[inside])[0]
+            else:
+                stored = sm.depth[row, col]
             if rp:
                 x, y = lm.inverse(st, tt)
                 c0 = lm.plane_point(x, y)
