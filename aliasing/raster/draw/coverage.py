@@ -168,7 +168,7 @@ def merge(sp: Spans, res: int, chunk: int, depth: Array, ident: NDArray[np.int64
 
 
 def merge_at(sp: Spans, res: int, chunk: int, texels: NDArray[np.int64], depth: Array, ident: NDArray[np.int64]) -> None:
-    """:func:`merge` into the given texels only: ``texels`` sorted unique flat indices
+    """:func:`aliasing.raster.draw.coverage.merge` into the given texels only: ``texels`` sorted unique flat indices
     (row·R + column), ``depth`` and ``ident`` their buffers (same length).
 
     Each span is cut to the asked texels inside it (two binary searches), so the work and the

@@ -38,7 +38,8 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from ..gl import _GROUP, THREADS, _Scene, _buffer, _context, _info, _pool, _read, _render, _setup, _targets, _uniform, renderer, require
+from .. import gl
+from ..gl import _GROUP, _Scene, _buffer, _context, _info, _pool, _read, _render, _setup, _targets, _uniform
 
 Array = NDArray[np.float64]
 
@@ -130,12 +131,13 @@ def max_resolution() -> int:
 
 
 def check_size(resolution: int, name: str = "resolution") -> None:
-    """Raise ``ValueError`` (one line, with the limit) if a ``resolution``² map is bigger than
-    the device allows (:func:`max_resolution`), before any work; :func:`require` first."""
-    require()
+    """Raise ``ValueError`` (one line, with the limit) if a map of ``resolution`` texels per
+    side is bigger than the device allows (:func:`max_resolution`), before any work; first
+    :func:`aliasing.raster.draw.gl.require` (no device: one line)."""
+    gl.require()
     limit = max_resolution()
     if int(resolution) > limit:
-        raise ValueError(f"{name} {int(resolution)} is over the largest map the gl device draws, {limit}² texels ({renderer()})")
+        raise ValueError(f"{name} {int(resolution)} is over the largest map the gl device draws, {limit}² texels ({gl.renderer()})")
 
 
 class DeviceMap:
@@ -146,7 +148,7 @@ class DeviceMap:
     texels: a compute pass evaluates the depth there (the expression the map's fragment
     shader stores, :data:`_DEPTH`, in double precision, stored as float32) and only those
     texels come back; :meth:`read` is the same for every texel.  The values are
-    :func:`draw_maps`'s (checked in the tests).  ``box`` (x, y, width, height) [texels] is
+    :func:`.gl.draw_maps`'s (checked in the tests).  ``box`` (x, y, width, height) [texels] is
     the part drawn; a ``released`` map (:meth:`release`, or freed beyond :data:`DEVICE_BYTES`)
     holds nothing.
     """
@@ -263,7 +265,7 @@ class DeviceMap:
                 ctx.memory_barrier()
                 host = np.empty((n, 2), np.int32)
                 found.read_into(host, 8 * n)
-                step = max(1 << 16, -(-n // (4 * THREADS)))
+                step = max(1 << 16, -(-n // (4 * gl.THREADS)))
                 pending += [_pool().submit(convert, host, a, lo, min(lo + step, n)) for lo in range(0, n, step)]
         for job in pending:
             job.result()
@@ -291,7 +293,7 @@ def draw_device_map(triangles: Array, matrix: Array, resolution: int, *, box: tu
     """The depth map of eye-space ``triangles`` (T, 3, 3) through the projective map ``matrix``
     (4×4, :meth:`aliasing.raster.LightMap.matrix`) at ``resolution``, kept on the device.
 
-    Only the visible triangles' indices are drawn (the depth test is :func:`draw_maps`'s),
+    Only the visible triangles' indices are drawn (the depth test is :func:`.gl.draw_maps`'s),
     within ``box`` (x, y, width, height) [texels] if given (default: the whole map); the
     depths are evaluated where they are fetched (:class:`DeviceMap`).  Raises ``ValueError``
     (one line) when there is no device or the map is bigger than it allows
