@@ -31,7 +31,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ..raster.draw import depth_test, shadow_map, texel_edges
+from ..raster.draw import MapSampler, depth_test, texel_edges
 from ..raster.draw.lookup import light_gradient
 from . import presets as _presets
 from .plane import map_bias
@@ -93,7 +93,7 @@ def scene_bias(v, preset: str) -> list[dict]:
     p = _presets.get(preset)
     rows = []
     for i, lm, res, sel, pts, n, w in _cascades(v):
-        sm = shadow_map(v.scene.triangles, lm, res)
+        sm = MapSampler(v.scene.triangles, lm, res)  # drawn at the taps' texels only (the whole map's values)
         up = lm.basis[1]
         q = pts + p.across_texels * w * (n - np.outer(n @ up, up))
         frac = depth_test(lm, sm, q, n, **_offsets(p, n, up, w, res))

@@ -28,7 +28,7 @@ import numpy as np
 from .. import _validation as check
 from .. import setups
 from ..engines import compare, pipeline
-from ..raster.draw import backends, check_resolution
+from ..raster.draw import backends, check_resolution, resident
 from ..raster.scenes.world import json_safe
 from . import measure, paths, points
 
@@ -52,6 +52,8 @@ def run(args: argparse.Namespace) -> list[dict]:
     if setup is not None:  # the engine's own cascades (fit, snap, ranges) at its own map size
         specs = [pipeline.scheme_spec(setup.pipeline)] + specs
         shadow_res = check_resolution(setup.pipeline.resolution, "the engine's map size")
+    if backends.pair(backend)[1] == "gl":
+        resident.check_size(shadow_res, "--shadow-res")  # a map the device cannot hold: refused before any work
     if camera is not None:
         args.near, args.far, args.fov, args.aspect = camera.near, camera.far, camera.fov, camera.aspect
         if setup is not None:

@@ -35,7 +35,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .. import _validation as check
-from ..raster.draw import BIAS
+from ..raster.draw import BIAS, backends, check_resolution, resident
 from . import fits, paths, predict
 from .points import Points, World
 from .render import MapCache
@@ -197,6 +197,8 @@ def shimmer(w: World, pts: Points, spec: str, motion: str | paths.Motion, frames
     m = paths.parse_motion(motion) if not isinstance(motion, paths.Motion) else motion
     n = paths.check_frames(frames)
     check_size(n, pts.count)
+    if backends.pair(backend)[1] == "gl":
+        resident.check_size(check_resolution(res, "res"), "res")  # before any work
     dirs = check.whole(directions, "directions", 2)
     n_shifts = check.whole(shifts, "shifts", 1)
     cam = w.camera

@@ -27,6 +27,7 @@ from numpy.typing import NDArray
 
 from .. import _validation as check
 from ..raster.draw import BIAS, backends, check_resolution, frame_map, shadow_map, shadow_test
+from ..raster.draw.shadow import MapSampler
 from .fits import Lattices
 
 Array = NDArray[np.float64]
@@ -65,7 +66,10 @@ class MapCache:
         return self._boxes  # type: ignore[return-value]
 
     def window(self, basis: Array, x0: float, y0: float, tx: float, ty: float, n: int) -> tuple:
-        """The (light map, depth map, triangles) of one window, drawn or reused.
+        """The (light map, depth map, triangles) of one window, the whole map drawn.
+
+        :meth:`test` draws a window only at its points' texels; this draws all of it
+        (:func:`aliasing.raster.shadow_map`, R² texels) and does not keep the depth map.
 
         ``basis`` (3, 3) the light frame (rows x̂, l̂, ŷ), (x0, y0) the corner and (tx, ty) the
         texel sides [world units], ``n`` texels per side.
@@ -76,6 +80,11 @@ class MapCache:
         x0, y0 = (float(check.scalar(v, name)) for v, name in ((x0, "x0"), (y0, "y0")))
         tx, ty = (float(check.positive(v, name)) for v, name in ((tx, "tx"), (ty, "ty")))
         n = check_resolution(n, "n")
+        lm, sampler, sub = self._sampler(basis, x0, y0, tx, ty, n)
+        return lm, shadow_map(sub, lm, n, backend=self.backend), sub
+
+    def _sampler(self, basis: Array, x0: float, y0: float, tx: float, ty: float, n: int) -> tuple:
+        """(light map, :class:`~aliasing.raster.draw.shadow.MapSampler`, triangles) of one window, made or reused."""
         key = (basis.tobytes(), float(x0), float(y0), float(tx), float(ty), int(n))
         self.used.add(key)
         if key in self.maps:
@@ -86,19 +95,33 @@ class MapCache:
         keep = (hx >= x0) & (lx <= x1) & (hy >= y0) & (ly <= y1)
         sub = self.triangles[keep] if keep.any() else self.triangles[:1]
         lm = frame_map(basis[1], basis[2], y0, y1, np.inf, x0, x1, "uniform")
-        sm = shadow_map(sub, lm, int(n), backend=self.backend)
-        self.maps[key] = (lm, sm, sub)
+        self.maps[key] = (lm, MapSampler(sub, lm, int(n), backend=self.backend), sub)
         self.drawn += 1
         return self.maps[key]
 
     def test(self, lat: Lattices, f: int, k: int, positions: Array, normals: Array, *, dx: float = 0.0, dy: float = 0.0) -> NDArray[np.bool_]:
-        """Lit (True) or shadowed, for points through map k of frame f (its grid moved by (dx, dy) [world units])."""
+        """Lit (True) or shadowed, for points through map k of frame f (its grid moved by (dx, dy) [world units]).
+
+        The map is drawn only at the points' texels (:class:`~aliasing.raster.draw.shadow.MapSampler`;
+        numpy: only those texels are rasterized, gl: the map stays on the device and only
+        the texels come back), so the memory grows with the points, not with the texels.
+        """
         if not len(positions):
             return np.zeros(0, bool)
-        lm, sm, sub = self.window(lat.basis[f], lat.x0[f, k] + dx, lat.y0[f, k] + dy, lat.tx[f, k], lat.ty[f, k], int(lat.n[f, k]))
-        return shadow_test(lm, sm, sub, positions, normals, bias=self.bias)
+        basis = check.finite(lat.basis[f], "basis")
+        lm, sampler, sub = self._sampler(basis, float(lat.x0[f, k] + dx), float(lat.y0[f, k] + dy), float(lat.tx[f, k]), float(lat.ty[f, k]), check_resolution(int(lat.n[f, k]), "n"))
+        return shadow_test(lm, sampler, sub, positions, normals, bias=self.bias)
 
     def next_frame(self) -> None:
         """Forget the maps the last frame did not use (the memory stays at about one frame's maps)."""
+        for key, (_, sampler, _) in self.maps.items():
+            if key not in self.used:
+                sampler.release()
         self.maps = {key: v for key, v in self.maps.items() if key in self.used}
         self.used = set()
+
+    def release(self) -> None:
+        """Forget every map (and free the gl backend's device maps)."""
+        for _, sampler, _ in self.maps.values():
+            sampler.release()
+        self.maps, self.used = {}, set()

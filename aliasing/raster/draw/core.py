@@ -37,7 +37,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ... import _validation as check
 from . import occlusion
-from .coverage import chunk_bounds, rasterize_rows
+from .coverage import chunk_bounds, expand, merge_at, pair_spans, rasterize_rows
 
 Array = NDArray[np.float64]
 
@@ -143,6 +143,12 @@ def rasterize(triangles: ArrayLike, resolution: int, *, w: ArrayLike | None = No
     tri = _triangles(triangles)
     res = check_resolution(resolution)
     chunk = check_chunk(chunk)
+    inv_w, rows, uniform_rows = weights_and_rows(tri, res, w, row_centres)
+    return zbuffer(tri, res, inv_w, rows, uniform_rows, chunk)
+
+
+def weights_and_rows(tri: Array, res: int, w: ArrayLike | None, row_centres: ArrayLike | None) -> tuple[Array, Array, bool]:
+    """:func:`rasterize`'s checks of ``w`` and ``row_centres``: (1/w, row centres, whether uniform)."""
     n_tri = tri.shape[0]
     if w is None:
         inv_w = np.ones((n_tri, 3))
@@ -161,8 +167,7 @@ def rasterize(triangles: ArrayLike, resolution: int, *, w: ArrayLike | None = No
         if rows.shape != (res,) or (np.diff(rows) <= 0).any():
             raise ValueError(f"row_centres must be {res} increasing values (one per row)")
         uniform_rows = False
-
-    return zbuffer(tri, res, inv_w, rows, uniform_rows, chunk)
+    return inv_w, rows, uniform_rows
 
 
 def zbuffer(tri: Array, res: int, inv_w: Array, rows: Array, uniform_rows: bool, chunk: int, *, front_to_back: bool = False, draw=None) -> DepthMap:
@@ -172,27 +177,9 @@ def zbuffer(tri: Array, res: int, inv_w: Array, rows: Array, uniform_rows: bool,
     spans already hidden (:mod:`.occlusion`); the same buffers, for scenes with much overdraw.
     ``draw``: how that pass draws a group of triangles (default :func:`.occlusion.draw_visible`).
     """
-    # texel units for s (and t when rows are uniform): keeps edge functions well scaled
-    sx = tri[:, :, 0] * res
-    ty = tri[:, :, 1] * res if uniform_rows else tri[:, :, 1]
-    row_coord = rows * res if uniform_rows else rows
-    area2 = (sx[:, 1] - sx[:, 0]) * (ty[:, 2] - ty[:, 0]) - (sx[:, 2] - sx[:, 0]) * (ty[:, 1] - ty[:, 0])
-    finite = np.isfinite(tri).all(axis=(1, 2)) & np.isfinite(inv_w).all(axis=1)
-    good = finite & (area2 != 0) & np.isfinite(area2)
-    good &= np.abs(area2) > 1e-12 * (np.ptp(sx, axis=1) * np.ptp(ty, axis=1) + 1e-300)
-    degenerate = int(tri.shape[0] - good.sum())
-
     depth = np.full(res * res, np.inf)
     ident = np.full(res * res, -1, dtype=np.int64)
-    idx = np.nonzero(good)[0]
-    # bounding boxes in texel indices (centre inside [lo, hi])
-    with np.errstate(invalid="ignore"):
-        x0 = np.clip(np.ceil(sx[idx].min(axis=1) - 0.5), 0, res).astype(np.int64)
-        x1 = np.clip(np.floor(sx[idx].max(axis=1) - 0.5), -1, res - 1).astype(np.int64)
-    y0 = np.searchsorted(row_coord, ty[idx].min(axis=1), side="left").astype(np.int64)
-    y1 = np.searchsorted(row_coord, ty[idx].max(axis=1), side="right").astype(np.int64) - 1
-    keep = (x1 >= x0) & (y1 >= y0)
-    idx, x0, x1, y0, y1 = idx[keep], x0[keep], x1[keep], y0[keep], y1[keep]
+    sx, ty, row_coord, area2, good, idx, x0, x1, y0, y1 = _boxes(tri, res, inv_w, rows, uniform_rows)
     if idx.size:
         height = y1 - y0 + 1
         dep = tri[:, :, 2]
@@ -203,7 +190,58 @@ def zbuffer(tri: Array, res: int, inv_w: Array, rows: Array, uniform_rows: bool,
             bounds = chunk_bounds(height, chunk)
             for a, b in zip(bounds[:-1], bounds[1:]):
                 rasterize_rows(idx[a:b], x0[a:b], x1[a:b], y0[a:b], height[a:b], sx, ty, row_coord, dep, inv_w, area2, res, chunk, depth, ident)
-    return DepthMap(depth.reshape(res, res), ident.reshape(res, res), res, int(good.sum()), degenerate)
+    return DepthMap(depth.reshape(res, res), ident.reshape(res, res), res, int(good.sum()), int(tri.shape[0] - good.sum()))
+
+
+def zbuffer_at(tri: Array, res: int, inv_w: Array, rows: Array, uniform_rows: bool, chunk: int, texels: NDArray[np.int64]) -> tuple[Array, NDArray[np.int64], int, int]:
+    """:func:`zbuffer` at the given texels only: (depth, triangle) of ``texels`` (sorted unique
+    flat indices row·R + column), and the counts rasterized and degenerate.
+
+    Only the (triangle, row) pairs of rows holding an asked texel are set up, and each row's
+    span only at the asked texels (:func:`.coverage.merge_at`): memory and work grow with the
+    texels asked (times their overdraw) and the triangles, not with R².  The values are the
+    whole map's, bit for bit (the same per-pair formulas, the same tie rule).
+    """
+    depth = np.full(texels.size, np.inf)
+    ident = np.full(texels.size, -1, dtype=np.int64)
+    sx, ty, row_coord, area2, good, idx, x0, x1, y0, y1 = _boxes(tri, res, inv_w, rows, uniform_rows)
+    need = np.unique(texels // res)
+    lo = np.searchsorted(need, y0, side="left")
+    count = np.searchsorted(need, y1, side="right") - lo  # asked rows inside each triangle's box
+    if idx.size and texels.size:
+        dep = tri[:, :, 2]
+        bounds = chunk_bounds(count, chunk)
+        for a, b in zip(bounds[:-1], bounds[1:]):
+            owner, k = expand(count[a:b])
+            owner += a
+            row = need[lo[owner] + k]
+            hit = np.searchsorted(texels, row * res + x1[owner], side="right") > np.searchsorted(texels, row * res + x0[owner], side="left")
+            owner, row = owner[hit], row[hit]  # pairs with an asked texel inside the triangle's column box
+            sp = pair_spans(idx[owner], row, x0[owner], x1[owner], sx, ty, row_coord, dep, inv_w, area2, res)
+            merge_at(sp, res, chunk, texels, depth, ident)
+    return depth, ident, int(good.sum()), int(tri.shape[0] - good.sum())
+
+
+def _boxes(tri: Array, res: int, inv_w: Array, rows: Array, uniform_rows: bool) -> tuple:
+    """The drawn triangles and their texel boxes: (sx, ty, row coordinates, 2·area, good,
+    indices, x0, x1, y0, y1), boxes of texel indices whose centres lie inside [lo, hi]."""
+    # texel units for s (and t when rows are uniform): keeps edge functions well scaled
+    sx = tri[:, :, 0] * res
+    ty = tri[:, :, 1] * res if uniform_rows else tri[:, :, 1]
+    row_coord = rows * res if uniform_rows else rows
+    area2 = (sx[:, 1] - sx[:, 0]) * (ty[:, 2] - ty[:, 0]) - (sx[:, 2] - sx[:, 0]) * (ty[:, 1] - ty[:, 0])
+    finite = np.isfinite(tri).all(axis=(1, 2)) & np.isfinite(inv_w).all(axis=1)
+    good = finite & (area2 != 0) & np.isfinite(area2)
+    good &= np.abs(area2) > 1e-12 * (np.ptp(sx, axis=1) * np.ptp(ty, axis=1) + 1e-300)
+    idx = np.nonzero(good)[0]
+    # bounding boxes in texel indices (centre inside [lo, hi])
+    with np.errstate(invalid="ignore"):
+        x0 = np.clip(np.ceil(sx[idx].min(axis=1) - 0.5), 0, res).astype(np.int64)
+        x1 = np.clip(np.floor(sx[idx].max(axis=1) - 0.5), -1, res - 1).astype(np.int64)
+    y0 = np.searchsorted(row_coord, ty[idx].min(axis=1), side="left").astype(np.int64)
+    y1 = np.searchsorted(row_coord, ty[idx].max(axis=1), side="right").astype(np.int64) - 1
+    keep = (x1 >= x0) & (y1 >= y0)
+    return sx, ty, row_coord, area2, good, idx[keep], x0[keep], x1[keep], y0[keep], y1[keep]
 
 
 def clip_near(tri: Array, z_clip: float) -> tuple[Array, NDArray[np.int64]]:

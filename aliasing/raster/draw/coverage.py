@@ -91,9 +91,14 @@ def row_spans(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res
     with the row's centre line and settled by the exact predicate at the estimate ± 1.
     """
     owner, k = expand(height)
-    row = y0[owner] + k
+    return pair_spans(idx[owner], y0[owner] + k, x0[owner], x1[owner], sx, ty, row_coord, dep, inv_w, area2, res)
+
+
+def pair_spans(t_id, row, bx0, bx1, sx, ty, row_coord, dep, inv_w, area2, res) -> Spans:
+    """:func:`row_spans` of given (triangle ``t_id``, ``row``) pairs, ``bx0`` … ``bx1`` the
+    triangle's column box.  Every value is computed per pair, so a pair's span and depths do
+    not depend on which other pairs are computed with it."""
     y = row_coord[row]
-    t_id = idx[owner]
     ax, ay = sx[t_id], ty[t_id]
     lo = np.full(row.size, np.inf)
     hi = np.full(row.size, -np.inf)
@@ -114,7 +119,6 @@ def row_spans(idx, x0, x1, y0, height, sx, ty, row_coord, dep, inv_w, area2, res
     # and largest covered columns among estimate - 1 .. estimate + 1 (kept inside the bounding
     # box) are the exact ends; none covered means an empty row (e.g. on a horizontal edge
     # that this triangle does not own)
-    bx0, bx1 = x0[owner], x1[owner]
     col_lo = np.full(row.size, res + 5, dtype=np.int64)
     for d in (1, 0, -1):
         c = np.clip(lo_e + d, bx0, bx1)
@@ -161,3 +165,28 @@ def merge(sp: Spans, res: int, chunk: int, depth: Array, ident: NDArray[np.int64
         np.minimum.at(depth, pix, z)
         win = z <= depth[pix]
         ident[pix[win]] = sp.t_id[span[win]]
+
+
+def merge_at(sp: Spans, res: int, chunk: int, texels: NDArray[np.int64], depth: Array, ident: NDArray[np.int64]) -> None:
+    """:func:`aliasing.raster.draw.coverage.merge` into the given texels only: ``texels`` sorted unique flat indices
+    (row·R + column), ``depth`` and ``ident`` their buffers (same length).
+
+    Each span is cut to the asked texels inside it (two binary searches), so the work and the
+    temporaries are the asked texels' overdraw, not the map's area.  The depths are the same
+    formula at the same columns as :func:`merge`'s, and the merge keeps the minimum with ties
+    to the last span (the highest triangle index): the asked texels get exactly the values
+    of the whole map.
+    """
+    start = sp.row * res + sp.col_lo
+    first = np.searchsorted(texels, start, side="left")
+    count = np.searchsorted(texels, start + sp.width, side="left") - first
+    bounds = chunk_bounds(count, chunk)
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        span, kk = expand(count[a:b])
+        span += a
+        j = first[span] + kk
+        col = texels[j] - sp.row[span] * res
+        z = sp.depth_at(span, col + 0.5)
+        np.minimum.at(depth, j, z)
+        win = z <= depth[j]
+        ident[j[win]] = sp.t_id[span[win]]

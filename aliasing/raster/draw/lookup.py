@@ -41,6 +41,7 @@ from numpy.typing import ArrayLike, NDArray
 from ... import _validation as check
 from .core import DepthMap
 from .lightmap import LightMap
+from .shadow import MapSampler
 
 Array = NDArray[np.float64]
 
@@ -76,8 +77,10 @@ def shadow_test(lm: LightMap, sm: DepthMap, triangles: ArrayLike, points: ArrayL
     ----------
     lm : LightMap
         The map the depth map was rendered through.
-    sm : DepthMap
-        :func:`aliasing.raster.shadow_map` of ``triangles`` through ``lm``.
+    sm : DepthMap or MapSampler
+        :func:`aliasing.raster.shadow_map` of ``triangles`` through ``lm``, or a
+        :class:`~aliasing.raster.draw.shadow.MapSampler` of them (drawn at the points'
+        texels only: the same result).
     triangles : array_like, shape (T, 3, 3)
         The scene [world units], indexed by ``sm.triangle``.
     points, normals : array_like, shape (..., 3)
@@ -110,14 +113,21 @@ def shadow_test(lm: LightMap, sm: DepthMap, triangles: ArrayLike, points: ArrayL
     if p.shape[-1:] != (3,) or nrm.shape != p.shape:
         raise ValueError(f"points and normals must have the same shape (..., 3), got {p.shape} and {nrm.shape}")
     bias = _bias(bias)
-    if sm.triangle.size and int(sm.triangle.max()) >= len(tri):
+    sampled = isinstance(sm, MapSampler)
+    if not sampled and not isinstance(sm, DepthMap):
+        raise TypeError(f"sm must be a DepthMap or MapSampler, got {type(sm).__name__}")
+    if (sampled and len(sm.triangles) > len(tri)) or (not sampled and sm.triangle.size and int(sm.triangle.max()) >= len(tri)):
         raise ValueError("triangles must be the scene of sm (sm names a triangle beyond them)")
     rm = sm.resolution
     s, t, d, _ = lm.coordinates(p)
     inside = (s >= 0) & (s < 1) & (t >= 0) & (t < 1)
     col = np.clip(np.floor(np.nan_to_num(s) * rm), 0, rm - 1).astype(np.int64)
     row = np.clip(np.floor(np.nan_to_num(t) * rm), 0, rm - 1).astype(np.int64)
-    stored, occ = sm.depth[row, col], sm.triangle[row, col]
+    if sampled:  # only the texels of points inside the map are drawn (the others count as lit)
+        stored, occ = np.full(inside.shape, np.inf), np.full(inside.shape, -1, np.int64)
+        stored[inside], occ[inside] = sm.at(row[inside], col[inside])
+    else:
+        stored, occ = sm.depth[row, col], sm.triangle[row, col]
     up = lm.basis[1]  # towards the light; height along it is −depth
     lit = d <= stored + bias
     # 2. the occluder's plane on p's ray p + λ·up: λ > 0 is nearer the light than p
@@ -219,8 +229,10 @@ def depth_test(lm: LightMap, sm: DepthMap, points: ArrayLike, normals: ArrayLike
     ----------
     lm : LightMap
         The map the depth map was rendered through.
-    sm : DepthMap
-        :func:`aliasing.raster.shadow_map` of the scene through ``lm``.
+    sm : DepthMap or MapSampler
+        :func:`aliasing.raster.shadow_map` of the scene through ``lm``, or a
+        :class:`~aliasing.raster.draw.shadow.MapSampler` of it (drawn at the taps' texels
+        only: the same result).
     points, normals : array_like, shape (..., 3)
         Surface points [world units] and their surfaces' outward normals (any length).
     bias : array_like
@@ -251,7 +263,7 @@ def depth_test(lm: LightMap, sm: DepthMap, points: ArrayLike, normals: ArrayLike
     (True, False)
     """
     check.instance(lm, "lm", LightMap)
-    check.instance(sm, "sm", DepthMap)
+    check.instance(sm, "sm", (DepthMap, MapSampler))
     p, n = _points(points, normals)
     k = check.whole(pcf, "pcf", 1, PCF_MAX, " (kernel width [texels])")
     rp = check.flag(receiver_plane, "receiver_plane")
@@ -276,7 +288,11 @@ def depth_test(lm: LightMap, sm: DepthMap, points: ArrayLike, normals: ArrayLike
             inside = (st >= 0) & (st < 1) & (tt >= 0) & (tt < 1)
             col = np.clip(np.floor(np.nan_to_num(st) * res), 0, res - 1).astype(np.int64)
             row = np.clip(np.floor(np.nan_to_num(tt) * res), 0, res - 1).astype(np.int64)
-            stored = sm.depth[row, col]
+            if isinstance(sm, MapSampler):  # drawn at the taps' texels only (taps outside the map are lit)
+                stored = np.full(inside.shape, np.inf)
+                stored[inside] = sm.at(row[inside], col[inside])[0]
+            else:
+                stored = sm.depth[row, col]
             if rp:
                 x, y = lm.inverse(st, tt)
                 c0 = lm.plane_point(x, y)

@@ -6,6 +6,27 @@ equations of the perspective map is logarithmic rasterization (Lloyd 2007 §6.3)
 bounding box is found in warped space and each candidate centre is tested against the
 triangle's straight edges.
 
+Maps drawn where they are looked up
+-----------------------------------
+A shadow test of P points reads P texels of a map; an engine-sized map has millions.
+:class:`MapSampler` holds a map's scene and light map and gives the depth and triangle of
+just the texels asked (:meth:`MapSampler.at`), keeping those it has found for the next
+question.  Its memory and work grow with the texels asked, not with the map's R²:
+
+* ``backend="numpy"`` rasterizes only the rows that hold an asked texel, and along each
+  (triangle, row) span only the asked texels (:func:`.core.zbuffer_at`): the same
+  per-span formulas and tie rule as :func:`shadow_map`, so every value is the whole map's,
+  bit for bit;
+* ``backend="gl"`` draws the map on the device, over the box of the texels asked (grown
+  and drawn again if later texels fall outside it), and keeps it there
+  (:class:`.resident.DeviceMap`); a compute pass evaluates the asked texels' depths there,
+  and only they come back (:func:`shadow_map`'s gl values: depth within
+  ``gl.DEPTH_ERROR`` of the scene's depth range, visible triangles up to the hardware's
+  snapping of edges).  Log+perspective maps have no matrix and are sampled by numpy.
+
+:func:`aliasing.raster.draw.shadow_test` accepts a sampler where it accepts a
+:class:`~aliasing.raster.draw.DepthMap`.
+
 Example
 -------
 >>> from aliasing.raster.draw import light_map
@@ -13,9 +34,18 @@ Example
 >>> m = shadow_map(np.array([[[-20, -1, 0.5], [20, -1, 0.5], [0, -1, 30]]], float), lm, 16)
 >>> m.resolution, bool(np.isfinite(m.depth).any())
 (16, True)
+>>> lm = light_map(1.0, 10.0, 60.0, "overhead", "P")
+>>> ground = np.array([[[-20, -1, 0.5], [20, -1, 0.5], [0, -1, 30]]], float)
+>>> ms = MapSampler(ground, lm, 2048)              # nothing drawn yet
+>>> d, i = ms.at(np.array([1000, 5]), np.array([1024, 7]))
+>>> full = shadow_map(ground, lm, 2048)
+>>> bool((d == full.depth[[1000, 5], [1024, 7]]).all() and (i == full.triangle[[1000, 5], [1024, 7]]).all()), ms.texels
+(True, 2)
 """
 
 from __future__ import annotations
+
+import weakref
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -24,7 +54,8 @@ from typing import Sequence
 
 from ... import _validation as check
 from . import backends, gl
-from .core import CHUNK, DepthMap, _triangles, check_chunk, check_resolution, clip_near, rasterize
+from . import resident
+from .core import CHUNK, DepthMap, _triangles, check_chunk, check_resolution, clip_near, rasterize, weights_and_rows, zbuffer_at
 from .facemaps import MapSet
 from .lightmap import LightMap, light_map
 
@@ -62,7 +93,9 @@ def shadow_map(triangles: ArrayLike, lm: LightMap, resolution: int, *, chunk: in
     ``gl.DEPTH_ERROR`` of the scene's depth range) and the same visible triangles up to
     the hardware's sub-texel snapping of edges; there ``rasterized`` counts the finite
     triangles sent and ``degenerate`` the non-finite ones, and a scene wholly behind the
-    warp's centre of projection gives an empty map (numpy: a ``ValueError``).
+    warp's centre of projection gives an empty map (numpy: a ``ValueError``).  The map stays
+    on the device until ``depth`` or ``triangle`` is first read (:mod:`.resident`); a map
+    bigger than the device allows is refused in one line before any work.
     Log+perspective maps have no matrix: they are rasterized by numpy whichever backend is
     asked.
 
@@ -79,6 +112,7 @@ def shadow_map(triangles: ArrayLike, lm: LightMap, resolution: int, *, chunk: in
     res = check_resolution(resolution)
     chunk = check_chunk(chunk)
     if backends.check(backend, "shadow_map") == "gl" and not _logarithmic(lm):
+        resident.check_size(res)  # before any work
         return _gl_maps(tri, [lm], [res])[0]
     return _numpy_map(tri, lm, res, chunk)
 
@@ -88,12 +122,49 @@ def _logarithmic(lm: LightMap) -> bool:
 
 
 def _gl_maps(tri: Array, maps: Sequence[LightMap], resolutions: Sequence[int]) -> list[DepthMap]:
-    """Projective maps drawn by :func:`.gl.draw_maps` (the triangles uploaded once)."""
-    drawn, skipped = gl.draw_maps(tri, [lm.matrix() for lm in maps], resolutions)
-    return [DepthMap(d, i, r, tri.shape[0] - skipped, skipped) for (d, i), r in zip(drawn, resolutions)]
+    """Projective maps drawn on the device (:func:`.resident.draw_device_maps`, the triangles
+    uploaded once), kept there until their arrays are asked for (:class:`_DeviceDepthMap`)."""
+    drawn, skipped = resident.draw_device_maps(tri, [lm.matrix() for lm in maps], resolutions)
+    return [_DeviceDepthMap(m, tri.shape[0] - skipped, skipped) for m in drawn]
+
+
+class _DeviceDepthMap(DepthMap):
+    """A gl :class:`DepthMap` whose ``depth`` and ``triangle`` stay on the device until one of
+    them is read (:meth:`.resident.DeviceMap.read`, which frees the device map), or until the
+    device needs the room (then they are read back first)."""
+
+    def __init__(self, device: resident.DeviceMap, rasterized: int, degenerate: int) -> None:
+        for name, value in (("_device", device), ("_arrays", None), ("resolution", device.resolution), ("rasterized", rasterized), ("degenerate", degenerate)):
+            object.__setattr__(self, name, value)
+        device.on_evict = weakref.WeakMethod(self._load)
+
+    def _load(self) -> tuple[Array, NDArray[np.int64]]:
+        if self._arrays is None:
+            object.__setattr__(self, "_arrays", self._device.read())
+            self._device.release()
+        return self._arrays
+
+    @property
+    def depth(self) -> Array:  # type: ignore[override]
+        return self._load()[0]
+
+    @property
+    def triangle(self) -> NDArray[np.int64]:  # type: ignore[override]
+        return self._load()[1]
 
 
 def _numpy_map(tri: Array, lm: LightMap, resolution: int, chunk: int) -> DepthMap:
+    mapped, w, rows, src = map_triangles(tri, lm, resolution)
+    m = rasterize(mapped, resolution, w=w, row_centres=rows, chunk=chunk)
+    if src is None:
+        return m
+    ident = np.where(m.triangle >= 0, src[np.maximum(m.triangle, 0)], -1)
+    return DepthMap(m.depth, ident, m.resolution, m.rasterized, m.degenerate)
+
+
+def map_triangles(tri: Array, lm: LightMap, resolution: int) -> tuple[Array, Array, Array | None, NDArray[np.int64] | None]:
+    """The numpy rasterizer's input for map ``lm``: (s, t, depth) triangles, their weights w,
+    the row centres (log maps; None: uniform) and each triangle's source index (None: unclipped)."""
     x, y, h = lm.light_plane(tri)
     src = None
     if np.isfinite(lm.n_prime):
@@ -104,11 +175,7 @@ def _numpy_map(tri: Array, lm: LightMap, resolution: int, chunk: int) -> DepthMa
         x, h, y = lp[..., 0], lp[..., 1], lp[..., 2]
     s, t, w = lm.map_plane(x, y)
     rows = log_row_centres(lm, resolution) if lm.parameterization == "logperspective" and np.isfinite(lm.n_prime) else None
-    m = rasterize(np.stack([s, t, -h], axis=-1), resolution, w=w, row_centres=rows, chunk=chunk)
-    if src is None:
-        return m
-    ident = np.where(m.triangle >= 0, src[np.maximum(m.triangle, 0)], -1)
-    return DepthMap(m.depth, ident, m.resolution, m.rasterized, m.degenerate)
+    return np.stack([s, t, -h], axis=-1), w, rows, src
 
 
 
@@ -159,6 +226,8 @@ def shadow_maps(triangles: ArrayLike, maps: MapSet | Sequence[LightMap], resolut
     out: list[DepthMap | None] = [None] * len(lms)
     if backends.check(backend, "shadow_map") == "gl":
         todo = [i for i, lm in enumerate(lms) if not _logarithmic(lm)]
+        for i in todo:
+            resident.check_size(rs[i])  # every map before any work
         if todo:
             for i, m in zip(todo, _gl_maps(tri, [lms[i] for i in todo], [rs[i] for i in todo])):
                 out[i] = m
@@ -166,3 +235,113 @@ def shadow_maps(triangles: ArrayLike, maps: MapSet | Sequence[LightMap], resolut
         if out[i] is None:
             out[i] = _numpy_map(tri, lm, rs[i], chunk)
     return out
+
+
+# ------------------------------------------------------------- maps drawn where they are looked up
+
+#: Pairs, or texels, per vectorized step of the sampled rasterizer (temporaries ≈ 250 bytes
+#: per (triangle, row) pair: about 65 MB).
+SAMPLE_CHUNK = 1 << 18
+
+
+class MapSampler:
+    """A depth map of ``triangles`` through ``lm`` at ``resolution``, drawn where it is looked up.
+
+    Parameters
+    ----------
+    triangles : array_like, shape (T, 3, 3)
+        Eye-space (or world) triangles [world units], as for :func:`aliasing.raster.shadow_map`.
+    lm : LightMap
+        The map.
+    resolution : int
+        R, texels per side, in [1, :data:`aliasing.raster.draw.MAX_RESOLUTION`].
+    backend : {"numpy", "gl"}
+        numpy: only the asked texels are rasterized; gl: the map is drawn on the device once
+        and the asked texels are fetched there (module docstring).
+    chunk : int
+        Pairs, or texels, per vectorized step of the numpy path.
+
+    Attributes
+    ----------
+    texels : int
+        Texels found so far (and kept).
+    """
+
+    def __init__(self, triangles: ArrayLike, lm: LightMap, resolution: int, *, backend: str = "numpy", chunk: int = SAMPLE_CHUNK) -> None:
+        self.triangles = _triangles(triangles)
+        check.instance(lm, "lm", LightMap)
+        self.lm = lm
+        self.resolution = check_resolution(resolution)
+        self.chunk = check_chunk(chunk)
+        name = backends.check(backend, "shadow_map")
+        self.backend = "numpy" if name == "gl" and _logarithmic(lm) else name
+        if self.backend == "gl":
+            resident.check_size(self.resolution)
+        self._texels = np.zeros(0, np.int64)
+        self._depth = np.zeros(0)
+        self._ident = np.zeros(0, np.int64)
+        self._prepared: tuple | None = None
+        self._device: resident.DeviceMap | None = None
+
+    @property
+    def texels(self) -> int:
+        return int(self._texels.size)
+
+    def at(self, row: ArrayLike, col: ArrayLike) -> tuple[Array, NDArray[np.int64]]:
+        """Depth [the map's depth units; ``inf`` where empty] and visible triangle (−1 where
+        empty) of texels (``row``, ``col``), whole numbers in [0, R) of any one shape."""
+        r, c = (np.asarray(v) for v in (row, col))
+        res = self.resolution
+        if r.shape != c.shape or r.dtype.kind not in "iu" or c.dtype.kind not in "iu" or (r.size and (min(r.min(), c.min()) < 0 or max(r.max(), c.max()) >= res)):
+            raise ValueError(f"row and col must be whole texel indices in [0, {res - 1}] of one shape, got {r.dtype} {r.shape} and {c.dtype} {c.shape}")
+        flat = r.astype(np.int64) * res + c.astype(np.int64)
+        asked = np.unique(flat)
+        pos = np.searchsorted(self._texels, asked)
+        known = (pos < self._texels.size) & (self._texels[np.minimum(pos, max(self._texels.size - 1, 0))] == asked) if self._texels.size else np.zeros(asked.size, bool)
+        missing = asked[~known]
+        if missing.size:
+            depth, ident = self._draw(missing)
+            texels = np.concatenate([self._texels, missing])
+            order = np.argsort(texels, kind="stable")
+            self._texels = texels[order]
+            self._depth = np.concatenate([self._depth, depth])[order]
+            self._ident = np.concatenate([self._ident, ident])[order]
+        at = np.searchsorted(self._texels, flat)
+        return self._depth[at], self._ident[at]
+
+    def _draw(self, texels: NDArray[np.int64]) -> tuple[Array, NDArray[np.int64]]:
+        if self.backend == "gl":
+            if self._device is None or self._device.released or not self._device.covers(texels):
+                box = _box(texels, self.resolution)
+                if self._device is not None and not self._device.released:  # grow the drawn box to hold the new texels
+                    x, y, w, h = self._device.box
+                    box = _union(box, (x, y, w, h))
+                    self._device.release()
+                self._device = resident.draw_device_map(self.triangles, self.lm.matrix(), self.resolution, box=box)
+            return self._device.fetch(texels)
+        if self._prepared is None:
+            mapped, w, rows, src = map_triangles(self.triangles, self.lm, self.resolution)
+            inv_w, rows, uniform = weights_and_rows(mapped, self.resolution, w, rows)
+            self._prepared = (mapped, inv_w, rows, uniform, src)
+        mapped, inv_w, rows, uniform, src = self._prepared
+        depth, ident, _, _ = zbuffer_at(mapped, self.resolution, inv_w, rows, uniform, self.chunk, texels)
+        if src is not None:
+            ident = np.where(ident >= 0, src[np.maximum(ident, 0)], -1)
+        return depth, ident
+
+    def release(self) -> None:
+        """Free the device map (gl), if one was drawn; the texels found are kept."""
+        if self._device is not None:
+            self._device.release()
+            self._device = None
+
+
+def _box(texels: NDArray[np.int64], res: int) -> tuple[int, int, int, int]:
+    """The smallest box (x, y, width, height) [texels] holding flat texel indices ``texels``."""
+    row, col = texels // res, texels % res
+    return int(col.min()), int(row.min()), int(col.max() - col.min() + 1), int(row.max() - row.min() + 1)
+
+
+def _union(a: tuple[int, int, int, int], b: tuple[int, int, int, int]) -> tuple[int, int, int, int]:
+    x, y = min(a[0], b[0]), min(a[1], b[1])
+    return x, y, max(a[0] + a[2], b[0] + b[2]) - x, max(a[1] + a[3], b[1] + b[3]) - y

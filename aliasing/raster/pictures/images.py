@@ -57,7 +57,7 @@ from numpy.typing import ArrayLike, NDArray
 from ... import _validation as check
 from ... import geometry, schemes
 from ..validate.measure import measure, pixel_errors
-from ..draw import LightMap, MapSet, backends, check_resolution, eye_pass, map_set, shadow_map
+from ..draw import LightMap, MapSampler, MapSet, backends, check_resolution, eye_pass, map_set
 from ..draw.lookup import BIAS, _bias, shadow_test
 from ..scenes.builtin import Scene, ground_and_boxes
 from ...view import View as Frustum, view_args
@@ -198,8 +198,9 @@ def render_view(sc: Scene, ms: MapSet, resolutions: ArrayLike, *, image_res: int
         p = pos[sel]
         s, t, d, _ = lm.coordinates(p)
         s_all[sel], t_all[sel] = s, t
-        sm = shadow_map(sc.triangles, lm, rms[i], backend=map_backend)
+        sm = MapSampler(sc.triangles, lm, rms[i], backend=map_backend)  # drawn at the pixels' texels only (the whole map's values)
         lit[sel] = shadow_test(lm, sm, sc.triangles, p, nrm[sel], bias=bias)
+        sm.release()
     return View(sc, n_ground, eb.position, eb.normal, eb.triangle, face, list(maps), ms.edges, rms[0], np.where(hit, part, -1), s_all, t_all, lit,
                 ms.light, ms.fov, np.asarray(rms, np.int64))
 

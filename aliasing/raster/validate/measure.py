@@ -56,7 +56,7 @@ from ..draw.core import check_resolution
 from ..draw.eye import _fov_tan, eye_pass
 from ..draw.facemaps import _map_set
 from ..draw.lightmap import LightMap
-from ..draw.shadow import shadow_map
+from ..draw.shadow import MapSampler
 from ..scenes.builtin import Scene, probes
 from ...view import View, view_args
 
@@ -204,13 +204,14 @@ def measure(near: float | View, far: float | None = None, fov: float | None = No
         measured_x.append(float(np.nanmax(got["m_x"][sel])))
         measured_z.append(float(np.nanmax(got["m_z"][sel])))
         # the sampled map: the texel of each measured pixel should hold the pixel's own probe
-        sm = shadow_map(sc.triangles, lm, rm, backend=map_backend)
-        t_row = got["t"]
-        col = np.clip((np.where(sel, got["s"], 0.0) * rm).astype(np.int64), 0, rm - 1)
-        row = np.clip((np.where(sel, t_row, 0.0) * rm).astype(np.int64), 0, rm - 1)
-        texel = sm.triangle[row, col]
-        own = np.where(texel >= 0, sc.group[np.maximum(texel, 0)], -2) == group
-        self_lit.append(own[sel])
+        # (drawn at those texels only: :class:`~aliasing.raster.draw.shadow.MapSampler`, the whole map's values)
+        sm = MapSampler(sc.triangles, lm, rm, backend=map_backend)
+        col = np.clip((got["s"][sel] * rm).astype(np.int64), 0, rm - 1)
+        row = np.clip((got["t"][sel] * rm).astype(np.int64), 0, rm - 1)
+        texel = sm.at(row, col)[1]
+        sm.release()
+        own = np.where(texel >= 0, sc.group[np.maximum(texel, 0)], -2) == group[sel]
+        self_lit.append(own)
     M_x, M_z = analytic.M_x[0][ms.slots], analytic.M_z[0][ms.slots]
     mx, mz = np.array(measured_x), np.array(measured_z)
     # stated discretisation tolerance: the central differences' truncation error is
