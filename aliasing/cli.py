@@ -306,6 +306,7 @@ def build_parser(full: bool = True) -> argparse.ArgumentParser:
     from .temporal.command import add_shimmer_parser
 
     add_shimmer_parser(sub)  # aliasing shimmer
+    __import__("aliasing.frames.command", fromlist=["add_frames_parser"]).add_frames_parser(sub)  # aliasing frames
     return parser
 
 

@@ -1,0 +1,147 @@
+"""Each engine's settings (its own keys and defaults) and the toolkit's model of its shadow pass.
+
+A model turns the engine's settings into what the toolkit predicts: which faces cast, which
+cascade each pixel samples, the bias and the filter (from the engine's shader source in the
+pinned package), and the cascades' ends and map sides from the toolkit's presets
+(:data:`aliasing.engines.stable.PRESETS`, :func:`aliasing.partitioning.split_distances`).
+
+Example
+-------
+>>> sorted(MODELS)
+['threejs']
+>>> MODELS["threejs"].settings({"shadowBias": 0})["shadowBias"]   # CSM: `data.shadowBias || 0.000001`
+1e-06
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .. import partitioning
+from ..engines import stable
+from . import predict
+
+Array = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Prediction:
+    """Per pixel: the predicted ``factor`` and ``cascade``; per cascade: ``starts`` [world units] and map ``sides`` [world units]."""
+
+    factor: Array
+    cascade: NDArray[np.int64]
+    starts: Array
+    sides: Array
+    resolution: Array
+
+
+@dataclass(frozen=True)
+class ThreeCSM:
+    """three.js r187, WebGLRenderer with the CSM addon (examples/jsm/csm/CSM.js, CSMShader.js).
+
+    Settings (the engine's own keys): CSM's ``cascades``, ``maxFar``, ``mode``,
+    ``shadowMapSize``, ``shadowBias``, ``lightIntensity``, ``lightNear``, ``lightFar``,
+    ``lightMargin``, ``fade``; each cascade light's shadow ``normalBias`` and ``shadowRadius``
+    (``light.shadow.radius``); the renderer's ``shadowMapType``; the material's ``side`` and
+    ``shadowSide`` (null: the opposite of ``side``, WebGLShadowMap's ``shadowSide`` table).
+    """
+
+    engine: str = "threejs"
+    preset: str = "threejs"
+    defaults: dict = field(default_factory=lambda: {
+        "cascades": 3, "maxFar": 100000.0, "mode": "practical", "shadowMapSize": 2048, "shadowBias": 0.000001,
+        "lightIntensity": 3.0, "lightNear": 1.0, "lightFar": 2000.0, "lightMargin": 200.0, "fade": False,
+        "normalBias": 0.0, "shadowRadius": 1.0, "shadowMapType": "PCFShadowMap", "side": "front", "shadowSide": None})
+
+    def settings(self, given: dict | None = None) -> dict:
+        """Every setting, the defaults filled in, as the engine takes them (CSM's ``x || default`` included)."""
+        given = dict(given or {})
+        unknown = sorted(set(given) - set(self.defaults))
+        if unknown:
+            raise ValueError(f"unknown three.js setting {unknown[0]!r}; known: {', '.join(sorted(self.defaults))}")
+        s = {**self.defaults, **given}
+        for k in ("cascades", "maxFar", "shadowMapSize", "shadowBias", "lightIntensity", "lightNear", "lightFar", "lightMargin"):
+            if not s[k]:  # CSM's constructor: `data.x || default` (0 becomes the default)
+                s[k] = self.defaults[k]
+        if s["mode"] != "practical":
+            raise ValueError(f"mode must be 'practical' (the split the toolkit's threejs preset models), got {s['mode']!r}")
+        for k in ("side",):
+            if s[k] not in predict.SIDES:
+                raise ValueError(f"{k} must be one of {', '.join(predict.SIDES)}, got {s[k]!r}")
+        if s["shadowSide"] is not None and s["shadowSide"] not in predict.SIDES:
+            raise ValueError(f"shadowSide must be null or one of {', '.join(predict.SIDES)}, got {s['shadowSide']!r}")
+        if s["shadowMapType"] not in ("PCFShadowMap", "BasicShadowMap"):
+            raise ValueError(f"shadowMapType must be PCFShadowMap or BasicShadowMap (the filters modelled), got {s['shadowMapType']!r}")
+        if bool(s["fade"]):
+            raise ValueError("fade must be false (the blended cascades are not modelled)")
+        k = int(s["cascades"])
+        if not 1 <= k <= 8:
+            raise ValueError(f"cascades must be a whole number in [1, 8], got {s['cascades']!r}")
+        return s
+
+    def cast_side(self, s: dict) -> str:
+        """The faces drawn into the map: ``shadowSide``, or the opposite of ``side`` (front ↔ back, double stays)."""
+        if s["shadowSide"] is not None:
+            return s["shadowSide"]
+        return {"front": "back", "back": "front", "double": "double"}[s["side"]]
+
+    def shadow_far(self, s: dict, camera) -> float:
+        return float(min(camera.far, s["maxFar"]))
+
+    def edges(self, s: dict, camera) -> Array:
+        """The cascades' ends (near … shadow far) [world units]: the toolkit's threejs split."""
+        p = stable.PRESETS[self.preset]
+        return partitioning.split_distances(p.split, camera.near, self.shadow_far(s, camera), int(s["cascades"]))
+
+    def select(self, s: dict, camera, depth: Array) -> NDArray[np.int64]:
+        """The cascade each eye depth samples (CSMShader, fade off): linearDepth = z / (far − near)
+        against the breaks (end / far); −1 beyond the last (no shadow)."""
+        far = self.shadow_far(s, camera)
+        breaks = self.edges(s, camera)[1:] / far
+        ld = depth / (far - camera.near)
+        idx = np.searchsorted(breaks, ld, side="right")
+        return np.where(np.isfinite(ld) & (idx < len(breaks)), idx, -1).astype(np.int64)
+
+    def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
+        """The predicted factor at the engine's pixels, and the exact reference's lit pixels."""
+        cam = scene.camera
+        depth = cam.to_eye(np.nan_to_num(rb.position))[..., 2]
+        depth = np.where(rb.drawn, depth, np.nan)
+        sel = self.select(s, cam, depth)
+        res = int(s["shadowMapSize"])
+        cast = scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))]
+        maps = [predict.light_depth_map(cast, m, res) for m in rb.matrices]
+        h, w = depth.shape
+        fy, fx = np.mgrid[0:h, 0:w]
+        gl_y = (h - 1 - fy) + 0.5
+        pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+        factor = predict.threejs_factor(maps, rb.matrices, sel, pts, nrm, fx + 0.5, gl_y, bias=float(s["shadowBias"]),
+                                        normal_bias=float(s["normalBias"]), radius=float(s["shadowRadius"]), map_type=s["shadowMapType"])
+        factor = np.where(rb.drawn, factor, np.nan)
+        # the exact reference, through each cascade's matrix at its own pixels
+        ref = np.ones(depth.shape, bool)
+        for i, m in enumerate(rb.matrices):
+            here = rb.drawn & ((rb.cascade == i) | ((rb.cascade < 0) & (i == len(rb.matrices) - 1)))
+            if here.any():
+                ref[here] = predict.reference_lit(scene.triangles, m, res, pts[here], nrm[here], sun)
+        ref &= rb.drawn & ((nrm @ sun) > 0)
+        edges = self.edges(s, cam)
+        p = stable.PRESETS[self.preset]
+        light_eye = cam.direction_to_eye(sun)[None]
+        box = stable.evaluate(edges, cam.near, edges[-1], cam.fov, light_eye, aspect=cam.aspect, fit=p.fit, snap=p.snap, resolution=float(res))
+        sides = np.maximum(box.width_x[0], box.width_y[0])
+        return Prediction(factor, sel, edges[:-1], sides, np.full(len(sides), float(res))), ref
+
+    def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
+        """From the engine's objects: each cascade's first depth (its breaks × far), its map's larger texel side × R, and R."""
+        far = self.shadow_far(s, camera)
+        breaks = np.asarray(rb.info["breaks"], float)
+        starts = np.concatenate([[camera.near], breaks[:-1] * far])
+        sides = np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3])) for m in rb.matrices])
+        return starts, sides, rb.sizes[:, 0].astype(float)
+
+
+MODELS = {"threejs": ThreeCSM()}

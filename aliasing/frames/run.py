@@ -1,0 +1,121 @@
+"""One frame end to end: the engine draws it, the toolkit predicts it, both are measured alike.
+
+Example
+-------
+>>> job = make_job(frame_scene("boxes", near=1.0, far=30.0, fov=50.0, aspect=2.0, boxes=2, ground_cells=2),
+...                np.array([0.0, 1.0, 0.0]), {"cascades": 2}, 64)
+>>> job["width"], job["height"], job["camera"]["fov"]
+(128, 64, 50.0)
+"""
+
+from __future__ import annotations
+
+import base64
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from . import compare
+from .models import MODELS, Prediction
+from .readback import Readback, decode
+from .scenes import FrameScene, frame_scene  # noqa: F401 - frame_scene for the example
+
+Array = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class FrameResult:
+    """An engine's frame against the toolkit's prediction: ``readback`` (:class:`Readback`),
+    ``prediction``, the exact reference's lit pixels ``reference``, the filled ``settings``, and
+    ``report`` (the JSON-ready ``engine``, ``release``, ``measured``, ``predicted``)."""
+
+    readback: Readback
+    prediction: Prediction
+    reference: NDArray[np.bool_]
+    settings: dict
+    report: dict
+
+
+def make_job(scene: FrameScene, sun: Array, settings: dict, height: int) -> dict:
+    """The page's job: the scene's triangles (base64 float32), the camera, the sun and the settings.
+
+    ``height`` [px] in [16, 2160]; the width is round(aspect · height).
+    """
+    h = int(height)
+    if h != height or not 16 <= h <= 2160:
+        raise ValueError(f"height must be a whole number of pixels in [16, 2160], got {height!r}")
+    cam = scene.camera
+    w = int(round(cam.aspect * h))
+    if not 16 <= w <= 4096:
+        raise ValueError(f"the width round(aspect * height) must be in [16, 4096] px, got {w}")
+    tri = np.ascontiguousarray(scene.triangles, np.float32)
+    return {"width": w, "height": h, "triangles": base64.b64encode(tri.tobytes()).decode(),
+            "camera": {"eye": cam.eye.tolist(), "target": (cam.eye + cam.rotation[2]).tolist(), "up": cam.rotation[1].tolist(),
+                       "near": cam.near, "far": cam.far, "fov": cam.fov},
+            "sun": [float(v) for v in sun], "settings": settings, "ground": scene.ground}
+
+
+def _ground_pixels(scene: FrameScene, rb: Readback) -> NDArray[np.bool_]:
+    if scene.ground == 0:
+        return np.zeros(rb.shadow.shape, bool)
+    y0 = float(scene.triangles[: scene.ground, :, 1].mean())
+    scale = float(np.ptp(scene.triangles[..., 1])) or 1.0
+    return rb.drawn & (np.abs(np.nan_to_num(rb.position[..., 1]) - y0) < 1e-4 * scale) & (np.nan_to_num(rb.normal[..., 1]) > 0.999)
+
+
+def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dict) -> FrameResult:
+    """Decode the page's answer ``out`` for ``scene`` and ``sun``, predict it and measure both."""
+    model = MODELS[engine]
+    rb = decode(out)
+    pred, ref = model.predict(settings, scene, sun, rb)
+    receivers = ref & ((np.nan_to_num(rb.normal) @ sun) > compare.MIN_COS)
+    ground = _ground_pixels(scene, rb)
+    m_starts, m_sides, m_res = model.measured_cascades(settings, scene.camera, rb)
+    h = rb.shadow.shape[0]
+    measured = {
+        "shadow_agreement": compare.agreement(rb.shadow, pred.factor, rb.drawn),
+        "acne": compare.acne(rb.shadow, receivers),
+        "gap_px": compare.gap(rb.shadow, ref, ground, rb.drawn),
+        "texels_per_pixel": compare.texels_per_pixel(m_starts, m_sides, m_res, scene.camera.fov, h),
+    }
+    predicted = {
+        "acne": compare.acne(pred.factor, receivers),
+        "gap_px": compare.gap(pred.factor, ref, ground, rb.drawn),
+        "texels_per_pixel": compare.texels_per_pixel(pred.starts, pred.sides, pred.resolution, scene.camera.fov, h),
+    }
+    drawn = rb.drawn
+    extra = {"pixels": int(drawn.sum()), "receivers": int(receivers.sum()),
+             "cascade_agreement": float(np.mean(rb.cascade[drawn] == pred.cascade[drawn])) if drawn.any() else float("nan"),
+             "renderer": rb.info.get("renderer"), "engine_ms": rb.info.get("ms")}
+    report = {"engine": engine, "release": rb.release, "scene": scene.name, "measured": measured, "predicted": predicted, "details": extra}
+    return FrameResult(rb, pred, ref, settings, report)
+
+
+def frame(browser, engine: str, scene: FrameScene, sun: Array, settings: dict | None = None, height: int = 288) -> FrameResult:
+    """Render ``scene`` with ``engine`` in ``browser`` (:class:`aliasing.frames.browser.Browser`) and measure it against the prediction.
+
+    Parameters
+    ----------
+    browser : Browser
+        An open headless Chromium.
+    engine : str
+        One of :data:`aliasing.frames.models.MODELS`.
+    scene : FrameScene
+        From :func:`aliasing.frames.scenes.frame_scene`.
+    sun : array_like (3,)
+        World direction towards the sun (unit).
+    settings : dict, optional
+        The engine's settings in its own keys (the rest are its defaults).
+    height : int
+        Image height [px]; the width follows the camera's aspect.
+    """
+    if engine not in MODELS:
+        raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")
+    s = MODELS[engine].settings(settings)
+    sv = np.asarray(sun, float)
+    if sv.shape != (3,) or not np.isfinite(sv).all() or not np.linalg.norm(sv) > 0:
+        raise ValueError(f"sun must be a non-zero finite 3-vector, got {sun!r}")
+    sv = sv / np.linalg.norm(sv)
+    out = browser.render(engine, make_job(scene, sv, s, height))
+    return measure(engine, scene, sv, s, out)
