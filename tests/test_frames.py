@@ -1,0 +1,204 @@
+"""The engines' own frames (aliasing.frames) against the toolkit's prediction.
+
+three.js r187 (WebGLRenderer with the CSM addon) renders the built-in boxes scene in the system
+Chromium (headless, WebGL 2 on SwiftShader, driven by Playwright for Python); its page reads
+back the raw shadow factor, the cascade, the world position and normal per pixel and the light
+matrices per cascade.  The toolkit predicts the same pixels with its own rasterizer and three.js's
+rules (back faces cast for front-sided materials, CSM's cascade selection, the normalized
+depth bias, PCF's five rotated hardware-PCF taps), and the two are measured alike:
+
+* shadow mask agreement >= 99 % away from shadow edges;
+* acne within 2 percentage points, at three.js's defaults and with front faces casting at
+  CSM's default bias (a bias below the one front faces need);
+* the lit gap at the boxes' feet within 1 px;
+* texels per pixel from the engine's matrices equal to the toolkit's fit to 1e-6 relative.
+
+One browser per module.  Without Chromium, npm or Playwright the browser tests skip with one
+line, except under CI (``CI=true``), where that is a failure.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from aliasing.frames import browser as fb
+from aliasing.frames import command, install, scenes
+from aliasing.frames.models import MODELS
+from aliasing.frames.run import frame
+
+ROOT = Path(__file__).resolve().parents[1]
+CI = os.environ.get("CI", "").lower() == "true"
+HEIGHT = 144
+CAMERA = dict(near=0.5, far=60.0, fov=50.0, aspect=16 / 9)
+SUN = (35.0, 30.0)  # elevation, azimuth [deg]
+
+
+def _need(what: str, how: str) -> None:
+    if CI:
+        pytest.fail(f"{what} missing under CI: {how}")
+    pytest.skip(f"{what} missing: the engines' frames are not rendered ({how})")
+
+
+@pytest.fixture(scope="module")
+def chromium():
+    try:
+        import playwright  # noqa: F401
+    except ImportError:
+        _need("Playwright for Python", "pip install '.[frames]'")
+    if fb.chromium_path() is None:
+        _need("Chromium", "Debian: apt-get install chromium")
+    if shutil.which("npm") is None:
+        _need("npm", "Debian: apt-get install nodejs npm")
+    try:
+        install.install("threejs")
+    except install.MissingTool as e:
+        _need("the pinned three.js package", str(e))
+    with fb.Browser(timeout=120) as b:
+        yield b
+
+
+@pytest.fixture(scope="module")
+def boxes():
+    fs = scenes.frame_scene("boxes", **CAMERA, boxes=30, ground_cells=8)
+    return fs, scenes.sun_direction(*SUN, fs.camera)
+
+
+@pytest.fixture(scope="module")
+def three(chromium, boxes):
+    fs, sun = boxes
+    return {name: frame(chromium, "threejs", fs, sun, settings, height=HEIGHT)
+            for name, settings in (("defaults", {}), ("front faces cast", {"shadowSide": "front"}))}
+
+
+def test_pins_are_the_node_tests_pins():
+    for engine in ("threejs", "babylon"):
+        pin = install.PINS[engine].pin
+        for f in ("package.json", "package-lock.json", "tree.sha256"):
+            mine = (install.HERE / pin / f).read_bytes()
+            node = (ROOT / "tests" / "engines_js" / "pins" / pin / f).read_bytes()
+            if f == "tree.sha256":
+                mine, node = mine.split()[0], node.split()[0]
+            assert mine == node, (pin, f)
+    for p in install.PINS.values():
+        lock = json.loads((install.HERE / p.pin / "package-lock.json").read_text())
+        assert lock["packages"][f"node_modules/{p.package}"]["version"] == p.version
+
+
+@pytest.mark.parametrize("name", ["defaults", "front faces cast"])
+def test_threejs_frame_matches_the_prediction(three, name):
+    r = three[name].report
+    m, p = r["measured"], r["predicted"]
+    assert r["engine"] == "threejs" and r["release"] == "187"
+    assert r["details"]["pixels"] > 0.4 * HEIGHT * round(HEIGHT * 16 / 9)
+    assert m["shadow_agreement"] >= 0.99, r
+    assert abs(m["acne"] - p["acne"]) <= 0.02, r
+    assert m["gap_px"] is not None and abs(m["gap_px"] - p["gap_px"]) <= 1.0, r
+    got, want = np.array(m["texels_per_pixel"]), np.array(p["texels_per_pixel"])
+    assert got.shape == want.shape == (3,) and np.max(np.abs(got / want - 1)) <= 1e-6, r
+    assert r["details"]["cascade_agreement"] >= 0.999, r
+
+
+def test_threejs_defaults_show_no_acne_and_front_faces_do(three):
+    # three.js draws back faces into the map for front-sided materials (WebGLShadowMap's shadowSide
+    # table): no acne at its default bias; front faces casting at that bias stripe the lit surfaces
+    assert three["defaults"].report["measured"]["acne"] < 0.01
+    assert three["front faces cast"].report["measured"]["acne"] > 0.3
+
+
+def test_threejs_readback_is_the_frame(three, boxes):
+    fs, sun = boxes
+    rb = three["defaults"].readback
+    # positions on the camera's pixel rays: the eye-space direction of each pixel centre
+    h, w = rb.shadow.shape
+    e = fs.camera.to_eye(np.nan_to_num(rb.position))
+    t = np.tan(np.radians(fs.camera.fov) / 2)
+    yy, xx = np.mgrid[0:h, 0:w]
+    u, v = ((xx + 0.5) / w * 2 - 1) * t * fs.camera.aspect, (1 - (yy + 0.5) / h * 2) * t
+    d = rb.drawn
+    assert np.max(np.abs(e[..., 0][d] / e[..., 2][d] - u[d])) < 1e-3
+    assert np.max(np.abs(e[..., 1][d] / e[..., 2][d] - v[d])) < 1e-3
+    assert rb.frame[:8] == b"\x89PNG\r\n\x1a\n"
+    assert rb.matrices.shape == (3, 4, 4) and (rb.sizes == 2048).all()
+
+
+def test_page_errors_are_one_line(chromium, boxes):
+    fs, sun = boxes
+    from aliasing.frames.run import make_job
+
+    job = make_job(fs, sun, {**MODELS["threejs"].settings({}), "side": "sideways"}, 32)
+    with pytest.raises(fb.PageError, match=r"^threejs page threw: side and shadowSide must be") as e:
+        chromium.render("threejs", job)
+    assert "\n" not in str(e.value)
+    with pytest.raises(ValueError, match="engine must be one of babylon, playcanvas, threejs"):
+        chromium.render("godot", job)
+
+
+def _cli(*args: str, env: dict | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "aliasing.cli", "frames", *args], capture_output=True, text=True, timeout=300,
+                          env={**os.environ, **(env or {})}, cwd=ROOT)
+
+
+BASE = ["--scene", "boxes", "--camera", "near=0.5,far=60,fov=50,aspect=16:9,height=64", "--sun", "35@30"]
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--engine", "unreal"], "--engine must be one of babylon, playcanvas, threejs"),
+    (["--engine", "threejs", "--camera", "near=1,far=0.5,fov=50,aspect=1,height=64"], "near must be < far"),
+    (["--engine", "threejs", "--sun", "95"], "elevations must satisfy"),
+    (["--engine", "threejs", "--set", "shadowBiass=0"], "unknown three.js setting 'shadowBiass'"),
+    (["--engine", "threejs", "--scene", "no-such.glb"], "scene must be boxes, city or an existing scene file"),
+])
+def test_cli_bad_input_is_one_line(tmp_path, args, message):
+    full = BASE + ["--out", str(tmp_path)] + args
+    # later options override earlier ones (argparse): the bad value wins
+    done = _cli(*full)
+    assert done.returncode == 2, done
+    assert done.stderr.count("\n") == 1 and message in done.stderr, done.stderr
+
+
+def test_cli_without_chromium_says_how_to_install(tmp_path):
+    done = _cli(*BASE, "--engine", "threejs", "--out", str(tmp_path), env={"ALIASING_CHROMIUM": str(tmp_path / "none")})
+    assert done.returncode == 2
+    assert done.stderr.count("\n") == 1 and ("Chromium not found" in done.stderr or "Playwright" in done.stderr), done.stderr
+
+
+def test_cli_without_the_engine_package_says_how_to_install(tmp_path, chromium):
+    done = _cli(*BASE, "--engine", "threejs", "--out", str(tmp_path), env={"ALIASING_ENGINES_JS_CACHE": str(tmp_path / "cache")})
+    assert done.returncode == 2
+    assert done.stderr.count("\n") == 1 and "run `aliasing frames --install`" in done.stderr, done.stderr
+
+
+def test_cli_writes_the_frame_and_the_report(tmp_path, chromium):
+    done = _cli(*BASE, "--engine", "threejs", "--set", "shadowSide=front", "--out", str(tmp_path), "--format", "json")
+    assert done.returncode == 0, done.stderr
+    report = json.loads(done.stdout)
+    assert set(report["measured"]) == {"shadow_agreement", "acne", "gap_px", "texels_per_pixel"}
+    assert set(report["predicted"]) == {"acne", "gap_px", "texels_per_pixel"}
+    assert report["engine"] == "threejs" and report["release"] == "187"
+    assert json.loads((tmp_path / "frames.json").read_text()) == report
+    for f in ("engine.png", "predicted.png", "difference.png"):
+        assert (tmp_path / f).read_bytes()[:4] == b"\x89PNG"
+
+
+def test_parsers():
+    assert command.parse_camera("near=0.1,far=500,fov=50,aspect=16:9,height=1080") == {"near": 0.1, "far": 500.0, "fov": 50.0, "aspect": 16 / 9, "height": 1080}
+    assert command.parse_sun("30") == (30.0, 0.0) and command.parse_sun("20..40@-15") == (30.0, -15.0)
+    with pytest.raises(ValueError, match="height must be a whole number"):
+        command.parse_camera("near=0.1,far=500,fov=50,aspect=1,height=10.5")
+    assert command.parse_settings(None, ["shadowSide=front", "shadowBias=0.001", "x=null"]) == {"shadowSide": "front", "shadowBias": 0.001, "x": None}
+
+
+def test_wind_outward_makes_boxes_closed_and_outward():
+    fs = scenes.frame_scene("boxes", **CAMERA, boxes=5, ground_cells=2)
+    tri = fs.triangles[fs.ground:].reshape(5, 12, 3, 3)
+    n = np.cross(tri[..., 1, :] - tri[..., 0, :], tri[..., 2, :] - tri[..., 0, :])
+    centre = tri.reshape(5, -1, 3).mean(1)
+    assert (((tri.mean(2) - centre[:, None]) * n).sum(-1) > 0).all()
