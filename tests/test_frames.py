@@ -72,6 +72,16 @@ def boxes():
 
 
 @pytest.fixture(scope="module")
+def babylon(chromium, boxes):
+    fs, sun = boxes
+    try:
+        install.install("babylon")
+    except install.MissingTool as e:
+        _need("the pinned Babylon.js package", str(e))
+    return {name: frame(chromium, "babylon", fs, sun, settings, height=HEIGHT) for name, settings in (("defaults", {}), ("bias 0", {"bias": 0}))}
+
+
+@pytest.fixture(scope="module")
 def three(chromium, boxes):
     fs, sun = boxes
     return {name: frame(chromium, "threejs", fs, sun, settings, height=HEIGHT)
@@ -104,6 +114,31 @@ def test_threejs_frame_matches_the_prediction(three, name):
     got, want = np.array(m["texels_per_pixel"]), np.array(p["texels_per_pixel"])
     assert got.shape == want.shape == (3,) and np.max(np.abs(got / want - 1)) <= 1e-6, r
     assert r["details"]["cascade_agreement"] >= 0.999, r
+
+
+# Babylon.js computes its cascades in float32 (Matrix is a Float32Array): the camera's inverse
+# projection carries its rounding (2^-24 times far/near = 120 here, about 7e-6) into the slices' corners
+BABYLON_FLOAT32 = 1e-5
+
+
+@pytest.mark.parametrize("name", ["defaults", "bias 0"])
+def test_babylon_frame_matches_the_prediction(babylon, name):
+    r = babylon[name].report
+    m, p = r["measured"], r["predicted"]
+    assert r["engine"] == "babylon" and r["release"] == "9.35.0"
+    assert m["shadow_agreement"] >= 0.99, r
+    assert abs(m["acne"] - p["acne"]) <= 0.02, r
+    assert m["gap_px"] is not None and abs(m["gap_px"] - p["gap_px"]) <= 1.0, r
+    got, want = np.array(m["texels_per_pixel"]), np.array(p["texels_per_pixel"])
+    assert got.shape == want.shape == (4,) and np.max(np.abs(got / want - 1)) <= BABYLON_FLOAT32, r
+    assert r["details"]["cascade_agreement"] >= 0.999, r
+
+
+def test_babylon_stripes_lit_surfaces(babylon):
+    # front faces cast (the material's back-face culling), so lit surfaces self-shadow at bias 0
+    # and still at the default bias 5e-5 (1.5e-4 of the cascade's depth range, see the docs)
+    assert babylon["bias 0"].report["measured"]["acne"] > 0.3
+    assert babylon["defaults"].report["measured"]["acne"] > 0.3
 
 
 def test_threejs_defaults_show_no_acne_and_front_faces_do(three):

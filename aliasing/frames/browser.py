@@ -144,6 +144,7 @@ class Browser:
         page = self._browser.new_page(viewport={"width": int(job["width"]), "height": int(job["height"])})
         errors: list[str] = []
         page.on("pageerror", lambda e: errors.append(_first_line(e)))
+        page.on("console", lambda m: errors.append(_first_line(m.text)) if m.type == "error" else None)
         page.route("**/*", self._serve)
         ms = int(self.timeout * 1000)
         try:
@@ -164,5 +165,6 @@ class Browser:
         if not isinstance(out, dict):
             raise PageError(f"{engine} page returned {json.dumps(out)[:80]}")
         if "error" in out:
-            raise PageError(f"{engine} page threw: {_first_line(out['error'])}")
+            said = f" (its console: {errors[0]})" if errors else ""
+            raise PageError(f"{engine} page threw: {_first_line(out['error'])}{said}")
         return out

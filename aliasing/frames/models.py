@@ -8,7 +8,7 @@ pinned package), and the cascades' ends and map sides from the toolkit's presets
 Example
 -------
 >>> sorted(MODELS)
-['threejs']
+['babylon', 'threejs']
 >>> MODELS["threejs"].settings({"shadowBias": 0})["shadowBias"]   # CSM: `data.shadowBias || 0.000001`
 1e-06
 """
@@ -36,6 +36,26 @@ class Prediction:
     starts: Array
     sides: Array
     resolution: Array
+
+
+def tight_sides(camera, edges: Array, along: Array, up: Array) -> Array:
+    """Per cascade: the larger side [world units] of the slice corners' box in a light frame whose x axis is ``up`` × ``along``.
+
+    The tight fit's box depends on the light frame's roll about the light direction, which an
+    engine takes from a world up vector (Babylon.js: ``Matrix.LookAtLH(centre, centre + d, Vector3.Up())``),
+    not from the camera: the extents are measured on x ∝ up × d and y ∝ d × x (signs do not
+    change extents; the mirror into Babylon's left-handed world neither).
+    """
+    d = along / np.linalg.norm(along)
+    x = np.cross(up, d)
+    x /= np.linalg.norm(x)
+    y = np.cross(d, x)
+    out = []
+    for a, b in zip(edges[:-1], edges[1:]):
+        corners = camera.view.slice_vertices(a, b)  # eye space (8, 3)
+        world = corners @ camera.rotation + camera.eye
+        out.append(max(np.ptp(world @ x), np.ptp(world @ y)))
+    return np.array(out)
 
 
 @dataclass(frozen=True)
@@ -144,4 +164,97 @@ class ThreeCSM:
         return starts, sides, rb.sizes[:, 0].astype(float)
 
 
-MODELS = {"threejs": ThreeCSM()}
+@dataclass(frozen=True)
+class BabylonCSM:
+    """Babylon.js 9.35, CascadedShadowGenerator on a DirectionalLight (Lights/Shadows/cascadedShadowGenerator.pure.js).
+
+    Settings (the engine's own keys): the generator's ``mapSize`` (its constructor's first
+    argument), ``numCascades``, ``lambda``, ``bias``, ``normalBias``, ``darkness``,
+    ``frustumEdgeFalloff``, ``stabilizeCascades``, ``cascadeBlendPercentage``, ``depthClamp``,
+    ``autoCalcDepthBounds``, ``shadowMaxZ`` (null: the camera's far), ``filteringQuality``,
+    ``usePercentageCloserFiltering``, ``forceBackFacesOnly``; the material's ``backFaceCulling``.
+    """
+
+    engine: str = "babylon"
+    defaults: dict = field(default_factory=lambda: {
+        "mapSize": 1024, "numCascades": 4, "lambda": 0.5, "bias": 0.00005, "normalBias": 0.0, "darkness": 0.0, "frustumEdgeFalloff": 0.0,
+        "stabilizeCascades": False, "cascadeBlendPercentage": 0.1, "depthClamp": True, "autoCalcDepthBounds": False, "shadowMaxZ": None,
+        "filteringQuality": 0, "usePercentageCloserFiltering": True, "forceBackFacesOnly": False, "backFaceCulling": True})
+
+    def settings(self, given: dict | None = None) -> dict:
+        """Every setting, the defaults filled in (the generator's own defaults, read from its constructor)."""
+        given = dict(given or {})
+        unknown = sorted(set(given) - set(self.defaults))
+        if unknown:
+            raise ValueError(f"unknown Babylon.js setting {unknown[0]!r}; known: {', '.join(sorted(self.defaults))}")
+        s = {**self.defaults, **given}
+        checks = [("numCascades", 2 <= s["numCascades"] <= 4, "a whole number in [2, 4]"),
+                  ("lambda", s["lambda"] == 0.5, "0.5 (the split the toolkit's babylon preset models)"),
+                  ("bias", s["bias"] >= 0, ">= 0"), ("normalBias", s["normalBias"] >= 0, ">= 0"),
+                  ("darkness", s["darkness"] == 0, "0 (modelled)"), ("frustumEdgeFalloff", s["frustumEdgeFalloff"] == 0, "0 (modelled)"),
+                  ("depthClamp", s["depthClamp"] is True, "true (the depth-clamped bias is modelled)"),
+                  ("autoCalcDepthBounds", s["autoCalcDepthBounds"] is False, "false"),
+                  ("filteringQuality", s["filteringQuality"] == 0, "0, high quality (PCF5, modelled)"),
+                  ("usePercentageCloserFiltering", s["usePercentageCloserFiltering"] is True, "true (modelled)"),
+                  ("cascadeBlendPercentage", 0 <= s["cascadeBlendPercentage"] <= 1, "in [0, 1]"),
+                  ("mapSize", s["mapSize"] in (256, 512, 1024, 2048, 4096), "a power of two in [256, 4096]")]
+        for key, ok, what in checks:
+            if not ok:
+                raise ValueError(f"{key} must be {what}, got {s[key]!r}")
+        return s
+
+    def cast_side(self, s: dict) -> str:
+        """The faces drawn into the map: the material's culling (front faces by default), or back faces only."""
+        if s["forceBackFacesOnly"]:
+            return "back"
+        return "front" if s["backFaceCulling"] else "double"
+
+    def shadow_far(self, s: dict, camera) -> float:
+        return float(camera.far if s["shadowMaxZ"] is None else min(s["shadowMaxZ"], camera.far))
+
+    def edges(self, s: dict, camera) -> Array:
+        return partitioning.split_distances("babylon", camera.near, self.shadow_far(s, camera), int(s["numCascades"]))
+
+    def select(self, s: dict, camera, depth: Array) -> NDArray[np.int64]:
+        """lightFragment's loop: the first cascade whose end is at or beyond the eye depth; −1 beyond the last."""
+        ends = self.edges(s, camera)[1:]
+        idx = np.searchsorted(ends, depth, side="left")
+        return np.where(np.isfinite(depth) & (idx < len(ends)), idx, -1).astype(np.int64)
+
+    def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
+        cam = scene.camera
+        depth = np.where(rb.drawn, cam.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
+        sel = self.select(s, cam, depth)
+        res = int(s["mapSize"])
+        cast = predict.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))], sun, float(s["normalBias"]))
+        maps = [predict.light_depth_map(cast, m, res) for m in rb.matrices]
+        edges = self.edges(s, cam)
+        pct = float(s["cascadeBlendPercentage"])
+        pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+        factor = predict.babylon_factor(maps, rb.matrices, sel, depth, pts, ends=edges[1:], lengths=np.diff(edges),
+                                        blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
+        factor = np.where(rb.drawn, factor, np.nan)
+        ref = np.ones(depth.shape, bool)
+        for i, m in enumerate(rb.matrices):
+            here = rb.drawn & ((rb.cascade == i) | ((rb.cascade < 0) & (i == len(rb.matrices) - 1)))
+            if here.any():
+                ref[here] = predict.reference_lit(scene.triangles, m, res, pts[here], nrm[here], sun)
+        ref &= rb.drawn & ((nrm @ sun) > 0)
+        if s["stabilizeCascades"]:
+            p = stable.PRESETS["babylon"]
+            box = stable.evaluate(edges, cam.near, edges[-1], cam.fov, cam.direction_to_eye(sun)[None], aspect=cam.aspect, fit=p.fit, snap=p.snap,
+                                  resolution=float(res))
+            sides = np.maximum(box.width_x[0], box.width_y[0])
+        else:
+            sides = tight_sides(cam, edges, -sun, np.array([0.0, 1.0, 0.0]))
+        return Prediction(factor, sel, edges[:-1], sides, np.full(len(sides), float(res))), ref
+
+    def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
+        """From the engine's objects: each cascade's first depth (the previous one's view z), its map's larger side, and R."""
+        ends = np.array([c["viewZ"] for c in rb.info["cascades"]], float)
+        starts = np.concatenate([[camera.near], ends[:-1]])
+        sides = np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3])) for m in rb.matrices])
+        return starts, sides, rb.sizes[:, 0].astype(float)
+
+
+MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM()}

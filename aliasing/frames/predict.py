@@ -169,3 +169,88 @@ def threejs_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
             f *= 0.2
         factor[sel] = np.where(inside, f, 1.0)
     return factor
+
+
+def offset_casters(triangles: Array, sun: Array, normal_bias: float) -> Array:
+    """Babylon.js's caster-side normal bias (shadowMapVertexNormalBias): each corner moves by
+    −n · normalBias · sin(n, l) along its face's unit normal n [world units]."""
+    if normal_bias == 0:
+        return triangles
+    n = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    n = n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+    cos = n @ sun
+    return triangles - (normal_bias * np.sqrt(np.clip(1 - cos**2, 0, 1)))[:, None, None] * n[:, None, :]
+
+
+def _babylon_pcf5(stored: Array, s: Array, t: Array, ref: Array) -> Array:
+    """Babylon.js's computeShadowWithCSMPCF5: 9 hardware-PCF (LINEAR, compare LESS) taps with weights /144."""
+    r = stored.shape[0]
+    u, v = s * r + 0.5, t * r + 0.5
+    st_x, st_y = u - np.floor(u), v - np.floor(v)
+    bu, bv = (np.floor(u) - 0.5) / r, (np.floor(v) - 0.5) / r
+
+    def weights(f):
+        w = (4 - 3 * f, np.full_like(f, 7.0), 1 + 3 * f)
+        o = ((3 - 2 * f) / w[0] - 2, (3 + f) / w[1], f / w[2] + 2)
+        return w, o
+
+    (wx, ox), (wy, oy) = weights(st_x), weights(st_y)
+    out = np.zeros_like(ref)
+    for a in range(3):
+        for b in range(3):
+            out += wx[a] * wy[b] * _hardware_compare(stored, bu + ox[a] / r, bv + oy[b] / r, ref, strict=True)
+    return out / 144.0
+
+
+def _hardware_compare(depth: Array, s: Array, t: Array, ref: Array, *, strict: bool) -> Array:
+    """A LINEAR shadow-sampler lookup: the bilinear weights of the 4 nearest texels' compares (LESS if strict, else LEQUAL), clamped to the edge."""
+    r = depth.shape[0]
+    u, v = s * r - 0.5, t * r - 0.5
+    i0, j0 = np.floor(u), np.floor(v)
+    fu, fv = u - i0, v - j0
+    out = np.zeros_like(ref)
+    for di, wu in ((0, 1 - fu), (1, fu)):
+        for dj, wv in ((0, 1 - fv), (1, fv)):
+            i = np.clip(i0 + di, 0, r - 1).astype(np.int64)
+            j = np.clip(j0 + dj, 0, r - 1).astype(np.int64)
+            d = depth[j, i]
+            out += wu * wv * ((ref < d) if strict else (ref <= d))
+    return out
+
+
+def babylon_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.int64], depth: Array, points: Array, *,
+                   ends: Array, lengths: Array, blend_factor: float, bias: float) -> Array:
+    """Babylon.js 9.35's CSM shadow factor (lightFragment with SHADOWCSM, PCF high quality, depth clamp on).
+
+    The stored depth is the caster's window depth + 1.5 · ``bias`` clamped to [0, 1]
+    (shadowMapVertexMetric adds bias·w to clip z, i.e. bias/2 in window depth, and
+    shadowMapFragment adds ``bias`` again to the clamped depth); the receiver's depth is its
+    window depth clamped to [0, 1 − 2⁻²⁴]; the lookup is :func:`_babylon_pcf5`; a pixel within
+    the last ``1/blend_factor`` of its cascade's length mixes in the next cascade's factor.
+    ``cascade`` −1: no shadow (beyond shadowMaxZ).
+    """
+
+    def lookup(i: int, sel: NDArray[np.bool_]) -> Array:
+        c = to_map(matrices[i], points[sel])
+        stored = np.clip(np.where(np.isfinite(maps[i].depth), maps[i].depth, 1.0) + 1.5 * bias, 0.0, 1.0)
+        ref = np.clip(c[:, 2], 0.0, 0.99999994)
+        return _babylon_pcf5(stored, c[:, 0], c[:, 1], ref)
+
+    factor = np.ones(points.shape[:-1])
+    k = len(maps)
+    for i in range(k):
+        sel = cascade == i
+        if not sel.any():
+            continue
+        f = lookup(i, sel)
+        if i < k - 1:
+            ratio = np.clip((ends[i] - depth[sel]) / lengths[i], 0, 1) * blend_factor
+            blend = ratio < 1
+            if blend.any():
+                idx = np.flatnonzero(sel)[blend]
+                sub = np.zeros_like(sel)
+                sub.flat[idx] = True
+                nxt = lookup(i + 1, sub)
+                f[blend] = nxt + (f[blend] - nxt) * ratio[blend]  # mix(next, this, ratio)
+        factor[sel] = f
+    return factor

@@ -98,7 +98,10 @@ def decode(out: dict) -> Readback:
     n = nrm[..., :3]
     n = n / np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-30)
     normal = np.where(drawn[..., None], n, np.nan)
-    mats = np.array([np.asarray(c["matrix"], float).reshape(4, 4).T for c in out["cascades"]]).reshape(-1, 4, 4)
+    # three.js: column-major elements of world -> [0, 1]^3; Babylon.js: row-vector world -> clip (flagged "clip")
+    to_unit = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+    mats = np.array([(to_unit if c.get("clip") else np.eye(4)) @ np.asarray(c["matrix"], float).reshape(4, 4).T
+                     for c in out["cascades"]]).reshape(-1, 4, 4)
     sizes = np.array([c["size"] for c in out["cascades"]], np.int64).reshape(-1, 2)
     png = out["frame"].split(",", 1)[1] if "," in out["frame"] else ""
     info = {k: v for k, v in out.items() if k not in ("shadow", "position", "normal", "frame")}
