@@ -78,7 +78,7 @@ def babylon(chromium, boxes):
         install.install("babylon")
     except install.MissingTool as e:
         _need("the pinned Babylon.js package", str(e))
-    return {name: frame(chromium, "babylon", fs, sun, settings, height=HEIGHT) for name, settings in (("defaults", {}), ("bias 0", {"bias": 0}))}
+    return {name: frame(chromium, "babylon", fs, sun, settings, height=HEIGHT) for name, settings in (("defaults", {}), ("bias 0", {"bias": 0}), ("bias 4e-4", {"bias": 0.0004}))}
 
 
 @pytest.fixture(scope="module")
@@ -121,7 +121,7 @@ def test_threejs_frame_matches_the_prediction(three, name):
 BABYLON_FLOAT32 = 1e-5
 
 
-@pytest.mark.parametrize("name", ["defaults", "bias 0"])
+@pytest.mark.parametrize("name", ["defaults", "bias 0", "bias 4e-4"])
 def test_babylon_frame_matches_the_prediction(babylon, name):
     r = babylon[name].report
     m, p = r["measured"], r["predicted"]
