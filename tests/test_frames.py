@@ -141,6 +141,32 @@ def test_babylon_stripes_lit_surfaces(babylon):
     assert babylon["defaults"].report["measured"]["acne"] > 0.3
 
 
+def test_playcanvas_frame_is_read_back_and_measured(chromium, boxes):
+    # PlayCanvas is rendered and measured against the exact reference, not predicted (its
+    # polygon-offset bias depends on the GL's resolvable depth step): the read-back must say
+    # what the frame shows, one light's raw factor per pixel
+    fs, sun = boxes
+    try:
+        install.install("playcanvas")
+    except install.MissingTool as e:
+        _need("the pinned PlayCanvas package", str(e))
+    runs = {name: frame(chromium, "playcanvas", fs, sun, s, height=HEIGHT) for name, s in (("defaults", {}), ("bias 0", {"shadowBias": 0}))}
+    for r in runs.values():
+        rep = r.report
+        assert rep["engine"] == "playcanvas" and rep["release"] == "2.23.3"
+        assert rep["predicted"] == {"acne": None, "gap_px": None, "texels_per_pixel": None}
+        rb = r.readback
+        assert rb.drawn.sum() > 0.4 * rb.drawn.size
+        # one cascade by default, none beyond the shadow distance (40) where getShadow returns 1
+        depth = fs.camera.to_eye(np.nan_to_num(rb.position))[..., 2]
+        c, d = rb.cascade[rb.drawn], depth[rb.drawn]
+        assert set(np.unique(c)) <= {-1, 0} and (d[c == -1] > 40 - 1e-3).all() and (d[c == 0] <= 40 + 1e-3).all()
+        assert (rb.shadow[rb.drawn][c == -1] == 1).all()
+        assert np.nanmin(rb.shadow) >= -1e-6 and np.nanmax(rb.shadow) <= 1 + 1e-6
+    # the engine's own bias (0.05: a polygon offset) removes the acne that bias 0 shows
+    assert runs["defaults"].report["measured"]["acne"] < 0.05 < 0.2 < runs["bias 0"].report["measured"]["acne"]
+
+
 def test_threejs_defaults_show_no_acne_and_front_faces_do(three):
     # three.js draws back faces into the map for front-sided materials (WebGLShadowMap's shadowSide
     # table): no acne at its default bias; front faces casting at that bias stripe the lit surfaces

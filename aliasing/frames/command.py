@@ -144,8 +144,6 @@ def run(args: argparse.Namespace) -> dict:
         raise ValueError(f"--engine must be one of {', '.join(sorted(PINS))}, got {args.engine!r}")
     from .models import MODELS
 
-    if args.engine not in MODELS:
-        raise ValueError(f"--engine {args.engine}: its frames are not compared yet (compared: {', '.join(sorted(MODELS))})")
     if args.scene is None or args.camera is None or args.sun is None or args.out is None:
         raise ValueError("--scene, --camera, --sun and --out are required (or --install)")
     cam = parse_camera(args.camera)
@@ -196,7 +194,7 @@ def add_frames_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
     """Add the ``frames`` subcommand to the ``aliasing`` command's subparsers ``sub``."""
     p = sub.add_parser(
         "frames",
-        help="an engine's own frame (three.js in headless Chromium) against the toolkit's prediction: shadow mask, acne, gap, texel footprint",
+        help="an engine's own frame (three.js, Babylon.js, PlayCanvas in headless Chromium) against the toolkit's prediction: shadow mask, acne, gap, texel footprint",
         description="Renders the scene with the engine itself (pinned npm release, system Chromium, WebGL 2 on SwiftShader), reads back its "
         "shadow factor, positions, normals and light matrices, and measures them against the toolkit's prediction for the same pixels.",
     )

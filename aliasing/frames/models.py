@@ -8,7 +8,7 @@ pinned package), and the cascades' ends and map sides from the toolkit's presets
 Example
 -------
 >>> sorted(MODELS)
-['babylon', 'threejs']
+['babylon', 'playcanvas', 'threejs']
 >>> MODELS["threejs"].settings({"shadowBias": 0})["shadowBias"]   # CSM: `data.shadowBias || 0.000001`
 1e-06
 """
@@ -141,13 +141,7 @@ class ThreeCSM:
         factor = predict.threejs_factor(maps, rb.matrices, sel, pts, nrm, fx + 0.5, gl_y, bias=float(s["shadowBias"]),
                                         normal_bias=float(s["normalBias"]), radius=float(s["shadowRadius"]), map_type=s["shadowMapType"])
         factor = np.where(rb.drawn, factor, np.nan)
-        # the exact reference, through each cascade's matrix at its own pixels
-        ref = np.ones(depth.shape, bool)
-        for i, m in enumerate(rb.matrices):
-            here = rb.drawn & ((rb.cascade == i) | ((rb.cascade < 0) & (i == len(rb.matrices) - 1)))
-            if here.any():
-                ref[here] = predict.reference_lit(scene.triangles, m, res, pts[here], nrm[here], sun)
-        ref &= rb.drawn & ((nrm @ sun) > 0)
+        ref = reference(scene, sun, rb, res)  # the exact reference, through each cascade's matrix at its own pixels
         edges = self.edges(s, cam)
         p = stable.PRESETS[self.preset]
         light_eye = cam.direction_to_eye(sun)[None]
@@ -234,12 +228,7 @@ class BabylonCSM:
         factor = predict.babylon_factor(maps, rb.matrices, sel, depth, pts, ends=edges[1:], lengths=np.diff(edges),
                                         blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
         factor = np.where(rb.drawn, factor, np.nan)
-        ref = np.ones(depth.shape, bool)
-        for i, m in enumerate(rb.matrices):
-            here = rb.drawn & ((rb.cascade == i) | ((rb.cascade < 0) & (i == len(rb.matrices) - 1)))
-            if here.any():
-                ref[here] = predict.reference_lit(scene.triangles, m, res, pts[here], nrm[here], sun)
-        ref &= rb.drawn & ((nrm @ sun) > 0)
+        ref = reference(scene, sun, rb, res)
         if s["stabilizeCascades"]:
             p = stable.PRESETS["babylon"]
             box = stable.evaluate(edges, cam.near, edges[-1], cam.fov, cam.direction_to_eye(sun)[None], aspect=cam.aspect, fit=p.fit, snap=p.snap,
@@ -257,4 +246,56 @@ class BabylonCSM:
         return starts, sides, rb.sizes[:, 0].astype(float)
 
 
-MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM()}
+@dataclass(frozen=True)
+class PlayCanvasMeasured:
+    """PlayCanvas 2.23.3, a directional light with (cascaded) shadows: rendered and measured, not predicted.
+
+    Settings (the light component's own keys): ``shadowBias``, ``normalOffsetBias``,
+    ``shadowResolution``, ``numCascades``, ``cascadeDistribution``, ``cascadeBlend``,
+    ``shadowDistance``, ``shadowType``, ``shadowIntensity``; the material's ``cull``.  Its bias
+    is a polygon offset (factor and units −1000 · ``shadowBias``, ``Light._updateShadowBias``)
+    plus a receiver bias of 1e-4 in [0, 1] depth (``getShadowSampleCoord``): the offset's units
+    scale with the depth buffer's resolvable difference, which the GL implementation chooses,
+    so the toolkit does not predict these frames yet.
+    """
+
+    engine: str = "playcanvas"
+    predicts: bool = False
+    defaults: dict = field(default_factory=lambda: {
+        "shadowBias": 0.05, "normalOffsetBias": 0.0, "shadowResolution": 1024, "numCascades": 1, "cascadeDistribution": 0.5,
+        "cascadeBlend": 0.0, "shadowDistance": 40.0, "shadowType": 0, "shadowIntensity": 1.0, "cull": "back"})
+
+    def settings(self, given: dict | None = None) -> dict:
+        given = dict(given or {})
+        unknown = sorted(set(given) - set(self.defaults))
+        if unknown:
+            raise ValueError(f"unknown PlayCanvas setting {unknown[0]!r}; known: {', '.join(sorted(self.defaults))}")
+        s = {**self.defaults, **given}
+        if s["numCascades"] not in (1, 2, 3, 4):
+            raise ValueError(f"numCascades must be 1, 2, 3 or 4, got {s['numCascades']!r}")
+        if s["cull"] not in ("back", "front", "none"):
+            raise ValueError(f"cull must be back, front or none, got {s['cull']!r}")
+        if s["shadowResolution"] not in (256, 512, 1024, 2048, 4096):
+            raise ValueError(f"shadowResolution must be a power of two in [256, 4096], got {s['shadowResolution']!r}")
+        return s
+
+    def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
+        """Each cascade's first depth (the previous cascade's distance), its larger texel side × R (R the atlas's side) and R."""
+        ends = np.array([c["distance"] for c in rb.info["cascades"]], float)
+        starts = np.concatenate([[camera.near], ends[:-1]])
+        sides = np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3])) for m in rb.matrices])
+        return starts, sides, rb.sizes[:, 0].astype(float)
+
+
+def reference(scene, sun: Array, rb, resolution: int) -> NDArray[np.bool_]:
+    """The exact reference's lit pixels, through the matrix of the cascade each pixel sampled (the last one where none)."""
+    pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+    ref = np.ones(rb.shadow.shape, bool)
+    for i, m in enumerate(rb.matrices):
+        here = rb.drawn & ((rb.cascade == i) | ((rb.cascade < 0) & (i == len(rb.matrices) - 1)))
+        if here.any():
+            ref[here] = predict.reference_lit(scene.triangles, m, resolution, pts[here], nrm[here], sun)
+    return ref & rb.drawn & ((nrm @ sun) > 0)
+
+
+MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvasMeasured()}

@@ -68,13 +68,21 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     """Decode the page's answer ``out`` for ``scene`` and ``sun``, predict it and measure both."""
     model = MODELS[engine]
     rb = decode(out)
-    pred, ref = model.predict(settings, scene, sun, rb)
+    if getattr(model, "predicts", True):
+        pred, ref = model.predict(settings, scene, sun, rb)
+    else:  # rendered and measured only: the exact reference, no predicted factor
+        from .models import reference
+
+        ref = reference(scene, sun, rb, int(rb.sizes[0, 0]))
+        k = len(rb.matrices)
+        pred = Prediction(np.full(rb.shadow.shape, np.nan), np.full(rb.shadow.shape, -1), np.full(k, np.nan), np.full(k, np.nan), np.full(k, np.nan))
     receivers = ref & ((np.nan_to_num(rb.normal) @ sun) > compare.MIN_COS)
     ground = _ground_pixels(scene, rb)
     m_starts, m_sides, m_res = model.measured_cascades(settings, scene.camera, rb)
     h = rb.shadow.shape[0]
+    predicts = getattr(model, "predicts", True)
     measured = {
-        "shadow_agreement": compare.agreement(rb.shadow, pred.factor, rb.drawn),
+        "shadow_agreement": compare.agreement(rb.shadow, pred.factor, rb.drawn) if predicts else None,
         "acne": compare.acne(rb.shadow, receivers),
         "gap_px": compare.gap(rb.shadow, ref, ground, rb.drawn),
         "texels_per_pixel": compare.texels_per_pixel(m_starts, m_sides, m_res, scene.camera.fov, h),
@@ -83,10 +91,10 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
         "acne": compare.acne(pred.factor, receivers),
         "gap_px": compare.gap(pred.factor, ref, ground, rb.drawn),
         "texels_per_pixel": compare.texels_per_pixel(pred.starts, pred.sides, pred.resolution, scene.camera.fov, h),
-    }
+    } if predicts else {"acne": None, "gap_px": None, "texels_per_pixel": None}
     drawn = rb.drawn
     extra = {"pixels": int(drawn.sum()), "receivers": int(receivers.sum()),
-             "cascade_agreement": float(np.mean(rb.cascade[drawn] == pred.cascade[drawn])) if drawn.any() else float("nan"),
+             "cascade_agreement": float(np.mean(rb.cascade[drawn] == pred.cascade[drawn])) if drawn.any() and predicts else None,
              "renderer": rb.info.get("renderer"), "engine_ms": rb.info.get("ms")}
     report = {"engine": engine, "release": rb.release, "scene": scene.name, "measured": measured, "predicted": predicted, "details": extra}
     return FrameResult(rb, pred, ref, settings, report)
