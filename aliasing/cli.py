@@ -45,6 +45,7 @@ def _reproduce(args: argparse.Namespace) -> int:
         return 0
     for path in reproduce.reproduce(args.targets, args.out):
         print(path)
+    print(reproduce.NEXT, file=sys.stderr)  # stdout stays the list of files written
     return 0
 
 
@@ -184,6 +185,25 @@ def _splits(args: argparse.Namespace) -> int:
                 tags = f" (as {', '.join(m.name.partition('@')[0] + '@' + r for r in m.releases)})" if m.releases else ""
                 print(f"{'':{width}s} {'':10s} release: {m.release}{tags}")
         return 0
+    from . import setups
+
+    setup, camera, sun = setups.resolve(args)
+    if setup is not None:  # the engine's own split, cascade count and map size
+        pl = setup.pipeline
+        split = {"logarithmic": "log"}.get(pl.split, pl.split)
+        try:
+            args.method = partitioning.resolve_name(split)
+        except ValueError:
+            raise ValueError(f"--engine {setup.profile.name}: its split {pl.split!r} (with these settings) is not a split method of the toolkit; "
+                             "'aliasing check' reports its cascades") from None
+        args.k, args.far = pl.k, max(pl.far_i)
+        if args.budget is None:
+            args.budget = float(pl.k * pl.resolution**2)
+    if camera is not None:  # --image-res here is the image's rows: the camera's height
+        args.near, args.fov, args.aspect, args.image_res = camera.near, camera.fov, camera.aspect, float(camera.height)
+        args.far = args.far if setup is not None else camera.far
+    if sun is not None:
+        args.light = sun.direction(sun.elevations(7))  # eye-space vectors towards the sun over the band
     missing = [flag for flag, value in (("--near", args.near), ("--far", args.far)) if value is None]
     if missing:
         raise ValueError(f"splits needs {', '.join(missing)} (or --list)")
@@ -283,11 +303,14 @@ def build_parser(full: bool = True) -> argparse.ArgumentParser:
     spl.add_argument("--aspect", type=float, default=1.0, help="image width/height, > 0 (default 1, a square view; 16:9 is 1.7778)")
     spl.add_argument("--light", default="overhead", help="light directions (default overhead)")
     spl.add_argument("--warp", default="Standard", help="warp inside each partition: Standard, P, LogP or a warping rule (default Standard)")
-    spl.add_argument("--budget", type=float, help="total texels over all maps (with --image-res)")
-    spl.add_argument("--image-res", type=float, help="image resolution in pixels per side (with --budget)")
+    spl.add_argument("--budget", type=float, help="total texels over all maps (with --image-res; with --engine default: cascades × map size²)")
+    spl.add_argument("--image-res", type=float, help="the image's HEIGHT in pixels (rows; with --budget; --camera's height)")
     spl.add_argument("--allocations", default="error,equal", help="allocations to compare (default error,equal)")
     spl.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
     spl.add_argument("--max-memory", metavar="SIZE", help="refuse a -k estimated to need more memory than this, e.g. 8G (default 4G)")
+    from .setups import add_arguments as setup_arguments
+
+    setup_arguments(spl, sun=None)  # --engine: its split, k, far and map size; --camera, --sun: near, far, fov, aspect, --image-res, --light
     spl.set_defaults(run=_splits)
     if not full:
         return parser
@@ -302,10 +325,23 @@ def build_parser(full: bool = True) -> argparse.ArgumentParser:
     __import__("aliasing.engines.compare", fromlist=["add_engines_parser"]).add_engines_parser(sub)  # aliasing engines
     from .bias.command import add_bias_parser
 
-    add_bias_parser(sub)
+    bias = add_bias_parser(sub)
+    plain_bias = bias.get_default("run")
+
+    def _bias(args: argparse.Namespace) -> int:  # with --engine: the engine's own rule, through aliasing.check (a layer above bias)
+        if getattr(args, "engine", None) and not args.list:
+            from .check.command import run_bias
+
+            return run_bias(args)
+        return plain_bias(args)
+
+    bias.set_defaults(run=_bias)
     from .temporal.command import add_shimmer_parser
 
     add_shimmer_parser(sub)  # aliasing shimmer
+    from .check.command import add_check_parser
+
+    add_check_parser(sub)  # aliasing check
     __import__("aliasing.frames.command", fromlist=["add_frames_parser"]).add_frames_parser(sub)  # aliasing frames
     return parser
 
@@ -315,9 +351,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     words = list(sys.argv[1:] if argv is None else argv)
     parser = build_parser(full=words[:1] != ["derive"])
     args = parser.parse_args(argv)
+    def one_line(message, category, filename, lineno, file=None, line=None) -> None:  # noqa: ANN001
+        print(_one_line(f"aliasing {args.command}: warning: {message}"), file=sys.stderr)
+
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)  # numpy's warning text never precedes the one error line
+            warnings.showwarning = one_line  # the toolkit's warnings: one line each, as the errors
             return args.run(args)
     except ValueError as exc:
         message = str(exc)

@@ -298,6 +298,18 @@ def _fractions(n: float, f: float, k: int, fractions: tuple[float, ...]) -> Arra
     return n + (f - n) * np.array([0.0, *fractions[: k - 1], 1.0])
 
 
+def _given_fractions(method: str, k: int, defaults: tuple[float, ...], s1: float | None, s2: float | None, s3: float | None) -> tuple[float, ...]:
+    """The first k − 1 split fractions, ``s1 … s3`` where given (an engine's own split settings), else the defaults;
+    each in (0, 1) and increasing (ValueError naming the parameter)."""
+    out = []
+    for i, (name, value) in enumerate((("s1", s1), ("s2", s2), ("s3", s3))[: k - 1]):
+        v = defaults[i] if value is None else float(check.closed_range(check.scalar(value, name), name, 0.0, 1.0))
+        if not 0.0 < v < 1.0 or (out and v <= out[-1]):
+            raise ValueError(f"{name} (split fraction {i + 1} of {method!r}) must be in (0, 1) and above the previous one, got {v:g}")
+        out.append(v)
+    return tuple(out)
+
+
 # --- engine presets: formulas read from the engines' public source (see each source) ----
 
 
@@ -368,13 +380,13 @@ def _ogre(near: float, far: float, k: int, lam: float = 0.95) -> Array:
 @register(
     "filament",
     "Filament ShadowMapManager.cpp CascadeSplits; LightManager.h cascadeSplitPositions {0.125, 0.25, 0.5} (google/filament; default read from copies)",
-    "split positions 0.125, 0.25, 0.5 of (far − near) from near; up to 4 cascades",
+    "split positions 0.125, 0.25, 0.5 of (far − near) from near (s1, s2, s3: ShadowOptions::cascadeSplitPositions); up to 4 cascades",
     default_k=4,
     max_k=4,
     release="not pinned: ShadowOptions defaults read from copies of LightManager.h (read from source only)",
 )
-def _filament(near: float, far: float, k: int) -> Array:
-    return _fractions(near, far, k, (0.125, 0.25, 0.5))
+def _filament(near: float, far: float, k: int, s1: float | None = None, s2: float | None = None, s3: float | None = None) -> Array:
+    return _fractions(near, far, k, _given_fractions("filament", k, (0.125, 0.25, 0.5), s1, s2, s3))
 
 
 def _bgfx_overlap(edges: Array) -> tuple[Array, Array]:
@@ -401,28 +413,28 @@ def _bgfx(near: float, far: float, k: int, lam: float = 0.6) -> Array:
 @register(
     "godot",
     "Godot 4 scene/3d/light_3d.cpp defaults; renderer_scene_cull.cpp _light_instance_setup_directional_shadow (godotengine/godot)",
-    "fixed fractions 0.1, 0.2, 0.5 of (max_distance − near) from near; PSSM 4 (or 2) splits",
+    "fixed fractions 0.1, 0.2, 0.5 of (max_distance − near) from near (s1, s2, s3: directional_shadow_split_1..3); PSSM 4 (or 2) splits",
     default_k=4,
     max_k=4,
     release="Godot 4.x, not pinned to a minor release: light_3d.cpp defaults read from copies (read from source only)",
 )
-def _godot(near: float, far: float, k: int) -> Array:
+def _godot(near: float, far: float, k: int, s1: float | None = None, s2: float | None = None, s3: float | None = None) -> Array:
     if k == 3:
         raise ValueError("k must be 1, 2 or 4 for 'godot' (orthogonal, PSSM 2 or PSSM 4 splits)")
-    return _fractions(near, far, k, (0.1, 0.2, 0.5))
+    return _fractions(near, far, k, _given_fractions("godot", k, (0.1, 0.2, 0.5), s1, s2, s3))
 
 
 @register(
     "unity-urp",
     "Unity URP UniversalRenderPipelineAsset.cs cascade split defaults (read from copies; normalisation not public)",
-    "fixed fractions of the shadow distance: 0.25 | 0.1, 0.3 | 0.067, 0.2, 0.467",
+    "fixed fractions of the shadow distance: 0.25 | 0.1, 0.3 | 0.067, 0.2, 0.467 (s1, s2, s3: the asset's cascade2Split/3Split/4Split)",
     default_k=4,
     max_k=4,
     release="not pinned: URP asset defaults read from copies (read from source only)",
 )
-def _unity(near: float, far: float, k: int) -> Array:
+def _unity(near: float, far: float, k: int, s1: float | None = None, s2: float | None = None, s3: float | None = None) -> Array:
     table = {1: (), 2: (0.25,), 3: (0.1, 0.3), 4: (0.067, 0.2, 0.467)}
-    return _fractions(near, far, k, table[k])
+    return _fractions(near, far, k, _given_fractions("unity-urp", k, table[k], s1, s2, s3))
 
 
 def _unreal_overlap(edges: Array, transition: float = 0.1) -> tuple[Array, Array]:

@@ -61,9 +61,16 @@ TARGETS: dict[str, Target] = {
         Target("bias-threshold", "bias_threshold", "Depth bias: acne against the derived minimum in the rasterizer, uniform/perspective/log maps, nearest and 3x3 PCF (plane 60 deg from the light)"),
         Target("bias-presets", "bias_presets", "Engine bias rules per cascade: ground margin, acne angle and lit gap in pixels for Filament, Bevy, Godot 4, Unity URP, three.js (near 0.1, far 100, 4 cascades, 2048^2)"),
         Target("engines-comparison", "engines_comparison", "Engine schemes: m_x along the view and critical storage over gamma, stable CSM, SDSM, UE5 VSM High/Epic, matched and exact limits (near 10 cm, far 1 km, fov 60, 1920 px)"),
+        Target("check-threejs", "check_threejs", "aliasing check for three.js r187's CSM (4 x 2048^2, 1920x1080, fov 50, near 0.1, far 500, sun 15-60): error along the view, the normalBias each cascade needs, the gap a common shadowBias costs"),
         Target("shimmer-tradeoff", "shimmer_tradeoff", "New: should I stabilize? Each engine stable preset's resolution cost (S ratio to the tight fit) beside the shimmer it removes (flips per second, boxes scene, sideways, forward and yaw paths)"),
     )
 }
+
+
+#: What ``aliasing reproduce`` says at its end: what to run next.
+NEXT = ("next: check your own engine's shadows, e.g. aliasing check --engine threejs --set cascades=4 "
+        "--camera near=0.1,far=500,fov=50,aspect=16:9,height=1080 --sun 15..60 (aliasing check --help; "
+        "the guide's 'Check your engine' page)")
 
 
 def resolve(names: Iterable[str]) -> list[Target]:

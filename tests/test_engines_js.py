@@ -247,3 +247,190 @@ def test_missing_node_skips_outside_ci_and_fails_under_ci(monkeypatch):
     monkeypatch.setenv("CI", "true")
     with pytest.raises(pytest.fail.Exception, match="node not found under CI"):
         _tools()
+
+
+# ---------------------------------------------------------------------------------------------
+# The engine profiles (aliasing.setups) against the engines' own objects: each cascade's texel
+# from aliasing.engines.pipeline.texels (what `aliasing check` uses) equals the engine's shadow
+# camera extent ÷ map size, the depth range a bias term scales with equals the engine's, and
+# every setting's default is the engine's own default object's.
+
+PLAYCANVAS = "playcanvas@2.23.3"
+# near, far, vertical fov [deg], aspect (width, height)
+PROFILE_CAMERAS = [(0.1, 500.0, 50.0, (16, 9)), (1.0, 100.0, 60.0, (1, 1)), (0.5, 250.0, 45.0, (2, 1))]
+THREE_SETTINGS = [
+    {},
+    {"cascades": 4, "mode": "logarithmic", "shadowMapSize": 1024},
+    {"mode": "custom", "customSplitsLambda": 0.8, "fade": True},
+    {"maxFar": 80.0, "cascades": 5, "mode": "uniform", "shadowMapSize": 0, "lightNear": 5.0, "lightFar": 900.0},
+    {"class": "DirectionalLight"},
+    {"class": "DirectionalLight", "shadow.camera.left": -20.0, "shadow.camera.right": 30.0, "shadow.camera.top": 10.0,
+     "shadow.camera.bottom": -30.0, "shadow.camera.near": 1.0, "shadow.camera.far": 300.0, "shadow.mapSize.width": 1024},
+]
+BABYLON_SETTINGS = [
+    {},
+    {"stabilizeCascades": True},
+    {"numCascades": 2, "lambda": 0.8, "mapSize": 2048},
+    {"numCascades": 3, "shadowMaxZ": 80.0, "minDistance": 0.05, "maxDistance": 0.9, "stabilizeCascades": True},
+    {"numCascades": 6, "lambda": 1.5},
+    {"class": "ShadowGenerator", "light.shadowFrustumSize": 120.0, "light.shadowMaxZ": 300.0},
+]
+PLAYCANVAS_SETTINGS = [
+    {},
+    {"numCascades": 4},
+    {"numCascades": 3, "cascadeDistribution": 0.8, "shadowDistance": 120.0, "shadowResolution": 2048},
+    {"numCascades": 2, "cascadeDistribution": 0.0},
+    {"numCascades": 7, "cascadeDistribution": 1.5},
+]
+# keys of the profiles that are no engine property (the toolkit's choice of class, or a callback's λ)
+NOT_ENGINE_KEYS = {"class", "customSplitsLambda", "mapSize"}  # Babylon's mapSize is a required constructor argument
+
+
+def _profile_cases(settings: list[dict]) -> list[tuple]:
+    return [(cam, s) for cam in PROFILE_CAMERAS for s in settings]
+
+
+def _setup(engine: str, cam: tuple, settings: dict):
+    from aliasing import setups
+
+    near, far, fov, (w, h) = cam
+    return setups.build(engine, settings, setups.Camera(near, far, fov, w / h, 100 * h))
+
+
+@pytest.fixture(scope="module")
+def three_profile_runs() -> dict:
+    out = {}
+    for pin in (THREE_CURRENT, THREE_R184):
+        cases = [{"near": n, "far": f, "fov": fov, "aspect": w / h, "settings": s} for (n, f, fov, (w, h)), s in _profile_cases(THREE_SETTINGS)]
+        out[pin] = _run("three_profile.mjs", pin, {"lights": LIGHTS.tolist(), "cases": cases})
+    return out
+
+
+@pytest.fixture(scope="module")
+def babylon_profile_run() -> dict:
+    cases = [{"near": n, "far": f, "fov": fov, "width": 120 * w, "height": 120 * h, "settings": {"mapSize": 1024, **s}}
+             for (n, f, fov, (w, h)), s in _profile_cases(BABYLON_SETTINGS)]
+    return _run("babylon_profile.mjs", BABYLON, {"lights": LIGHTS.tolist(), "cases": cases})
+
+
+@pytest.fixture(scope="module")
+def playcanvas_profile_run() -> dict:
+    cases = [{"near": n, "far": f, "fov": fov, "aspect": w / h, "settings": s} for (n, f, fov, (w, h)), s in _profile_cases(PLAYCANVAS_SETTINGS)]
+    return _run("playcanvas_profile.mjs", PLAYCANVAS, {"cases": cases})
+
+
+def _check_texels(setup, rows: list) -> None:
+    from aliasing.engines import pipeline
+
+    got = pipeline.texels(setup.pipeline, setup.camera, LIGHTS)  # (N, K, 2)
+    want = np.array([row["texels"] for row in rows])
+    assert got.shape == want.shape, (setup.settings, got.shape, want.shape)
+    assert _rel(got, want) <= RTOL
+    assert _rel(pipeline.extents(setup.pipeline, setup.camera, LIGHTS), [row["depth"] for row in rows]) <= RTOL
+
+
+@pytest.mark.parametrize("pin, release", [(THREE_CURRENT, "r187"), (THREE_R184, "r184")])
+@pytest.mark.parametrize("case", range(len(PROFILE_CAMERAS) * len(THREE_SETTINGS)))
+def test_threejs_profile_texels_are_the_engines(three_profile_runs, pin, release, case):
+    cam, settings = _profile_cases(THREE_SETTINGS)[case]
+    _check_texels(_setup(f"threejs@{release}", cam, settings), three_profile_runs[pin]["cases"][case]["rows"])
+
+
+@pytest.mark.parametrize("pin, release", [(THREE_CURRENT, "r187"), (THREE_R184, "r184")])
+def test_threejs_profile_defaults_are_the_engines(three_profile_runs, pin, release):
+    from aliasing import setups
+
+    d = three_profile_runs[pin]["defaults"]
+    profile = setups.get(f"threejs@{release}")
+    checked = set()
+    for s in profile.settings:
+        if s.key in NOT_ENGINE_KEYS:
+            continue
+        engine = d["values"][s.key]
+        want = {"null": None, **d["constants"]}.get(s.default, s.default) if s.kind == "choice" else s.default  # THREE's constants
+        assert engine == want, (s.key, engine, s.default)
+        checked.add(s.key)
+    assert checked == {s.key for s in profile.settings} - NOT_ENGINE_KEYS
+    # CSM hands its shadowBias, shadowMapSize, lightNear and lightFar to each cascade's light
+    p = profile.defaults()
+    assert d["handed"] == {"bias": p["shadowBias"], "mapSize": p["shadowMapSize"], "near": p["lightNear"], "far": p["lightFar"],
+                           "normalBias": p["shadow.normalBias"], "radius": p["shadow.radius"]}
+
+
+@pytest.mark.parametrize("case", range(len(PROFILE_CAMERAS) * len(BABYLON_SETTINGS)))
+def test_babylon_profile_texels_are_the_engines(babylon_profile_run, case):
+    cam, settings = _profile_cases(BABYLON_SETTINGS)[case]
+    _check_texels(_setup("babylon", cam, settings), babylon_profile_run["cases"][case]["rows"])
+
+
+def test_babylon_profile_defaults_and_clamps_are_the_engines(babylon_profile_run):
+    from aliasing import setups
+    from aliasing.setups import babylon
+
+    d = babylon_profile_run["defaults"]
+    profile = setups.get("babylon")
+    values, other, clamps = d["values"], d["other"], d["clamps"]
+    for s in profile.settings:
+        if s.key in NOT_ENGINE_KEYS:
+            continue
+        if s.key == "shadowMaxZ":  # null: the camera's maxZ
+            assert s.default is None and values[s.key] == other["cameraMaxZ"]
+        elif s.key == "filter":  # null: the class's default
+            assert s.default is None
+            assert values["filter"] == babylon.filter_name(profile.defaults())
+            assert other["shadowGeneratorFilter"] == babylon.filter_name({**profile.defaults(), "class": "ShadowGenerator"})
+        else:
+            assert values[s.key] == s.default, (s.key, values[s.key], s.default)
+    assert other["filterValues"] == babylon.FILTER_VALUES and list(other["qualityValues"]) == list(babylon.QUALITIES)
+    assert tuple(other["counts"]) == babylon.CASCADES
+    n, lam = profile.setting("numCascades"), profile.setting("lambda")
+    for v in (1, 6, -3):
+        assert clamps[f"numCascades={v}"] == n.clamped(v)
+    for v in (2, -1, 0.3):
+        assert clamps[f"lambda={v}"] == lam.clamped(v)
+    # shadowMaxZ outside [minZ, maxZ] is ignored by the setter: the profile ends the cascades at the camera's far then
+    assert clamps["shadowMaxZ=0.01"] == clamps["shadowMaxZ=900"] == other["cameraMaxZ"] and clamps["shadowMaxZ=250"] == 250
+    base = profile.defaults()
+    for cut in (0.01, 900.0):
+        assert np.array_equal(babylon.splits({**base, "shadowMaxZ": cut}, 0.1, 500.0)[1], babylon.splits(base, 0.1, 500.0)[1])
+    assert clamps["minMax=0.7,0.3"] == clamps["minMax=-1,2"] == [0, 1] and clamps["minMax=0.1,0.6"] == [0.1, 0.6]
+    assert clamps["csmFilterESM"] == babylon.filter_name({**base, "filter": "FILTER_EXPONENTIALSHADOWMAP"}) == "FILTER_NONE"
+
+
+@pytest.mark.parametrize("case", range(len(PROFILE_CAMERAS) * len(PLAYCANVAS_SETTINGS)))
+def test_playcanvas_profile_texels_are_the_engines(playcanvas_profile_run, case):
+    from aliasing.engines import pipeline
+
+    cam, settings = _profile_cases(PLAYCANVAS_SETTINGS)[case]
+    setup = _setup("playcanvas", cam, settings)
+    run = playcanvas_profile_run["cases"][case]["cascades"]
+    assert _rel(setup.pipeline.far_i, [c["end"] for c in run]) <= RTOL  # the float32 ends
+    got = pipeline.texels(setup.pipeline, setup.camera, LIGHTS)
+    want = np.array([[c["texel"], c["texel_y"]] for c in run])
+    assert got.shape == (len(LIGHTS),) + want.shape
+    assert _rel(got, np.broadcast_to(want, got.shape)) <= RTOL
+
+
+def test_playcanvas_profile_defaults_and_clamps_are_the_engines(playcanvas_profile_run):
+    from aliasing import setups
+    from aliasing.setups import playcanvas
+
+    d = playcanvas_profile_run["defaults"]
+    profile = setups.get("playcanvas")
+    for s in profile.settings:
+        assert d["values"][s.key] == s.default, (s.key, d["values"][s.key], s.default)
+    assert d["constants"] == playcanvas.SHADOW_TYPES
+    # the light's bias and the caster pass's depth bias (constant and slope) from the component's shadowBias
+    bias = profile.setting("shadowBias")
+    assert d["bias"] == {"light": -0.01 * bias.default, "constant": 10 * bias.default, "slope": 10 * bias.default}
+    rule = setups.build("playcanvas").pipeline.bias
+    assert rule.term("shadowBias").scale == 10.0 and rule.term("shadowBias").kind == "slope"
+    for key, got in d["clamps"].items():
+        name, _, value = key.partition("=")
+        v = float(value)
+        if name == "shadowBias":
+            assert got == pytest.approx([-0.01 * bias.clamped(v), 10 * bias.clamped(v)], rel=1e-15, abs=0)
+        elif name == "numCascades":
+            assert got == profile.setting(name).clamped(int(np.floor(v)))
+        else:
+            assert got == profile.setting(name).clamped(v)

@@ -102,14 +102,14 @@ def cascade_bias(near: float, far: float, fov: float, light: str | ArrayLike, pr
         g = grad[0]
         phi = float(np.degrees(np.arctan2(g @ (e_t[0] / w_t), g @ (e_s[0] / w_s)))) if np.hypot(*g) > 0 else 0.0
         need = map_bias(lm, res, mid, up[None], lookup)
-        have = _presets.equivalent_depth(p, w, theta, phi)
+        have = _presets.equivalent_depth(p, w, theta, phi, res)
         # worst azimuth per angle, with the map's own texel sides
         th, ph = np.meshgrid(np.radians(ANGLES), np.radians(AZIMUTHS), indexing="ij")
         needed = 0.5 * p.pcf * np.tan(th) * (np.abs(np.cos(ph)) * w_s + np.abs(np.sin(ph)) * w_t)
-        offered = _presets.equivalent_depth(p, w, np.degrees(th), np.degrees(ph))
+        offered = _presets.equivalent_depth(p, w, np.degrees(th), np.degrees(ph), res)
         short = (offered < needed).any(axis=1)
         pix = 2.0 * float(mid[0, 2]) * half / img
-        gap = float(lit_gap(_presets.contact_depth(p, w), 90.0 - theta))
+        gap = float(lit_gap(_presets.contact_depth(p, w, res), 90.0 - theta))
         rows.append({
             "preset": p.name, "cascade": i, "near": lo, "far": hi, "texel_s": w_s, "texel_t": w_t,
             "ground_angle": theta, "need_depth": float(need.depth[0]), "need_normal": float(need.normal[0]),

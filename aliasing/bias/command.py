@@ -18,6 +18,7 @@ import argparse
 import sys
 
 from .. import _validation as check
+from .. import setups
 from ..sweep import format_rows
 from ..view import check_aspect
 from . import presets as _presets
@@ -59,6 +60,13 @@ def _run(args: argparse.Namespace) -> int:
             note = f" [not modelled: {p.partial}]" if p.partial else ""
             print(f"{p.name:15s} {p.engine}: {p.source}{note}")
         return 0
+    setup, camera, sun = setups.resolve(args)
+    if setup is not None:
+        raise ValueError("bias --engine runs through 'aliasing bias' of the aliasing command (aliasing.cli)")  # wired in aliasing.cli
+    if camera is not None:  # --image is the image's rows: the camera's height
+        args.near, args.far, args.fov, args.aspect, args.image = camera.near, camera.far, camera.fov, camera.aspect, camera.height
+    if sun is not None:
+        args.light = sun.light()  # one light: the band's lowest sun
     if args.plane:
         if args.filter:
             raise ValueError("--filter works per cascade, not with --plane")
@@ -120,7 +128,7 @@ def add_bias_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument("-k", type=int, default=4, help="number of cascades (default 4)")
     p.add_argument("--lambda", dest="lam", type=float, help="λ of practical-style splits (default 0.5)")
     p.add_argument("--resolution", type=int, default=2048, help="texels per side of each cascade (default 2048)")
-    p.add_argument("--image", type=int, default=1080, help="pixels across the view, top to bottom (default 1080; square pixels)")
+    p.add_argument("--image", type=int, default=1080, help="the image's HEIGHT in pixels (rows, top to bottom; default 1080; square pixels)")
     p.add_argument("--plane", action="store_true", help="minimal biases of planar receivers instead (with --texel, --angle)")
     p.add_argument("--texel", help="texel widths in world units, comma list (with --plane)")
     p.add_argument("--angle", help="angles between the receiver's normal and the light in degrees, comma list (with --plane)")
@@ -134,5 +142,6 @@ def add_bias_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument("--radius", type=float, help="with --filter: width of the world-constant kernel in world units "
                    "(default the first cascade's k texels)")
     p.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
+    setups.add_arguments(p, sun=None)  # --engine: the engine's own fit, filter and bias rule, in its units (aliasing check's bias columns)
     p.set_defaults(run=_run)
     return p

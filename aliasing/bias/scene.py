@@ -39,10 +39,11 @@ from .plane import map_bias
 Array = NDArray[np.float64]
 
 
-def _offsets(p: _presets.BiasPreset, n: Array, up: Array, w: float) -> dict:
+def _offsets(p: _presets.BiasPreset, n: Array, up: Array, w: float, res: int | None = None) -> dict:
     cos = np.abs(n @ up)
     scale = {"one": np.ones_like(cos), "sin": np.sqrt(np.clip(1.0 - cos**2, 0.0, 1.0)), "one-minus-cos": 1.0 - cos}[p.normal_scale]
-    return {"bias": p.depth + p.depth_texels * w, "normal_offset": p.normal_texels * w * scale, "slope": p.slope, "pcf": p.pcf}
+    return {"bias": p.depth + p.depth_texels * w + _presets._map_side(p, w, res), "normal_offset": (p.normal + p.normal_texels * w) * scale,
+            "slope": p.slope, "pcf": p.pcf}
 
 
 _VIEW_FIELDS = ("scene", "maps", "map_res", "map_resolutions", "partition", "triangle", "position", "normal", "lit", "light")
@@ -95,7 +96,7 @@ def scene_bias(v, preset: str) -> list[dict]:
         sm = shadow_map(v.scene.triangles, lm, res)
         up = lm.basis[1]
         q = pts + p.across_texels * w * (n - np.outer(n @ up, up))
-        frac = depth_test(lm, sm, q, n, **_offsets(p, n, up, w))
+        frac = depth_test(lm, sm, q, n, **_offsets(p, n, up, w, res))
         ideal = depth_test(lm, sm, pts, n, bias=1.05 * map_bias(lm, res, pts, n, f"pcf{p.pcf}").depth, pcf=p.pcf)
         ref = v.lit[sel]
         acne, peter = frac < ideal - 0.05, ~ref & (frac > 0.5)
@@ -129,7 +130,7 @@ def bias_margin(v, preset: str) -> Array:
         theta = np.degrees(np.arccos(np.clip(cos, 0.0, 1.0)))
         ok = facing & (theta < 89.9)
         have = np.full(len(pts), np.nan)
-        have[ok] = _presets.equivalent_depth(p, w, theta[ok], np.nan_to_num(phi[ok]))
+        have[ok] = _presets.equivalent_depth(p, w, theta[ok], np.nan_to_num(phi[ok]), res)
         with np.errstate(divide="ignore", invalid="ignore"):
             ratio = np.where(ok, have / need, np.nan)
         out[sel] = ratio

@@ -3,6 +3,7 @@
 Scheme specs (``:``-separated options, case-insensitive)::
 
     csm:SPLIT[:k=N]                          tight fit (the papers'), a split of aliasing.partitioning
+    csm:ranges=A..B/C..D/...                 SPLIT may be each cascade's eye-depth range (an engine's own, --engine)
     csm-stable:SPLIT|PRESET[:k=N][:fit=sphere|diagonal|diagonal-unrounded|body|centroid|centroid16|far][:snap=none|origin|border|bevy|pad|godot][:scene=1][:overlap=P]
     sdsm[:k=N][:zmin=Z][:zmax=Z]             log partitions of the occupied range (default [near, far], k = 4)
     sdsm:method=adaptive|kmeans[:k=N]        from a depth histogram (``histogram=``; CLI ``--histogram``)
@@ -52,10 +53,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import _validation as check
-from .. import partitioning
-from . import limits, sdsm, stable, vsm
+from .. import partitioning, setups
+from . import limits, pipeline, sdsm, stable, vsm
 from ..view import tan_theta
 
+DEFAULT_SCHEMES = "csm:filament,csm-stable:filament,sdsm:k=4,vsm:high,vsm:epic,matched,exact"
 FAMILIES = ("csm", "csm-stable", "sdsm", "vsm", "matched", "exact")
 FIELDS = ("scheme", "max_error", "median_error", "m_axis_min", "m_axis_max", "storage_texels", "S_bar", "pages", "overflow", "extra_bias", "coverage", "storage_ratio", "error_ratio")
 
@@ -68,6 +70,22 @@ def _options(parts: list[str], spec: str, allowed: set[str]) -> dict[str, str]:
             raise ValueError(f"scheme {spec!r}: unknown option {item!r}; allowed: {', '.join(sorted(allowed))}")
         opts[key] = value
     return opts
+
+
+def _ranges(text: str, spec: str) -> tuple[np.ndarray, np.ndarray]:
+    """``A..B/C..D/...``: each cascade's eye-depth range [units], 0 < A < B (an engine's own cascades)."""
+    pairs = []
+    for item in text.split("/"):
+        lo, dots, hi = item.partition("..")
+        try:
+            a, b = float(lo), float(hi)
+        except ValueError:
+            a = b = float("nan")
+        if not dots or not (np.isfinite(a) and np.isfinite(b) and 0 < a < b):
+            raise ValueError(f"scheme {spec!r}: ranges must be NEAR..FAR per cascade, '/'-separated, 0 < NEAR < FAR, got {item!r}")
+        pairs.append((a, b))
+    a, b = np.array(pairs).T
+    return a, b
 
 
 def _num(opts: dict[str, str], key: str, spec: str, default: float | None = None) -> float | None:
@@ -212,7 +230,9 @@ def parse_spec(spec: str, *, fov: float, near: float, far: float, image_res: int
             kw["overlap"] = _num(opts, "overlap", spec)
         kw["resolution"] = float(shadow_res)
         kw["aspect"] = r
-    if name == "bevy-bounds":  # Bevy's own split, its first bound 5 m in the scene's unit
+    if name.startswith("ranges="):  # an engine's own cascades (aliasing.engines.pipeline.scheme_spec)
+        name = _ranges(name[len("ranges="):], spec)
+    elif name == "bevy-bounds":  # Bevy's own split, its first bound 5 m in the scene's unit
         name = stable.bevy_bounds(near, far, kw.pop("k") or 4, stable.BEVY_FIRST_BOUND_M * 100.0 / vsm.CM_PER_UNIT[unit.lower()])
     else:
         name = partitioning.resolve_name(name)
@@ -368,9 +388,23 @@ def _run(args: argparse.Namespace) -> int:
     if args.list:
         print(LISTING.format(splits=", ".join(partitioning.SPLIT_METHODS), stables=", ".join(f"{p.name} ({p.source}; release: {p.release})" for p in stable.PRESETS.values()), vsms=", ".join(f"{p.name} (bias {p.bias:g}, pool {p.pool})" for p in vsm.PRESETS.values())), end="")
         return 0
-    schemes = [s for s in (args.schemes or "").split(",") if s.strip()]
+    setup, camera, sun = setups.resolve(args)
+    given = args.schemes
+    schemes = [s for s in (DEFAULT_SCHEMES if given is None else given).split(",") if s.strip()]
+    if setup is not None:  # the engine's own cascades first, at its own map size; the limits after
+        schemes = [pipeline.scheme_spec(setup.pipeline)] + ([s for s in given.split(",") if s.strip()] if given is not None else ["matched", "exact"])
+        args.far, args.shadow_res = max(setup.pipeline.far_i), setup.pipeline.resolution
+    if camera is not None:  # --image-res here is the image's WIDTH: the camera's aspect·height
+        args.near, args.fov, args.aspect, args.image_res = camera.near, camera.fov, camera.aspect, camera.width
+        args.far = args.far if setup is not None else camera.far
+    if sun is not None:
+        args.light = ",".join(sun.light(e) for e in sun.elevations(7))
+    if args.unit is None:
+        args.unit = "m" if camera is not None else "cm"
     histogram = _read_histogram(args.histogram) if args.histogram else None
     rows = compare(schemes, fov=args.fov, near=args.near, far=args.far, lights=args.light, image_res=args.image_res, shadow_res=args.shadow_res, unit=args.unit, ground=args.ground, histogram=histogram, aspect=args.aspect)
+    if setup is not None:
+        rows[0]["scheme"] = setup.profile.name  # the engine's row (its cascades: aliasing check)
     print(format_rows(rows, args.format), end="")
     return 0
 
@@ -416,18 +450,20 @@ def add_engines_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPars
         epilog="schemes: csm:SPLIT[:k=N] | csm-stable:SPLIT|PRESET[:fit=..][:snap=..][:scene=1][:overlap=P] | sdsm[:k=N][:zmin=Z][:zmax=Z] | "
         "vsm:PRESET | vsm:bias=B[:first=L][:last=L][:pool=P] | matched | exact (see --list).",
     )
-    p.add_argument("--schemes", default="csm:filament,csm-stable:filament,sdsm:k=4,vsm:high,vsm:epic,matched,exact", help="comma list of scheme specs")
+    p.add_argument("--schemes", help=f"comma list of scheme specs (default {DEFAULT_SCHEMES}; with --engine: the engine's own cascades, matched, exact)")
     p.add_argument("--fov", type=float, default=60.0, help="VERTICAL full field of view in degrees (default 60)")
     p.add_argument("--aspect", type=float, default=1.0, help="image width/height (default 1; the image is --image-res pixels wide, --image-res/aspect high)")
     p.add_argument("--near", type=float, default=10.0, help="near distance in --unit (default 10)")
     p.add_argument("--far", type=float, default=100000.0, help="shadow distance in --unit (default 100000)")
-    p.add_argument("--image-res", type=int, default=1920, help="eye image width in pixels (default 1920)")
+    p.add_argument("--image-res", type=int, default=1920, help="eye image WIDTH in pixels (default 1920; the height is --image-res/--aspect; "
+                   "--camera gives it as aspect·height)")
     p.add_argument("--shadow-res", type=int, default=2048, help="texels per side of each cascade (default 2048)")
-    p.add_argument("--unit", default="cm", help="scene length unit: cm (default, as the engine), m, mm, in, ft")
+    p.add_argument("--unit", help="scene length unit: cm (default, as Unreal), m (default with --camera or --engine), mm, in, ft")
     p.add_argument("--light", default="hemisphere:200", help="light directions, the sweep's comma-separated specs (default hemisphere:200)")
     p.add_argument("--ground", type=float, help="camera height above a ground plane in --unit: VSM pages from the plane's closed form (default: the frustum's upper bound)")
     p.add_argument("--histogram", metavar="CSV", help="depth histogram for sdsm:method=adaptive|kmeans: columns z_lo,z_hi,count, one header line")
     p.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table)")
     p.add_argument("--list", action="store_true", help="list the families and presets and exit")
+    setups.add_arguments(p, sun=None)  # --engine: the engine's own cascades; --camera and --sun replace near, far, fov, aspect, --image-res, --light
     p.set_defaults(run=_run)
     return p

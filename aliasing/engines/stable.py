@@ -107,6 +107,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from .. import directional, geometry, partitioning
+from ..setups import bevy as _bevy
+from ..setups import filament as _filament
+from ..setups import godot as _godot
 from ..view import View, check_aspect, tan_theta
 from .sample import sample_bounds
 
@@ -140,11 +143,11 @@ class StablePreset:
 # are computed in the engine's closed C++ source: its public docs say only "Stable shadow maps with
 # spherical fadeout", so no Unity preset is shipped (the project does not invent a fit).
 PRESETS: dict[str, StablePreset] = {
-    "godot": StablePreset(
+    "godot": StablePreset(  # the fit and snap of the godot engine profile (aliasing.setups.godot)
         "godot",
         "godot",
-        "centroid",
-        "godot",
+        _godot.FIT,
+        _godot.SNAP,
         0.0,
         "Godot 4 renderer_scene_cull.cpp _light_instance_setup_directional_shadow (a Godot 4 copy in the index): sphere around the "
         "corners' average, radius × R/(R − 2), ends snapped to 4r/R; split: the toolkit's godot preset; blend_splits off",
@@ -161,11 +164,11 @@ PRESETS: dict[str, StablePreset] = {
         scene=True,
         release="DirectX SDK samples, walbourn/directx-sdk-samples commit 1494e2be (read from source only)",
     ),
-    "filament": StablePreset(
+    "filament": StablePreset(  # the filament engine profile with stable = true (aliasing.setups.filament)
         "filament",
         "filament",
-        "centroid",
-        "border",
+        _filament.STABLE_FIT,
+        _filament.SNAP,
         0.0,
         "Filament ShadowOptions::stable (default false) in filament/src/ShadowMap.cpp computeFocusParams/computeBoundingSphere/"
         "snapLightFrustum (google/filament commit 0362f36e) and ShadowMapManager.cpp updateCascadeShadowMaps (commit 003e5005): "
@@ -174,11 +177,11 @@ PRESETS: dict[str, StablePreset] = {
         "cascadeSplitPositions {0.125, 0.25, 0.5}, shadowCascades = 1 (the preset evaluates 4 cascades, the split's; k=1 is the engine default)",
         release="Filament commits 0362f36e (ShadowMap.cpp) and 003e5005 (ShadowMapManager.cpp) (read from source only)",
     ),
-    "filament-shadowfar": StablePreset(
+    "filament-shadowfar": StablePreset(  # the same with shadowFar > 0
         "filament-shadowfar",
         "filament",
-        "far",
-        "border",
+        _filament.FAR_FIT,
+        _filament.SNAP,
         0.0,
         "as filament, with ShadowOptions::shadowFar > 0 (= the shadow distance): computeFocusParams takes the sphere "
         "{camera position, shadowFar} for every cascade (google/filament ShadowMap.cpp commit 0362f36e)",
@@ -197,11 +200,11 @@ PRESETS: dict[str, StablePreset] = {
         release="Babylon.js 9.35.0 (npm @babylonjs/core, run in the tests; source read at commit 043d0bd0)",
         releases=("9.35.0",),
     ),
-    "bevy": StablePreset(
+    "bevy": StablePreset(  # the bevy engine profile's fit and snap (aliasing.setups.bevy), with the older first bound
         "bevy",
         "bevy-bounds",
-        "diagonal",
-        "bevy",
+        _bevy.FIT,
+        _bevy.SNAP,
         0.2,
         "Bevy crates/bevy_pbr/src/light/mod.rs (bevyengine/bevy as stored): calculate_cascade (diameter = ceil(max(body, far-face "
         "diagonal)), centre floored to a texel), calculate_cascade_bounds (geometric from first_cascade_far_bound), "

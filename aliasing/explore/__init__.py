@@ -113,11 +113,15 @@ def directions(**values: Any) -> Explorer:
     return _module("_directions").DirectionsExplorer(**values)
 
 
-def cascades(**values: Any) -> Explorer:
+def cascades(setup: Any = None, **values: Any) -> Explorer:
     """Cascade explorer: splits (Lloyd 2006 eqs. 15–16, Zhang 2006, engine presets), budgets, allocations (Lloyd 2007 eq. 83).
 
     Parameters
     ----------
+    setup : aliasing.setups.Setup, optional
+        An engine's setup (:func:`aliasing.setups.build`): its split, cascade count, shadow
+        range, camera (near, vertical fov, aspect, rows) and texel budget (cascades × map
+        size²) start the controls; ``values`` given beside it win.
     **values
         ``method`` (split method or engine preset), ``k``, ``lam`` (λ), ``near``, ``far``
         [world units], ``fov`` [deg, vertical], ``aspect`` (width/height, 0.25–4), ``warp``
@@ -132,8 +136,35 @@ def cascades(**values: Any) -> Explorer:
     >>> e = cascades(method="log", k=4, warp="P", allocation="error")
     >>> e.data["far_i"].round(3).tolist()
     [5.623, 31.623, 177.828, 1000.0]
+    >>> from aliasing import setups
+    >>> s = setups.build("threejs", {"cascades": 4}, "near=0.1,far=500,fov=50,aspect=16:9,height=1080")
+    >>> e = cascades(setup=s)
+    >>> e.data["far_i"].round(6).tolist() == [round(f, 6) for f in s.pipeline.far_i], e.data["budget"]
+    (True, 16777216)
     """
+    if setup is not None:
+        values = {**_setup_values(setup), **values}
     return _module("_cascades").CascadesExplorer(**values)
+
+
+def _setup_values(setup: Any) -> dict[str, Any]:
+    """The cascade explorer's controls from an engine's :class:`aliasing.setups.Setup`."""
+    from .. import partitioning
+    from ..setups import Setup
+
+    if not isinstance(setup, Setup):
+        raise ValueError(f"setup must be an aliasing.setups.Setup (aliasing.setups.build(...)), got {type(setup).__name__}")
+    pl, cam = setup.pipeline, setup.camera
+    try:
+        method = partitioning.resolve_name({"logarithmic": "log"}.get(pl.split, pl.split))
+    except ValueError:
+        raise ValueError(f"setup: {setup.profile.name}'s split {pl.split!r} is not a split method of the explorer") from None
+    out = {"method": method, "k": pl.k, "near": cam.near, "far": max(pl.far_i), "fov": cam.fov, "aspect": cam.aspect,
+           "res_image": cam.height}
+    budget = pl.k * pl.resolution**2
+    if budget in dict(_module("_cascades").BUDGETS).values():
+        out["budget"] = budget
+    return out
 
 
 def faces(**values: Any) -> Explorer:

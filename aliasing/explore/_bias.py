@@ -65,7 +65,7 @@ def compute(preset: str, elevation: float, k: int, lam: float, far: float, resol
     need, have = [], []
     for r in rows:
         n = 0.5 * p.pcf * np.tan(th) * (np.abs(np.cos(az)) * r["texel_s"] + np.abs(np.sin(az)) * r["texel_t"])
-        o = presets.equivalent_depth(p, max(r["texel_s"], r["texel_t"]), np.degrees(th), np.degrees(az))
+        o = presets.equivalent_depth(p, max(r["texel_s"], r["texel_t"]), np.degrees(th), np.degrees(az), int(resolution))
         worst = np.argmax(n - o, axis=1)  # the azimuth where the rule falls shortest
         need.append(n[np.arange(len(ANGLES)), worst])
         have.append(o[np.arange(len(ANGLES)), worst])

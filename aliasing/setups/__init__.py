@@ -54,7 +54,7 @@ ENGINES: dict[str, str] = {
 
 __all__ = ["ENGINES", "FACES", "KINDS", "BiasRule", "BiasTerm", "CAMERA_SPEC", "Camera", "Filter", "Pipeline", "Profile",
            "RadiansWarning", "SUN_SPEC", "Setting", "Setup", "Sun", "add_arguments", "build", "from_args", "get", "load_settings",
-           "parse_camera", "parse_set", "parse_sun", "profiles"]
+           "parse_camera", "parse_set", "parse_sun", "profiles", "resolve"]
 
 
 def profiles(engine: str) -> tuple[Profile, ...]:
@@ -118,15 +118,21 @@ def build(engine: str | Profile, settings: Mapping[str, Any] | None = None, came
     return Setup(profile, dict(settings or {}), parse_camera(camera), parse_sun(sun))
 
 
-def add_arguments(parser: argparse.ArgumentParser, *, sun: str | None = "15..60", required: bool = False) -> None:
-    """The setup vocabulary on a subcommand: ``--engine``, ``--settings``, ``--set``, ``--camera``, ``--sun``."""
+def add_arguments(parser: argparse.ArgumentParser, *, sun: str | None = "15..60", required: bool = False, camera: bool = True) -> None:
+    """The setup vocabulary on a subcommand: ``--engine``, ``--settings``, ``--set``, ``--camera``, ``--sun``.
+
+    ``sun=None``: no default (a command whose old ``--light`` stays the default without ``--sun``);
+    ``camera=False``: the command has its own ``--camera`` that also takes the camera spec.
+    """
     parser.add_argument("--engine", required=required, metavar="NAME[@RELEASE]",
                         help="the engine and release: " + ", ".join(ENGINES) + " (no release: the newest known)")
     parser.add_argument("--settings", metavar="FILE", help="the engine's settings, JSON or TOML, in the engine's own keys")
     parser.add_argument("--set", dest="set_", action="append", metavar="KEY=VALUE", help="one setting in the engine's own key (repeatable)")
-    parser.add_argument("--camera", metavar="SPEC", help=f"camera: {CAMERA_SPEC} (fov vertical in degrees; default "
-                        "near=0.1,far=500,fov=50,aspect=16:9,height=1080)")
-    parser.add_argument("--sun", default=sun, metavar="ELEV[..ELEV][@AZ]", help=f"sun: {SUN_SPEC} (default {sun})")
+    if camera:
+        parser.add_argument("--camera", metavar="SPEC", help=f"camera: {CAMERA_SPEC} (fov vertical in degrees, height the image's rows "
+                            "in pixels; default near=0.1,far=500,fov=50,aspect=16:9,height=1080)")
+    parser.add_argument("--sun", default=sun, metavar="ELEV[..ELEV][@AZ]",
+                        help=f"sun: {SUN_SPEC} (default {sun if sun else '15..60 with --engine'})")
 
 
 def from_args(args: argparse.Namespace) -> Setup:
@@ -136,3 +142,26 @@ def from_args(args: argparse.Namespace) -> Setup:
         settings.update(load_settings(args.settings))
     settings.update(parse_set(getattr(args, "set_", None)))
     return build(args.engine, settings, getattr(args, "camera", None), getattr(args, "sun", None) or "15..60")
+
+
+def resolve(args: argparse.Namespace) -> tuple[Setup | None, Camera | None, Sun | None]:
+    """(setup, camera, sun) of a command's :func:`add_arguments` options: the :class:`Setup` with
+    ``--engine``; without it the camera and sun where given (None where not), and ``--settings`` or
+    ``--set`` refused (they need an engine).
+
+    A command whose own ``--camera`` names a glTF camera (``add_arguments(..., camera=False)``)
+    takes a camera spec there too: a value with ``=`` is the spec; a name is left in
+    ``args.camera`` for the command.
+    """
+    camera_text = getattr(args, "camera", None)
+    if isinstance(camera_text, str) and "=" not in camera_text:  # a glTF camera's name: not ours
+        args = argparse.Namespace(**{**vars(args), "camera": None})
+    if getattr(args, "engine", None):
+        s = from_args(args)
+        return s, s.camera, s.sun
+    for flag, name in (("--settings", "settings"), ("--set", "set_")):
+        if getattr(args, name, None):
+            raise ValueError(f"{flag} needs --engine NAME[@RELEASE] (the settings are the engine's own; engines: {', '.join(ENGINES)})")
+    camera = getattr(args, "camera", None)
+    sun = getattr(args, "sun", None)
+    return None, parse_camera(camera) if camera else None, parse_sun(sun) if sun else None

@@ -20,12 +20,19 @@ the light), each kind of offset is a depth bias along the light in disguise
 
 * ``depth``: c·v (a constant along the light [world units per unit]);
 * ``depth_texels``: c·v·w (× the cascade's texel w);
+* ``depth_range``: c·v·D (× the cascade's map depth range D along the light [world units], where
+  the engine fits the shadow camera's near..far to each cascade: Babylon.js, PlayCanvas; D is
+  passed as ``extent``, :func:`aliasing.engines.pipeline.extents` gives it);
 * ``normal``: c·v·g(θ)/cos θ (an offset along the receiver's normal; c in world units per unit);
 * ``normal_texels``: c·v·w·g(θ)/cos θ;
 * ``across_texels``: c·v·w·sin θ·tan θ (the normal's part across the light);
 * ``slope``: c·v·w·tan θ·max(|cos φ|, |sin φ|) (slope-scaled bias of the rasterizer state);
+* ``tan_texels``: c·v·w·min(tan θ, cap) (a slope bias computed per vertex from the normal and
+  clamped, Unreal's ``ShadowMaxSlopeScaleDepthBias``);
 
-with g(θ) = 1, sin θ or 1 − cos θ (``scale``).  A negative c says the engine's sign: three.js
+with g(θ) = 1, sin θ or 1 − cos θ (``scale``); in the texel kinds w may carry a fixed ``offset``
+(w + offset: Godot's constant bias is a fraction of the map's side plus its pancake depth).
+A negative c says the engine's sign: three.js
 adds ``shadow.bias`` to the receiver's depth, so a negative value lifts it towards the light.
 
 Example
@@ -52,7 +59,7 @@ from .. import _validation as check
 
 Array = NDArray[np.float64]
 
-KINDS = ("depth", "depth_texels", "normal", "normal_texels", "across_texels", "slope")
+KINDS = ("depth", "depth_texels", "depth_range", "normal", "normal_texels", "across_texels", "slope", "tan_texels")
 SCALES = ("one", "sin", "one-minus-cos")
 FACES = ("front", "back", "both")
 TYPES = ("float", "int", "bool", "choice")
@@ -66,8 +73,9 @@ class Setting:
     ----------
     key : str
         The engine's own name (``shadowBias``, ``shadow.normalBias``, ``lambda``).
-    default : float, int, bool or str
-        The engine's default at the profile's release.
+    default : float, int, bool, str or None
+        The engine's default at the profile's release; None where the engine derives it from
+        something else (Babylon's ``shadowMaxZ`` is the camera's ``maxZ``: ``doc`` says what).
     unit : str
         What one unit means (``world units``, ``normalized light depth``, ``texels``, ``m``, ``""``).
     kind : str
@@ -121,7 +129,10 @@ class Setting:
         ValueError
             Naming the key and what it accepts.
         """
-        bad = ValueError(f"{self.key} must be {self.allowed()}" + (f" [{self.unit}]" if self.unit else "") + f", got {value!r}")
+        bad = ValueError(f"{self.key} must be {self.allowed()}" + (f" [{self.unit}]" if self.unit else "")
+                         + (" or null (the engine's derived default)" if self.default is None else "") + f", got {value!r}")
+        if self.default is None and (value is None or isinstance(value, str) and value.strip().lower() in ("null", "none")):
+            return None  # the engine's derived default (JSON null, --set KEY=null)
         if isinstance(value, str) and self.kind != "choice":
             text = value.strip()
             if self.kind == "bool":
@@ -142,7 +153,8 @@ class Setting:
             for c in self.accepts:
                 if value.strip().lower() == str(c).lower():
                     return c
-            raise ValueError(f"{self.key} must be {self.allowed()}, got {value!r}{check.did_you_mean(value, map(str, self.accepts))}")
+            null = " or null (the engine's derived default)" if self.default is None else ""
+            raise ValueError(f"{self.key} must be {self.allowed()}{null}, got {value!r}{check.did_you_mean(value, map(str, self.accepts))}")
         if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
             raise bad
         number = float(value)
@@ -186,6 +198,10 @@ class BiasTerm:
     contact : bool
         Whether the term moves the surface along the light and so opens a lit gap at a contact
         (constant and texel depth terms: True; normal offsets cancel against a vertical caster).
+    cap : float
+        The clamp of tan θ in ``tan_texels``, >= 0 (inf: none).
+    offset : float
+        Added to the texel w in the texel kinds [world units] (0: none).
     """
 
     key: str
@@ -194,28 +210,46 @@ class BiasTerm:
     scale: float = 1.0
     normal_scale: str = "one"
     contact: bool | None = None
+    cap: float = math.inf
+    offset: float = 0.0
 
     def __post_init__(self) -> None:
         check.choice(self.kind, "kind", KINDS)
         check.choice(self.normal_scale, "normal_scale", SCALES)
+        if not (isinstance(self.cap, (int, float)) and self.cap >= 0) or not (isinstance(self.offset, (int, float)) and math.isfinite(self.offset)):
+            raise ValueError(f"cap must be >= 0 and offset finite, got cap={self.cap!r}, offset={self.offset!r}")
         if self.contact is None:
-            object.__setattr__(self, "contact", self.kind in ("depth", "depth_texels"))
+            object.__setattr__(self, "contact", self.kind in ("depth", "depth_texels", "depth_range"))
 
-    def per_unit(self, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0) -> float | Array:
-        """World depth bias along the light per unit of the setting, for a texel w [world] and θ, φ [deg]."""
+    def per_unit(self, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0, extent: ArrayLike | None = None) -> float | Array:
+        """World depth bias along the light per unit of the setting, for a texel w [world] and θ, φ [deg].
+
+        ``extent``: the cascade's map depth range along the light [world units], needed by
+        ``depth_range`` terms only (ValueError naming ``extent`` when it is missing there).
+        """
         w = check.positive(texel, "texel")
         th = np.radians(check.closed_range(angle, "angle", 0.0, 90.0, " degrees"))
         ph = np.radians(check.finite(azimuth, "azimuth"))
-        w, th, ph = np.broadcast_arrays(w, th, ph)
+        if self.kind == "depth_range":
+            if extent is None:
+                raise ValueError(f"extent is needed for the bias term {self.key!r} (depth_range: the cascade's map depth range along "
+                                 "the light [world units], aliasing.engines.pipeline.extents)")
+            d = check.positive(extent, "extent")
+        else:
+            d = np.ones(())
+        w, th, ph, d = np.broadcast_arrays(w, th, ph, d)
+        w = w + self.offset
         g = np.sin(th) if self.normal_scale == "sin" else 1.0 - np.cos(th) if self.normal_scale == "one-minus-cos" else np.ones_like(th)
         with np.errstate(divide="ignore", invalid="ignore"):
             k = {
                 "depth": np.ones_like(w),
                 "depth_texels": w,
+                "depth_range": d,
                 "normal": g / np.cos(th),
                 "normal_texels": w * g / np.cos(th),
                 "across_texels": w * np.sin(th) * np.tan(th),
                 "slope": w * np.tan(th) * np.maximum(np.abs(np.cos(ph)), np.abs(np.sin(ph))),
+                "tan_texels": w * np.minimum(np.tan(th), self.cap),
             }[self.kind]
         out = self.scale * np.where(np.isfinite(k), k, np.inf)
         return float(out) if out.ndim == 0 else out
@@ -245,22 +279,32 @@ class BiasRule:
         raise ValueError(f"unknown bias setting {key!r}{check.did_you_mean(key, [t.key for t in self.terms])}; "
                          f"this rule has: {', '.join(t.key for t in self.terms) or 'none'}")
 
-    def depth(self, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0) -> float | Array:
-        """All terms as one depth bias along the light [world units] (positive: towards the light)."""
-        total = sum((t.value * np.asarray(t.per_unit(texel, angle, azimuth)) for t in self.terms), np.zeros(()))
+    @property
+    def needs_extent(self) -> bool:
+        """Whether a term scales with the cascade's map depth range (pass ``extent`` to the methods)."""
+        return any(t.kind == "depth_range" for t in self.terms)
+
+    def depth(self, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0, extent: ArrayLike | None = None) -> float | Array:
+        """All terms as one depth bias along the light [world units] (positive: towards the light).
+
+        ``extent``: the cascade's map depth range along the light [world units], for rules with
+        ``depth_range`` terms (:attr:`needs_extent`).
+        """
+        total = sum((t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent)) for t in self.terms), np.zeros(()))
         total = np.broadcast_to(total, np.broadcast_shapes(np.shape(texel), np.shape(angle), np.shape(azimuth))) if not self.terms else total
         return float(total) if np.ndim(total) == 0 else np.asarray(total, float)
 
-    def contact(self, texel: ArrayLike) -> float | Array:
+    def contact(self, texel: ArrayLike, extent: ArrayLike | None = None) -> float | Array:
         """The part along the light [world units]: what opens a lit gap at the foot of a caster."""
         w = check.positive(texel, "texel")
-        total = np.zeros_like(w)
+        total = np.zeros(np.broadcast_shapes(w.shape, np.shape(extent)) if extent is not None else w.shape)
         for t in self.terms:
             if t.contact:
-                total = total + t.value * np.asarray(t.per_unit(w, 0.0))
+                total = total + t.value * np.asarray(t.per_unit(w, 0.0, 0.0, extent))
         return float(total) if total.ndim == 0 else total
 
-    def minimal(self, key: str, need: ArrayLike, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0) -> float | Array:
+    def minimal(self, key: str, need: ArrayLike, texel: ArrayLike, angle: ArrayLike, azimuth: ArrayLike = 0.0,
+                extent: ArrayLike | None = None) -> float | Array:
         """The value of setting ``key`` that, the other terms kept, gives the depth bias ``need`` [world units].
 
         A bound from below where the term's scale is positive, from above where it is negative
@@ -269,8 +313,8 @@ class BiasRule:
         """
         t = self.term(key)
         need = check.finite(need, "need")
-        rest = np.asarray(self.depth(texel, angle, azimuth)) - t.value * np.asarray(t.per_unit(texel, angle, azimuth))
-        per = np.asarray(t.per_unit(texel, angle, azimuth), float)
+        rest = np.asarray(self.depth(texel, angle, azimuth, extent)) - t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent))
+        per = np.asarray(t.per_unit(texel, angle, azimuth, extent), float)
         with np.errstate(divide="ignore", invalid="ignore"):
             out = np.where(per != 0, (need - rest) / np.where(per != 0, per, 1.0), np.where(need - rest <= 0, 0.0, np.inf))
         return float(out) if np.ndim(out) == 0 else out
@@ -314,11 +358,24 @@ class Pipeline:
         Whether the fit is stabilized (snapped and rotation-invariant): no shimmer under motion.
     box : tuple or None
         ``(width, height)`` of a fixed world box [world units] when ``fit == "fixed"``.
+    grow : tuple of float
+        World units the engine adds to each cascade's box side after the fit (three.js CSM's
+        ``fade`` margin), one per cascade; empty: none.
     depth_range : tuple of float or None
         The light's depth range (near, far) [world units] where the engine's depth unit is a
         fraction of it.
+    min_extent : float
+        The smallest depth range the engine gives a cascade's map [world units] where it fits
+        near..far per cascade (Babylon.js with depthClamp: 1); 0: none.
     memory : int
         Bytes of the depth maps.
+    rows : int
+        Texels along the map's t axis where they differ from ``resolution`` (Godot's two splits
+        are halves of a square atlas: each split ``resolution`` wide, ``resolution/2`` tall);
+        0: square maps.
+    bands : tuple of (float, float)
+        The eye-depth range (start, end) of each blend band between cascade i and i + 1
+        [world units]; empty when the engine does not blend.
     notes : tuple of str
         What the profile does not model, in words (empty when all of it is).
     """
@@ -334,10 +391,14 @@ class Pipeline:
     blend: float = 0.0
     stable: bool = False
     box: tuple | None = None
+    grow: tuple = ()
     depth_range: tuple | None = None
+    min_extent: float = 0.0
     memory: int = 0
     split: str = ""
     notes: tuple = ()
+    rows: int = 0
+    bands: tuple = ()
 
     def __post_init__(self) -> None:
         n, f = np.asarray(self.near_i, float), np.asarray(self.far_i, float)
@@ -348,8 +409,13 @@ class Pipeline:
         object.__setattr__(self, "near_i", tuple(map(float, n)))
         object.__setattr__(self, "far_i", tuple(map(float, f)))
         object.__setattr__(self, "notes", tuple(self.notes))
+        grow = np.asarray(self.grow, float)
+        if grow.size and (grow.shape != n.shape or not np.all(np.isfinite(grow)) or np.any(grow < 0)):
+            raise ValueError(f"grow must be one finite value >= 0 per cascade, got {self.grow!r}")
+        object.__setattr__(self, "grow", tuple(map(float, grow)))
+        object.__setattr__(self, "bands", tuple((float(a), float(b)) for a, b in self.bands))
         if not self.memory:
-            object.__setattr__(self, "memory", int(len(n) * self.resolution ** 2 * 4))
+            object.__setattr__(self, "memory", int(len(n) * self.resolution * (self.rows or self.resolution) * 4))
 
     @property
     def k(self) -> int:

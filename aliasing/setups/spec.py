@@ -211,6 +211,23 @@ class Sun:
         a = np.radians(self.azimuth)
         return np.stack([np.cos(e) * np.sin(a), np.sin(e), np.cos(e) * np.cos(a)], axis=-1)
 
+    def light(self, elevation: float | None = None) -> str:
+        """The sun at ``elevation`` (default the band's lowest) as the toolkit's eye-space light spec
+        ``gamma:G@azimuth:A`` (:data:`aliasing.geometry.LIGHT_SPEC`: γ from the view direction, azimuth
+        about it from up), the same direction as :meth:`direction`.
+
+        Example
+        -------
+        >>> Sun((30.0, 30.0)).light(), Sun((30.0, 30.0), 90.0).light()
+        ('gamma:30@azimuth:0', 'gamma:90@azimuth:60')
+        """
+        e = math.radians(self.elevation[0] if elevation is None else float(elevation))
+        a = math.radians(self.azimuth)
+        x, y, z = math.cos(e) * math.sin(a), math.sin(e), math.cos(e) * math.cos(a)
+        gamma = math.degrees(math.atan2(math.hypot(x, y), z))
+        az = math.degrees(math.atan2(x, y)) if math.hypot(x, y) > 0 else 0.0
+        return f"gamma:{gamma:.12g}@azimuth:{az:.12g}"
+
     def spec(self) -> str:
         lo, hi = self.elevation
         band = f"{lo:g}" if lo == hi else f"{lo:g}..{hi:g}"

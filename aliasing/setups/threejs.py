@@ -1,36 +1,54 @@
 """three.js: the CSM addon (examples/jsm/csm) and the core DirectionalLight shadow.
 
-Read from npm ``three`` 0.187.0 (r187; run in the tests) and 0.184.0 (r184, the last with the
-older split).  ``class`` picks the addon (``CSM``, the cascades) or one ``DirectionalLight`` with
-its fixed orthographic shadow camera.
+Read from npm ``three`` 0.187.0 (r187) and 0.184.0 (r184, the last with the older split), both
+run in node by the tests (``tests/test_engines_js.py``).  ``class`` picks the addon (``CSM``,
+the cascades) or one ``DirectionalLight`` with its fixed orthographic shadow camera.
 
 Settings as three.js spells them:
 
-* the ``CSM`` constructor's data (``examples/jsm/csm/CSM.js`` lines 61–147): ``cascades`` (3),
+* the ``CSM`` constructor's data (``examples/jsm/csm/CSM.js`` lines 61–139): ``cascades`` (3),
   ``maxFar`` (100000), ``mode`` (``practical``), ``shadowMapSize`` (2048), ``shadowBias``
-  (0.000001), ``lightNear`` (1), ``lightFar`` (2000), ``lightMargin`` (200), ``fade`` (false).
-  The constructor reads them as ``data.x || default``: a 0 (or false) is the default, so
-  ``shadowBias: 0`` is 1e-6 and ``cascades: 0`` is 3;
+  (0.000001), ``lightNear`` (1), ``lightFar`` (2000), ``lightMargin`` (200).  The constructor
+  reads them as ``data.x || default``: a 0 (or false) is the default, so ``shadowBias: 0`` is
+  1e-6 and ``cascades: 0`` is 3.  ``fade`` (false, line 147) is NOT read from the data: set
+  ``csm.fade = true`` after construction; it grows each cascade's box by
+  0.25·(z/(F − near))²·(F − near), z the cascade's far end and F = max(camera.far, maxFar)
+  (``_updateShadowBounds``, lines 265–275), and blends across a band around each split;
 * each light's ``shadow`` (``src/lights/LightShadow.js``): ``shadow.bias`` (0, line 53),
-  ``shadow.normalBias`` (0, line 74), ``shadow.radius`` (1, line 87), ``shadow.mapSize.width``
-  (512, line 104), and ``DirectionalLightShadow``'s camera
+  ``shadow.normalBias`` (0, line 74), ``shadow.radius`` (1, line 87), ``shadow.blurSamples``
+  (8, line 95), ``shadow.mapSize.width`` (512, line 104), and ``DirectionalLightShadow``'s camera
   (``src/lights/DirectionalLightShadow.js`` line 16: ``OrthographicCamera(-5, 5, 5, -5, 0.5, 500)``);
 * the material's ``side`` and ``shadowSide`` (``src/materials/Material.js``: FrontSide, null);
-* the renderer's ``shadowMap.type`` (``src/renderers/webgl/WebGLShadowMap.js`` line 89: PCFShadowMap;
-  PCFSoftShadowMap is replaced by PCFShadowMap, line 101).
+* the renderer's ``shadowMap.type`` (``src/renderers/webgl/WebGLShadowMap.js`` line 89:
+  PCFShadowMap; PCFSoftShadowMap is replaced by PCFShadowMap, lines 99–102).
 
-The rule (``shadowmap_pars_fragment.glsl.js`` line 162: ``shadowCoord.z += shadowBias``): the bias is
-added to the receiver's depth in [0, 1] over the shadow camera's near..far, so a negative value
-lifts the receiver towards the light by −bias·(far − near) world units; ``normalBias`` moves the
-looked-up point along the world normal (line 315).  Which faces cast
-(``WebGLShadowMap.js`` line 490): ``shadowSide`` if set, else the opposite of the material's
-side: a FrontSide material casts with its back faces.
+The rule (``shadowmap_pars_fragment.glsl.js``, r187 line 162, r184 line 122:
+``shadowCoord.z += shadowBias``): the bias is added to the receiver's depth in [0, 1] over the
+shadow camera's near..far, so a negative value lifts the receiver towards the light by
+−bias·(far − near) world units (CSM: lightFar − lightNear); ``normalBias`` moves the looked-up
+point along the world normal (``shadowmap_vertex.glsl.js``, r187 line 35, r184 line 28).  Which
+faces cast (``WebGLShadowMap.js``, r187 lines 486 and 490, r184 473 and 477): ``shadowSide`` if
+set, else the opposite of the material's side for Basic and PCF maps (a FrontSide material
+casts with its back faces), the side itself for VSM.
+
+The filter (PCFShadowMap): 5 Vogel-disk taps within ``shadow.radius`` texels (the outermost at
+√(4.5/5) = 0.949 of it), each a hardware 2×2 comparison, rotated per pixel by interleaved
+gradient noise.
+
+Example
+-------
+>>> from aliasing.setups import build
+>>> s = build("threejs", {"fade": True}, camera="near=0.1,far=500,fov=50,aspect=16:9,height=1080")
+>>> s.pipeline.bias.faces, round(s.pipeline.grow[-1], 6)   # back faces cast; the fade margin of the last cascade
+('back', 0.625001)
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
 from typing import Any
+
+import numpy as np
 
 from .. import partitioning
 from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
@@ -40,44 +58,59 @@ SHADOW = "src/lights/LightShadow.js"
 SIDES = ("FrontSide", "BackSide", "DoubleSide")
 _CAST = {"FrontSide": "back", "BackSide": "front", "DoubleSide": "both"}  # WebGLShadowMap.js:51 shadowSide map
 _FACES = {"FrontSide": "front", "BackSide": "back", "DoubleSide": "both"}
+#: line numbers that moved between the releases read
+_LINES = {
+    "0.187.0": {"side": 88, "shadowSide": 342, "cast": "486, 490", "bias": 162, "normal": 35},
+    "0.184.0": {"side": 86, "shadowSide": 340, "cast": "473, 477", "bias": 122, "normal": 28},
+}
+#: the outermost of three.js's 5 Vogel-disk taps, in units of shadow.radius: sqrt((4 + 0.5) / 5)
+VOGEL_OUTER = (4.5 / 5) ** 0.5
 
 
 def _settings(pkg: str) -> tuple[Setting, ...]:
     at = f" (npm three {pkg})"
+    ln = _LINES[pkg]
+    cam = f"src/lights/DirectionalLightShadow.js:16{at}"
     return (
         Setting("class", "CSM", "", "choice", ("CSM", "DirectionalLight"), doc="the CSM addon's cascades, or one DirectionalLight shadow"),
-        Setting("cascades", 3, "", "int", (0, 64), source=f"{CSM}:61{at}", doc="number of cascades (0 reads as 3)"),
-        Setting("maxFar", 100000.0, "world units", "float", (0.0, None), source=f"{CSM}:69{at}", doc="shadows end at min(camera.far, maxFar)"),
+        Setting("cascades", 3, "", "int", (0, 64), source=f"{CSM}:61{at}", doc="number of cascades (0 reads as 3; the toolkit caps it at 64)"),
+        Setting("maxFar", 100000.0, "world units", "float", (0.0, None), source=f"{CSM}:69{at}",
+                doc="shadows end at min(camera.far, maxFar) (0 reads as 100000)"),
         Setting("mode", "practical", "", "choice", ("uniform", "logarithmic", "practical", "custom"), source=f"{CSM}:77{at}",
                 doc="split mode (practical: λ = 0.5 fixed)"),
         Setting("customSplitsLambda", 0.5, "", "float", (0.0, 1.0),
-                doc="with mode 'custom': the λ of a customSplitsCallback that lerps uniform and logarithmic breaks as practicalSplit does"),
+                doc="not a three.js key: with mode 'custom', the λ of a customSplitsCallback that lerps uniform and "
+                    "logarithmic breaks as practicalSplit does (the snippet writes that callback)"),
         Setting("shadowMapSize", 2048, "texels", "int", (0, 16384), source=f"{CSM}:85{at}", doc="texels per side of each cascade (0 reads as 2048)"),
         Setting("shadowBias", 0.000001, "normalized light depth", "float", (-1.0, 1.0), source=f"{CSM}:93{at}",
-                doc="added to the receiver's depth in [0, 1] over lightFar − lightNear (0 reads as 1e-6; negative lifts it)"),
+                doc="each cascade light's shadow.bias: added to the receiver's depth in [0, 1] over lightFar − lightNear "
+                    "(0 reads as 1e-6; negative lifts the receiver)"),
         Setting("lightNear", 1.0, "world units", "float", (0.0, None), source=f"{CSM}:116{at}", doc="shadow camera near (0 reads as 1)"),
         Setting("lightFar", 2000.0, "world units", "float", (0.0, None), source=f"{CSM}:124{at}", doc="shadow camera far (0 reads as 2000)"),
         Setting("lightMargin", 200.0, "world units", "float", (0.0, None), source=f"{CSM}:132{at}",
                 doc="the light sits this far behind each cascade's box (0 reads as 200)"),
-        Setting("fade", False, "", "bool", source=f"{CSM}:147{at}", doc="blend between cascades (grows each box by a margin)"),
+        Setting("fade", False, "", "bool", source=f"{CSM}:147{at}",
+                doc="csm.fade (set after construction; the constructor ignores data.fade): grows each box by a margin and blends across splits"),
         Setting("shadow.bias", 0.0, "normalized light depth", "float", (-1.0, 1.0), source=f"{SHADOW}:53{at}",
-                doc="the DirectionalLight's bias (CSM sets each light's to shadowBias)"),
+                doc="the DirectionalLight's bias (class DirectionalLight; CSM sets each light's to shadowBias)"),
         Setting("shadow.normalBias", 0.0, "world units", "float", (-1e6, 1e6), source=f"{SHADOW}:74{at}",
                 doc="the looked-up point moves along the world normal by this"),
-        Setting("shadow.radius", 1.0, "texels", "float", (0.0, 64.0), source=f"{SHADOW}:87{at}", doc="PCF radius"),
+        Setting("shadow.radius", 1.0, "texels", "float", (0.0, 64.0), source=f"{SHADOW}:87{at}",
+                doc="PCF: the Vogel disk's radius; VSM: the blur radius"),
+        Setting("shadow.blurSamples", 8, "", "int", (1, 64), source=f"{SHADOW}:95{at}", doc="VSM blur samples"),
         Setting("shadow.mapSize.width", 512, "texels", "int", (1, 16384), source=f"{SHADOW}:104{at}",
-                doc="the DirectionalLight's map size (square maps: width = height)"),
-        Setting("shadow.camera.left", -5.0, "world units", "float", (None, None), source=f"src/lights/DirectionalLightShadow.js:16{at}"),
-        Setting("shadow.camera.right", 5.0, "world units", "float", (None, None), source=f"src/lights/DirectionalLightShadow.js:16{at}"),
-        Setting("shadow.camera.top", 5.0, "world units", "float", (None, None), source=f"src/lights/DirectionalLightShadow.js:16{at}"),
-        Setting("shadow.camera.bottom", -5.0, "world units", "float", (None, None), source=f"src/lights/DirectionalLightShadow.js:16{at}"),
-        Setting("shadow.camera.near", 0.5, "world units", "float", (0.0, None), source=f"src/lights/DirectionalLightShadow.js:16{at}"),
-        Setting("shadow.camera.far", 500.0, "world units", "float", (0.0, None), source=f"src/lights/DirectionalLightShadow.js:16{at}"),
-        Setting("material.side", "FrontSide", "", "choice", SIDES, source=f"src/materials/Material.js{at}"),
-        Setting("material.shadowSide", "null", "", "choice", ("null",) + SIDES, source=f"src/materials/Material.js{at}",
-                doc="faces drawn into the map; null: the opposite of material.side"),
+                doc="the DirectionalLight's map size (class DirectionalLight; square maps: width = height)"),
+        Setting("shadow.camera.left", -5.0, "world units", "float", (None, None), source=cam),
+        Setting("shadow.camera.right", 5.0, "world units", "float", (None, None), source=cam),
+        Setting("shadow.camera.top", 5.0, "world units", "float", (None, None), source=cam),
+        Setting("shadow.camera.bottom", -5.0, "world units", "float", (None, None), source=cam),
+        Setting("shadow.camera.near", 0.5, "world units", "float", (0.0, None), source=cam),
+        Setting("shadow.camera.far", 500.0, "world units", "float", (0.0, None), source=cam),
+        Setting("material.side", "FrontSide", "", "choice", SIDES, source=f"src/materials/Material.js:{ln['side']}{at}"),
+        Setting("material.shadowSide", "null", "", "choice", ("null",) + SIDES, source=f"src/materials/Material.js:{ln['shadowSide']}{at}",
+                doc=f"faces drawn into the map; null: the opposite of material.side (VSM: the side itself; WebGLShadowMap.js:{ln['cast']})"),
         Setting("renderer.shadowMap.type", "PCFShadowMap", "", "choice", ("BasicShadowMap", "PCFShadowMap", "PCFSoftShadowMap", "VSMShadowMap"),
-                source=f"src/renderers/webgl/WebGLShadowMap.js:89{at}", doc="PCFSoftShadowMap is replaced by PCFShadowMap (line 101)"),
+                source=f"src/renderers/webgl/WebGLShadowMap.js:89{at}", doc="PCFSoftShadowMap is replaced by PCFShadowMap (lines 99–102)"),
     )
 
 
@@ -86,25 +119,39 @@ def _or(value: Any, default: Any) -> Any:
     return value if value else default
 
 
-def _faces(s: Mapping[str, Any]) -> str:
+def faces(s: Mapping[str, Any]) -> str:
+    """Which faces cast: ``front``, ``back`` or ``both`` (WebGLShadowMap.js getDepthMaterial)."""
     side = s["material.shadowSide"]
-    return _FACES[side] if side != "null" else _CAST[s["material.side"]]
+    if side != "null":
+        return _FACES[side]
+    return _FACES[s["material.side"]] if s["renderer.shadowMap.type"] == "VSMShadowMap" else _CAST[s["material.side"]]
 
 
 def _filter(s: Mapping[str, Any]) -> Filter:
     kind = s["renderer.shadowMap.type"]
+    r = float(s["shadow.radius"])
     if kind == "BasicShadowMap":
         return Filter("hard", 1, note="one comparison")
     if kind == "VSMShadowMap":
-        return Filter("vsm", 1, float(s["shadow.radius"]), note="variance shadow map, blurred by shadow.radius")
-    r = float(s["shadow.radius"])
+        return Filter("vsm", 1, r, note=f"variance shadow map, blurred by shadow.radius {r:g} with shadow.blurSamples {s['shadow.blurSamples']}")
+    # the disk's centres span 2·0.949·r texels; counted as the k×k PCF of the taps' centres (as the bias presets do)
     return Filter("pcf", max(2, int(round(2 * r)) + 1), r,
-                  note="5 Vogel-disk taps of radius shadow.radius texels, each a hardware 2×2 comparison (shadowmap_pars_fragment.glsl.js)")
+                  note=f"5 Vogel-disk taps within {VOGEL_OUTER:.3f}·shadow.radius texels, each a hardware 2×2 comparison "
+                       "(shadowmap_pars_fragment.glsl.js); modelled as k×k PCF, k = round(2·radius) + 1")
+
+
+def fade_margins(ends: np.ndarray, near: float, camera_far: float, max_far: float) -> np.ndarray:
+    """CSM's fade margin added to each cascade's box side [world units] (``_updateShadowBounds``).
+
+    0.25·(z/(F − near))²·(F − near), z each cascade's far end, F = max(camera.far, maxFar).
+    """
+    big = max(camera_far, max_far)
+    return 0.25 * (np.asarray(ends, float) / (big - near)) ** 2 * (big - near)
 
 
 def _build(split_form: str):
     def build(s: Mapping[str, Any], camera) -> Pipeline:
-        faces = _faces(s)
+        side = faces(s)
         if s["class"] == "DirectionalLight":
             near, far = float(s["shadow.camera.near"]), float(s["shadow.camera.far"])
             width = float(s["shadow.camera.right"]) - float(s["shadow.camera.left"])
@@ -113,14 +160,17 @@ def _build(split_form: str):
                 raise ValueError("shadow.camera must have right > left, top > bottom and far > near")
             res = int(s["shadow.mapSize.width"])
             rule = BiasRule((BiasTerm("shadow.bias", float(s["shadow.bias"]), "depth", -(far - near)),
-                             BiasTerm("shadow.normalBias", float(s["shadow.normalBias"]), "normal")), faces)
+                             BiasTerm("shadow.normalBias", float(s["shadow.normalBias"]), "normal")), side)
             return Pipeline((camera.near,), (camera.far,), "fixed", "none", res, rule, _filter(s), box=(width, height),
                             depth_range=(near, far), notes=("the shadow camera is a fixed world box: shadows outside it are lost",))
         k = int(_or(s["cascades"], 3))
         res = int(_or(s["shadowMapSize"], 2048))
         bias = float(_or(s["shadowBias"], 0.000001))
         light_near, light_far = float(_or(s["lightNear"], 1.0)), float(_or(s["lightFar"], 2000.0))
-        far = min(camera.far, float(_or(s["maxFar"], 100000.0)))
+        if not light_far > light_near:
+            raise ValueError(f"lightFar must exceed lightNear ({light_near:g}), got {light_far:g}")
+        max_far = float(_or(s["maxFar"], 100000.0))
+        far = min(camera.far, max_far)
         if not far > camera.near:
             raise ValueError(f"maxFar must exceed the camera's near ({camera.near:g}), got {s['maxFar']:g}")
         mode = s["mode"]
@@ -131,12 +181,18 @@ def _build(split_form: str):
         else:
             ends = partitioning.split_distances("uniform" if mode == "uniform" else "log", camera.near, far, k)
         if split_form == "r184":  # CSMFrustum.split lerps the corners by the breaks C/F from near (r184 and earlier)
-            ends = camera.near + ends / far * (far - camera.near)
+            ends = np.concatenate([[camera.near], camera.near + ends[1:] / far * (far - camera.near)])
         rule = BiasRule((BiasTerm("shadowBias", bias, "depth", -(light_far - light_near)),
-                         BiasTerm("shadow.normalBias", float(s["shadow.normalBias"]), "normal")), faces)
-        notes = ["fade grows each box by 0.25·(z/(far − near))²·(far − near), not in the fit"] if s["fade"] else []
+                         BiasTerm("shadow.normalBias", float(s["shadow.normalBias"]), "normal")), side)
+        notes = ["the shader picks cascade i for eye depths in [b_(i−1), b_i)·(far − near) (CSMShader.js: linearDepth = "
+                 "z/(shadowFar − cameraNear) against the breaks b = split/far): the ranges read differ from the maps' by b·near at each split"]
+        grow: tuple = ()
+        if s["fade"]:
+            grow = tuple(fade_margins(ends[1:], camera.near, camera.far, max_far))
+            notes.append("fade blends across 0.25·b²·(far − near) of eye depth around each break b (CSMShader.js), "
+                         "not a fixed fraction of the cascade: the blend band is not modelled (blend 0)")
         return Pipeline(tuple(ends[:-1]), tuple(ends[1:]), "diagonal-unrounded", "bevy", res, rule, _filter(s),
-                        layout="separate", blend=0.0, stable=True, depth_range=(light_near, light_far),
+                        layout="separate", blend=0.0, stable=True, depth_range=(light_near, light_far), grow=grow,
                         split=f"threejs-csm{'@r184' if split_form == 'r184' else ''}" if mode == "practical" else mode, notes=tuple(notes))
     return build
 
@@ -147,15 +203,20 @@ def snippet(s: Mapping[str, Any]) -> str:
         lines = ["light.castShadow = true;"]
         lines += [f"light.{k} = {_js(s[k])};" for k in s if k.startswith("shadow.")]
     else:
-        keys = ("cascades", "maxFar", "mode", "shadowMapSize", "shadowBias", "lightNear", "lightFar", "lightMargin", "fade")
+        keys = ("cascades", "maxFar", "mode", "shadowMapSize", "shadowBias", "lightNear", "lightFar", "lightMargin")
         body = ",\n".join(f"  {k}: {_js(s[k])}" for k in keys)
         lines = [f"const csm = new CSM({{\n{body},\n  camera, parent: scene, lightDirection,\n}});"]
         if s["mode"] == "custom":
             lines.append(f"csm.customSplitsCallback = (n, near, far, breaks) => {{ for (let i = 1; i < n; i++) "
                          f"breaks.push(THREE.MathUtils.lerp((near + (far - near) * i / n) / far, near * (far / near) ** (i / n) / far, "
                          f"{s['customSplitsLambda']:g})); breaks.push(1); }};")
+        if s["fade"]:
+            lines.append("csm.fade = true;  // the constructor ignores data.fade")
         lines.append(f"for (const light of csm.lights) {{ light.shadow.normalBias = {_js(s['shadow.normalBias'])}; "
-                     f"light.shadow.radius = {_js(s['shadow.radius'])}; }}")
+                     f"light.shadow.radius = {_js(s['shadow.radius'])}; light.shadow.blurSamples = {_js(s['shadow.blurSamples'])}; }}")
+        lines.append("csm.updateFrustums();")
+    if s["material.side"] != "FrontSide":
+        lines.append(f"material.side = THREE.{s['material.side']};")
     if s["material.shadowSide"] != "null":
         lines.append(f"material.shadowSide = THREE.{s['material.shadowSide']};")
     lines.append(f"renderer.shadowMap.type = THREE.{s['renderer.shadowMap.type']};")

@@ -547,7 +547,11 @@ def plan(
     aspects = grid_values(aspect, "aspect")
     check_aspect(aspects)
     specs, lv, angles = expand_lights(light, angles=True)
+    if np.ndim(near) != 0:
+        raise ValueError(f"near must be a single number > 0 (a distance), got an array of shape {np.shape(near)}")
     near = float(check.positive(near, "near"))
+    if np.ndim(block) != 0:
+        raise ValueError(f"block must be a whole number >= 1 (directions per chunk), got an array of shape {np.shape(block)}")
     if isinstance(block, bool) or int(block) != block or block < 1:
         raise ValueError(f"block must be a whole number >= 1 (directions per chunk), got {block!r}")
     refuse_square_only([(v.label, v.name, dict(v.options)) for v in variants], near, ratios[0], fovs[0], aspects, lv[:1])

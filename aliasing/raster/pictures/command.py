@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import math
 
+from ... import partitioning, setups
 from ...bias import presets as bias_presets
 from ..draw import backends
 from ...view import check_aspect
@@ -21,10 +23,33 @@ def _render(args: argparse.Namespace) -> int:
     if args.seed < 0:
         raise ValueError(f"--seed must be a whole number >= 0, got {args.seed}")
     backends.check(args.backend, "eye_pass")  # refused before any work, like the bias preset and the aspect
+    _setup(args)
     if args.what == "bias-margin":
         bias_presets.get(args.bias_preset)
     args.aspect = float(check_aspect(args.aspect))
     return run(args)
+
+
+def _setup(args: argparse.Namespace) -> None:
+    """--engine, --camera (a spec), --sun onto render's own options: the engine's split, cascade count and texel
+    budget (k maps of R² texels: RES = R·√k, rounded), the camera's near, far, fov, aspect and rows, the band's lowest sun."""
+    setup, camera, sun = setups.resolve(args)
+    if setup is not None:
+        pl = setup.pipeline
+        try:
+            args.splits = partitioning.resolve_name({"logarithmic": "log"}.get(pl.split, pl.split))
+        except ValueError:
+            raise ValueError(f"--engine {setup.profile.name}: its split {pl.split!r} (with these settings) is not a split method of the toolkit") from None
+        args.k, args.res = pl.k, int(round(pl.resolution * math.sqrt(pl.k)))
+    if camera is not None:
+        if "=" in (args.camera or ""):
+            args.camera = None
+        args.near, args.far, args.fov, args.aspect, args.image_res = camera.near, camera.far, camera.fov, camera.aspect, camera.height
+        if setup is not None:
+            args.far = max(setup.pipeline.far_i)
+        args.f_over_n = args.far / args.near
+    if sun is not None:
+        args.light = sun.light()
 
 
 def add_render_parser(sub) -> argparse.ArgumentParser:
@@ -50,13 +75,15 @@ def add_render_parser(sub) -> argparse.ArgumentParser:
                      help="picture (default shadows); bias-margin: an engine's bias over each pixel's minimal bias (red: acne, blue: to spare)")
     ren.add_argument("--bias-preset", default="filament", help="engine bias preset of --what bias-margin (default filament; see aliasing bias --list)")
     ren.add_argument("--out", help="output PNG file (required unless --format json)")
-    ren.add_argument("--res", type=int, default=1024, help="texel budget as RES² texels over all maps (default 1024)")
-    ren.add_argument("--image-res", type=int, default=512, help="image resolution in pixels per side (default 512)")
+    ren.add_argument("--res", type=int, default=1024, help="texel budget as RES² texels over all maps (default 1024; NOT a map's side: "
+                     "k maps of R² texels are RES = R·√k; --engine sets it so)")
+    ren.add_argument("--image-res", type=int, default=512, help="the image's HEIGHT in pixels (rows; default 512; the width is aspect·rows)")
     ren.add_argument("--every", type=int, default=16, help="grid: texels between grid lines (default 16)")
     ren.add_argument("--seed", type=int, default=1, help="scene seed (default 1)")
     ren.add_argument("--backend", default="numpy", help="how the eye pass and the maps are drawn: numpy (default, the reference), numba (the eye pass; fast extra) or gl (OpenGL, gl extra)")
     scn, cas = ren.add_argument_group("your own scene"), ren.add_argument_group("cascades")
     world.add_scene_arguments(scn, cas, "for every scheme")
+    setups.add_arguments(ren, sun=None, camera=False)  # --engine: its split, k, texel budget; --camera SPEC, --sun: the view and light
     cas.add_argument("--allocation", choices=["equal", "error"], default="equal", help="texel budget per cascade: equal, or error-based (Lloyd 2007 eq. 83)")
     ren.add_argument("--format", default="text", help="statistics on stdout: text (table) or json (default text)")
     ren.set_defaults(run=_render)

@@ -150,7 +150,8 @@ def add_scene_arguments(scene, cascades, splits_for: str) -> None:
     scene.add_argument("--eye", metavar="X,Y,Z", help="camera position (world space; --eye=-5,2,0 when X is negative)")
     scene.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at (world space)")
     scene.add_argument("--up", metavar="X,Y,Z", default="0,1,0", help="up vector (default 0,1,0)")
-    scene.add_argument("--camera", metavar="NAME", help="a glTF camera of the file, by camera or node name")
+    scene.add_argument("--camera", metavar="NAME|SPEC", help="a glTF camera of the file, by camera or node name; or a camera spec "
+                       "near=N,far=F,fov=DEG,aspect=A,height=PX (with or without a file: the view, its vertical fov and rows)")
     scene.add_argument("--near", type=float, help="near distance (default 1, or the glTF camera's znear)")
     scene.add_argument("--far", type=float, help="far (shadow) distance (default 100, or the glTF camera's zfar)")
     scene.add_argument("--light-dir", metavar="X,Y,Z", help="world-space direction towards the light, instead of --light (eye space); write --light-dir=-1,2,0 when X is negative")

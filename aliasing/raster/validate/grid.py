@@ -60,7 +60,7 @@ from typing import ClassVar
 import numpy as np
 
 from ... import _validation as check
-from ... import sweep
+from ... import setups, sweep
 from ...view import check_aspect
 from ..draw import backends
 from .single import (  # noqa: F401  (re-exported: the public names of one validation)
@@ -502,7 +502,7 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
                    "with --scene for its camera; face partitions (FP...) and the theta-only warping rules take 1 only")
     p.add_argument("--light", default="overhead", help="one light direction, e.g. gamma:150 (default overhead; with --grid: comma list)")
     p.add_argument("--res", type=int, default=DEFAULT_RES, help=f"measurement (eye-pass) resolution in pixels per side, {MIN_RES}..{MAX_RES} (default {DEFAULT_RES})")
-    p.add_argument("--image-res", type=int, help="image resolution for the critical shadow-map resolutions (default --res)")
+    p.add_argument("--image-res", type=int, help="the image's HEIGHT in pixels (rows) for the critical shadow-map resolutions (default --res)")
     p.add_argument("--probes", type=int, default=DEFAULT_PROBES, help=f"probe grid cells per side (default {DEFAULT_PROBES})")
     p.add_argument("--seed", type=int, default=0, help="seed of the probe depths (default 0)")
     p.add_argument("--reach", type=float, default=DEFAULT_REACH, help=f"fraction of the bound the maxima must reach to pass (default {DEFAULT_REACH})")
@@ -518,4 +518,21 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
     from .scene import add_scene_options  # --scene FILE (aliasing.raster.validate.scene)
 
     add_scene_options(p)
+    setups.add_arguments(p, sun=None, camera=False)  # --camera SPEC and --sun: f/n, fov, aspect, --image-res, --light; --engine: its far
+    scene_run = p.get_default("run")
+
+    def run(args: argparse.Namespace) -> int:
+        setup, camera, sun = setups.resolve(args)
+        if camera is not None:  # --image-res is the image's rows: the camera's height
+            if "=" in (args.camera or ""):
+                args.camera = None
+            far = max(setup.pipeline.far_i) if setup is not None else camera.far
+            args.f_over_n, args.fov, args.aspect, args.image_res = repr(far / camera.near), repr(camera.fov), camera.aspect, camera.height
+            if args.scene is not None:
+                args.near, args.far = camera.near, far
+        if sun is not None:
+            args.light = sun.light()
+        return scene_run(args)
+
+    p.set_defaults(run=run)
     return p

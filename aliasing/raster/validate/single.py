@@ -80,6 +80,10 @@ def _check(scheme: str, f_over_n: float | View, fov: float | None, light: object
         if aspect != 1.0:
             raise ValueError("aspect is the View's: pass it in the View, not again")
     else:
+        for name, value, what in (("f_over_n", f_over_n, "a depth ratio far/near > 1"), ("fov", fov, "a full field of view in degrees"),
+                                  ("aspect", aspect, "the image's width/height > 0")):
+            if value is not None and np.ndim(value) != 0:
+                raise ValueError(f"{name} must be a single number ({what}), got an array of shape {np.shape(value)}")
         ratio = float(check.depth_ratio(f_over_n, "f_over_n"))
         if fov is None:
             raise ValueError("fov required (or a View in place of f_over_n)")
@@ -95,6 +99,8 @@ def _check(scheme: str, f_over_n: float | View, fov: float | None, light: object
     r = _whole(res, "res", MIN_RES, MAX_RES, " pixels per side (larger does not fit in memory)")
     ri = r if image_res is None else _whole(image_res, "image_res", 1, 1 << 20, " pixels per side")
     cells = _whole(probes, "probes", 2, min(MAX_PROBES, r // 4), f" probe cells per side (at most res/4 = {r // 4}, so that probes span pixels)")
+    if np.ndim(reach) != 0:
+        raise ValueError(f"reach must be a single number in [0, 1] (fraction of the bound), got an array of shape {np.shape(reach)}")
     reach = float(check.closed_range(reach, "reach", 0.0, 1.0))
     return dict(scheme=sch, f_over_n=ratio, fov=fv, view=view, light=label, lv=lv, res=r, image_res=ri, probes=cells, reach=reach)
 

@@ -1,0 +1,375 @@
+"""``check``: one report per cascade of an engine's setup, in the engine's own terms.
+
+For a :class:`aliasing.setups.Setup` (an engine at a release, its settings, a camera with its
+image height, a sun band), :func:`check` evaluates the pipeline the engine builds
+(:attr:`aliasing.setups.Setup.pipeline`) analytically, per cascade:
+
+``near``, ``far``
+    The cascade's eye depths [world units] (overlap included).
+``texel``
+    [s, t]: the world size of one texel of the cascade's map [world units], from the engine's
+    own fit and snap (:func:`aliasing.engines.pipeline.texels`), the largest over the sun band
+    (square stabilized fits do not depend on the sun).
+``error_max``, ``error_median``
+    The perspective aliasing error, texels per pixel of the camera's image: a texel's width
+    over a pixel's width at the cascade's first depth u, max(M_x, M_z)·H/R with M of
+    :func:`aliasing.engines.stable.evaluate` (Lloyd et al. 2006, eq. 2 with a uniform map), H the
+    image height [pixels] and R the map's texels per side; the worst and the median over the
+    sun band.  Above 1 a texel covers more than a pixel there.
+``stable_cost``
+    ``error_max`` over that of the papers' tight fit (no snap) of the same cascades: what the
+    engine's stabilized fit costs in texel size (1 for a tight fit).
+``needed``
+    For each bias setting of the engine's rule (:class:`aliasing.setups.BiasRule`), the value,
+    in the engine's own units, that leaves every sampled receiver (below) free of acne, the
+    other settings kept (:meth:`~aliasing.setups.BiasRule.minimal` with the need of
+    :func:`aliasing.bias.plane_bias` for the engine's filter width).  **Sign convention:** for a
+    setting whose scale is positive (normal offsets, Babylon's ``bias``) the value is a lower
+    bound (set it at or above); for a setting with a negative scale (three.js's ``shadowBias``
+    and ``shadow.bias``, added to the receiver's normalized depth: negative values lift it
+    towards the light) the value is an upper bound (set it at or below).  ``None`` where the
+    setting cannot remove the acne.
+``acne``
+    The fraction of the sampled receivers that acne at the given settings (0 when the engine
+    draws back faces into the map: closed and one-sided receivers then compare against their
+    far side and do not self-shadow).
+``gap_px``
+    Peter-panning: the lit gap at the foot of a vertical caster on the ground at the lowest sun
+    (:func:`aliasing.bias.lit_gap` of the rule's part along the light,
+    :meth:`~aliasing.setups.BiasRule.contact`), in pixels at the cascade's middle depth.
+``seam_step``
+    The texel's growth into the next cascade (:func:`aliasing.bias.filtering.seam_step`; None for
+    the last).
+``footprint_px``
+    The filter's width (its taps, :class:`aliasing.setups.Filter`) in pixels at the middle depth
+    (:func:`aliasing.bias.filtering.pcf_footprint`).
+``shimmer_px``
+    How far shadow edges jitter per frame under a walk [pixels at the middle depth]: 0 when the
+    pipeline is stable (snapped, rotation-invariant fits).  Otherwise the map's grid slides with
+    the camera by the walk's step projected on the light's image plane, δ per axis; a point's
+    texel centre then moves by Δ with E|Δ| = 2u(1 − u)·w per axis (u = δ/w mod 1), the
+    displacement that :mod:`aliasing.temporal.predict` turns into flips with a scene's edge
+    density (not modelled here: no scene).
+``memory``
+    Bytes of the cascade's depth map.
+
+The receivers sampled
+---------------------
+Planar receivers tilted away from the sun by each slope σ of ``receivers`` (default 0: the
+ground) under each of ``samples`` sun elevations e over the band: the angle between a
+receiver's normal and the light is θ = 90° − e + σ.  Receivers with θ above
+:data:`MAX_ANGLE` face the light too obliquely to be lit (N·L < 0.09) and are left out.  Their
+depth changes along the map's vertical axis t (a light camera whose up is the world's up, as
+three.js's ``lookAt`` gives), so the need is (k/2)·w·tan θ for a k-texel filter and the texel w;
+``needed`` takes the largest texel side.
+
+The check is analytic (no rasterizer): a few milliseconds for four cascades and seven suns.
+
+Example
+-------
+>>> from aliasing import setups
+>>> s = setups.build("threejs", {"cascades": 4}, "near=0.1,far=500,fov=50,aspect=16:9,height=1080", "15..60")
+>>> r = check(s)
+>>> len(r.cascades), sorted(r.cascades[0]["needed"])
+(4, ['shadow.normalBias', 'shadowBias'])
+>>> r.cascades[3]["acne"]          # three.js casts back faces: closed receivers do not acne
+0.0
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .. import _validation as check_
+from ..bias import lit_gap, plane_bias
+from ..bias.filtering import pcf_footprint, seam_step
+from ..engines import pipeline as _pipeline
+from ..engines import stable
+from ..raster.draw.lookup import PCF_MAX
+from ..setups import Setup
+
+__all__ = ["MAX_ANGLE", "Report", "check"]
+
+#: The largest angle between a receiver's normal and the light that is sampled [deg] (N·L = cos 85° ≈ 0.087).
+MAX_ANGLE = 85.0
+#: A setting meets its need within this relative tolerance (a value fed back from ``needed``).
+_TOL = 1e-9
+#: Columns of the tidy table (:meth:`Report.to_rows`).
+COLUMNS = ("cascade", "near", "far", "texel_s", "texel_t", "error_max", "error_median", "stable_cost", "acne", "gap_px",
+           "seam_step", "footprint_px", "shimmer_px", "memory")
+
+
+def _receivers(receivers: ArrayLike | None) -> np.ndarray:
+    if receivers is None:
+        return np.array([0.0])
+    arr = check_.as_float_array(receivers, "receivers").ravel()
+    if arr.size == 0 or not np.isfinite(arr).all() or ((arr < 0) | (arr >= 90)).any():
+        raise ValueError(f"receivers must be slopes in [0, 90) degrees (0: the ground), tilted away from the sun, got {check_._show(arr)}")
+    return arr
+
+
+def _taps(setup: Setup) -> int:
+    f = setup.pipeline.filter
+    return int(min(max(1, int(f.taps)), PCF_MAX))
+
+
+def _safe(value: float, upper: bool) -> float:
+    """``value`` rounded to 2 significant digits on the safe side (down for an upper bound)."""
+    if value == 0 or not math.isfinite(value):
+        return value
+    e = math.floor(math.log10(abs(value))) - 1
+    scaled = value / 10**e
+    return (math.floor(scaled) if upper else math.ceil(scaled)) * 10**e
+
+
+def _fmt(value: float) -> str:
+    return f"{value:.2g}"
+
+
+@dataclass(frozen=True)
+class Report:
+    """What :func:`check` found: per cascade rows, verdict lines, and the setup they came from."""
+
+    setup: Setup
+    cascades: tuple
+    verdicts: tuple
+    sample: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON contract: ``engine``, ``release``, ``settings`` (every key), ``cascades``, ``verdicts``."""
+        return {
+            "engine": self.setup.engine,
+            "release": self.setup.release,
+            "settings": dict(self.setup.settings),
+            "cascades": [_json(c) for c in self.cascades],
+            "verdicts": list(self.verdicts),
+        }
+
+    def to_rows(self) -> list[dict]:
+        """A tidy table: one row per cascade, flat columns (:data:`COLUMNS`), then ``needed_<key>`` per bias setting."""
+        rows = []
+        for c in self.cascades:
+            row = {k: c[k] for k in COLUMNS if k not in ("texel_s", "texel_t")}
+            row = {"cascade": c["cascade"], "near": c["near"], "far": c["far"], "texel_s": c["texel"][0], "texel_t": c["texel"][1],
+                   **{k: v for k, v in row.items() if k not in ("cascade", "near", "far")}}
+            row.update({f"needed_{k}": v for k, v in c["needed"].items()})
+            rows.append(row)
+        return rows
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict(), indent=1) + "\n"
+
+    def to_csv(self) -> str:
+        rows = self.to_rows()
+        buf = io.StringIO()
+        wr = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
+        wr.writeheader()
+        wr.writerows({k: "" if v is None else v for k, v in r.items()} for r in rows)
+        return buf.getvalue()
+
+    def text(self) -> str:
+        """An aligned table, then the verdicts."""
+        rows = self.to_rows()
+        keys = list(rows[0])
+        cells = [keys] + [[_cell(r[k]) for k in keys] for r in rows]
+        widths = [max(len(c[i]) for c in cells) for i in range(len(keys))]
+        s = self.setup
+        head = (f"{s.profile.title} {s.release}: camera {s.camera.spec()} ({s.camera.width}x{s.camera.height}), sun {s.sun.spec()}; "
+                f"changed: {', '.join(f'{k}={v}' for k, v in s.changed().items()) or 'none'}\n")
+        table = "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells)
+        return head + table + "".join(f"- {v}\n" for v in self.verdicts)
+
+    def __str__(self) -> str:
+        return self.text()
+
+
+def _cell(v: object) -> str:
+    if v is None:
+        return "-"
+    if isinstance(v, float):
+        return f"{v:.4g}"
+    return str(v)
+
+
+def _json(c: dict) -> dict:
+    def clean(v: Any) -> Any:
+        if isinstance(v, float) and not math.isfinite(v):
+            return None
+        if isinstance(v, dict):
+            return {k: clean(x) for k, x in v.items()}
+        if isinstance(v, list):
+            return [clean(x) for x in v]
+        return v
+
+    return clean(dict(c))
+
+
+def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = None, walk: float = 0.05, samples: int = 7) -> Report:
+    """The per-cascade report of an engine's setup (module docstring).
+
+    Parameters
+    ----------
+    setup : Setup
+        The engine, its settings, the camera and the sun (:func:`aliasing.setups.build`).
+    receivers : array_like, optional
+        Slopes of the sampled planar receivers, tilted away from the sun [deg] in [0, 90)
+        (default: the ground alone).
+    scene : None
+        Reserved for a rendered scene's receivers; only None (the analytic sample) is supported.
+    walk : float
+        The camera's step per frame along its view direction [world units], > 0 (default
+        0.05: 3 m/s at 60 frames per second), for ``shimmer_px``.
+    samples : int
+        Sun elevations over the band, 1 to 361 (default 7; one for a single sun).
+
+    Returns
+    -------
+    Report
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter and what it takes.
+
+    Example
+    -------
+    >>> from aliasing import setups
+    >>> s = setups.build("threejs", {"cascades": 4, "material.shadowSide": "FrontSide"}, sun="15..60")
+    >>> r = check(s)
+    >>> r.cascades[3]["acne"] > 0, "shadowBias" in r.verdicts[0]
+    (True, True)
+    >>> fixed = s.with_settings(**{"shadow.normalBias": r.cascades[3]["needed"]["shadow.normalBias"]})
+    >>> check(fixed).cascades[3]["acne"]
+    0.0
+    """
+    if not isinstance(setup, Setup):
+        raise ValueError(f"setup must be an aliasing.setups.Setup (aliasing.setups.build(...)), got {type(setup).__name__}")
+    if scene is not None:
+        raise ValueError("scene must be None (the analytic receivers); a rendered scene's receivers are not supported by check")
+    slopes = _receivers(receivers)
+    step = check_.scalar(walk, "walk")
+    if not (math.isfinite(step) and step > 0):
+        raise ValueError(f"walk must be a finite step per frame > 0 [world units], got {walk!r}")
+    n = check_.whole(samples, "samples", 1, 361, " (sun elevations over the band)")
+    pl, cam, sun, profile = setup.pipeline, setup.camera, setup.sun, setup.profile
+    elev = sun.elevations(n)
+    lv = sun.direction(elev)  # (E, 3) eye-space vectors towards the sun
+    tex = _pipeline.texels(pl, cam, lv)  # (E, K, 2)
+    K, H, R = pl.k, cam.height, float(pl.resolution)
+    t = math.tan(math.radians(cam.fov) / 2)
+    near_i, far_i = np.asarray(pl.near_i), np.asarray(pl.far_i)
+    u = near_i if pl.fit != "fixed" else np.array([cam.near])
+    if pl.fit == "fixed":
+        err = tex.max(axis=-1) * H / (2 * t * u)  # a texel over a pixel at the near plane
+        cost = np.ones(K)
+    else:
+        res = _pipeline.result(pl, cam, lv)
+        err = np.maximum(res.M_x, res.M_z) * H / R  # eq. (2): texels per pixel of an H-row image
+        tight = stable.evaluate((near_i, far_i), cam.near, float(far_i.max()), cam.fov, lv, aspect=cam.aspect, resolution=R)
+        cost = err.max(axis=0) / (np.maximum(tight.M_x, tight.M_z) * H / R).max(axis=0)
+    w = tex.max(axis=-1)  # (E, K) the largest texel side
+    taps = _taps(setup)
+    lookup = f"pcf{taps}"
+    rule = pl.bias
+    back = rule.faces == "back"
+    # the sample: slopes × elevations, θ = 90 − e + σ
+    theta = 90.0 - elev[None, :] + slopes[:, None]  # (S, E)
+    valid = theta <= MAX_ANGLE
+    th = np.where(valid, theta, 0.0)
+    known = {st.key for st in profile.settings}
+    keys = [term.key for term in rule.terms if term.key in known]
+    mid = 0.5 * (near_i + far_i)
+    pixel = 2 * mid * t / H
+    lo_sun = float(elev.min())
+    cascades, verdicts = [], []
+    if back:
+        verdicts.append(f"{profile.title} draws back faces into the map: closed and one-sided receivers do not self-shadow (acne 0); "
+                        "'needed' holds where front faces cast (thin or two-sided receivers)")
+    for k in range(K):
+        wk = w[:, k][None, :]  # (1, E)
+        need = np.asarray(plane_bias(np.broadcast_to(wk, th.shape), th, 90.0, lookup).depth)
+        have = np.asarray(rule.depth(np.broadcast_to(wk, th.shape), th, 90.0))
+        short = valid & (have < need * (1 - _TOL) - 1e-300)
+        acne = 0.0 if back else float(short.sum() / max(1, valid.sum()))
+        needed: dict[str, float | None] = {}
+        for key in keys:
+            term = rule.term(key)
+            m = np.asarray(rule.minimal(key, need, np.broadcast_to(wk, th.shape), th, 90.0))[valid]
+            sign = float(np.sign(term.scale)) or 1.0
+            if m.size == 0:
+                needed[key] = term.value
+                continue
+            v = float(m.min()) if sign < 0 else float(m.max())
+            needed[key] = v if math.isfinite(v) else None
+        contact = float(np.max(np.asarray(rule.contact(w[:, k]))))
+        gap = float(lit_gap(max(0.0, contact), lo_sun)) / pixel[k]
+        shimmer = 0.0 if pl.stable else _shimmer(lv, w[:, k], step) / pixel[k]
+        row = {
+            "cascade": k, "near": float(near_i[k]), "far": float(far_i[k]),
+            "texel": [float(tex[:, k, 0].max()), float(tex[:, k, 1].max())],
+            "error_max": float(err[:, k].max()), "error_median": float(np.median(err[:, k])), "stable_cost": float(cost[k]),
+            "needed": needed, "acne": acne, "gap_px": gap,
+            "seam_step": float(seam_step(w[:, k].max(), w[:, k + 1].max())) if k + 1 < K else None,
+            "footprint_px": float(pcf_footprint(taps, float(w[:, k].max()), pixel[k])),
+            "shimmer_px": float(shimmer), "memory": int(pl.memory // K),
+        }
+        cascades.append(row)
+        if short.any() and not back:
+            verdicts.append(_acne_verdict(k, short, slopes, elev, needed, rule, acne))
+        if gap >= 1.0:
+            verdicts.append(f"cascade {k}: contact shadows detach by {gap:.1f} px at {lo_sun:g}° sun (the depth bias along the light: "
+                            f"{', '.join(t_.key for t_ in rule.terms if t_.contact)})")
+    verdicts.append("texels per pixel at each cascade's near end: " + ", ".join(f"{c['error_max']:.3g}" for c in cascades)
+                    + " (above 1 a texel covers more than a pixel; the first cascade's near end is the camera's near plane)")
+    if not pl.stable:
+        verdicts.append(f"the fit is not stabilized: shadow edges shimmer up to {max(c['shimmer_px'] for c in cascades):.2g} px per frame "
+                        f"under a {step:g} m/frame walk")
+    if not back and not any(c["acne"] for c in cascades):
+        verdicts.append("no acne on the sampled receivers at these settings")
+    verdicts += [f"not modelled: {note}" for note in pl.notes]
+    return Report(setup, tuple(cascades), tuple(verdicts),
+                  {"slopes": slopes.tolist(), "elevations": elev.tolist(), "max_angle": MAX_ANGLE, "lookup": lookup, "walk": step})
+
+
+def _acne_verdict(k: int, short: np.ndarray, slopes: np.ndarray, elev: np.ndarray, needed: dict, rule, acne: float) -> str:
+    parts = []
+    for i, s in enumerate(slopes):
+        if short[i].any():
+            where = "ground" if s == 0 else f"{s:g}° slopes"
+            hit = elev[short[i]]
+            clean = elev[~short[i] & (elev > hit.max())]
+            when = (f"below {clean.min():g}° sun" if clean.size else
+                    f"at every sun of {elev.min():g}–{elev.max():g}°" if hit.size == elev.size else f"at suns of {hit.min():g}–{hit.max():g}°")
+            parts.append(f"{where} {when}")
+    fixes = []
+    for key, v in needed.items():
+        if v is None:
+            continue
+        upper = rule.term(key).scale < 0
+        fixes.append(f"{key} {'≤' if upper else '≥'} {_fmt(_safe(v, upper))}")
+    return f"cascade {k} acnes on {'; '.join(parts)} ({acne:.0%} of the sampled receivers): " + (" or ".join(fixes) or "no bias setting helps")
+
+
+def _shimmer(lv: np.ndarray, w: np.ndarray, step: float) -> float:
+    """E|Δ| [world units] of a texel centre per frame of a walk along the view, the worst over the sun band."""
+    d = np.array([0.0, 0.0, 1.0])
+    up = np.array([0.0, 1.0, 0.0])
+    out = 0.0
+    for l, wi in zip(lv, w):
+        s = np.cross(up, l)
+        s = s / np.linalg.norm(s) if np.linalg.norm(s) > 1e-12 else np.array([1.0, 0.0, 0.0])
+        tt = np.cross(l, s)
+        e = 0.0
+        for axis in (s, tt):
+            frac = np.mod(abs(float(d @ axis)) * step / wi, 1.0)
+            e += (2 * frac * (1 - frac) * wi) ** 2
+        out = max(out, math.sqrt(e))
+    return out

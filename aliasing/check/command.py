@@ -1,0 +1,101 @@
+"""The ``aliasing check`` subcommand: the per-cascade report of an engine's setup.
+
+::
+
+    aliasing check --engine ENGINE[@RELEASE] [--settings FILE] [--set KEY=VALUE]... \\
+        --camera near=N,far=F,fov=DEG,aspect=A,height=PX --sun ELEV[..ELEV][@AZ] \\
+        [--receivers SLOPES] [--samples N] [--walk STEP] [--format table|csv|json]
+
+Bad input (an unknown engine, release or setting, a malformed settings file, a value the
+engine does not accept, a camera or sun typo) is one line on stderr and exit status 2
+(:func:`aliasing.cli.main`); a field of view that looks like radians is a one-line warning.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+import sys
+
+from .. import setups
+from . import MAX_ANGLE, check
+
+
+def _slopes(text: str | None) -> list[float] | None:
+    if text is None:
+        return None
+    out = []
+    for part in filter(None, (p.strip() for p in text.split(","))):
+        try:
+            out.append(float(part))
+        except ValueError:
+            raise ValueError(f"--receivers must be slopes in degrees, comma-separated (0: the ground), got {text!r}") from None
+    if not out:
+        raise ValueError(f"--receivers must name at least one slope in [0, 90) degrees, got {text!r}")
+    return out
+
+
+def run(args: argparse.Namespace):
+    """The :class:`aliasing.check.Report` of the parsed options."""
+    setup = setups.from_args(args)
+    return check(setup, receivers=_slopes(args.receivers), walk=args.walk, samples=args.samples)
+
+
+def _run(args: argparse.Namespace) -> int:
+    report = run(args)
+    text = {"json": report.to_json, "csv": report.to_csv}.get(args.format, report.text)()
+    sys.stdout.write(text)
+    return 0
+
+
+BIAS_COLUMNS = ("cascade", "near", "far", "texel_s", "texel_t", "acne", "gap_px", "footprint_px", "seam_step")
+
+
+def run_bias(args: argparse.Namespace) -> int:
+    """``aliasing bias --engine ...``: the bias columns of the check (the engine's own fit, filter and bias rule,
+    the needed settings in the engine's units), then the bias verdicts."""
+    report = check(setups.from_args(args))
+    rows = [{k: r[k] for k in BIAS_COLUMNS} | {k: v for k, v in r.items() if k.startswith("needed_")} for r in report.to_rows()]
+    if args.format == "json":
+        sys.stdout.write(json.dumps({"engine": report.setup.engine, "release": report.setup.release, "rows": rows,
+                                     "verdicts": [v for v in report.verdicts if "acne" in v or "faces" in v or "detach" in v]}, indent=1) + "\n")
+        return 0
+    if args.format == "csv":
+        buf = io.StringIO()
+        wr = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
+        wr.writeheader()
+        wr.writerows({k: "" if v is None else v for k, v in r.items()} for r in rows)
+        sys.stdout.write(buf.getvalue())
+        return 0
+    keys = list(rows[0])
+    cells = [keys] + [["-" if r[k] is None else f"{r[k]:.4g}" if isinstance(r[k], float) else str(r[k]) for k in keys] for r in rows]
+    widths = [max(len(c[i]) for c in cells) for i in range(len(keys))]
+    sys.stdout.write("".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells))
+    sys.stdout.write("".join(f"- {v}\n" for v in report.verdicts if "acne" in v or "faces" in v or "detach" in v))
+    return 0
+
+
+def add_check_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    """Add the ``check`` subcommand to the ``aliasing`` command's subparsers ``sub``."""
+    p = sub.add_parser(
+        "check",
+        help="per cascade of an engine's own setup: texel, error, the bias settings it needs, acne, peter-panning, seams, shimmer, memory",
+        description="What an engine's shadow settings do, per cascade, in the engine's own terms: each cascade's depth range and world "
+        "texel (the engine's own fit), the perspective error (texels per pixel of the camera's image) over the sun band, the bias "
+        "settings that remove acne (in the engine's units), the acne and peter-panning at the given settings, the seam step, the "
+        "filter footprint, shimmer under a walk and memory, with verdict lines naming the setting to change.",
+        epilog="Example: aliasing check --engine threejs --set cascades=4 --camera near=0.1,far=500,fov=50,aspect=16:9,height=1080 "
+        "--sun 15..60.  'needed' is a lower bound (set at or above) for settings of positive scale and an upper bound (set at or "
+        "below) for three.js's shadowBias and shadow.bias, which lift the receiver when negative.",
+    )
+    setups.add_arguments(p, required=True)
+    p.add_argument("--receivers", metavar="SLOPES", help="slopes of the sampled planar receivers, tilted away from the sun, degrees in "
+                   f"[0, 90), comma-separated (default 0: the ground); receivers more than {MAX_ANGLE:g}° from the light are left out")
+    p.add_argument("--samples", type=int, default=7, help="sun elevations sampled over the --sun band (default 7)")
+    p.add_argument("--walk", type=float, default=0.05, help="camera step per frame along the view [world units] for the shimmer "
+                   "(default 0.05: 3 m/s at 60 fps)")
+    p.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table: the table, then the verdicts)")
+    p.set_defaults(run=_run)
+    return p
