@@ -53,8 +53,8 @@ class Pin:
 
 PINS = {
     "threejs": Pin("threejs", "r187", "three", "0.187.0"),
-    "babylon": Pin("babylon", "9.35", "@babylonjs/core", "9.35.0"),
-    "playcanvas": Pin("playcanvas", "2.23.3", "playcanvas", "2.23.3"),
+    "babylon": Pin("babylon", "9.35", "@babylonjs/core", "9.35.0"),  # releases as aliasing.setups names them
+    "playcanvas": Pin("playcanvas", "2.23", "playcanvas", "2.23.3"),
 }
 
 

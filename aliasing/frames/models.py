@@ -299,3 +299,61 @@ def reference(scene, sun: Array, rb, resolution: int) -> NDArray[np.bool_]:
 
 
 MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvasMeasured()}
+
+
+_THREE_SIDE = {"FrontSide": "front", "BackSide": "back", "DoubleSide": "double"}
+_FACES = {"front": "front", "back": "back", "both": "double"}
+_PC_TYPES = {"SHADOW_PCF3_32F": 0, "SHADOW_VSM_16F": 2, "SHADOW_VSM_32F": 3, "SHADOW_PCF5_32F": 4, "SHADOW_PCF1_32F": 5, "SHADOW_PCSS_32F": 6,
+             "SHADOW_PCF1_16F": 7, "SHADOW_PCF3_16F": 8, "SHADOW_PCF5_16F": 9}
+_PC_CULL = {"CULLFACE_BACK": "back", "CULLFACE_FRONT": "front", "CULLFACE_NONE": "none"}
+
+
+def from_setup(setup) -> dict:
+    """The settings the engine's page and the model take, from an :class:`aliasing.setups.Setup`
+    (every key in the engine's own spelling, defaults filled), checked against what is rendered
+    and modelled here; the pipeline's faces that cast must be the model's.
+
+    Raises
+    ------
+    ValueError
+        A setting the frames do not render or model (its key and why), or a pipeline that
+        disagrees with the model about the faces that cast.
+    """
+    engine, s = setup.engine, dict(setup.settings)
+    if engine not in MODELS:
+        raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")
+    if engine == "threejs":
+        if s["class"] != "CSM":
+            raise ValueError(f"class must be CSM for the frames (one DirectionalLight is not rendered yet), got {s['class']!r}")
+        if s["shadow.bias"] != 0:
+            raise ValueError("shadow.bias is overwritten by CSM's shadowBias on every cascade light: set shadowBias")
+        out = {k: s[k] for k in ("cascades", "maxFar", "mode", "shadowMapSize", "shadowBias", "lightNear", "lightFar", "lightMargin", "fade")}
+        out.update(normalBias=s["shadow.normalBias"], shadowRadius=s["shadow.radius"], shadowMapType=s["renderer.shadowMap.type"],
+                   side=_THREE_SIDE[s["material.side"]], shadowSide=None if s["material.shadowSide"] == "null" else _THREE_SIDE[s["material.shadowSide"]])
+        if out["shadowMapType"] == "PCFSoftShadowMap":  # WebGLShadowMap replaces it (lines 99-102)
+            out["shadowMapType"] = "PCFShadowMap"
+    elif engine == "babylon":
+        if s["class"] != "CascadedShadowGenerator":
+            raise ValueError(f"class must be CascadedShadowGenerator for the frames, got {s['class']!r}")
+        for key, want in (("filter", None), ("minDistance", 0.0), ("maxDistance", 1.0), ("light.shadowMinZ", None), ("light.shadowMaxZ", None),
+                          ("light.shadowFrustumSize", 0.0)):
+            if s[key] != want:
+                raise ValueError(f"{key} must be {want!r} for the frames (modelled), got {s[key]!r}")
+        out = {k: s[k] for k in ("mapSize", "numCascades", "lambda", "bias", "normalBias", "frustumEdgeFalloff", "stabilizeCascades",
+                                 "cascadeBlendPercentage", "depthClamp", "autoCalcDepthBounds", "shadowMaxZ", "forceBackFacesOnly")}
+        out["filteringQuality"] = {"QUALITY_HIGH": 0, "QUALITY_MEDIUM": 1, "QUALITY_LOW": 2}[s["filteringQuality"]]
+        if s["material.backFaceCulling"] != s["material.cullBackFaces"] and not s["material.cullBackFaces"]:
+            raise ValueError("material.cullBackFaces false (front faces culled) is not rendered by the frames")
+        out["backFaceCulling"] = s["material.backFaceCulling"]
+    else:
+        out = {k: s[k] for k in ("shadowBias", "normalOffsetBias", "shadowResolution", "numCascades", "cascadeDistribution", "cascadeBlend",
+                                 "shadowDistance")}
+        out["shadowType"] = _PC_TYPES[s["shadowType"]]
+        out["cull"] = _PC_CULL[s["material.cull"]]
+    model = MODELS[engine]
+    full = model.settings(out)
+    if getattr(model, "predicts", True):
+        faces = _FACES[setup.pipeline.bias.faces]
+        if faces != model.cast_side(full):
+            raise ValueError(f"the setup's pipeline casts {setup.pipeline.bias.faces} faces, the frames' model {model.cast_side(full)}")
+    return full

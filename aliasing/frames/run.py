@@ -64,8 +64,33 @@ def _ground_pixels(scene: FrameScene, rb: Readback) -> NDArray[np.bool_]:
     return rb.drawn & (np.abs(np.nan_to_num(rb.position[..., 1]) - y0) < 1e-4 * scale) & (np.nan_to_num(rb.normal[..., 1]) > 0.999)
 
 
-def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dict) -> FrameResult:
-    """Decode the page's answer ``out`` for ``scene`` and ``sun``, predict it and measure both."""
+def pipeline_footprint(pipeline, camera, sun: Array) -> tuple[Array, Array, Array]:
+    """Per cascade from an :class:`aliasing.setups.Pipeline`: first depth, map side [world units], resolution.
+
+    The sides are :func:`aliasing.engines.stable.evaluate` of the pipeline's ranges, fit and snap,
+    except the tight fit, measured in the light frame rolled by the world's up
+    (:func:`aliasing.frames.models.tight_sides`, ERRATA F5).
+    """
+    from ..engines import stable
+    from .models import tight_sides
+
+    near_i, far_i = np.asarray(pipeline.near_i, float), np.asarray(pipeline.far_i, float)
+    res = float(pipeline.resolution)
+    if pipeline.fit == "tight":
+        sides = np.array([tight_sides(camera, np.array([a, b]), -sun, np.array([0.0, 1.0, 0.0]))[0] for a, b in zip(near_i, far_i)])
+    else:
+        box = stable.evaluate((near_i, far_i), camera.near, float(far_i[-1]), camera.fov, camera.direction_to_eye(sun)[None], aspect=camera.aspect,
+                              fit=pipeline.fit, snap=pipeline.snap, resolution=res)
+        sides = np.maximum(box.width_x[0], box.width_y[0])
+    return near_i, sides, np.full(len(sides), res)
+
+
+def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dict, pipeline=None) -> FrameResult:
+    """Decode the page's answer ``out`` for ``scene`` and ``sun``, predict it and measure both.
+
+    With an :class:`aliasing.setups.Pipeline` the predicted texel footprint is the pipeline's
+    (its ranges, fit and snap), and the details say how far its cascade ranges are from the model's.
+    """
     model = MODELS[engine]
     rb = decode(out)
     if getattr(model, "predicts", True):
@@ -87,17 +112,47 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
         "gap_px": compare.gap(rb.shadow, ref, ground, rb.drawn),
         "texels_per_pixel": compare.texels_per_pixel(m_starts, m_sides, m_res, scene.camera.fov, h),
     }
+    starts, sides, res = pred.starts, pred.sides, pred.resolution
+    extra_pipe = {}
+    if pipeline is not None and predicts:
+        starts, sides, res = pipeline_footprint(pipeline, scene.camera, sun)
+        extra_pipe = {"pipeline_fit": pipeline.fit, "pipeline_starts_vs_model": float(np.max(np.abs(starts / pred.starts - 1))) if len(starts) == len(pred.starts) else None}
     predicted = {
         "acne": compare.acne(pred.factor, receivers),
         "gap_px": compare.gap(pred.factor, ref, ground, rb.drawn),
-        "texels_per_pixel": compare.texels_per_pixel(pred.starts, pred.sides, pred.resolution, scene.camera.fov, h),
+        "texels_per_pixel": compare.texels_per_pixel(starts, sides, res, scene.camera.fov, h),
     } if predicts else {"acne": None, "gap_px": None, "texels_per_pixel": None}
     drawn = rb.drawn
     extra = {"pixels": int(drawn.sum()), "receivers": int(receivers.sum()),
              "cascade_agreement": float(np.mean(rb.cascade[drawn] == pred.cascade[drawn])) if drawn.any() and predicts else None,
-             "renderer": rb.info.get("renderer"), "engine_ms": rb.info.get("ms")}
+             "renderer": rb.info.get("renderer"), "engine_ms": rb.info.get("ms"), **extra_pipe}
     report = {"engine": engine, "release": rb.release, "scene": scene.name, "measured": measured, "predicted": predicted, "details": extra}
     return FrameResult(rb, pred, ref, settings, report)
+
+
+def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None) -> FrameResult:
+    """Render an :class:`aliasing.setups.Setup` (engine, settings, camera with image size, sun) on ``scene``.
+
+    ``scene`` must have been built with the setup's camera (:func:`aliasing.frames.scenes.frame_scene`);
+    the sun is the setup's (the middle of its band) unless ``sun`` (a world direction) is given.
+    """
+    from .models import from_setup
+    from .scenes import sun_direction
+
+    cam = setup.camera
+    if abs(scene.camera.near - cam.near) > 0 or abs(scene.camera.far - cam.far) > 0 or abs(scene.camera.fov - cam.fov) > 0 \
+            or abs(scene.camera.aspect - cam.aspect) > 1e-12:
+        raise ValueError("scene must be built with the setup's camera (near, far, fov, aspect)")
+    if sun is None:
+        lo, hi = setup.sun.elevation
+        sun = sun_direction((lo + hi) / 2, setup.sun.azimuth, scene.camera)
+    settings = from_setup(setup)
+    sv = np.asarray(sun, float) / np.linalg.norm(sun)
+    out = browser.render(setup.engine, make_job(scene, sv, settings, cam.height))
+    result = measure(setup.engine, scene, sv, settings, out, pipeline=setup.pipeline)
+    result.report["details"]["engine_revision"] = result.report["release"]
+    result.report["release"] = setup.release
+    return result
 
 
 def frame(browser, engine: str, scene: FrameScene, sun: Array, settings: dict | None = None, height: int = 288) -> FrameResult:
