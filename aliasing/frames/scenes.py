@@ -139,7 +139,8 @@ def frame_scene(scene: str, *, near: float, far: float, fov: float, aspect: floa
     elif scene == "city":
         size = 200.0
         tri = procedural.city(city_triangles, seed=seed, size=size)
-        ground = int(np.sum(np.all(tri[..., 1] == 0.0, axis=1)))
+        flat = np.all(tri[..., 1] == 0.0, axis=1)
+        ground = int(len(flat) if flat.all() else np.argmin(flat))  # the leading grid on y = 0 (buildings' bottoms come later)
         cam = procedural.street_camera(size) if eye is None else look_at(eye, target)
     else:
         path = Path(scene)
