@@ -20,13 +20,15 @@ from pathlib import Path
 
 import numpy as np
 
+from aliasing import setups
 from aliasing.frames import browser, scenes
-from aliasing.frames.run import frame
+from aliasing.frames.run import frame_setup
 from aliasing.plotting import save, subplots
 
 NAME = "engine-frames"
-CASES = (("threejs", {}, "three.js r187, defaults"), ("threejs", {"shadowSide": "front"}, "three.js r187, front faces cast"),
+CASES = (("threejs", {}, "three.js r187, defaults"), ("threejs", {"material.shadowSide": "FrontSide"}, "three.js r187, front faces cast"),
          ("babylon", {}, "Babylon.js 9.35, defaults"))
+CAMERA, SUN = "near=0.5,far=60,fov=50,aspect=16:9,height=288", "35@30"
 
 
 def _tpp(result, scene) -> np.ndarray:
@@ -43,7 +45,7 @@ def main(out_dir: Path) -> list[Path]:
     fs = scenes.frame_scene("boxes", near=0.5, far=60.0, fov=50.0, aspect=16 / 9, boxes=30, ground_cells=8)
     sun = scenes.sun_direction(35.0, 30.0, fs.camera)
     with browser.Browser(timeout=120) as b:
-        results = [(title, frame(b, engine, fs, sun, settings, height=288)) for engine, settings, title in CASES]
+        results = [(title, frame_setup(b, setups.build(engine, settings, CAMERA, SUN), fs)) for engine, settings, title in CASES]
     import matplotlib.image
     import io
 
