@@ -119,6 +119,8 @@ def test_threejs_frame_matches_the_prediction(three, name):
     got, want = np.array(m["texels_per_pixel"]), np.array(p["texels_per_pixel"])
     assert got.shape == want.shape == (3,) and np.max(np.abs(got / want - 1)) <= 1e-6, r
     assert r["details"]["cascade_agreement"] >= 0.999, r
+    # the whole light matrices (light frame, diagonal side, centre floored to a texel, margin) as predicted
+    assert r["details"]["matrices_vs_engine"] <= 1e-9, r
 
 
 # Babylon.js computes its cascades in float32 (Matrix is a Float32Array): the camera's inverse

@@ -149,6 +149,47 @@ class ThreeCSM:
         sides = np.maximum(box.width_x[0], box.width_y[0])
         return Prediction(factor, sel, edges[:-1], sides, np.full(len(sides), float(res))), ref
 
+    def matrices(self, s: dict, camera, sun: Array) -> Array:
+        """The toolkit's prediction of each cascade's shadow matrix (world → [0, 1]³), as CSM builds it.
+
+        ``CSM.update``: the light frame is ``Matrix4.lookAt(origin, lightDirection, up)`` (z = −d,
+        x ∝ up × z, y = z × x); the slice's corners in it give a box whose centre is floored to a
+        texel of the square side (:func:`aliasing.engines.stable.diagonal`, unrounded) in x and y
+        and put ``lightMargin`` beyond the box's top in z; the shadow camera sits there looking
+        along d (the same frame), orthographic ±side/2, ``lightNear``…``lightFar``; the matrix is
+        [½ bias] · projection · view (``LightShadow.updateMatrices``).
+        """
+        from ..engines.stable import diagonal
+
+        d = -np.asarray(sun, float) / np.linalg.norm(sun)
+        z = -d
+        x = np.cross([0.0, 1.0, 0.0], z)
+        x /= np.linalg.norm(x)
+        y = np.cross(z, x)
+        basis = np.stack([x, y, z])  # rows: light-space axes in world
+        edges = self.edges(s, camera)
+        res = float(s["shadowMapSize"])
+        near_l, far_l = float(s["lightNear"]), float(s["lightFar"])
+        half = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+        out = []
+        for a, b in zip(edges[:-1], edges[1:]):
+            side = float(diagonal(a, b, camera.fov, camera.aspect))
+            texel = side / res
+            corners = camera.view.slice_vertices(a, b) @ camera.rotation + camera.eye  # world
+            lc = corners @ basis.T
+            lo, hi = lc.min(0), lc.max(0)
+            centre = (lo + hi) / 2
+            centre[2] = hi[2] + float(s["lightMargin"])
+            centre[:2] = np.floor(centre[:2] / texel) * texel
+            c_world = centre @ basis
+            view = np.eye(4)
+            view[:3, :3] = basis
+            view[:3, 3] = -basis @ c_world
+            proj = np.diag([2 / side, 2 / side, -2 / (far_l - near_l), 1.0])
+            proj[2, 3] = -(far_l + near_l) / (far_l - near_l)
+            out.append(half @ proj @ view)
+        return np.array(out)
+
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
         """From the engine's objects: each cascade's first depth (its breaks × far), its map's larger texel side × R, and R."""
         far = self.shadow_far(s, camera)

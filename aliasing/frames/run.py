@@ -123,6 +123,10 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
         "texels_per_pixel": compare.texels_per_pixel(starts, sides, res, scene.camera.fov, h),
     } if predicts else {"acne": None, "gap_px": None, "texels_per_pixel": None}
     drawn = rb.drawn
+    if predicts and hasattr(model, "matrices"):  # the whole light matrices, predicted from the fit, snap and light frame
+        pm = model.matrices(settings, scene.camera, sun)
+        if pm.shape == rb.matrices.shape:
+            extra_pipe["matrices_vs_engine"] = float(np.max(np.abs(pm - rb.matrices)) / np.max(np.abs(rb.matrices)))
     extra = {"pixels": int(drawn.sum()), "receivers": int(receivers.sum()),
              "cascade_agreement": float(np.mean(rb.cascade[drawn] == pred.cascade[drawn])) if drawn.any() and predicts else None,
              "renderer": rb.info.get("renderer"), "engine_ms": rb.info.get("ms"), **extra_pipe}
@@ -135,13 +139,26 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None) -> 
 
     ``scene`` must have been built with the setup's camera (:func:`aliasing.frames.scenes.frame_scene`);
     the sun is the setup's (the middle of its band) unless ``sun`` (a world direction) is given.
+    The engines project with the image's width/height: where round(aspect · height)/height is not
+    the setup's aspect, the setup and the scene's camera take that pixel aspect.
     """
+    from dataclasses import replace
+
+    from ..raster.scenes.camera import Camera
+    from ..setups import Setup, spec
     from .models import from_setup
     from .scenes import sun_direction
 
     cam = setup.camera
+    pixel_aspect = round(cam.aspect * cam.height) / cam.height
+    if pixel_aspect != cam.aspect:
+        # the engines project with the canvas's width/height: the setup and the scene take that aspect
+        setup = Setup(setup.profile, dict(setup.settings), spec.Camera(cam.near, cam.far, cam.fov, pixel_aspect, cam.height), setup.sun)
+        c = scene.camera
+        scene = replace(scene, camera=Camera(c.eye, c.rotation, c.near, c.far, c.fov, c.name, pixel_aspect))
+        cam = setup.camera
     if abs(scene.camera.near - cam.near) > 0 or abs(scene.camera.far - cam.far) > 0 or abs(scene.camera.fov - cam.fov) > 0 \
-            or abs(scene.camera.aspect - cam.aspect) > 1e-12:
+            or abs(scene.camera.aspect - cam.aspect) > 1e-9:
         raise ValueError("scene must be built with the setup's camera (near, far, fov, aspect)")
     if sun is None:
         lo, hi = setup.sun.elevation
