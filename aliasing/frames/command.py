@@ -64,6 +64,10 @@ def run(args: argparse.Namespace) -> dict:
     if args.scene is None or args.camera is None or args.sun is None or args.out is None:
         raise ValueError("--scene, --camera, --sun and --out are required (or --install)")
     setup = setups.from_args(args)
+    if args.path is not None:
+        if setup.engine != "threejs":
+            raise ValueError(f"--path: the camera path is rendered for threejs only (not yet for {setup.engine})")
+        frames_run.parse_path(args.path, scenes.frame_scene("boxes", near=1.0, far=2.0, fov=50.0, aspect=1.0, boxes=0, ground_cells=1).camera)
     if setup.release != PINS[name].release:
         raise ValueError(f"--engine {args.engine}: the frames render {name} {PINS[name].release} only (the pinned npm release), not {setup.release}")
     cam = setup.camera
@@ -75,7 +79,7 @@ def run(args: argparse.Namespace) -> dict:
     out.mkdir(parents=True, exist_ok=True)
     try:
         with browser.Browser(timeout=args.timeout) as b:
-            result = frames_run.frame_setup(b, setup, fs)
+            result = frames_run.frame_setup(b, setup, fs, path=args.path)
     except (MissingTool, browser.PageError) as e:
         raise ValueError(str(e)) from None
     write_images(out, result)
@@ -124,6 +128,8 @@ def add_frames_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
     p.add_argument("--scene", help="boxes, city or a scene file (.glb, .gltf, .obj, .ply, .stl)")
     p.add_argument("--eye", metavar="X,Y,Z", help="camera position, world space (a scene file needs it; write --eye=-5,2,0 when X is negative)")
     p.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at, world space")
+    p.add_argument("--path", metavar="KIND:STEP[:FRAMES]", help="a camera path for shimmer (threejs): sideways or forward, STEP world units per "
+                   "frame, FRAMES (default 30); the cascades follow it while the picture's camera stays, and flips_per_frame is added")
     p.add_argument("--out", metavar="DIR", help="directory for engine.png, predicted.png, difference.png, frames.json")
     p.add_argument("--format", default="json", choices=["json", "table"], help="what is printed (default json)")
     p.add_argument("--timeout", type=float, default=120.0, help="seconds a page load or a frame may take (default 120)")

@@ -37,7 +37,7 @@ class FrameResult:
     report: dict
 
 
-def make_job(scene: FrameScene, sun: Array, settings: dict, height: int) -> dict:
+def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: list[dict] | None = None) -> dict:
     """The page's job: the scene's triangles (base64 float32), the camera, the sun and the settings.
 
     ``height`` [px] in [16, 2160]; the width is round(aspect · height).
@@ -53,7 +53,7 @@ def make_job(scene: FrameScene, sun: Array, settings: dict, height: int) -> dict
     return {"width": w, "height": h, "triangles": base64.b64encode(tri.tobytes()).decode(),
             "camera": {"eye": cam.eye.tolist(), "target": (cam.eye + cam.rotation[2]).tolist(), "up": cam.rotation[1].tolist(),
                        "near": cam.near, "far": cam.far, "fov": cam.fov},
-            "sun": [float(v) for v in sun], "settings": settings, "ground": scene.ground}
+            "sun": [float(v) for v in sun], "settings": settings, "ground": scene.ground, "path": path}
 
 
 def _ground_pixels(scene: FrameScene, rb: Readback) -> NDArray[np.bool_]:
@@ -134,7 +134,7 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     return FrameResult(rb, pred, ref, settings, report)
 
 
-def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None) -> FrameResult:
+def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, path: str | None = None) -> FrameResult:
     """Render an :class:`aliasing.setups.Setup` (engine, settings, camera with image size, sun) on ``scene``.
 
     ``scene`` must have been built with the setup's camera (:func:`aliasing.frames.scenes.frame_scene`);
@@ -165,8 +165,19 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None) -> 
         sun = sun_direction((lo + hi) / 2, setup.sun.azimuth, scene.camera)
     settings = from_setup(setup)
     sv = np.asarray(sun, float) / np.linalg.norm(sun)
-    out = browser.render(setup.engine, make_job(scene, sv, settings, cam.height))
+    poses = None
+    if path is not None:
+        if setup.engine != "threejs":
+            raise ValueError(f"--path: the camera path is rendered for threejs only (not yet for {setup.engine})")
+        poses = parse_path(path, scene.camera)
+    out = browser.render(setup.engine, make_job(scene, sv, settings, cam.height, poses))
     result = measure(setup.engine, scene, sv, settings, out, pipeline=setup.pipeline)
+    if poses is not None:
+        sh = shimmer(result, scene, sv, poses)
+        result.report["measured"]["flips_per_frame"] = sh["measured"]
+        result.report["predicted"]["flips_per_frame"] = sh["predicted"]
+        result.report["details"]["path"] = path
+        result.report["details"]["path_matrices_vs_engine"] = sh["matrices_vs_engine"]
     result.report["details"]["engine_revision"] = result.report["release"]
     result.report["release"] = setup.release
     return result
@@ -199,3 +210,77 @@ def frame(browser, engine: str, scene: FrameScene, sun: Array, settings: dict | 
     sv = sv / np.linalg.norm(sv)
     out = browser.render(engine, make_job(scene, sv, s, height))
     return measure(engine, scene, sv, s, out)
+
+
+PATHS = ("sideways", "forward")
+
+
+def parse_path(spec: str, camera) -> list[dict]:
+    """Camera poses of ``KIND:STEP[:FRAMES]``: KIND ``sideways`` (along the camera's right) or
+    ``forward`` (along its view), STEP [world units per frame, finite, non-zero], FRAMES in [3, 120]
+    (default 30); the first pose is the camera itself.
+
+    Example
+    -------
+    >>> from aliasing.raster.scenes.camera import look_at
+    >>> [p["eye"] for p in parse_path("sideways:0.5:3", look_at("0,0,0", "0,0,-1"))]
+    [[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [1.0, 0.0, 0.0]]
+    """
+    parts = str(spec).split(":")
+    if len(parts) not in (2, 3) or parts[0] not in PATHS:
+        raise ValueError(f"--path must be KIND:STEP[:FRAMES] with KIND one of {', '.join(PATHS)}, got {spec!r}")
+    try:
+        step = float(parts[1])
+        n = int(parts[2]) if len(parts) == 3 else 30
+    except ValueError:
+        raise ValueError(f"--path STEP must be a number and FRAMES a whole number, got {spec!r}") from None
+    if not np.isfinite(step) or step == 0:
+        raise ValueError(f"--path STEP must be finite and non-zero [world units per frame], got {parts[1]!r}")
+    if not 3 <= n <= 120:
+        raise ValueError(f"--path FRAMES must be in [3, 120], got {n}")
+    axis = camera.rotation[0] if parts[0] == "sideways" else camera.rotation[2]
+    return [{"eye": (camera.eye + i * step * axis).tolist(), "target": (camera.eye + i * step * axis + camera.rotation[2]).tolist()} for i in range(n)]
+
+
+def flips(masks: NDArray[np.bool_], keep: NDArray[np.bool_]) -> float:
+    """Mean over consecutive frames of the fraction of ``keep`` pixels whose mask changed."""
+    m = masks[:, keep]
+    return float(np.mean(m[1:] != m[:-1])) if m.shape[1] and len(m) > 1 else float("nan")
+
+
+def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]) -> dict:
+    """``flips_per_frame`` of the engine along ``path`` (its read-back ``path``) and as the toolkit
+    predicts it (three.js: each pose's predicted matrices, the toolkit's maps and three.js's filter at
+    the same pixels); details: the largest relative difference of the pose matrices."""
+    from dataclasses import replace
+
+    from . import predict
+
+    rb, s = result.readback, result.settings
+    frames = rb.info.get("path") or []
+    if len(frames) != len(path):
+        raise ValueError("the page returned no camera path")
+    h, w = rb.shadow.shape
+    measured = np.array([np.frombuffer(__import__("base64").b64decode(f["shadow"]), np.float32).reshape(h, w)[::-1] for f in frames])
+    keep = rb.drawn & (rb.cascade >= 0)
+    out = {"measured": flips(measured < 0.5, keep), "predicted": None, "matrices_vs_engine": None}
+    model = MODELS[rb.engine] if rb.engine in MODELS else None
+    if model is None or not hasattr(model, "matrices"):
+        return out
+    res = int(s["shadowMapSize"])
+    cast = scene.triangles[predict.casting(scene.triangles, sun, model.cast_side(s))]
+    fy, fx = np.mgrid[0:h, 0:w]
+    pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+    masks, worst = [], 0.0
+    for pose, f in zip(path, frames):
+        cam = replace(scene.camera, eye=np.asarray(pose["eye"], float))
+        mats = model.matrices(s, cam, sun)
+        eng = np.array([np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
+        worst = max(worst, float(np.max(np.abs(mats - eng)) / np.max(np.abs(eng))))
+        maps = [predict.light_depth_map(cast, m, res) for m in mats]
+        fac = predict.threejs_factor(maps, mats, result.prediction.cascade, pts, nrm, fx + 0.5, (h - 1 - fy) + 0.5, bias=float(s["shadowBias"]),
+                                     normal_bias=float(s["normalBias"]), radius=float(s["shadowRadius"]), map_type=s["shadowMapType"])
+        masks.append(fac < 0.5)
+    out["predicted"] = flips(np.array(masks), keep)
+    out["matrices_vs_engine"] = worst
+    return out

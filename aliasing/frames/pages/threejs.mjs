@@ -122,6 +122,26 @@ window.frame = async (job) => {
     mesh.material = materials[mode];
     out[name] = encode(readTarget(renderer, scene, camera, target, w, h));
   }
+  // a camera path: the cascades follow a moving camera while the picture's camera stays, so every
+  // pixel keeps its world point and a change of its factor is the maps' motion alone
+  const path = [];
+  if (job.path) {
+    const fit = camera.clone();
+    csm.camera = fit;
+    renderer.shadowMap.autoUpdate = true;
+    mesh.material = materials[1];
+    for (const pose of job.path) {
+      fit.position.set(...pose.eye);
+      fit.up.set(...c.up);
+      fit.lookAt(new THREE.Vector3(...pose.target));
+      fit.updateMatrixWorld(true);
+      csm.update();
+      const buf = readTarget(renderer, scene, camera, target, w, h);
+      const factor = new Float32Array(w * h);
+      for (let i = 0; i < w * h; i++) factor[i] = buf[4 * i];
+      path.push({ shadow: encode(factor), matrices: csm.lights.map((l) => [...l.shadow.matrix.elements]) });
+    }
+  }
   const ms = performance.now() - t0;
   const cascades = csm.lights.map((light) => {
     const sh = light.shadow, cam = sh.camera;
@@ -130,7 +150,7 @@ window.frame = async (job) => {
   });
   const gl = renderer.getContext();
   const dbg = gl.getExtension("WEBGL_debug_renderer_info");
-  return { engine: "threejs", revision: THREE.REVISION, width: w, height: h, frame, ...out, cascades, breaks: [...csm.breaks],
+  return { engine: "threejs", revision: THREE.REVISION, width: w, height: h, frame, ...out, cascades, breaks: [...csm.breaks], path,
            shadowMapType: renderer.shadowMap.type, ms,
            renderer: dbg ? gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER) };
 };
