@@ -288,3 +288,20 @@ def test_wind_outward_makes_boxes_closed_and_outward():
     n = np.cross(tri[..., 1, :] - tri[..., 0, :], tri[..., 2, :] - tri[..., 0, :])
     centre = tri.reshape(5, -1, 3).mean(1)
     assert (((tri.mean(2) - centre[:, None]) * n).sum(-1) > 0).all()
+
+
+def test_cli_renders_an_exported_scene_file_and_refuses_a_broken_one(tmp_path, chromium):
+    pytest.importorskip("trimesh")
+    fs = scenes.frame_scene("boxes", **CAMERA, boxes=10, ground_cells=4)
+    glb = scenes.export(fs, tmp_path / "boxes.glb")
+    args = ["--engine", "threejs", "--set", "material.shadowSide=FrontSide", "--camera", "near=0.5,far=60,fov=50,aspect=16:9,height=64",
+            "--sun", "35@30", "--eye=0,0,0", "--target=0,0,-1", "--format", "json"]
+    done = _cli("--scene", glb, *args, "--out", str(tmp_path / "out"))
+    assert done.returncode == 0, done.stderr
+    rep = json.loads(done.stdout)
+    assert rep["measured"]["acne"] > 0.3 and abs(rep["measured"]["acne"] - rep["predicted"]["acne"]) <= 0.02, rep
+    assert rep["measured"]["shadow_agreement"] >= 0.99 and rep["measured"]["gap_px"] is None  # a file has no known ground
+    bad = tmp_path / "broken.glb"
+    bad.write_bytes(b"not a glb")
+    done = _cli("--scene", str(bad), *args, "--out", str(tmp_path / "out2"))
+    assert done.returncode == 2 and done.stderr.count("\n") == 1 and "could not be loaded" in done.stderr, done.stderr

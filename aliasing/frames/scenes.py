@@ -182,3 +182,14 @@ def sun_direction(elevation: float, azimuth: float, camera: Camera) -> Array:
     right = np.cross(fwd, [0.0, 1.0, 0.0])
     e, a = np.radians(el), np.radians(az)
     return np.cos(e) * (np.cos(a) * fwd + np.sin(a) * right) + np.sin(e) * np.array([0.0, 1.0, 0.0])
+
+
+def export(scene: FrameScene, path) -> str:
+    """Write the scene's (wound) triangles and its camera (named ``frame``) as a GLB file (trimesh).
+
+    Loading it back (``aliasing frames --scene FILE --eye ... --target ...``) gives the engines
+    the same triangles (float32, as glTF stores them) with the same winding.
+    """
+    if not isinstance(scene, FrameScene):
+        raise ValueError(f"scene must be a FrameScene, got {type(scene).__name__}")
+    return procedural.to_glb(scene.triangles, path, {"frame": scene.camera})
