@@ -141,7 +141,35 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     the sun is the setup's (the middle of its band) unless ``sun`` (a world direction) is given.
     The engines project with the image's width/height: where round(aspect · height)/height is not
     the setup's aspect, the setup and the scene's camera take that pixel aspect.
+
+    Parameters
+    ----------
+    browser : Browser
+        An open :class:`aliasing.frames.browser.Browser`.
+    setup : aliasing.setups.Setup
+        From :func:`aliasing.setups.build` (engine threejs, babylon or playcanvas at the pinned release).
+    scene : FrameScene
+        From :func:`aliasing.frames.scenes.frame_scene` with the setup's camera.
+    sun : array_like (3,), optional
+        World direction towards the sun.
+    path : str, optional
+        ``KIND:STEP[:FRAMES]`` (:func:`parse_path`): adds ``flips_per_frame`` (three.js).
+
+    Example
+    -------
+    >>> from aliasing import setups
+    >>> from aliasing.frames.browser import Browser
+    >>> s = setups.build("threejs", {}, "near=0.5,far=60,fov=50,aspect=16:9,height=144", "35@30")
+    >>> fs = frame_scene("boxes", near=0.5, far=60.0, fov=50.0, aspect=16 / 9)
+    >>> with Browser() as b:                                  # doctest: +SKIP
+    ...     r = frame_setup(b, s, fs)
+    >>> r.report["measured"]["acne"] < 0.01                   # doctest: +SKIP
+    True
     """
+    if not (hasattr(setup, "pipeline") and hasattr(setup, "profile")):
+        raise ValueError(f"setup must be an aliasing.setups.Setup, got {type(setup).__name__}")
+    if not isinstance(scene, FrameScene):
+        raise ValueError(f"scene must be a FrameScene (aliasing.frames.scenes.frame_scene), got {type(scene).__name__}")
     from dataclasses import replace
 
     from ..raster.scenes.camera import Camera
@@ -181,35 +209,6 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     result.report["details"]["engine_revision"] = result.report["release"]
     result.report["release"] = setup.release
     return result
-
-
-def frame(browser, engine: str, scene: FrameScene, sun: Array, settings: dict | None = None, height: int = 288) -> FrameResult:
-    """Render ``scene`` with ``engine`` in ``browser`` (:class:`aliasing.frames.browser.Browser`) and measure it against the prediction.
-
-    Parameters
-    ----------
-    browser : Browser
-        An open headless Chromium.
-    engine : str
-        One of :data:`aliasing.frames.models.MODELS`.
-    scene : FrameScene
-        From :func:`aliasing.frames.scenes.frame_scene`.
-    sun : array_like (3,)
-        World direction towards the sun (unit).
-    settings : dict, optional
-        The engine's settings in its own keys (the rest are its defaults).
-    height : int
-        Image height [px]; the width follows the camera's aspect.
-    """
-    if engine not in MODELS:
-        raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")
-    s = MODELS[engine].settings(settings)
-    sv = np.asarray(sun, float)
-    if sv.shape != (3,) or not np.isfinite(sv).all() or not np.linalg.norm(sv) > 0:
-        raise ValueError(f"sun must be a non-zero finite 3-vector, got {sun!r}")
-    sv = sv / np.linalg.norm(sv)
-    out = browser.render(engine, make_job(scene, sv, s, height))
-    return measure(engine, scene, sv, s, out)
 
 
 PATHS = ("sideways", "forward")
