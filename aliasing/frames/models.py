@@ -86,8 +86,8 @@ class ThreeCSM:
         for k in ("cascades", "maxFar", "shadowMapSize", "shadowBias", "lightIntensity", "lightNear", "lightFar", "lightMargin"):
             if not s[k]:  # CSM's constructor: `data.x || default` (0 becomes the default)
                 s[k] = self.defaults[k]
-        if s["mode"] != "practical":
-            raise ValueError(f"mode must be 'practical' (the split the toolkit's threejs preset models), got {s['mode']!r}")
+        if s["mode"] not in ("practical", "uniform", "logarithmic"):
+            raise ValueError(f"mode must be practical, uniform or logarithmic (custom splits are not modelled), got {s['mode']!r}")
         for k in ("side",):
             if s[k] not in predict.SIDES:
                 raise ValueError(f"{k} must be one of {', '.join(predict.SIDES)}, got {s[k]!r}")
@@ -112,9 +112,15 @@ class ThreeCSM:
         return float(min(camera.far, s["maxFar"]))
 
     def edges(self, s: dict, camera) -> Array:
-        """The cascades' ends (near … shadow far) [world units]: the toolkit's threejs split."""
-        p = stable.PRESETS[self.preset]
-        return partitioning.split_distances(p.split, camera.near, self.shadow_far(s, camera), int(s["cascades"]))
+        """The cascades' ends (near … shadow far) [world units]: the toolkit's threejs split for
+        ``practical`` (λ = 0.5), and CSM's ``uniformSplit``/``logarithmicSplit`` for the other modes."""
+        n, f, k = camera.near, self.shadow_far(s, camera), int(s["cascades"])
+        if s["mode"] == "practical":
+            return partitioning.split_distances(stable.PRESETS[self.preset].split, n, f, k)
+        i = np.arange(k + 1) / k
+        ends = n + (f - n) * i if s["mode"] == "uniform" else n * (f / n) ** i
+        ends[0], ends[-1] = n, f
+        return ends
 
     def select(self, s: dict, camera, depth: Array) -> NDArray[np.int64]:
         """The cascade each eye depth samples (CSMShader, fade off): linearDepth = z / (far − near)
