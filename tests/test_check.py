@@ -277,3 +277,28 @@ def test_engine_fit_against_the_bias_preset():
     assert 2.1 <= min(ratio_t) and max(ratio_t) <= 2.25
     assert ratio_s == pytest.approx([math.sqrt(1 + (9 / 16) ** 2)] * 4, rel=1e-9)
     assert all(a["margin"] == 0.0 for a in rows) and all(c["acne"] == 0.0 for c in r.cascades)
+
+
+@settings(max_examples=60, deadline=None, derandomize=True)
+@given(st.text(max_size=30), st.text(max_size=14), st.text(max_size=40))
+def test_fuzz_specs(camera, sun, settings_text):
+    """The camera and sun specs and a settings file's text: a value or a ValueError, nothing else."""
+    import tempfile
+    from pathlib import Path
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for parse, text in ((setups.parse_camera, camera), (setups.parse_sun, sun)):
+            try:
+                parse(text)
+            except ValueError:
+                pass
+    with tempfile.TemporaryDirectory() as d:
+        for suffix in (".json", ".toml"):
+            f = Path(d) / f"s{suffix}"
+            f.write_text(settings_text, encoding="utf-8")
+            try:
+                values = setups.load_settings(f)
+                setups.build("threejs", values)
+            except ValueError:
+                pass

@@ -133,3 +133,13 @@ def test_fuzz_vocabulary(capsys, command, engine, sets, camera, sun):
     assert code in (0, 2)
     if code == 2:
         assert err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_ranges_scheme_is_the_split_it_names():
+    from aliasing.engines.compare import compare
+
+    a, b = compare(["csm:ranges=1..10/10..100", "csm:log:k=2"], near=1.0, far=100.0, lights="gamma:40")
+    assert {k: v for k, v in a.items() if k != "scheme"} == {k: v for k, v in b.items() if k != "scheme"}
+    for bad in ("csm:ranges=10..1", "csm:ranges=1..x", "csm-stable:ranges=:fit=sphere"):
+        with pytest.raises(ValueError, match="ranges must be NEAR..FAR"):
+            compare([bad], near=1.0, far=100.0, lights="overhead")

@@ -388,6 +388,8 @@ def test_babylon_profile_defaults_and_clamps_are_the_engines(babylon_profile_run
         assert clamps[f"numCascades={v}"] == n.clamped(v)
     for v in (2, -1, 0.3):
         assert clamps[f"lambda={v}"] == lam.clamped(v)
+    for v in (3, -0.5, 0.4):
+        assert clamps[f"darkness={v}"] == profile.setting("darkness").clamped(v)
     # shadowMaxZ outside [minZ, maxZ] is ignored by the setter: the profile ends the cascades at the camera's far then
     assert clamps["shadowMaxZ=0.01"] == clamps["shadowMaxZ=900"] == other["cameraMaxZ"] and clamps["shadowMaxZ=250"] == 250
     base = profile.defaults()

@@ -145,7 +145,8 @@ def test_fuzzed_settings_build_a_pipeline_or_say_which_key(case):
     except ValueError as err:
         text = str(err)
         assert "\n" not in text and text
-        assert any(k in text for k in changes) or "shadow.camera" in text or "cascades are empty" in text or "must exceed" in text, text
+        keys = [st_.key for st_ in setups.get(spec).settings]
+        assert any(k in text for k in keys) or "shadow.camera" in text or "cascades are empty" in text, text  # names a setting
         return
     p = s.pipeline
     assert all(0 < a < b for a, b in zip(p.near_i, p.far_i)) and p.resolution >= 1
@@ -228,9 +229,17 @@ def test_babylon_bias_factor(changes, factor):
 
 def test_depth_range_terms_need_the_extent():
     rule = setups.build("babylon").pipeline.bias
-    assert rule.needs_extent
+    assert rule.needs_extent and rule.resolution == 1024
+    bare = setups.BiasRule(rule.terms, rule.faces)  # no resolution to fall back on
     with pytest.raises(ValueError, match="^extent is needed for the bias term 'bias'"):
-        rule.depth(0.1, 30.0)
+        bare.depth(0.1, 30.0)
+    # without an extent the rule takes the map's side w·mapSize (exact for stabilized cascades)
+    assert rule.depth(0.1, 30.0) == rule.depth(0.1, 30.0, extent=0.1 * 1024) == pytest.approx(1.5 * 0.00005 * 102.4, rel=1e-14)
+    assert rule.minimal("bias", 0.03, 0.1, 30.0) == pytest.approx(0.03 / (1.5 * 102.4), rel=1e-12)
+    s = setups.build("babylon", {"stabilizeCascades": True}, CAMERA)
+    w = pipeline.texels(s.pipeline, s.camera, LIGHTS)[..., 0]
+    assert np.allclose(s.pipeline.bias.depth(w, 20.0), s.pipeline.bias.depth(w, 20.0, extent=pipeline.extents(s.pipeline, s.camera, LIGHTS)),
+                       rtol=1e-13)
     # 1.5 × 0.00005 × 200 world units of range; normalBias 0
     assert rule.depth(0.1, 30.0, extent=200.0) == pytest.approx(0.015, rel=1e-14)
     assert rule.contact(0.1, extent=200.0) == pytest.approx(0.015, rel=1e-14)
@@ -268,8 +277,12 @@ def test_playcanvas_rule():
     # slope factor 10·0.05 per texel·tan θ, constant 10·0.05 steps of 2^-24 and the 0.0001 lift of the range
     want = 0.5 * w * math.tan(math.radians(45.0)) + 0.5 * 2.0**-24 * ext + 1e-4 * ext
     assert rule.depth(w, 45.0, 0.0, extent=ext) == pytest.approx(want, rel=1e-14)
-    sixteen = setups.build("playcanvas", {"shadowType": "SHADOW_PCF3_16F"}).pipeline.bias.term("shadowBias (constant)")
-    assert sixteen.scale == pytest.approx(10.0 / 65535)
+    sixteen = [t for t in setups.build("playcanvas", {"shadowType": "SHADOW_PCF3_16F"}).pipeline.bias.terms if t.kind == "depth_range"]
+    assert sixteen[0].key == "shadowBias" and sixteen[0].scale == pytest.approx(10.0 / 65535)
+    # the needed shadowBias counts both of its terms (slope and constant); the 0.0001 lift stays
+    need = rule.minimal("shadowBias", 0.2, w, 45.0, 0.0, extent=ext)
+    per = 10 * w * math.tan(math.radians(45.0)) + 10 * 2.0**-24 * ext
+    assert need == pytest.approx((0.2 - 1e-4 * ext) / per, rel=1e-12)
     # the component clamps shadowBias to [0, 1]: 3 is 1
     assert setups.build("playcanvas", {"shadowBias": 3.0}).pipeline.bias.term("shadowBias").value == 1.0
 
@@ -341,3 +354,22 @@ def test_errata_tj1_rows():
 
     rows = cascade_bias(0.1, 100.0, 60.0, "gamma:45", "threejs", k=4, resolution=2048)
     assert [(r["margin"], r["acne_from"], r["partial"]) for r in rows] == [(0.0, 0.5, "yes")] * 4
+
+
+def test_blend_bands():
+    from aliasing.setups.profile import Pipeline  # noqa: F401  (the bands are (start, end) eye depths, as Pipeline.bands)
+
+    s = setups.build("babylon", {}, CAMERA)
+    bands = babylon.blend_bands(s.settings, 0.1, 500.0)
+    p = s.pipeline
+    assert len(bands) == p.k - 1
+    for (start, end), a, b in zip(bands, p.near_i, p.far_i):
+        assert end == b and (end - start) / (b - a) == pytest.approx(p.blend, rel=1e-12)
+    assert babylon.blend_bands({**s.settings, "cascadeBlendPercentage": 0.0}, 0.1, 500.0) == ()
+    pc = setups.build("playcanvas", {"numCascades": 3, "cascadeBlend": 0.2}, CAMERA)
+    assert playcanvas.blend_bands(pc.settings, 0.1, 500.0) == tuple((0.8 * e, e) for e in pc.pipeline.far_i[:-1])
+    th = setups.build("threejs", {"fade": True}, CAMERA).pipeline
+    b = np.asarray(th.far_i[:-1]) / 500.0
+    got = threejs.blend_bands(b, 0.1, 500.0)
+    for (s0, e1), x in zip(got, b):  # centred on the break in linear depth z/(far − near), 0.25·b² wide
+        assert (s0 + e1) / 2 == pytest.approx(x * 499.9, rel=1e-14) and e1 - s0 == pytest.approx(0.25 * x**2 * 499.9, rel=1e-12)

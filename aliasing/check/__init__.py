@@ -2,7 +2,7 @@
 
 For a :class:`aliasing.setups.Setup` (an engine at a release, its settings, a camera with its
 image height, a sun band), :func:`check` evaluates the pipeline the engine builds
-(:attr:`aliasing.setups.Setup.pipeline`) analytically, per cascade:
+(``Setup.pipeline`` of :class:`aliasing.setups.Setup`) analytically, per cascade:
 
 ``near``, ``far``
     The cascade's eye depths [world units] (overlap included).
@@ -136,7 +136,20 @@ def _fmt(value: float) -> str:
 
 @dataclass(frozen=True)
 class Report:
-    """What :func:`check` found: per cascade rows, verdict lines, and the setup they came from."""
+    """What :func:`check` found: per cascade rows, verdict lines, and the setup they came from.
+
+    ``cascades`` holds one dict per cascade (the module docstring's fields; ``texel`` as [s, t]),
+    ``verdicts`` the lines, ``sample`` the receivers and suns evaluated.
+
+    Example
+    -------
+    >>> from aliasing import setups
+    >>> r = check(setups.build("threejs", {"cascades": 2}, sun=30))
+    >>> sorted(r.to_dict())
+    ['cascades', 'engine', 'release', 'settings', 'verdicts']
+    >>> [row["cascade"] for row in r.to_rows()], r.to_csv().splitlines()[0].split(",")[:5]
+    ([0, 1], ['cascade', 'near', 'far', 'texel_s', 'texel_t'])
+    """
 
     setup: Setup
     cascades: tuple
@@ -157,9 +170,8 @@ class Report:
         """A tidy table: one row per cascade, flat columns (:data:`COLUMNS`), then ``needed_<key>`` per bias setting."""
         rows = []
         for c in self.cascades:
-            row = {k: c[k] for k in COLUMNS if k not in ("texel_s", "texel_t")}
             row = {"cascade": c["cascade"], "near": c["near"], "far": c["far"], "texel_s": c["texel"][0], "texel_t": c["texel"][1],
-                   **{k: v for k, v in row.items() if k not in ("cascade", "near", "far")}}
+                   **{k: c[k] for k in COLUMNS[5:]}}
             row.update({f"needed_{k}": v for k, v in c["needed"].items()})
             rows.append(row)
         return rows

@@ -47,7 +47,7 @@ def texels(pipeline: Pipeline, camera: Camera, light: str | ArrayLike) -> Array:
     Parameters
     ----------
     pipeline : Pipeline
-        What the engine builds (:attr:`aliasing.setups.Setup.pipeline`).
+        What the engine builds (``setup.pipeline`` of a :class:`aliasing.setups.spec.Setup`).
     camera : Camera
         The camera it was built for.
     light : str or array_like

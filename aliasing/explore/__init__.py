@@ -10,7 +10,8 @@ Each explorer is a function returning a displayable ipywidgets container (an
 * :func:`faces`: the face partition (FP, FPc, FPcs; Lloyd 2007 §6.1.3, §6.5) for a light;
 * :func:`raster`: the rasterizer's shadows, texel grid, per-pixel error and measured/bound;
 * :func:`bias`: an engine's depth bias per cascade against the derived minimum (acne, lit gap);
-* :func:`shimmer`: a camera or sun path played over a still scene, the points whose shadow flips.
+* :func:`shimmer`: a camera or sun path played over a still scene, the points whose shadow flips;
+* :func:`tune`: an engine's tuned settings (:func:`aliasing.tune.tune`) as the camera and the limits move.
 
 The computation of every explorer is a plain function (``compute``, returning a dict) kept
 apart from its drawing, so what is drawn can be checked against the API.  Needs the
@@ -35,7 +36,7 @@ if TYPE_CHECKING:  # the widget base needs ipywidgets (the explore extra)
 
 EXTRA_MESSAGE = "aliasing.explore needs the 'explore' extra: pip install \".[explore]\" (ipywidgets>=8, ipympl, jupyterlab)"
 
-__all__ = ["EXTRA_MESSAGE", "available", "bias", "cascades", "directions", "faces", "overhead", "raster", "shimmer"]
+__all__ = ["EXTRA_MESSAGE", "available", "bias", "cascades", "directions", "faces", "overhead", "raster", "shimmer", "tune"]
 
 
 def __getattr__(name: str) -> Any:
@@ -261,3 +262,31 @@ def shimmer(**values: Any) -> Explorer:
     (0, None)
     """
     return _module("_shimmer").ShimmerExplorer(**values)
+
+
+def tune(**values: Any) -> Explorer:
+    """Tune explorer: the engine's own settings, searched again as the camera, the sun and the limits move.
+
+    Parameters
+    ----------
+    **values
+        ``engine`` (one whose profile declares tunable settings), ``near``, ``far`` [world units],
+        ``fov`` [deg, vertical], ``aspect``, ``height`` [pixels], ``sun_low``, ``sun_high`` [deg],
+        ``receivers_near``, ``receivers_far`` [world units], ``budget`` [texels], ``max_slope``
+        [deg], ``max_gap_px`` (text; empty: no limit), ``moving``, ``keep_budget_shape`` (keep
+        the count and the map size).
+
+    Returns
+    -------
+    Explorer
+        ``.data`` holds :func:`aliasing.explore._tune.compute`'s result.
+
+    Example
+    -------
+    >>> e = tune(receivers_near=1.0, receivers_far=200.0)
+    >>> e.data["changed"]["customSplitsLambda"], e.data["binding"]
+    (0.9132, [])
+    >>> e.set_state({"receivers_near": 0.1}), e.data["changed"]["mode"]   # receivers at the near plane: the log split
+    (True, 'logarithmic')
+    """
+    return _module("_tune").TuneExplorer(**values)

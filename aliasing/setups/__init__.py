@@ -36,7 +36,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from .. import _validation as check
-from .profile import FACES, KINDS, BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
+from .profile import FACES, KINDS, ROLES, BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
 from .spec import (CAMERA_SPEC, SUN_SPEC, Camera, RadiansWarning, Setup, Sun, load_settings, parse_camera, parse_set,
                    parse_sun)
 
@@ -53,8 +53,8 @@ ENGINES: dict[str, str] = {
 }
 
 __all__ = ["ENGINES", "FACES", "KINDS", "BiasRule", "BiasTerm", "CAMERA_SPEC", "Camera", "Filter", "Pipeline", "Profile",
-           "RadiansWarning", "SUN_SPEC", "Setting", "Setup", "Sun", "add_arguments", "build", "from_args", "get", "load_settings",
-           "parse_camera", "parse_set", "parse_sun", "profiles", "resolve"]
+           "ROLES", "RadiansWarning", "SUN_SPEC", "Setting", "Tunable", "Setup", "Sun", "add_arguments", "build", "from_args", "get",
+           "load_settings", "parse_camera", "parse_set", "parse_sun", "profiles", "resolve"]
 
 
 def profiles(engine: str) -> tuple[Profile, ...]:

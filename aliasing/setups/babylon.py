@@ -119,6 +119,14 @@ def _settings() -> tuple[Setting, ...]:
         Setting("contactHardeningLightSizeUVRatio", 0.1, "fraction of the map", "float", (0.0, 1.0), source=f"{SG}:591{AT}",
                 doc="PCSS light size"),
         Setting("frustumEdgeFalloff", 0.0, "", "float", (0.0, 1.0), source=f"{SG}:610{AT}", doc="shadows fade out at the map's edges"),
+        Setting("darkness", 0.0, "", "float", (None, None), clamp=(0.0, 1.0), source=f"{SG}:347–372, 592{AT}",
+                doc="shadow strength: 0 the darkest, 1 none (setDarkness clamps to [0, 1])"),
+        Setting("depthScale", 50.0, "", "float", (None, None), source=f"{SG}:126–134; Lights/shadowLight.js:112{AT}",
+                doc="ESM filters: the exponent's scale (the light's getDepthScale(): 50)"),
+        Setting("useKernelBlur", False, "", "bool", source=f"{SG}:588{AT}", doc="blurred ESM: a kernel blur instead of the box blur"),
+        Setting("blurKernel", 1, "texels", "int", (1, 64), source=f"{SG}:587{AT}", doc="blurred ESM with useKernelBlur: the kernel size"),
+        Setting("blurBoxOffset", 1, "texels", "int", (1, 64), source=f"{SG}:585{AT}", doc="blurred ESM with the box blur: its offset"),
+        Setting("blurScale", 2.0, "", "float", (1.0, 64.0), source=f"{SG}:586{AT}", doc="blurred ESM: the blur map is mapSize / blurScale"),
         Setting("forceBackFacesOnly", False, "", "bool", source=f"{SG}:618, 1002–1020{AT}", doc="the back faces cast instead of the front faces"),
         Setting("material.backFaceCulling", True, "", "bool", source=f"Materials/material.pure.js:564; {SG}:927{AT}",
                 doc="false: both faces cast (unless forceBackFacesOnly)"),
@@ -174,7 +182,11 @@ def _filter(s: Mapping[str, Any]) -> Filter:
     if name == "FILTER_POISSONSAMPLING":
         return Filter("pcf", 1, note="Poisson sampling (shadowsFragmentFunctions.js computeShadowWithPoissonSampling): counted as one comparison")
     if "EXPONENTIAL" in name:
-        return Filter("esm", 1, note=f"{name}: exponential shadow map (depthScale 50)")
+        blur = ""
+        if name.startswith("FILTER_BLUR"):
+            blur = (f", blurred by a kernel of {s['blurKernel']}" if s["useKernelBlur"] else f", box-blurred with offset {s['blurBoxOffset']}") \
+                + f" at 1/{s['blurScale']:g} of the map's size"
+        return Filter("esm", 1, note=f"{name}: exponential shadow map (depthScale {s['depthScale']:g}){blur}")
     return Filter("hard", 1, note="one comparison")
 
 
@@ -204,6 +216,26 @@ def splits(s: Mapping[str, Any], near: float, far: float) -> tuple[np.ndarray, n
     return np.concatenate([[z0], ends[:-1]]), ends
 
 
+def blend_bands(s: Mapping[str, Any], near: float, far: float) -> tuple:
+    """The eye-depth range (start, end) of each blend band between cascade i and i + 1 [world units].
+
+    The receivers blend cascade i into i + 1 over the last ``cascadeBlendPercentage`` of cascade
+    i's depth range (``lightFragment.js``: ``diff < frustumLength·cascadeBlendPercentage``;
+    ``CSG`` line 730); none at 0 or for a ShadowGenerator.
+
+    Example
+    -------
+    >>> s = PROFILES[0].resolve({"lambda": 0})
+    >>> [tuple(round(x, 9) for x in band) for band in blend_bands(s, 1.0, 101.0)]
+    [(23.5, 26.0), (48.5, 51.0), (73.5, 76.0)]
+    """
+    p = float(s["cascadeBlendPercentage"])
+    if s["class"] != "CascadedShadowGenerator" or p == 0:
+        return ()
+    a, b = splits(s, near, far)
+    return tuple((float(bi - p * (bi - ai)), float(bi)) for ai, bi in zip(a[:-1], b[:-1]))
+
+
 def _build(s: Mapping[str, Any], camera) -> Pipeline:
     side = faces(s)
     res = int(s["mapSize"])
@@ -224,12 +256,17 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
         rule = BiasRule((BiasTerm("bias", float(s["bias"]), "depth", factor * (hi - lo)), normal), side)
         return Pipeline((camera.near,), (camera.far,), "fixed", "none", res, rule, _filter(s), box=(size, size), depth_range=(lo, hi),
                         notes=tuple(notes + ["the shadow box is fixed (light.shadowFrustumSize): shadows outside it are lost"]))
+    if res < 3:
+        raise ValueError(f"mapSize must be at least 3 texels for the toolkit's cascade fits, got {res}")
     a, b = splits(s, camera.near, camera.far)
     stable = bool(s["stabilizeCascades"])
-    rule = BiasRule((BiasTerm("bias", float(s["bias"]), "depth_range", factor), normal), side)
+    rule = BiasRule((BiasTerm("bias", float(s["bias"]), "depth_range", factor), normal), side, resolution=res)
     clamp = bool(s["depthClamp"]) and filter_name(s) != "FILTER_PCSS"
     notes.append("the cascade's light near..far shrinks to the shadow casters' bounds: the bias rule takes the fitted box's extent "
                  "along the light (casters filling it)" + (", at least 1 world unit (depthClamp, line 417)" if clamp else ""))
+    if not stable:
+        notes.append("given no extent (aliasing.engines.pipeline.extents), the bias rule takes the map's side w·mapSize for the "
+                     "cascade's depth range: the tight box's own range along the light differs")
     if s["autoCalcDepthBounds"]:
         notes.append("autoCalcDepthBounds sets minDistance/maxDistance from the depth buffer each frame: the given ones are used")
     if float(s["frustumEdgeFalloff"]):
@@ -246,7 +283,9 @@ def snippet(s: Mapping[str, Any]) -> str:
     lines = [f"const gen = new BABYLON.{cls}({s['mapSize']}, light{', undefined, camera' if cls == 'CascadedShadowGenerator' else ''});"]
     keys = (["numCascades", "lambda", "cascadeBlendPercentage", "stabilizeCascades", "depthClamp", "autoCalcDepthBounds"]
             if cls == "CascadedShadowGenerator" else [])
-    keys += ["bias", "normalBias", "frustumEdgeFalloff", "forceBackFacesOnly", "contactHardeningLightSizeUVRatio"]
+    keys += ["bias", "normalBias", "frustumEdgeFalloff", "forceBackFacesOnly", "contactHardeningLightSizeUVRatio", "darkness"]
+    if s["filter"] is not None and "EXPONENTIAL" in s["filter"]:
+        keys += ["depthScale", "useKernelBlur", "blurKernel", "blurBoxOffset", "blurScale"]
     lines += [f"gen.{k} = {_js(s[k])};" for k in keys]
     if cls == "CascadedShadowGenerator":
         if s["shadowMaxZ"] is not None:

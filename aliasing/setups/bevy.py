@@ -14,7 +14,7 @@ Read from bevyengine/bevy as stored in the index (the current layout with ``crat
   ``DirectionalLightShadowMap::default`` 2048, ``ShadowFilteringMethod::default`` Gaussian (the
   bias preset ``bevy`` already cites them);
 * ``crates/bevy_pbr/src/render/light.rs`` ``prepare_lights`` (as stored): the light's biases
-  go to the GPU unchanged, the maps are layers of one ``Depth32Float`` array of ``size``², at
+  go to the GPU unchanged, the maps are layers of one ``Depth32Float`` array of ``size`` × ``size`` texels, at
   most ``MAX_CASCADES_PER_LIGHT`` (4) cascades per light;
 * ``crates/bevy_pbr/src/render/shadows.wgsl`` ``sample_directional_cascade``: the receiver moves
   by ``shadow_normal_bias · texel_size`` along its normal and ``shadow_depth_bias`` towards the
@@ -90,17 +90,20 @@ def build(s: Mapping[str, Any], camera) -> Pipeline:
     if k_set > 1 and not near < first < far:
         raise ValueError(f"first_cascade_far_bound must be in (minimum_distance, maximum_distance) = ({near:g}, {far:g}) m, got {first:g}")
     notes = ["faces: the material's cull_mode (StandardMaterial: back faces culled) is assumed in the shadow pass (not read)"]
+    if s["ShadowFilteringMethod"] == "Temporal":
+        notes.append("Temporal filtering: Jimenez's rotating disk modelled with the Gaussian's 5×5 footprint (its radius not read)")
     lo, hi = partitioning.partitions("bevy", near, far, k_set, first=first, overlap=p)
     edges = partitioning.split_distances("bevy", near, far, k_set, first=first)
-    k = min(k_set, MAX_CASCADES)
-    if k < k_set:
-        notes.append(f"num_cascades {k_set}: only {MAX_CASCADES} are rendered, so shadows end at {edges[k]:g} m, not maximum_distance")
+    k = min(k_set, MAX_CASCADES)  # only MAX_CASCADES_PER_LIGHT are rendered: shadows end at the 4th bound
     lo, hi, edges = lo[:k], hi[:k], edges[: k + 1]
     if lo[0] < camera.near:
-        notes.append(f"minimum_distance {near:g} is before the camera's near {camera.near:g}: the first map is fitted from the near plane here")
+        notes.append(f"minimum_distance {near:g} is before the camera's near {camera.near:g}: Bevy fits the first map from minimum_distance, "
+                     "the toolkit from the near plane")
         lo = np.maximum(lo, camera.near)
-    if hi[-1] > camera.far:
-        notes.append(f"the cascades end at {hi[-1]:g} m, beyond the camera's far {camera.far:g}: Bevy fits them all the same")
+        if np.any(lo >= hi):
+            i = int(np.argmax(lo >= hi))
+            raise ValueError(f"the camera's near ({camera.near:g}) is beyond the end of cascade {i} ({hi[i]:g} m): "
+                             "raise first_cascade_far_bound or lower the camera's near")
     bands = tuple(((1 - p) * edges[i + 1], edges[i + 1]) for i in range(k - 1))
     frac = max(((b - a) / (edges[i + 1] - edges[i]) for i, (a, b) in enumerate(bands)), default=0.0)
     res = int(s["DirectionalLightShadowMap.size"])

@@ -138,7 +138,7 @@ def rule(s: Mapping[str, Any], resolution: int) -> BiasRule:
 
 
 def layout(size: int, k: int) -> tuple[int, int, str]:
-    """(texels across, texels along t, words) of each split in Godot's one directional atlas of ``size``² texels.
+    """(texels across, texels along t, words) of each split in Godot's one directional atlas of ``size`` × ``size`` texels.
 
     Example
     -------
@@ -167,12 +167,8 @@ def build(s: Mapping[str, Any], camera) -> Pipeline:
     notes = [
         f"directional_shadow_fade_start: shadows fade out over [{s['directional_shadow_fade_start']:g}, 1] × {edges[-1]:g} (not modelled)",
         "each split's ends are snapped to 4r/R: the map's size is kept to within one snap unit (not modelled)",
-        "one directional light with shadows: more lights split the atlas further (_get_directional_shadow_rect)",
+        "one directional light with shadows is assumed: more lights split the atlas further (_get_directional_shadow_rect)",
     ]
-    if rows != res:
-        notes.append(f"2 splits: each split's map is {res}×{rows} texels, so its texel along t is twice that along s")
-    if blend:
-        notes.append("blend splits: split i ≥ 1 is fitted from the start of split i − 1, so its map covers both")
     return Pipeline(tuple(near_i), tuple(far_i), FIT, SNAP, res, rule(s, res), filter_of(s), layout=words, blend=frac,
                     stable=True, memory=size * size * (2 if s[BITS] else 4), split="godot", notes=tuple(notes), rows=rows if rows != res else 0,
                     bands=bands)

@@ -69,6 +69,8 @@ CULL_VALUES = {"CULLFACE_NONE": 0, "CULLFACE_BACK": 1, "CULLFACE_FRONT": 2}
 
 def _settings() -> tuple[Setting, ...]:
     return (
+        Setting("castShadows", False, "", "bool", source=f"{COMP}:67, 124–127{AT}",
+                doc="the light casts shadows only when true (the profile evaluates the shadow it would cast)"),
         Setting("numCascades", 1, "", "int", (None, None), clamp=(1, 4), source=f"{LIGHT}:134; {COMP}:163{AT}",
                 doc="number of cascades (floored and clamped to 1–4); more than one share the map in a 2×2 grid"),
         Setting("cascadeDistribution", 0.5, "", "float", (None, None), clamp=(0.0, 1.0), source=f"{LIGHT}:136; {COMP}:187{AT}",
@@ -87,8 +89,11 @@ def _settings() -> tuple[Setting, ...]:
                 doc="PCF1/3/5: 1, 3×3, 5×5 filters; VSM: variance maps; PCSS: soft (needs float render targets)"),
         Setting("vsmBlurSize", 11, "texels", "int", (1, 25), source=f"{LIGHT}:116{AT}", doc="VSM blur kernel"),
         Setting("vsmBias", 0.0025, "", "float", (None, None), clamp=(0.0, 1.0), source=f"{LIGHT}:118; {COMP}:241{AT}", doc="VSM bias"),
+        Setting("vsmBlurMode", "BLUR_GAUSSIAN", "", "choice", ("BLUR_BOX", "BLUR_GAUSSIAN"), source=f"{LIGHT}:117{AT}", doc="VSM blur kernel shape"),
         Setting("shadowSamples", 16, "", "int", (1, 128), source=f"{LIGHT}:161{AT}", doc="PCSS samples"),
         Setting("penumbraSize", 1.0, "", "float", (0.0, None), source=f"{LIGHT}:163{AT}", doc="PCSS penumbra size"),
+        Setting("penumbraFalloff", 1.0, "", "float", (0.0, None), source=f"{LIGHT}:164{AT}", doc="PCSS penumbra falloff"),
+        Setting("shadowIntensity", 1.0, "", "float", (0.0, 1.0), source=f"{LIGHT}:153{AT}", doc="shadow strength (1: full)"),
         Setting("material.cull", "CULLFACE_BACK", "", "choice", tuple(CULL), source=f"scene/materials/material.js:72{AT}",
                 doc="faces culled in the main and shadow passes: CULLFACE_BACK casts the front faces"),
     )
@@ -114,6 +119,26 @@ def splits(s: Mapping[str, Any], near: float, far: float) -> tuple[np.ndarray, n
     return np.concatenate([[near], ends[:-1]]), ends
 
 
+def blend_bands(s: Mapping[str, Any], near: float, far: float) -> tuple:
+    """The eye-depth range (start, end) of each blend band between cascade i and i + 1 [world units].
+
+    ``shadowCascades.js`` ``ditherShadowCascadeIndex``: from (1 − cascadeBlend)·end_i to end_i
+    the receivers pick cascade i + 1 with a dithered probability rising by smoothstep; the
+    start is not clipped to the cascade's own start.  None at cascadeBlend 0.
+
+    Example
+    -------
+    >>> s = PROFILES[0].resolve({"numCascades": 2, "cascadeDistribution": 0, "cascadeBlend": 0.1})
+    >>> blend_bands(s, 1.0, 500.0)
+    ((18.45, 20.5),)
+    """
+    blend = float(PROFILES[0].setting("cascadeBlend").clamped(s["cascadeBlend"]))
+    if blend == 0:
+        return ()
+    _, b = splits(s, near, far)
+    return tuple((float((1.0 - blend) * e), float(e)) for e in b[:-1])
+
+
 def _filter(s: Mapping[str, Any]) -> Filter:
     kind = s["shadowType"]
     if "PCF" in kind:
@@ -129,6 +154,9 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
     k = len(a)
     res = int(s["shadowResolution"])
     per = res if k == 1 else res // 2  # light.js:46–51: a 2×2 grid of half-size viewports
+    if per < 3:
+        raise ValueError(f"shadowResolution must give each cascade at least 3 texels for the toolkit's fits ({'' if k == 1 else 'half of '}"
+                         f"shadowResolution with {k} cascades), got {res}")
     kind = s["shadowType"]
     v = float(PROFILES[0].setting("shadowBias").clamped(s["shadowBias"]))
     notes = ["the shadow camera's depth range spans the shadow casters' bounds + 0.2: the depth_range terms take the cascade's "
@@ -138,14 +166,16 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
     if "VSM" in kind or "PCSS" in kind:
         notes.append(f"{kind}: the depth bias, normal offset and 0.0001 lift are those of PCF here; VSM uses vsmBias/(farClip/7) as its "
                      "normal offset and a fixed −2e-4 bias, PCSS no rasterizer bias (light.js:683–706, 746–749): not modelled")
+    if not s["castShadows"]:
+        notes.append("castShadows is false (the component's default): the light casts no shadow; this is the shadow it casts when true")
     if k > 1 and res % 2:
         notes.append(f"an odd shadowResolution ({res}) gives cascades of {res / 2:g} texels: the profile uses {per}")
     step = 2.0 ** -24 if kind.endswith("32F") else 1.0 / 65535
     terms = (BiasTerm("shadowBias", v, "slope", 10.0),
-             BiasTerm("shadowBias (constant)", v, "depth_range", 10.0 * step),
+             BiasTerm("shadowBias", v, "depth_range", 10.0 * step),  # the same setting's constant factor
              BiasTerm("receiver lift 0.0001", 1e-4, "depth_range", 1.0),
              BiasTerm("normalOffsetBias", float(PROFILES[0].setting("normalOffsetBias").clamped(s["normalOffsetBias"])), "normal"))
-    rule = BiasRule(terms, CULL[s["material.cull"]])
+    rule = BiasRule(terms, CULL[s["material.cull"]], resolution=per)  # the sphere's cube: its side w·per is the extent taken
     bytes_per = 2 if kind.endswith("16F") else 4 * (2 if "VSM" in kind else 1)
     return Pipeline(tuple(a), tuple(b), "centroid", "bevy", per, rule, _filter(s), layout="separate" if k == 1 else f"atlas 2x2 of {res}",
                     blend=float(PROFILES[0].setting("cascadeBlend").clamped(s["cascadeBlend"])), stable=True,

@@ -63,6 +63,7 @@ KINDS = ("depth", "depth_texels", "depth_range", "normal", "normal_texels", "acr
 SCALES = ("one", "sin", "one-minus-cos")
 FACES = ("front", "back", "both")
 TYPES = ("float", "int", "bool", "choice")
+ROLES = ("cascades", "size", "split", "distance", "bias", "filter", "stable", "blend")
 
 
 @dataclass(frozen=True)
@@ -263,14 +264,28 @@ class BiasRule:
     acne without bias), ``back`` (the side away from the light casts: a closed or one-sided
     lit surface compares against the far side of its object, so it does not acne; the gap at
     a contact and light leaks move instead) or ``both``.
+
+    ``resolution`` (texels per side of each map, 0: none): where it is set, a ``depth_range``
+    term given no ``extent`` takes the map's side w·resolution for the cascade's depth range
+    (the cube around a sphere fit: exact for Babylon.js's stabilized cascades and PlayCanvas;
+    the tight box's own range along the light differs: :func:`aliasing.engines.pipeline.extents`).
     """
 
     terms: tuple[BiasTerm, ...] = ()
     faces: str = "front"
+    resolution: int = 0
 
     def __post_init__(self) -> None:
         check.choice(self.faces, "faces", FACES)
         object.__setattr__(self, "terms", tuple(self.terms))
+        if isinstance(self.resolution, bool) or not isinstance(self.resolution, (int, np.integer)) or self.resolution < 0:
+            raise ValueError(f"resolution must be a whole number of texels >= 0, got {self.resolution!r}")
+
+    def _extent(self, texel: ArrayLike, extent: ArrayLike | None) -> ArrayLike | None:
+        """``extent``, or the map's side w·resolution where the rule has one and a depth_range term needs it."""
+        if extent is None and self.resolution and self.needs_extent:
+            return check.positive(texel, "texel") * self.resolution
+        return extent
 
     def term(self, key: str) -> BiasTerm:
         for t in self.terms:
@@ -290,6 +305,7 @@ class BiasRule:
         ``extent``: the cascade's map depth range along the light [world units], for rules with
         ``depth_range`` terms (:attr:`needs_extent`).
         """
+        extent = self._extent(texel, extent)
         total = sum((t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent)) for t in self.terms), np.zeros(()))
         total = np.broadcast_to(total, np.broadcast_shapes(np.shape(texel), np.shape(angle), np.shape(azimuth))) if not self.terms else total
         return float(total) if np.ndim(total) == 0 else np.asarray(total, float)
@@ -297,6 +313,7 @@ class BiasRule:
     def contact(self, texel: ArrayLike, extent: ArrayLike | None = None) -> float | Array:
         """The part along the light [world units]: what opens a lit gap at the foot of a caster."""
         w = check.positive(texel, "texel")
+        extent = self._extent(w, extent)
         total = np.zeros(np.broadcast_shapes(w.shape, np.shape(extent)) if extent is not None else w.shape)
         for t in self.terms:
             if t.contact:
@@ -309,15 +326,74 @@ class BiasRule:
 
         A bound from below where the term's scale is positive, from above where it is negative
         (three.js's ``shadow.bias``); ±inf where the term cannot help (a normal offset on a
-        receiver facing the light, θ = 0).
+        receiver facing the light, θ = 0).  A setting that acts through several terms (PlayCanvas's
+        ``shadowBias``: a slope and a constant rasterizer bias) counts with all of them.
         """
-        t = self.term(key)
+        self.term(key)  # the ValueError with a did-you-mean
         need = check.finite(need, "need")
-        rest = np.asarray(self.depth(texel, angle, azimuth, extent)) - t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent))
-        per = np.asarray(t.per_unit(texel, angle, azimuth, extent), float)
+        extent = self._extent(texel, extent)
+        own = [t for t in self.terms if t.key == key]
+        per = sum((np.asarray(t.per_unit(texel, angle, azimuth, extent), float) for t in own), np.zeros(()))
+        part = sum((t.value * np.asarray(t.per_unit(texel, angle, azimuth, extent)) for t in own), np.zeros(()))
+        rest = np.asarray(self.depth(texel, angle, azimuth, extent)) - part
         with np.errstate(divide="ignore", invalid="ignore"):
             out = np.where(per != 0, (need - rest) / np.where(per != 0, per, 1.0), np.where(need - rest <= 0, 0.0, np.inf))
         return float(out) if np.ndim(out) == 0 else out
+
+
+@dataclass(frozen=True)
+class Tunable:
+    """A setting that :func:`aliasing.tune.tune` may choose, and the values it searches.
+
+    Attributes
+    ----------
+    key : str
+        The setting's key (a :class:`Setting` of the same profile).
+    role : str
+        What it does to the shadows (:data:`ROLES`): ``cascades`` (their count), ``size`` (texels
+        per side of each map), ``split`` (the split mode or a split parameter), ``distance``
+        (where shadows end), ``bias`` (a term of the bias rule: set to its minimum, not searched),
+        ``filter``, ``stable`` (stabilization) or ``blend`` (the blend band).
+    values : tuple
+        The values searched, for discrete settings (map sizes, counts, modes, booleans).
+    range : tuple or None
+        ``(low, high)`` searched for a continuous setting (a split λ or fraction).
+    step : float
+        The resolution of a grid over ``range`` (the exhaustive grid of the tests; the search
+        itself refines below it).
+    when : tuple of (key, value)
+        The other settings this one acts under (three.js's λ only with ``mode: "custom"``).
+    """
+
+    key: str
+    role: str
+    values: tuple = ()
+    range: tuple | None = None
+    step: float = 0.0
+    when: tuple = ()
+
+    def __post_init__(self) -> None:
+        check.choice(self.role, "role", ROLES)
+        object.__setattr__(self, "values", tuple(self.values))
+        object.__setattr__(self, "when", tuple(tuple(w) for w in self.when))
+        if self.range is not None:
+            lo, hi = self.range
+            if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+                raise ValueError(f"tunable {self.key!r}: range must be (low, high) with low < high, got {self.range!r}")
+            if not self.step > 0:
+                raise ValueError(f"tunable {self.key!r}: a continuous range needs a step > 0, got {self.step!r}")
+
+    def active(self, settings: Mapping[str, Any]) -> bool:
+        """Whether the setting acts under ``settings`` (every ``when`` pair holds)."""
+        return all(settings.get(k) == v for k, v in self.when)
+
+    def grid(self) -> tuple:
+        """The values of an exhaustive grid: ``values``, or ``range`` at ``step`` (ends included)."""
+        if self.range is None:
+            return self.values
+        lo, hi = self.range
+        n = int(round((hi - lo) / self.step))
+        return tuple(float(v) for v in np.linspace(lo, hi, n + 1))
 
 
 @dataclass(frozen=True)
@@ -447,6 +523,8 @@ class Profile:
         The snippet's language.
     source : str
         Where the engine's code was read (repository and commit or npm package and version).
+    tunable : tuple of Tunable
+        The settings :func:`aliasing.tune.tune` may choose, with the values it searches.
     """
 
     engine: str
@@ -459,6 +537,7 @@ class Profile:
     language: str = ""
     source: str = ""
     npm: str = ""
+    tunable: tuple = ()
     _by_key: Mapping[str, Setting] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -467,6 +546,10 @@ class Profile:
             raise ValueError(f"{self.engine}@{self.release}: duplicate setting keys")
         object.__setattr__(self, "settings", tuple(self.settings))
         object.__setattr__(self, "_by_key", MappingProxyType({s.key: s for s in self.settings}))
+        object.__setattr__(self, "tunable", tuple(self.tunable))
+        for t in self.tunable:
+            if t.key not in self._by_key:
+                raise ValueError(f"{self.engine}@{self.release}: tunable {t.key!r} is not one of its settings")
 
     @property
     def name(self) -> str:

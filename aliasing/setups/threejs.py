@@ -35,6 +35,13 @@ The filter (PCFShadowMap): 5 Vogel-disk taps within ``shadow.radius`` texels (th
 √(4.5/5) = 0.949 of it), each a hardware 2×2 comparison, rotated per pixel by interleaved
 gradient noise.
 
+r184 and r187 differ in the split only (``CSMFrustum.split``, docs/ERRATA.md G1): the filter,
+the bias and the face rule are the same code (r187 adds a reversed-depth branch that subtracts
+the bias from the reversed depth: the same lift).  ``mode: 'custom'`` runs any
+``customSplitsCallback``; the profile models the callback that lerps uniform and logarithmic
+breaks by ``customSplitsLambda`` (the ``practical`` mode's own formula with another λ).  Not
+modelled: r187's ``examples/jsm/lights/SunLight.js`` (a new two-cascade sun light in one atlas).
+
 Example
 -------
 >>> from aliasing.setups import build
@@ -51,7 +58,7 @@ from typing import Any
 import numpy as np
 
 from .. import partitioning
-from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
+from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
 
 CSM = "examples/jsm/csm/CSM.js"
 SHADOW = "src/lights/LightShadow.js"
@@ -149,6 +156,23 @@ def fade_margins(ends: np.ndarray, near: float, camera_far: float, max_far: floa
     return 0.25 * (np.asarray(ends, float) / (big - near)) ** 2 * (big - near)
 
 
+def blend_bands(breaks: np.ndarray, near: float, shadow_far: float) -> tuple:
+    """The eye-depth range (start, end) of CSM's fade band around each inner break [world units].
+
+    ``CSMShader.js``: in linear depth z/(shadowFar − cameraNear) the cascades meet at the breaks b
+    (split/shadowFar) and overlap by 0.25·b² around each: the band is b ∓ 0.125·b², times
+    (shadowFar − near) in eye depth.
+
+    Example
+    -------
+    >>> blend_bands(np.array([0.5]), 0.0, 100.0)
+    ((46.875, 53.125),)
+    """
+    b = np.asarray(breaks, float)
+    half = 0.125 * b**2
+    return tuple((float((x - h) * (shadow_far - near)), float((x + h) * (shadow_far - near))) for x, h in zip(b, half))
+
+
 def _build(split_form: str):
     def build(s: Mapping[str, Any], camera) -> Pipeline:
         side = faces(s)
@@ -165,6 +189,8 @@ def _build(split_form: str):
                             depth_range=(near, far), notes=("the shadow camera is a fixed world box: shadows outside it are lost",))
         k = int(_or(s["cascades"], 3))
         res = int(_or(s["shadowMapSize"], 2048))
+        if res < 3:
+            raise ValueError(f"shadowMapSize must be 0 (read as 2048) or at least 3 texels for the toolkit's cascade fits, got {res}")
         bias = float(_or(s["shadowBias"], 0.000001))
         light_near, light_far = float(_or(s["lightNear"], 1.0)), float(_or(s["lightFar"], 2000.0))
         if not light_far > light_near:
@@ -190,7 +216,7 @@ def _build(split_form: str):
         if s["fade"]:
             grow = tuple(fade_margins(ends[1:], camera.near, camera.far, max_far))
             notes.append("fade blends across 0.25·b²·(far − near) of eye depth around each break b (CSMShader.js), "
-                         "not a fixed fraction of the cascade: the blend band is not modelled (blend 0)")
+                         "not a fixed fraction of the cascade (blend 0): blend_bands() gives the bands")
         return Pipeline(tuple(ends[:-1]), tuple(ends[1:]), "diagonal-unrounded", "bevy", res, rule, _filter(s),
                         layout="separate", blend=0.0, stable=True, depth_range=(light_near, light_far), grow=grow,
                         split=f"threejs-csm{'@r184' if split_form == 'r184' else ''}" if mode == "practical" else mode, notes=tuple(notes))
@@ -231,11 +257,30 @@ def _js(v: Any) -> str:
     return f"{v:g}" if isinstance(v, float) else str(v)
 
 
+_CSM = (("class", "CSM"),)
+_LIGHT = (("class", "DirectionalLight"),)
+#: What :func:`aliasing.tune.tune` may set: the CSM addon's count, map size, split (the named modes
+#: and a custom callback's λ), where shadows end, the bias pair and the filter; one DirectionalLight's
+#: map size and biases (its fixed box is the user's).  ``fade`` is not searched: its grown boxes
+#: are not in the fit (the profile's notes).
+TUNABLE = (
+    Tunable("cascades", "cascades", values=tuple(range(1, 9)), when=_CSM),
+    Tunable("shadowMapSize", "size", values=(512, 1024, 2048, 4096, 8192, 16384), when=_CSM),
+    Tunable("mode", "split", values=("practical", "uniform", "logarithmic", "custom"), when=_CSM),
+    Tunable("customSplitsLambda", "split", range=(0.0, 1.0), step=0.05, when=(("class", "CSM"), ("mode", "custom"))),
+    Tunable("maxFar", "distance", when=_CSM),
+    Tunable("shadowBias", "bias", when=_CSM),
+    Tunable("shadow.normalBias", "bias"),
+    Tunable("shadow.mapSize.width", "size", values=(512, 1024, 2048, 4096, 8192, 16384), when=_LIGHT),
+    Tunable("shadow.bias", "bias", when=_LIGHT),
+    Tunable("renderer.shadowMap.type", "filter", values=("PCFShadowMap", "BasicShadowMap")),
+)
+
 PROFILES = (
     Profile("threejs", "three.js", "r187", _settings("0.187.0"), _build("r185"), releases=("r185", "r186", "0.187.0", "0.187"),
             snippet=snippet, language="javascript", source="npm three 0.187.0 (examples/jsm/csm, src/lights, src/renderers/webgl)",
-            npm="three@0.187.0"),
+            npm="three@0.187.0", tunable=TUNABLE),
     Profile("threejs", "three.js", "r184", _settings("0.184.0"), _build("r184"), releases=("0.184.0", "0.184"),
             snippet=snippet, language="javascript", source="npm three 0.184.0 (CSMFrustum.split lerps by the break itself)",
-            npm="three@0.184.0"),
+            npm="three@0.184.0", tunable=TUNABLE),
 )

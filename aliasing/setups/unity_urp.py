@@ -95,7 +95,7 @@ def _filter(s: Mapping[str, Any]) -> Filter:
     quality = _soft(s)
     if quality is None:
         return Filter("pcf", 2, 0.0, note="hard shadows: one hardware 2×2 comparison")
-    return Filter("pcf", PCF[quality], KERNEL[quality], note=f"{quality}: {PCF[quality]}×{PCF[quality]} tent filter (mobile platforms use 4 taps)")
+    return Filter("pcf", PCF[quality], KERNEL[quality], note=f"{quality}: {PCF[quality]}×{PCF[quality]} tent filter (GetShadowBias: kernel radius {KERNEL[quality]:g})")
 
 
 def layout(resolution: int, k: int) -> tuple[int, int, int, str]:

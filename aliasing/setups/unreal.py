@@ -36,7 +36,8 @@ from .. import partitioning
 from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
 
 COMPONENT = "Engine/Source/Runtime/Engine/Classes/Components/DirectionalLightComponent.h (copies in the index; Epic's repository is private)"
-LIGHTCOMP = "Engine/Source/Runtime/Engine/Classes/Components/LightComponent.h (copies in the index)"
+LIGHTCOMP = ("Engine/Source/Runtime/Engine/Classes/Components/LightComponent.h ULightComponent (ShadowBias 0.5, ShadowSlopeBias 0.5: "
+             "read from re-implementations of its header in the index, not from Epic's file)")
 RENDERING = "Engine/Source/Runtime/Renderer/Private/ShadowRendering.cpp (UE5, a copy in the index)"
 CVAR = "console variable"
 FIT, SNAP = "sphere", "origin"
@@ -52,15 +53,18 @@ SETTINGS = (
             doc="1: depth bias in texels of each cascade; 0: the same normalized bias in every cascade"),
     Setting("ShadowBias", 0.5, "", "float", (0.0, 10.0), source=LIGHTCOMP, doc="scales r.Shadow.CSMDepthBias (and the slope bias)"),
     Setting("ShadowSlopeBias", 0.5, "", "float", (0.0, 10.0), source=LIGHTCOMP, doc="scales r.Shadow.CSMSlopeScaleDepthBias"),
-    Setting("r.Shadow.MaxCSMResolution", 2048, "texels", "int", (1, 16384), source=f"{CVAR} (Epic default 2048)", doc="side of each cascade's map"),
+    Setting("r.Shadow.MaxCSMResolution", 2048, "texels", "int", (4, 16384),
+            source="Engine/Source/Runtime/Engine/Private/Components/DirectionalLightComponent.cpp CVarShadowMaxCSMShadowResolution (a copy in the index)",
+            doc="side of each cascade's map (range 4 to the hardware limit)"),
     Setting("r.Shadow.CSMDepthBias", 10.0, "", "float", (None, None), source=f"{RENDERING} CVarCSMShadowDepthBias", doc="constant depth bias of CSM"),
     Setting("r.Shadow.CSMSlopeScaleDepthBias", 3.0, "", "float", (None, None), source=f"{RENDERING} CVarCSMShadowSlopeScaleDepthBias",
             doc="slope-scaled depth bias of CSM"),
-    Setting("r.Shadow.ShadowMaxSlopeScaleDepthBias", 1.0, "", "float", (0.0, None), source=f"{CVAR} (ShadowDepthVertexShader.usf MaxSlopeDepthBias)",
+    Setting("r.Shadow.ShadowMaxSlopeScaleDepthBias", 1.0, "", "float", (0.0, None), source=f"{RENDERING} CVarShadowMaxSlopeScaleDepthBias",
             doc="clamp of the slope tan θ"),
-    Setting("r.Shadow.DistanceScale", 1.0, "", "float", (0.0, None), clamp=(0.0, 2.0), source=f"{CVAR} (GetCSMMaxDistance clamps it to [0, 2])",
+    Setting("r.Shadow.DistanceScale", 1.0, "", "float", (0.0, None), clamp=(0.0, 2.0),
+            source=f"{CVAR} (GetCSMMaxDistance clamps it to [0, 2]: seen in a re-implementation of DirectionalLightComponent.cpp, not in Epic's file)",
             doc="scales DynamicShadowDistanceMovableLight"),
-    Setting("r.Shadow.Virtual.Enable", 0, "", "int", (0, 1), source=f"{CVAR} (new UE5 projects set 1 in DefaultEngine.ini)",
+    Setting("r.Shadow.Virtual.Enable", 0, "", "int", (0, 1), source=f"{CVAR} (code default 0 assumed, not read; new UE5 projects set 1 in DefaultEngine.ini)",
             doc="1: virtual shadow maps instead of CSM (aliasing.engines.vsm)"),
 )
 

@@ -54,7 +54,8 @@ function defaults() {
     depthClamp: gen.depthClamp, autoCalcDepthBounds: gen.autoCalcDepthBounds, bias: gen.bias, normalBias: gen.normalBias,
     filter: filterNames[gen.filter], filteringQuality: qualityNames[gen.filteringQuality],
     contactHardeningLightSizeUVRatio: gen.contactHardeningLightSizeUVRatio, frustumEdgeFalloff: gen.frustumEdgeFalloff,
-    forceBackFacesOnly: gen.forceBackFacesOnly, "material.backFaceCulling": material.backFaceCulling,
+    forceBackFacesOnly: gen.forceBackFacesOnly, darkness: gen.darkness, depthScale: gen.depthScale, useKernelBlur: gen.useKernelBlur,
+    blurKernel: gen.blurKernel, blurBoxOffset: gen.blurBoxOffset, blurScale: gen.blurScale, "material.backFaceCulling": material.backFaceCulling,
     "material.cullBackFaces": material.cullBackFaces, "light.shadowFrustumSize": light.shadowFrustumSize,
     "light.shadowMinZ": light.shadowMinZ ?? null, "light.shadowMaxZ": light.shadowMaxZ ?? null,
   };
@@ -67,6 +68,7 @@ function defaults() {
   const clamps = {};
   for (const v of [1, 6, -3]) { gen.numCascades = v; clamps[`numCascades=${v}`] = gen.numCascades; }
   for (const v of [2, -1, 0.3]) { gen.lambda = v; clamps[`lambda=${v}`] = gen.lambda; }
+  for (const v of [3, -0.5, 0.4]) { gen.darkness = v; clamps[`darkness=${v}`] = gen.darkness; }
   for (const v of [0.01, 900, 250]) { gen.shadowMaxZ = v; clamps[`shadowMaxZ=${v}`] = gen.shadowMaxZ; } // below minZ, above maxZ: ignored
   for (const [lo, hi] of [[0.7, 0.3], [-1, 2], [0.1, 0.6]]) { gen.setMinMaxDistance(lo, hi); clamps[`minMax=${lo},${hi}`] = [gen.minDistance, gen.maxDistance]; }
   gen.filter = B.ShadowGenerator.FILTER_EXPONENTIALSHADOWMAP; clamps.csmFilterESM = filterNames[gen.filter];

@@ -28,8 +28,8 @@ const G = await src("platform/graphics/constants.js");
 const device = new NullGraphicsDevice({ width: 1, height: 1 });
 device.maxTextureSize = 16384;
 const system = { app: { graphicsDevice: device, scene: { clusteredLightingEnabled: false } } };
-const KEYS = ["numCascades", "cascadeDistribution", "cascadeBlend", "shadowDistance", "shadowResolution", "shadowBias", "normalOffsetBias",
-  "shadowType", "vsmBlurSize", "vsmBias", "shadowSamples", "penumbraSize"];
+const KEYS = ["castShadows", "numCascades", "cascadeDistribution", "cascadeBlend", "shadowDistance", "shadowResolution", "shadowBias",
+  "normalOffsetBias", "shadowType", "vsmBlurSize", "vsmBlurMode", "vsmBias", "shadowSamples", "penumbraSize", "penumbraFalloff", "shadowIntensity"];
 const TYPES = ["SHADOW_PCF3_32F", "SHADOW_VSM_16F", "SHADOW_VSM_32F", "SHADOW_PCF5_32F", "SHADOW_PCF1_32F", "SHADOW_PCSS_32F",
   "SHADOW_PCF1_16F", "SHADOW_PCF3_16F", "SHADOW_PCF5_16F"];
 const CULLS = ["CULLFACE_NONE", "CULLFACE_BACK", "CULLFACE_FRONT"];
@@ -37,7 +37,7 @@ const CULLS = ["CULLFACE_NONE", "CULLFACE_BACK", "CULLFACE_FRONT"];
 function component(settings = {}) {
   const c = new LightComponent(system, new Entity("sun"));
   for (const [k, v] of Object.entries(settings)) {
-    if (k === "shadowType") c.shadowType = C[v];
+    if (k === "shadowType" || k === "vsmBlurMode") c[k] = C[v];
     else if (KEYS.includes(k)) c[k] = v;
   }
   return c;
@@ -47,6 +47,7 @@ function defaults() {
   const c = component();
   const values = Object.fromEntries(KEYS.map((k) => [k, c[k]]));
   values.shadowType = TYPES.find((n) => C[n] === c.shadowType);
+  values.vsmBlurMode = ["BLUR_BOX", "BLUR_GAUSSIAN"].find((n) => C[n] === c.vsmBlurMode);
   values["material.cull"] = CULLS.find((n) => G[n] === new StandardMaterial().cull);
   const light = c.light;
   const bias = { light: light.shadowBias, constant: light.shadowDepthState.depthBias, slope: light.shadowDepthState.depthBiasSlope };

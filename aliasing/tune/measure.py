@@ -1,0 +1,184 @@
+"""The objective and the constraints of one setup: what :func:`aliasing.tune.tune` measures.
+
+The objective is the worst perspective error over the receivers and the sun band [px per
+texel]: at eye depth d in cascade k, a map side W_k over R texels seen by an image of H rows
+with vertical half angle θ_y has m = W_k·H / (2 tan θ_y · d · R) (Lloyd et al. 2006, eq. 2
+with a uniform map), largest at the cascade's first receiver d = max(u_k, receivers' near).
+
+Constraints, measured as :func:`aliasing.check.check` measures them: no acne up to the
+steepest receiver (ground tilted ``max_slope`` away from the lowest sun: the angle to the light
+θ = 90° − α_low + slope, up to :data:`MAX_ANGLE`) in each cascade's largest texel with the
+filter's kernel; the lit gap at a caster's foot (:func:`aliasing.bias.lit_gap` of the rule's
+contact part, at the lowest sun) in pixels at the middle of the cascade's receivers; the texels
+of all maps (k·R²); shadows reaching the farthest receiver; a stabilized fit for a moving camera.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import _validation as check
+from ..bias import lit_gap, plane_bias
+from ..engines import pipeline as engine_pipeline
+from ..raster.draw.lookup import PCF_MAX
+from ..setups import Setup
+
+#: Limits by name, as :attr:`aliasing.tune.Tuned.binding` names them.
+LIMITS = ("max_texels", "max_gap_px", "max_slope", "moving", "receivers")
+#: Sun elevations sampled over the band.
+SUN_SAMPLES = 7
+#: The steepest receiver sampled: an angle to the light above this is too oblique to be lit
+#: (N·L < 0.09) and is left out, as :func:`aliasing.check.check` leaves it out [deg].
+MAX_ANGLE = 85.0
+AZIMUTH = 90.0  # a ground receiver's depth changes along the map's t axis (the light camera's up is the world's up)
+
+@dataclass(frozen=True)
+class Limits:
+    """What the tuned settings must meet (validated; see :func:`tune`)."""
+
+    receivers: tuple[float, float]
+    max_texels: int
+    max_gap_px: float
+    max_slope: float
+    moving: bool
+
+
+@dataclass(frozen=True)
+class Measure:
+    """One setup measured against the limits: per cascade and in all.
+
+    Attributes
+    ----------
+    error : ndarray
+        Worst perspective error per cascade over the receivers and the sun band [px per texel]
+        (NaN where no receiver uses the cascade).
+    texel : ndarray
+        Each cascade's largest world texel over the sun band [world units].
+    need : ndarray
+        The depth bias each cascade needs at the steepest receiver [world units].
+    have : ndarray
+        The depth bias the settings give there [world units].
+    gap_px : ndarray
+        The lit gap at a caster's foot per cascade, in pixels at its nearest receiver.
+    objective : float
+        ``max(error)``.
+    texels : int
+        Texels of all maps (k·R²).
+    stable : bool
+        Whether the fit is stabilized.
+    covers : bool
+        Whether shadows reach the farthest receiver.
+    """
+
+    error: np.ndarray
+    texel: np.ndarray
+    need: np.ndarray
+    have: np.ndarray
+    gap_px: np.ndarray
+    objective: float
+    texels: int
+    stable: bool
+    covers: bool
+
+    def violations(self, limits: Limits) -> tuple[str, ...]:
+        """The limits this setup breaks (empty when it meets them all)."""
+        out = []
+        if self.texels > limits.max_texels:
+            out.append("max_texels")
+        if np.any(self.have < self.need * (1 - 1e-9) - 1e-12):
+            out.append("max_slope")
+        if np.nanmax(self.gap_px, initial=0.0) > limits.max_gap_px * (1 + 1e-9):
+            out.append("max_gap_px")
+        if limits.moving and not self.stable:
+            out.append("moving")
+        if not self.covers:
+            out.append("receivers")
+        return tuple(out)
+
+
+# -- measuring -------------------------------------------------------------------------------
+
+
+def lookup(pipe) -> str:
+    """The filter's kernel as a lookup of :func:`aliasing.bias.plane_bias` (its taps, as check takes them)."""
+    return f"pcf{min(max(1, int(pipe.filter.taps)), PCF_MAX)}"
+
+
+def steepest(setup: Setup, slope: float) -> float:
+    """θ of the steepest lit receiver [deg]: ground tilted ``slope`` away from the lowest sun."""
+    return min(90.0 - setup.sun.elevation[0] + slope, MAX_ANGLE)
+
+
+def measure(setup: Setup, limits: Limits) -> Measure:
+    """The objective and the constraints of one setup (module docstring).
+
+    Example
+    -------
+    >>> from aliasing import setups
+    >>> s = setups.build("threejs", {"cascades": 4}, "near=0.1,far=500,fov=50,aspect=16:9,height=1080", "15..60")
+    >>> round(measure(s, limits(s)).objective, 1)      # three.js's λ = 0.5, 10 cm in front of the eye
+    677.2
+    """
+    pipe, cam = setup.pipeline, setup.camera
+    lights = setup.sun.direction(setup.sun.elevations(SUN_SAMPLES))
+    rn, rf = limits.receivers
+    t = math.tan(math.radians(cam.fov) / 2)
+    if pipe.fit == "fixed":
+        texel = np.array([max(pipe.box) / pipe.resolution])
+        u, v = np.array([cam.near]), np.array([cam.far])
+    else:
+        r = engine_pipeline.result(pipe, cam, lights)  # the texels of engine_pipeline.texels, once
+        texel = np.maximum(r.width_x, r.width_y).max(axis=0) / pipe.resolution
+        u, v = (np.asarray(a, float) for a in r.used)
+    used = (v > rn) & (u < rf)
+    d = np.maximum(u, rn)
+    mid = 0.5 * (np.maximum(pipe.near_i, rn) + np.minimum(pipe.far_i, rf))  # where check measures the gap
+    with np.errstate(invalid="ignore", divide="ignore"):
+        error = np.where(used, texel * cam.height / (2 * t * d), np.nan)  # eq. (2): W/R over the pixel 2 t d/H
+    angle = steepest(setup, limits.max_slope)
+    rule = pipe.bias
+    if rule.faces == "back":
+        need = np.full_like(texel, -np.inf)  # lit surfaces compare against the far side: no acne whatever the bias
+    else:
+        need = np.asarray(plane_bias(texel, angle, AZIMUTH, lookup(pipe)).depth, float) * np.ones_like(texel)
+    have = np.asarray(rule.depth(texel, angle, AZIMUTH), float) * np.ones_like(texel)
+    contact = np.maximum(np.asarray(rule.contact(texel), float), 0.0)
+    gap = np.asarray(lit_gap(contact, setup.sun.elevation[0]), float)  # worst at the lowest sun
+    gap_px = np.where(used, gap * cam.height / (2 * t * mid), np.nan)
+    covers = float(np.max(pipe.far_i)) >= rf * (1 - 1e-9) or pipe.fit == "fixed"
+    return Measure(error, texel, need, have, gap_px, float(np.nanmax(error)), int(pipe.k * pipe.resolution ** 2),
+                   bool(pipe.stable), bool(covers))
+
+
+# -- limits ----------------------------------------------------------------------------------
+
+
+def limits(setup: Setup, *, receivers: Iterable[float] | None = None, max_texels: int | None = None, max_gap_px: float | None = None,
+           max_slope: float = 0.0, moving: bool = False) -> Limits:
+    """The validated :class:`Limits` of :func:`tune` (defaults filled from ``setup``)."""
+    cam = setup.camera
+    if receivers is None:  # where the setup casts shadows now: the camera's near to the shadows' end
+        rn, rf = cam.near, min(cam.far, float(max(setup.pipeline.far_i)))
+    else:
+        try:
+            rn, rf = (float(x) for x in receivers)
+        except (TypeError, ValueError):
+            raise ValueError(f"receivers must be (near, far) eye depths [world units], got {receivers!r}") from None
+        if not (math.isfinite(rn) and math.isfinite(rf) and 0 < rn < rf):
+            raise ValueError(f"receivers must be NEAR..FAR eye depths with 0 < NEAR < FAR [world units], got {rn:g}..{rf:g}")
+        if rn >= cam.far or rf <= cam.near:
+            raise ValueError(f"receivers {rn:g}..{rf:g} must overlap the camera's near..far {cam.near:g}..{cam.far:g}")
+        rn, rf = max(rn, cam.near), min(rf, cam.far)
+    pipe = setup.pipeline
+    texels = check.whole(max_texels, "max_texels", 1) if max_texels is not None else int(pipe.k * pipe.resolution ** 2)
+    gap = math.inf if max_gap_px is None else float(check.scalar(max_gap_px, "max_gap_px"))
+    if not gap >= 0 or math.isnan(gap):
+        raise ValueError(f"max_gap_px must be a number of pixels >= 0, got {max_gap_px!r}")
+    slope = float(check.scalar(max_slope, "max_slope"))
+    if not 0 <= slope < 90:
+        raise ValueError(f"max_slope must be in [0, 90) degrees from the ground, got {max_slope!r}")
+    return Limits((rn, rf), texels, gap, slope, check.flag(moving, "moving"))

@@ -1,0 +1,531 @@
+"""The search: an engine's own settings that minimise the worst perspective error within limits.
+
+The objective and the constraints are those of :mod:`aliasing.tune.measure`.  Each kind of
+setting is set the cheapest way that is exact:
+
+* map size: the largest the engine allows within the texel budget (the error falls as 1/R, and
+  so do the texel, the bias it needs and the gap that bias opens: the largest size dominates);
+* where shadows end (three.js ``maxFar``): the receivers' far (any farther spreads texels over
+  depths nobody sees);
+* biases: not searched but set to their minimum, the closed form: the bias that the steepest
+  receiver needs in each cascade's largest texel (:func:`aliasing.bias.plane_bias`, the filter's
+  kernel included), converted to the engine's units by the profile's
+  :meth:`aliasing.setups.BiasRule.minimal`, the extreme over the cascades, rounded to four
+  significant digits on the safe side; where the engine has several bias settings, each is
+  tried alone (the others at zero) and the one whose lit gap is smallest kept;
+* cascade counts, split modes, filters, stabilization: enumerated over the values of the
+  profile's ``tunable`` (:class:`aliasing.setups.Tunable`);
+* continuous split parameters (λ, split fractions): a scan at the profile's step, then a bounded
+  Brent search (:func:`scipy.optimize.minimize_scalar`) around the best point of the scan, one
+  parameter at a time until none moves.
+
+Among equal errors the search keeps the smaller gap, then the fewer changed settings.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from scipy import optimize
+
+from ..setups import Setup, Tunable
+from .measure import AZIMUTH, LIMITS, Limits, Measure, limits, measure, steepest
+
+_DIGITS = 4  # significant digits of a bias setting, rounded on the safe side
+
+
+@dataclass(frozen=True)
+class Tuned:
+    """What :func:`tune` found.
+
+    Attributes
+    ----------
+    setup : Setup
+        The tuned setup (the engine's own settings).
+    start : Setup
+        The setup it started from (the engine's defaults with the settings given).
+    objective : float
+        Its worst perspective error over the receivers and the sun band [px per texel].
+    binding : tuple of str
+        The limits that bind (:data:`LIMITS`): where all are met, those whose relaxing would
+        lower the objective; where they cannot all be met, those the closest setup breaks.
+    feasible : bool
+        Whether every limit is met.
+    tradeoff : tuple of dict
+        Where acne and the gap limit conflict: the smallest gap [px] reachable per steepest
+        acne-free slope [deg] (``{"slope": s, "gap_px": g}``); empty otherwise.
+    limits : Limits
+        The limits searched under.
+    measure, before : Measure
+        The tuned and the starting setup measured.
+    changed : dict
+        The settings that differ from the start.
+    evaluations : int
+        Setups measured.
+    """
+
+    setup: Setup
+    start: Setup
+    objective: float
+    binding: tuple
+    feasible: bool
+    tradeoff: tuple
+    limits: Limits
+    measure: Measure
+    before: Measure
+    changed: dict = field(default_factory=dict)
+    evaluations: int = 0
+
+    @property
+    def settings(self) -> dict[str, Any]:
+        """Every setting of the tuned setup, by the engine's keys."""
+        return dict(self.setup.settings)
+
+    def snippet(self) -> str:
+        """Code in the engine's language that sets the tuned settings."""
+        snip = self.setup.profile.snippet
+        return snip(self.setup.settings) if snip else "\n".join(f"{k} = {v!r}" for k, v in self.changed.items())
+
+
+# -- the search ------------------------------------------------------------------------------
+
+
+class _Search:
+    """One search: the setups measured, cached by their settings."""
+
+    def __init__(self, start: Setup, lim: Limits, fixed: frozenset):
+        self.start, self.limits, self.fixed = start, lim, fixed
+        self.profile = start.profile
+        self.cache: dict = {}
+
+    def tunables(self, settings: Mapping[str, Any], role: str) -> list[Tunable]:
+        return [t for t in self.profile.tunable if t.role == role and t.key not in self.fixed and t.active(settings)]
+
+    def setup(self, settings: Mapping[str, Any]) -> Setup | None:
+        key = tuple(sorted((k, repr(v)) for k, v in settings.items()))
+        if key not in self.cache:
+            try:
+                s = Setup(self.profile, dict(settings), self.start.camera, self.start.sun)
+                self.cache[key] = (s, measure(s, self.limits))
+            except ValueError:
+                self.cache[key] = None
+        return self.cache[key]
+
+    def objective(self, settings: Mapping[str, Any]) -> float:
+        got = self.setup(settings)
+        return math.inf if got is None else got[1].objective
+
+    # closed forms --------------------------------------------------------------------------
+
+    def distance(self, settings: dict) -> dict:
+        """Shadows end at the farthest receiver (left alone where they already do)."""
+        out = dict(settings)
+        got = self.setup(out)
+        if got is not None and math.isclose(max(got[0].pipeline.far_i), self.limits.receivers[1], rel_tol=1e-12):
+            return out
+        for t in self.tunables(out, "distance"):
+            try:
+                out[t.key] = self.profile.setting(t.key).coerce(float(self.limits.receivers[1]))
+            except ValueError:
+                pass
+        return out
+
+    def size(self, settings: dict) -> dict:
+        """The largest map size within the texel budget (the smallest where none fits)."""
+        out = dict(settings)
+        for t in self.tunables(out, "size"):
+            out[t.key] = min(t.values)
+            for value in sorted(t.values, reverse=True):  # texels grow with the size: the first that fits
+                got = self.setup({**out, t.key: value})
+                if got is not None and got[1].texels <= self.limits.max_texels:
+                    out[t.key] = value
+                    break
+        return out
+
+    def splits(self, settings: dict) -> dict:
+        """Continuous split parameters: a scan at the profile's step, then bounded Brent, one at a time."""
+        out = dict(settings)
+        free = self.tunables(out, "split")
+        free = [t for t in free if t.range is not None]
+        if not free:
+            return out
+        best = self.objective(out)
+        for _ in range(4):
+            moved = False
+            for t in free:
+                grid = t.grid()
+                values = [self.objective({**out, t.key: g}) for g in grid]
+                i = int(np.argmin(values))
+                lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]
+                x, f = grid[i], values[i]
+                if hi > lo and math.isfinite(f):
+                    r = optimize.minimize_scalar(lambda v, k=t.key: self.objective({**out, k: float(v)}), bounds=(lo, hi), method="bounded",
+                                                 options={"xatol": 1e-5 * (t.range[1] - t.range[0])})
+                    if r.fun < f:
+                        x, f = float(r.x), float(r.fun)
+                if f < best * (1 - 1e-12):
+                    moved = moved or not math.isclose(x, out.get(t.key), rel_tol=1e-9, abs_tol=1e-12)
+                    out[t.key], best = x, f
+            if not moved:
+                break
+        for t in free:  # four significant digits, as a snippet prints them
+            out[t.key] = self.profile.setting(t.key).coerce(float(f"{out[t.key]:.4g}"))
+        return out
+
+    def biases(self, settings: dict) -> list[dict]:
+        """Each free bias setting alone at its minimum (the others neutral): the candidates."""
+        free = self.tunables(settings, "bias")
+        if not free:
+            return [dict(settings)]
+        neutral = {t.key: _neutral(self.profile.setting(t.key)) for t in free}
+        base = {**settings, **neutral}
+        got, now = self.setup(base), self.setup(settings)
+        if got is None:
+            return [dict(settings)]
+        if now is not None:  # a setting the engine reads as the same bias keeps its value (three.js: shadowBias 0 is 1e-6)
+            for key in neutral:
+                try:
+                    if got[0].pipeline.bias.term(key).value == now[0].pipeline.bias.term(key).value:
+                        base[key] = settings[key]
+                except ValueError:
+                    pass
+            got = self.setup(base)
+        s, m = got
+        out = [dict(settings)]  # the biases as they are, where they suffice
+        if np.all(m.have >= m.need):
+            return out + [base]  # nothing needed (back faces cast, or the fixed terms suffice)
+        angle = steepest(s, self.limits.max_slope)
+        for t in free:
+            value = _minimal(s, t.key, m, angle)
+            if value is None:
+                continue
+            out.append({**base, t.key: value})
+        return out
+
+
+def _neutral(setting) -> Any:
+    lo, hi = setting.accepts
+    return setting.coerce(min(max(0.0, lo if lo is not None else 0.0), hi if hi is not None else 0.0)) if setting.kind in ("float", "int") else setting.default
+
+
+def _round_safe(value: float, up: bool) -> float:
+    """``value`` to :data:`_DIGITS` significant digits, rounded away from the unsafe side."""
+    if value == 0 or not math.isfinite(value):
+        return value
+    q = 10.0 ** (math.floor(math.log10(abs(value))) - _DIGITS + 1)
+    return float(f"{(math.ceil(value / q) if up else math.floor(value / q)) * q:.{_DIGITS}g}")
+
+
+def _per_sign(rule, key: str, need: np.ndarray, texel: np.ndarray, angle: float) -> np.ndarray:
+    """The sign of the depth bias one unit of ``key`` gives, per cascade (0: it cannot help).
+
+    From the rule's own :meth:`~aliasing.setups.BiasRule.minimal`, linear in the need: a unit
+    more need moves the value by 1/per (every term of the setting, and the map's depth range
+    where a term scales with it, counted as the rule counts them).
+    """
+    with np.errstate(invalid="ignore"):
+        step = np.asarray(rule.minimal(key, need + 1.0, texel, angle, AZIMUTH), float) - np.asarray(rule.minimal(key, need, texel, angle, AZIMUTH), float)
+    return np.where(np.isfinite(step), np.sign(step), 0.0)
+
+
+def _extreme(rule, key: str, need: np.ndarray, texel: np.ndarray, angle: float) -> tuple[float, bool] | None:
+    """The minimal value of ``key`` over the cascades and whether it is a bound from below (None: it cannot help)."""
+    sign = _per_sign(rule, key, need, texel, angle)
+    if not (np.all(sign > 0) or np.all(sign < 0)):
+        return None
+    values = np.asarray(rule.minimal(key, need, texel, angle, AZIMUTH), float)
+    up = bool(np.all(sign > 0))
+    value = float(values.max() if up else values.min())
+    return (value, up) if math.isfinite(value) else None
+
+
+def _minimal(setup: Setup, key: str, m: Measure, angle: float) -> float | None:
+    """The closed-form minimum of bias setting ``key`` over the cascades, in the engine's units (None: it cannot help)."""
+    rule = setup.pipeline.bias
+    if key not in {t.key for t in rule.terms}:
+        return None
+    got = _extreme(rule, key, m.need, m.texel, angle)
+    if got is None:
+        return None
+    value, up = got
+    value = _round_safe(value, up)
+    for v in (value, 1e-9 if up else -1e-9) if value == 0 else (value,):  # an engine may read 0 as its default (three.js)
+        try:
+            v = setup.profile.setting(key).coerce(v)
+            s = setup.with_settings(**{key: v})
+        except ValueError:
+            return None
+        if np.all(np.asarray(s.pipeline.bias.depth(m.texel, angle, AZIMUTH)) >= m.need * (1 - 1e-9) - 1e-12):
+            return v
+    return None
+
+
+def closed_form_bias(setup: Setup, key: str, *, max_slope: float = 0.0, receivers=None) -> float | None:
+    """The minimal value of bias setting ``key`` [the engine's units] that leaves no acne up to ``max_slope``.
+
+    The other free bias settings at zero; the steepest receiver's need in each cascade's largest
+    texel (:func:`aliasing.bias.plane_bias`, the filter's kernel) through the rule's
+    :meth:`aliasing.setups.BiasRule.minimal`, exact (not rounded).  None where the setting cannot
+    remove the acne.
+
+    Example
+    -------
+    >>> from aliasing import setups
+    >>> s = setups.build("threejs", {"cascades": 4, "material.shadowSide": "FrontSide"}, sun="15..60")
+    >>> v = closed_form_bias(s, "shadow.normalBias")
+    >>> 0.1 < v < 1.0
+    True
+    """
+    lim = limits(setup, receivers=receivers, max_slope=max_slope)
+    free = [t.key for t in setup.profile.tunable if t.role == "bias" and t.active(setup.settings)]
+    s = setup.with_settings(**{k: _neutral(setup.profile.setting(k)) for k in free if k != key})
+    m = measure(s, lim)
+    got = _extreme(s.pipeline.bias, key, m.need, m.texel, steepest(s, lim.max_slope))
+    return None if got is None else got[0]
+
+
+def _changes(a: Mapping[str, Any], b: Mapping[str, Any]) -> int:
+    return sum(1 for k in a if a[k] != b.get(k))
+
+
+def tune(setup: Setup, *, receivers: Iterable[float] | None = None, scene: Any = None, max_texels: int | None = None,
+         max_gap_px: float | None = None, max_slope: float = 0.0, moving: bool = False, fixed: Iterable[str] = ()) -> Tuned:
+    """The engine's own settings with the lowest worst perspective error within the limits.
+
+    Searches only the settings the profile declares tunable (the ``tunable`` of :class:`aliasing.setups.Profile`)
+    and not in ``fixed``; the rest keep ``setup``'s values.  How each kind is set: the module
+    docstring.
+
+    Parameters
+    ----------
+    setup : Setup
+        The engine, its settings (the start, and the values of the fixed settings), the camera
+        and the sun band.
+    receivers : (float, float), optional
+        Eye depths of the receivers, NEAR..FAR [world units] (default the camera's near to where
+        ``setup``'s shadows end).
+    scene : Scene or str, optional
+        A scene whose visible depths give the receivers (instead of ``receivers``).
+    max_texels : int, optional
+        Texels of all maps together (default: those of ``setup``).
+    max_gap_px : float, optional
+        The largest lit gap at a caster's foot [px] (default: no limit).
+    max_slope : float
+        The steepest receiver that must stay free of acne: ground tilted this far away from the
+        lowest sun [deg from the ground], in [0, 90).
+    moving : bool
+        The camera moves: the fit must be stabilized (no shimmer).
+    fixed : iterable of str
+        Setting keys not to search.
+
+    Returns
+    -------
+    Tuned
+        The setup, its objective [px per texel], the binding limits and, where acne and the gap
+        limit conflict, the trade-off between them.
+
+    Raises
+    ------
+    ValueError
+        A malformed limit (naming it) or an unknown setting in ``fixed``.
+
+    Example
+    -------
+    >>> from aliasing import setups
+    >>> s = setups.build("threejs", {"cascades": 4}, "near=0.1,far=500,fov=50,aspect=16:9,height=1080", "15..60")
+    >>> t = tune(s, fixed=("cascades", "shadowMapSize"))
+    >>> t.setup.settings["mode"], round(t.objective, 2), t.binding
+    ('logarithmic', 9.05, ())
+    """
+    if not isinstance(setup, Setup):
+        raise ValueError(f"setup must be an aliasing.setups.Setup (setups.build(...)), got {type(setup).__name__}")
+    if scene is not None:
+        if receivers is not None:
+            raise ValueError("give receivers or scene, not both")
+        receivers = scene_receivers(scene, setup)
+    if isinstance(fixed, str):
+        fixed = (fixed,)
+    fixed = frozenset(setup.profile.setting(k).key for k in fixed)
+    lim = limits(setup, receivers=receivers, max_texels=max_texels, max_gap_px=max_gap_px, max_slope=max_slope, moving=moving)
+    search = _Search(setup, lim, fixed)
+    start = dict(setup.settings)
+
+    # every combination of the enumerated settings (cascade counts, split modes, filters, stabilization, blends)
+    candidates: list[tuple[Setup, Measure]] = []
+    seen: set = set()
+
+    def expand(settings: dict, roles: tuple) -> list[dict]:
+        out = [settings]
+        for role in roles:
+            nxt = []
+            for s in out:
+                ts = [t for t in search.tunables(s, role) if t.values and t.range is None]
+                if not ts:
+                    nxt.append(s)
+                    continue
+                for combo in itertools.product(*(t.values for t in ts)):
+                    nxt.append({**s, **{t.key: v for t, v in zip(ts, combo)}})
+            out = nxt
+        return out
+
+    for s in expand(start, ("cascades", "split", "stable", "blend")):
+        s = search.splits(search.size(search.distance(s)))
+        for b in (b for f in expand(s, ("filter",)) for b in search.biases(f)):  # the filter moves only the bias
+            key = tuple(sorted((k, repr(v)) for k, v in b.items()))
+            if key in seen:
+                continue
+            seen.add(key)
+            got = search.setup(b)
+            if got is not None:
+                candidates.append(got)
+    if not candidates:
+        got = search.setup(start)
+        candidates.append(got if got is not None else (setup, measure(setup, lim)))
+
+    def rank(c):
+        s, m = c
+        return (len(m.violations(lim)) > 0, round(m.objective, 9), round(_gap(m), 9), _changes(s.settings, start))
+
+    feasible = [c for c in candidates if not c[1].violations(lim)]
+    if feasible:
+        best = min(feasible, key=rank)
+        binding = _binding_feasible(search, candidates, best, lim)
+        tradeoff: tuple = ()
+    else:
+        best, binding = _closest(candidates, lim, start)
+        tradeoff = _tradeoff(search, candidates, lim) if {"max_gap_px", "max_slope"} & set(binding) else ()
+    s, m = best
+    return Tuned(s, setup, m.objective, tuple(binding), not m.violations(lim), tradeoff, lim, m, measure(setup, lim),
+                 {k: v for k, v in s.settings.items() if start.get(k) != v}, len(search.cache))
+
+
+def _binding_feasible(search: _Search, candidates, best, lim: Limits) -> list[str]:
+    """Limits whose relaxing would lower the objective of a feasible optimum."""
+    s, m = best
+    out = []
+    for name in LIMITS:
+        if name == "max_texels":
+            bigger = False
+            for t in search.tunables(s.settings, "size"):
+                larger = [v for v in t.values if v > s.settings[t.key]]
+                bigger = bigger or bool(larger)
+            counts = [c for c in candidates if c[1].objective < m.objective * (1 - 1e-9) and set(c[1].violations(lim)) <= {"max_texels"}]
+            if bigger or counts:
+                out.append(name)
+            continue
+        better = [c for c in candidates if c[1].objective < m.objective * (1 - 1e-9) and set(c[1].violations(lim)) == {name}]
+        if better:
+            out.append(name)
+    return out
+
+
+def _gap(m: Measure) -> float:
+    return float(np.nanmax(m.gap_px, initial=0.0))
+
+
+_HARD = ("max_texels", "moving", "receivers")
+
+
+def _closest(candidates, lim: Limits, start: Mapping[str, Any]):
+    """Where no candidate meets every limit: the closest, and the limits that bind.
+
+    The hardware's and the camera's limits (texels, a moving camera, coverage) first, the fewest
+    texels over the budget, then no acne, then the smallest gap, then the lowest error.  Where the gap breaks only because the
+    acne limit holds (some candidate meets the gap by giving up acne), both bind.
+    """
+    def key(c):
+        s, m = c
+        v = m.violations(lim)
+        return (sum(x in _HARD for x in v), max(m.texels / lim.max_texels, 1.0), "max_slope" in v,
+                round(_gap(m), 9) if "max_gap_px" in v else 0.0, round(m.objective, 9), _changes(s.settings, start))
+
+    best = min(candidates, key=key)
+    binding = list(best[1].violations(lim))
+    if "max_gap_px" in binding and "max_slope" not in binding:
+        hard = [x for x in binding if x in _HARD]
+        if any(set(m.violations(lim)) - set(hard) == {"max_slope"} for _, m in candidates):
+            binding.append("max_slope")
+    return best, binding
+
+
+def _tradeoff(search: _Search, candidates, lim: Limits, n: int = 10) -> tuple:
+    """The smallest gap [px] that leaves no acne on every receiver up to each angle θ to the light.
+
+    ``slope`` is the same receiver as a tilt from the ground away from the lowest sun (negative:
+    towards it).  Over every candidate's split, count, size and filter, each bias alone at its
+    minimum.
+    """
+    low = search.start.sun.elevation[0]
+    top = steepest(search.start, lim.max_slope)
+    bias_keys = {t.key for t in search.profile.tunable if t.role == "bias"}
+    bases = {}
+    for s, _ in candidates:
+        bases.setdefault(tuple(sorted((k, repr(v)) for k, v in s.settings.items() if k not in bias_keys)), s)
+    out = []
+    for angle in np.linspace(0.0, top, n):
+        slope = float(angle - (90.0 - low))
+        sub = Limits(lim.receivers, lim.max_texels, math.inf, slope, lim.moving)
+        inner = _Search(search.start, sub, search.fixed)
+        best = math.inf
+        for s in bases.values():
+            for b in inner.biases(dict(s.settings)):
+                got = inner.setup(b)
+                if got is not None and not got[1].violations(sub):
+                    best = min(best, _gap(got[1]))
+        out.append({"angle": float(angle), "slope": slope, "gap_px": best})
+    return tuple(out)
+
+
+def scene_receivers(scene: Any, setup: Setup, samples: int = 6) -> tuple[float, float]:
+    """The eye depths of a scene's visible surface, (nearest, farthest) [world units]: its receivers.
+
+    Points on each triangle (a barycentric grid of ``samples`` steps per edge) inside the
+    camera's frustum (near..far, the vertical fov and the aspect) are kept; their least and
+    largest eye depths bound the receivers.
+
+    Parameters
+    ----------
+    scene : str, Scene or array_like
+        A scene file with a glTF camera (its first camera by name is used, with ``setup``'s near,
+        far and fov), an eye-space :class:`aliasing.raster.scenes.Scene`, or eye-space triangles
+        ``(T, 3, 3)`` (z the depth in front of the eye).
+    setup : Setup
+        The camera.
+
+    Example
+    -------
+    >>> from aliasing import setups
+    >>> from aliasing.raster.scenes import ground_and_boxes
+    >>> s = setups.build("threejs", camera="near=0.5,far=100,fov=60,aspect=1,height=1080")
+    >>> near, far = scene_receivers(ground_and_boxes(1.0, 50.0, 60.0, boxes=5), s)
+    >>> 0.5 <= near < 2.0 < 45.0 < far <= 53.0
+    True
+    """
+    from ..raster.scenes import load_scene  # noqa: PLC0415  (the loaders' optional trimesh only when a file is given)
+
+    cam = setup.camera
+    if isinstance(scene, (str, bytes)) or hasattr(scene, "__fspath__"):
+        ws = load_scene(scene)
+        if not ws.cameras:
+            raise ValueError(f"scene {str(scene)!r} has no glTF camera to place the receivers: give receivers NEAR..FAR instead")
+        scene = ws.in_eye_space(ws.camera(sorted(ws.cameras)[0], near=cam.near, far=cam.far, fov=cam.fov))
+    tri = np.asarray(getattr(scene, "triangles", scene), float)
+    if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri) or not np.isfinite(tri).all():
+        raise ValueError(f"scene must be a scene file, a Scene or eye-space triangles of shape (T, 3, 3), got shape {tri.shape}")
+    n = samples
+    i, j = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="ij")
+    keep = i + j <= n
+    bary = np.stack([i[keep], j[keep], n - i[keep] - j[keep]], axis=-1) / n  # (P, 3)
+    pts = np.einsum("pv,tvc->tpc", bary, tri).reshape(-1, 3)
+    t = math.tan(math.radians(cam.fov) / 2)
+    z = pts[:, 2]
+    seen = (z >= cam.near) & (z <= cam.far) & (np.abs(pts[:, 1]) <= z * t) & (np.abs(pts[:, 0]) <= z * t * cam.aspect)
+    if not seen.any():
+        raise ValueError("scene has no surface inside the camera's frustum: give receivers NEAR..FAR instead")
+    near, far = float(z[seen].min()), float(z[seen].max())
+    return (near, far) if far > near else (near, near * (1 + 1e-6))
