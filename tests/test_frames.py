@@ -90,7 +90,11 @@ def babylon(chromium, boxes):
 @pytest.fixture(scope="module")
 def three(chromium, boxes):
     fs, sun = boxes
-    return {name: _frame(chromium, "threejs", fs, settings) for name, settings in (("defaults", {}), ("front faces cast", {"material.shadowSide": "FrontSide"}))}
+    front = {"material.shadowSide": "FrontSide"}
+    from aliasing.tune import tune
+
+    tuned = {**front, **tune(setups.build("threejs", front, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")).changed}  # what `aliasing tune` sets
+    return {name: _frame(chromium, "threejs", fs, settings) for name, settings in (("defaults", {}), ("front faces cast", front), ("tuned", tuned))}
 
 
 def test_pins_are_the_node_tests_pins():
@@ -107,7 +111,7 @@ def test_pins_are_the_node_tests_pins():
         assert lock["packages"][f"node_modules/{p.package}"]["version"] == p.version
 
 
-@pytest.mark.parametrize("name", ["defaults", "front faces cast"])
+@pytest.mark.parametrize("name", ["defaults", "front faces cast", "tuned"])
 def test_threejs_frame_matches_the_prediction(three, name):
     r = three[name].report
     m, p = r["measured"], r["predicted"]
@@ -117,7 +121,7 @@ def test_threejs_frame_matches_the_prediction(three, name):
     assert abs(m["acne"] - p["acne"]) <= 0.02, r
     assert m["gap_px"] is not None and abs(m["gap_px"] - p["gap_px"]) <= 1.0, r
     got, want = np.array(m["texels_per_pixel"]), np.array(p["texels_per_pixel"])
-    assert got.shape == want.shape == (3,) and np.max(np.abs(got / want - 1)) <= 1e-6, r
+    assert got.shape == want.shape == (three[name].settings["cascades"],) and np.max(np.abs(got / want - 1)) <= 1e-6, r
     assert r["details"]["cascade_agreement"] >= 0.999, r
     # the whole light matrices (light frame, diagonal side, centre floored to a texel, margin) as predicted
     assert r["details"]["matrices_vs_engine"] <= 1e-9, r
@@ -172,6 +176,11 @@ def test_playcanvas_frame_is_read_back_and_measured(chromium, boxes):
         assert np.nanmin(rb.shadow) >= -1e-6 and np.nanmax(rb.shadow) <= 1 + 1e-6
     # the engine's own bias (0.05: a polygon offset) removes the acne that bias 0 shows
     assert runs["defaults"].report["measured"]["acne"] < 0.05 < 0.2 < runs["bias 0"].report["measured"]["acne"]
+
+
+def test_threejs_tuned_settings_leave_no_acne(three):
+    # `aliasing tune` sets a normal bias that leaves no acne with front faces casting: the frame agrees
+    assert three["tuned"].report["measured"]["acne"] < 0.01 and three["tuned"].report["predicted"]["acne"] < 0.01
 
 
 def test_threejs_defaults_show_no_acne_and_front_faces_do(three):
