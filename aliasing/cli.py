@@ -343,6 +343,7 @@ def build_parser(full: bool = True) -> argparse.ArgumentParser:
 
     add_check_parser(sub)  # aliasing check
     __import__("aliasing.tune.command", fromlist=["add_tune_parser"]).add_tune_parser(sub)  # aliasing tune
+    __import__("aliasing.frames.command", fromlist=["add_frames_parser"]).add_frames_parser(sub)  # aliasing frames
     return parser
 
 

@@ -1,0 +1,24 @@
+"""The engines' own frames: what three.js draws, read back and measured against the toolkit's prediction.
+
+An engine (a pinned npm release, :mod:`.install`) renders a scene (:mod:`.scenes`) in the
+system's headless Chromium with WebGL 2 on SwiftShader (:mod:`.browser`, Playwright for
+Python: the optional ``frames`` extra).  Its page (``pages/<engine>.mjs``) reads back, per
+pixel, the raw shadow factor the engine multiplied into the sun's light, the cascade it
+sampled, the world position and normal, and per cascade the light matrix and map size
+(:mod:`.readback`).  The toolkit predicts the same pixels with its own rasterizer and the
+engine's rules (:mod:`.models`, :mod:`.predict`), and both are measured alike
+(:mod:`.compare`, :mod:`.run`); ``aliasing frames`` is the command (:mod:`.command`).
+
+``import aliasing.frames`` needs neither Playwright nor Chromium: they are looked for when a
+frame is rendered.
+
+Example
+-------
+>>> from aliasing import frames
+>>> sorted(frames.PINS)
+['babylon', 'playcanvas', 'threejs']
+"""
+
+from .install import PINS, MissingTool
+
+__all__ = ["PINS", "MissingTool"]

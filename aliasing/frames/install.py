@@ -1,0 +1,157 @@
+"""The engines' JavaScript packages: pinned npm releases, installed by an explicit step.
+
+Each engine renders from one npm release, pinned by a committed ``package.json`` and
+``package-lock.json`` under ``aliasing/frames/pins/<package>@<version>/`` (the same pins, byte
+for byte, as the node tests' ``tests/engines_js/pins/`` where both have one).  ``npm ci``
+installs exactly the lockfile into a cache (``~/.cache/aliasing-engines-js/<pin>``, or
+``$ALIASING_ENGINES_JS_CACHE``) and checks each tarball's sha512 against it; the installed tree
+is then checked against the committed SHA-256 (``tree.sha256``) every time it is used.
+
+Nothing is downloaded during a rendering command: :func:`package_root` only finds an installed,
+checked tree, and says in one line how to install it when there is none
+(``aliasing frames --install``, which calls :func:`install`).
+
+Example
+-------
+>>> sorted(PINS)
+['babylon', 'playcanvas', 'threejs']
+>>> PINS["threejs"].release, PINS["threejs"].package
+('r187', 'three')
+"""
+
+from __future__ import annotations
+
+import fcntl
+import hashlib
+import os
+import shutil
+import subprocess
+from dataclasses import dataclass
+from pathlib import Path
+
+HERE = Path(__file__).parent / "pins"
+
+
+class MissingTool(RuntimeError):
+    """A tool the frames need (node, npm, Chromium, an installed engine) is missing; the message says how to install it."""
+
+
+@dataclass(frozen=True)
+class Pin:
+    """One engine's pinned npm package: ``engine`` (toolkit name), ``release`` (toolkit spelling),
+    ``package`` (npm name), ``version`` (npm version), ``pin`` (the directory name under ``pins/``)."""
+
+    engine: str
+    release: str
+    package: str
+    version: str
+
+    @property
+    def pin(self) -> str:
+        return f"{self.package.replace('/', '+')}@{self.version}"
+
+
+PINS = {
+    "threejs": Pin("threejs", "r187", "three", "0.187.0"),
+    "babylon": Pin("babylon", "9.35", "@babylonjs/core", "9.35.0"),  # releases as aliasing.setups names them
+    "playcanvas": Pin("playcanvas", "2.23", "playcanvas", "2.23.3"),
+}
+
+
+def cache() -> Path:
+    """The cache directory of installed engine packages (``$ALIASING_ENGINES_JS_CACHE`` or ``~/.cache/aliasing-engines-js``)."""
+    return Path(os.environ.get("ALIASING_ENGINES_JS_CACHE", Path.home() / ".cache" / "aliasing-engines-js"))
+
+
+def tree_digest(root: Path) -> str:
+    """SHA-256 over the installed package files (path and content), npm's own bookkeeping left out.
+
+    The same digest as ``tests/test_engines_js.py`` computes for the node tests.
+    """
+    h = hashlib.sha256()
+    base = Path(root) / "node_modules"
+    for path in sorted(base.rglob("*")):
+        rel = path.relative_to(root).as_posix()
+        if rel == "node_modules/.package-lock.json" or path.is_dir() and not path.is_symlink():
+            continue
+        data = os.readlink(path).encode() if path.is_symlink() else path.read_bytes()
+        h.update(rel.encode() + b"\0" + hashlib.sha256(data).digest())
+    return h.hexdigest()
+
+
+def _pin(engine: str) -> Pin:
+    if engine not in PINS:
+        raise ValueError(f"engine must be one of {', '.join(sorted(PINS))}, got {engine!r}")
+    return PINS[engine]
+
+
+def _same(root: Path, src: Path) -> bool:
+    return all((root / f).is_file() and (root / f).read_bytes() == (src / f).read_bytes() for f in ("package.json", "package-lock.json"))
+
+
+def package_root(engine: str) -> Path:
+    """The checked install of ``engine``'s pinned package (the directory holding ``node_modules``).
+
+    Raises
+    ------
+    ValueError
+        ``engine`` is not one of :data:`PINS`.
+    MissingTool
+        It is not installed, or its files differ from the pinned tree: one line saying how to install it.
+    """
+    p = _pin(engine)
+    src, root = HERE / p.pin, cache() / p.pin
+    want = (src / "tree.sha256").read_text().split()[0]
+    if not (_same(root, src) and (root / "node_modules").is_dir()):
+        raise MissingTool(f"{p.package} {p.version} is not installed: run `aliasing frames --install` (npm ci from the pinned lockfile)")
+    if tree_digest(root) != want:
+        raise MissingTool(f"{p.package} {p.version} in {root} differs from its pinned tree: run `aliasing frames --install` to reinstall it")
+    return root
+
+
+def install(engine: str, *, timeout: float = 600.0) -> Path:
+    """Install ``engine``'s pinned package into the cache with ``npm ci`` (if not already there) and check its tree.
+
+    Parameters
+    ----------
+    engine : str
+        One of :data:`PINS`.
+    timeout : float
+        Seconds ``npm ci`` may take, > 0.
+
+    Returns
+    -------
+    Path
+        The package root (holding ``node_modules``).
+
+    Raises
+    ------
+    MissingTool
+        npm is missing or ``npm ci`` failed (one line).
+    RuntimeError
+        The installed files differ from the committed tree digest.
+    """
+    p = _pin(engine)
+    if not timeout > 0:
+        raise ValueError(f"timeout must be > 0 seconds, got {timeout!r}")
+    src, root = HERE / p.pin, cache() / p.pin
+    want = (src / "tree.sha256").read_text().split()[0]
+    npm = shutil.which("npm")
+    root.mkdir(parents=True, exist_ok=True)
+    with open(cache() / f"{p.pin}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if _same(root, src) and (root / "node_modules").is_dir() and tree_digest(root) == want:
+            return root
+        if npm is None:
+            raise MissingTool("npm not found: install Node.js and npm (Debian: apt-get install nodejs npm)")
+        for f in ("package.json", "package-lock.json"):
+            shutil.copyfile(src / f, root / f)
+        cmd = [npm, "ci", "--ignore-scripts", "--no-audit", "--no-fund", "--loglevel=error"]
+        done = subprocess.run(cmd, cwd=root, capture_output=True, text=True, timeout=timeout)
+        if done.returncode != 0:
+            last = ((done.stderr or done.stdout).strip().splitlines() or ["no output"])[-1]
+            raise MissingTool(f"npm ci for {p.package} {p.version} failed: {last}")
+        got = tree_digest(root)
+        if got != want:
+            raise RuntimeError(f"{p.package} {p.version}: installed files differ from the committed tree digest ({got} != {want})")
+    return root

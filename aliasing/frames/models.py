@@ -1,0 +1,406 @@
+"""Each engine's settings (its own keys and defaults) and the toolkit's model of its shadow pass.
+
+A model turns the engine's settings into what the toolkit predicts: which faces cast, which
+cascade each pixel samples, the bias and the filter (from the engine's shader source in the
+pinned package), and the cascades' ends and map sides from the toolkit's presets
+(:data:`aliasing.engines.stable.PRESETS`, :func:`aliasing.partitioning.split_distances`).
+
+Example
+-------
+>>> sorted(MODELS)
+['babylon', 'playcanvas', 'threejs']
+>>> MODELS["threejs"].settings({"shadowBias": 0})["shadowBias"]   # CSM: `data.shadowBias || 0.000001`
+1e-06
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .. import partitioning
+from ..engines import stable
+from . import predict
+
+Array = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Prediction:
+    """Per pixel: the predicted ``factor`` and ``cascade``; per cascade: ``starts`` [world units] and map ``sides`` [world units]."""
+
+    factor: Array
+    cascade: NDArray[np.int64]
+    starts: Array
+    sides: Array
+    resolution: Array
+
+
+def tight_sides(camera, edges: Array, along: Array, up: Array) -> Array:
+    """Per cascade: the larger side [world units] of the slice corners' box in a light frame whose x axis is ``up`` × ``along``.
+
+    The tight fit's box depends on the light frame's roll about the light direction, which an
+    engine takes from a world up vector (Babylon.js: ``Matrix.LookAtLH(centre, centre + d, Vector3.Up())``),
+    not from the camera: the extents are measured on x ∝ up × d and y ∝ d × x (signs do not
+    change extents; the mirror into Babylon's left-handed world neither).
+    """
+    d = along / np.linalg.norm(along)
+    x = np.cross(up, d)
+    x /= np.linalg.norm(x)
+    y = np.cross(d, x)
+    out = []
+    for a, b in zip(edges[:-1], edges[1:]):
+        corners = camera.view.slice_vertices(a, b)  # eye space (8, 3)
+        world = corners @ camera.rotation + camera.eye
+        out.append(max(np.ptp(world @ x), np.ptp(world @ y)))
+    return np.array(out)
+
+
+@dataclass(frozen=True)
+class ThreeCSM:
+    """three.js r187, WebGLRenderer with the CSM addon (examples/jsm/csm/CSM.js, CSMShader.js).
+
+    Settings (the engine's own keys): CSM's ``cascades``, ``maxFar``, ``mode``,
+    ``shadowMapSize``, ``shadowBias``, ``lightIntensity``, ``lightNear``, ``lightFar``,
+    ``lightMargin``, ``fade``; each cascade light's shadow ``normalBias`` and ``shadowRadius``
+    (``light.shadow.radius``); the renderer's ``shadowMapType``; the material's ``side`` and
+    ``shadowSide`` (null: the opposite of ``side``, WebGLShadowMap's ``shadowSide`` table).
+    """
+
+    engine: str = "threejs"
+    preset: str = "threejs"
+    defaults: dict = field(default_factory=lambda: {
+        "cascades": 3, "maxFar": 100000.0, "mode": "practical", "shadowMapSize": 2048, "shadowBias": 0.000001,
+        "lightIntensity": 3.0, "lightNear": 1.0, "lightFar": 2000.0, "lightMargin": 200.0, "fade": False,
+        "normalBias": 0.0, "shadowRadius": 1.0, "shadowMapType": "PCFShadowMap", "side": "front", "shadowSide": None})
+
+    def settings(self, given: dict | None = None) -> dict:
+        """Every setting, the defaults filled in, as the engine takes them (CSM's ``x || default`` included)."""
+        given = dict(given or {})
+        unknown = sorted(set(given) - set(self.defaults))
+        if unknown:
+            raise ValueError(f"unknown three.js setting {unknown[0]!r}; known: {', '.join(sorted(self.defaults))}")
+        s = {**self.defaults, **given}
+        for k in ("cascades", "maxFar", "shadowMapSize", "shadowBias", "lightIntensity", "lightNear", "lightFar", "lightMargin"):
+            if not s[k]:  # CSM's constructor: `data.x || default` (0 becomes the default)
+                s[k] = self.defaults[k]
+        if s["mode"] not in ("practical", "uniform", "logarithmic"):
+            raise ValueError(f"mode must be practical, uniform or logarithmic (custom splits are not modelled), got {s['mode']!r}")
+        for k in ("side",):
+            if s[k] not in predict.SIDES:
+                raise ValueError(f"{k} must be one of {', '.join(predict.SIDES)}, got {s[k]!r}")
+        if s["shadowSide"] is not None and s["shadowSide"] not in predict.SIDES:
+            raise ValueError(f"shadowSide must be null or one of {', '.join(predict.SIDES)}, got {s['shadowSide']!r}")
+        if s["shadowMapType"] not in ("PCFShadowMap", "BasicShadowMap"):
+            raise ValueError(f"shadowMapType must be PCFShadowMap or BasicShadowMap (the filters modelled), got {s['shadowMapType']!r}")
+        if bool(s["fade"]):
+            raise ValueError("fade must be false (the blended cascades are not modelled)")
+        k = int(s["cascades"])
+        if not 1 <= k <= 8:
+            raise ValueError(f"cascades must be a whole number in [1, 8], got {s['cascades']!r}")
+        return s
+
+    def cast_side(self, s: dict) -> str:
+        """The faces drawn into the map: ``shadowSide``, or the opposite of ``side`` (front ↔ back, double stays)."""
+        if s["shadowSide"] is not None:
+            return s["shadowSide"]
+        return {"front": "back", "back": "front", "double": "double"}[s["side"]]
+
+    def shadow_far(self, s: dict, camera) -> float:
+        return float(min(camera.far, s["maxFar"]))
+
+    def edges(self, s: dict, camera) -> Array:
+        """The cascades' ends (near … shadow far) [world units]: the toolkit's threejs split for
+        ``practical`` (λ = 0.5), and CSM's ``uniformSplit``/``logarithmicSplit`` for the other modes."""
+        n, f, k = camera.near, self.shadow_far(s, camera), int(s["cascades"])
+        if s["mode"] == "practical":
+            return partitioning.split_distances(stable.PRESETS[self.preset].split, n, f, k)
+        i = np.arange(k + 1) / k
+        ends = n + (f - n) * i if s["mode"] == "uniform" else n * (f / n) ** i
+        ends[0], ends[-1] = n, f
+        return ends
+
+    def select(self, s: dict, camera, depth: Array) -> NDArray[np.int64]:
+        """The cascade each eye depth samples (CSMShader, fade off): linearDepth = z / (far − near)
+        against the breaks (end / far); −1 beyond the last (no shadow)."""
+        far = self.shadow_far(s, camera)
+        breaks = self.edges(s, camera)[1:] / far
+        ld = depth / (far - camera.near)
+        idx = np.searchsorted(breaks, ld, side="right")
+        return np.where(np.isfinite(ld) & (idx < len(breaks)), idx, -1).astype(np.int64)
+
+    def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
+        """The predicted factor at the engine's pixels, and the exact reference's lit pixels."""
+        cam = scene.camera
+        depth = cam.to_eye(np.nan_to_num(rb.position))[..., 2]
+        depth = np.where(rb.drawn, depth, np.nan)
+        sel = self.select(s, cam, depth)
+        res = int(s["shadowMapSize"])
+        cast = scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))]
+        maps = [predict.light_depth_map(cast, m, res) for m in rb.matrices]
+        h, w = depth.shape
+        fy, fx = np.mgrid[0:h, 0:w]
+        gl_y = (h - 1 - fy) + 0.5
+        pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+        factor = predict.threejs_factor(maps, rb.matrices, sel, pts, nrm, fx + 0.5, gl_y, bias=float(s["shadowBias"]),
+                                        normal_bias=float(s["normalBias"]), radius=float(s["shadowRadius"]), map_type=s["shadowMapType"])
+        factor = np.where(rb.drawn, factor, np.nan)
+        ref = reference(scene, sun, rb, res)  # the exact reference, through each cascade's matrix at its own pixels
+        edges = self.edges(s, cam)
+        p = stable.PRESETS[self.preset]
+        light_eye = cam.direction_to_eye(sun)[None]
+        box = stable.evaluate(edges, cam.near, edges[-1], cam.fov, light_eye, aspect=cam.aspect, fit=p.fit, snap=p.snap, resolution=float(res))
+        sides = np.maximum(box.width_x[0], box.width_y[0])
+        return Prediction(factor, sel, edges[:-1], sides, np.full(len(sides), float(res))), ref
+
+    def matrices(self, s: dict, camera, sun: Array) -> Array:
+        """The toolkit's prediction of each cascade's shadow matrix (world → [0, 1]³), as CSM builds it.
+
+        ``CSM.update``: the light frame is ``Matrix4.lookAt(origin, lightDirection, up)`` (z = −d,
+        x ∝ up × z, y = z × x); the slice's corners in it give a box whose centre is floored to a
+        texel of the square side (:func:`aliasing.engines.stable.diagonal`, unrounded) in x and y
+        and put ``lightMargin`` beyond the box's top in z; the shadow camera sits there looking
+        along d (the same frame), orthographic ±side/2, ``lightNear``…``lightFar``; the matrix is
+        [½ bias] · projection · view (``LightShadow.updateMatrices``).
+        """
+        from ..engines.stable import diagonal
+
+        d = -np.asarray(sun, float) / np.linalg.norm(sun)
+        z = -d
+        x = np.cross([0.0, 1.0, 0.0], z)
+        x /= np.linalg.norm(x)
+        y = np.cross(z, x)
+        basis = np.stack([x, y, z])  # rows: light-space axes in world
+        edges = self.edges(s, camera)
+        res = float(s["shadowMapSize"])
+        near_l, far_l = float(s["lightNear"]), float(s["lightFar"])
+        half = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+        out = []
+        for a, b in zip(edges[:-1], edges[1:]):
+            side = float(diagonal(a, b, camera.fov, camera.aspect))
+            texel = side / res
+            corners = camera.view.slice_vertices(a, b) @ camera.rotation + camera.eye  # world
+            lc = corners @ basis.T
+            lo, hi = lc.min(0), lc.max(0)
+            centre = (lo + hi) / 2
+            centre[2] = hi[2] + float(s["lightMargin"])
+            centre[:2] = np.floor(centre[:2] / texel) * texel
+            c_world = centre @ basis
+            view = np.eye(4)
+            view[:3, :3] = basis
+            view[:3, 3] = -basis @ c_world
+            proj = np.diag([2 / side, 2 / side, -2 / (far_l - near_l), 1.0])
+            proj[2, 3] = -(far_l + near_l) / (far_l - near_l)
+            out.append(half @ proj @ view)
+        return np.array(out)
+
+    def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
+        """From the engine's objects: each cascade's first depth (its breaks × far), its map's larger texel side × R, and R."""
+        far = self.shadow_far(s, camera)
+        breaks = np.asarray(rb.info["breaks"], float)
+        starts = np.concatenate([[camera.near], breaks[:-1] * far])
+        sides = np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3])) for m in rb.matrices])
+        return starts, sides, rb.sizes[:, 0].astype(float)
+
+
+@dataclass(frozen=True)
+class BabylonCSM:
+    """Babylon.js 9.35, CascadedShadowGenerator on a DirectionalLight (Lights/Shadows/cascadedShadowGenerator.pure.js).
+
+    Settings (the engine's own keys): the generator's ``mapSize`` (its constructor's first
+    argument), ``numCascades``, ``lambda``, ``bias``, ``normalBias``, ``darkness``,
+    ``frustumEdgeFalloff``, ``stabilizeCascades``, ``cascadeBlendPercentage``, ``depthClamp``,
+    ``autoCalcDepthBounds``, ``shadowMaxZ`` (null: the camera's far), ``filteringQuality``,
+    ``usePercentageCloserFiltering``, ``forceBackFacesOnly``; the material's ``backFaceCulling``.
+    """
+
+    engine: str = "babylon"
+    defaults: dict = field(default_factory=lambda: {
+        "mapSize": 1024, "numCascades": 4, "lambda": 0.5, "bias": 0.00005, "normalBias": 0.0, "darkness": 0.0, "frustumEdgeFalloff": 0.0,
+        "stabilizeCascades": False, "cascadeBlendPercentage": 0.1, "depthClamp": True, "autoCalcDepthBounds": False, "shadowMaxZ": None,
+        "filteringQuality": 0, "usePercentageCloserFiltering": True, "forceBackFacesOnly": False, "backFaceCulling": True})
+
+    def settings(self, given: dict | None = None) -> dict:
+        """Every setting, the defaults filled in (the generator's own defaults, read from its constructor)."""
+        given = dict(given or {})
+        unknown = sorted(set(given) - set(self.defaults))
+        if unknown:
+            raise ValueError(f"unknown Babylon.js setting {unknown[0]!r}; known: {', '.join(sorted(self.defaults))}")
+        s = {**self.defaults, **given}
+        checks = [("numCascades", 2 <= s["numCascades"] <= 4, "a whole number in [2, 4]"),
+                  ("lambda", s["lambda"] == 0.5, "0.5 (the split the toolkit's babylon preset models)"),
+                  ("bias", s["bias"] >= 0, ">= 0"), ("normalBias", s["normalBias"] >= 0, ">= 0"),
+                  ("darkness", s["darkness"] == 0, "0 (modelled)"), ("frustumEdgeFalloff", s["frustumEdgeFalloff"] == 0, "0 (modelled)"),
+                  ("depthClamp", s["depthClamp"] is True, "true (the depth-clamped bias is modelled)"),
+                  ("autoCalcDepthBounds", s["autoCalcDepthBounds"] is False, "false"),
+                  ("filteringQuality", s["filteringQuality"] == 0, "0, high quality (PCF5, modelled)"),
+                  ("usePercentageCloserFiltering", s["usePercentageCloserFiltering"] is True, "true (modelled)"),
+                  ("cascadeBlendPercentage", 0 <= s["cascadeBlendPercentage"] <= 1, "in [0, 1]"),
+                  ("mapSize", s["mapSize"] in (256, 512, 1024, 2048, 4096), "a power of two in [256, 4096]")]
+        for key, ok, what in checks:
+            if not ok:
+                raise ValueError(f"{key} must be {what}, got {s[key]!r}")
+        return s
+
+    def cast_side(self, s: dict) -> str:
+        """The faces drawn into the map: the material's culling (front faces by default), or back faces only."""
+        if s["forceBackFacesOnly"]:
+            return "back"
+        return "front" if s["backFaceCulling"] else "double"
+
+    def shadow_far(self, s: dict, camera) -> float:
+        return float(camera.far if s["shadowMaxZ"] is None else min(s["shadowMaxZ"], camera.far))
+
+    def edges(self, s: dict, camera) -> Array:
+        return partitioning.split_distances("babylon", camera.near, self.shadow_far(s, camera), int(s["numCascades"]))
+
+    def select(self, s: dict, camera, depth: Array) -> NDArray[np.int64]:
+        """lightFragment's loop: the first cascade whose end is at or beyond the eye depth; −1 beyond the last."""
+        ends = self.edges(s, camera)[1:]
+        idx = np.searchsorted(ends, depth, side="left")
+        return np.where(np.isfinite(depth) & (idx < len(ends)), idx, -1).astype(np.int64)
+
+    def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
+        cam = scene.camera
+        depth = np.where(rb.drawn, cam.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
+        sel = self.select(s, cam, depth)
+        res = int(s["mapSize"])
+        cast = predict.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))], sun, float(s["normalBias"]))
+        maps = [predict.light_depth_map(cast, m, res) for m in rb.matrices]
+        edges = self.edges(s, cam)
+        pct = float(s["cascadeBlendPercentage"])
+        pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+        factor = predict.babylon_factor(maps, rb.matrices, sel, depth, pts, ends=edges[1:], lengths=np.diff(edges),
+                                        blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
+        factor = np.where(rb.drawn, factor, np.nan)
+        ref = reference(scene, sun, rb, res)
+        if s["stabilizeCascades"]:
+            p = stable.PRESETS["babylon"]
+            box = stable.evaluate(edges, cam.near, edges[-1], cam.fov, cam.direction_to_eye(sun)[None], aspect=cam.aspect, fit=p.fit, snap=p.snap,
+                                  resolution=float(res))
+            sides = np.maximum(box.width_x[0], box.width_y[0])
+        else:
+            sides = tight_sides(cam, edges, -sun, np.array([0.0, 1.0, 0.0]))
+        return Prediction(factor, sel, edges[:-1], sides, np.full(len(sides), float(res))), ref
+
+    def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
+        """From the engine's objects: each cascade's first depth (the previous one's view z), its map's larger side, and R."""
+        ends = np.array([c["viewZ"] for c in rb.info["cascades"]], float)
+        starts = np.concatenate([[camera.near], ends[:-1]])
+        sides = np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3])) for m in rb.matrices])
+        return starts, sides, rb.sizes[:, 0].astype(float)
+
+
+@dataclass(frozen=True)
+class PlayCanvasMeasured:
+    """PlayCanvas 2.23.3, a directional light with (cascaded) shadows: rendered and measured, not predicted.
+
+    Settings (the light component's own keys): ``shadowBias``, ``normalOffsetBias``,
+    ``shadowResolution``, ``numCascades``, ``cascadeDistribution``, ``cascadeBlend``,
+    ``shadowDistance``, ``shadowType``, ``shadowIntensity``; the material's ``cull``.  Its bias
+    is a polygon offset (factor and units −1000 · ``shadowBias``, ``Light._updateShadowBias``)
+    plus a receiver bias of 1e-4 in [0, 1] depth (``getShadowSampleCoord``): the offset's units
+    scale with the depth buffer's resolvable difference, which the GL implementation chooses,
+    so the toolkit does not predict these frames yet.
+    """
+
+    engine: str = "playcanvas"
+    predicts: bool = False
+    defaults: dict = field(default_factory=lambda: {
+        "shadowBias": 0.05, "normalOffsetBias": 0.0, "shadowResolution": 1024, "numCascades": 1, "cascadeDistribution": 0.5,
+        "cascadeBlend": 0.0, "shadowDistance": 40.0, "shadowType": 0, "shadowIntensity": 1.0, "cull": "back"})
+
+    def settings(self, given: dict | None = None) -> dict:
+        given = dict(given or {})
+        unknown = sorted(set(given) - set(self.defaults))
+        if unknown:
+            raise ValueError(f"unknown PlayCanvas setting {unknown[0]!r}; known: {', '.join(sorted(self.defaults))}")
+        s = {**self.defaults, **given}
+        if s["numCascades"] not in (1, 2, 3, 4):
+            raise ValueError(f"numCascades must be 1, 2, 3 or 4, got {s['numCascades']!r}")
+        if s["cull"] not in ("back", "front", "none"):
+            raise ValueError(f"cull must be back, front or none, got {s['cull']!r}")
+        if s["shadowResolution"] not in (256, 512, 1024, 2048, 4096):
+            raise ValueError(f"shadowResolution must be a power of two in [256, 4096], got {s['shadowResolution']!r}")
+        return s
+
+    def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
+        """Each cascade's first depth (the previous cascade's distance), its larger texel side × R (R the atlas's side) and R."""
+        ends = np.array([c["distance"] for c in rb.info["cascades"]], float)
+        starts = np.concatenate([[camera.near], ends[:-1]])
+        sides = np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3])) for m in rb.matrices])
+        return starts, sides, rb.sizes[:, 0].astype(float)
+
+
+def reference(scene, sun: Array, rb, resolution: int) -> NDArray[np.bool_]:
+    """The exact reference's lit pixels, through the matrix of the cascade each pixel sampled (the last one where none)."""
+    pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+    ref = np.ones(rb.shadow.shape, bool)
+    for i, m in enumerate(rb.matrices):
+        here = rb.drawn & ((rb.cascade == i) | ((rb.cascade < 0) & (i == len(rb.matrices) - 1)))
+        if here.any():
+            ref[here] = predict.reference_lit(scene.triangles, m, resolution, pts[here], nrm[here], sun)
+    return ref & rb.drawn & ((nrm @ sun) > 0)
+
+
+MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvasMeasured()}
+
+
+_THREE_SIDE = {"FrontSide": "front", "BackSide": "back", "DoubleSide": "double"}
+_FACES = {"front": "front", "back": "back", "both": "double"}
+_PC_TYPES = {"SHADOW_PCF3_32F": 0, "SHADOW_VSM_16F": 2, "SHADOW_VSM_32F": 3, "SHADOW_PCF5_32F": 4, "SHADOW_PCF1_32F": 5, "SHADOW_PCSS_32F": 6,
+             "SHADOW_PCF1_16F": 7, "SHADOW_PCF3_16F": 8, "SHADOW_PCF5_16F": 9}
+_PC_CULL = {"CULLFACE_BACK": "back", "CULLFACE_FRONT": "front", "CULLFACE_NONE": "none"}
+
+
+def from_setup(setup) -> dict:
+    """The settings the engine's page and the model take, from an :class:`aliasing.setups.Setup`
+    (every key in the engine's own spelling, defaults filled), checked against what is rendered
+    and modelled here; the pipeline's faces that cast must be the model's.
+
+    Raises
+    ------
+    ValueError
+        A setting the frames do not render or model (its key and why), or a pipeline that
+        disagrees with the model about the faces that cast.
+    """
+    engine, s = setup.engine, dict(setup.settings)
+    if engine not in MODELS:
+        raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")
+    if engine == "threejs":
+        if s["class"] != "CSM":
+            raise ValueError(f"class must be CSM for the frames (one DirectionalLight is not rendered yet), got {s['class']!r}")
+        if s["shadow.bias"] != 0:
+            raise ValueError("shadow.bias is overwritten by CSM's shadowBias on every cascade light: set shadowBias")
+        out = {k: s[k] for k in ("cascades", "maxFar", "mode", "shadowMapSize", "shadowBias", "lightNear", "lightFar", "lightMargin", "fade")}
+        out.update(normalBias=s["shadow.normalBias"], shadowRadius=s["shadow.radius"], shadowMapType=s["renderer.shadowMap.type"],
+                   side=_THREE_SIDE[s["material.side"]], shadowSide=None if s["material.shadowSide"] == "null" else _THREE_SIDE[s["material.shadowSide"]])
+        if out["shadowMapType"] == "PCFSoftShadowMap":  # WebGLShadowMap replaces it (lines 99-102)
+            out["shadowMapType"] = "PCFShadowMap"
+    elif engine == "babylon":
+        if s["class"] != "CascadedShadowGenerator":
+            raise ValueError(f"class must be CascadedShadowGenerator for the frames, got {s['class']!r}")
+        for key, want in (("filter", None), ("minDistance", 0.0), ("maxDistance", 1.0), ("light.shadowMinZ", None), ("light.shadowMaxZ", None),
+                          ("light.shadowFrustumSize", 0.0)):
+            if s[key] != want:
+                raise ValueError(f"{key} must be {want!r} for the frames (modelled), got {s[key]!r}")
+        out = {k: s[k] for k in ("mapSize", "numCascades", "lambda", "bias", "normalBias", "frustumEdgeFalloff", "stabilizeCascades",
+                                 "cascadeBlendPercentage", "depthClamp", "autoCalcDepthBounds", "shadowMaxZ", "forceBackFacesOnly")}
+        out["filteringQuality"] = {"QUALITY_HIGH": 0, "QUALITY_MEDIUM": 1, "QUALITY_LOW": 2}[s["filteringQuality"]]
+        if s["material.backFaceCulling"] != s["material.cullBackFaces"] and not s["material.cullBackFaces"]:
+            raise ValueError("material.cullBackFaces false (front faces culled) is not rendered by the frames")
+        out["backFaceCulling"] = s["material.backFaceCulling"]
+    else:
+        out = {k: s[k] for k in ("shadowBias", "normalOffsetBias", "shadowResolution", "numCascades", "cascadeDistribution", "cascadeBlend",
+                                 "shadowDistance")}
+        out["shadowType"] = _PC_TYPES[s["shadowType"]]
+        out["cull"] = _PC_CULL[s["material.cull"]]
+    model = MODELS[engine]
+    full = model.settings(out)
+    if getattr(model, "predicts", True):
+        faces = _FACES[setup.pipeline.bias.faces]
+        if faces != model.cast_side(full):
+            raise ValueError(f"the setup's pipeline casts {setup.pipeline.bias.faces} faces, the frames' model {model.cast_side(full)}")
+    return full

@@ -1,0 +1,256 @@
+"""The toolkit's prediction of an engine's frame: its own rasterizer, the engine's rules.
+
+For every pixel the engine drew, the toolkit predicts the shadow factor from
+
+* the scene's triangles that the engine's rule lets cast (:func:`casting`: three.js draws the
+  back faces of front-sided materials, ``shadowSide`` null; Babylon.js both sides by default);
+* a depth map drawn by the toolkit's rasterizer (:func:`aliasing.raster.rasterize`) through
+  each cascade's light matrix, at the cascade's map size;
+* the engine's cascade selection, bias rule and filter (:func:`threejs_factor`, ...), written
+  from the engine's shader source (the pinned package under ``node_modules``).
+
+The light matrices used to draw the predicted maps are the engine's own (read back), so that
+the shadow mask and the acne test the rasterizer, faces, bias and filter: the matrices
+themselves are predicted separately (the texel footprint, :func:`texels_per_pixel`).
+
+The reference (what is really lit) is exact: for each pixel, the surface nearest the light in
+its texel of a map of *all* faces is compared as a plane at the pixel's own map position
+(as :func:`aliasing.raster.draw.lookup.shadow_test` does), so it neither acnes nor peter-pans.
+
+Example
+-------
+>>> m = np.eye(4)
+>>> tri = np.array([[[0.1, 0.1, 0.5], [0.9, 0.1, 0.5], [0.1, 0.9, 0.5]]])
+>>> dm = light_depth_map(tri, m, 8)
+>>> float(dm.depth[1, 1]), int(dm.triangle[1, 1])
+(0.5, 0)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .. import _validation as check
+from ..raster.draw import DepthMap, rasterize
+
+Array = NDArray[np.float64]
+SIDES = ("front", "back", "double")
+
+
+def _matrix(m: ArrayLike) -> Array:
+    mm = check.finite(m, "matrix")
+    if mm.shape != (4, 4):
+        raise ValueError(f"matrix must be 4x4, got shape {mm.shape}")
+    return mm
+
+
+def to_map(matrix: ArrayLike, points: ArrayLike) -> Array:
+    """Map coordinates (s, t, depth) of world points ``(..., 3)`` through a 4×4 light matrix (column vectors)."""
+    m = _matrix(matrix)
+    p = np.asarray(points, float)
+    h = p @ m[:3, :3].T + m[:3, 3]
+    w = p @ m[3, :3] + m[3, 3]
+    return h / w[..., None]
+
+
+def casting(triangles: ArrayLike, sun: ArrayLike, side: str) -> NDArray[np.bool_]:
+    """Which triangles are drawn into the shadow map: ``side`` "front", "back" or "double" as seen from the sun.
+
+    A triangle is front-facing to the sun when its right-handed normal (v1 − v0) × (v2 − v0)
+    points towards the sun (``sun``: world direction towards it).
+    """
+    tri = check.finite(triangles, "triangles")
+    s = check.finite(sun, "sun")
+    side = check.choice(side, "side", SIDES)
+    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    facing = n @ s
+    return {"front": facing > 0, "back": facing < 0, "double": facing != 0}[side]
+
+
+def light_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) -> DepthMap:
+    """The toolkit's depth map (smaller depth = nearer the light) of world triangles through a light matrix.
+
+    Parameters
+    ----------
+    triangles : array_like (T, 3, 3)
+        World triangles [world units].
+    matrix : array_like (4, 4)
+        World → (s, t, depth) in [0, 1]³ (an orthographic light: w = 1).
+    resolution : int
+        Texels per side.
+    """
+    tri = check.finite(triangles, "triangles")
+    if tri.ndim != 3 or tri.shape[1:] != (3, 3):
+        raise ValueError(f"triangles must have shape (T, 3, 3), got {tri.shape}")
+    if not len(tri):
+        tri = np.full((1, 3, 3), 10.0)  # nothing casts: one triangle far outside the map
+    return rasterize(to_map(matrix, tri), int(resolution))
+
+
+def reference_lit(triangles: Array, matrix: Array, resolution: int, points: Array, normals: Array, sun: Array) -> NDArray[np.bool_]:
+    """Exactly lit points: facing the sun and not behind the plane of the surface nearest the light in their texel.
+
+    All faces are drawn; the nearest surface is compared as a plane at the point's own (s, t).
+    Points outside the map count as lit.
+    """
+    dm = light_depth_map(triangles, matrix, resolution)
+    c = to_map(matrix, points)
+    r = dm.resolution
+    inside = np.all((c[..., :2] >= 0) & (c[..., :2] < 1), axis=-1)
+    col = np.clip(np.floor(np.nan_to_num(c[..., 0]) * r), 0, r - 1).astype(np.int64)
+    row = np.clip(np.floor(np.nan_to_num(c[..., 1]) * r), 0, r - 1).astype(np.int64)
+    tid = dm.triangle[row, col]
+    mt = to_map(matrix, triangles)  # (T, 3, 3) corners in map space
+    a, b, cc = mt[:, 0], mt[:, 1], mt[:, 2]
+    nrm = np.cross(b - a, cc - a)  # plane of each triangle in map space
+    t = np.maximum(tid, 0)
+    nz = nrm[t, 2]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        plane_d = a[t, 2] - (nrm[t, 0] * (c[..., 0] - a[t, 0]) + nrm[t, 1] * (c[..., 1] - a[t, 1])) / nz
+    eps = 1e-6
+    lit = ~inside | (tid < 0) | ~np.isfinite(plane_d) | (c[..., 2] <= plane_d + eps)
+    return lit & ((normals @ sun) > 0)
+
+
+def _ign(x: Array, y: Array) -> Array:
+    """three.js's interleaved gradient noise of gl_FragCoord (x, y), in float32 as the shader computes it."""
+    f32 = np.float32
+    d = x.astype(f32) * f32(0.06711056) + y.astype(f32) * f32(0.00583715)
+    return np.mod(f32(52.9829189) * np.mod(d, f32(1.0)), f32(1.0)).astype(float)
+
+
+def _hardware_pcf(depth: Array, s: Array, t: Array, ref: Array) -> Array:
+    """A LINEAR sampler2DShadow lookup (LessEqual compare): the bilinear weights of the 4 nearest texels' results."""
+    r = depth.shape[0]
+    u, v = s * r - 0.5, t * r - 0.5
+    i0, j0 = np.floor(u), np.floor(v)
+    fu, fv = u - i0, v - j0
+    out = np.zeros_like(ref)
+    for di, wu in ((0, 1 - fu), (1, fu)):
+        for dj, wv in ((0, 1 - fv), (1, fv)):
+            i = np.clip(i0 + di, 0, r - 1).astype(np.int64)
+            j = np.clip(j0 + dj, 0, r - 1).astype(np.int64)
+            out += wu * wv * (ref <= depth[j, i])
+    return out
+
+
+def threejs_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.int64], points: Array, normals: Array,
+                   frag_x: Array, frag_y: Array, *, bias: float, normal_bias: float, radius: float, map_type: str = "PCFShadowMap") -> Array:
+    """three.js r187's shadow factor (``getShadow`` of shadowmap_pars_fragment, PCFShadowMap or BasicShadowMap).
+
+    The point moves by ``normal_bias`` along its world normal (shadowmap_vertex), its map depth
+    gains ``bias`` (normalized depth), and PCF averages 5 taps of hardware 2×2 PCF on a Vogel
+    disk of ``radius`` texels turned by the interleaved gradient noise of the pixel; outside
+    [0, 1]² or beyond depth 1 the factor is 1.  ``cascade`` −1: no shadow (factor 1).
+    """
+    factor = np.ones(points.shape[:-1])
+    for i, (dm, m) in enumerate(zip(maps, matrices)):
+        sel = cascade == i
+        if not sel.any():
+            continue
+        q = points[sel] + normal_bias * normals[sel]
+        c = to_map(m, q)
+        z = c[:, 2] + bias
+        inside = (c[:, 0] >= 0) & (c[:, 0] <= 1) & (c[:, 1] >= 0) & (c[:, 1] <= 1) & (z <= 1)
+        r = dm.depth.shape[0]
+        depth = np.where(np.isfinite(dm.depth), dm.depth, 1.0)  # cleared to the far plane
+        if map_type == "BasicShadowMap":
+            col = np.clip(np.floor(c[:, 0] * r), 0, r - 1).astype(np.int64)
+            row = np.clip(np.floor(c[:, 1] * r), 0, r - 1).astype(np.int64)
+            f = (z <= depth[row, col]).astype(float)
+        else:
+            phi = _ign(frag_x[sel], frag_y[sel]) * 2 * np.pi
+            f = np.zeros(len(z))
+            for k in range(5):
+                rr = np.sqrt((k + 0.5) / 5)
+                th = k * 2.399963229728653 + phi
+                f += _hardware_pcf(depth, c[:, 0] + rr * np.cos(th) * radius / r, c[:, 1] + rr * np.sin(th) * radius / r, z)
+            f *= 0.2
+        factor[sel] = np.where(inside, f, 1.0)
+    return factor
+
+
+def offset_casters(triangles: Array, sun: Array, normal_bias: float) -> Array:
+    """Babylon.js's caster-side normal bias (shadowMapVertexNormalBias): each corner moves by
+    −n · normalBias · sin(n, l) along its face's unit normal n [world units]."""
+    if normal_bias == 0:
+        return triangles
+    n = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    n = n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+    cos = n @ sun
+    return triangles - (normal_bias * np.sqrt(np.clip(1 - cos**2, 0, 1)))[:, None, None] * n[:, None, :]
+
+
+def _babylon_pcf5(stored: Array, s: Array, t: Array, ref: Array) -> Array:
+    """Babylon.js's computeShadowWithCSMPCF5: 9 hardware-PCF (LINEAR, compare LESS) taps with weights /144."""
+    r = stored.shape[0]
+    u, v = s * r + 0.5, t * r + 0.5
+    st_x, st_y = u - np.floor(u), v - np.floor(v)
+    bu, bv = (np.floor(u) - 0.5) / r, (np.floor(v) - 0.5) / r
+
+    def weights(f):
+        w = (4 - 3 * f, np.full_like(f, 7.0), 1 + 3 * f)
+        o = ((3 - 2 * f) / w[0] - 2, (3 + f) / w[1], f / w[2] + 2)
+        return w, o
+
+    (wx, ox), (wy, oy) = weights(st_x), weights(st_y)
+    out = np.zeros_like(ref)
+    for a in range(3):
+        for b in range(3):
+            out += wx[a] * wy[b] * _hardware_compare(stored, bu + ox[a] / r, bv + oy[b] / r, ref, strict=True)
+    return out / 144.0
+
+
+def _hardware_compare(depth: Array, s: Array, t: Array, ref: Array, *, strict: bool) -> Array:
+    """A LINEAR shadow-sampler lookup: the bilinear weights of the 4 nearest texels' compares (LESS if strict, else LEQUAL), clamped to the edge."""
+    r = depth.shape[0]
+    u, v = s * r - 0.5, t * r - 0.5
+    i0, j0 = np.floor(u), np.floor(v)
+    fu, fv = u - i0, v - j0
+    out = np.zeros_like(ref)
+    for di, wu in ((0, 1 - fu), (1, fu)):
+        for dj, wv in ((0, 1 - fv), (1, fv)):
+            i = np.clip(i0 + di, 0, r - 1).astype(np.int64)
+            j = np.clip(j0 + dj, 0, r - 1).astype(np.int64)
+            d = depth[j, i]
+            out += wu * wv * ((ref < d) if strict else (ref <= d))
+    return out
+
+
+def babylon_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.int64], depth: Array, points: Array, *,
+                   ends: Array, lengths: Array, blend_factor: float, bias: float) -> Array:
+    """Babylon.js 9.35's CSM shadow factor (lightFragment with SHADOWCSM, PCF high quality, depth clamp on).
+
+    The stored depth is the caster's window depth + 1.5 · ``bias`` clamped to [0, 1]
+    (shadowMapVertexMetric adds bias·w to clip z, i.e. bias/2 in window depth, and
+    shadowMapFragment adds ``bias`` again to the clamped depth); the receiver's depth is its
+    window depth clamped to [0, 1 − 2⁻²⁴]; the lookup is :func:`_babylon_pcf5`; a pixel within
+    the last ``1/blend_factor`` of its cascade's length mixes in the next cascade's factor.
+    ``cascade`` −1: no shadow (beyond shadowMaxZ).
+    """
+
+    def lookup(i: int, sel: NDArray[np.bool_]) -> Array:
+        c = to_map(matrices[i], points[sel])
+        stored = np.clip(np.where(np.isfinite(maps[i].depth), maps[i].depth, 1.0) + 1.5 * bias, 0.0, 1.0)
+        ref = np.clip(c[:, 2], 0.0, 0.99999994)
+        return _babylon_pcf5(stored, c[:, 0], c[:, 1], ref)
+
+    factor = np.ones(points.shape[:-1])
+    k = len(maps)
+    for i in range(k):
+        sel = cascade == i
+        if not sel.any():
+            continue
+        f = lookup(i, sel)
+        if i < k - 1:
+            ratio = np.clip((ends[i] - depth[sel]) / lengths[i], 0, 1) * blend_factor
+            blend = ratio < 1
+            if blend.any():
+                idx = np.flatnonzero(sel)[blend]
+                sub = np.zeros_like(sel)
+                sub.flat[idx] = True
+                nxt = lookup(i + 1, sub)
+                f[blend] = nxt + (f[blend] - nxt) * ratio[blend]  # mix(next, this, ratio)
+        factor[sel] = f
+    return factor

@@ -1,0 +1,316 @@
+"""The engines' own frames (aliasing.frames) against the toolkit's prediction.
+
+three.js r187 (WebGLRenderer with the CSM addon) renders the built-in boxes scene in the system
+Chromium (headless, WebGL 2 on SwiftShader, driven by Playwright for Python); its page reads
+back the raw shadow factor, the cascade, the world position and normal per pixel and the light
+matrices per cascade.  The toolkit predicts the same pixels with its own rasterizer and three.js's
+rules (back faces cast for front-sided materials, CSM's cascade selection, the normalized
+depth bias, PCF's five rotated hardware-PCF taps), and the two are measured alike:
+
+* shadow mask agreement >= 99 % away from shadow edges;
+* acne within 2 percentage points, at three.js's defaults and with front faces casting at
+  CSM's default bias (a bias below the one front faces need);
+* the lit gap at the boxes' feet within 1 px;
+* texels per pixel from the engine's matrices equal to the toolkit's fit to 1e-6 relative.
+
+One browser per module.  Without Chromium, npm or Playwright the browser tests skip with one
+line, except under CI (``CI=true``), where that is a failure.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from aliasing.frames import browser as fb
+from aliasing.frames import command, install, scenes
+from aliasing.frames.models import MODELS
+from aliasing import setups
+from aliasing.frames.run import frame_setup
+
+ROOT = Path(__file__).resolve().parents[1]
+CI = os.environ.get("CI", "").lower() == "true"
+HEIGHT = 144
+CAMERA = dict(near=0.5, far=60.0, fov=50.0, aspect=16 / 9)
+CAMERA_SPEC = f"near=0.5,far=60,fov=50,aspect=16:9,height={HEIGHT}"
+SUN = (35.0, 30.0)  # elevation, azimuth [deg]
+
+
+def _frame(browser, engine: str, scene, settings: dict):
+    return frame_setup(browser, setups.build(engine, settings, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}"), scene)
+
+
+def _need(what: str, how: str) -> None:
+    if CI:
+        pytest.fail(f"{what} missing under CI: {how}")
+    pytest.skip(f"{what} missing: the engines' frames are not rendered ({how})")
+
+
+@pytest.fixture(scope="module")
+def chromium():
+    try:
+        import playwright  # noqa: F401
+    except ImportError:
+        _need("Playwright for Python", "pip install '.[frames]'")
+    if fb.chromium_path() is None:
+        _need("Chromium", "Debian: apt-get install chromium")
+    if shutil.which("npm") is None:
+        _need("npm", "Debian: apt-get install nodejs npm")
+    try:
+        install.install("threejs")
+    except install.MissingTool as e:
+        _need("the pinned three.js package", str(e))
+    with fb.Browser(timeout=120) as b:
+        yield b
+
+
+@pytest.fixture(scope="module")
+def boxes():
+    fs = scenes.frame_scene("boxes", **CAMERA, boxes=30, ground_cells=8)
+    return fs, scenes.sun_direction(*SUN, fs.camera)
+
+
+@pytest.fixture(scope="module")
+def babylon(chromium, boxes):
+    fs, sun = boxes
+    try:
+        install.install("babylon")
+    except install.MissingTool as e:
+        _need("the pinned Babylon.js package", str(e))
+    return {name: _frame(chromium, "babylon", fs, settings) for name, settings in (("defaults", {}), ("bias 0", {"bias": 0}), ("bias 4e-4", {"bias": 0.0004}))}
+
+
+@pytest.fixture(scope="module")
+def three(chromium, boxes):
+    fs, sun = boxes
+    front = {"material.shadowSide": "FrontSide"}
+    from aliasing.tune import tune
+
+    tuned = {**front, **tune(setups.build("threejs", front, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")).changed}  # what `aliasing tune` sets
+    return {name: _frame(chromium, "threejs", fs, settings) for name, settings in (("defaults", {}), ("front faces cast", front), ("tuned", tuned))}
+
+
+def test_pins_are_the_node_tests_pins():
+    for engine in ("threejs", "babylon"):
+        pin = install.PINS[engine].pin
+        for f in ("package.json", "package-lock.json", "tree.sha256"):
+            mine = (install.HERE / pin / f).read_bytes()
+            node = (ROOT / "tests" / "engines_js" / "pins" / pin / f).read_bytes()
+            if f == "tree.sha256":
+                mine, node = mine.split()[0], node.split()[0]
+            assert mine == node, (pin, f)
+    for p in install.PINS.values():
+        lock = json.loads((install.HERE / p.pin / "package-lock.json").read_text())
+        assert lock["packages"][f"node_modules/{p.package}"]["version"] == p.version
+
+
+@pytest.mark.parametrize("name", ["defaults", "front faces cast", "tuned"])
+def test_threejs_frame_matches_the_prediction(three, name):
+    r = three[name].report
+    m, p = r["measured"], r["predicted"]
+    assert r["engine"] == "threejs" and r["release"] == "r187" and r["details"]["engine_revision"] == "187"
+    assert r["details"]["pixels"] > 0.4 * HEIGHT * round(HEIGHT * 16 / 9)
+    assert m["shadow_agreement"] >= 0.99, r
+    assert abs(m["acne"] - p["acne"]) <= 0.02, r
+    assert m["gap_px"] is not None and abs(m["gap_px"] - p["gap_px"]) <= 1.0, r
+    got, want = np.array(m["texels_per_pixel"]), np.array(p["texels_per_pixel"])
+    assert got.shape == want.shape == (three[name].settings["cascades"],) and np.max(np.abs(got / want - 1)) <= 1e-6, r
+    assert r["details"]["cascade_agreement"] >= 0.999, r
+    # the whole light matrices (light frame, diagonal side, centre floored to a texel, margin) as predicted
+    assert r["details"]["matrices_vs_engine"] <= 1e-9, r
+
+
+# Babylon.js computes its cascades in float32 (Matrix is a Float32Array): the camera's inverse
+# projection carries its rounding (2^-24 times far/near = 120 here, about 7e-6) into the slices' corners
+BABYLON_FLOAT32 = 1e-5
+
+
+@pytest.mark.parametrize("name", ["defaults", "bias 0", "bias 4e-4"])
+def test_babylon_frame_matches_the_prediction(babylon, name):
+    r = babylon[name].report
+    m, p = r["measured"], r["predicted"]
+    assert r["engine"] == "babylon" and r["release"] == "9.35" and r["details"]["engine_revision"] == "9.35.0"
+    assert m["shadow_agreement"] >= 0.99, r
+    assert abs(m["acne"] - p["acne"]) <= 0.02, r
+    assert m["gap_px"] is not None and abs(m["gap_px"] - p["gap_px"]) <= 1.0, r
+    got, want = np.array(m["texels_per_pixel"]), np.array(p["texels_per_pixel"])
+    assert got.shape == want.shape == (4,) and np.max(np.abs(got / want - 1)) <= BABYLON_FLOAT32, r
+    assert r["details"]["cascade_agreement"] >= 0.999, r
+
+
+def test_babylon_stripes_lit_surfaces(babylon):
+    # front faces cast (the material's back-face culling), so lit surfaces self-shadow at bias 0
+    # and still at the default bias 5e-5 (1.5e-4 of the cascade's depth range, see the docs)
+    assert babylon["bias 0"].report["measured"]["acne"] > 0.3
+    assert babylon["defaults"].report["measured"]["acne"] > 0.3
+
+
+def test_playcanvas_frame_is_read_back_and_measured(chromium, boxes):
+    # PlayCanvas is rendered and measured against the exact reference, not predicted (its
+    # polygon-offset bias depends on the GL's resolvable depth step): the read-back must say
+    # what the frame shows, one light's raw factor per pixel
+    fs, sun = boxes
+    try:
+        install.install("playcanvas")
+    except install.MissingTool as e:
+        _need("the pinned PlayCanvas package", str(e))
+    runs = {name: _frame(chromium, "playcanvas", fs, s) for name, s in (("defaults", {}), ("bias 0", {"shadowBias": 0}))}
+    for r in runs.values():
+        rep = r.report
+        assert rep["engine"] == "playcanvas" and rep["release"] == "2.23" and rep["details"]["engine_revision"] == "2.23.3"
+        assert rep["predicted"] == {"acne": None, "gap_px": None, "texels_per_pixel": None}
+        rb = r.readback
+        assert rb.drawn.sum() > 0.4 * rb.drawn.size
+        # one cascade by default, none beyond the shadow distance (40) where getShadow returns 1
+        depth = fs.camera.to_eye(np.nan_to_num(rb.position))[..., 2]
+        c, d = rb.cascade[rb.drawn], depth[rb.drawn]
+        assert set(np.unique(c)) <= {-1, 0} and (d[c == -1] > 40 - 1e-3).all() and (d[c == 0] <= 40 + 1e-3).all()
+        assert (rb.shadow[rb.drawn][c == -1] == 1).all()
+        assert np.nanmin(rb.shadow) >= -1e-6 and np.nanmax(rb.shadow) <= 1 + 1e-6
+    # the engine's own bias (0.05: a polygon offset) removes the acne that bias 0 shows
+    assert runs["defaults"].report["measured"]["acne"] < 0.05 < 0.2 < runs["bias 0"].report["measured"]["acne"]
+
+
+def test_threejs_tuned_settings_leave_no_acne(three):
+    # `aliasing tune` sets a normal bias that leaves no acne with front faces casting: the frame agrees
+    assert three["tuned"].report["measured"]["acne"] < 0.01 and three["tuned"].report["predicted"]["acne"] < 0.01
+
+
+def test_threejs_defaults_show_no_acne_and_front_faces_do(three):
+    # three.js draws back faces into the map for front-sided materials (WebGLShadowMap's shadowSide
+    # table): no acne at its default bias; front faces casting at that bias stripe the lit surfaces
+    assert three["defaults"].report["measured"]["acne"] < 0.01
+    assert three["front faces cast"].report["measured"]["acne"] > 0.3
+
+
+def test_threejs_shimmer_along_a_sideways_path(chromium, boxes):
+    # the cascades follow a camera moving sideways while the picture's camera stays: three.js floors
+    # each box's centre to a texel, so the toolkit predicts the same maps shifted by whole texels
+    # (no flip) and the engine's pose matrices equal the predicted ones; the engine's residual flips
+    # are all on soft shadow edges (ERRATA F7)
+    import base64
+
+    fs, sun = boxes
+    setup = setups.build("threejs", {}, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")
+    r = frame_setup(chromium, setup, fs, path="sideways:0.05:6")
+    rep = r.report
+    assert rep["predicted"]["flips_per_frame"] == 0.0
+    assert rep["details"]["path_matrices_vs_engine"] <= 1e-9
+    assert rep["measured"]["flips_per_frame"] < 0.005
+    h, w = r.readback.shadow.shape
+    f = np.array([np.frombuffer(base64.b64decode(p["shadow"]), np.float32).reshape(h, w)[::-1] for p in r.readback.info["path"]])[:, r.readback.drawn]
+    flipped = np.diff(f < 0.5, axis=0)
+    pair = np.stack([f[1:], f[:-1]])
+    assert (((pair > 0.05) & (pair < 0.95)).any(0))[flipped].all()
+
+
+def test_threejs_readback_is_the_frame(three, boxes):
+    fs, sun = boxes
+    rb = three["defaults"].readback
+    # positions on the camera's pixel rays: the eye-space direction of each pixel centre
+    h, w = rb.shadow.shape
+    e = fs.camera.to_eye(np.nan_to_num(rb.position))
+    t = np.tan(np.radians(fs.camera.fov) / 2)
+    yy, xx = np.mgrid[0:h, 0:w]
+    u, v = ((xx + 0.5) / w * 2 - 1) * t * fs.camera.aspect, (1 - (yy + 0.5) / h * 2) * t
+    d = rb.drawn
+    assert np.max(np.abs(e[..., 0][d] / e[..., 2][d] - u[d])) < 1e-3
+    assert np.max(np.abs(e[..., 1][d] / e[..., 2][d] - v[d])) < 1e-3
+    assert rb.frame[:8] == b"\x89PNG\r\n\x1a\n"
+    assert rb.matrices.shape == (3, 4, 4) and (rb.sizes == 2048).all()
+
+
+def test_page_errors_are_one_line(chromium, boxes):
+    fs, sun = boxes
+    from aliasing.frames.run import make_job
+
+    job = make_job(fs, sun, {**MODELS["threejs"].settings({}), "side": "sideways"}, 32)  # past the model's checks
+    with pytest.raises(fb.PageError, match=r"^threejs page threw: side and shadowSide must be") as e:
+        chromium.render("threejs", job)
+    assert "\n" not in str(e.value)
+    with pytest.raises(ValueError, match="engine must be one of babylon, playcanvas, threejs"):
+        chromium.render("godot", job)
+
+
+def _cli(*args: str, env: dict | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "aliasing.cli", "frames", *args], capture_output=True, text=True, timeout=300,
+                          env={**os.environ, **(env or {})}, cwd=ROOT)
+
+
+BASE = ["--scene", "boxes", "--camera", "near=0.5,far=60,fov=50,aspect=16:9,height=64", "--sun", "35@30"]
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--engine", "unreal"], "--engine must be one of babylon, playcanvas, threejs"),
+    (["--engine", "threejs", "--camera", "near=1,far=0.5,fov=50,aspect=1,height=64"], "camera far must be greater than near"),
+    (["--engine", "threejs", "--sun", "95"], "sun elevation must be in (0, 90]"),
+    (["--engine", "threejs", "--set", "shadowBiass=0"], "unknown three.js setting 'shadowBiass'"),
+    (["--engine", "threejs@r184"], "the frames render threejs r187 only"),
+    (["--engine", "threejs", "--set", "class=DirectionalLight"], "class must be CSM for the frames"),
+    (["--engine", "babylon", "--path", "sideways:0.1"], "the camera path is rendered for threejs only"),
+    (["--engine", "threejs", "--path", "diagonal:0.1"], "--path must be KIND:STEP[:FRAMES]"),
+    (["--engine", "threejs", "--scene", "no-such.glb"], "scene must be boxes, city or an existing scene file"),
+])
+def test_cli_bad_input_is_one_line(tmp_path, args, message):
+    full = BASE + ["--out", str(tmp_path)] + args
+    # later options override earlier ones (argparse): the bad value wins
+    done = _cli(*full)
+    assert done.returncode == 2, done
+    assert done.stderr.count("\n") == 1 and message in done.stderr, done.stderr
+
+
+def test_cli_without_chromium_says_how_to_install(tmp_path):
+    done = _cli(*BASE, "--engine", "threejs", "--out", str(tmp_path), env={"ALIASING_CHROMIUM": str(tmp_path / "none")})
+    assert done.returncode == 2
+    assert done.stderr.count("\n") == 1 and ("Chromium not found" in done.stderr or "Playwright" in done.stderr), done.stderr
+
+
+def test_cli_without_the_engine_package_says_how_to_install(tmp_path, chromium):
+    done = _cli(*BASE, "--engine", "threejs", "--out", str(tmp_path), env={"ALIASING_ENGINES_JS_CACHE": str(tmp_path / "cache")})
+    assert done.returncode == 2
+    assert done.stderr.count("\n") == 1 and "run `aliasing frames --install`" in done.stderr, done.stderr
+
+
+def test_cli_writes_the_frame_and_the_report(tmp_path, chromium):
+    done = _cli(*BASE, "--engine", "threejs", "--set", "material.shadowSide=FrontSide", "--out", str(tmp_path), "--format", "json")
+    assert done.returncode == 0, done.stderr
+    report = json.loads(done.stdout)
+    assert set(report["measured"]) == {"shadow_agreement", "acne", "gap_px", "texels_per_pixel"}
+    assert set(report["predicted"]) == {"acne", "gap_px", "texels_per_pixel"}
+    assert report["engine"] == "threejs" and report["release"] == "r187" and report["details"]["engine_revision"] == "187"
+    assert report["measured"]["acne"] > 0.3 and abs(report["measured"]["acne"] - report["predicted"]["acne"]) <= 0.02
+    assert json.loads((tmp_path / "frames.json").read_text()) == report
+    for f in ("engine.png", "predicted.png", "difference.png"):
+        assert (tmp_path / f).read_bytes()[:4] == b"\x89PNG"
+
+
+def test_wind_outward_makes_boxes_closed_and_outward():
+    fs = scenes.frame_scene("boxes", **CAMERA, boxes=5, ground_cells=2)
+    tri = fs.triangles[fs.ground:].reshape(5, 12, 3, 3)
+    n = np.cross(tri[..., 1, :] - tri[..., 0, :], tri[..., 2, :] - tri[..., 0, :])
+    centre = tri.reshape(5, -1, 3).mean(1)
+    assert (((tri.mean(2) - centre[:, None]) * n).sum(-1) > 0).all()
+
+
+def test_cli_renders_an_exported_scene_file_and_refuses_a_broken_one(tmp_path, chromium):
+    pytest.importorskip("trimesh")
+    fs = scenes.frame_scene("boxes", **CAMERA, boxes=10, ground_cells=4)
+    glb = scenes.export(fs, tmp_path / "boxes.glb")
+    args = ["--engine", "threejs", "--set", "material.shadowSide=FrontSide", "--camera", "near=0.5,far=60,fov=50,aspect=16:9,height=64",
+            "--sun", "35@30", "--eye=0,0,0", "--target=0,0,-1", "--format", "json"]
+    done = _cli("--scene", glb, *args, "--out", str(tmp_path / "out"))
+    assert done.returncode == 0, done.stderr
+    rep = json.loads(done.stdout)
+    assert rep["measured"]["acne"] > 0.3 and abs(rep["measured"]["acne"] - rep["predicted"]["acne"]) <= 0.02, rep
+    assert rep["measured"]["shadow_agreement"] >= 0.99 and rep["measured"]["gap_px"] is None  # a file has no known ground
+    bad = tmp_path / "broken.glb"
+    bad.write_bytes(b"not a glb")
+    done = _cli("--scene", str(bad), *args, "--out", str(tmp_path / "out2"))
+    assert done.returncode == 2 and done.stderr.count("\n") == 1 and "could not be loaded" in done.stderr, done.stderr
