@@ -383,7 +383,7 @@ def _acne_verdict(k: int, short: np.ndarray, slopes: np.ndarray, elev: np.ndarra
             continue
         upper = _upper(rule, key)
         fixes.append(f"{key} {'≤' if upper else '≥'} {_fmt(_safe(v, upper))}")
-    return f"cascade {k} acnes on {'; '.join(parts)} ({acne:.0%} of the sampled receivers): " + (" or ".join(fixes) or "no bias setting helps")
+    return f"cascade {k} acnes on {'; '.join(parts)} ({acne:.0%} of the sampled receivers): " + (" or ".join(fixes) or "no single bias setting removes it within the engine's limits")
 
 
 def _upper(rule, key: str) -> bool:
