@@ -136,3 +136,50 @@ def test_every_engine_reads_sensibly():
         r = check(setups.build(engine, {}, CAMERAS[0], SUN))
         assert all(math.isfinite(c["error_max"]) for c in r.cascades)
         assert not any("not modelled" in v and ("blend band runs" in v or "given no extent" in v) for v in r.verdicts)
+
+
+# --- a scene's own receivers -------------------------------------------------------------------------------------------
+
+GROUND = np.array([[[-2000, 0, -10], [2000, 0, -10], [2000, 0, 2000]], [[-2000, 0, -10], [2000, 0, 2000], [-2000, 0, 2000]]], float)
+
+
+def test_a_flat_ground_scene_needs_what_the_analytic_ground_needs():
+    """A level camera over one ground plane: every pixel is the analytic ground receiver (θ = 90° − e, φ = 90°)."""
+    s = setups.build("bevy", {"shadow_normal_bias": 0.0}, "near=0.5,far=100,fov=60,aspect=16:9,height=720", "15..60")
+    flat = check(s, scene=GROUND, eye="0,1.7,0", target="0,1.7,1", pixels=64)
+    plane = check(s)
+    assert flat.sample["scene"] == "given" and flat.sample["pixels"] > 0
+    for a, b in zip(flat.cascades, plane.cascades):
+        assert 0 < a["acne_px"] <= a["receiver_px"] and a["acne"] == pytest.approx(b["acne"], rel=1e-12)
+        for key in a["needed"]:
+            assert a["needed"][key] == pytest.approx(b["needed"][key], rel=1e-9)
+    assert any("ground" in v and "px of the given scene" in v for v in flat.verdicts)
+
+
+def test_scene_needed_values_fed_back_remove_its_acne():
+    s = setups.build("babylon", {}, "near=0.5,far=150,fov=60,aspect=16:9,height=720", "15..60")
+    r = check(s, scene="boxes", pixels=48)
+    assert any(c["acne_px"] for c in r.cascades)
+    for k, c in enumerate(r.cascades):
+        if c["acne_px"]:
+            fixed = check(s.with_settings(normalBias=c["needed"]["normalBias"]), scene="boxes", pixels=48)
+            assert fixed.cascades[k]["acne_px"] == 0 and fixed.cascades[k]["receiver_px"] == c["receiver_px"]
+
+
+def test_scene_on_the_command_line(capsys):
+    argv = ["check", "--engine", "unreal", "--camera", "near=0.5,far=200,fov=60,aspect=16:9,height=720", "--sun", "20@150",
+            "--scene", "city", "--pixels", "48", "--format", "json"]
+    assert main(argv) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert all({"acne_px", "receiver_px"} <= set(c) for c in out["cascades"])
+    assert sum(c["receiver_px"] for c in out["cascades"]) > 0
+
+
+@pytest.mark.parametrize("extra, words", [(["--scene", "boxes", "--eye", "1,2,3"], "built around the camera"),
+                                          (["--scene", "nofile.glb"], "eye and target"),
+                                          (["--scene", "city", "--pixels", "3"], "pixels must be"),
+                                          (["--scene", "city", "--receivers", "10"], "either receivers")])
+def test_scene_bad_input_is_one_line(capsys, extra, words):
+    assert main(["check", "--engine", "babylon"] + extra) == 2
+    err = capsys.readouterr().err.strip()
+    assert words in err and "\n" not in err

@@ -64,6 +64,9 @@ three.js's ``lookAt`` gives), so the need is (k/2)·w·tan θ for a k-texel filt
 ``needed`` takes the largest texel side.
 
 The check is analytic (no rasterizer): a few milliseconds for four cascades and seven suns.
+With ``scene`` the receivers are instead the pixels of an eye pass over a scene
+(:mod:`aliasing.check.scene`: the built-in boxes or city, or a file), each with its own normal,
+depth and cascade: acne is counted in pixels, by receiver kind (a few seconds at 256²).
 
 Example
 -------
@@ -95,6 +98,7 @@ from ..engines import pipeline as _pipeline
 from ..engines import stable
 from ..raster.draw.lookup import PCF_MAX
 from ..setups import Setup
+from .scene import scene_pixels as _scene_pixels
 
 __all__ = ["MAX_ANGLE", "Report", "check"]
 
@@ -173,7 +177,7 @@ class Report:
             band = c["blend"] or [None, None]
             row = {"cascade": c["cascade"], "near": c["near"], "far": c["far"], "texel_s": c["texel"][0], "texel_t": c["texel"][1],
                    "blend_start": band[0], "blend_end": band[1], **{k: c[k] for k in COLUMNS[5:] if not k.startswith("blend")}}
-            row = {k: row[k] for k in COLUMNS}
+            row = {k: row[k] for k in COLUMNS} | {k: c[k] for k in ("acne_px", "receiver_px") if k in c}
             row.update({f"needed_{k}": v for k, v in c["needed"].items()})
             rows.append(row)
         return rows
@@ -226,7 +230,8 @@ def _json(c: dict) -> dict:
     return clean(dict(c))
 
 
-def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = None, walk: float = 0.05, samples: int = 7) -> Report:
+def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = None, eye: ArrayLike | str | None = None,
+          target: ArrayLike | str | None = None, pixels: int = 256, walk: float = 0.05, samples: int = 7) -> Report:
     """The per-cascade report of an engine's setup (module docstring).
 
     Parameters
@@ -236,8 +241,14 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
     receivers : array_like, optional
         Slopes of the sampled planar receivers, tilted away from the sun [deg] in [0, 90)
         (default: the ground alone).
-    scene : None
-        Reserved for a rendered scene's receivers; only None (the analytic sample) is supported.
+    scene : {"boxes", "city"}, str, path or array_like, optional
+        A scene whose visible pixels are the receivers instead (:mod:`aliasing.check.scene`):
+        ``acne`` is then the fraction of the pixels facing the sun in each cascade that acne
+        over the band, with ``acne_px`` (at the worst sun) and ``receiver_px`` per cascade.
+    eye, target : array_like or "X,Y,Z", optional
+        The camera of a city, file or triangle scene [world units].
+    pixels : int
+        The eye pass's pixels per side for ``scene``, 16 to 1024 (default 256).
     walk : float
         The camera's step per frame along its view direction [world units], > 0 (default
         0.05: 3 m/s at 60 frames per second), for ``shimmer_px``.
@@ -266,8 +277,8 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
     """
     if not isinstance(setup, Setup):
         raise ValueError(f"setup must be an aliasing.setups.Setup (aliasing.setups.build(...)), got {type(setup).__name__}")
-    if scene is not None:
-        raise ValueError("scene must be None (the analytic receivers); a rendered scene's receivers are not supported by check")
+    if scene is not None and receivers is not None:
+        raise ValueError("give either receivers (slopes of planar receivers) or scene (a scene's own receivers), not both")
     slopes = _receivers(receivers)
     step = check_.scalar(walk, "walk")
     if not (math.isfinite(step) and step > 0):
@@ -276,6 +287,10 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
     pl, cam, sun, profile = setup.pipeline, setup.camera, setup.sun, setup.profile
     elev = sun.elevations(n)
     lv = sun.direction(elev)  # (E, 3) eye-space vectors towards the sun
+    seen = None
+    if scene is not None:
+        seen = _scene_pixels(setup, scene, eye, target, pixels)
+        lv = seen.light(elev, sun.azimuth)
     tex = _pipeline.texels(pl, cam, lv)  # (E, K, 2)
     K, H, R = pl.k, cam.height, float(pl.resolution)
     t = math.tan(math.radians(cam.fov) / 2)
@@ -295,8 +310,15 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
     lookup = f"pcf{taps}"
     rule = pl.bias
     back = rule.faces == "back"
-    # the sample: slopes × elevations, θ = 90 − e + σ
-    theta = 90.0 - elev[None, :] + slopes[:, None]  # (S, E)
+    if seen is None:  # the sample: slopes × elevations, θ = 90 − e + σ, the depth changing along the map's t (φ = 90°)
+        theta = 90.0 - elev[None, :] + slopes[:, None]  # (S, E)
+        sun_i = np.broadcast_to(np.arange(len(elev))[None, :], theta.shape)
+        phi = np.full(theta.shape, 90.0)
+        member = np.ones((K,) + theta.shape, bool)
+    else:  # the scene's visible pixels under each sun: θ from their normals, φ in the map's axes, the cascade by eye depth
+        theta, phi = seen.angles(lv)  # (E, P)
+        sun_i = np.broadcast_to(np.arange(len(elev))[:, None], theta.shape)
+        member = seen.cascades(near_i, far_i)[:, None, :] & np.ones(theta.shape, bool)  # (K, E, P)
     valid = theta <= MAX_ANGLE
     th = np.where(valid, theta, 0.0)
     known = {st.key for st in profile.settings}
@@ -311,16 +333,17 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
         verdicts.append(f"{profile.title} draws back faces into the map: closed and one-sided receivers do not self-shadow (acne 0); "
                         "'needed' holds where front faces cast (thin or two-sided receivers)")
     for k in range(K):
-        wk = np.broadcast_to(w[:, k][None, :], th.shape)  # (S, E)
-        dk = None if ext is None else np.broadcast_to(ext[:, k][None, :], th.shape)
-        need = np.asarray(plane_bias(wk, th, 90.0, lookup).depth)
-        have = np.asarray(rule.depth(wk, th, 90.0, dk))
-        short = valid & (have < need * (1 - _TOL) - 1e-300)
-        acne = 0.0 if back else float(short.sum() / max(1, valid.sum()))
+        wk = w[sun_i, k]  # the texel under each sample's sun
+        dk = None if ext is None else ext[sun_i, k]
+        need = np.asarray(plane_bias(wk, th, phi, lookup).depth)
+        have = np.asarray(rule.depth(wk, th, phi, dk))
+        inside = valid & member[k]
+        short = inside & (have < need * (1 - _TOL) - 1e-300)
+        acne = 0.0 if back else float(short.sum() / max(1, inside.sum()))
         needed: dict[str, float | None] = {}
         for key in keys:
             term = rule.term(key)
-            m = np.asarray(rule.minimal(key, need, wk, th, 90.0, dk))[valid]
+            m = np.asarray(rule.minimal(key, need, wk, th, phi, dk))[inside]
             upper = _upper(rule, key)
             if m.size == 0:
                 needed[key] = term.value
@@ -338,6 +361,8 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
             "texel": [float(tex[:, k, 0].max()), float(tex[:, k, 1].max())],
             "error_max": float(err[:, k].max()), "error_median": float(np.median(err[:, k])), "stable_cost": float(cost[k]),
             "needed": needed, "acne": acne, "gap_px": gap,
+            **({} if seen is None else {"acne_px": 0 if back else int(short.sum(axis=-1).max()),
+                                        "receiver_px": int(inside.sum(axis=-1).max())}),
             "seam_step": float(seam_step(w[:, k].max(), w[:, k + 1].max())) if k + 1 < K else None,
             "blend": None if k + 1 >= K or bands[k] is None else [float(bands[k][0]), float(bands[k][1])],
             "footprint_px": float(pcf_footprint(taps, float(w[:, k].max()), pixel[k])),
@@ -345,7 +370,8 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
         }
         cascades.append(row)
         if short.any() and not back:
-            verdicts.append(_acne_verdict(k, short, slopes, elev, needed, rule, acne))
+            verdicts.append(_acne_verdict(k, short, slopes, elev, needed, rule, acne) if seen is None else
+                            seen.verdict(k, short, elev, _fixes(needed, rule), acne))
         for limit in unreachable.get(k, []):
             verdicts.append(f"cascade {k}: {limit}")
         if gap >= 1.0:
@@ -361,10 +387,12 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
         verdicts.append(f"the fit is not stabilized: shadow edges shimmer up to {max(c['shimmer_px'] for c in cascades):.2g} px per frame "
                         f"under a {step:g} m/frame walk")
     if not back and not any(c["acne"] for c in cascades):
-        verdicts.append("no acne on the sampled receivers at these settings")
+        verdicts.append("no acne on the sampled receivers at these settings" if seen is None else
+                        f"no acne on the scene's {seen.source} receivers facing the sun at these settings")
     verdicts += [f"not modelled: {note}" for note in pl.notes]
-    return Report(setup, tuple(cascades), tuple(verdicts),
-                  {"slopes": slopes.tolist(), "elevations": elev.tolist(), "max_angle": MAX_ANGLE, "lookup": lookup, "walk": step})
+    sample = {"elevations": elev.tolist(), "max_angle": MAX_ANGLE, "lookup": lookup, "walk": step}
+    sample |= {"slopes": slopes.tolist()} if seen is None else {"scene": seen.source, "pixels": int(len(seen.position))}
+    return Report(setup, tuple(cascades), tuple(verdicts), sample)
 
 
 def _acne_verdict(k: int, short: np.ndarray, slopes: np.ndarray, elev: np.ndarray, needed: dict, rule, acne: float) -> str:
@@ -377,13 +405,17 @@ def _acne_verdict(k: int, short: np.ndarray, slopes: np.ndarray, elev: np.ndarra
             when = (f"below {clean.min():g}° sun" if clean.size else
                     f"at every sun of {elev.min():g}–{elev.max():g}°" if hit.size == elev.size else f"at suns of {hit.min():g}–{hit.max():g}°")
             parts.append(f"{where} {when}")
+    return f"cascade {k} acnes on {'; '.join(parts)} ({acne:.0%} of the sampled receivers): " + _fixes(needed, rule)
+
+
+def _fixes(needed: dict, rule) -> str:
     fixes = []
     for key, v in needed.items():
         if v is None:
             continue
         upper = _upper(rule, key)
         fixes.append(f"{key} {'≤' if upper else '≥'} {_fmt(_safe(v, upper))}")
-    return f"cascade {k} acnes on {'; '.join(parts)} ({acne:.0%} of the sampled receivers): " + (" or ".join(fixes) or "no single bias setting removes it within the engine's limits")
+    return " or ".join(fixes) or "no single bias setting removes it within the engine's limits"
 
 
 def _upper(rule, key: str) -> bool:
