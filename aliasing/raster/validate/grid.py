@@ -518,7 +518,9 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
     from .scene import add_scene_options  # --scene FILE (aliasing.raster.validate.scene)
 
     add_scene_options(p)
-    setups.add_arguments(p, sun=None, camera=False)  # --camera SPEC and --sun: f/n, fov, aspect, --image-res, --light; --engine: its far
+    setups.add_arguments(p, sun=None, camera=False, uses=(  # --camera SPEC
+        "validate takes only the last cascade's far (the shadow far, with --camera) from the engine's pipeline; the maps are the "
+        "validated schemes' own (tight fits): aliasing check and aliasing engines --engine use the engine's fit"))  # and --sun: f/n, fov, aspect, --image-res, --light; --engine: its far
     scene_run = p.get_default("run")
 
     def run(args: argparse.Namespace) -> int:
