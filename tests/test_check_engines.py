@@ -183,3 +183,30 @@ def test_scene_bad_input_is_one_line(capsys, extra, words):
     assert main(["check", "--engine", "babylon"] + extra) == 2
     err = capsys.readouterr().err.strip()
     assert words in err and "\n" not in err
+
+
+hypothesis = pytest.importorskip("hypothesis")
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+_VEC = st.sampled_from(["0,1.7,0", "0,1.7,1", "0,0,0", "1,2", "a,b,c", "nan,0,0", "0,1e308,0", "-300,30,-300"])
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=list(HealthCheck))
+@given(scene=st.sampled_from(["boxes", "city", "nofile.obj", "", "/dev/null", "BOXES"]), eye=st.none() | _VEC, target=st.none() | _VEC,
+       pixels=st.sampled_from(["16", "20", "0", "-3", "2.5", "x", "2000"]))
+def test_fuzz_scene_options(capsys, scene, eye, target, pixels):
+    argv = ["check", "--engine", "godot", "--camera", "near=0.5,far=60,fov=60,aspect=16:9,height=360", "--sun", "30",
+            "--scene", scene, "--pixels", pixels, "--format", "json"]
+    argv += ["--eye", eye] if eye else []
+    argv += ["--target", target] if target else []
+    try:
+        code = main(argv)
+    except SystemExit as e:  # argparse's own refusal (a non-integer --pixels)
+        code = e.code
+    out, err = capsys.readouterr()
+    assert code in (0, 2), (argv, err)
+    if code == 2:
+        assert err.strip() and "Traceback" not in err and (err.count("\n") <= 1 or err.startswith("usage:"))
+    else:
+        assert json.loads(out)["cascades"]
