@@ -210,3 +210,21 @@ def test_fuzz_scene_options(capsys, scene, eye, target, pixels):
         assert err.strip() and "Traceback" not in err and (err.count("\n") <= 1 or err.startswith("usage:"))
     else:
         assert json.loads(out)["cascades"]
+
+
+def test_validate_on_a_scene_takes_the_engines_own_fit(tmp_path, capsys):
+    from aliasing.raster.scenes import procedural
+
+    tri = procedural.city(1500, seed=1, size=80.0)
+    lines = [f"v {x:.17g} {y:.17g} {z:.17g}" for x, y, z in tri.reshape(-1, 3)] + [f"f {3 * i + 1} {3 * i + 2} {3 * i + 3}" for i in range(len(tri))]
+    obj = tmp_path / "city.obj"
+    obj.write_text("\n".join(lines) + "\n")
+    argv = ["validate", "--scheme", "P", "--scene", str(obj), "--eye=-40,6,-40", "--target", "0,0,0", "--engine", "godot",
+            "--camera", "near=0.5,far=100,fov=60,aspect=16:9,height=720", "--sun", "30@20", "--res", "64", "--format", "json"]
+    assert main(argv) == 0
+    r = json.loads(capsys.readouterr().out)
+    pl = setups.build("godot", {}, "near=0.5,far=100,fov=60,aspect=16:9,height=720", "30@20").pipeline
+    assert (r["engine"], r["fit"], r["snap"], r["resolution"]) == ("godot", pl.fit, pl.snap, pl.resolution)
+    assert r["far_i"] == list(pl.far_i) and r["passed"] and sum(r["pixels"]) > 0
+    assert main(argv[:8] + ["--engine", "threejs", "--set", "class=DirectionalLight"] + argv[10:]) == 2
+    assert "fixed shadow box" in capsys.readouterr().err
