@@ -5,7 +5,7 @@ The scene (``"boxes"``: the seeded ground and boxes of
 ground; ``"city"``: the procedural city of :func:`aliasing.raster.scenes.procedural.city`, 400
 world units across, seen from its street camera unless ``eye`` and ``target`` are given; a file
 path: glTF/GLB, OBJ, PLY, STL, with ``eye`` and ``target``; or world-space triangles (T, 3, 3))
-is drawn by the eye pass (:func:`aliasing.raster.draw.eye.eye_pass`) at ``pixels`` × ``pixels``
+is drawn by the eye pass (:func:`aliasing.raster.draw.eye_pass`) at ``pixels`` × ``pixels``
 with the setup's camera (its near, far, vertical fov and aspect: the pixels span the frustum).
 Each visible pixel inside [near, far] is a receiver: its eye depth picks the cascade (the
 first whose range holds it), its face normal gives θ against each sun and the direction φ of
@@ -14,7 +14,7 @@ setup's band and azimuth about the world's up (+y) from the camera's horizontal 
 direction, so a camera looking down sees them at the same elevations above the ground.
 
 A pixel counts as a receiver under a sun when its face turns towards it (θ ≤
-:data:`aliasing.check.MAX_ANGLE`); whether another object shadows it is not tested: the
+``aliasing.check.MAX_ANGLE``); whether another object shadows it is not tested: the
 counts are of the pixels facing the sun.
 
 Example
