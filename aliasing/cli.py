@@ -233,6 +233,50 @@ def _table(rows: list[dict]) -> str:
     return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells)
 
 
+def _engine_validate(p: argparse.ArgumentParser) -> None:
+    """``validate --scene FILE --engine E``: the engine's own cascades (its ranges, fit, snap and map size) on the scene,
+    measured against the analytic bounds (:func:`aliasing.engines.scene.cascades_on_scene`); the other cases as before."""
+    plain = p.get_default("run")
+
+    def run(args: argparse.Namespace) -> int:
+        if not (getattr(args, "engine", None) and getattr(args, "scene", None)):
+            return plain(args)
+        import json
+
+        from . import setups
+        from .engines.scene import cascades_on_scene
+        from .raster.scenes import setup as scene_setup
+        from .raster.scenes.world import json_safe
+
+        setup = setups.from_args(argparse.Namespace(**{**vars(args), "camera": args.camera if "=" in (args.camera or "") else None}))
+        pl = setup.pipeline
+        if pl.fit == "fixed" or pl.grow or pl.rows:
+            why = "a fixed shadow box" if pl.fit == "fixed" else "a fade margin on the fit" if pl.grow else "maps of unequal sides (an atlas)"
+            raise ValueError(f"validate --scene --engine {setup.profile.name}: this pipeline has {why}, which the scene validation of "
+                             "engine fits does not draw; aliasing check --scene evaluates it")
+        if args.format not in (None, "text", "json"):
+            raise ValueError(f"--format with --scene must be text or json, got {args.format!r}")
+        cam, far = setup.camera, max(pl.far_i)
+        light = None if args.light_dir is not None else setup.sun.light() if args.sun else args.light
+        st = scene_setup(args.scene, eye=args.eye, target=args.target, up=args.up, near=cam.near, far=far, fov=cam.fov,
+                         light_dir=args.light_dir, light=light, aspect=cam.aspect)
+        r = cascades_on_scene(st, (list(pl.near_i), list(pl.far_i)), res=args.res, fit=pl.fit, snap=pl.snap,
+                              resolution=float(pl.resolution))
+        r = {"engine": setup.engine, "release": setup.release, "fit": pl.fit, "snap": pl.snap, "resolution": pl.resolution} | r
+        if args.format == "json":
+            sys.stdout.write(json.dumps(json_safe(r), indent=1) + "\n")
+        else:
+            head = f"{setup.profile.title} {setup.release}: its cascades (fit {pl.fit}, snap {pl.snap}, {pl.resolution}² texels) on {args.scene}\n"
+            rows = "".join(f"{i:>4d}{a:>10.4g}{b:>10.4g}{n:>9d}{x:>10.4f}{z:>10.4f}\n" for i, (a, b, n, x, z) in
+                           enumerate(zip(r["near_i"], r["far_i"], r["pixels"], r["ratio_x"], r["ratio_z"])))
+            verdict = "PASS" if r["passed"] else "FAIL"
+            sys.stdout.write(head + f"{'map':>4s}{'near':>10s}{'far':>10s}{'pixels':>9s}{'ratio_x':>10s}{'ratio_z':>10s}\n" + rows
+                             + f"{verdict}: max ratio {r['max_ratio']:.6f} <= 1 + {r['tolerance']:g} (measured error over the analytic bound)\n")
+        return 0 if r["passed"] else 1
+
+    p.set_defaults(run=run)
+
+
 def build_parser(full: bool = True) -> argparse.ArgumentParser:
     """The ``aliasing`` parser; ``full=False`` leaves out the subcommands whose parsers import
     the rasterizer and the engines (validate, render, engines), for ``aliasing derive``,
@@ -317,7 +361,7 @@ def build_parser(full: bool = True) -> argparse.ArgumentParser:
 
     from .raster.validate import add_validate_parser
 
-    add_validate_parser(sub)
+    _engine_validate(add_validate_parser(sub))
 
     from .raster.pictures import add_render_parser
 

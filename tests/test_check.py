@@ -126,7 +126,8 @@ def test_rows_and_text():
 def test_bad_parameters():
     s = setups.build("threejs", camera=CAMERA)
     for kwargs, name in (({"receivers": [95.0]}, "receivers"), ({"walk": -1.0}, "walk"), ({"samples": 0}, "samples"),
-                         ({"walk": np.ones(2)}, "walk"), ({"scene": "city"}, "scene")):
+                         ({"walk": np.ones(2)}, "walk"), ({"scene": 42, "eye": "0,1,0", "target": "0,1,1"}, "scene"),
+                         ({"scene": "boxes", "pixels": 8}, "pixels")):
         with pytest.raises(ValueError, match=name):
             check(s, **kwargs)
     with pytest.raises(ValueError, match="setup"):

@@ -64,6 +64,9 @@ three.js's ``lookAt`` gives), so the need is (k/2)·w·tan θ for a k-texel filt
 ``needed`` takes the largest texel side.
 
 The check is analytic (no rasterizer): a few milliseconds for four cascades and seven suns.
+With ``scene`` the receivers are instead the pixels of an eye pass over a scene
+(:mod:`aliasing.check.scene`: the built-in boxes or city, or a file), each with its own normal,
+depth and cascade: acne is counted in pixels, by receiver kind (a few seconds at 256²).
 
 Example
 -------
@@ -90,11 +93,12 @@ from numpy.typing import ArrayLike
 
 from .. import _validation as check_
 from ..bias import lit_gap, plane_bias
-from ..bias.filtering import pcf_footprint, seam_step
+from ..bias.filtering import blend_band, pcf_footprint, seam_step
 from ..engines import pipeline as _pipeline
 from ..engines import stable
 from ..raster.draw.lookup import PCF_MAX
 from ..setups import Setup
+from .scene import scene_pixels as _scene_pixels
 
 __all__ = ["MAX_ANGLE", "Report", "check"]
 
@@ -104,7 +108,7 @@ MAX_ANGLE = 85.0
 _TOL = 1e-9
 #: Columns of the tidy table (:meth:`Report.to_rows`).
 COLUMNS = ("cascade", "near", "far", "texel_s", "texel_t", "error_max", "error_median", "stable_cost", "acne", "gap_px",
-           "seam_step", "footprint_px", "shimmer_px", "memory")
+           "seam_step", "blend_start", "blend_end", "footprint_px", "shimmer_px", "memory")
 
 
 def _receivers(receivers: ArrayLike | None) -> np.ndarray:
@@ -170,8 +174,10 @@ class Report:
         """A tidy table: one row per cascade, flat columns (:data:`COLUMNS`), then ``needed_<key>`` per bias setting."""
         rows = []
         for c in self.cascades:
+            band = c["blend"] or [None, None]
             row = {"cascade": c["cascade"], "near": c["near"], "far": c["far"], "texel_s": c["texel"][0], "texel_t": c["texel"][1],
-                   **{k: c[k] for k in COLUMNS[5:]}}
+                   "blend_start": band[0], "blend_end": band[1], **{k: c[k] for k in COLUMNS[5:] if not k.startswith("blend")}}
+            row = {k: row[k] for k in COLUMNS} | {k: c[k] for k in ("acne_px", "receiver_px") if k in c}
             row.update({f"needed_{k}": v for k, v in c["needed"].items()})
             rows.append(row)
         return rows
@@ -224,7 +230,8 @@ def _json(c: dict) -> dict:
     return clean(dict(c))
 
 
-def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = None, walk: float = 0.05, samples: int = 7) -> Report:
+def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = None, eye: ArrayLike | str | None = None,
+          target: ArrayLike | str | None = None, pixels: int = 256, walk: float = 0.05, samples: int = 7) -> Report:
     """The per-cascade report of an engine's setup (module docstring).
 
     Parameters
@@ -234,8 +241,14 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
     receivers : array_like, optional
         Slopes of the sampled planar receivers, tilted away from the sun [deg] in [0, 90)
         (default: the ground alone).
-    scene : None
-        Reserved for a rendered scene's receivers; only None (the analytic sample) is supported.
+    scene : {"boxes", "city"}, str, path or array_like, optional
+        A scene whose visible pixels are the receivers instead (:mod:`aliasing.check.scene`):
+        ``acne`` is then the fraction of the pixels facing the sun in each cascade that acne
+        over the band, with ``acne_px`` (at the worst sun) and ``receiver_px`` per cascade.
+    eye, target : array_like or "X,Y,Z", optional
+        The camera of a city, file or triangle scene [world units].
+    pixels : int
+        The eye pass's pixels per side for ``scene``, 16 to 1024 (default 256).
     walk : float
         The camera's step per frame along its view direction [world units], > 0 (default
         0.05: 3 m/s at 60 frames per second), for ``shimmer_px``.
@@ -264,8 +277,8 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
     """
     if not isinstance(setup, Setup):
         raise ValueError(f"setup must be an aliasing.setups.Setup (aliasing.setups.build(...)), got {type(setup).__name__}")
-    if scene is not None:
-        raise ValueError("scene must be None (the analytic receivers); a rendered scene's receivers are not supported by check")
+    if scene is not None and receivers is not None:
+        raise ValueError("give either receivers (slopes of planar receivers) or scene (a scene's own receivers), not both")
     slopes = _receivers(receivers)
     step = check_.scalar(walk, "walk")
     if not (math.isfinite(step) and step > 0):
@@ -274,6 +287,10 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
     pl, cam, sun, profile = setup.pipeline, setup.camera, setup.sun, setup.profile
     elev = sun.elevations(n)
     lv = sun.direction(elev)  # (E, 3) eye-space vectors towards the sun
+    seen = None
+    if scene is not None:
+        seen = _scene_pixels(setup, scene, eye, target, pixels)
+        lv = seen.light(elev, sun.azimuth)
     tex = _pipeline.texels(pl, cam, lv)  # (E, K, 2)
     K, H, R = pl.k, cam.height, float(pl.resolution)
     t = math.tan(math.radians(cam.fov) / 2)
@@ -288,12 +305,20 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
         tight = stable.evaluate((near_i, far_i), cam.near, float(far_i.max()), cam.fov, lv, aspect=cam.aspect, resolution=R)
         cost = err.max(axis=0) / (np.maximum(tight.M_x, tight.M_z) * H / R).max(axis=0)
     w = tex.max(axis=-1)  # (E, K) the largest texel side
+    ext = _pipeline.extents(pl, cam, lv) if pl.bias.needs_extent else None  # (E, K) each map's depth range along the light
     taps = _taps(setup)
     lookup = f"pcf{taps}"
     rule = pl.bias
     back = rule.faces == "back"
-    # the sample: slopes × elevations, θ = 90 − e + σ
-    theta = 90.0 - elev[None, :] + slopes[:, None]  # (S, E)
+    if seen is None:  # the sample: slopes × elevations, θ = 90 − e + σ, the depth changing along the map's t (φ = 90°)
+        theta = 90.0 - elev[None, :] + slopes[:, None]  # (S, E)
+        sun_i = np.broadcast_to(np.arange(len(elev))[None, :], theta.shape)
+        phi = np.full(theta.shape, 90.0)
+        member = np.ones((K,) + theta.shape, bool)
+    else:  # the scene's visible pixels under each sun: θ from their normals, φ in the map's axes, the cascade by eye depth
+        theta, phi = seen.angles(lv)  # (E, P)
+        sun_i = np.broadcast_to(np.arange(len(elev))[:, None], theta.shape)
+        member = seen.cascades(near_i, far_i)[:, None, :] & np.ones(theta.shape, bool)  # (K, E, P)
     valid = theta <= MAX_ANGLE
     th = np.where(valid, theta, 0.0)
     known = {st.key for st in profile.settings}
@@ -302,26 +327,33 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
     pixel = 2 * mid * t / H
     lo_sun = float(elev.min())
     cascades, verdicts = [], []
+    unreachable: dict[int, list[str]] = {}
+    bands = list(pl.bands) + [None] * (K - len(pl.bands))
     if back:
         verdicts.append(f"{profile.title} draws back faces into the map: closed and one-sided receivers do not self-shadow (acne 0); "
                         "'needed' holds where front faces cast (thin or two-sided receivers)")
     for k in range(K):
-        wk = w[:, k][None, :]  # (1, E)
-        need = np.asarray(plane_bias(np.broadcast_to(wk, th.shape), th, 90.0, lookup).depth)
-        have = np.asarray(rule.depth(np.broadcast_to(wk, th.shape), th, 90.0))
-        short = valid & (have < need * (1 - _TOL) - 1e-300)
-        acne = 0.0 if back else float(short.sum() / max(1, valid.sum()))
+        wk = w[sun_i, k]  # the texel under each sample's sun
+        dk = None if ext is None else ext[sun_i, k]
+        need = np.asarray(plane_bias(wk, th, phi, lookup).depth)
+        have = np.asarray(rule.depth(wk, th, phi, dk))
+        inside = valid & member[k]
+        short = inside & (have < need * (1 - _TOL) - 1e-300)
+        acne = 0.0 if back else float(short.sum() / max(1, inside.sum()))
         needed: dict[str, float | None] = {}
         for key in keys:
             term = rule.term(key)
-            m = np.asarray(rule.minimal(key, need, np.broadcast_to(wk, th.shape), th, 90.0))[valid]
-            sign = float(np.sign(term.scale)) or 1.0
+            m = np.asarray(rule.minimal(key, need, wk, th, phi, dk))[inside]
+            upper = _upper(rule, key)
             if m.size == 0:
                 needed[key] = term.value
                 continue
-            v = float(m.min()) if sign < 0 else float(m.max())
-            needed[key] = v if math.isfinite(v) else None
-        contact = float(np.max(np.asarray(rule.contact(w[:, k]))))
+            v = float(m.min()) if upper else float(m.max())
+            v, limit = _accepted(profile.setting(key), v, upper)
+            needed[key] = v
+            if limit:
+                unreachable.setdefault(k, []).append(limit)
+        contact = float(np.max(np.asarray(rule.contact(w[:, k], None if ext is None else ext[:, k]))))
         gap = float(lit_gap(max(0.0, contact), lo_sun)) / pixel[k]
         shimmer = 0.0 if pl.stable else _shimmer(lv, w[:, k], step) / pixel[k]
         row = {
@@ -329,26 +361,38 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
             "texel": [float(tex[:, k, 0].max()), float(tex[:, k, 1].max())],
             "error_max": float(err[:, k].max()), "error_median": float(np.median(err[:, k])), "stable_cost": float(cost[k]),
             "needed": needed, "acne": acne, "gap_px": gap,
+            **({} if seen is None else {"acne_px": 0 if back else int(short.sum(axis=-1).max()),
+                                        "receiver_px": int(inside.sum(axis=-1).max())}),
             "seam_step": float(seam_step(w[:, k].max(), w[:, k + 1].max())) if k + 1 < K else None,
+            "blend": None if k + 1 >= K or bands[k] is None else [float(bands[k][0]), float(bands[k][1])],
             "footprint_px": float(pcf_footprint(taps, float(w[:, k].max()), pixel[k])),
             "shimmer_px": float(shimmer), "memory": int(pl.memory // K),
         }
         cascades.append(row)
         if short.any() and not back:
-            verdicts.append(_acne_verdict(k, short, slopes, elev, needed, rule, acne))
+            verdicts.append(_acne_verdict(k, short, slopes, elev, needed, rule, acne) if seen is None else
+                            seen.verdict(k, short, elev, _fixes(needed, rule), acne))
+        for limit in unreachable.get(k, []):
+            verdicts.append(f"cascade {k}: {limit}")
         if gap >= 1.0:
             verdicts.append(f"cascade {k}: contact shadows detach by {gap:.1f} px at {lo_sun:g}° sun (the depth bias along the light: "
                             f"{', '.join(t_.key for t_ in rule.terms if t_.contact)})")
+        if k + 1 < K:
+            seam = _seam_verdict(k, row, 2 * t / H)  # a pixel's world width per unit of eye depth
+            if seam:
+                verdicts.append(seam)
     verdicts.append("texels per pixel at each cascade's near end: " + ", ".join(f"{c['error_max']:.3g}" for c in cascades)
                     + " (above 1 a texel covers more than a pixel; the first cascade's near end is the camera's near plane)")
     if not pl.stable:
         verdicts.append(f"the fit is not stabilized: shadow edges shimmer up to {max(c['shimmer_px'] for c in cascades):.2g} px per frame "
                         f"under a {step:g} m/frame walk")
     if not back and not any(c["acne"] for c in cascades):
-        verdicts.append("no acne on the sampled receivers at these settings")
+        verdicts.append("no acne on the sampled receivers at these settings" if seen is None else
+                        f"no acne on the scene's {seen.source} receivers facing the sun at these settings")
     verdicts += [f"not modelled: {note}" for note in pl.notes]
-    return Report(setup, tuple(cascades), tuple(verdicts),
-                  {"slopes": slopes.tolist(), "elevations": elev.tolist(), "max_angle": MAX_ANGLE, "lookup": lookup, "walk": step})
+    sample = {"elevations": elev.tolist(), "max_angle": MAX_ANGLE, "lookup": lookup, "walk": step}
+    sample |= {"slopes": slopes.tolist()} if seen is None else {"scene": seen.source, "pixels": int(len(seen.position))}
+    return Report(setup, tuple(cascades), tuple(verdicts), sample)
 
 
 def _acne_verdict(k: int, short: np.ndarray, slopes: np.ndarray, elev: np.ndarray, needed: dict, rule, acne: float) -> str:
@@ -361,13 +405,79 @@ def _acne_verdict(k: int, short: np.ndarray, slopes: np.ndarray, elev: np.ndarra
             when = (f"below {clean.min():g}° sun" if clean.size else
                     f"at every sun of {elev.min():g}–{elev.max():g}°" if hit.size == elev.size else f"at suns of {hit.min():g}–{hit.max():g}°")
             parts.append(f"{where} {when}")
+    return f"cascade {k} acnes on {'; '.join(parts)} ({acne:.0%} of the sampled receivers): " + _fixes(needed, rule)
+
+
+def _fixes(needed: dict, rule) -> str:
     fixes = []
     for key, v in needed.items():
         if v is None:
             continue
-        upper = rule.term(key).scale < 0
+        upper = _upper(rule, key)
         fixes.append(f"{key} {'≤' if upper else '≥'} {_fmt(_safe(v, upper))}")
-    return f"cascade {k} acnes on {'; '.join(parts)} ({acne:.0%} of the sampled receivers): " + (" or ".join(fixes) or "no bias setting helps")
+    return " or ".join(fixes) or "no single bias setting removes it within the engine's limits"
+
+
+def _upper(rule, key: str) -> bool:
+    """Whether ``needed`` of ``key`` is an upper bound (its scale is negative: three.js's ``shadowBias``, ``shadow.bias``)."""
+    return rule.term(key).scale < 0
+
+
+def _accepted(setting, value: float, upper: bool) -> tuple[float | None, str | None]:
+    """``value`` against what the engine accepts (``accepts`` and its silent ``clamp``): (the value to report, a verdict or None).
+
+    A lower bound below the accepted low (an upper bound above the accepted high) is met by every
+    accepted value: the accepted bound is reported.  One beyond the other end cannot be reached
+    by this setting alone: None, and a line naming the limit.
+    """
+    if not math.isfinite(value):
+        return None, None
+    lo, hi = setting.accepts if setting.kind in ("float", "int") else (None, None)
+    if setting.clamp is not None:
+        clo, chi = setting.clamp
+        lo = clo if lo is None else lo if clo is None else max(lo, clo)
+        hi = chi if hi is None else hi if chi is None else min(hi, chi)
+    if setting.kind == "int":
+        value = float(math.floor(value) if upper else math.ceil(value))
+    if not upper:
+        if lo is not None and value <= lo:
+            return float(lo), None
+        if hi is not None and value > hi:
+            return None, (f"{setting.key} would need ≥ {_fmt(_safe(value, False))}, beyond the engine's limit {hi:g} "
+                          f"(it accepts {setting.allowed()}): this setting alone cannot remove the acne")
+        return value, None
+    if hi is not None and value >= hi:
+        return float(hi), None
+    if lo is not None and value < lo:
+        return None, (f"{setting.key} would need ≤ {_fmt(_safe(value, True))}, beyond the engine's limit {lo:g} "
+                      f"(it accepts {setting.allowed()}): this setting alone cannot remove the acne")
+    return value, None
+
+
+def _seam_verdict(k: int, row: dict, pixel: float) -> str | None:
+    """The seam between cascade k and k + 1: the texel's step and whether the blend band hides it.
+
+    The band's width in pixels is counted at the boundary's depth for a receiver facing the
+    camera (its eye-depth width over a pixel's world width there); receivers seen at a grazing
+    angle (the ground from eye height) span fewer pixels.  The band hides the step where it
+    spans the ramp :func:`aliasing.bias.filtering.blend_band` asks for (the blur width changing by
+    at most 10 % per pixel).
+    """
+    step = row["seam_step"]
+    if step is None or step < 1.05:
+        return None
+    need = float(blend_band(step))
+    end = row["far"]
+    if row["blend"] is None:
+        return (f"seam {k}|{k + 1} near depth {end:.3g}: the texel grows ×{step:.2g} with no blend band: the step shows as a line "
+                f"(a band of ≥ {need:.0f} px would hide it)")
+    a, b = row["blend"]
+    px = (b - a) / (pixel * 0.5 * (a + b))
+    if px >= need:
+        return (f"seam {k}|{k + 1}: the texel grows ×{step:.2g} inside the blend band {a:.3g}–{b:.3g} (up to {px:.0f} px wide, "
+                f"{need:.0f} px needed): the band hides the step where receivers face the camera")
+    return (f"seam {k}|{k + 1}: the texel grows ×{step:.2g}; the blend band {a:.3g}–{b:.3g} spans at most {px:.0f} px, "
+            f"{need:.0f} px are needed to hide the step")
 
 
 def _shimmer(lv: np.ndarray, w: np.ndarray, step: float) -> float:

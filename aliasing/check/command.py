@@ -40,7 +40,8 @@ def _slopes(text: str | None) -> list[float] | None:
 def run(args: argparse.Namespace):
     """The :class:`aliasing.check.Report` of the parsed options."""
     setup = setups.from_args(args)
-    return check(setup, receivers=_slopes(args.receivers), walk=args.walk, samples=args.samples)
+    return check(setup, receivers=_slopes(args.receivers), scene=args.scene, eye=args.eye, target=args.target, pixels=args.pixels,
+                 walk=args.walk, samples=args.samples)
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -93,6 +94,13 @@ def add_check_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser
     setups.add_arguments(p, required=True)
     p.add_argument("--receivers", metavar="SLOPES", help="slopes of the sampled planar receivers, tilted away from the sun, degrees in "
                    f"[0, 90), comma-separated (default 0: the ground); receivers more than {MAX_ANGLE:g}° from the light are left out")
+    p.add_argument("--scene", metavar="boxes|city|FILE", help="the receivers of a scene instead of planar ones: boxes (seeded ground and "
+                   "boxes around the camera), city (the procedural city, 400 units across, from its street camera unless --eye/--target), "
+                   "or a file (glTF/GLB, OBJ, PLY, STL; needs --eye and --target); acne is then counted in the eye pass's pixels "
+                   "facing the sun, per cascade, by receiver kind (ground, walls, other slopes)")
+    p.add_argument("--eye", metavar="X,Y,Z", help="camera position for --scene city or FILE (world space; --eye=-5,2,0 when X is negative)")
+    p.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at, for --scene city or FILE (world space)")
+    p.add_argument("--pixels", type=int, default=256, help="eye-pass pixels per side for --scene (default 256; they span the camera's frustum)")
     p.add_argument("--samples", type=int, default=7, help="sun elevations sampled over the --sun band (default 7)")
     p.add_argument("--walk", type=float, default=0.05, help="camera step per frame along the view [world units] for the shimmer "
                    "(default 0.05: 3 m/s at 60 fps)")

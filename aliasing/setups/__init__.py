@@ -118,14 +118,16 @@ def build(engine: str | Profile, settings: Mapping[str, Any] | None = None, came
     return Setup(profile, dict(settings or {}), parse_camera(camera), parse_sun(sun))
 
 
-def add_arguments(parser: argparse.ArgumentParser, *, sun: str | None = "15..60", required: bool = False, camera: bool = True) -> None:
+def add_arguments(parser: argparse.ArgumentParser, *, sun: str | None = "15..60", required: bool = False, camera: bool = True,
+                  uses: str = "") -> None:
     """The setup vocabulary on a subcommand: ``--engine``, ``--settings``, ``--set``, ``--camera``, ``--sun``.
 
     ``sun=None``: no default (a command whose old ``--light`` stays the default without ``--sun``);
-    ``camera=False``: the command has its own ``--camera`` that also takes the camera spec.
+    ``camera=False``: the command has its own ``--camera`` that also takes the camera spec;
+    ``uses``: what the command takes from the engine's pipeline, appended to ``--engine``'s help.
     """
     parser.add_argument("--engine", required=required, metavar="NAME[@RELEASE]",
-                        help="the engine and release: " + ", ".join(ENGINES) + " (no release: the newest known)")
+                        help="the engine and release: " + ", ".join(ENGINES) + " (no release: the newest known)" + (f"; {uses}" if uses else ""))
     parser.add_argument("--settings", metavar="FILE", help="the engine's settings, JSON or TOML, in the engine's own keys")
     parser.add_argument("--set", dest="set_", action="append", metavar="KEY=VALUE", help="one setting in the engine's own key (repeatable)")
     if camera:

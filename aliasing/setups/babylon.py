@@ -264,9 +264,6 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
     clamp = bool(s["depthClamp"]) and filter_name(s) != "FILTER_PCSS"
     notes.append("the cascade's light near..far shrinks to the shadow casters' bounds: the bias rule takes the fitted box's extent "
                  "along the light (casters filling it)" + (", at least 1 world unit (depthClamp, line 417)" if clamp else ""))
-    if not stable:
-        notes.append("given no extent (aliasing.engines.pipeline.extents), the bias rule takes the map's side w·mapSize for the "
-                     "cascade's depth range: the tight box's own range along the light differs")
     if s["autoCalcDepthBounds"]:
         notes.append("autoCalcDepthBounds sets minDistance/maxDistance from the depth buffer each frame: the given ones are used")
     if float(s["frustumEdgeFalloff"]):
@@ -274,7 +271,7 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
     return Pipeline(tuple(a), tuple(b), "centroid16" if stable else "tight", "origin", res, rule, _filter(s),
                     layout=f"array of {len(a)}", blend=float(s["cascadeBlendPercentage"]), stable=stable, min_extent=1.0 if clamp else 0.0,
                     split="babylon" if float(s["lambda"]) == 0.5 and s["minDistance"] == 0 and s["maxDistance"] == 1 else "",
-                    notes=tuple(notes))
+                    notes=tuple(notes), bands=blend_bands(s, camera.near, camera.far))
 
 
 def snippet(s: Mapping[str, Any]) -> str:

@@ -160,9 +160,7 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
     kind = s["shadowType"]
     v = float(PROFILES[0].setting("shadowBias").clamped(s["shadowBias"]))
     notes = ["the shadow camera's depth range spans the shadow casters' bounds + 0.2: the depth_range terms take the cascade's "
-             "sphere diameter (casters filling it)",
-             "the blend band runs from (1 − cascadeBlend)·end to the end of each cascade: cascadeBlend of its far distance, "
-             "more than that fraction of its depth range"]
+             "sphere diameter (casters filling it)"]
     if "VSM" in kind or "PCSS" in kind:
         notes.append(f"{kind}: the depth bias, normal offset and 0.0001 lift are those of PCF here; VSM uses vsmBias/(farClip/7) as its "
                      "normal offset and a fixed −2e-4 bias, PCSS no rasterizer bias (light.js:683–706, 746–749): not modelled")
@@ -179,7 +177,7 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
     bytes_per = 2 if kind.endswith("16F") else 4 * (2 if "VSM" in kind else 1)
     return Pipeline(tuple(a), tuple(b), "centroid", "bevy", per, rule, _filter(s), layout="separate" if k == 1 else f"atlas 2x2 of {res}",
                     blend=float(PROFILES[0].setting("cascadeBlend").clamped(s["cascadeBlend"])), stable=True,
-                    memory=res * res * bytes_per, notes=tuple(notes))
+                    memory=res * res * bytes_per, notes=tuple(notes), bands=blend_bands(s, camera.near, camera.far))
 
 
 def snippet(s: Mapping[str, Any]) -> str:

@@ -206,6 +206,7 @@ def _build(split_form: str):
             ends = partitioning.split_distances("practical", camera.near, far, k, lam=float(s["customSplitsLambda"]))
         else:
             ends = partitioning.split_distances("uniform" if mode == "uniform" else "log", camera.near, far, k)
+        breaks = np.asarray(ends[1:-1], float) / far  # CSM's breaks: split / min(camera.far, maxFar)
         if split_form == "r184":  # CSMFrustum.split lerps the corners by the breaks C/F from near (r184 and earlier)
             ends = np.concatenate([[camera.near], camera.near + ends[1:] / far * (far - camera.near)])
         rule = BiasRule((BiasTerm("shadowBias", bias, "depth", -(light_far - light_near)),
@@ -213,13 +214,14 @@ def _build(split_form: str):
         notes = ["the shader picks cascade i for eye depths in [b_(i−1), b_i)·(far − near) (CSMShader.js: linearDepth = "
                  "z/(shadowFar − cameraNear) against the breaks b = split/far): the ranges read differ from the maps' by b·near at each split"]
         grow: tuple = ()
-        if s["fade"]:
+        bands: tuple = ()
+        if s["fade"]:  # the fade band: 0.25·b²·(far − near) of eye depth around each break b (CSMShader.js), not a fixed fraction
             grow = tuple(fade_margins(ends[1:], camera.near, camera.far, max_far))
-            notes.append("fade blends across 0.25·b²·(far − near) of eye depth around each break b (CSMShader.js), "
-                         "not a fixed fraction of the cascade (blend 0): blend_bands() gives the bands")
+            bands = blend_bands(breaks, camera.near, far)
         return Pipeline(tuple(ends[:-1]), tuple(ends[1:]), "diagonal-unrounded", "bevy", res, rule, _filter(s),
                         layout="separate", blend=0.0, stable=True, depth_range=(light_near, light_far), grow=grow,
-                        split=f"threejs-csm{'@r184' if split_form == 'r184' else ''}" if mode == "practical" else mode, notes=tuple(notes))
+                        split=f"threejs-csm{'@r184' if split_form == 'r184' else ''}" if mode == "practical" else mode, notes=tuple(notes),
+                        bands=bands)
     return build
 
 

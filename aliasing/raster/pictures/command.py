@@ -52,6 +52,12 @@ def _setup(args: argparse.Namespace) -> None:
         args.light = sun.light()
 
 
+#: What ``render --engine`` takes from the engine's pipeline (its --help and the docs say it).
+RENDER_USES = ("render takes the engine's split (by its split name), its cascade count and its texel budget (k maps of R² texels: "
+               "--res R·√k) and, with --camera, the last cascade's far; each cascade is then fitted tightly (the papers' fit), not "
+               "with the engine's own fit, snap, bias or filter: aliasing check and aliasing engines --engine use those")
+
+
 def add_render_parser(sub) -> argparse.ArgumentParser:
     """Add the ``render`` subcommand to an ``add_subparsers`` object (of :class:`aliasing.cli._Parser`)."""
     ren = sub.add_parser(
@@ -83,7 +89,7 @@ def add_render_parser(sub) -> argparse.ArgumentParser:
     ren.add_argument("--backend", default="numpy", help="how the eye pass and the maps are drawn: numpy (default, the reference), numba (the eye pass; fast extra) or gl (OpenGL, gl extra)")
     scn, cas = ren.add_argument_group("your own scene"), ren.add_argument_group("cascades")
     world.add_scene_arguments(scn, cas, "for every scheme")
-    setups.add_arguments(ren, sun=None, camera=False)  # --engine: its split, k, texel budget; --camera SPEC, --sun: the view and light
+    setups.add_arguments(ren, sun=None, camera=False, uses=RENDER_USES)  # --engine: its split, k, texel budget; --camera SPEC, --sun: the view and light
     cas.add_argument("--allocation", choices=["equal", "error"], default="equal", help="texel budget per cascade: equal, or error-based (Lloyd 2007 eq. 83)")
     ren.add_argument("--format", default="text", help="statistics on stdout: text (table) or json (default text)")
     ren.set_defaults(run=_render)

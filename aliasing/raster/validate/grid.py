@@ -518,7 +518,10 @@ def add_validate_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentPar
     from .scene import add_scene_options  # --scene FILE (aliasing.raster.validate.scene)
 
     add_scene_options(p)
-    setups.add_arguments(p, sun=None, camera=False)  # --camera SPEC and --sun: f/n, fov, aspect, --image-res, --light; --engine: its far
+    setups.add_arguments(p, sun=None, camera=False, uses=(  # --camera SPEC
+        "with --scene FILE, validate measures the engine's own cascades (its ranges, fit, snap and map size) on the scene "
+        "against the analytic bounds (not for a fixed box, three.js's fade margin or Godot's two-split atlas); without --scene "
+        "it takes only the last cascade's far (the shadow far) and the probes' maps are the validated schemes' own"))  # and --sun: f/n, fov, aspect, --image-res, --light; --engine: its far
     scene_run = p.get_default("run")
 
     def run(args: argparse.Namespace) -> int:
