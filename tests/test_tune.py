@@ -110,6 +110,8 @@ def test_tune_no_worse_than_the_grid(engine):
                       scale=scale, octaves=10)
     assert t.objective <= grid * 1.01
     assert t.objective <= t.before.objective
+    if len(splits) == t.setup.pipeline.k - 1 > 1:  # every split free (Godot, Unity, Filament): the minimax has every cascade at the worst error
+        assert np.nanmax(t.measure.error) <= np.nanmin(t.measure.error) * 1.002
 
 
 def _distance(start):
