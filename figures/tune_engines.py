@@ -125,7 +125,7 @@ def _figure(engine: str, out_dir: Path) -> list[Path]:
     axes[1].axhline(need, color="k", lw=0.8, ls=":")
     axes[1].set_ylim(0, 120)
     flat = 90 - t.setup.sun.elevation[1]
-    axes[1].text(k[0] - 0.4, 104, f"asked: {flat:g}–{need:g}° (ground to {SLOPE:g}° slopes over the band)", fontsize=7)
+    axes[1].text(k[0] - 0.4, 104, f"asked: {flat:g}–{need:g}°\n(ground to {SLOPE:g}° slopes)", fontsize=7)
     axes[1].legend(fontsize=7, loc="upper right")
     axes[2].set_yscale("symlog", linthresh=1.0)
     axes[2].set_ylim(0, max(10.0, float(np.nanmax([cols[c] for c in cols if c.startswith("gap|")]))) * 5)
