@@ -110,8 +110,28 @@ def test_tune_no_worse_than_the_grid(engine):
                       scale=scale, octaves=10)
     assert t.objective <= grid * 1.01
     assert t.objective <= t.before.objective
+    assert (float(f"{t.before.objective:.3g}"), float(f"{t.objective:.3g}")) == GUIDE[engine]  # the guide's table
+    if engine in MOVED:
+        key, value = MOVED[engine]
+        got = t.setup.settings[key]
+        assert (float(f"{got:.3g}") if isinstance(got, float) else got) == value
     if len(splits) == t.setup.pipeline.k - 1 > 1:  # every split free (Godot, Unity, Filament): the minimax has every cascade at the worst error
         assert np.nanmax(t.measure.error) <= np.nanmin(t.measure.error) * 1.002
+
+
+#: The guide's table ("Tune your engine"): the worst error at the defaults and tuned, count and size kept.
+GUIDE = {"threejs": (906, 18.4), "babylon": (1180, 15.8), "playcanvas": (255, 20.8), "godot": (122, 6.60), "unity-urp": (74.1, 10.2),
+         "bevy": (113, 7.54), "filament": (1180, 15.8), "unreal": (457, 283)}
+
+MOVED = {"threejs": ("mode", "logarithmic"), "babylon": ("lambda", 1.0), "playcanvas": ("cascadeDistribution", 1.0),
+         "bevy": ("first_cascade_far_bound", 0.457), "unreal": ("CascadeDistributionExponent", 4.0)}
+
+
+def test_unreal_takes_more_cascades():
+    """The guide: Unreal's exponent stops at 4; with the count free, tune takes 10 cascades at 1024² within the same memory."""
+    t = tune(setups.build("unreal", None, CAMERA, "15..60"))
+    assert (t.setup.pipeline.k, t.setup.pipeline.resolution) == (10, 1024)
+    assert t.measure.texels <= 3 * 2048 ** 2 and t.objective < 0.1 * t.before.objective
 
 
 def _distance(start):
