@@ -1,7 +1,7 @@
 """What ``aliasing tune`` changes, per engine: the engine's defaults against the tuned settings.
 
-Not a paper figure.  One figure per engine whose profile declares its tunable settings
-(the ``tunable`` of :class:`aliasing.setups.Profile`), ``tune-<engine>.png``: a 16:9 camera (near 0.1 m, far
+Not a paper figure.  One figure per engine (each profile declares the settings tune may choose,
+the ``tunable`` of :class:`aliasing.setups.Profile`), ``tune-<engine>.png``: a 16:9 camera (near 0.1 m, far
 500 m, vertical fov 50°, 1920×1080), the sun 15–60° above the ground, 4 cascades at the engine's
 default map size (the count and the size kept, so the memory is the same), front faces casting
 (three.js: ``material.shadowSide = FrontSide``) so that the ground can acne, receivers up to a
@@ -9,8 +9,9 @@ default map size (the count and the size kept, so the memory is the same), front
 
 * left: the worst perspective error per cascade, texels per pixel at the cascade's near end
   (Lloyd et al. 2006, eq. 2 with a uniform map), defaults and tuned;
-* middle: the steepest receiver free of acne per cascade, as its angle to the light (the ground
-  at the lowest sun is 75°; the dotted line the angle asked for);
+* middle: the steepest receiver free of acne per cascade, as its angle to the light, scanned from
+  the flattest receiver of the band (the ground under the highest sun, 30°; "acne" where even it
+  acnes) up to 85° (the ground at the lowest sun is 75°; the dotted line the steepest asked for);
 * right: the peter-panning, the lit gap at a wall's foot at the lowest sun in pixels at each
   cascade's middle depth, with the memory in the title.
 

@@ -180,13 +180,14 @@ class _Search:
         return out
 
     def jointly(self, settings: dict, free: list[Tunable], best: float) -> tuple[dict, float]:
-        """Every split parameter at once: Powell's method on the p-norm of the cascades' errors.
+        """Every split parameter at once: Nelder–Mead on the p-norm of the cascades' errors.
 
         The worst error is a maximum over cascades: where two share it, moving one parameter
         raises the other's, and a search one parameter at a time stops there.  The p-norm
         (p = 16, then 64) is smooth and tends to the maximum; each parameter is searched on a log
         scale of its distance from the range's low end (split fractions span decades near 0).
-        The result is kept only where its worst error is lower.
+        The result is kept only where its worst error is lower.  (Powell's method was tried: its
+        line searches cross the values an engine refuses, unordered fractions, and stop there.)
         """
         lows = np.array([t.range[0] for t in free])
         spans = np.array([t.range[1] - t.range[0] for t in free])
@@ -204,7 +205,8 @@ class _Search:
                 e = got[1].error[np.isfinite(got[1].error)] / best
                 return float(np.mean(e ** p) ** (1 / p))
             y0 = np.log(np.maximum(np.array([out[t.key] for t in free], float) - lows, spans * 1e-5))
-            r = optimize.minimize(smooth, y0, method="Powell", bounds=list(zip(floor, np.log(spans))), options={"xtol": 1e-4, "ftol": 1e-7})
+            r = optimize.minimize(smooth, y0, method="Nelder-Mead", bounds=list(zip(floor, np.log(spans))),
+                                  options={"xatol": 1e-4, "fatol": 1e-7, "maxfev": 400 * len(free)})
             trial = {**out, **values(r.x)}
             f = self.objective(trial)
             if f < best * (1 - 1e-12):
