@@ -1,7 +1,7 @@
 """What ``aliasing tune`` changes, per engine: the engine's defaults against the tuned settings.
 
-Not a paper figure.  One figure per engine whose profile declares its tunable settings
-(the ``tunable`` of :class:`aliasing.setups.Profile`), ``tune-<engine>.png``: a 16:9 camera (near 0.1 m, far
+Not a paper figure.  One figure per engine (each profile declares the settings tune may choose,
+the ``tunable`` of :class:`aliasing.setups.Profile`), ``tune-<engine>.png``: a 16:9 camera (near 0.1 m, far
 500 m, vertical fov 50°, 1920×1080), the sun 15–60° above the ground, 4 cascades at the engine's
 default map size (the count and the size kept, so the memory is the same), front faces casting
 (three.js: ``material.shadowSide = FrontSide``) so that the ground can acne, receivers up to a
@@ -9,8 +9,9 @@ default map size (the count and the size kept, so the memory is the same), front
 
 * left: the worst perspective error per cascade, texels per pixel at the cascade's near end
   (Lloyd et al. 2006, eq. 2 with a uniform map), defaults and tuned;
-* middle: the steepest receiver free of acne per cascade, as its angle to the light (the ground
-  at the lowest sun is 75°; the dotted line the angle asked for);
+* middle: the steepest receiver free of acne per cascade, as its angle to the light, scanned from
+  the flattest receiver of the band (the ground under the highest sun, 30°; "acne" where even it
+  acnes) up to 85° (the ground at the lowest sun is 75°; the dotted line the steepest asked for);
 * right: the peter-panning, the lit gap at a wall's foot at the lowest sun in pixels at each
   cascade's middle depth, with the memory in the title.
 
@@ -20,6 +21,7 @@ search tried it and kept the one with the smaller gap).
 
 from __future__ import annotations
 
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -32,8 +34,10 @@ NAME = "tune-engines"
 CAMERA = "near=0.1,far=500,fov=50,aspect=16:9,height=1080"
 SUN = "15..60"
 SLOPE = 10.0
-#: Settings beside the defaults per engine: 4 cascades and front faces casting.
-SETTINGS = {"threejs": {"cascades": 4, "material.shadowSide": "FrontSide"}}
+#: Settings beside the defaults per engine: 4 cascades (Babylon.js, Godot and Bevy have them by
+#: default) and front faces casting (the other engines cast front faces by default).
+SETTINGS = {"threejs": {"cascades": 4, "material.shadowSide": "FrontSide"}, "playcanvas": {"numCascades": 4},
+            "unity-urp": {"shadowCascadeCount": 4}, "filament": {"shadowCascades": 4}, "unreal": {"DynamicShadowCascades": 4}}
 
 
 def case(engine: str):
@@ -47,16 +51,20 @@ def case(engine: str):
 
 
 def acne_free(setup) -> np.ndarray:
-    """Per cascade, the steepest receiver free of acne: its angle to the light [deg] (0 to 85 in 0.5° steps).
+    """Per cascade, the steepest receiver free of acne: its angle to the light [deg] (0.5° steps up to 85°).
 
     The bias the settings give against the bias a planar receiver needs at each angle, in the
-    cascade's largest texel with the filter's kernel (:mod:`aliasing.tune.measure`).
+    cascade's largest texel with the filter's kernel (:mod:`aliasing.tune.measure`), from the
+    flattest receiver asked (the ground under the highest sun: flatter ones do not occur in the
+    band; a bias across the light, Godot's normal bias, may fall short there).  NaN where even
+    that one acnes.
     """
     from aliasing.bias import plane_bias
     from aliasing.tune.measure import AZIMUTH, MAX_ANGLE, lookup
 
     m = measure(setup, limits(setup))
-    theta = np.arange(0.0, MAX_ANGLE + 0.25, 0.5)
+    flat = 90.0 - setup.sun.elevation[1]
+    theta = np.arange(flat, MAX_ANGLE + 0.25, 0.5)
     out = []
     for w in m.texel:
         if setup.pipeline.bias.faces == "back":
@@ -65,7 +73,7 @@ def acne_free(setup) -> np.ndarray:
         need = np.asarray(plane_bias(w, theta, AZIMUTH, lookup(setup.pipeline)).depth)
         have = np.asarray(setup.pipeline.bias.depth(w, theta, AZIMUTH))
         ok = have >= need * (1 - 1e-9) - 1e-12
-        out.append(float(theta[np.argmin(ok) - 1]) if not ok.all() and ok[0] else MAX_ANGLE if ok.all() else 0.0)
+        out.append(float(theta[np.argmin(ok) - 1]) if not ok.all() and ok[0] else MAX_ANGLE if ok.all() else np.nan)
     return np.array(out)
 
 
@@ -111,20 +119,22 @@ def _figure(engine: str, out_dir: Path) -> list[Path]:
             x = k + (j - (len(labels) - 1) / 2) * w
             bars = ax.bar(x, np.nan_to_num(v), w, color=colors[j % len(colors)], label=label)
             for b, val in zip(bars, v):
-                ax.text(b.get_x() + b.get_width() / 2, b.get_height(), f"{val:.3g}", ha="center", va="bottom", fontsize=6)
+                ax.text(b.get_x() + b.get_width() / 2, b.get_height(), "acne" if np.isnan(val) else f"{val:.3g}", ha="center", va="bottom", fontsize=6)
         ax.set(xticks=k, xlabel="cascade", ylabel=ylabel, title=title)
         ax.legend(fontsize=7)
     axes[0].set_yscale("log")
     axes[1].axhline(need, color="k", lw=0.8, ls=":")
     axes[1].set_ylim(0, 120)
-    axes[1].text(k[0] - 0.4, 104, f"asked: {need:g}° (ground to {SLOPE:g}° slopes, lowest sun)", fontsize=7)
-    axes[1].legend(fontsize=7, loc="lower right")
+    flat = 90 - t.setup.sun.elevation[1]
+    axes[1].text(k[0] - 0.4, 104, f"asked: {flat:g}–{need:g}°\n(ground to {SLOPE:g}° slopes)", fontsize=7)
+    axes[1].legend(fontsize=7, loc="upper right")
     axes[2].set_yscale("symlog", linthresh=1.0)
     axes[2].set_ylim(0, max(10.0, float(np.nanmax([cols[c] for c in cols if c.startswith("gap|")]))) * 5)
     axes[2].set_title(f"Peter-panning at the lowest sun ({cols['memory|tuned'][0] / 2**20:.0f} MiB each)", fontsize=10)
     changed = ", ".join(f"{key}={v:.4g}" if isinstance(v, float) else f"{key}={v}" for key, v in t.changed.items())
-    fig.suptitle(f"{t.setup.profile.title} {t.setup.release} (4 cascades, 1920×1080, fov 50°, near 0.1 m, far 500 m, sun 15–60°), "
-                 f"defaults vs tuned: {changed}", fontsize=9)
+    head = f"{t.setup.profile.title} {t.setup.release} (4 cascades, 1920×1080, fov 50°, near 0.1 m, far 500 m, sun 15–60°), defaults vs tuned"
+    lines = textwrap.wrap(f"tuned: {changed}", 150)
+    fig.suptitle("\n".join([head, *lines]), fontsize=9)
     return save(fig, out_dir, f"tune-{engine}", columns={c.replace("|", "_").replace(" ", "_"): v for c, v in cols.items()})
 
 

@@ -66,7 +66,7 @@ from typing import Any
 
 import numpy as np
 
-from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
+from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
 
 CSG = "Lights/Shadows/cascadedShadowGenerator.pure.js"
 SG = "Lights/Shadows/shadowGenerator.js"
@@ -309,8 +309,22 @@ def _js(v: Any) -> str:
     return f"{v:g}" if isinstance(v, float) else str(v)
 
 
+_CSG = (("class", "CascadedShadowGenerator"),)
+#: What :func:`aliasing.tune.tune` searches: the CascadedShadowGenerator's count, size, λ,
+#: stabilization and shadowMaxZ, both biases and the PCF quality (PCF's kernel moves only the bias).
+TUNABLE = (
+    Tunable("numCascades", "cascades", values=(2, 3, 4), when=_CSG),
+    Tunable("mapSize", "size", values=(512, 1024, 2048, 4096, 8192)),
+    Tunable("lambda", "split", range=(0.0, 1.0), step=0.05, when=_CSG),
+    Tunable("stabilizeCascades", "stable", values=(False, True), when=_CSG),
+    Tunable("shadowMaxZ", "distance", when=_CSG),
+    Tunable("bias", "bias"),
+    Tunable("normalBias", "bias"),
+    Tunable("filteringQuality", "filter", values=("QUALITY_HIGH", "QUALITY_MEDIUM", "QUALITY_LOW")),
+)
+
 PROFILES = (
     Profile("babylon", "Babylon.js", "9.35", _settings(), _build, releases=("9.35.0", "9"), snippet=snippet, language="javascript",
             source="npm @babylonjs/core 9.35.0 (Lights/Shadows, Lights/directionalLight, Shaders/ShadersInclude/shadowMap*)",
-            npm="@babylonjs/core@9.35.0"),
+            npm="@babylonjs/core@9.35.0", tunable=TUNABLE),
 )

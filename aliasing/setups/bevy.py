@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 
 from .. import partitioning
-from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
+from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
 
 CASCADE = "crates/bevy_light/src/cascade.rs CascadeShadowConfigBuilder::default (bevyengine/bevy commit 0876f40a)"
 LIGHT = "crates/bevy_light/src/directional_light.rs (bevyengine/bevy as stored)"
@@ -141,8 +141,21 @@ def snippet(s: Mapping[str, Any]) -> str:
     ])
 
 
+#: What :func:`aliasing.tune.tune` searches: the count, the first cascade's far bound (metres,
+#: up to the default maximum distance: a bound beyond ``maximum_distance`` is refused), the
+#: maximum distance, the overlap, the map size and both biases.
+TUNABLE = (
+    Tunable("num_cascades", "cascades", values=(1, 2, 3, 4)),
+    Tunable("first_cascade_far_bound", "split", range=(0.0, 150.0), step=2.5),
+    Tunable("maximum_distance", "distance"),
+    Tunable("overlap_proportion", "blend", values=(0.0, 0.1, 0.2)),
+    Tunable("DirectionalLightShadowMap.size", "size", values=(512, 1024, 2048, 4096, 8192)),
+    Tunable("shadow_depth_bias", "bias"),
+    Tunable("shadow_normal_bias", "bias"),
+)
+
 PROFILES = (
     Profile("bevy", "Bevy DirectionalLight (cascaded shadow maps)", "0.17", SETTINGS, build, releases=("main", "current"), snippet=snippet,
             language="rust", source="bevyengine/bevy as stored: crates/bevy_light/src/cascade.rs 0876f40a, crates/bevy_pbr/src/light/mod.rs "
-            "c62a6fcd, crates/bevy_pbr/src/render/light.rs and shadows.wgsl as stored"),
+            "c62a6fcd, crates/bevy_pbr/src/render/light.rs and shadows.wgsl as stored", tunable=TUNABLE),
 )

@@ -25,7 +25,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from .. import partitioning
-from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
+from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
 
 OPTIONS = "filament/include/filament/LightManager.h ShadowOptions (google/filament as stored)"
 TYPES = ("PCF", "VSM", "DPCF", "PCSS")
@@ -123,7 +123,21 @@ def snippet(s: Mapping[str, Any]) -> str:
     return "\n".join(lines)
 
 
+#: What :func:`aliasing.tune.tune` searches: the cascade count, the split positions that count
+#: reads, the map size, both biases, stabilization and shadowFar.
+TUNABLE = (
+    Tunable("shadowCascades", "cascades", values=(1, 2, 3, 4)),
+    Tunable("cascadeSplitPositions[0]", "split", range=(0.0, 1.0), step=0.05, when=(("shadowCascades", frozenset((2, 3, 4))),)),
+    Tunable("cascadeSplitPositions[1]", "split", range=(0.0, 1.0), step=0.05, when=(("shadowCascades", frozenset((3, 4))),)),
+    Tunable("cascadeSplitPositions[2]", "split", range=(0.0, 1.0), step=0.05, when=(("shadowCascades", 4),)),
+    Tunable("mapSize", "size", values=(512, 1024, 2048, 4096, 8192)),
+    Tunable("constantBias", "bias"),
+    Tunable("normalBias", "bias"),
+    Tunable("stable", "stable", values=(False, True)),
+    Tunable("shadowFar", "distance"),
+)
+
 PROFILES = (
     Profile("filament", "Filament directional light", "1.5x", SETTINGS, build, releases=("main", "1"), snippet=snippet, language="cpp",
-            source="google/filament as stored: LightManager.h ShadowOptions, ShadowMapManager.cpp 003e5005, ShadowMap.cpp 0362f36e, common_shadowing.fs"),
+            source="google/filament as stored: LightManager.h ShadowOptions, ShadowMapManager.cpp 003e5005, ShadowMap.cpp 0362f36e, common_shadowing.fs", tunable=TUNABLE),
 )

@@ -40,7 +40,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from .. import partitioning
-from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
+from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
 
 LIGHT = "scene/3d/light_3d.cpp"
 CULL = "servers/rendering/renderer_scene_cull.cpp _light_instance_setup_directional_shadow"
@@ -194,8 +194,23 @@ def snippet(s: Mapping[str, Any]) -> str:
     return "\n".join(lines)
 
 
+_SPLITS = frozenset(("SHADOW_PARALLEL_2_SPLITS", "SHADOW_PARALLEL_4_SPLITS"))
+#: What :func:`aliasing.tune.tune` searches: the mode (1, 2 or 4 splits), the split fractions
+#: each mode reads, the max distance, the atlas size, both biases and blend splits.
+TUNABLE = (
+    Tunable("directional_shadow_mode", "cascades", values=("SHADOW_ORTHOGONAL", "SHADOW_PARALLEL_2_SPLITS", "SHADOW_PARALLEL_4_SPLITS")),
+    Tunable("directional_shadow_split_1", "split", range=(0.0, 1.0), step=0.05, when=(("directional_shadow_mode", _SPLITS),)),
+    Tunable("directional_shadow_split_2", "split", range=(0.0, 1.0), step=0.05, when=(("directional_shadow_mode", "SHADOW_PARALLEL_4_SPLITS"),)),
+    Tunable("directional_shadow_split_3", "split", range=(0.0, 1.0), step=0.05, when=(("directional_shadow_mode", "SHADOW_PARALLEL_4_SPLITS"),)),
+    Tunable("directional_shadow_max_distance", "distance"),
+    Tunable("rendering/lights_and_shadows/directional_shadow/size", "size", values=(1024, 2048, 4096, 8192, 16384)),
+    Tunable("shadow_bias", "bias"),
+    Tunable("shadow_normal_bias", "bias"),
+    Tunable("directional_shadow_blend_splits", "blend", values=(False, True), when=(("directional_shadow_mode", _SPLITS),)),
+)
+
 PROFILES = (
     Profile("godot", "Godot DirectionalLight3D", "4", SETTINGS, build, releases=("4.4", "4.5", "4.6"), snippet=snippet,
             language="gdscript", source="godotengine/godot as stored (light_3d.cpp 8ea4ec95, renderer_scene_cull.cpp 0001ea78; "
-            "light_storage.cpp, scene_forward_clustered.glsl, rendering_server.cpp as stored)"),
+            "light_storage.cpp, scene_forward_clustered.glsl, rendering_server.cpp as stored)", tunable=TUNABLE),
 )

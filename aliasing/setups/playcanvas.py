@@ -53,7 +53,7 @@ from typing import Any
 
 import numpy as np
 
-from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
+from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
 
 LIGHT = "scene/light.js"
 COMP = "framework/components/light/component.js"
@@ -196,9 +196,20 @@ def _js(v: Any) -> str:
     return f"{v:g}" if isinstance(v, float) else str(v)
 
 
+#: What :func:`aliasing.tune.tune` searches: count, resolution, the practical split's λ, the
+#: shadow distance and both biases.
+TUNABLE = (
+    Tunable("numCascades", "cascades", values=(1, 2, 3, 4)),
+    Tunable("shadowResolution", "size", values=(512, 1024, 2048, 4096, 8192)),
+    Tunable("cascadeDistribution", "split", range=(0.0, 1.0), step=0.05),
+    Tunable("shadowDistance", "distance"),
+    Tunable("shadowBias", "bias"),
+    Tunable("normalOffsetBias", "bias"),
+)
+
 PROFILES = (
     Profile("playcanvas", "PlayCanvas", "2.23", _settings(), _build, releases=("2.23.3", "2"), snippet=snippet, language="javascript",
             source="npm playcanvas 2.23.3 (build/playcanvas/src: scene/light.js, scene/renderer/shadow-renderer-directional.js, "
                    "framework/components/light/component.js, shader-lib chunks)",
-            npm="playcanvas@2.23.3"),
+            npm="playcanvas@2.23.3", tunable=TUNABLE),
 )

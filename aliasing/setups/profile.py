@@ -362,7 +362,9 @@ class Tunable:
         The resolution of a grid over ``range`` (the exhaustive grid of the tests; the search
         itself refines below it).
     when : tuple of (key, value)
-        The other settings this one acts under (three.js's λ only with ``mode: "custom"``).
+        The other settings this one acts under (three.js's λ only with ``mode: "custom"``); a
+        ``frozenset`` value means any of its members (Filament's first split position with 2, 3
+        or 4 cascades).
     """
 
     key: str
@@ -385,7 +387,7 @@ class Tunable:
 
     def active(self, settings: Mapping[str, Any]) -> bool:
         """Whether the setting acts under ``settings`` (every ``when`` pair holds)."""
-        return all(settings.get(k) == v for k, v in self.when)
+        return all(settings.get(k) in v if isinstance(v, frozenset) else settings.get(k) == v for k, v in self.when)
 
     def grid(self) -> tuple:
         """The values of an exhaustive grid: ``values``, or ``range`` at ``step`` (ends included)."""

@@ -32,7 +32,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from .. import partitioning
-from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
+from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
 
 PKG = "com.unity.render-pipelines.universal"
 ASSET = f"{PKG}/Runtime/Data/UniversalRenderPipelineAsset.cs (Unity-Technologies/Graphics as stored)"
@@ -169,8 +169,25 @@ def snippet(s: Mapping[str, Any]) -> str:
     return "\n".join(lines)
 
 
+#: What :func:`aliasing.tune.tune` searches: the cascade count, the split fractions that count
+#: reads, the shadow distance, the resolution, both biases and soft shadows.
+TUNABLE = (
+    Tunable("shadowCascadeCount", "cascades", values=(1, 2, 3, 4)),
+    Tunable("cascade2Split", "split", range=(0.0, 1.0), step=0.05, when=(("shadowCascadeCount", 2),)),
+    Tunable("cascade3Split.x", "split", range=(0.0, 1.0), step=0.05, when=(("shadowCascadeCount", 3),)),
+    Tunable("cascade3Split.y", "split", range=(0.0, 1.0), step=0.05, when=(("shadowCascadeCount", 3),)),
+    Tunable("cascade4Split.x", "split", range=(0.0, 1.0), step=0.05, when=(("shadowCascadeCount", 4),)),
+    Tunable("cascade4Split.y", "split", range=(0.0, 1.0), step=0.05, when=(("shadowCascadeCount", 4),)),
+    Tunable("cascade4Split.z", "split", range=(0.0, 1.0), step=0.05, when=(("shadowCascadeCount", 4),)),
+    Tunable("shadowDistance", "distance"),
+    Tunable("mainLightShadowmapResolution", "size", values=RESOLUTIONS),
+    Tunable("shadowDepthBias", "bias"),
+    Tunable("shadowNormalBias", "bias"),
+    Tunable("supportsSoftShadows", "filter", values=(False, True)),
+)
+
 PROFILES = (
     Profile("unity-urp", "Unity URP main light", "17", SETTINGS, build, releases=("17.0", "6000.0", "unity6"), snippet=snippet, language="csharp",
             source="Unity-Technologies/Graphics com.unity.render-pipelines.universal as stored (UniversalRenderPipelineAsset.cs, ShadowUtils.cs, "
-            "Shadows.hlsl, MainLightShadowCasterPass.cs); the fit is in closed C++"),
+            "Shadows.hlsl, MainLightShadowCasterPass.cs); the fit is in closed C++", tunable=TUNABLE),
 )

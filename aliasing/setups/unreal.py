@@ -33,7 +33,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from .. import partitioning
-from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting
+from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
 
 COMPONENT = "Engine/Source/Runtime/Engine/Classes/Components/DirectionalLightComponent.h (copies in the index; Epic's repository is private)"
 LIGHTCOMP = ("Engine/Source/Runtime/Engine/Classes/Components/LightComponent.h ULightComponent (ShadowBias 0.5, ShadowSlopeBias 0.5: "
@@ -120,7 +120,18 @@ def snippet(s: Mapping[str, Any]) -> str:
     return "\n".join(lines)
 
 
+#: What :func:`aliasing.tune.tune` searches: the cascade count, the distribution exponent, the
+#: dynamic shadow distance, the CSM resolution and both biases.
+TUNABLE = (
+    Tunable("DynamicShadowCascades", "cascades", values=tuple(range(1, 11))),
+    Tunable("CascadeDistributionExponent", "split", range=(1.0, 4.0), step=0.1),
+    Tunable("DynamicShadowDistanceMovableLight", "distance"),
+    Tunable("r.Shadow.MaxCSMResolution", "size", values=(512, 1024, 2048, 4096, 8192)),
+    Tunable("ShadowBias", "bias"),
+    Tunable("ShadowSlopeBias", "bias"),
+)
+
 PROFILES = (
     Profile("unreal", "Unreal Engine DirectionalLight (CSM)", "5", SETTINGS, build, releases=("5.4", "5.5", "5.6", "ue5"), snippet=snippet,
-            language="ini", source="copies of Epic's files in the index (DirectionalLightComponent, ShadowRendering.cpp, ShadowDepthVertexShader.usf); not pinned"),
+            language="ini", source="copies of Epic's files in the index (DirectionalLightComponent, ShadowRendering.cpp, ShadowDepthVertexShader.usf); not pinned", tunable=TUNABLE),
 )

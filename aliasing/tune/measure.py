@@ -5,9 +5,10 @@ texel]: at eye depth d in cascade k, a map side W_k over R texels seen by an ima
 with vertical half angle θ_y has m = W_k·H / (2 tan θ_y · d · R) (Lloyd et al. 2006, eq. 2
 with a uniform map), largest at the cascade's first receiver d = max(u_k, receivers' near).
 
-Constraints, measured as :func:`aliasing.check.check` measures them: no acne up to the
-steepest receiver (ground tilted ``max_slope`` away from the lowest sun: the angle to the light
-θ = 90° − α_low + slope, up to :data:`MAX_ANGLE`) in each cascade's largest texel with the
+Constraints, measured as :func:`aliasing.check.check` measures them: no acne on the
+ground and the ground tilted ``max_slope`` away from the sun under each sampled elevation (the
+angle to the light θ = 90° − α + slope, up to :data:`MAX_ANGLE`, as check samples them) in
+each cascade's largest texel with the
 filter's kernel; the lit gap at a caster's foot (:func:`aliasing.bias.lit_gap` of the rule's
 contact part, at the lowest sun) in pixels at the middle of the cascade's receivers; the texels
 of all maps (k·R²); shadows reaching the farthest receiver; a stabilized fit for a moving camera.
@@ -59,7 +60,8 @@ class Measure:
     texel : ndarray
         Each cascade's largest world texel over the sun band [world units].
     need : ndarray
-        The depth bias each cascade needs at the steepest receiver [world units].
+        The depth bias each cascade needs at its sampled receiver closest to acne
+        (:func:`angles`, the cascade's largest texel) [world units].
     have : ndarray
         The depth bias the settings give there [world units].
     gap_px : ndarray
@@ -113,6 +115,29 @@ def steepest(setup: Setup, slope: float) -> float:
     return min(90.0 - setup.sun.elevation[0] + slope, MAX_ANGLE)
 
 
+def angles(setup: Setup, slope: float) -> np.ndarray:
+    """θ of the receivers sampled for acne [deg]: the ground and the ground tilted ``slope`` away from the sun, under each sampled elevation.
+
+    As :func:`aliasing.check.check` samples them (θ = 90° − e + σ), those above
+    :data:`MAX_ANGLE` brought to it, none steeper than :func:`steepest`.  The steepest does not always bind: a bias that moves the
+    receiver across the light (Godot's normal bias) gives less at a small θ than the filter needs
+    there, so every angle is kept.
+    """
+    e = setup.sun.elevations(SUN_SAMPLES)
+    top = steepest(setup, slope)
+    th = np.concatenate([90.0 - e, 90.0 - e + slope, [top]])
+    return np.unique(np.clip(th[th <= top], 0.0, MAX_ANGLE))  # a negative slope (the trade-off's): the receivers up to its θ
+
+
+def sample(setup: Setup, texel: np.ndarray, slope: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(texel, θ, need) broadcast to (cascades, angles): each cascade's largest texel at every sampled angle."""
+    th = angles(setup, slope)[None, :]
+    w = np.broadcast_to(np.asarray(texel, float)[:, None], (len(texel), th.shape[1]))
+    th = np.broadcast_to(th, w.shape)
+    need = np.asarray(plane_bias(w, th, AZIMUTH, lookup(setup.pipeline)).depth, float) * np.ones_like(w)
+    return w, th, need
+
+
 def measure(setup: Setup, limits: Limits) -> Measure:
     """The objective and the constraints of one setup (module docstring).
 
@@ -139,13 +164,14 @@ def measure(setup: Setup, limits: Limits) -> Measure:
     mid = 0.5 * (np.maximum(pipe.near_i, rn) + np.minimum(pipe.far_i, rf))  # where check measures the gap
     with np.errstate(invalid="ignore", divide="ignore"):
         error = np.where(used, texel * cam.height / (2 * t * d), np.nan)  # eq. (2): W/R over the pixel 2 t d/H
-    angle = steepest(setup, limits.max_slope)
     rule = pipe.bias
+    w, th, need2 = sample(setup, texel, limits.max_slope)
+    have2 = np.asarray(rule.depth(w, th, AZIMUTH), float) * np.ones_like(w)
+    worst = np.argmin(have2 - need2, axis=1)  # per cascade, the sampled receiver closest to acne
+    rows = np.arange(len(texel))
+    need, have = need2[rows, worst], have2[rows, worst]
     if rule.faces == "back":
         need = np.full_like(texel, -np.inf)  # lit surfaces compare against the far side: no acne whatever the bias
-    else:
-        need = np.asarray(plane_bias(texel, angle, AZIMUTH, lookup(pipe)).depth, float) * np.ones_like(texel)
-    have = np.asarray(rule.depth(texel, angle, AZIMUTH), float) * np.ones_like(texel)
     contact = np.maximum(np.asarray(rule.contact(texel), float), 0.0)
     gap = np.asarray(lit_gap(contact, setup.sun.elevation[0]), float)  # worst at the lowest sun
     gap_px = np.where(used, gap * cam.height / (2 * t * mid), np.nan)

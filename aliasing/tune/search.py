@@ -7,8 +7,8 @@ setting is set the cheapest way that is exact:
   so do the texel, the bias it needs and the gap that bias opens: the largest size dominates);
 * where shadows end (three.js ``maxFar``): the receivers' far (any farther spreads texels over
   depths nobody sees);
-* biases: not searched but set to their minimum, the closed form: the bias that the steepest
-  receiver needs in each cascade's largest texel (:func:`aliasing.bias.plane_bias`, the filter's
+* biases: not searched but set to their minimum, the closed form: the bias that the sampled
+  receivers (the steepest, for most rules) need in each cascade's largest texel (:func:`aliasing.bias.plane_bias`, the filter's
   kernel included), converted to the engine's units by the profile's
   :meth:`aliasing.setups.BiasRule.minimal`, the extreme over the cascades, rounded to four
   significant digits on the safe side; where the engine has several bias settings, each is
@@ -34,7 +34,7 @@ import numpy as np
 from scipy import optimize
 
 from ..setups import Setup, Tunable
-from .measure import AZIMUTH, LIMITS, Limits, Measure, limits, measure, steepest
+from .measure import AZIMUTH, LIMITS, Limits, Measure, limits, measure, sample, steepest
 
 _DIGITS = 4  # significant digits of a bias setting, rounded on the safe side
 
@@ -173,9 +173,45 @@ class _Search:
                     out[t.key], best = x, f
             if not moved:
                 break
+        if len(free) > 1:  # one at a time stalls where two cascades share the worst error: all together, smoothed
+            out, best = self.jointly(out, free, best)
         for t in free:  # four significant digits, as a snippet prints them
             out[t.key] = self.profile.setting(t.key).coerce(float(f"{out[t.key]:.4g}"))
         return out
+
+    def jointly(self, settings: dict, free: list[Tunable], best: float) -> tuple[dict, float]:
+        """Every split parameter at once: Nelder–Mead on the p-norm of the cascades' errors.
+
+        The worst error is a maximum over cascades: where two share it, moving one parameter
+        raises the other's, and a search one parameter at a time stops there.  The p-norm
+        (p = 16, then 64) is smooth and tends to the maximum; each parameter is searched on a log
+        scale of its distance from the range's low end (split fractions span decades near 0).
+        The result is kept only where its worst error is lower.  (Powell's method was tried: its
+        line searches cross the values an engine refuses, unordered fractions, and stop there.)
+        """
+        lows = np.array([t.range[0] for t in free])
+        spans = np.array([t.range[1] - t.range[0] for t in free])
+        floor = np.log(spans * 1e-5)
+
+        def values(y):
+            return {t.key: float(v) for t, v in zip(free, lows + np.exp(np.clip(y, floor, np.log(spans))))}
+
+        out = dict(settings)
+        for p in (16.0, 64.0):
+            def smooth(y, p=p):
+                got = self.setup({**out, **values(y)})
+                if got is None or not math.isfinite(got[1].objective):
+                    return 1e6
+                e = got[1].error[np.isfinite(got[1].error)] / best
+                return float(np.mean(e ** p) ** (1 / p))
+            y0 = np.log(np.maximum(np.array([out[t.key] for t in free], float) - lows, spans * 1e-5))
+            r = optimize.minimize(smooth, y0, method="Nelder-Mead", bounds=list(zip(floor, np.log(spans))),
+                                  options={"xatol": 1e-4, "fatol": 1e-7, "maxfev": 400 * len(free)})
+            trial = {**out, **values(r.x)}
+            f = self.objective(trial)
+            if f < best * (1 - 1e-12):
+                out, best = trial, f
+        return out, best
 
     def biases(self, settings: dict) -> list[dict]:
         """Each free bias setting alone at its minimum (the others neutral): the candidates."""
@@ -199,9 +235,8 @@ class _Search:
         out = [dict(settings)]  # the biases as they are, where they suffice
         if np.all(m.have >= m.need):
             return out + [base]  # nothing needed (back faces cast, or the fixed terms suffice)
-        angle = steepest(s, self.limits.max_slope)
         for t in free:
-            value = _minimal(s, t.key, m, angle)
+            value = _minimal(s, t.key, m, self.limits.max_slope)
             if value is None:
                 continue
             out.append({**base, t.key: value})
@@ -244,12 +279,13 @@ def _extreme(rule, key: str, need: np.ndarray, texel: np.ndarray, angle: float) 
     return (value, up) if math.isfinite(value) else None
 
 
-def _minimal(setup: Setup, key: str, m: Measure, angle: float) -> float | None:
-    """The closed-form minimum of bias setting ``key`` over the cascades, in the engine's units (None: it cannot help)."""
+def _minimal(setup: Setup, key: str, m: Measure, slope: float) -> float | None:
+    """The closed-form minimum of bias setting ``key`` over the cascades and the sampled receivers, in the engine's units (None: it cannot help)."""
     rule = setup.pipeline.bias
     if key not in {t.key for t in rule.terms}:
         return None
-    got = _extreme(rule, key, m.need, m.texel, angle)
+    w, th, need = sample(setup, m.texel, slope)
+    got = _extreme(rule, key, need, w, th)
     if got is None:
         return None
     value, up = got
@@ -260,7 +296,7 @@ def _minimal(setup: Setup, key: str, m: Measure, angle: float) -> float | None:
             s = setup.with_settings(**{key: v})
         except ValueError:
             return None
-        if np.all(np.asarray(s.pipeline.bias.depth(m.texel, angle, AZIMUTH)) >= m.need * (1 - 1e-9) - 1e-12):
+        if np.all(np.asarray(s.pipeline.bias.depth(w, th, AZIMUTH)) >= need * (1 - 1e-9) - 1e-12):
             return v
     return None
 
@@ -268,7 +304,8 @@ def _minimal(setup: Setup, key: str, m: Measure, angle: float) -> float | None:
 def closed_form_bias(setup: Setup, key: str, *, max_slope: float = 0.0, receivers=None) -> float | None:
     """The minimal value of bias setting ``key`` [the engine's units] that leaves no acne up to ``max_slope``.
 
-    The other free bias settings at zero; the steepest receiver's need in each cascade's largest
+    The other free bias settings at zero; every sampled receiver's need (the ground and the
+    ground tilted ``max_slope`` under each sampled sun, :func:`aliasing.tune.measure.angles`) in each cascade's largest
     texel (:func:`aliasing.bias.plane_bias`, the filter's kernel) through the rule's
     :meth:`aliasing.setups.BiasRule.minimal`, exact (not rounded).  None where the setting cannot
     remove the acne.
@@ -285,7 +322,8 @@ def closed_form_bias(setup: Setup, key: str, *, max_slope: float = 0.0, receiver
     free = [t.key for t in setup.profile.tunable if t.role == "bias" and t.active(setup.settings)]
     s = setup.with_settings(**{k: _neutral(setup.profile.setting(k)) for k in free if k != key})
     m = measure(s, lim)
-    got = _extreme(s.pipeline.bias, key, m.need, m.texel, steepest(s, lim.max_slope))
+    w, th, need = sample(s, m.texel, lim.max_slope)
+    got = _extreme(s.pipeline.bias, key, need, w, th)
     return None if got is None else got[0]
 
 
