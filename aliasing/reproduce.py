@@ -62,7 +62,7 @@ TARGETS: dict[str, Target] = {
         Target("bias-presets", "bias_presets", "Engine bias rules per cascade: ground margin, acne angle and lit gap in pixels for Filament, Bevy, Godot 4, Unity URP, three.js (near 0.1, far 100, 4 cascades, 2048^2)"),
         Target("engines-comparison", "engines_comparison", "Engine schemes: m_x along the view and critical storage over gamma, stable CSM, SDSM, UE5 VSM High/Epic, matched and exact limits (near 10 cm, far 1 km, fov 60, 1920 px)"),
         Target("check-threejs", "check_threejs", "aliasing check for three.js r187's CSM (4 x 2048^2, 1920x1080, fov 50, near 0.1, far 500, sun 15-60): error along the view, the normalBias each cascade needs, the gap a common shadowBias costs"),
-        Target("tune-engines", "tune_engines", "aliasing tune per engine with tunable settings (tune-<engine>.png): defaults vs tuned, worst error, acne margin and peter-panning per cascade at the same memory (4 cascades, 1920x1080, fov 50, near 0.1, far 500, sun 15-60, slopes to 10 deg)"),
+        Target("tune-engines", "tune_engines", "aliasing tune per engine (tune-engines.png: every engine's worst error and gap; tune-<engine>.png: per cascade): defaults vs tuned, worst error, acne margin and peter-panning per cascade at the same memory (4 cascades, 1920x1080, fov 50, near 0.1, far 500, sun 15-60, slopes to 10 deg)"),
         Target("shimmer-tradeoff", "shimmer_tradeoff", "New: should I stabilize? Each engine stable preset's resolution cost (S ratio to the tight fit) beside the shimmer it removes (flips per second, boxes scene, sideways, forward and yaw paths)"),
     )
 }
