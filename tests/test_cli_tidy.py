@@ -74,10 +74,12 @@ def test_no_suggestion_for_a_far_off_name(capsys):
 @given(st.sampled_from([*partitioning.SPLIT_METHODS, *reproduce.TARGETS, *aliasing.WARPING_RULES]), st.data())
 def test_one_typo_is_suggested_back(name, data):
     # a known name with one character deleted, doubled or swapped with its neighbour
+    if len(name) < 4:  # too short for a one-letter typo to stay closest (and 'p' leaves no position to draw)
+        return
     i = data.draw(st.integers(0, len(name) - 2))
     typo = data.draw(st.sampled_from([name[:i] + name[i + 1 :], name[:i] + name[i] + name[i:], name[:i] + name[i + 1] + name[i] + name[i + 2 :]]))
     known = [*partitioning.SPLIT_METHODS, *reproduce.TARGETS, *aliasing.WARPING_RULES]
-    if typo in known or len(name) < 4:
+    if typo in known:
         return
     assert repr(name) in _validation.did_you_mean(typo, known)
 
