@@ -25,6 +25,7 @@ import numpy as np
 from aliasing import setups
 from aliasing.check import check
 from aliasing.plotting import save, subplots
+from aliasing.view import tan_theta
 
 NAME = "check-threejs"
 CAMERA = "near=0.1,far=500,fov=50,aspect=16:9,height=1080"
@@ -58,7 +59,7 @@ def main(out_dir: Path) -> list[Path]:
     cols = data()
     fig, axes = subplots(3, width=4.3, height=3.8)
     ax = axes[0]
-    h, t = 1080, np.tan(np.radians(25.0))
+    h, t = 1080, tan_theta(50.0)
     for k in range(4):
         z = np.geomspace(max(cols["near"][k], 0.5), cols["far"][k], 60)
         ax.plot(z, cols["texel"][k] * h / (2 * t * z), color=f"C{k}", lw=2, label=f"cascade {k}: {cols['texel'][k] * 100:.1f} cm texel")

@@ -24,6 +24,7 @@ from aliasing import setups
 from aliasing.frames import browser, scenes
 from aliasing.frames.run import frame_setup
 from aliasing.plotting import save, subplots
+from aliasing.view import tan_theta
 
 NAME = "engine-frames"
 CASES = (("threejs", {}, "three.js r187, defaults"), ("threejs", {"material.shadowSide": "FrontSide"}, "three.js r187, front faces cast"),
@@ -36,7 +37,7 @@ def _tpp(result, scene) -> np.ndarray:
     depth = scene.camera.to_eye(np.nan_to_num(rb.position))[..., 2]
     sides = np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3])) for m in rb.matrices])
     tex = sides / rb.sizes[:, 0]
-    pixel = 2 * depth * np.tan(np.radians(scene.camera.fov) / 2) / rb.shadow.shape[0]
+    pixel = 2 * depth * tan_theta(scene.camera.fov) / rb.shadow.shape[0]
     c = rb.cascade
     return np.where(rb.drawn & (c >= 0), pixel / tex[np.clip(c, 0, None)], np.nan)
 

@@ -104,6 +104,18 @@ def test_view_arguments_refused_twice():
 # with the reason (file, the text inside np.radians(...)).
 OTHER_ANGLES = {
     ("faces.py", "angle"): "the eased axis rotation of the FPcs frames [deg]",
+    ("scene.py", "np.asarray(elevations, float)"): "the sun's elevations above the ground (check on a scene)",
+    ("scene.py", "azimuth"): "the sun's azimuth from the view direction (check on a scene)",
+    ("scene.py", "CLASS_ANGLE"): "the receiver angle that tells ground from walls (check on a scene)",
+    ("scenes.py", "el"): "the sun's elevation placed in the engines' frames",
+    ("scenes.py", "az"): "the sun's azimuth placed in the engines' frames",
+    ("profile.py", 'check.closed_range(angle, "angle", 0.0, 90.0, " degrees")'): "a receiver's angle θ to the light (bias terms)",
+    ("profile.py", 'check.finite(azimuth, "azimuth")'): "a receiver's slope azimuth φ (slope bias terms)",
+    ("spec.py", "np.asarray(self.elevation[0] if elevation is None else elevation, float)"): "the sun's elevation above the ground",
+    ("spec.py", "self.azimuth"): "the sun's azimuth from the view direction",
+    ("spec.py", "self.elevation[0] if elevation is None else float(elevation)"): "the sun's elevation above the ground",
+    ("command.py", "sun.elevation[0]"): "the sun's elevation (shimmer --sun)",
+    ("command.py", "sun.azimuth"): "the sun's azimuth (shimmer --sun)",
     ("table3_hypotheses.py", "(np.arange(n_lat) + 0.5) * 90.0 / n_lat"): "elevation of sampled light directions",
     ("table3_hypotheses.py", "(np.arange(4 * n_lat) + 0.5) * 360.0 / (4 * n_lat)"): "longitude of sampled light directions",
     ("table3_hypotheses.py", "np.linspace(-45.0, 45.0, angles, endpoint=False)"): "rotation angle ψ of the sampled lights",

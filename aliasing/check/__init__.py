@@ -293,7 +293,7 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
         lv = seen.light(elev, sun.azimuth)
     tex = _pipeline.texels(pl, cam, lv)  # (E, K, 2)
     K, H, R = pl.k, cam.height, float(pl.resolution)
-    t = math.tan(math.radians(cam.fov) / 2)
+    t = float(cam.view.tan_theta)
     near_i, far_i = np.asarray(pl.near_i), np.asarray(pl.far_i)
     u = near_i if pl.fit != "fixed" else np.array([cam.near])
     if pl.fit == "fixed":

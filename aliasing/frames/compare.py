@@ -32,6 +32,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 from scipy import ndimage
+from ..view import tan_theta
 
 Array = NDArray[np.float64]
 MIN_COS = 0.05
@@ -79,5 +80,5 @@ def gap(factor: Array, ref_lit: NDArray[np.bool_], ground: NDArray[np.bool_], dr
 def texels_per_pixel(starts: Array, sides: Array, resolution: Array, fov: float, height: int) -> list[float]:
     """Per cascade: (2 d tan(fov/2) / height) / (side / resolution) at the cascade's first depth ``d`` [world units]."""
     starts, sides, resolution = (np.asarray(v, float) for v in (starts, sides, resolution))
-    pixel = 2 * starts * np.tan(np.radians(fov) / 2) / height
+    pixel = 2 * starts * tan_theta(fov) / height
     return (pixel / (sides / resolution)).tolist()

@@ -151,7 +151,7 @@ def measure(setup: Setup, limits: Limits) -> Measure:
     pipe, cam = setup.pipeline, setup.camera
     lights = setup.sun.direction(setup.sun.elevations(SUN_SAMPLES))
     rn, rf = limits.receivers
-    t = math.tan(math.radians(cam.fov) / 2)
+    t = float(cam.view.tan_theta)
     if pipe.fit == "fixed":
         texel = np.array([max(pipe.box) / pipe.resolution])
         u, v = np.array([cam.near]), np.array([cam.far])
@@ -165,14 +165,17 @@ def measure(setup: Setup, limits: Limits) -> Measure:
     with np.errstate(invalid="ignore", divide="ignore"):
         error = np.where(used, texel * cam.height / (2 * t * d), np.nan)  # eq. (2): W/R over the pixel 2 t d/H
     rule = pipe.bias
+    w_sun = engine_pipeline.texels(pipe, cam, lights).max(axis=-1)  # (E, K): each sun's largest texel side, as check takes it
+    ext = engine_pipeline.extents(pipe, cam, lights) if rule.needs_extent else None  # (E, K) each map's depth range along the light
     w, th, need2 = sample(setup, texel, limits.max_slope)
-    have2 = np.asarray(rule.depth(w, th, AZIMUTH), float) * np.ones_like(w)
+    low = None if ext is None else np.broadcast_to(ext.min(axis=0)[:, None], w.shape)  # the shallowest range: the least bias
+    have2 = np.asarray(rule.depth(w, th, AZIMUTH, low), float) * np.ones_like(w)
     worst = np.argmin(have2 - need2, axis=1)  # per cascade, the sampled receiver closest to acne
     rows = np.arange(len(texel))
     need, have = need2[rows, worst], have2[rows, worst]
     if rule.faces == "back":
         need = np.full_like(texel, -np.inf)  # lit surfaces compare against the far side: no acne whatever the bias
-    contact = np.maximum(np.asarray(rule.contact(texel), float), 0.0)
+    contact = np.max(np.maximum(np.asarray(rule.contact(w_sun, ext), float), 0.0) * np.ones_like(w_sun), axis=0)  # worst sun, as check
     gap = np.asarray(lit_gap(contact, setup.sun.elevation[0]), float)  # worst at the lowest sun
     gap_px = np.where(used, gap * cam.height / (2 * t * mid), np.nan)
     covers = float(np.max(pipe.far_i)) >= rf * (1 - 1e-9) or pipe.fit == "fixed"

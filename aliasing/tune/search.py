@@ -560,7 +560,7 @@ def scene_receivers(scene: Any, setup: Setup, samples: int = 6) -> tuple[float, 
     keep = i + j <= n
     bary = np.stack([i[keep], j[keep], n - i[keep] - j[keep]], axis=-1) / n  # (P, 3)
     pts = np.einsum("pv,tvc->tpc", bary, tri).reshape(-1, 3)
-    t = math.tan(math.radians(cam.fov) / 2)
+    t = float(cam.view.tan_theta)
     z = pts[:, 2]
     seen = (z >= cam.near) & (z <= cam.far) & (np.abs(pts[:, 1]) <= z * t) & (np.abs(pts[:, 0]) <= z * t * cam.aspect)
     if not seen.any():
