@@ -211,7 +211,10 @@ def shadow_maps(triangles: ArrayLike, maps: MapSet | Sequence[LightMap], resolut
     [16, 8]
     """
     tri = _triangles(triangles)
-    lms = list(maps.maps) if isinstance(maps, MapSet) else list(maps)
+    try:
+        lms = list(maps.maps) if isinstance(maps, MapSet) else list(maps)
+    except TypeError:
+        raise ValueError(f"maps must be a MapSet or a list of LightMap, got {type(maps).__name__}") from None
     if not lms:
         raise ValueError("maps must hold at least one LightMap")
     for lm in lms:
