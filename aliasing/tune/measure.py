@@ -138,6 +138,18 @@ def sample(setup: Setup, texel: np.ndarray, slope: float) -> tuple[np.ndarray, n
     return w, th, need
 
 
+def sample_extent(setup: Setup, shape: tuple[int, ...]) -> np.ndarray | None:
+    """Each cascade's shallowest map depth range along the light over the sampled suns [world units],
+    broadcast to the sample's (cascades, angles) ``shape``: the least bias a ``depth_range`` term gives
+    (None where the rule has no such term)."""
+    pipe = setup.pipeline
+    if not pipe.bias.needs_extent:
+        return None
+    lights = setup.sun.direction(setup.sun.elevations(SUN_SAMPLES))
+    ext = engine_pipeline.extents(pipe, setup.camera, lights)
+    return np.broadcast_to(ext.min(axis=0)[:, None], shape)
+
+
 def measure(setup: Setup, limits: Limits) -> Measure:
     """The objective and the constraints of one setup (module docstring).
 
@@ -168,7 +180,7 @@ def measure(setup: Setup, limits: Limits) -> Measure:
     w_sun = engine_pipeline.texels(pipe, cam, lights).max(axis=-1)  # (E, K): each sun's largest texel side, as check takes it
     ext = engine_pipeline.extents(pipe, cam, lights) if rule.needs_extent else None  # (E, K) each map's depth range along the light
     w, th, need2 = sample(setup, texel, limits.max_slope)
-    low = None if ext is None else np.broadcast_to(ext.min(axis=0)[:, None], w.shape)  # the shallowest range: the least bias
+    low = sample_extent(setup, w.shape)
     have2 = np.asarray(rule.depth(w, th, AZIMUTH, low), float) * np.ones_like(w)
     worst = np.argmin(have2 - need2, axis=1)  # per cascade, the sampled receiver closest to acne
     rows = np.arange(len(texel))

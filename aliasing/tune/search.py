@@ -34,7 +34,7 @@ import numpy as np
 from scipy import optimize
 
 from ..setups import Setup, Tunable
-from .measure import AZIMUTH, LIMITS, Limits, Measure, limits, measure, sample, steepest
+from .measure import AZIMUTH, LIMITS, Limits, Measure, limits, measure, sample, sample_extent, steepest
 
 _DIGITS = 4  # significant digits of a bias setting, rounded on the safe side
 
@@ -256,7 +256,7 @@ def _round_safe(value: float, up: bool) -> float:
     return float(f"{(math.ceil(value / q) if up else math.floor(value / q)) * q:.{_DIGITS}g}")
 
 
-def _per_sign(rule, key: str, need: np.ndarray, texel: np.ndarray, angle: float) -> np.ndarray:
+def _per_sign(rule, key: str, need: np.ndarray, texel: np.ndarray, angle: float, extent=None) -> np.ndarray:
     """The sign of the depth bias one unit of ``key`` gives, per cascade (0: it cannot help).
 
     From the rule's own :meth:`~aliasing.setups.BiasRule.minimal`, linear in the need: a unit
@@ -264,16 +264,17 @@ def _per_sign(rule, key: str, need: np.ndarray, texel: np.ndarray, angle: float)
     where a term scales with it, counted as the rule counts them).
     """
     with np.errstate(invalid="ignore"):
-        step = np.asarray(rule.minimal(key, need + 1.0, texel, angle, AZIMUTH), float) - np.asarray(rule.minimal(key, need, texel, angle, AZIMUTH), float)
+        step = (np.asarray(rule.minimal(key, need + 1.0, texel, angle, AZIMUTH, extent), float)
+                - np.asarray(rule.minimal(key, need, texel, angle, AZIMUTH, extent), float))
     return np.where(np.isfinite(step), np.sign(step), 0.0)
 
 
-def _extreme(rule, key: str, need: np.ndarray, texel: np.ndarray, angle: float) -> tuple[float, bool] | None:
+def _extreme(rule, key: str, need: np.ndarray, texel: np.ndarray, angle: float, extent=None) -> tuple[float, bool] | None:
     """The minimal value of ``key`` over the cascades and whether it is a bound from below (None: it cannot help)."""
-    sign = _per_sign(rule, key, need, texel, angle)
+    sign = _per_sign(rule, key, need, texel, angle, extent)
     if not (np.all(sign > 0) or np.all(sign < 0)):
         return None
-    values = np.asarray(rule.minimal(key, need, texel, angle, AZIMUTH), float)
+    values = np.asarray(rule.minimal(key, need, texel, angle, AZIMUTH, extent), float)
     up = bool(np.all(sign > 0))
     value = float(values.max() if up else values.min())
     return (value, up) if math.isfinite(value) else None
@@ -285,7 +286,8 @@ def _minimal(setup: Setup, key: str, m: Measure, slope: float) -> float | None:
     if key not in {t.key for t in rule.terms}:
         return None
     w, th, need = sample(setup, m.texel, slope)
-    got = _extreme(rule, key, need, w, th)
+    ext = sample_extent(setup, w.shape)
+    got = _extreme(rule, key, need, w, th, ext)
     if got is None:
         return None
     value, up = got
@@ -296,7 +298,7 @@ def _minimal(setup: Setup, key: str, m: Measure, slope: float) -> float | None:
             s = setup.with_settings(**{key: v})
         except ValueError:
             return None
-        if np.all(np.asarray(s.pipeline.bias.depth(w, th, AZIMUTH)) >= need * (1 - 1e-9) - 1e-12):
+        if np.all(np.asarray(s.pipeline.bias.depth(w, th, AZIMUTH, ext)) >= need * (1 - 1e-9) - 1e-12):
             return v
     return None
 
@@ -323,7 +325,7 @@ def closed_form_bias(setup: Setup, key: str, *, max_slope: float = 0.0, receiver
     s = setup.with_settings(**{k: _neutral(setup.profile.setting(k)) for k in free if k != key})
     m = measure(s, lim)
     w, th, need = sample(s, m.texel, lim.max_slope)
-    got = _extreme(s.pipeline.bias, key, need, w, th)
+    got = _extreme(s.pipeline.bias, key, need, w, th, sample_extent(s, w.shape))
     return None if got is None else got[0]
 
 
