@@ -155,8 +155,15 @@ def test_large_results_are_shown_with_named_subexpressions_that_substitute_back(
     defs, (reduced,) = sp.cse(expr, symbols=sp.numbered_symbols("w", start=1), order="none")
     assert display(expr).startswith(sp.sstr(reduced))
     # evaluate the named form line by line, as a reader would, and the full expression at once
-    values = {s: sp.Float(float(_q(-2.0, 2.0)), 30) for s in expr.free_symbols}  # floats: exact rationals blow up here
-    want = expr.xreplace(values)
+    # a point of its own for each expression, in a fixed symbol order (a set's order follows the hash seed), drawn
+    # as full floats: rationals of denominator ≤ 97 repeat among 44 symbols and can land on a 0/0 (NaN on both sides)
+    rng = random.Random(f"{func.__name__}:20261127")
+    for _ in range(5):
+        values = {s: sp.Float(rng.uniform(-2.0, 2.0), 30) for s in sorted(expr.free_symbols, key=str)}
+        want = expr.xreplace(values)
+        if all(sp.Float(w, 30).is_finite for w in want):  # a regular point
+            break
+    assert all(sp.Float(w, 30).is_finite for w in want), "no regular point in five draws"
     for name, value in defs:
         values[name] = value.xreplace(values)
     for got, w in zip(reduced.xreplace(values), want):
