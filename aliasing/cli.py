@@ -13,6 +13,7 @@ import warnings
 from collections.abc import Sequence
 
 
+from . import _table as _tables
 from . import _validation
 from ._version import __version__
 
@@ -227,10 +228,7 @@ def _splits(args: argparse.Namespace) -> int:
 
 def _table(rows: list[dict]) -> str:
     """Rows as an aligned plain-text table."""
-    keys = list(rows[0])
-    cells = [[k for k in keys]] + [[f"{r[k]:.6g}" if isinstance(r[k], float) else str(r[k]) for k in keys] for r in rows]
-    widths = [max(len(c[i]) for c in cells) for i in range(len(keys))]
-    return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells)
+    return _tables.table(rows, digits=6)
 
 
 def _engine_validate(p: argparse.ArgumentParser) -> None:

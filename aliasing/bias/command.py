@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from .. import _table as _tables
 from .. import _validation as check
 from .. import setups
 from ..sweep import format_rows
@@ -28,10 +29,7 @@ from .plane import plane_bias
 
 
 def _table(rows: list[dict]) -> str:
-    keys = list(rows[0])
-    cells = [list(keys)] + [[f"{r[k]:.6g}" if isinstance(r[k], float) else str(r[k]) for k in keys] for r in rows]
-    widths = [max(len(c[i]) for c in cells) for i in range(len(keys))]
-    return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells)
+    return _tables.table(rows, digits=6)
 
 
 def _numbers(text: str, flag: str) -> list[float]:

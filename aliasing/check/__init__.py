@@ -91,6 +91,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .. import _table as _tables
 from .. import _validation as check_
 from ..bias import lit_gap, plane_bias
 from ..bias.filtering import blend_band, pcf_footprint, seam_step
@@ -196,25 +197,13 @@ class Report:
     def text(self) -> str:
         """An aligned table, then the verdicts."""
         rows = self.to_rows()
-        keys = list(rows[0])
-        cells = [keys] + [[_cell(r[k]) for k in keys] for r in rows]
-        widths = [max(len(c[i]) for c in cells) for i in range(len(keys))]
         s = self.setup
         head = (f"{s.profile.title} {s.release}: camera {s.camera.spec()} ({s.camera.width}x{s.camera.height}), sun {s.sun.spec()}; "
                 f"changed: {', '.join(f'{k}={v}' for k, v in s.changed().items()) or 'none'}\n")
-        table = "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells)
-        return head + table + "".join(f"- {v}\n" for v in self.verdicts)
+        return head + _tables.table(rows) + "".join(f"- {v}\n" for v in self.verdicts)
 
     def __str__(self) -> str:
         return self.text()
-
-
-def _cell(v: object) -> str:
-    if v is None:
-        return "-"
-    if isinstance(v, float):
-        return f"{v:.4g}"
-    return str(v)
 
 
 def _json(c: dict) -> dict:

@@ -19,6 +19,7 @@ import io
 import json
 import sys
 
+from .. import _table as _tables
 from .. import setups
 from . import MAX_ANGLE, check
 
@@ -70,10 +71,7 @@ def run_bias(args: argparse.Namespace) -> int:
         wr.writerows({k: "" if v is None else v for k, v in r.items()} for r in rows)
         sys.stdout.write(buf.getvalue())
         return 0
-    keys = list(rows[0])
-    cells = [keys] + [["-" if r[k] is None else f"{r[k]:.4g}" if isinstance(r[k], float) else str(r[k]) for k in keys] for r in rows]
-    widths = [max(len(c[i]) for c in cells) for i in range(len(keys))]
-    sys.stdout.write("".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells))
+    sys.stdout.write(_tables.table(rows))
     sys.stdout.write("".join(f"- {v}\n" for v in report.verdicts if "acne" in v or "faces" in v or "detach" in v))
     return 0
 

@@ -52,6 +52,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import _table as _tables
 from .. import _validation as check
 from .. import partitioning, setups
 from . import limits, pipeline, sdsm, stable, vsm
@@ -355,19 +356,11 @@ def format_rows(rows: list[dict], fmt: str) -> str:
         w.writeheader()
         w.writerows({k: ("" if v is None else v) for k, v in r.items()} for r in rows)
         return buf.getvalue()
-    cells = [list(FIELDS)] + [[_cell(r[k]) for k in FIELDS] for r in rows]
-    widths = [max(len(c[i]) for c in cells) for i in range(len(FIELDS))]
-    return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(FIELDS))) + "\n" for c in cells)
+    return _tables.aligned([list(FIELDS)] + [[_cell(r[k]) for k in FIELDS] for r in rows])
 
 
 def _cell(v: object) -> str:
-    if v is None:
-        return "-"
-    if isinstance(v, bool):
-        return "yes" if v else "no"
-    if isinstance(v, float):
-        return f"{v:.4g}"
-    return str(v)
+    return ("yes" if v else "no") if isinstance(v, bool) else _tables.cell(v)
 
 
 LISTING = """families and presets:

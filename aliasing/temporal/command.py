@@ -25,6 +25,7 @@ import json
 
 import numpy as np
 
+from .. import _table as _tables
 from .. import _validation as check
 from .. import setups
 from ..engines import compare, pipeline
@@ -100,17 +101,7 @@ def format_rows(rows: list[dict], fmt: str) -> str:
         wr.writeheader()
         wr.writerows({k: ("" if r.get(k) is None else r[k]) for k in fields} for r in rows)
         return buf.getvalue()
-    cells = [list(table)] + [[_cell(r.get(k)) for k in table] for r in rows]
-    widths = [max(len(c[i]) for c in cells) for i in range(len(table))]
-    return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(table))) + "\n" for c in cells)
-
-
-def _cell(v: object) -> str:
-    if v is None:
-        return "-"
-    if isinstance(v, float):
-        return f"{v:.4g}"
-    return str(v)
+    return _tables.table(rows, table)
 
 
 def _run(args: argparse.Namespace) -> int:

@@ -23,6 +23,7 @@ import re
 import sys
 from typing import Any
 
+from .. import _table as _tables
 from .. import setups
 from ..check import check
 from . import search
@@ -117,14 +118,6 @@ def _finite(v: float) -> float | None:
     return v if math.isfinite(v) else None
 
 
-def _g(v: Any) -> str:
-    if v is None:
-        return "-"
-    if isinstance(v, float):
-        return f"{v:.4g}"
-    return str(v)
-
-
 def text(result: dict[str, Any]) -> str:
     """The table: the changed settings, the snippet, and check's rows before and after, side by side."""
     tuned = result["tuned"]
@@ -143,12 +136,11 @@ def text(result: dict[str, Any]) -> str:
     for i in range(max(len(before), len(after))):
         b = before[i] if i < len(before) else {}
         a = after[i] if i < len(after) else {}
-        rows.append([str(i)] + [_g(b.get(k)) for k in keys] + [_g(a.get(k)) for k in keys])
-    widths = [max(len(r[j]) for r in [head] + rows) for j in range(len(head))]
-    lines += ["  ".join(c.rjust(w) for c, w in zip(r, widths)) for r in [head] + rows]
+        rows.append([str(i)] + [_tables.cell(b.get(k)) for k in keys] + [_tables.cell(a.get(k)) for k in keys])
+    lines += _tables.aligned([head] + rows).splitlines()
     if tuned.tradeoff:
         lines.append("trade-off (the smallest gap that leaves no acne up to each angle to the light):")
-        lines += [f"  {p['angle']:5.1f}° (slope {p['slope']:+.1f}°): {_g(p['gap_px'])} px" for p in tuned.tradeoff]
+        lines += [f"  {p['angle']:5.1f}° (slope {p['slope']:+.1f}°): {_tables.cell(p['gap_px'])} px" for p in tuned.tradeoff]
     lines.append(f"{s.profile.language or 'settings'}:")
     lines += ["  " + ln for ln in tuned.snippet().splitlines()]
     return "\n".join(lines) + "\n"

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ... import _table as _tables
 from ... import _validation as check
 from ... import geometry
 from ... import partitioning
@@ -119,20 +120,18 @@ def table(renders: list[SchemeRender]) -> str:
     """The statistics as aligned text: one row per scheme, then one per cascade."""
     keys = ["scheme", "maps", "p50", "p90", "p99", "max", "frac_le_1", "analytic_max"]
     rows = [keys] + [[_cell(r.stats[k]) for k in keys] for r in renders]
-    w = [max(len(r[i]) for r in rows) for i in range(len(keys))]
-    text = "".join("  ".join(c.rjust(w[i]) for i, c in enumerate(r)) + "\n" for r in rows)
+    text = _tables.aligned(rows)
     text += "errors: measured perspective error [image pixels per texel] (p50/p90/p99/max over measured pixels); frac_le_1: share at <= 1\n"
     ck = ["scheme", "map", "near", "far", "side", "budget_share", "pixel_share", "analytic_max"]
     crow = [ck] + [[_cell(r.label)] + [_cell(c[k]) if k not in ("near", "far") or np.isfinite(c[k]) else "—" for k in ck[1:]] for r in renders for c in r.stats["cascades"]]
-    w = [max(len(r[i]) for r in crow) for i in range(len(ck))]
-    text += "\n" + "".join("  ".join(c.rjust(w[i]) for i, c in enumerate(r)) + "\n" for r in crow)
+    text += "\n" + _tables.aligned(crow)
     if any(not np.isfinite(c["near"]) for r in renders for c in r.stats["cascades"]):
         text += "near, far: each map's eye-depth range; — for a face partition's map, which covers one face of the frustum, not a depth slice\n"
     return text
 
 
 def _cell(v: object) -> str:
-    return f"{v:.4g}" if isinstance(v, float) else str(v)
+    return _tables.cell(v)
 
 
 # ----------------------------------------------------------------------------- pictures and CLI

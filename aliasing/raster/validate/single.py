@@ -20,6 +20,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ... import _table as _tables
 from ... import _validation as check
 from ... import geometry, schemes, sweep
 from ..scenes.camera import check_raster_frustum
@@ -297,9 +298,7 @@ def _table(rows: list[dict]) -> str:
     keys = ["scheme", "f_over_n", "fov", "light", "maps", "ratio_M_x", "ratio_M_z", "ratio_S", "max_ratio", "min_ratio", "projection_min", "projection_max", "passed"]
     if any("aspect" in r for r in rows):  # a non-square view's column, after the field of view
         keys.insert(keys.index("fov") + 1, "aspect")
-    cells = [keys] + [[_fmt(r.get(k, 1.0)).replace(", ", ";") for k in keys] for r in rows]
-    widths = [max(len(c[i]) for c in cells) for i in range(len(keys))]
-    return "".join("  ".join(c[i].rjust(widths[i]) for i in range(len(keys))) + "\n" for c in cells)
+    return _tables.aligned([keys] + [[_fmt(r.get(k, 1.0)).replace(", ", ";") for k in keys] for r in rows])
 
 
 def format_rows(rows: list[dict], fmt: str = "csv") -> str:

@@ -1,0 +1,71 @@
+"""Plain-text tables for the command line: one cell format and one right-aligned layout.
+
+Every command that prints a table (``check``, ``tune``, ``shimmer``, ``bias``, ``engines``,
+``render``, ``validate``) formats its cells and aligns its columns here, so that a number reads
+the same in all of them.
+
+Example
+-------
+>>> print(table([{"cascade": 0, "texel": 0.0581234, "acne": None}, {"cascade": 1, "texel": 0.119, "acne": 0.5}]), end="")
+cascade    texel  acne
+      0  0.05812     -
+      1    0.119   0.5
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+
+
+def cell(value: object, digits: int = 4) -> str:
+    """One value as a table cell: ``-`` for None, a float to ``digits`` significant digits, anything else as ``str``.
+
+    Parameters
+    ----------
+    value : object
+        The value; None stands for "not applicable".
+    digits : int
+        Significant digits of a float, 1 to 17.
+
+    Example
+    -------
+    >>> cell(None), cell(2.0 / 3.0), cell(2.0 / 3.0, digits=6), cell("sphere"), cell(3)
+    ('-', '0.6667', '0.666667', 'sphere', '3')
+    """
+    if not isinstance(digits, int) or isinstance(digits, bool) or not 1 <= digits <= 17:
+        raise ValueError(f"digits must be an integer from 1 to 17, got {digits!r}")
+    if value is None:
+        return "-"
+    if isinstance(value, float):
+        return f"{value:.{digits}g}"
+    return str(value)
+
+
+def aligned(rows: Sequence[Sequence[str]]) -> str:
+    """Rows of cells (the header first) as lines with right-aligned columns two spaces apart.
+
+    Example
+    -------
+    >>> print(aligned([["a", "bb"], ["100", "2"]]), end="")
+      a  bb
+    100   2
+    """
+    if not rows or any(len(r) != len(rows[0]) for r in rows):
+        raise ValueError("rows must be a non-empty list of rows of equal length")
+    widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
+    return "".join("  ".join(c.rjust(w) for c, w in zip(r, widths)) + "\n" for r in rows)
+
+
+def table(rows: Sequence[Mapping[str, object]], keys: Iterable[str] | None = None, digits: int = 4) -> str:
+    """Dict rows as an aligned table: the header is ``keys`` (default: the first row's keys), a missing key a ``-``.
+
+    Example
+    -------
+    >>> print(table([{"x": 1.23456789, "y": None}], digits=3), end="")
+       x  y
+    1.23  -
+    """
+    if not rows:
+        raise ValueError("rows must hold at least one row")
+    keys = list(rows[0]) if keys is None else list(keys)
+    return aligned([keys] + [[cell(r.get(k), digits) for k in keys] for r in rows])
