@@ -24,7 +24,6 @@ missing node is a failure.
 from __future__ import annotations
 
 import fcntl
-import hashlib
 import json
 import os
 import shutil
@@ -36,6 +35,7 @@ import pytest
 
 from aliasing import partitioning
 from aliasing.engines import stable
+from aliasing.frames.install import tree_digest  # the frames' digest of an installed npm tree, one definition
 from aliasing.view import View
 
 HERE = Path(__file__).parent / "engines_js"
@@ -74,19 +74,6 @@ def _tools() -> tuple[str, str]:
     return node, npm  # type: ignore[return-value]
 
 
-def _tree_digest(root: Path) -> str:
-    """SHA-256 over the installed package files (path and content), npm's own bookkeeping left out."""
-    h = hashlib.sha256()
-    base = root / "node_modules"
-    for path in sorted(base.rglob("*")):
-        rel = path.relative_to(root).as_posix()
-        if rel == "node_modules/.package-lock.json" or path.is_dir() and not path.is_symlink():
-            continue
-        data = os.readlink(path).encode() if path.is_symlink() else path.read_bytes()
-        h.update(rel.encode() + b"\0" + hashlib.sha256(data).digest())
-    return h.hexdigest()
-
-
 def _install(pin: str, npm: str) -> Path:
     """The pinned package's directory in the cache: reused only if its tree has the committed digest."""
     src = PINS / pin
@@ -96,7 +83,7 @@ def _install(pin: str, npm: str) -> Path:
     with open(_cache() / f"{pin.replace('/', '+')}.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         same = all((root / f).is_file() and (root / f).read_bytes() == (src / f).read_bytes() for f in ("package.json", "package-lock.json"))
-        if same and (root / "node_modules").is_dir() and _tree_digest(root) == want:
+        if same and (root / "node_modules").is_dir() and tree_digest(root) == want:
             return root
         for f in ("package.json", "package-lock.json"):
             shutil.copyfile(src / f, root / f)
@@ -108,7 +95,7 @@ def _install(pin: str, npm: str) -> Path:
             if os.environ.get("CI", "").lower() == "true":
                 pytest.fail(message)
             pytest.skip(message + " (no registry access?)")
-        got = _tree_digest(root)
+        got = tree_digest(root)
         assert got == want, f"{pin}: installed files differ from the committed tree digest ({got} != {want})"
     return root
 

@@ -66,7 +66,7 @@ def cache() -> Path:
 def tree_digest(root: Path) -> str:
     """SHA-256 over the installed package files (path and content), npm's own bookkeeping left out.
 
-    The same digest as ``tests/test_engines_js.py`` computes for the node tests.
+    The node tests (``tests/test_engines_js.py``) check their installs with it too.
     """
     h = hashlib.sha256()
     base = Path(root) / "node_modules"
