@@ -14,6 +14,8 @@ cascade    texel  acne
 
 from __future__ import annotations
 
+import csv
+import io
 from collections.abc import Iterable, Mapping, Sequence
 
 
@@ -69,3 +71,23 @@ def table(rows: Sequence[Mapping[str, object]], keys: Iterable[str] | None = Non
         raise ValueError("rows must hold at least one row")
     keys = list(rows[0]) if keys is None else list(keys)
     return aligned([keys] + [[cell(r.get(k), digits) for k in keys] for r in rows])
+
+
+def csv_text(rows: Sequence[Mapping[str, object]], keys: Iterable[str] | None = None) -> str:
+    """Dict rows as CSV text: the header is ``keys`` (default: the first row's keys); None and a missing key are empty cells.
+
+    Example
+    -------
+    >>> print(csv_text([{"x": 0.5, "y": None}, {"x": 2}]), end="")
+    x,y
+    0.5,
+    2,
+    """
+    if not rows:
+        raise ValueError("rows must hold at least one row")
+    keys = list(rows[0]) if keys is None else list(keys)
+    buf = io.StringIO()
+    wr = csv.DictWriter(buf, fieldnames=keys, lineterminator="\n")
+    wr.writeheader()
+    wr.writerows({k: "" if r.get(k) is None else r[k] for k in keys} for r in rows)
+    return buf.getvalue()

@@ -81,8 +81,6 @@ Example
 
 from __future__ import annotations
 
-import csv
-import io
 import json
 import math
 from dataclasses import dataclass, field
@@ -187,12 +185,7 @@ class Report:
         return json.dumps(self.to_dict(), indent=1) + "\n"
 
     def to_csv(self) -> str:
-        rows = self.to_rows()
-        buf = io.StringIO()
-        wr = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
-        wr.writeheader()
-        wr.writerows({k: "" if v is None else v for k, v in r.items()} for r in rows)
-        return buf.getvalue()
+        return _tables.csv_text(self.to_rows())
 
     def text(self) -> str:
         """An aligned table, then the verdicts."""

@@ -14,8 +14,6 @@ engine does not accept, a camera or sun typo) is one line on stderr and exit sta
 from __future__ import annotations
 
 import argparse
-import csv
-import io
 import json
 import sys
 
@@ -65,11 +63,7 @@ def run_bias(args: argparse.Namespace) -> int:
                                      "verdicts": [v for v in report.verdicts if "acne" in v or "faces" in v or "detach" in v]}, indent=1) + "\n")
         return 0
     if args.format == "csv":
-        buf = io.StringIO()
-        wr = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
-        wr.writeheader()
-        wr.writerows({k: "" if v is None else v for k, v in r.items()} for r in rows)
-        sys.stdout.write(buf.getvalue())
+        sys.stdout.write(_tables.csv_text(rows))
         return 0
     sys.stdout.write(_tables.table(rows))
     sys.stdout.write("".join(f"- {v}\n" for v in report.verdicts if "acne" in v or "faces" in v or "detach" in v))

@@ -41,7 +41,6 @@ Example
 from __future__ import annotations
 
 import argparse
-import csv
 import io
 import json
 import os
@@ -351,11 +350,7 @@ def format_rows(rows: list[dict], fmt: str) -> str:
     if fmt == "json":
         return json.dumps(rows, indent=1) + "\n"
     if fmt == "csv":
-        buf = io.StringIO()
-        w = csv.DictWriter(buf, fieldnames=FIELDS, lineterminator="\n")
-        w.writeheader()
-        w.writerows({k: ("" if v is None else v) for k, v in r.items()} for r in rows)
-        return buf.getvalue()
+        return _tables.csv_text(rows, FIELDS)
     return _tables.aligned([list(FIELDS)] + [[_cell(r[k]) for k in FIELDS] for r in rows])
 
 

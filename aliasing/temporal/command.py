@@ -18,9 +18,7 @@ one line on stderr and exit status 2 (:func:`aliasing.cli.main`).
 from __future__ import annotations
 
 import argparse
-import csv
 import dataclasses
-import io
 import json
 
 import numpy as np
@@ -96,11 +94,7 @@ def format_rows(rows: list[dict], fmt: str) -> str:
     wide = any("aspect" in r for r in rows)
     fields, table = ((f[:1] + ("aspect",) + f[1:]) if wide else f for f in (FIELDS, TABLE))
     if fmt == "csv":
-        buf = io.StringIO()
-        wr = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")
-        wr.writeheader()
-        wr.writerows({k: ("" if r.get(k) is None else r[k]) for k in fields} for r in rows)
-        return buf.getvalue()
+        return _tables.csv_text(rows, fields)
     return _tables.table(rows, table)
 
 
