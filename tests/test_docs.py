@@ -179,6 +179,18 @@ def _link_problems(page: Path, links: list[str], ids: list[str]) -> list[str]:
     return out
 
 
+def test_every_reproduce_target_wrote_its_figure_and_numbers(site: Path) -> None:
+    # the gallery runs every target's script (main(out), as `aliasing reproduce all` does) into auto_gallery/data:
+    # each writes a PNG of a real figure and its numbers, a CSV with a header and data rows (README: every target does)
+    from aliasing.reproduce import TARGETS
+
+    data = DOCS / "auto_gallery" / "data"
+    for name in TARGETS:
+        png, csv = data / f"{name}.png", data / f"{name}.csv"
+        assert png.exists() and png.stat().st_size > 10_000, f"{name} wrote no figure"
+        assert csv.exists() and len(csv.read_text().strip().splitlines()) >= 2, f"{name} wrote no numbers"
+
+
 @pytest.mark.parametrize("name", PAGES)
 def test_page_in_chromium(site: Path, browser: Browser, name: str) -> None:
     page = site / name
