@@ -285,6 +285,7 @@ class MapSampler:
         self._ident = np.zeros(0, np.int64)
         self._prepared: tuple | None = None
         self._device: resident.DeviceMap | None = None
+        self._planes: tuple | None = None  # (the scene, its plane rows on the device) of device_test
 
     @property
     def texels(self) -> int:
@@ -312,16 +313,45 @@ class MapSampler:
         at = np.searchsorted(self._texels, flat)
         return self._depth[at], self._ident[at]
 
+    def _drawn(self, texels: NDArray[np.int64]) -> resident.DeviceMap:
+        """The device map (gl), drawn (again) over a box that holds ``texels`` if it does not."""
+        if self._device is None or self._device.released or not self._device.covers(texels):
+            box = _box(texels, self.resolution)
+            if self._device is not None and not self._device.released:  # grow the drawn box to hold the new texels
+                x, y, w, h = self._device.box
+                box = _union(box, (x, y, w, h))
+                self._device.release()
+            self._device = resident.draw_device_map(self.triangles, self.lm.matrix(), self.resolution, box=box)
+        return self._device
+
+    def device_test(self, texels: NDArray[np.int64], points: Array, receiver: Array, triangles: Array, bias: float) -> NDArray[np.bool_]:
+        """:func:`aliasing.raster.draw.shadow_test` of points in the map, run on the device (gl).
+
+        ``texels`` (P,) the points' flat texel indices (row·R + column), ``points`` (P, 4) their
+        positions [world units] and depths [the map's depth units], ``receiver`` (P,) the
+        test's receiver term (+inf where unusable), ``triangles`` the test's scene (its planes
+        are uploaded once per scene), ``bias`` [world units].  The map stays on the device
+        and only one bit per point comes back (:meth:`.resident.DeviceMap.test`)."""
+        if self.backend != "gl":
+            raise ValueError(f"device_test needs a sampler drawn by the gl backend, this one is drawn by {self.backend}")
+        flat = np.asarray(texels, np.int64)
+        if not flat.size:
+            return np.zeros(0, bool)
+        device = self._drawn(flat)
+        if self._planes is None or self._planes[0] is not triangles:
+            rows = resident.plane_rows(triangles[:len(self.triangles)], self.lm.basis[1])
+            self._release_planes()
+            self._planes = (triangles, resident.upload(rows))
+        return device.test(flat, points, receiver, self._planes[1], bias)
+
+    def _release_planes(self) -> None:
+        if self._planes is not None:
+            resident.free(self._planes[1])
+            self._planes = None
+
     def _draw(self, texels: NDArray[np.int64]) -> tuple[Array, NDArray[np.int64]]:
         if self.backend == "gl":
-            if self._device is None or self._device.released or not self._device.covers(texels):
-                box = _box(texels, self.resolution)
-                if self._device is not None and not self._device.released:  # grow the drawn box to hold the new texels
-                    x, y, w, h = self._device.box
-                    box = _union(box, (x, y, w, h))
-                    self._device.release()
-                self._device = resident.draw_device_map(self.triangles, self.lm.matrix(), self.resolution, box=box)
-            return self._device.fetch(texels)
+            return self._drawn(texels).fetch(texels)
         if self._prepared is None:
             mapped, w, rows, src = map_triangles(self.triangles, self.lm, self.resolution)
             inv_w, rows, uniform = weights_and_rows(mapped, self.resolution, w, rows)
@@ -337,6 +367,7 @@ class MapSampler:
         if self._device is not None:
             self._device.release()
             self._device = None
+        self._release_planes()
 
 
 def _box(texels: NDArray[np.int64], res: int) -> tuple[int, int, int, int]:
