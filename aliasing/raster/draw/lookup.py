@@ -48,6 +48,10 @@ Array = NDArray[np.float64]
 #: Default tolerance of the shadow test's depth comparisons [world units].
 BIAS = 1e-3
 
+# Whether :func:`shadow_test` through a gl :class:`MapSampler` compares on the device (the
+# tests turn it off to get the host's comparisons of the same texels, their reference).
+_ON_DEVICE = True
+
 
 def _bias(value: float) -> float:
     return float(check.closed_range(value, "bias", 0.0, np.inf, " world units (depth-test tolerance)"))
@@ -123,7 +127,7 @@ def shadow_test(lm: LightMap, sm: DepthMap, triangles: ArrayLike, points: ArrayL
     inside = (s >= 0) & (s < 1) & (t >= 0) & (t < 1)
     col = np.clip(np.floor(np.nan_to_num(s) * rm), 0, rm - 1).astype(np.int64)
     row = np.clip(np.floor(np.nan_to_num(t) * rm), 0, rm - 1).astype(np.int64)
-    if sampled and sm.backend == "gl":  # the map stays on the device: the test runs there, one bit per point comes back
+    if sampled and sm.backend == "gl" and _ON_DEVICE:  # the map stays on the device: the test runs there, one bit per point comes back
         return _device_test(lm, sm, tri, p, nrm, s, t, d, inside, row, col, bias)
     if sampled:  # only the texels of points inside the map are drawn (the others count as lit)
         stored, occ = np.full(inside.shape, np.inf), np.full(inside.shape, -1, np.int64)

@@ -23,6 +23,8 @@ question.  Its memory and work grow with the texels asked, not with the map's RÂ
   and only they come back (:func:`shadow_map`'s gl values: depth within
   ``gl.DEPTH_ERROR`` of the scene's depth range, visible triangles up to the hardware's
   snapping of edges).  Log+perspective maps have no matrix and are sampled by numpy.
+  :func:`aliasing.raster.draw.shadow_test` through a gl sampler runs its comparisons there
+  too (:meth:`MapSampler.device_test`): only one bit per point comes back.
 
 :func:`aliasing.raster.draw.shadow_test` accepts a sampler where it accepts a
 :class:`~aliasing.raster.draw.DepthMap`.

@@ -8,6 +8,10 @@ whole map or a box of it) and keeps it there with the triangles' depth coefficie
 there (the expression the map's fragment shader stores, in double precision, stored as
 float32: within ``gl.DEPTH_ERROR`` of the scene's depth range) and returns those texels
 only.  The values are ``draw_maps``'s, bit for bit on llvmpipe (checked in the tests).
+:meth:`DeviceMap.test` runs :func:`aliasing.raster.draw.shadow_test`'s comparisons there
+(double precision, numpy's order of operations, no fused multiply-add), and only one bit per
+point comes back: the host test's result on the same texels, bit for bit on llvmpipe (checked
+in the tests; GLSL does not promise correctly rounded double division on every device).
 
 Memory stays bounded: at most :data:`DEVICE_BYTES` of maps are kept (the least recently
 drawn are freed first, and their render targets are reused for the next map of the same
