@@ -191,6 +191,35 @@ def test_gl_device_shadow_test_is_the_host_test_of_the_gl_texels_bit_for_bit(nam
 
 
 @GL
+@settings(max_examples=8, deadline=None)
+@given(scheme=st.sampled_from(["Standard", "P", "lispsm", "tsm"]), gamma=st.floats(5.0, 175.0), azimuth=st.floats(-180.0, 180.0),
+       res=st.sampled_from([32, 128, 300]), bias=st.sampled_from([0.0, 1e-3, 0.2]), seed=st.integers(0, 2**16))
+def test_gl_device_shadow_test_is_the_host_test_for_any_map(scheme, gamma, azimuth, res, bias, seed):
+    lm = light_map(1.0, 60.0, 60.0, f"gamma:{gamma}@azimuth:{azimuth}", scheme)
+    p, nrm = _on_surfaces(SCENE, 1500, seed)
+    ms = MapSampler(SCENE, lm, res, backend="gl")
+    got = shadow_test(lm, ms, SCENE, p, nrm, bias=bias)
+    ms.release()
+    assert np.array_equal(got, shadow_test(lm, shadow_map(SCENE, lm, res, backend="gl"), SCENE, p, nrm, bias=bias))
+
+
+@GL
+@pytest.mark.parametrize("call, words", [
+    (lambda ms: MapSampler(SCENE, _maps()[0][2], 64).device_test(np.array([0]), np.zeros((1, 4)), np.zeros(1), SCENE, 0.0), "drawn by numpy"),
+    (lambda ms: ms.device_test(np.array([64 * 64]), np.zeros((1, 4)), np.zeros(1), SCENE, 0.0), "texels must be"),
+    (lambda ms: ms.device_test(np.array([0.5]), np.zeros((1, 4)), np.zeros(1), SCENE, 0.0), "texels must be"),
+    (lambda ms: ms.device_test(np.array([0]), np.zeros((2, 4)), np.zeros(1), SCENE, 0.0), "points must have shape"),
+    (lambda ms: ms.device_test(np.array([0]), np.zeros((1, 4)), np.zeros(1), SCENE[:3], 0.0), "triangles must be"),
+    (lambda ms: ms.device_test(np.array([0]), np.zeros((1, 4)), np.zeros(1), SCENE, -1.0), "bias"),
+])
+def test_gl_device_test_bad_input_is_named(call, words):
+    ms = MapSampler(SCENE, _maps()[0][2], 64, backend="gl")
+    with pytest.raises(ValueError, match=words):
+        call(ms)
+    ms.release()
+
+
+@GL
 def test_gl_shimmer_gets_only_bits_back_and_the_host_tests_states(monkeypatch):
     from aliasing.raster.draw import lookup
 

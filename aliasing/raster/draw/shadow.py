@@ -287,7 +287,7 @@ class MapSampler:
         self._ident = np.zeros(0, np.int64)
         self._prepared: tuple | None = None
         self._device: resident.DeviceMap | None = None
-        self._planes: tuple | None = None  # (the scene, its plane rows on the device) of device_test
+        self._planes: tuple | None = None  # (the scene, its plane rows) of device_test
 
     @property
     def texels(self) -> int:
@@ -332,24 +332,24 @@ class MapSampler:
         ``texels`` (P,) the points' flat texel indices (row·R + column), ``points`` (P, 4) their
         positions [world units] and depths [the map's depth units], ``receiver`` (P,) the
         test's receiver term (+inf where unusable), ``triangles`` the test's scene (its planes
-        are uploaded once per scene), ``bias`` [world units].  The map stays on the device
+        are computed once per scene array and kept), ``bias`` [world units].  The map stays on the device
         and only one bit per point comes back (:meth:`.resident.DeviceMap.test`)."""
         if self.backend != "gl":
             raise ValueError(f"device_test needs a sampler drawn by the gl backend, this one is drawn by {self.backend}")
-        flat = np.asarray(texels, np.int64)
+        flat = np.asarray(texels)
+        if flat.ndim != 1 or flat.dtype.kind not in "iu" or (flat.size and (flat.min() < 0 or flat.max() >= self.resolution**2)):
+            raise ValueError(f"texels must be whole flat texel indices in [0, {self.resolution**2 - 1}] of shape (P,), got {flat.dtype} {flat.shape}")
+        tri = np.asarray(triangles, float)
+        if tri.ndim != 3 or tri.shape[1:] != (3, 3) or len(tri) < len(self.triangles):
+            raise ValueError(f"triangles must be the sampler's scene, shape (T, 3, 3) with T >= {len(self.triangles)}, got {tri.shape}")
+        bias = float(check.closed_range(bias, "bias", 0.0, np.inf, " world units (depth-test tolerance)"))
+        flat = flat.astype(np.int64)
         if not flat.size:
             return np.zeros(0, bool)
         device = self._drawn(flat)
-        if self._planes is None or self._planes[0] is not triangles:
-            rows = resident.plane_rows(triangles[:len(self.triangles)], self.lm.basis[1])
-            self._release_planes()
-            self._planes = (triangles, resident.upload(rows))
+        if self._planes is None or self._planes[0] is not triangles:  # the planes, computed once per scene array
+            self._planes = (triangles, resident._plane_rows(tri[:len(self.triangles)], self.lm.basis[1]))
         return device.test(flat, points, receiver, self._planes[1], bias)
-
-    def _release_planes(self) -> None:
-        if self._planes is not None:
-            resident.free(self._planes[1])
-            self._planes = None
 
     def _draw(self, texels: NDArray[np.int64]) -> tuple[Array, NDArray[np.int64]]:
         if self.backend == "gl":
@@ -369,7 +369,6 @@ class MapSampler:
         if self._device is not None:
             self._device.release()
             self._device = None
-        self._release_planes()
 
 
 def _box(texels: NDArray[np.int64], res: int) -> tuple[int, int, int, int]:

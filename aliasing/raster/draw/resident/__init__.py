@@ -276,18 +276,24 @@ class DeviceMap:
             depth, ids = _read(tg, self.span, self.offset)
         return depth, ids
 
-    def test(self, texels: NDArray[np.int64], points: Array, receiver: Array, planes, bias: float) -> NDArray[np.bool_]:
+    def test(self, texels: NDArray[np.int64], points: Array, receiver: Array, planes: Array, bias: float) -> NDArray[np.bool_]:
         """The shadow test of :func:`aliasing.raster.draw.shadow_test` run on the device: lit (True) or not, per point.
 
         ``texels`` (P,) the points' flat texel indices inside the drawn box; ``points`` (P, 4)
         their positions [world units] and depths [the map's depth units]; ``receiver`` (P,)
-        the receiver term −μ (+inf where unusable); ``planes`` a device buffer of the
-        triangles' plane rows (:func:`plane_rows`); ``bias`` [world units].  Only one bit per
+        the receiver term −μ (+inf where unusable); ``planes`` the triangles' plane rows
+        (:func:`_plane_rows`, uploaded to a kept buffer); ``bias`` [world units].  Only one bit per
         point comes back."""
         flat = np.asarray(texels, np.int64).ravel()
         count = flat.size
+        points, receiver = np.asarray(points, np.float64), np.asarray(receiver, np.float64)
+        if not np.isfinite(bias) or bias < 0:
+            raise ValueError(f"bias must be a finite tolerance >= 0 [world units], got {bias}")
         if points.shape != (count, 4) or receiver.shape != (count,):
             raise ValueError(f"points must have shape ({count}, 4) and receiver ({count},), got {points.shape} and {receiver.shape}")
+        drawn = self._coef.size // 32  # the triangles the map was drawn from
+        if np.shape(planes)[1:] != (4,) or len(planes) < 2 * drawn:
+            raise ValueError(f"planes must be the plane rows of the map's {drawn} triangles, shape ({2 * drawn}, 4), got {np.shape(planes)}")
         if count and (flat.min() < 0 or flat.max() >= self.resolution**2 or not self.covers(flat)):
             raise ValueError(f"texels must be flat indices in [0, {self.resolution**2 - 1}] inside the drawn box {self.box}")
         if self.released:
@@ -306,7 +312,10 @@ class DeviceMap:
                 _uniform(prog, name, np.float64(value))
             prog["res"].value = self.resolution
             self._coef.bind_to_storage_buffer(8)
-            planes.bind_to_storage_buffer(5)
+            rows = np.ascontiguousarray(planes, np.float64)
+            kept = _buffer(ctx, "planes", max(rows.nbytes, 32))
+            kept.write(rows)
+            kept.bind_to_storage_buffer(5)
             for a in range(0, count, FETCH_BLOCK):
                 n = min(FETCH_BLOCK, count - a)
                 words = (n + 31) // 32
@@ -395,7 +404,7 @@ class DeviceMap:
                 self._ids.release()
 
 
-def plane_rows(triangles: Array, up: Array) -> Array:
+def _plane_rows(triangles: Array, up: Array) -> Array:
     """The occluder planes of :func:`aliasing.raster.draw.shadow_test`, two rows per triangle
     for :meth:`DeviceMap.test`: (a₀, n·up) and (n, 1 where usable else 0), n = (a₁ − a₀) × (a₂ − a₀),
     computed as the host's test computes them per point (numpy's own arithmetic, so the same
@@ -408,21 +417,6 @@ def plane_rows(triangles: Array, up: Array) -> Array:
     rows[:, 0, :3], rows[:, 0, 3] = a[:, 0, :], across
     rows[:, 1, :3], rows[:, 1, 3] = n_o, ok
     return rows.reshape(-1, 4)
-
-
-def upload(rows: Array):
-    """A device buffer holding the float64 array ``rows`` (:func:`free` it)."""
-    data = np.ascontiguousarray(rows, np.float64)
-    ctx = _context()
-    with ctx:
-        return ctx.buffer(data.tobytes() if data.size else bytes(32))
-
-
-def free(buffer) -> None:
-    """Free a buffer of :func:`upload` (nothing when the backend has closed)."""
-    if _setup()[0] is not None:
-        with _context():
-            buffer.release()
 
 
 def draw_device_map(triangles: Array, matrix: Array, resolution: int, *, box: tuple[int, int, int, int] | None = None) -> DeviceMap:
