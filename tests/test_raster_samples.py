@@ -237,6 +237,17 @@ def test_gl_shimmer_gets_only_bits_back_and_the_host_tests_states(monkeypatch):
     assert np.array_equal(on.flips, off.flips) and np.array_equal(on.g, off.g, equal_nan=True)
 
 
+@GL
+def test_gl_render_shades_with_the_host_tests_states(monkeypatch):
+    from aliasing.raster.draw import lookup
+    from aliasing.raster.pictures import images
+
+    on = images.view(1.0, 100.0, 60.0, "gamma:50@azimuth:30", "P", image_res=64, budget=256**2, backend="gl").lit
+    monkeypatch.setattr(lookup, "_ON_DEVICE", False)
+    off = images.view(1.0, 100.0, 60.0, "gamma:50@azimuth:30", "P", image_res=64, budget=256**2, backend="gl").lit
+    assert np.array_equal(on, off) and 0.05 < on.mean() < 0.95
+
+
 # --- memory: the shimmer case at engine scale ------------------------------------------------
 
 # The child's own peak: VmHWM of its address space (Linux).  ru_maxrss is not used: after a
