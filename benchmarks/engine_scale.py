@@ -109,7 +109,7 @@ def test_step(repeats: int) -> None:
     import numpy as np
 
     from aliasing.raster.draw import gl, lookup, resident
-    from aliasing.temporal import fits, measure, paths, points, render
+    from aliasing.temporal import fits, paths, points, render
 
     if not gl.available():
         print(f"test step skipped: {gl._setup()[1]}")
