@@ -282,7 +282,7 @@ class DeviceMap:
         ``texels`` (P,) the points' flat texel indices inside the drawn box; ``points`` (P, 4)
         their positions [world units] and depths [the map's depth units]; ``receiver`` (P,)
         the receiver term −μ (+inf where unusable); ``planes`` the triangles' plane rows
-        (:func:`_plane_rows`, uploaded to a kept buffer); ``bias`` [world units].  Only one bit per
+        (``_plane_rows``, uploaded to a kept buffer); ``bias`` [world units].  Only one bit per
         point comes back."""
         flat = np.asarray(texels, np.int64).ravel()
         count = flat.size
