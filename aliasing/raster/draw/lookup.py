@@ -128,7 +128,7 @@ def shadow_test(lm: LightMap, sm: DepthMap, triangles: ArrayLike, points: ArrayL
     col = np.clip(np.floor(np.nan_to_num(s) * rm), 0, rm - 1).astype(np.int64)
     row = np.clip(np.floor(np.nan_to_num(t) * rm), 0, rm - 1).astype(np.int64)
     if sampled and sm.backend == "gl" and _ON_DEVICE:  # the map stays on the device: the test runs there, one bit per point comes back
-        return _device_test(lm, sm, tri, p, nrm, s, t, d, inside, row, col, bias)
+        return _device_test(lm, sm, tri, p, nrm, d, inside, row, col, bias)
     if sampled:  # only the texels of points inside the map are drawn (the others count as lit)
         stored, occ = np.full(inside.shape, np.inf), np.full(inside.shape, -1, np.int64)
         stored[inside], occ[inside] = sm.at(row[inside], col[inside])
@@ -160,7 +160,7 @@ def _receiver(lm: LightMap, rm: int, p: Array, nrm: Array, row: NDArray[np.int64
     return ok, mu
 
 
-def _device_test(lm: LightMap, sm: MapSampler, tri: Array, p: Array, nrm: Array, s: Array, t: Array, d: Array,
+def _device_test(lm: LightMap, sm: MapSampler, tri: Array, p: Array, nrm: Array, d: Array,
                  inside: NDArray[np.bool_], row: NDArray[np.int64], col: NDArray[np.int64], bias: float) -> NDArray[np.bool_]:
     """:func:`shadow_test` through a gl :class:`MapSampler`, its comparisons run on the device.
 

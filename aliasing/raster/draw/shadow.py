@@ -332,7 +332,8 @@ class MapSampler:
         ``texels`` (P,) the points' flat texel indices (row·R + column), ``points`` (P, 4) their
         positions [world units] and depths [the map's depth units], ``receiver`` (P,) the
         test's receiver term (+inf where unusable), ``triangles`` the test's scene (its planes
-        are computed once per scene array and kept), ``bias`` [world units].  The map stays on the device
+        are computed once per scene array and kept: change a scene in place and they are
+        stale; pass a new array), ``bias`` [world units].  The map stays on the device
         and only one bit per point comes back (:meth:`.resident.DeviceMap.test`)."""
         if self.backend != "gl":
             raise ValueError(f"device_test needs a sampler drawn by the gl backend, this one is drawn by {self.backend}")
