@@ -23,6 +23,7 @@ Usage::
 
     python benchmarks/engine_scale.py                       # all cases, numpy and gl, best of 1
     python benchmarks/engine_scale.py --cases shimmer --repeats 3 --before /tmp/base
+    python benchmarks/engine_scale.py --cases shimmer --test-step   # also a gl map's steps: draw, test on the device, on the host
 """
 
 from __future__ import annotations
@@ -99,12 +100,74 @@ def summary(name: str, out: str) -> str:
     return f"p50 {s['p50']:.4f}, p99 {s['p99']:.4f}, max {s['max']:.4f}"
 
 
+def test_step(repeats: int) -> None:
+    """The gl shimmer case's frame-0 maps in this process, the steps of one map timed apart
+    (the best of ``repeats`` × 10, as the machine's load allows): drawing its box of ids, the shadow test of its points run on
+    the device (one bit per point back), and the same test on the host (the texels fetched back,
+    compared in numpy)."""
+    sys.path.insert(0, ROOT)
+    import numpy as np
+
+    from aliasing.raster.draw import gl, lookup, resident
+    from aliasing.temporal import fits, paths, points, render
+
+    if not gl.available():
+        print(f"test step skipped: {gl._setup()[1]}")
+        return
+    w = points.world("boxes", near=0.1, far=500.0, fov=50.0, aspect=1.7778)
+    pts = points.sample(w, 96)
+    cam = w.camera
+    poses = paths.frames(paths.parse_motion("translate:0.05,0,0"), cam.eye, cam.rotation, cam.fov, w.light, 2)
+    lat = fits.plan("csm:threejs-csm:k=4", w, poses, 2048, positions=pts.position, image_res=pts.resolution)
+    part = fits.assign(lat, fits.eye_coordinates(pts.position, poses[0], poses[1]), poses[2], cam.near, cam.far)
+    cache = render.MapCache(w.triangles, backend="gl")
+    ctx = gl._context()
+    n = 10 * max(repeats, 1)
+    steps = {"draw": [], "device": [], "host": []}
+    same = True
+    for k in np.unique(part[0][part[0] >= 0]):
+        sel = np.nonzero(part[0] == k)[0]
+        p, nrm = pts.position[sel], pts.normal[sel]
+        cache.test(lat, 0, int(k), p, nrm)  # drawn over the box of the points' texels
+        lm, sm, sub = cache.maps[next(reversed(cache.maps))]
+        box, matrix = sm._device.box, lm.matrix()
+        times = []
+        for _ in range(n):
+            start = time.perf_counter()
+            m = resident.draw_device_map(sub, matrix, 2048, box=box)
+            with ctx:
+                ctx.finish()
+            times.append(time.perf_counter() - start)
+            m.release()
+        steps["draw"].append(min(times))
+        for where, on in (("device", True), ("host", False)):
+            lookup._ON_DEVICE = on
+            times = []
+            for _ in range(n):
+                sm._texels, sm._depth, sm._ident = np.zeros(0, np.int64), np.zeros(0), np.zeros(0, np.int64)  # fetched again
+                start = time.perf_counter()
+                lit = lookup.shadow_test(lm, sm, sub, p, nrm, bias=cache.bias)
+                times.append(time.perf_counter() - start)
+            steps[where].append(min(times))
+            same &= bool(np.array_equal(lit, lookup.shadow_test(lm, sm, sub, p, nrm, bias=cache.bias))) if on else True
+            if not on:
+                lookup._ON_DEVICE = True
+                same &= bool(np.array_equal(lit, lookup.shadow_test(lm, sm, sub, p, nrm, bias=cache.bias)))
+        print(f"map {k}: {len(sel)} points, box {box[2]}×{box[3]} texels: draw {steps['draw'][-1] * 1e3:6.2f} ms, "
+              f"test on the device {steps['device'][-1] * 1e3:5.2f} ms, on the host (texels fetched) {steps['host'][-1] * 1e3:5.2f} ms")
+    lookup._ON_DEVICE = True
+    cache.release()
+    print(f"frame-0 maps, sum: draw {sum(steps['draw']) * 1e3:.1f} ms, test on the device {sum(steps['device']) * 1e3:.2f} ms, "
+          f"on the host {sum(steps['host']) * 1e3:.2f} ms; the same states: {same}")
+
+
 def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cases", default="shimmer,validate,render")
     ap.add_argument("--backends", default="numpy,gl")
     ap.add_argument("--repeats", type=int, default=1)
     ap.add_argument("--before", metavar="DIR", help="also run the numpy and gl cases with the package in DIR")
+    ap.add_argument("--test-step", action="store_true", help="also time, in this process, the steps of the gl shimmer case's frame-0 maps: drawing, the test on the device, on the host")
     args = ap.parse_args(argv)
     sys.path.insert(0, ROOT)
     from aliasing.raster.draw import gl
@@ -135,6 +198,8 @@ def main(argv: list[str] | None = None) -> None:
                     wall, peak, out = results[(name, b + label)]
                     ratio = f"{wall / base[0]:.3f}" if base else "-"
                     print(f"{name:9s} {b + label:15s} wall {wall:7.2f} s  peak {peak / 2**20:7.0f} MiB  x numpy{label} {ratio:>6s}  {summary(name, out)}", flush=True)
+    if args.test_step:
+        test_step(args.repeats)
     print(f"load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
 
 

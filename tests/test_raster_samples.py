@@ -5,7 +5,9 @@ shimmer run.
 * numpy: the sampled texels are the whole map's, bit for bit (uniform, warped with near
   clipping, logarithmic rows), however the questions are split;
 * gl: the fetched texels are ``shadow_map(..., backend="gl")``'s, bit for bit, and a map
-  bigger than the device allows is refused in one line before any work;
+  bigger than the device allows is refused in one line before any work; the shadow test run
+  on the device is the host's test of the same texels, bit for bit, and a gl shimmer run gets
+  only bits back;
 * a shimmer run of 4 cascades of 1024² stays under 0.5 GB of peak resident memory (a
   subprocess measures its own peak): whole-map temporaries would take about 1 GB.
 """
@@ -155,6 +157,95 @@ def test_gl_map_bigger_than_the_device_allows_is_refused_in_one_line_before_work
     code = main(["shimmer", "--schemes", "csm:log:k=2", "--motion", "translate:0.05,0,0", "--frames", "2", "--image-res", "16", "--shadow-res", "1024", "--backend", "gl"])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1 and "512²" in err[0] and not drawn
+
+
+# --- gl: the shadow test run on the device ---------------------------------------------------
+
+def _on_surfaces(scene: np.ndarray, count: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
+    """Points spread over the scene's triangles (barycentric), with their triangles' normals."""
+    rng = np.random.default_rng(seed)
+    k = rng.integers(0, len(scene), count)
+    p = np.einsum("pi,pij->pj", rng.dirichlet([1.0, 1.0, 1.0], count), scene[k])
+    return p, np.cross(scene[k, 1] - scene[k, 0], scene[k, 2] - scene[k, 0])
+
+
+@GL
+@pytest.mark.parametrize("name, scene, lm", _maps()[:2] + _maps()[3:] + [("lispsm", CITY, light_map(1.0, 600.0, 60.0, "gamma:30", "lispsm"))],
+                         ids=["Standard", "P", "city", "lispsm"])
+def test_gl_device_shadow_test_is_the_host_test_of_the_gl_texels_bit_for_bit(name, scene, lm, monkeypatch):
+    from aliasing.raster.draw import lookup
+
+    p, nrm = _on_surfaces(scene, 6000, 6)
+    p[:50] += 1e4  # outside the map: lit
+    calls = []
+    test = resident.DeviceMap.test
+    monkeypatch.setattr(resident.DeviceMap, "test", lambda self, *a: calls.append(len(a[0])) or test(self, *a))
+    for res, bias in ((64, lookup.BIAS), (512, 0.05)):
+        ms = MapSampler(scene, lm, res, backend="gl")
+        got = shadow_test(lm, ms, scene, p, nrm, bias=bias)
+        assert ms.texels == 0 and calls[-1] <= len(p) - 50  # no texel came back, only the bits of the points in the map
+        want = shadow_test(lm, shadow_map(scene, lm, res, backend="gl"), scene, p, nrm, bias=bias)  # the host's comparisons
+        ms.release()
+        assert 0.05 < want.mean() < 0.95 and want[:50].all()
+        assert np.array_equal(got, want), int((got != want).sum())
+
+
+@GL
+@settings(max_examples=8, deadline=None)
+@given(scheme=st.sampled_from(["Standard", "P", "lispsm", "tsm"]), gamma=st.floats(5.0, 175.0), azimuth=st.floats(-180.0, 180.0),
+       res=st.sampled_from([32, 128, 300]), bias=st.sampled_from([0.0, 1e-3, 0.2]), seed=st.integers(0, 2**16))
+def test_gl_device_shadow_test_is_the_host_test_for_any_map(scheme, gamma, azimuth, res, bias, seed):
+    lm = light_map(1.0, 60.0, 60.0, f"gamma:{gamma}@azimuth:{azimuth}", scheme)
+    p, nrm = _on_surfaces(SCENE, 1500, seed)
+    ms = MapSampler(SCENE, lm, res, backend="gl")
+    got = shadow_test(lm, ms, SCENE, p, nrm, bias=bias)
+    ms.release()
+    assert np.array_equal(got, shadow_test(lm, shadow_map(SCENE, lm, res, backend="gl"), SCENE, p, nrm, bias=bias))
+
+
+@GL
+@pytest.mark.parametrize("call, words", [
+    (lambda ms: MapSampler(SCENE, _maps()[0][2], 64).device_test(np.array([0]), np.zeros((1, 4)), np.zeros(1), SCENE, 0.0), "drawn by numpy"),
+    (lambda ms: ms.device_test(np.array([64 * 64]), np.zeros((1, 4)), np.zeros(1), SCENE, 0.0), "texels must be"),
+    (lambda ms: ms.device_test(np.array([0.5]), np.zeros((1, 4)), np.zeros(1), SCENE, 0.0), "texels must be"),
+    (lambda ms: ms.device_test(np.array([0]), np.zeros((2, 4)), np.zeros(1), SCENE, 0.0), "points must have shape"),
+    (lambda ms: ms.device_test(np.array([0]), np.zeros((1, 4)), np.zeros(1), SCENE[:3], 0.0), "triangles must be"),
+    (lambda ms: ms.device_test(np.array([0]), np.zeros((1, 4)), np.zeros(1), SCENE, -1.0), "bias"),
+])
+def test_gl_device_test_bad_input_is_named(call, words):
+    ms = MapSampler(SCENE, _maps()[0][2], 64, backend="gl")
+    with pytest.raises(ValueError, match=words):
+        call(ms)
+    ms.release()
+
+
+@GL
+def test_gl_shimmer_gets_only_bits_back_and_the_host_tests_states(monkeypatch):
+    from aliasing.raster.draw import lookup
+
+    w = points.world("boxes", boxes=20)
+    pts = points.sample(w, 32)
+    fetched = []
+    fetch = resident.DeviceMap.fetch
+    monkeypatch.setattr(resident.DeviceMap, "fetch", lambda self, texels: fetched.append(len(texels)) or fetch(self, texels))
+    run = lambda: measure.shimmer(w, pts, "csm:log:k=2", "translate:0.05,0,0", 3, res=256, shifts=2, backend="gl")
+    on = run()
+    assert not fetched  # the states came back as bits, no texel
+    monkeypatch.setattr(lookup, "_ON_DEVICE", False)
+    off = run()
+    assert fetched and np.array_equal(on.lit, off.lit) and 0 < on.lit.mean() < 1
+    assert np.array_equal(on.flips, off.flips) and np.array_equal(on.g, off.g, equal_nan=True)
+
+
+@GL
+def test_gl_render_shades_with_the_host_tests_states(monkeypatch):
+    from aliasing.raster.draw import lookup
+    from aliasing.raster.pictures import images
+
+    on = images.view(1.0, 100.0, 60.0, "gamma:50@azimuth:30", "P", image_res=64, budget=256**2, backend="gl").lit
+    monkeypatch.setattr(lookup, "_ON_DEVICE", False)
+    off = images.view(1.0, 100.0, 60.0, "gamma:50@azimuth:30", "P", image_res=64, budget=256**2, backend="gl").lit
+    assert np.array_equal(on, off) and 0.05 < on.mean() < 0.95
 
 
 # --- memory: the shimmer case at engine scale ------------------------------------------------

@@ -48,6 +48,10 @@ Array = NDArray[np.float64]
 #: Default tolerance of the shadow test's depth comparisons [world units].
 BIAS = 1e-3
 
+# Whether :func:`shadow_test` through a gl :class:`MapSampler` compares on the device (the
+# tests turn it off to get the host's comparisons of the same texels, their reference).
+_ON_DEVICE = True
+
 
 def _bias(value: float) -> float:
     return float(check.closed_range(value, "bias", 0.0, np.inf, " world units (depth-test tolerance)"))
@@ -123,6 +127,8 @@ def shadow_test(lm: LightMap, sm: DepthMap, triangles: ArrayLike, points: ArrayL
     inside = (s >= 0) & (s < 1) & (t >= 0) & (t < 1)
     col = np.clip(np.floor(np.nan_to_num(s) * rm), 0, rm - 1).astype(np.int64)
     row = np.clip(np.floor(np.nan_to_num(t) * rm), 0, rm - 1).astype(np.int64)
+    if sampled and sm.backend == "gl" and _ON_DEVICE:  # the map stays on the device: the test runs there, one bit per point comes back
+        return _device_test(lm, sm, tri, p, nrm, d, inside, row, col, bias)
     if sampled:  # only the texels of points inside the map are drawn (the others count as lit)
         stored, occ = np.full(inside.shape, np.inf), np.full(inside.shape, -1, np.int64)
         stored[inside], occ[inside] = sm.at(row[inside], col[inside])
@@ -138,13 +144,38 @@ def shadow_test(lm: LightMap, sm: DepthMap, triangles: ArrayLike, points: ArrayL
     lam = ((a[..., 0, :] - p) * n_o).sum(-1) / np.where(ok, across, 1.0)
     lit |= ok & (lam <= bias)
     # 3. the receiver's plane on the ray through the texel centre c0 + μ·up (c0 at height 0)
-    xc, yc = lm.inverse((col + 0.5) / rm, (row + 0.5) / rm)
-    c0 = lm.plane_point(xc, yc)
-    along = nrm @ up
-    ok = np.abs(along) > 1e-9 * np.linalg.norm(nrm, axis=-1)
-    mu = ((p - c0) * nrm).sum(-1) / np.where(ok, along, 1.0)
+    ok, mu = _receiver(lm, rm, p, nrm, row, col)
     lit |= ok & (-mu <= stored + bias)
     return ~inside | lit
+
+
+def _receiver(lm: LightMap, rm: int, p: Array, nrm: Array, row: NDArray[np.int64], col: NDArray[np.int64]) -> tuple[NDArray[np.bool_], Array]:
+    """:func:`shadow_test`'s third comparison's terms: whether the receiver's plane meets the ray
+    through the texel centre c0 + μ·up, and μ (c0 at height 0)."""
+    xc, yc = lm.inverse((col + 0.5) / rm, (row + 0.5) / rm)
+    c0 = lm.plane_point(xc, yc)
+    along = nrm @ lm.basis[1]
+    ok = np.abs(along) > 1e-9 * np.linalg.norm(nrm, axis=-1)
+    mu = ((p - c0) * nrm).sum(-1) / np.where(ok, along, 1.0)
+    return ok, mu
+
+
+def _device_test(lm: LightMap, sm: MapSampler, tri: Array, p: Array, nrm: Array, d: Array,
+                 inside: NDArray[np.bool_], row: NDArray[np.int64], col: NDArray[np.int64], bias: float) -> NDArray[np.bool_]:
+    """:func:`shadow_test` through a gl :class:`MapSampler`, its comparisons run on the device.
+
+    The host finds the points' texels, depths and receiver terms (as the host test does, in
+    float64); the device reads each texel's sample and compares (:meth:`MapSampler.device_test`:
+    the same float64 operations, in the same order, none fused), and one bit per point comes
+    back.  The result is the host test's on the same sampler, bit for bit on llvmpipe (checked
+    in the tests)."""
+    lit = np.ones(inside.shape, bool)
+    if not inside.any():
+        return lit
+    ok, mu = _receiver(lm, sm.resolution, p, nrm, row, col)  # at every point, as the host test (the same arrays: the same doubles)
+    points = np.concatenate([p[inside], d[inside][:, None]], axis=-1)
+    lit[inside] = sm.device_test(row[inside] * sm.resolution + col[inside], points, np.where(ok, -mu, np.inf)[inside], tri, bias)
+    return lit
 
 
 # ------------------------------------------------------------- the engines' depth compare

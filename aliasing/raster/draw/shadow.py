@@ -23,6 +23,8 @@ question.  Its memory and work grow with the texels asked, not with the map's RÂ
   and only they come back (:func:`shadow_map`'s gl values: depth within
   ``gl.DEPTH_ERROR`` of the scene's depth range, visible triangles up to the hardware's
   snapping of edges).  Log+perspective maps have no matrix and are sampled by numpy.
+  :func:`aliasing.raster.draw.shadow_test` through a gl sampler runs its comparisons there
+  too (:meth:`MapSampler.device_test`): only one bit per point comes back.
 
 :func:`aliasing.raster.draw.shadow_test` accepts a sampler where it accepts a
 :class:`~aliasing.raster.draw.DepthMap`.
@@ -285,6 +287,7 @@ class MapSampler:
         self._ident = np.zeros(0, np.int64)
         self._prepared: tuple | None = None
         self._device: resident.DeviceMap | None = None
+        self._planes: tuple | None = None  # (the scene, its plane rows) of device_test
 
     @property
     def texels(self) -> int:
@@ -312,16 +315,46 @@ class MapSampler:
         at = np.searchsorted(self._texels, flat)
         return self._depth[at], self._ident[at]
 
+    def _drawn(self, texels: NDArray[np.int64]) -> resident.DeviceMap:
+        """The device map (gl), drawn (again) over a box that holds ``texels`` if it does not."""
+        if self._device is None or self._device.released or not self._device.covers(texels):
+            box = _box(texels, self.resolution)
+            if self._device is not None and not self._device.released:  # grow the drawn box to hold the new texels
+                x, y, w, h = self._device.box
+                box = _union(box, (x, y, w, h))
+                self._device.release()
+            self._device = resident.draw_device_map(self.triangles, self.lm.matrix(), self.resolution, box=box)
+        return self._device
+
+    def device_test(self, texels: NDArray[np.int64], points: Array, receiver: Array, triangles: Array, bias: float) -> NDArray[np.bool_]:
+        """:func:`aliasing.raster.draw.shadow_test` of points in the map, run on the device (gl).
+
+        ``texels`` (P,) the points' flat texel indices (rowÂ·R + column), ``points`` (P, 4) their
+        positions [world units] and depths [the map's depth units], ``receiver`` (P,) the
+        test's receiver term (+inf where unusable), ``triangles`` the test's scene (its planes
+        are computed once per scene array and kept: change a scene in place and they are
+        stale; pass a new array), ``bias`` [world units].  The map stays on the device
+        and only one bit per point comes back (:meth:`.resident.DeviceMap.test`)."""
+        if self.backend != "gl":
+            raise ValueError(f"device_test needs a sampler drawn by the gl backend, this one is drawn by {self.backend}")
+        flat = np.asarray(texels)
+        if flat.ndim != 1 or flat.dtype.kind not in "iu" or (flat.size and (flat.min() < 0 or flat.max() >= self.resolution**2)):
+            raise ValueError(f"texels must be whole flat texel indices in [0, {self.resolution**2 - 1}] of shape (P,), got {flat.dtype} {flat.shape}")
+        tri = np.asarray(triangles, float)
+        if tri.ndim != 3 or tri.shape[1:] != (3, 3) or len(tri) < len(self.triangles):
+            raise ValueError(f"triangles must be the sampler's scene, shape (T, 3, 3) with T >= {len(self.triangles)}, got {tri.shape}")
+        bias = float(check.closed_range(bias, "bias", 0.0, np.inf, " world units (depth-test tolerance)"))
+        flat = flat.astype(np.int64)
+        if not flat.size:
+            return np.zeros(0, bool)
+        device = self._drawn(flat)
+        if self._planes is None or self._planes[0] is not triangles:  # the planes, computed once per scene array
+            self._planes = (triangles, resident._plane_rows(tri[:len(self.triangles)], self.lm.basis[1]))
+        return device.test(flat, points, receiver, self._planes[1], bias)
+
     def _draw(self, texels: NDArray[np.int64]) -> tuple[Array, NDArray[np.int64]]:
         if self.backend == "gl":
-            if self._device is None or self._device.released or not self._device.covers(texels):
-                box = _box(texels, self.resolution)
-                if self._device is not None and not self._device.released:  # grow the drawn box to hold the new texels
-                    x, y, w, h = self._device.box
-                    box = _union(box, (x, y, w, h))
-                    self._device.release()
-                self._device = resident.draw_device_map(self.triangles, self.lm.matrix(), self.resolution, box=box)
-            return self._device.fetch(texels)
+            return self._drawn(texels).fetch(texels)
         if self._prepared is None:
             mapped, w, rows, src = map_triangles(self.triangles, self.lm, self.resolution)
             inv_w, rows, uniform = weights_and_rows(mapped, self.resolution, w, rows)

@@ -8,6 +8,10 @@ whole map or a box of it) and keeps it there with the triangles' depth coefficie
 there (the expression the map's fragment shader stores, in double precision, stored as
 float32: within ``gl.DEPTH_ERROR`` of the scene's depth range) and returns those texels
 only.  The values are ``draw_maps``'s, bit for bit on llvmpipe (checked in the tests).
+:meth:`DeviceMap.test` runs :func:`aliasing.raster.draw.shadow_test`'s comparisons there
+(double precision, numpy's order of operations, no fused multiply-add), and only one bit per
+point comes back: the host test's result on the same texels, bit for bit on llvmpipe (checked
+in the tests; GLSL does not promise correctly rounded double division on every device).
 
 Memory stays bounded: at most :data:`DEVICE_BYTES` of maps are kept (the least recently
 drawn are freed first, and their render targets are reused for the next map of the same
@@ -120,6 +124,62 @@ void main() {
 """
 
 
+# The shadow test of :func:`aliasing.raster.draw.shadow_test` at points, run where the map is:
+# per point, its texel's stored depth as :data:`_FETCH` evaluates it and as the host converts it
+# (Δ/stored + offset, in double precision), then the test's three comparisons within ``bias``:
+# the point's depth against it, the receiver's plane met on the texel centre's ray (``receiver``,
+# −μ of the host's test, +inf where the plane holds the light direction) against it, and the
+# occluder's plane met on the point's ray (λ, from the triangle's plane row: vertex a₀ and
+# n·up, normal n and whether the plane is usable) against 0.  ``precise`` keeps every product
+# and sum rounded as numpy rounds it (no fused multiply-add), in numpy's order.  One bit per
+# point comes back: set where lit.
+_TEST = """
+#version 430
+layout(local_size_x = 64) in;
+layout(std430, binding = 6) readonly buffer Asked { int asked[]; };
+layout(std430, binding = 7) buffer Lit { uint bits[]; };
+layout(std430, binding = 8) readonly buffer Coefficients { dvec4 coef[]; };
+layout(std430, binding = 3) readonly buffer Points { dvec4 point[]; };       // p.xyz, the point's depth d
+layout(std430, binding = 4) readonly buffer Receivers { double receiver[]; };
+layout(std430, binding = 5) readonly buffer Planes { dvec4 plane[]; };       // per triangle: (a0, n·up), (n, usable)
+uniform isampler2D ids_map;
+uniform dvec4 ray;
+uniform double texel;
+uniform double span;
+uniform double offset;
+uniform double bias;
+uniform uint count;
+uniform int res;
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= count) return;
+    int flat_ = asked[i];
+    ivec2 at = ivec2(flat_ % res, flat_ / res);
+    int raw = texelFetch(ids_map, at, 0).r;
+    bool lit = true;   // an empty texel: nothing nearer the light
+    if (raw != 0) {
+        dvec4 k = coef[~raw];
+        double s = (double(at.x) + 0.5LF) * texel, t = (double(at.y) + 0.5LF) * texel;
+        double a = k.x * s + k.y * t + k.z;
+        double den = a * ray.w - k.w * (ray.x * s + ray.y * t + ray.z);
+        float stored = float(den / (den + a));
+        // Δ/stored + offset; ±0 stored gives ±infinity, as IEEE division on the host (built from its bits here)
+        precise double depth = stored != 0.0 ? span / double(stored) + offset
+                                             : packDouble2x32(uvec2(0u, (floatBitsToUint(stored) & 0x80000000u) | 0x7FF00000u));
+        precise double limit = depth + bias;
+        dvec4 q = point[i];
+        lit = q.w <= limit || receiver[i] <= limit;
+        dvec4 o = plane[2 * ~raw], n = plane[2 * ~raw + 1];
+        if (!lit && n.w != 0.0LF) {
+            precise double lam = ((o.x - q.x) * n.x + (o.y - q.y) * n.y + (o.z - q.z) * n.z) / o.w;
+            lit = lam <= bias;
+        }
+    }
+    if (lit) atomicOr(bits[i >> 5], 1u << (i & 31u));
+}
+"""
+
+
 def max_resolution() -> int:
     """The largest map side this device can draw [texels] (its texture, render-buffer and
     viewport limits), 0 when the backend is unavailable."""
@@ -216,6 +276,61 @@ class DeviceMap:
             depth, ids = _read(tg, self.span, self.offset)
         return depth, ids
 
+    def test(self, texels: NDArray[np.int64], points: Array, receiver: Array, planes: Array, bias: float) -> NDArray[np.bool_]:
+        """The shadow test of :func:`aliasing.raster.draw.shadow_test` run on the device: lit (True) or not, per point.
+
+        ``texels`` (P,) the points' flat texel indices inside the drawn box; ``points`` (P, 4)
+        their positions [world units] and depths [the map's depth units]; ``receiver`` (P,)
+        the receiver term −μ (+inf where unusable); ``planes`` the triangles' plane rows
+        (``_plane_rows``, uploaded to a kept buffer); ``bias`` [world units].  Only one bit per
+        point comes back."""
+        flat = np.asarray(texels, np.int64).ravel()
+        count = flat.size
+        points, receiver = np.asarray(points, np.float64), np.asarray(receiver, np.float64)
+        if not np.isfinite(bias) or bias < 0:
+            raise ValueError(f"bias must be a finite tolerance >= 0 [world units], got {bias}")
+        if points.shape != (count, 4) or receiver.shape != (count,):
+            raise ValueError(f"points must have shape ({count}, 4) and receiver ({count},), got {points.shape} and {receiver.shape}")
+        drawn = self._coef.size // 32  # the triangles the map was drawn from
+        if np.shape(planes)[1:] != (4,) or len(planes) < 2 * drawn:
+            raise ValueError(f"planes must be the plane rows of the map's {drawn} triangles, shape ({2 * drawn}, 4), got {np.shape(planes)}")
+        if count and (flat.min() < 0 or flat.max() >= self.resolution**2 or not self.covers(flat)):
+            raise ValueError(f"texels must be flat indices in [0, {self.resolution**2 - 1}] inside the drawn box {self.box}")
+        if self.released:
+            raise ValueError("this device map was released: draw it again")
+        out = np.empty(count, bool)
+        ctx = _context()
+        with ctx:
+            programs = _setup()[0][1]
+            if "test" not in programs:
+                programs["test"] = ctx.compute_shader(_TEST)
+            prog = programs["test"]
+            self._ids.use(0)
+            prog["ids_map"].value = 0
+            _uniform(prog, "ray", self._ray)
+            for name, value in (("texel", 1.0 / self.resolution), ("span", self.span), ("offset", self.offset), ("bias", bias)):
+                _uniform(prog, name, np.float64(value))
+            prog["res"].value = self.resolution
+            self._coef.bind_to_storage_buffer(8)
+            rows = np.ascontiguousarray(planes, np.float64)
+            kept = _buffer(ctx, "planes", max(rows.nbytes, 32))
+            kept.write(rows)
+            kept.bind_to_storage_buffer(5)
+            for a in range(0, count, FETCH_BLOCK):
+                n = min(FETCH_BLOCK, count - a)
+                words = (n + 31) // 32
+                for name, binding, data in (("asked", 6, flat[a:a + n].astype(np.int32)), ("points", 3, np.ascontiguousarray(points[a:a + n], np.float64)),
+                                            ("receivers", 4, np.ascontiguousarray(receiver[a:a + n], np.float64)), ("lit", 7, np.zeros(words, np.uint32))):
+                    buf = _buffer(ctx, name, data.nbytes)
+                    buf.write(data)
+                    buf.bind_to_storage_buffer(binding)
+                prog["count"].value = n
+                prog.run(group_x=(n + _GROUP - 1) // _GROUP)
+                ctx.memory_barrier()
+                bits = np.frombuffer(_buffer(ctx, "lit", 4 * words).read(4 * words), np.uint32)
+                out[a:a + n] = np.unpackbits(bits.view(np.uint8), bitorder="little")[:n].astype(bool)
+        return out
+
     def _run(self, flat: NDArray[np.int64] | None, count: int) -> tuple[Array, NDArray[np.int64]]:
         """(depth, triangle) of ``flat`` texels, or of the first ``count`` ones (``flat`` None).
 
@@ -287,6 +402,21 @@ class DeviceMap:
             else:
                 self._fbo.release()
                 self._ids.release()
+
+
+def _plane_rows(triangles: Array, up: Array) -> Array:
+    """The occluder planes of :func:`aliasing.raster.draw.shadow_test`, two rows per triangle
+    for :meth:`DeviceMap.test`: (a₀, n·up) and (n, 1 where usable else 0), n = (a₁ − a₀) × (a₂ − a₀),
+    computed as the host's test computes them per point (numpy's own arithmetic, so the same
+    doubles); shape (2T, 4)."""
+    a = np.asarray(triangles, float)
+    n_o = np.cross(a[:, 1, :] - a[:, 0, :], a[:, 2, :] - a[:, 0, :])
+    across = n_o @ up
+    ok = np.abs(across) > 1e-9 * np.linalg.norm(n_o, axis=-1)
+    rows = np.empty((len(a), 2, 4))
+    rows[:, 0, :3], rows[:, 0, 3] = a[:, 0, :], across
+    rows[:, 1, :3], rows[:, 1, 3] = n_o, ok
+    return rows.reshape(-1, 4)
 
 
 def draw_device_map(triangles: Array, matrix: Array, resolution: int, *, box: tuple[int, int, int, int] | None = None) -> DeviceMap:
