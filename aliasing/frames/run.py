@@ -37,10 +37,11 @@ class FrameResult:
     report: dict
 
 
-def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: list[dict] | None = None) -> dict:
+def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: list[dict] | None = None, maps: int | None = None) -> dict:
     """The page's job: the scene's triangles (base64 float32), the camera, the sun and the settings.
 
-    ``height`` [px] in [16, 2160]; the width is round(aspect · height).
+    ``height`` [px] in [16, 2160]; the width is round(aspect · height).  ``maps``: read the
+    shadow maps back, at most this many texels per side (:mod:`aliasing.frames.maps`).
     """
     h = int(height)
     if h != height or not 16 <= h <= 2160:
@@ -53,7 +54,15 @@ def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: l
     return {"width": w, "height": h, "triangles": base64.b64encode(tri.tobytes()).decode(),
             "camera": {"eye": cam.eye.tolist(), "target": (cam.eye + cam.rotation[2]).tolist(), "up": cam.rotation[1].tolist(),
                        "near": cam.near, "far": cam.far, "fov": cam.fov},
-            "sun": [float(v) for v in sun], "settings": settings, "ground": scene.ground, "path": path}
+            "sun": [float(v) for v in sun], "settings": settings, "ground": scene.ground, "path": path,
+            "maps": None if maps is None else {"side": _map_side(maps)}}
+
+
+def _map_side(maps) -> int:
+    m = int(maps) if isinstance(maps, (int, np.integer)) and not isinstance(maps, bool) else -1
+    if not 16 <= m <= 4096:
+        raise ValueError(f"maps (--maps SIDE) must be a whole number of texels per side in [16, 4096], got {maps!r}")
+    return m
 
 
 def _ground_pixels(scene: FrameScene, rb: Readback) -> NDArray[np.bool_]:
@@ -134,7 +143,7 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     return FrameResult(rb, pred, ref, settings, report)
 
 
-def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, path: str | None = None) -> FrameResult:
+def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, path: str | None = None, maps: int | None = None) -> FrameResult:
     """Render an :class:`aliasing.setups.Setup` (engine, settings, camera with image size, sun) on ``scene``.
 
     ``scene`` must have been built with the setup's camera (:func:`aliasing.frames.scenes.frame_scene`);
@@ -153,7 +162,11 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     sun : array_like (3,), optional
         World direction towards the sun.
     path : str, optional
-        ``KIND:STEP[:FRAMES]`` (:func:`parse_path`): adds ``flips_per_frame`` (three.js).
+        ``KIND:STEP[:FRAMES]`` (:func:`parse_path`): adds ``flips_per_frame``.
+    maps : int, optional
+        Read the shadow maps back (three.js, Babylon.js), every stride-th texel so that at most
+        ``maps`` texels per side come back, and add ``report["maps"]``: the engine's maps
+        against the toolkit's rasterizer (:func:`aliasing.frames.maps.measure_maps`).
 
     Example
     -------
@@ -198,8 +211,18 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
         if setup.engine != "threejs":
             raise ValueError(f"--path: the camera path is rendered for threejs only (not yet for {setup.engine})")
         poses = parse_path(path, scene.camera)
-    out = browser.render(setup.engine, make_job(scene, sv, settings, cam.height, poses))
+    if maps is not None:
+        _map_side(maps)
+        if setup.engine not in ("threejs", "babylon"):
+            raise ValueError(f"--maps: the shadow maps are read back for threejs and babylon (not yet for {setup.engine})")
+    out = browser.render(setup.engine, make_job(scene, sv, settings, cam.height, poses, maps))
     result = measure(setup.engine, scene, sv, settings, out, pipeline=setup.pipeline)
+    if maps is not None:
+        from . import maps as frame_maps
+
+        got = frame_maps.decode_maps(out)
+        mats = np.array([np.asarray(m["matrix"], float).reshape(4, 4).T for m in out["maps"]]) if "matrix" in out["maps"][0] else result.readback.matrices
+        result.report["maps"] = frame_maps.measure_maps(setup.engine, settings, scene.triangles, sv, mats, got)
     if poses is not None:
         sh = shimmer(result, scene, sv, poses)
         result.report["measured"]["flips_per_frame"] = sh["measured"]

@@ -30,7 +30,7 @@ import { ShaderStore } from "/node_modules/@babylonjs/core/Engines/shaderStore.j
 import "/node_modules/@babylonjs/core/Shaders/default.fragment.js";
 import "/node_modules/@babylonjs/core/Shaders/default.vertex.js";
 import "/node_modules/@babylonjs/core/Shaders/ShadersInclude/lightFragment.js";
-import { decodeF32, encode, flatNormals } from "./common.mjs";
+import { decodeF32, encode, flatNormals, readDepthTexture } from "./common.mjs";
 
 const PICK = "if (diff{X}>=0.) {index{X}=i;break;}}";
 
@@ -129,6 +129,16 @@ window.frame = async (job) => {
     const px = await rtt.readPixels(0, 0, null, true, false);
     out[name] = encode(new Float32Array(px.buffer, px.byteOffset, w * h * 4));
   }
+  // the shadow maps as drawn for this frame: the depth-stencil texture array the PCF lookup samples
+  // (job.maps: every stride-th texel, at most job.maps.side per side)
+  let maps = null;
+  if (job.maps) {
+    const depthTex = csm.getShadowMap().depthStencilTexture;
+    const stride = Math.max(1, Math.ceil(mapSize / job.maps.side));
+    const got = readDepthTexture(engine._gl, depthTex._hardwareTexture.underlyingResource, mapSize, stride, csm.numCascades);
+    maps = got.maps.map((m) => ({ depth: m, side: got.side, stride, size: mapSize }));
+    engine.wipeCaches(true);                            // Babylon.js's cached GL state: the pass above changed it
+  }
   const ms = performance.now() - t0;
   const cascades = [];
   for (let i = 0; i < csm.numCascades; i++) {
@@ -142,7 +152,7 @@ window.frame = async (job) => {
   const used = {};
   for (const k of GEN_KEYS) used[k] = csm[k];
   used.mapSize = mapSize; used.filter = csm.filter; used.backFaceCulling = materials[0].backFaceCulling;
-  const res = { engine: "babylon", revision: Engine.Version, width: w, height: h, frame, ...out, cascades, used, ms,
+  const res = { engine: "babylon", revision: Engine.Version, width: w, height: h, frame, ...out, cascades, used, ms, maps,
                 renderer: dbg ? gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER) };
   engine.dispose();
   return res;
