@@ -254,7 +254,10 @@ BASE = ["--scene", "boxes", "--camera", "near=0.5,far=60,fov=50,aspect=16:9,heig
     (["--engine", "threejs", "--set", "shadowBiass=0"], "unknown three.js setting 'shadowBiass'"),
     (["--engine", "threejs@r184"], "the frames render threejs r187 only"),
     (["--engine", "threejs", "--set", "class=DirectionalLight"], "class must be CSM for the frames"),
-    (["--engine", "babylon", "--path", "sideways:0.1"], "the camera path is rendered for threejs only"),
+    (["--engine", "playcanvas", "--path", "sideways:0.1"], "the camera path is rendered for threejs and babylon only"),
+    (["--engine", "playcanvas", "--maps"], "the shadow maps are read back for threejs and babylon"),
+    (["--engine", "threejs", "--maps", "8"], "--maps SIDE) must be a whole number of texels per side in [16, 4096]"),
+    (["--engine", "threejs", "--path", "turn:20"], "--path turn STEP must be at most 10 degrees"),
     (["--engine", "threejs", "--path", "diagonal:0.1"], "--path must be KIND:STEP[:FRAMES]"),
     (["--engine", "threejs", "--scene", "no-such.glb"], "scene must be boxes, city or an existing scene file"),
 ])

@@ -66,8 +66,8 @@ def run(args: argparse.Namespace) -> dict:
         raise ValueError("--scene, --camera, --sun and --out are required (or --install)")
     setup = setups.from_args(args)
     if args.path is not None:
-        if setup.engine != "threejs":
-            raise ValueError(f"--path: the camera path is rendered for threejs only (not yet for {setup.engine})")
+        if setup.engine not in frames_run.PATH_ENGINES:
+            raise ValueError(f"--path: the camera path is rendered for {' and '.join(frames_run.PATH_ENGINES)} only (not yet for {setup.engine})")
         frames_run.parse_path(args.path, scenes.frame_scene("boxes", near=1.0, far=2.0, fov=50.0, aspect=1.0, boxes=0, ground_cells=1).camera)
     if args.maps is not None:
         if setup.engine not in ("threejs", "babylon"):
@@ -137,7 +137,7 @@ def add_frames_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
     p.add_argument("--scene", help="boxes, city or a scene file (.glb, .gltf, .obj, .ply, .stl)")
     p.add_argument("--eye", metavar="X,Y,Z", help="camera position, world space (a scene file needs it; write --eye=-5,2,0 when X is negative)")
     p.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at, world space")
-    p.add_argument("--path", metavar="KIND:STEP[:FRAMES]", help="a camera path for shimmer (threejs): sideways or forward, STEP world units per "
+    p.add_argument("--path", metavar="KIND:STEP[:FRAMES]", help="a camera path for shimmer (threejs, babylon): sideways or forward, STEP world units per "
                    "frame, FRAMES (default 30); the cascades follow it while the picture's camera stays, and flips_per_frame is added")
     p.add_argument("--maps", nargs="?", type=int, const=1024, metavar="SIDE",
                    help="read the shadow maps back (threejs, babylon): every stride-th texel, at most SIDE per side (default 1024); "

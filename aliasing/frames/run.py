@@ -208,8 +208,8 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     sv = np.asarray(sun, float) / np.linalg.norm(sun)
     poses = None
     if path is not None:
-        if setup.engine != "threejs":
-            raise ValueError(f"--path: the camera path is rendered for threejs only (not yet for {setup.engine})")
+        if setup.engine not in PATH_ENGINES:
+            raise ValueError(f"--path: the camera path is rendered for {' and '.join(PATH_ENGINES)} only (not yet for {setup.engine})")
         poses = parse_path(path, scene.camera)
     if maps is not None:
         _map_side(maps)
@@ -234,13 +234,15 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     return result
 
 
-PATHS = ("sideways", "forward")
+PATHS = ("sideways", "forward", "turn")
+PATH_ENGINES = ("threejs", "babylon")
 
 
 def parse_path(spec: str, camera) -> list[dict]:
     """Camera poses of ``KIND:STEP[:FRAMES]``: KIND ``sideways`` (along the camera's right) or
-    ``forward`` (along its view), STEP [world units per frame, finite, non-zero], FRAMES in [3, 120]
-    (default 30); the first pose is the camera itself.
+    ``forward`` (along its view), STEP [world units per frame, finite, non-zero], or ``turn``
+    (the view turned about the world's up, y, through the eye; STEP [degrees per frame, |STEP| <= 10]);
+    FRAMES in [3, 120] (default 30); the first pose is the camera itself.
 
     Example
     -------
@@ -260,8 +262,27 @@ def parse_path(spec: str, camera) -> list[dict]:
         raise ValueError(f"--path STEP must be finite and non-zero [world units per frame], got {parts[1]!r}")
     if not 3 <= n <= 120:
         raise ValueError(f"--path FRAMES must be in [3, 120], got {n}")
+    if parts[0] == "turn":
+        if abs(step) > 10:
+            raise ValueError(f"--path turn STEP must be at most 10 degrees per frame in size, got {parts[1]!r}")
+        out = []
+        for i in range(n):
+            a = np.radians(i * step)
+            rot = np.array([[np.cos(a), 0.0, np.sin(a)], [0.0, 1.0, 0.0], [-np.sin(a), 0.0, np.cos(a)]])
+            out.append({"eye": camera.eye.tolist(), "target": (camera.eye + rot @ camera.rotation[2]).tolist()})
+        return out
     axis = camera.rotation[0] if parts[0] == "sideways" else camera.rotation[2]
     return [{"eye": (camera.eye + i * step * axis).tolist(), "target": (camera.eye + i * step * axis + camera.rotation[2]).tolist()} for i in range(n)]
+
+
+def pose_camera(camera, pose: dict):
+    """``camera`` moved to a pose of :func:`parse_path` (its eye, looking at its target, with the camera's own up)."""
+    from dataclasses import replace
+
+    from ..raster.scenes.camera import frame
+
+    eye = np.asarray(pose["eye"], float)
+    return replace(camera, eye=eye, rotation=frame(np.asarray(pose["target"], float) - eye, camera.rotation[1]) + 0.0)
 
 
 def flips(masks: NDArray[np.bool_], keep: NDArray[np.bool_]) -> float:
@@ -286,6 +307,8 @@ def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]
     measured = np.array([np.frombuffer(__import__("base64").b64decode(f["shadow"]), np.float32).reshape(h, w)[::-1] for f in frames])
     keep = rb.drawn & (rb.cascade >= 0)
     out = {"measured": flips(measured < 0.5, keep), "predicted": None, "matrices_vs_engine": None}
+    if rb.engine == "babylon":
+        return {**out, **_babylon_shimmer(result, scene, sun, path, frames, keep)}
     model = MODELS[rb.engine] if rb.engine in MODELS else None
     if model is None or not hasattr(model, "matrices"):
         return out
@@ -295,7 +318,7 @@ def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]
     pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
     masks, worst = [], 0.0
     for pose, f in zip(path, frames):
-        cam = replace(scene.camera, eye=np.asarray(pose["eye"], float))
+        cam = pose_camera(scene.camera, pose)
         mats = model.matrices(s, cam, sun)
         eng = np.array([np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
         worst = max(worst, float(np.max(np.abs(mats - eng)) / np.max(np.abs(eng))))
@@ -306,3 +329,34 @@ def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]
     out["predicted"] = flips(np.array(masks), keep)
     out["matrices_vs_engine"] = worst
     return out
+
+
+def _babylon_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], frames: list[dict], keep) -> dict:
+    """Babylon.js's predicted flips: each pose's predicted matrices (:mod:`aliasing.frames.babylon_cascades`),
+    the toolkit's maps and Babylon.js's factor at the same pixels (the picture's cascades and depths)."""
+    from dataclasses import replace
+
+    from . import babylon_cascades, predict
+
+    rb, s = result.readback, result.settings
+    model = MODELS["babylon"]
+    cam0 = scene.camera
+    h, w = rb.shadow.shape
+    depth = np.where(rb.drawn, cam0.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
+    edges = model.edges(s, cam0)
+    pct = float(s["cascadeBlendPercentage"])
+    res = int(s["mapSize"])
+    cast = predict.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, model.cast_side(s))], sun, float(s["normalBias"]))
+    pts = np.nan_to_num(rb.position)
+    to_unit = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+    masks, worst = [], 0.0
+    for pose, f in zip(path, frames):
+        cam = pose_camera(cam0, pose)
+        mats = babylon_cascades.matrices(s, cam, sun, scene.triangles)
+        eng = np.array([to_unit @ np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
+        worst = max(worst, float(np.max(np.abs(mats - eng)) / np.max(np.abs(eng))))
+        maps = [predict.light_depth_map(cast, m, res) for m in mats]
+        fac = predict.babylon_factor(maps, mats, result.prediction.cascade, depth, pts, ends=edges[1:], lengths=np.diff(edges),
+                                     blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
+        masks.append(fac < 0.5)
+    return {"predicted": flips(np.array(masks), keep), "matrices_vs_engine": worst}
