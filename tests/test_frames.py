@@ -43,8 +43,8 @@ CAMERA_SPEC = f"near=0.5,far=60,fov=50,aspect=16:9,height={HEIGHT}"
 SUN = (35.0, 30.0)  # elevation, azimuth [deg]
 
 
-def _frame(browser, engine: str, scene, settings: dict):
-    return frame_setup(browser, setups.build(engine, settings, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}"), scene)
+def _frame(browser, engine: str, scene, settings: dict, **extra):
+    return frame_setup(browser, setups.build(engine, settings, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}"), scene, **extra)
 
 
 def _need(what: str, how: str) -> None:
@@ -84,7 +84,11 @@ def babylon(chromium, boxes):
         install.install("babylon")
     except install.MissingTool as e:
         _need("the pinned Babylon.js package", str(e))
-    return {name: _frame(chromium, "babylon", fs, settings) for name, settings in (("defaults", {}), ("bias 0", {"bias": 0}), ("bias 4e-4", {"bias": 0.0004}))}
+    # the defaults' frame also reads its maps back and follows a camera turning 0.2 degrees per frame;
+    # the 4e-4 one follows a camera moving forward
+    return {name: _frame(chromium, "babylon", fs, settings, **extra) for name, settings, extra in (
+        ("defaults", {}, {"path": "turn:0.2:4", "maps": 256}), ("bias 0", {"bias": 0}, {}),
+        ("bias 4e-4", {"bias": 0.0004}, {"path": "forward:0.05:4"}))}
 
 
 @pytest.fixture(scope="module")
@@ -211,6 +215,55 @@ def test_threejs_shimmer_along_a_sideways_path(chromium, boxes):
     assert (((pair > 0.05) & (pair < 0.95)).any(0))[flipped].all()
 
 
+def _maps_agree(maps: dict, k: int, size: int, stride: int) -> None:
+    # the engine's stored depths equal the toolkit's rasterizer's, texel for texel away from triangle
+    # edges, within float32 depth and SwiftShader's 1/16-texel vertex snapping; drawn where it draws
+    assert len(maps["cascades"]) == k, maps
+    for c in maps["cascades"]:
+        assert c["size"] == size and c["stride"] == stride and c["texels"] == (size // stride) ** 2, c
+        assert c["interior"] > 100 and c["agreement"] == 1.0 and c["max_over_tolerance"] < 1.0, c
+        assert c["coverage_agreement"] >= 0.9999, c
+
+
+def test_babylon_shimmer_along_a_turning_path(chromium, boxes, babylon):
+    # the cascades follow a camera turning 0.2 degrees per frame while the picture's camera stays.
+    # Unstabilized (the default) the tight box changes with the view and the acne moves over the lit
+    # surfaces: the toolkit's maps through its own predicted matrices flip as many pixels.
+    # Stabilized, Babylon.js keeps the cube's side (rounded to 1/16) and rounds the origin to a
+    # texel: the toolkit predicts no flip, and the engine flips almost none
+    fs, sun = boxes
+    off = babylon["defaults"].report
+    m, p = off["measured"]["flips_per_frame"], off["predicted"]["flips_per_frame"]
+    assert p > 0.05 and 0.8 <= m / p <= 1.25, off
+    setup = setups.build("babylon", {"mapSize": 512, "numCascades": 2, "stabilizeCascades": True}, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")
+    on = frame_setup(chromium, setup, fs, path="turn:0.2:4").report
+    assert on["predicted"]["flips_per_frame"] == 0.0 and on["measured"]["flips_per_frame"] < 1e-3, on
+    for r in (on, off):
+        assert r["details"]["path_matrices_vs_engine"] <= BABYLON_FLOAT32, r["details"]
+
+
+def test_babylon_forward_path_flips_are_float32_and_subpixel_snapping(babylon, boxes):
+    # moving forward, the tight box keeps its size: the toolkit (float64) predicts whole-texel shifts
+    # and no flip. The engine's float32 box width alternates between two values along the path, and
+    # SwiftShader snaps the casters' corners to 1/16 texel: the toolkit's maps through the engine's
+    # own pose matrices with the corners so snapped flip the engine's pixels (ERRATA F8)
+    from aliasing.frames.run import parse_path, replay
+
+    fs, sun = boxes
+    r = babylon["bias 4e-4"]
+    rep = r.report
+    m = rep["measured"]["flips_per_frame"]
+    assert rep["predicted"]["flips_per_frame"] == 0.0 and m > 1e-3, rep
+    sides = {np.float32(np.linalg.norm(np.asarray(f["matrices"][0], float).reshape(4, 4).T[0, :3])) for f in r.readback.info["path"]}
+    assert len(sides) == 2 and 1e-6 < abs(np.diff(sorted(sides))[0]) / min(sides) < 1e-5, sides
+    snapped = replay(r, fs, sun, parse_path("forward:0.05:4", fs.camera))
+    assert 0.8 <= m / snapped["flips_per_frame"] <= 1.25 and snapped["shared"] >= 0.95, snapped
+
+
+def test_babylon_maps_are_the_toolkits(babylon):
+    _maps_agree(babylon["defaults"].report["maps"], 4, 1024, 4)
+
+
 def test_threejs_readback_is_the_frame(three, boxes):
     fs, sun = boxes
     rb = three["defaults"].readback
@@ -255,9 +308,6 @@ BASE = ["--scene", "boxes", "--camera", "near=0.5,far=60,fov=50,aspect=16:9,heig
     (["--engine", "threejs@r184"], "the frames render threejs r187 only"),
     (["--engine", "threejs", "--set", "class=DirectionalLight"], "class must be CSM for the frames"),
     (["--engine", "playcanvas", "--path", "sideways:0.1"], "the camera path is rendered for threejs and babylon only"),
-    (["--engine", "playcanvas", "--maps"], "the shadow maps are read back for threejs and babylon"),
-    (["--engine", "threejs", "--maps", "8"], "--maps SIDE) must be a whole number of texels per side in [16, 4096]"),
-    (["--engine", "threejs", "--path", "turn:20"], "--path turn STEP must be at most 10 degrees"),
     (["--engine", "threejs", "--path", "diagonal:0.1"], "--path must be KIND:STEP[:FRAMES]"),
     (["--engine", "threejs", "--scene", "no-such.glb"], "scene must be boxes, city or an existing scene file"),
 ])
@@ -267,6 +317,20 @@ def test_cli_bad_input_is_one_line(tmp_path, args, message):
     done = _cli(*full)
     assert done.returncode == 2, done
     assert done.stderr.count("\n") == 1 and message in done.stderr, done.stderr
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--engine", "playcanvas", "--maps"], "the shadow maps are read back for threejs and babylon"),
+    (["--engine", "threejs", "--maps", "8"], "--maps SIDE) must be a whole number of texels per side in [16, 4096]"),
+    (["--engine", "threejs", "--path", "turn:20"], "--path turn STEP must be at most 10 degrees"),
+])
+def test_cli_maps_and_turn_bad_input_is_one_line(tmp_path, capsys, args, message):
+    # refused before the browser starts (in this process: the one-line contract is the subprocess test's above)
+    from aliasing.cli import main
+
+    assert main(["frames", *BASE, "--out", str(tmp_path), *args]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and message in err, err
 
 
 def test_cli_without_chromium_says_how_to_install(tmp_path):
@@ -282,9 +346,14 @@ def test_cli_without_the_engine_package_says_how_to_install(tmp_path, chromium):
 
 
 def test_cli_writes_the_frame_and_the_report(tmp_path, chromium):
-    done = _cli(*BASE, "--engine", "threejs", "--set", "material.shadowSide=FrontSide", "--out", str(tmp_path), "--format", "json")
+    done = _cli(*BASE, "--engine", "threejs", "--set", "material.shadowSide=FrontSide", "--out", str(tmp_path), "--format", "json", "--maps", "256")
     assert done.returncode == 0, done.stderr
     report = json.loads(done.stdout)
+    _maps_agree(report["maps"], 3, 2048, 8)  # the engine's maps, every 8th texel, are the toolkit's
+    for i in range(3):
+        got = np.load(tmp_path / f"map{i}.npy")
+        assert got.shape == (256, 256) and got.dtype == np.float32 and 0 <= got.min() and got.max() <= 1
+        assert (tmp_path / f"map{i}.png").read_bytes()[:4] == b"\x89PNG"
     assert set(report["measured"]) == {"shadow_agreement", "acne", "gap_px", "texels_per_pixel"}
     assert set(report["predicted"]) == {"acne", "gap_px", "texels_per_pixel"}
     assert report["engine"] == "threejs" and report["release"] == "r187" and report["details"]["engine_revision"] == "187"

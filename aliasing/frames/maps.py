@@ -81,6 +81,31 @@ def decode_maps(out: dict) -> list[EngineMap]:
     return res
 
 
+def snapped_depth_map(triangles: Array, matrix: Array, size: int, subpixel_bits: int | None = SUBPIXEL_BITS):
+    """:func:`aliasing.frames.predict.light_depth_map` with each corner's (s, t) rounded to 1/2^bits of
+    a texel first, as a rasterizer with ``subpixel_bits`` of sub-texel precision places it (None: exact).
+
+    Example
+    -------
+    >>> tri = np.array([[[0.1, 0.1, 0.5], [0.9, 0.1, 0.5], [0.1, 0.9, 0.5]]])
+    >>> float(snapped_depth_map(tri, np.eye(4), 8).depth[1, 1])
+    0.5
+    """
+    if subpixel_bits is None:
+        return predict.light_depth_map(triangles, matrix, size)
+    if not (isinstance(subpixel_bits, (int, np.integer)) and 0 <= subpixel_bits <= 16):
+        raise ValueError(f"subpixel_bits must be a whole number in [0, 16] or None, got {subpixel_bits!r}")
+    from ..raster.draw import rasterize
+
+    tri = np.asarray(triangles, float)
+    if not len(tri):
+        return predict.light_depth_map(tri.reshape(0, 3, 3), matrix, size)
+    mt = predict.to_map(matrix, tri)
+    q = float(size) * 2.0**subpixel_bits
+    mt[..., :2] = np.floor(mt[..., :2] * q + 0.5) / q
+    return rasterize(mt, int(size))
+
+
 def stored_depth(engine: str, settings: dict, triangles: Array, sun: Array, matrix: Array, size: int) -> tuple[Array, NDArray[np.int64], Array]:
     """The toolkit's map of what ``engine`` stores: depth (R, R) (1 where empty), the nearest
     triangle per texel (−1 empty) and the map-space triangles drawn (for :func:`tolerance`).

@@ -360,3 +360,39 @@ def _babylon_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: l
                                      blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
         masks.append(fac < 0.5)
     return {"predicted": flips(np.array(masks), keep), "matrices_vs_engine": worst}
+
+
+def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], subpixel_bits: int | None = 4) -> dict:
+    """Babylon.js's path replayed by the toolkit through the *engine's* pose matrices (read back, float32),
+    with the casters' corners snapped to 1/2^``subpixel_bits`` texel (:func:`aliasing.frames.maps.snapped_depth_map`;
+    SwiftShader: 4): ``flips_per_frame`` and ``shared``, the fraction of the engine's flips (pixel and
+    frame) that the replay also flips.  A diagnostic of where the engine's flips come from (ERRATA F8).
+    """
+    from . import maps as frame_maps, predict
+
+    rb, s = result.readback, result.settings
+    if rb.engine != "babylon":
+        raise ValueError(f"replay is for babylon frames, got {rb.engine!r}")
+    frames = rb.info.get("path") or []
+    if len(frames) != len(path):
+        raise ValueError("the page returned no camera path")
+    model = MODELS["babylon"]
+    h, w = rb.shadow.shape
+    keep = rb.drawn & (rb.cascade >= 0)
+    depth = np.where(rb.drawn, scene.camera.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
+    edges = model.edges(s, scene.camera)
+    pct = float(s["cascadeBlendPercentage"])
+    tri = np.asarray(scene.triangles, np.float32).astype(float)
+    cast = predict.offset_casters(tri[predict.casting(tri, sun, model.cast_side(s))], sun, float(s["normalBias"]))
+    to_unit = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+    engine = np.array([np.frombuffer(__import__("base64").b64decode(f["shadow"]), np.float32).reshape(h, w)[::-1] for f in frames]) < 0.5
+    masks = []
+    for f in frames:
+        mats = np.array([to_unit @ np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
+        maps = [frame_maps.snapped_depth_map(cast, m, int(s["mapSize"]), subpixel_bits) for m in mats]
+        fac = predict.babylon_factor(maps, mats, result.prediction.cascade, depth, np.nan_to_num(rb.position), ends=edges[1:], lengths=np.diff(edges),
+                                     blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
+        masks.append(fac < 0.5)
+    masks = np.array(masks)
+    fe, fp = np.diff(engine[:, keep], axis=0), np.diff(masks[:, keep], axis=0)
+    return {"flips_per_frame": flips(masks, keep), "shared": float((fe & fp).sum() / fe.sum()) if fe.any() else None}
