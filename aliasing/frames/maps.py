@@ -176,14 +176,15 @@ def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], to
 
 
 def measure_maps(engine: str, settings: dict, triangles: Array, sun: Array, matrices: Array, maps: list[EngineMap]) -> dict:
-    """Every cascade's read-back map against the toolkit's: ``cascades`` (per cascade :func:`compare`),
-    ``agreement`` (the smallest), ``max_difference`` (the largest), the ``tolerance`` rule."""
+    """Every cascade's read-back map against the toolkit's: ``cascades`` (per cascade :func:`compare`
+    and the light ``matrix`` used, world → [0, 1]³, column vectors), ``agreement`` (the smallest),
+    ``max_difference`` (the largest), the ``tolerance`` rule."""
     if len(maps) != len(matrices):
         raise ValueError(f"{len(maps)} maps for {len(matrices)} light matrices")
     per = []
     for m, mat in zip(maps, matrices):
         depth, tid, mt = stored_depth(engine, settings, triangles, sun, mat, m.size)
-        per.append(compare(m, depth, tid, tolerance(mt, tid)))
+        per.append({**compare(m, depth, tid, tolerance(mt, tid)), "matrix": np.asarray(mat, float).tolist()})
     ag = [c["agreement"] for c in per if c["agreement"] is not None]
     mx = [c["max_difference"] for c in per if c["max_difference"] is not None]
     return {"cascades": per, "agreement": min(ag) if ag else None, "max_difference": max(mx) if mx else None,

@@ -363,36 +363,49 @@ def _babylon_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: l
 
 
 def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], subpixel_bits: int | None = 4) -> dict:
-    """Babylon.js's path replayed by the toolkit through the *engine's* pose matrices (read back, float32),
+    """An engine's path replayed by the toolkit through the *engine's* pose matrices (read back),
     with the casters' corners snapped to 1/2^``subpixel_bits`` texel (:func:`aliasing.frames.maps.snapped_depth_map`;
-    SwiftShader: 4): ``flips_per_frame`` and ``shared``, the fraction of the engine's flips (pixel and
-    frame) that the replay also flips.  A diagnostic of where the engine's flips come from (ERRATA F8).
+    SwiftShader: 4; None: exact): ``flips_per_frame`` and ``shared``, the fraction of the engine's
+    flips (pixel and frame) that the replay also flips.  A diagnostic of where the engine's flips
+    come from, when the toolkit's own prediction is 0 (ERRATA F7, F8).
     """
     from . import maps as frame_maps, predict
 
     rb, s = result.readback, result.settings
-    if rb.engine != "babylon":
-        raise ValueError(f"replay is for babylon frames, got {rb.engine!r}")
+    if rb.engine not in PATH_ENGINES:
+        raise ValueError(f"replay is for {' and '.join(PATH_ENGINES)} frames, got {rb.engine!r}")
     frames = rb.info.get("path") or []
     if len(frames) != len(path):
         raise ValueError("the page returned no camera path")
-    model = MODELS["babylon"]
+    model = MODELS[rb.engine]
     h, w = rb.shadow.shape
     keep = rb.drawn & (rb.cascade >= 0)
-    depth = np.where(rb.drawn, scene.camera.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
-    edges = model.edges(s, scene.camera)
-    pct = float(s["cascadeBlendPercentage"])
+    pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
     tri = np.asarray(scene.triangles, np.float32).astype(float)
-    cast = predict.offset_casters(tri[predict.casting(tri, sun, model.cast_side(s))], sun, float(s["normalBias"]))
+    cast = tri[predict.casting(tri, sun, model.cast_side(s))]
     to_unit = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
     engine = np.array([np.frombuffer(__import__("base64").b64decode(f["shadow"]), np.float32).reshape(h, w)[::-1] for f in frames]) < 0.5
+    if rb.engine == "babylon":
+        cast = predict.offset_casters(cast, sun, float(s["normalBias"]))
+        depth = np.where(rb.drawn, scene.camera.to_eye(pts)[..., 2], np.nan)
+        edges = model.edges(s, scene.camera)
+        pct = float(s["cascadeBlendPercentage"])
+        res = int(s["mapSize"])
+
+        def factor(maps, mats):
+            return predict.babylon_factor(maps, mats, result.prediction.cascade, depth, pts, ends=edges[1:], lengths=np.diff(edges),
+                                          blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
+    else:
+        fy, fx = np.mgrid[0:h, 0:w]
+        res = int(s["shadowMapSize"])
+
+        def factor(maps, mats):
+            return predict.threejs_factor(maps, mats, result.prediction.cascade, pts, nrm, fx + 0.5, (h - 1 - fy) + 0.5, bias=float(s["shadowBias"]),
+                                          normal_bias=float(s["normalBias"]), radius=float(s["shadowRadius"]), map_type=s["shadowMapType"])
     masks = []
     for f in frames:
-        mats = np.array([to_unit @ np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
-        maps = [frame_maps.snapped_depth_map(cast, m, int(s["mapSize"]), subpixel_bits) for m in mats]
-        fac = predict.babylon_factor(maps, mats, result.prediction.cascade, depth, np.nan_to_num(rb.position), ends=edges[1:], lengths=np.diff(edges),
-                                     blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
-        masks.append(fac < 0.5)
+        mats = np.array([(to_unit if rb.engine == "babylon" else np.eye(4)) @ np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
+        masks.append(factor([frame_maps.snapped_depth_map(cast, m, res, subpixel_bits) for m in mats], mats) < 0.5)
     masks = np.array(masks)
     fe, fp = np.diff(engine[:, keep], axis=0), np.diff(masks[:, keep], axis=0)
     return {"flips_per_frame": flips(masks, keep), "shared": float((fe & fp).sum() / fe.sum()) if fe.any() else None}
