@@ -4,7 +4,8 @@
 
     aliasing frames --engine threejs|babylon|playcanvas --scene boxes|city|FILE [--eye X,Y,Z --target X,Y,Z]
                     --camera near=N,far=F,fov=DEG,aspect=A,height=PX --sun ELEV[..ELEV][@AZ]
-                    [--settings FILE] [--set KEY=VALUE]... --out DIR [--format json|table]
+                    [--settings FILE] [--set KEY=VALUE]... [--path KIND:STEP[:FRAMES]] [--maps [SIDE]]
+                    --out DIR [--format json|table]
     aliasing frames --install [--engine ENGINE]
 
 writes ``DIR/engine.png`` (the engine's frame), ``DIR/predicted.png`` (the toolkit's shadow
@@ -138,7 +139,7 @@ def add_frames_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
     p.add_argument("--eye", metavar="X,Y,Z", help="camera position, world space (a scene file needs it; write --eye=-5,2,0 when X is negative)")
     p.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at, world space")
     p.add_argument("--path", metavar="KIND:STEP[:FRAMES]", help="a camera path for shimmer (threejs, babylon): sideways or forward, STEP world units per "
-                   "frame, FRAMES (default 30); the cascades follow it while the picture's camera stays, and flips_per_frame is added")
+                   "frame, or turn, STEP degrees per frame about the world's up; FRAMES (default 30); the cascades follow it while the picture's camera stays, and flips_per_frame is added")
     p.add_argument("--maps", nargs="?", type=int, const=1024, metavar="SIDE",
                    help="read the shadow maps back (threejs, babylon): every stride-th texel, at most SIDE per side (default 1024); "
                    "writes map<i>.npy and map<i>.png and adds maps (agreement with the toolkit's rasterizer) to the JSON")

@@ -17,7 +17,9 @@ the page drew.
 
 The tolerance (:func:`tolerance`) is derived, not fitted: the float32 depth's rounding
 (2⁻²⁴) plus SwiftShader's rasterization, which snaps every vertex to 1/2^4 of a texel
-(``SUBPIXEL_PRECISION_BITS`` 4, :data:`SUBPIXEL_BITS`): a corner moved by at most 1/32 texel
+(:data:`SUBPIXEL_BITS`; ``SUBPIXEL_PRECISION_BITS`` in SwiftShader's src/Vulkan/VkConfig.hpp is
+4 with ``SWIFTSHADER_LEGACY_PRECISION``, else 8, and the maps read back from Debian's Chromium
+show 4: their differences reach over 70 % of the 1/32-texel bound): a corner moved by at most 1/32 texel
 in s and t moves the depth at any inside point by at most (|∂d/∂i| + |∂d/∂j|)/32, with the
 depth's derivatives per texel of the triangle drawn there.  Texels on a triangle's edge (a
 different nearest triangle in the toolkit's 3 × 3 neighbourhood) are left out: there the
