@@ -84,10 +84,15 @@ def matrices(settings: dict, camera, sun: Array, triangles: Array) -> Array:
     s = MODELS["babylon"].settings(settings)
     if not s["depthClamp"]:
         raise ValueError("depthClamp must be true (the depth range modelled)")
-    tri = np.asarray(triangles, float)
+    from .. import _validation as check
+
+    tri = check.finite(triangles, "triangles")
     if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri):
         raise ValueError(f"triangles must have shape (T, 3, 3), T >= 1, got {tri.shape}")
-    d = MIRROR @ (-np.asarray(sun, float))
+    sv = check.finite(sun, "sun")
+    if sv.shape != (3,) or not np.linalg.norm(sv) > 0:
+        raise ValueError(f"sun must be a non-zero 3-vector, got {sv.tolist()}")
+    d = MIRROR @ (-sv)
     d = d / np.linalg.norm(d)
     if abs(d @ UP) == 1.0:
         d[2] = 1e-13

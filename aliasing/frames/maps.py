@@ -160,8 +160,17 @@ def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], to
     within the tolerance), ``max_difference`` (the largest |engine − toolkit| there) and
     ``max_over_tolerance`` (the largest difference over its tolerance).
     """
+    if not isinstance(engine_map, EngineMap):
+        raise ValueError(f"engine_map must be an EngineMap, got {type(engine_map).__name__}")
+    r = engine_map.size
+    depth, triangle, tol = np.asarray(depth, float), np.asarray(triangle), np.asarray(tol, float)
+    for name, a in (("depth", depth), ("triangle", triangle), ("tol", tol)):
+        if a.shape != (r, r):
+            raise ValueError(f"{name} must have the map's shape ({r}, {r}), got {a.shape}")
     s = engine_map.stride
     n = engine_map.depth.shape[0]
+    if n != -(-r // s) and n != r // s:
+        raise ValueError(f"the engine's map of side {n} is not every {s}th texel of {r}")
     p, tid, tt = depth[::s, ::s][:n, :n], triangle, tol[::s, ::s][:n, :n]
     interior_full = ndimage.maximum_filter(tid, 3, mode="nearest") == ndimage.minimum_filter(tid, 3, mode="nearest")
     interior_full &= tid >= 0
