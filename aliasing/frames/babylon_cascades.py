@@ -6,7 +6,7 @@ job's world mirrored in z):
 
 * the slice's 8 corners (the camera's near-to-far corner rays cut at the cascade's ends) and
   their centroid c;
-* ``stabilizeCascades``: a cube of half side r = ⌈16 · max |corner − c|⌉ / 16 about c; otherwise
+* ``stabilizeCascades``: a cube of half side r = ⌈16 · (the corners' largest distance from c)⌉ / 16 about c; otherwise
   the corners' box in the frame ``Matrix.LookAtLH(c, c + d, Up)``;
 * the shadow camera at c + d · min z, ``LookAtLH(camera, c, Up)``; its depth range [0, box depth]
   tightened to the casters' bounding box with depth clamp (z min = max(0, casters' min),

@@ -20,7 +20,7 @@ The tolerance (:func:`tolerance`) is derived, not fitted: the float32 depth's ro
 (:data:`SUBPIXEL_BITS`; ``SUBPIXEL_PRECISION_BITS`` in SwiftShader's src/Vulkan/VkConfig.hpp is
 4 with ``SWIFTSHADER_LEGACY_PRECISION``, else 8, and the maps read back from Debian's Chromium
 show 4: their differences reach over 70 % of the 1/32-texel bound): a corner moved by at most 1/32 texel
-in s and t moves the depth at any inside point by at most (|∂d/∂i| + |∂d/∂j|)/32, with the
+in s and t moves the depth at any inside point by at most (abs ∂d/∂i + abs ∂d/∂j)/32, with the
 depth's derivatives per texel of the triangle drawn there.  Texels on a triangle's edge (a
 different nearest triangle in the toolkit's 3 × 3 neighbourhood) are left out: there the
 snapped edge decides which triangle covers the texel.
@@ -131,7 +131,7 @@ def stored_depth(engine: str, settings: dict, triangles: Array, sun: Array, matr
 
 
 def tolerance(map_triangles: Array, triangle: NDArray[np.int64]) -> Array:
-    """Per texel: 2⁻²⁴ + (|∂d/∂i| + |∂d/∂j|) / 2^(SUBPIXEL_BITS + 1) of the triangle drawn there
+    """Per texel: 2⁻²⁴ + (abs ∂d/∂i + abs ∂d/∂j) / 2^(SUBPIXEL_BITS + 1) of the triangle drawn there
     (``map_triangles``: (T, 3, 3) in map space; ``triangle``: (R, R) indices, −1 empty; the
     derivatives are per texel of the R-texel map).
     """
@@ -157,7 +157,7 @@ def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], to
     Returns ``size``, ``stride``, ``texels`` (read back), ``covered`` (drawn in either map),
     ``coverage_agreement`` (fraction of the read texels drawn in both or in neither),
     ``interior`` (covered texels away from triangle edges), ``agreement`` (fraction of those
-    within the tolerance), ``max_difference`` (the largest |engine − toolkit| there) and
+    within the tolerance), ``max_difference`` (the largest absolute engine − toolkit difference there) and
     ``max_over_tolerance`` (the largest difference over its tolerance).
     """
     if not isinstance(engine_map, EngineMap):

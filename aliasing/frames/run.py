@@ -241,7 +241,7 @@ PATH_ENGINES = ("threejs", "babylon")
 def parse_path(spec: str, camera) -> list[dict]:
     """Camera poses of ``KIND:STEP[:FRAMES]``: KIND ``sideways`` (along the camera's right) or
     ``forward`` (along its view), STEP [world units per frame, finite, non-zero], or ``turn``
-    (the view turned about the world's up, y, through the eye; STEP [degrees per frame, |STEP| <= 10]);
+    (the view turned about the world's up, y, through the eye; STEP [degrees per frame, at most 10 in size]);
     FRAMES in [3, 120] (default 30); the first pose is the camera itself.
 
     Example
