@@ -11,7 +11,11 @@ depth bias, PCF's five rotated hardware-PCF taps), and the two are measured alik
 * acne within 2 percentage points, at three.js's defaults and with front faces casting at
   CSM's default bias (a bias below the one front faces need);
 * the lit gap at the boxes' feet within 1 px;
-* texels per pixel from the engine's matrices equal to the toolkit's fit to 1e-6 relative.
+* texels per pixel from the engine's matrices equal to the toolkit's fit to 1e-6 relative;
+* the engines' shadow maps, read back, equal to the toolkit's rasterizer's texel for texel
+  within float32 depth and SwiftShader's 1/16-texel snapping (three.js, Babylon.js);
+* shimmer along a camera path: three.js and Babylon.js (turning: ratio 0.8-1.25 to the
+  prediction; stabilized: none; moving forward: the engine's flips replayed, ERRATA F8).
 
 One browser per module.  Without Chromium, npm or Playwright the browser tests skip with one
 line, except under CI (``CI=true``), where that is a failure.
@@ -43,8 +47,8 @@ CAMERA_SPEC = f"near=0.5,far=60,fov=50,aspect=16:9,height={HEIGHT}"
 SUN = (35.0, 30.0)  # elevation, azimuth [deg]
 
 
-def _frame(browser, engine: str, scene, settings: dict):
-    return frame_setup(browser, setups.build(engine, settings, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}"), scene)
+def _frame(browser, engine: str, scene, settings: dict, **extra):
+    return frame_setup(browser, setups.build(engine, settings, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}"), scene, **extra)
 
 
 def _need(what: str, how: str) -> None:
@@ -84,7 +88,11 @@ def babylon(chromium, boxes):
         install.install("babylon")
     except install.MissingTool as e:
         _need("the pinned Babylon.js package", str(e))
-    return {name: _frame(chromium, "babylon", fs, settings) for name, settings in (("defaults", {}), ("bias 0", {"bias": 0}), ("bias 4e-4", {"bias": 0.0004}))}
+    # the defaults' frame also reads its maps back and follows a camera turning 0.2 degrees per frame;
+    # the 4e-4 one follows a camera moving forward
+    return {name: _frame(chromium, "babylon", fs, settings, **extra) for name, settings, extra in (
+        ("defaults", {}, {"path": "turn:0.2:4", "maps": 256}), ("bias 0", {"bias": 0}, {}),
+        ("bias 4e-4", {"bias": 0.0004}, {"path": "forward:0.05:4"}))}
 
 
 @pytest.fixture(scope="module")
@@ -211,6 +219,65 @@ def test_threejs_shimmer_along_a_sideways_path(chromium, boxes):
     assert (((pair > 0.05) & (pair < 0.95)).any(0))[flipped].all()
 
 
+def _maps_agree(maps: dict, k: int, size: int, stride: int) -> None:
+    # the engine's stored depths equal the toolkit's rasterizer's, texel for texel away from triangle
+    # edges, within float32 depth and SwiftShader's 1/16-texel vertex snapping; drawn where it draws
+    assert len(maps["cascades"]) == k, maps
+    for c in maps["cascades"]:
+        assert c["size"] == size and c["stride"] == stride and c["texels"] == (size // stride) ** 2, c
+        assert c["interior"] > 1000 and c["agreement"] == 1.0 and c["max_over_tolerance"] < 1.0, c
+        assert c["coverage_agreement"] >= 0.9999, c
+    # the differences reach 70-95 % of the 1/32-texel bound: the snapping is real, and coarser than
+    # 8 subpixel bits (which would bound them 16 times lower)
+    assert all(c["max_over_tolerance"] > 0.7 for c in maps["cascades"]), maps
+
+
+def test_babylon_shimmer_along_a_turning_path(chromium, boxes, babylon):
+    # the cascades follow a camera turning 0.2 degrees per frame while the picture's camera stays.
+    # Unstabilized (the default) the tight box changes with the view and the acne moves over the lit
+    # surfaces: the toolkit's maps through its own predicted matrices flip as many pixels.
+    # Stabilized, Babylon.js keeps the cube's side (rounded to 1/16) and rounds the origin to a
+    # texel: the toolkit predicts no flip, and the engine flips almost none
+    fs, sun = boxes
+    off = babylon["defaults"].report
+    m, p = off["measured"]["flips_per_frame"], off["predicted"]["flips_per_frame"]
+    assert p > 0.05 and 0.8 <= m / p <= 1.25, off
+    assert round(m, 2) == round(p, 2) == 0.52, off  # the docs' numbers
+    setup = setups.build("babylon", {"mapSize": 512, "numCascades": 2, "stabilizeCascades": True}, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")
+    on = frame_setup(chromium, setup, fs, path="turn:0.2:4").report
+    assert on["predicted"]["flips_per_frame"] == 0.0 and on["measured"]["flips_per_frame"] < 1e-4, on
+    for r in (on, off):
+        assert r["details"]["path_matrices_vs_engine"] <= 1e-6, r["details"]  # float32 (F6)
+
+
+def test_babylon_forward_path_flips_are_float32_and_subpixel_snapping(babylon, boxes):
+    # moving forward, the tight box keeps its size: the toolkit (float64) predicts whole-texel shifts
+    # and no flip. The engine's float32 box width alternates between two values along the path, and
+    # SwiftShader snaps the casters' corners to 1/16 texel: the toolkit's maps through the engine's
+    # own pose matrices with the corners so snapped flip the engine's pixels (ERRATA F8)
+    from aliasing.frames.run import parse_path, replay
+
+    fs, sun = boxes
+    r = babylon["bias 4e-4"]
+    rep = r.report
+    m = rep["measured"]["flips_per_frame"]
+    assert rep["predicted"]["flips_per_frame"] == 0.0 and m > 1e-3, rep
+    assert rep["details"]["path_matrices_vs_engine"] <= 2e-7, rep["details"]
+    sides = {np.float32(np.linalg.norm(np.asarray(f["matrices"][0], float).reshape(4, 4).T[0, :3])) for f in r.readback.info["path"]}
+    assert len(sides) == 2 and round(float(np.diff(sorted(sides))[0] / min(sides)), 7) == 3.4e-6, sides
+    poses = parse_path("forward:0.05:4", fs.camera)
+    snapped, exact = replay(r, fs, sun, poses), replay(r, fs, sun, poses, subpixel_bits=None)
+    assert 0.8 <= m / snapped["flips_per_frame"] <= 1.25 and snapped["shared"] >= 0.99, snapped
+    assert round(m, 3) == round(snapped["flips_per_frame"], 3) == 0.003, (m, snapped)  # the docs' numbers
+    assert round(exact["flips_per_frame"], 3) == 0.001 and exact["shared"] < 0.2, exact  # float32 matrices alone: a third
+
+
+def test_babylon_maps_are_the_toolkits(babylon):
+    maps = babylon["defaults"].report["maps"]
+    _maps_agree(maps, 4, 1024, 4)
+    assert round(maps["max_difference"], 5) == 1.1e-4, maps  # the docs' number
+
+
 def test_threejs_readback_is_the_frame(three, boxes):
     fs, sun = boxes
     rb = three["defaults"].readback
@@ -254,7 +321,7 @@ BASE = ["--scene", "boxes", "--camera", "near=0.5,far=60,fov=50,aspect=16:9,heig
     (["--engine", "threejs", "--set", "shadowBiass=0"], "unknown three.js setting 'shadowBiass'"),
     (["--engine", "threejs@r184"], "the frames render threejs r187 only"),
     (["--engine", "threejs", "--set", "class=DirectionalLight"], "class must be CSM for the frames"),
-    (["--engine", "babylon", "--path", "sideways:0.1"], "the camera path is rendered for threejs only"),
+    (["--engine", "playcanvas", "--path", "sideways:0.1"], "the camera path is rendered for threejs and babylon only"),
     (["--engine", "threejs", "--path", "diagonal:0.1"], "--path must be KIND:STEP[:FRAMES]"),
     (["--engine", "threejs", "--scene", "no-such.glb"], "scene must be boxes, city or an existing scene file"),
 ])
@@ -264,6 +331,20 @@ def test_cli_bad_input_is_one_line(tmp_path, args, message):
     done = _cli(*full)
     assert done.returncode == 2, done
     assert done.stderr.count("\n") == 1 and message in done.stderr, done.stderr
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--engine", "playcanvas", "--maps"], "the shadow maps are read back for threejs and babylon"),
+    (["--engine", "threejs", "--maps", "8"], "--maps SIDE) must be a whole number of texels per side in [16, 4096]"),
+    (["--engine", "threejs", "--path", "turn:20"], "--path turn STEP must be at most 10 degrees"),
+])
+def test_cli_maps_and_turn_bad_input_is_one_line(tmp_path, capsys, args, message):
+    # refused before the browser starts (in this process: the one-line contract is the subprocess test's above)
+    from aliasing.cli import main
+
+    assert main(["frames", *BASE, "--out", str(tmp_path), *args]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and message in err, err
 
 
 def test_cli_without_chromium_says_how_to_install(tmp_path):
@@ -279,9 +360,26 @@ def test_cli_without_the_engine_package_says_how_to_install(tmp_path, chromium):
 
 
 def test_cli_writes_the_frame_and_the_report(tmp_path, chromium):
-    done = _cli(*BASE, "--engine", "threejs", "--set", "material.shadowSide=FrontSide", "--out", str(tmp_path), "--format", "json")
+    done = _cli(*BASE, "--engine", "threejs", "--set", "material.shadowSide=FrontSide", "--out", str(tmp_path), "--format", "json", "--maps", "256")
     assert done.returncode == 0, done.stderr
     report = json.loads(done.stdout)
+    _maps_agree(report["maps"], 3, 2048, 8)  # the engine's maps, every 8th texel, are the toolkit's
+    assert round(report["maps"]["max_difference"], 7) == 1.4e-6, report["maps"]  # the docs' number
+    from aliasing.frames.maps import EngineMap, compare, snapped_depth_map
+    from aliasing.frames.predict import casting
+
+    fs = scenes.frame_scene("boxes", near=0.5, far=60.0, fov=50.0, aspect=16 / 9)
+    sun = scenes.sun_direction(*SUN, fs.camera)
+    tri = fs.triangles.astype(np.float32).astype(float)
+    for i, c in enumerate(report["maps"]["cascades"]):
+        got = np.load(tmp_path / f"map{i}.npy")
+        assert got.shape == (256, 256) and got.dtype == np.float32 and 0 <= got.min() and got.max() <= 1
+        assert (tmp_path / f"map{i}.png").read_bytes()[:4] == b"\x89PNG"
+        if i > 0:  # the toolkit's corners snapped to 1/16 texel as SwiftShader's: float32 agreement
+            dm = snapped_depth_map(tri[casting(tri, sun, "front")], np.array(c["matrix"]), 2048, 4)
+            depth = np.where(np.isfinite(dm.depth), dm.depth, 1.0)
+            snapped = compare(EngineMap(got.astype(float), 2048, 8), depth, dm.triangle, np.full(depth.shape, 2.0**-23))
+            assert snapped["agreement"] == 1.0, snapped
     assert set(report["measured"]) == {"shadow_agreement", "acne", "gap_px", "texels_per_pixel"}
     assert set(report["predicted"]) == {"acne", "gap_px", "texels_per_pixel"}
     assert report["engine"] == "threejs" and report["release"] == "r187" and report["details"]["engine_revision"] == "187"
@@ -314,3 +412,41 @@ def test_cli_renders_an_exported_scene_file_and_refuses_a_broken_one(tmp_path, c
     bad.write_bytes(b"not a glb")
     done = _cli("--scene", str(bad), *args, "--out", str(tmp_path / "out2"))
     assert done.returncode == 2 and done.stderr.count("\n") == 1 and "could not be loaded" in done.stderr, done.stderr
+
+
+from hypothesis import given, settings as hsettings, strategies as st  # noqa: E402
+
+
+@hsettings(max_examples=60, deadline=None)
+@given(kind=st.sampled_from(["sideways", "forward", "turn", "up", ""]), step=st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.text(max_size=4)),
+       n=st.one_of(st.none(), st.integers(-5, 200)))
+def test_parse_path_fuzz(kind, step, n):
+    # every spec gives FRAMES poses starting at the camera, or one ValueError naming --path
+    from aliasing.frames.run import parse_path
+    from aliasing.raster.scenes.camera import look_at
+
+    cam = look_at("0,1,0", "0,1,-1")
+    spec = f"{kind}:{step}" + ("" if n is None else f":{n}")
+    try:
+        poses = parse_path(spec, cam)
+    except ValueError as e:
+        assert "--path" in str(e)
+        return
+    assert len(poses) == (30 if n is None else n) and np.allclose(poses[0]["eye"], cam.eye)
+    assert all(np.isfinite(p["eye"]).all() and np.isfinite(p["target"]).all() for p in poses)
+
+
+@hsettings(max_examples=40, deadline=None)
+@given(tri=st.lists(st.floats(-2, 2), min_size=9, max_size=9), bits=st.one_of(st.none(), st.integers(-2, 20)))
+def test_snapped_maps_and_tolerance_fuzz(tri, bits):
+    from aliasing.frames.maps import snapped_depth_map, tolerance
+
+    t = np.array(tri).reshape(1, 3, 3)
+    try:
+        dm = snapped_depth_map(t, np.eye(4), 16, bits)
+    except ValueError as e:
+        assert "subpixel_bits" in str(e) and not (bits is None or 0 <= bits <= 16)
+        return
+    assert bits is None or 0 <= bits <= 16
+    tol = tolerance(t, dm.triangle)
+    assert tol.shape == (16, 16) and (tol >= 2.0**-24).all()

@@ -7,7 +7,9 @@ pixel, the raw shadow factor the engine multiplied into the sun's light, the cas
 sampled, the world position and normal, and per cascade the light matrix and map size
 (:mod:`.readback`).  The toolkit predicts the same pixels with its own rasterizer and the
 engine's rules (:mod:`.models`, :mod:`.predict`), and both are measured alike
-(:mod:`.compare`, :mod:`.run`); ``aliasing frames`` is the command (:mod:`.command`).
+(:mod:`.compare`, :mod:`.run`); the shadow maps themselves can be read back and checked texel
+for texel (:mod:`.maps`), and Babylon.js's cascade matrices are predicted (:mod:`.babylon_cascades`);
+``aliasing frames`` is the command (:mod:`.command`).
 
 ``import aliasing.frames`` needs neither Playwright nor Chromium: they are looked for when a
 frame is rendered.

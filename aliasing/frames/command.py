@@ -4,12 +4,14 @@
 
     aliasing frames --engine threejs|babylon|playcanvas --scene boxes|city|FILE [--eye X,Y,Z --target X,Y,Z]
                     --camera near=N,far=F,fov=DEG,aspect=A,height=PX --sun ELEV[..ELEV][@AZ]
-                    [--settings FILE] [--set KEY=VALUE]... --out DIR [--format json|table]
+                    [--settings FILE] [--set KEY=VALUE]... [--path KIND:STEP[:FRAMES]] [--maps [SIDE]]
+                    --out DIR [--format json|table]
     aliasing frames --install [--engine ENGINE]
 
 writes ``DIR/engine.png`` (the engine's frame), ``DIR/predicted.png`` (the toolkit's shadow
 factor), ``DIR/difference.png`` (red: the engine shadows what the toolkit lights; blue: the
-reverse) and ``DIR/frames.json`` (``engine``, ``release``, ``measured``, ``predicted``), and
+reverse) and ``DIR/frames.json`` (``engine``, ``release``, ``measured``, ``predicted``; with
+``--maps`` also ``maps``, and ``DIR/map<i>.npy``/``.png`` the engine's shadow maps), and
 prints the JSON (or a table).  Nothing is downloaded unless ``--install`` is given: without the
 engine's pinned package, Chromium or Playwright, one line says how to install it (exit 2).
 A sun range ``LO..HI`` is drawn at its middle elevation (a frame has one sun).  ``--engine``,
@@ -65,9 +67,13 @@ def run(args: argparse.Namespace) -> dict:
         raise ValueError("--scene, --camera, --sun and --out are required (or --install)")
     setup = setups.from_args(args)
     if args.path is not None:
-        if setup.engine != "threejs":
-            raise ValueError(f"--path: the camera path is rendered for threejs only (not yet for {setup.engine})")
+        if setup.engine not in frames_run.PATH_ENGINES:
+            raise ValueError(f"--path: the camera path is rendered for {' and '.join(frames_run.PATH_ENGINES)} only (not yet for {setup.engine})")
         frames_run.parse_path(args.path, scenes.frame_scene("boxes", near=1.0, far=2.0, fov=50.0, aspect=1.0, boxes=0, ground_cells=1).camera)
+    if args.maps is not None:
+        if setup.engine not in ("threejs", "babylon"):
+            raise ValueError(f"--maps: the shadow maps are read back for threejs and babylon (not yet for {setup.engine})")
+        frames_run._map_side(args.maps)
     if setup.release != PINS[name].release:
         raise ValueError(f"--engine {args.engine}: the frames render {name} {PINS[name].release} only (the pinned npm release), not {setup.release}")
     cam = setup.camera
@@ -79,10 +85,14 @@ def run(args: argparse.Namespace) -> dict:
     out.mkdir(parents=True, exist_ok=True)
     try:
         with browser.Browser(timeout=args.timeout) as b:
-            result = frames_run.frame_setup(b, setup, fs, path=args.path)
+            result = frames_run.frame_setup(b, setup, fs, path=args.path, maps=args.maps)
     except (MissingTool, browser.PageError) as e:
         raise ValueError(str(e)) from None
     write_images(out, result)
+    if args.maps is not None:
+        from .maps import decode_maps, write_maps
+
+        result.report["maps"]["files"] = write_maps(out, decode_maps(result.readback.info))
     report = json_safe(result.report)
     (out / "frames.json").write_text(json.dumps(report, indent=1) + "\n")
     return report
@@ -128,8 +138,11 @@ def add_frames_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
     p.add_argument("--scene", help="boxes, city or a scene file (.glb, .gltf, .obj, .ply, .stl)")
     p.add_argument("--eye", metavar="X,Y,Z", help="camera position, world space (a scene file needs it; write --eye=-5,2,0 when X is negative)")
     p.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at, world space")
-    p.add_argument("--path", metavar="KIND:STEP[:FRAMES]", help="a camera path for shimmer (threejs): sideways or forward, STEP world units per "
-                   "frame, FRAMES (default 30); the cascades follow it while the picture's camera stays, and flips_per_frame is added")
+    p.add_argument("--path", metavar="KIND:STEP[:FRAMES]", help="a camera path for shimmer (threejs, babylon): sideways or forward, STEP world units per "
+                   "frame, or turn, STEP degrees per frame about the world's up; FRAMES (default 30); the cascades follow it while the picture's camera stays, and flips_per_frame is added")
+    p.add_argument("--maps", nargs="?", type=int, const=1024, metavar="SIDE",
+                   help="read the shadow maps back (threejs, babylon): every stride-th texel, at most SIDE per side (default 1024); "
+                   "writes map<i>.npy and map<i>.png and adds maps (agreement with the toolkit's rasterizer) to the JSON")
     p.add_argument("--out", metavar="DIR", help="directory for engine.png, predicted.png, difference.png, frames.json")
     p.add_argument("--format", default="json", choices=["json", "table"], help="what is printed (default json)")
     p.add_argument("--timeout", type=float, default=120.0, help="seconds a page load or a frame may take (default 120)")

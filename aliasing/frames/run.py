@@ -37,10 +37,11 @@ class FrameResult:
     report: dict
 
 
-def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: list[dict] | None = None) -> dict:
+def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: list[dict] | None = None, maps: int | None = None) -> dict:
     """The page's job: the scene's triangles (base64 float32), the camera, the sun and the settings.
 
-    ``height`` [px] in [16, 2160]; the width is round(aspect · height).
+    ``height`` [px] in [16, 2160]; the width is round(aspect · height).  ``maps``: read the
+    shadow maps back, at most this many texels per side (:mod:`aliasing.frames.maps`).
     """
     h = int(height)
     if h != height or not 16 <= h <= 2160:
@@ -53,7 +54,15 @@ def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: l
     return {"width": w, "height": h, "triangles": base64.b64encode(tri.tobytes()).decode(),
             "camera": {"eye": cam.eye.tolist(), "target": (cam.eye + cam.rotation[2]).tolist(), "up": cam.rotation[1].tolist(),
                        "near": cam.near, "far": cam.far, "fov": cam.fov},
-            "sun": [float(v) for v in sun], "settings": settings, "ground": scene.ground, "path": path}
+            "sun": [float(v) for v in sun], "settings": settings, "ground": scene.ground, "path": path,
+            "maps": None if maps is None else {"side": _map_side(maps)}}
+
+
+def _map_side(maps) -> int:
+    m = int(maps) if isinstance(maps, (int, np.integer)) and not isinstance(maps, bool) else -1
+    if not 16 <= m <= 4096:
+        raise ValueError(f"maps (--maps SIDE) must be a whole number of texels per side in [16, 4096], got {maps!r}")
+    return m
 
 
 def _ground_pixels(scene: FrameScene, rb: Readback) -> NDArray[np.bool_]:
@@ -134,7 +143,7 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     return FrameResult(rb, pred, ref, settings, report)
 
 
-def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, path: str | None = None) -> FrameResult:
+def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, path: str | None = None, maps: int | None = None) -> FrameResult:
     """Render an :class:`aliasing.setups.Setup` (engine, settings, camera with image size, sun) on ``scene``.
 
     ``scene`` must have been built with the setup's camera (:func:`aliasing.frames.scenes.frame_scene`);
@@ -153,7 +162,11 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     sun : array_like (3,), optional
         World direction towards the sun.
     path : str, optional
-        ``KIND:STEP[:FRAMES]`` (:func:`parse_path`): adds ``flips_per_frame`` (three.js).
+        ``KIND:STEP[:FRAMES]`` (:func:`parse_path`): adds ``flips_per_frame``.
+    maps : int, optional
+        Read the shadow maps back (three.js, Babylon.js), every stride-th texel so that at most
+        ``maps`` texels per side come back, and add ``report["maps"]``: the engine's maps
+        against the toolkit's rasterizer (:func:`aliasing.frames.maps.measure_maps`).
 
     Example
     -------
@@ -195,11 +208,21 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     sv = np.asarray(sun, float) / np.linalg.norm(sun)
     poses = None
     if path is not None:
-        if setup.engine != "threejs":
-            raise ValueError(f"--path: the camera path is rendered for threejs only (not yet for {setup.engine})")
+        if setup.engine not in PATH_ENGINES:
+            raise ValueError(f"--path: the camera path is rendered for {' and '.join(PATH_ENGINES)} only (not yet for {setup.engine})")
         poses = parse_path(path, scene.camera)
-    out = browser.render(setup.engine, make_job(scene, sv, settings, cam.height, poses))
+    if maps is not None:
+        _map_side(maps)
+        if setup.engine not in ("threejs", "babylon"):
+            raise ValueError(f"--maps: the shadow maps are read back for threejs and babylon (not yet for {setup.engine})")
+    out = browser.render(setup.engine, make_job(scene, sv, settings, cam.height, poses, maps))
     result = measure(setup.engine, scene, sv, settings, out, pipeline=setup.pipeline)
+    if maps is not None:
+        from . import maps as frame_maps
+
+        got = frame_maps.decode_maps(out)
+        mats = np.array([np.asarray(m["matrix"], float).reshape(4, 4).T for m in out["maps"]]) if "matrix" in out["maps"][0] else result.readback.matrices
+        result.report["maps"] = frame_maps.measure_maps(setup.engine, settings, scene.triangles, sv, mats, got)
     if poses is not None:
         sh = shimmer(result, scene, sv, poses)
         result.report["measured"]["flips_per_frame"] = sh["measured"]
@@ -211,13 +234,15 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     return result
 
 
-PATHS = ("sideways", "forward")
+PATHS = ("sideways", "forward", "turn")
+PATH_ENGINES = ("threejs", "babylon")
 
 
 def parse_path(spec: str, camera) -> list[dict]:
     """Camera poses of ``KIND:STEP[:FRAMES]``: KIND ``sideways`` (along the camera's right) or
-    ``forward`` (along its view), STEP [world units per frame, finite, non-zero], FRAMES in [3, 120]
-    (default 30); the first pose is the camera itself.
+    ``forward`` (along its view), STEP [world units per frame, finite, non-zero], or ``turn``
+    (the view turned about the world's up, y, through the eye; STEP [degrees per frame, at most 10 in size]);
+    FRAMES in [3, 120] (default 30); the first pose is the camera itself.
 
     Example
     -------
@@ -237,8 +262,27 @@ def parse_path(spec: str, camera) -> list[dict]:
         raise ValueError(f"--path STEP must be finite and non-zero [world units per frame], got {parts[1]!r}")
     if not 3 <= n <= 120:
         raise ValueError(f"--path FRAMES must be in [3, 120], got {n}")
+    if parts[0] == "turn":
+        if abs(step) > 10:
+            raise ValueError(f"--path turn STEP must be at most 10 degrees per frame in size, got {parts[1]!r}")
+        out = []
+        for i in range(n):
+            a = np.radians(i * step)
+            rot = np.array([[np.cos(a), 0.0, np.sin(a)], [0.0, 1.0, 0.0], [-np.sin(a), 0.0, np.cos(a)]])
+            out.append({"eye": camera.eye.tolist(), "target": (camera.eye + rot @ camera.rotation[2]).tolist()})
+        return out
     axis = camera.rotation[0] if parts[0] == "sideways" else camera.rotation[2]
     return [{"eye": (camera.eye + i * step * axis).tolist(), "target": (camera.eye + i * step * axis + camera.rotation[2]).tolist()} for i in range(n)]
+
+
+def pose_camera(camera, pose: dict):
+    """``camera`` moved to a pose of :func:`parse_path` (its eye, looking at its target, with the camera's own up)."""
+    from dataclasses import replace
+
+    from ..raster.scenes.camera import frame
+
+    eye = np.asarray(pose["eye"], float)
+    return replace(camera, eye=eye, rotation=frame(np.asarray(pose["target"], float) - eye, camera.rotation[1]) + 0.0)
 
 
 def flips(masks: NDArray[np.bool_], keep: NDArray[np.bool_]) -> float:
@@ -263,6 +307,8 @@ def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]
     measured = np.array([np.frombuffer(__import__("base64").b64decode(f["shadow"]), np.float32).reshape(h, w)[::-1] for f in frames])
     keep = rb.drawn & (rb.cascade >= 0)
     out = {"measured": flips(measured < 0.5, keep), "predicted": None, "matrices_vs_engine": None}
+    if rb.engine == "babylon":
+        return {**out, **_babylon_shimmer(result, scene, sun, path, frames, keep)}
     model = MODELS[rb.engine] if rb.engine in MODELS else None
     if model is None or not hasattr(model, "matrices"):
         return out
@@ -272,7 +318,7 @@ def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]
     pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
     masks, worst = [], 0.0
     for pose, f in zip(path, frames):
-        cam = replace(scene.camera, eye=np.asarray(pose["eye"], float))
+        cam = pose_camera(scene.camera, pose)
         mats = model.matrices(s, cam, sun)
         eng = np.array([np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
         worst = max(worst, float(np.max(np.abs(mats - eng)) / np.max(np.abs(eng))))
@@ -283,3 +329,83 @@ def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]
     out["predicted"] = flips(np.array(masks), keep)
     out["matrices_vs_engine"] = worst
     return out
+
+
+def _babylon_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], frames: list[dict], keep) -> dict:
+    """Babylon.js's predicted flips: each pose's predicted matrices (:mod:`aliasing.frames.babylon_cascades`),
+    the toolkit's maps and Babylon.js's factor at the same pixels (the picture's cascades and depths)."""
+    from dataclasses import replace
+
+    from . import babylon_cascades, predict
+
+    rb, s = result.readback, result.settings
+    model = MODELS["babylon"]
+    cam0 = scene.camera
+    h, w = rb.shadow.shape
+    depth = np.where(rb.drawn, cam0.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
+    edges = model.edges(s, cam0)
+    pct = float(s["cascadeBlendPercentage"])
+    res = int(s["mapSize"])
+    cast = predict.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, model.cast_side(s))], sun, float(s["normalBias"]))
+    pts = np.nan_to_num(rb.position)
+    to_unit = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+    masks, worst = [], 0.0
+    for pose, f in zip(path, frames):
+        cam = pose_camera(cam0, pose)
+        mats = babylon_cascades.matrices(s, cam, sun, scene.triangles)
+        eng = np.array([to_unit @ np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
+        worst = max(worst, float(np.max(np.abs(mats - eng)) / np.max(np.abs(eng))))
+        maps = [predict.light_depth_map(cast, m, res) for m in mats]
+        fac = predict.babylon_factor(maps, mats, result.prediction.cascade, depth, pts, ends=edges[1:], lengths=np.diff(edges),
+                                     blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
+        masks.append(fac < 0.5)
+    return {"predicted": flips(np.array(masks), keep), "matrices_vs_engine": worst}
+
+
+def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], subpixel_bits: int | None = 4) -> dict:
+    """An engine's path replayed by the toolkit through the *engine's* pose matrices (read back),
+    with the casters' corners snapped to 1/2^``subpixel_bits`` texel (:func:`aliasing.frames.maps.snapped_depth_map`;
+    SwiftShader: 4; None: exact): ``flips_per_frame`` and ``shared``, the fraction of the engine's
+    flips (pixel and frame) that the replay also flips.  A diagnostic of where the engine's flips
+    come from, when the toolkit's own prediction is 0 (ERRATA F7, F8).
+    """
+    from . import maps as frame_maps, predict
+
+    rb, s = result.readback, result.settings
+    if rb.engine not in PATH_ENGINES:
+        raise ValueError(f"replay is for {' and '.join(PATH_ENGINES)} frames, got {rb.engine!r}")
+    frames = rb.info.get("path") or []
+    if len(frames) != len(path):
+        raise ValueError("the page returned no camera path")
+    model = MODELS[rb.engine]
+    h, w = rb.shadow.shape
+    keep = rb.drawn & (rb.cascade >= 0)
+    pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+    tri = np.asarray(scene.triangles, np.float32).astype(float)
+    cast = tri[predict.casting(tri, sun, model.cast_side(s))]
+    to_unit = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+    engine = np.array([np.frombuffer(__import__("base64").b64decode(f["shadow"]), np.float32).reshape(h, w)[::-1] for f in frames]) < 0.5
+    if rb.engine == "babylon":
+        cast = predict.offset_casters(cast, sun, float(s["normalBias"]))
+        depth = np.where(rb.drawn, scene.camera.to_eye(pts)[..., 2], np.nan)
+        edges = model.edges(s, scene.camera)
+        pct = float(s["cascadeBlendPercentage"])
+        res = int(s["mapSize"])
+
+        def factor(maps, mats):
+            return predict.babylon_factor(maps, mats, result.prediction.cascade, depth, pts, ends=edges[1:], lengths=np.diff(edges),
+                                          blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
+    else:
+        fy, fx = np.mgrid[0:h, 0:w]
+        res = int(s["shadowMapSize"])
+
+        def factor(maps, mats):
+            return predict.threejs_factor(maps, mats, result.prediction.cascade, pts, nrm, fx + 0.5, (h - 1 - fy) + 0.5, bias=float(s["shadowBias"]),
+                                          normal_bias=float(s["normalBias"]), radius=float(s["shadowRadius"]), map_type=s["shadowMapType"])
+    masks = []
+    for f in frames:
+        mats = np.array([(to_unit if rb.engine == "babylon" else np.eye(4)) @ np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
+        masks.append(factor([frame_maps.snapped_depth_map(cast, m, res, subpixel_bits) for m in mats], mats) < 0.5)
+    masks = np.array(masks)
+    fe, fp = np.diff(engine[:, keep], axis=0), np.diff(masks[:, keep], axis=0)
+    return {"flips_per_frame": flips(masks, keep), "shared": float((fe & fp).sum() / fe.sum()) if fe.any() else None}

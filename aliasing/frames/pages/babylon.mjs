@@ -30,7 +30,7 @@ import { ShaderStore } from "/node_modules/@babylonjs/core/Engines/shaderStore.j
 import "/node_modules/@babylonjs/core/Shaders/default.fragment.js";
 import "/node_modules/@babylonjs/core/Shaders/default.vertex.js";
 import "/node_modules/@babylonjs/core/Shaders/ShadersInclude/lightFragment.js";
-import { decodeF32, encode, flatNormals } from "./common.mjs";
+import { decodeF32, encode, flatNormals, readDepthTexture } from "./common.mjs";
 
 const PICK = "if (diff{X}>=0.) {index{X}=i;break;}}";
 
@@ -129,6 +129,16 @@ window.frame = async (job) => {
     const px = await rtt.readPixels(0, 0, null, true, false);
     out[name] = encode(new Float32Array(px.buffer, px.byteOffset, w * h * 4));
   }
+  // the shadow maps as drawn for this frame: the depth-stencil texture array the PCF lookup samples
+  // (job.maps: every stride-th texel, at most job.maps.side per side)
+  let maps = null;
+  if (job.maps) {
+    const depthTex = csm.getShadowMap().depthStencilTexture;
+    const stride = Math.max(1, Math.ceil(mapSize / job.maps.side));
+    const got = readDepthTexture(engine._gl, depthTex._hardwareTexture.underlyingResource, mapSize, stride, csm.numCascades);
+    maps = got.maps.map((m) => ({ depth: m, side: got.side, stride, size: mapSize }));
+    engine.wipeCaches(true);                            // Babylon.js's cached GL state: the pass above changed it
+  }
   const ms = performance.now() - t0;
   const cascades = [];
   for (let i = 0; i < csm.numCascades; i++) {
@@ -137,12 +147,43 @@ window.frame = async (job) => {
     cascades.push({ matrix: m, clip: true, size: [mapSize, mapSize], viewZ: csm._viewSpaceFrustumsZ[i],
                     length: csm._frustumLengths[i], min: csm.getCascadeMinExtents(i).asArray(), max: csm.getCascadeMaxExtents(i).asArray() });
   }
+  // a camera path: the cascades follow a second camera moving along it (the generator's camera)
+  // while the picture's camera stays, so every pixel keeps its world point and a change of its
+  // factor is the maps' motion alone
+  const path = [];
+  if (job.path) {
+    const fit = new FreeCamera("fit", mz(c.eye), scene);
+    fit.upVector = mz(c.up); fit.fov = camera.fov; fit.minZ = camera.minZ; fit.maxZ = camera.maxZ;
+    csm._camera = fit;                                  // ShadowGenerator._getCamera: this._camera ?? scene.activeCamera
+    mesh.material = materials[1];
+    const sm = csm.getShadowMap();
+    for (const pose of job.path) {
+      fit.position = mz(pose.eye);
+      fit.setTarget(mz(pose.target));
+      fit.getViewMatrix(true);
+      fit.getProjectionMatrix(true);                      // getTransformationMatrix multiplies the cached projection
+      sm.resetRefreshCounter();                           // the maps are drawn again, for this pose, by the next scene.render
+      scene.render();
+      rtt.render();
+      const px = await rtt.readPixels(0, 0, null, true, false);
+      const buf = new Float32Array(px.buffer, px.byteOffset, w * h * 4);
+      const factor = new Float32Array(w * h);
+      for (let i = 0; i < w * h; i++) factor[i] = buf[4 * i];
+      const matrices = [];
+      for (let i = 0; i < csm.numCascades; i++) {
+        const m = Array.from(csm.getCascadeTransformMatrix(i).m);
+        for (let j = 8; j < 12; j++) m[j] = -m[j];
+        matrices.push(m);
+      }
+      path.push({ shadow: encode(factor), matrices, clip: true });
+    }
+  }
   const gl = engine._gl;
   const dbg = gl.getExtension("WEBGL_debug_renderer_info");
   const used = {};
   for (const k of GEN_KEYS) used[k] = csm[k];
   used.mapSize = mapSize; used.filter = csm.filter; used.backFaceCulling = materials[0].backFaceCulling;
-  const res = { engine: "babylon", revision: Engine.Version, width: w, height: h, frame, ...out, cascades, used, ms,
+  const res = { engine: "babylon", revision: Engine.Version, width: w, height: h, frame, ...out, cascades, used, ms, maps, path,
                 renderer: dbg ? gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER) };
   engine.dispose();
   return res;

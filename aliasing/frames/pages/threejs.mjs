@@ -12,7 +12,7 @@
 // that also stores the factor; nothing else of the lighting is changed.
 import * as THREE from "three";
 import { CSM } from "three/addons/csm/CSM.js";
-import { decodeF32, encode, flatNormals } from "./common.mjs";
+import { decodeF32, encode, flatNormals, readDepthTexture } from "./common.mjs";
 
 const SIDES = { front: THREE.FrontSide, back: THREE.BackSide, double: THREE.DoubleSide };
 const MAP_TYPES = { BasicShadowMap: THREE.BasicShadowMap, PCFShadowMap: THREE.PCFShadowMap, PCFSoftShadowMap: THREE.PCFSoftShadowMap, VSMShadowMap: THREE.VSMShadowMap };
@@ -117,10 +117,22 @@ window.frame = async (job) => {
   const frame = canvas.toDataURL("image/png");
   const target = new THREE.WebGLRenderTarget(w, h, { type: THREE.FloatType, format: THREE.RGBAFormat, minFilter: THREE.NearestFilter, magFilter: THREE.NearestFilter });
   renderer.shadowMap.autoUpdate = false;                // the read-back passes reuse the frame's maps
+  const gl0 = renderer.getContext();
   const out = {};
   for (const [mode, name] of [[1, "shadow"], [2, "position"], [3, "normal"]]) {
     mesh.material = materials[mode];
     out[name] = encode(readTarget(renderer, scene, camera, target, w, h));
+  }
+  // the shadow maps as drawn for this frame (job.maps: every stride-th texel, at most job.maps.side per side)
+  let maps = null;
+  if (job.maps) {
+    maps = csm.lights.map((l) => {
+      const size = l.shadow.map.width, stride = Math.max(1, Math.ceil(size / job.maps.side));
+      const tex = renderer.properties.get(l.shadow.map.depthTexture).__webglTexture;
+      const got = readDepthTexture(gl0, tex, size, stride, null);
+      return { depth: got.maps[0], side: got.side, stride, size, matrix: [...l.shadow.matrix.elements] };
+    });
+    renderer.resetState();                              // three.js's cached GL state: the pass above changed it
   }
   // a camera path: the cascades follow a moving camera while the picture's camera stays, so every
   // pixel keeps its world point and a change of its factor is the maps' motion alone
@@ -150,7 +162,7 @@ window.frame = async (job) => {
   });
   const gl = renderer.getContext();
   const dbg = gl.getExtension("WEBGL_debug_renderer_info");
-  return { engine: "threejs", revision: THREE.REVISION, width: w, height: h, frame, ...out, cascades, breaks: [...csm.breaks], path,
+  return { engine: "threejs", revision: THREE.REVISION, width: w, height: h, frame, ...out, cascades, breaks: [...csm.breaks], path, maps,
            shadowMapType: renderer.shadowMap.type, ms,
            renderer: dbg ? gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER) };
 };

@@ -1,0 +1,219 @@
+"""The engines' shadow maps, read back and checked texel for texel against the toolkit's rasterizer.
+
+WebGL 2 cannot ``readPixels`` a depth texture.  With ``job["maps"]`` the engine's page draws
+each cascade's own depth texture (the one its shadow lookup samples: three.js's
+``light.shadow.map.depthTexture``, Babylon.js's depth-stencil texture array of the
+``CascadedShadowGenerator``) through a small pass of ``texelFetch`` into an RGBA32F colour
+target and reads that (``pages/common.mjs``, ``readDepthTexture``): the stored depth in
+[0, 1] as float32, every ``stride``-th texel in s and t so that at most ``side`` texels per
+side come back (a map of 2048² at ``side`` 1024: every second texel).
+
+The toolkit draws the same maps with its own rasterizer (:func:`aliasing.raster.rasterize`)
+through the engine's own light matrices, from the faces the engine casts, at the engine's
+map size, and stores what the engine stores (:func:`stored_depth`): three.js the window depth;
+Babylon.js, with its default depth clamp, the window depth of the casters moved by the normal
+bias, plus 1.5 × ``bias``, clamped to [0, 1] (ERRATA F4).  The triangles are the float32 ones
+the page drew.
+
+The tolerance (:func:`tolerance`) is derived, not fitted: the float32 depth's rounding
+(2⁻²⁴) plus SwiftShader's rasterization, which snaps every vertex to 1/2^4 of a texel
+(:data:`SUBPIXEL_BITS`; ``SUBPIXEL_PRECISION_BITS`` in SwiftShader's src/Vulkan/VkConfig.hpp is
+4 with ``SWIFTSHADER_LEGACY_PRECISION``, else 8, and the maps read back from Debian's Chromium
+show 4: their differences reach over 70 % of the 1/32-texel bound): a corner moved by at most 1/32 texel
+in s and t moves the depth at any inside point by at most (abs ∂d/∂i + abs ∂d/∂j)/32, with the
+depth's derivatives per texel of the triangle drawn there.  Texels on a triangle's edge (a
+different nearest triangle in the toolkit's 3 × 3 neighbourhood) are left out: there the
+snapped edge decides which triangle covers the texel.
+
+Example
+-------
+>>> tri = np.array([[[0, 0, 0.0], [1, 0, 0.0], [0, 1, 1.0]]])   # map space: depth = t
+>>> tol = tolerance(tri, np.zeros((4, 4), int))                  # a map of 4 texels: 1/4 of depth per texel in t
+>>> bool(np.allclose(tol, 2 ** -24 + 0.25 / 32))
+True
+"""
+
+from __future__ import annotations
+
+import base64
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy import ndimage
+
+from . import predict
+
+Array = NDArray[np.float64]
+SUBPIXEL_BITS = 4
+FLOAT32_DEPTH = 2.0**-24
+MAX_SIDE = 1024
+
+
+@dataclass(frozen=True)
+class EngineMap:
+    """One cascade's map as the engine stored it: ``depth`` (n, n) in [0, 1] (row j: t index
+    j·stride, column i: s index i·stride; 1 where nothing was drawn), the map's ``size`` R
+    [texels] and the ``stride`` of the texels read."""
+
+    depth: Array
+    size: int
+    stride: int
+
+
+def decode_maps(out: dict) -> list[EngineMap]:
+    """The page's ``maps`` (base64 float32 per cascade) as :class:`EngineMap` s.
+
+    Raises
+    ------
+    ValueError
+        The page returned no maps, or a map whose buffer does not match its side.
+    """
+    maps = out.get("maps") if isinstance(out, dict) else None
+    if not maps:
+        raise ValueError("the page returned no shadow maps (job maps not set)")
+    res = []
+    for m in maps:
+        n = int(m["side"])
+        d = np.frombuffer(base64.b64decode(m["depth"]), np.float32).astype(float)
+        if d.size != n * n:
+            raise ValueError(f"a read-back map of {d.size} depths does not match its side {n}")
+        res.append(EngineMap(d.reshape(n, n), int(m["size"]), int(m["stride"])))
+    return res
+
+
+def snapped_depth_map(triangles: Array, matrix: Array, size: int, subpixel_bits: int | None = SUBPIXEL_BITS):
+    """:func:`aliasing.frames.predict.light_depth_map` with each corner's (s, t) rounded to 1/2^bits of
+    a texel first, as a rasterizer with ``subpixel_bits`` of sub-texel precision places it (None: exact).
+
+    Example
+    -------
+    >>> tri = np.array([[[0.1, 0.1, 0.5], [0.9, 0.1, 0.5], [0.1, 0.9, 0.5]]])
+    >>> float(snapped_depth_map(tri, np.eye(4), 8).depth[1, 1])
+    0.5
+    """
+    if subpixel_bits is None:
+        return predict.light_depth_map(triangles, matrix, size)
+    if not (isinstance(subpixel_bits, (int, np.integer)) and 0 <= subpixel_bits <= 16):
+        raise ValueError(f"subpixel_bits must be a whole number in [0, 16] or None, got {subpixel_bits!r}")
+    from ..raster.draw import rasterize
+
+    tri = np.asarray(triangles, float)
+    if not len(tri):
+        return predict.light_depth_map(tri.reshape(0, 3, 3), matrix, size)
+    mt = predict.to_map(matrix, tri)
+    q = float(size) * 2.0**subpixel_bits
+    mt[..., :2] = np.floor(mt[..., :2] * q + 0.5) / q
+    return rasterize(mt, int(size))
+
+
+def stored_depth(engine: str, settings: dict, triangles: Array, sun: Array, matrix: Array, size: int) -> tuple[Array, NDArray[np.int64], Array]:
+    """The toolkit's map of what ``engine`` stores: depth (R, R) (1 where empty), the nearest
+    triangle per texel (−1 empty) and the map-space triangles drawn (for :func:`tolerance`).
+
+    ``settings`` are the engine's filled settings (:data:`aliasing.frames.models.MODELS`).
+    """
+    from .models import MODELS
+
+    if engine not in ("threejs", "babylon"):
+        raise ValueError(f"engine must be threejs or babylon for the shadow maps, got {engine!r}")
+    model = MODELS[engine]
+    tri = np.asarray(triangles, np.float32).astype(float)  # what the page drew
+    cast = tri[predict.casting(tri, sun, model.cast_side(settings))]
+    if engine == "babylon":
+        cast = predict.offset_casters(cast, sun, float(settings["normalBias"]))
+    dm = predict.light_depth_map(cast, matrix, size)
+    depth = np.where(np.isfinite(dm.depth), dm.depth, 1.0)
+    if engine == "babylon":  # shadowMapFragment with depth clamp: + bias twice over (ERRATA F4), clamped
+        depth = np.clip(depth + 1.5 * float(settings["bias"]), 0.0, 1.0)
+    return depth, dm.triangle, predict.to_map(matrix, cast) if len(cast) else np.zeros((0, 3, 3))
+
+
+def tolerance(map_triangles: Array, triangle: NDArray[np.int64]) -> Array:
+    """Per texel: 2⁻²⁴ + (abs ∂d/∂i + abs ∂d/∂j) / 2^(SUBPIXEL_BITS + 1) of the triangle drawn there
+    (``map_triangles``: (T, 3, 3) in map space; ``triangle``: (R, R) indices, −1 empty; the
+    derivatives are per texel of the R-texel map).
+    """
+    triangle = np.asarray(triangle)
+    if triangle.ndim != 2 or triangle.shape[0] != triangle.shape[1]:
+        raise ValueError(f"triangle must be a square (R, R) array of indices, got shape {triangle.shape}")
+    r = triangle.shape[0]
+    t = np.asarray(map_triangles, float)
+    if len(t):
+        n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            g = (np.abs(n[:, 0]) + np.abs(n[:, 1])) / np.abs(n[:, 2]) / r
+        g = np.where(np.isfinite(g), g, np.inf)
+        slope = np.where(triangle >= 0, g[np.maximum(triangle, 0)], 0.0)
+    else:
+        slope = np.zeros(triangle.shape)
+    return FLOAT32_DEPTH + slope / 2.0 ** (SUBPIXEL_BITS + 1)
+
+
+def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], tol: Array) -> dict:
+    """One cascade: the engine's map against the toolkit's (full-size ``depth``, ``triangle``, ``tol``).
+
+    Returns ``size``, ``stride``, ``texels`` (read back), ``covered`` (drawn in either map),
+    ``coverage_agreement`` (fraction of the read texels drawn in both or in neither),
+    ``interior`` (covered texels away from triangle edges), ``agreement`` (fraction of those
+    within the tolerance), ``max_difference`` (the largest absolute engine − toolkit difference there) and
+    ``max_over_tolerance`` (the largest difference over its tolerance).
+    """
+    if not isinstance(engine_map, EngineMap):
+        raise ValueError(f"engine_map must be an EngineMap, got {type(engine_map).__name__}")
+    r = engine_map.size
+    depth, triangle, tol = np.asarray(depth, float), np.asarray(triangle), np.asarray(tol, float)
+    for name, a in (("depth", depth), ("triangle", triangle), ("tol", tol)):
+        if a.shape != (r, r):
+            raise ValueError(f"{name} must have the map's shape ({r}, {r}), got {a.shape}")
+    s = engine_map.stride
+    n = engine_map.depth.shape[0]
+    if n != -(-r // s) and n != r // s:
+        raise ValueError(f"the engine's map of side {n} is not every {s}th texel of {r}")
+    p, tid, tt = depth[::s, ::s][:n, :n], triangle, tol[::s, ::s][:n, :n]
+    interior_full = ndimage.maximum_filter(tid, 3, mode="nearest") == ndimage.minimum_filter(tid, 3, mode="nearest")
+    interior_full &= tid >= 0
+    inside = interior_full[::s, ::s][:n, :n]
+    e = engine_map.depth
+    covered = (e < 1) | (p < 1)
+    keep = covered & inside
+    diff = np.abs(e - p)
+    return {"size": engine_map.size, "stride": s, "texels": int(e.size), "covered": int(covered.sum()),
+            "coverage_agreement": float(np.mean((e < 1) == (p < 1))), "interior": int(keep.sum()),
+            "agreement": float(np.mean(diff[keep] <= tt[keep])) if keep.any() else None,
+            "max_difference": float(diff[keep].max()) if keep.any() else None,
+            "max_over_tolerance": float(np.max(diff[keep] / tt[keep])) if keep.any() else None}
+
+
+def measure_maps(engine: str, settings: dict, triangles: Array, sun: Array, matrices: Array, maps: list[EngineMap]) -> dict:
+    """Every cascade's read-back map against the toolkit's: ``cascades`` (per cascade :func:`compare`
+    and the light ``matrix`` used, world → [0, 1]³, column vectors), ``agreement`` (the smallest),
+    ``max_difference`` (the largest), the ``tolerance`` rule."""
+    if len(maps) != len(matrices):
+        raise ValueError(f"{len(maps)} maps for {len(matrices)} light matrices")
+    per = []
+    for m, mat in zip(maps, matrices):
+        depth, tid, mt = stored_depth(engine, settings, triangles, sun, mat, m.size)
+        per.append({**compare(m, depth, tid, tolerance(mt, tid)), "matrix": np.asarray(mat, float).tolist()})
+    ag = [c["agreement"] for c in per if c["agreement"] is not None]
+    mx = [c["max_difference"] for c in per if c["max_difference"] is not None]
+    return {"cascades": per, "agreement": min(ag) if ag else None, "max_difference": max(mx) if mx else None,
+            "tolerance": f"2^-24 + (|dd/di| + |dd/dj|) / 2^{SUBPIXEL_BITS + 1} per texel (float32 depth, {SUBPIXEL_BITS} subpixel bits)"}
+
+
+def write_maps(out: Path, maps: list[EngineMap], predicted: list[Array] | None = None) -> list[str]:
+    """``map<i>.npy`` (the engine's read-back depths, float32) and ``map<i>.png`` (grey, drawn
+    depths stretched to their range, white empty) per cascade in ``out``; the file names."""
+    import matplotlib.image
+
+    names = []
+    for i, m in enumerate(maps):
+        np.save(out / f"map{i}.npy", m.depth.astype(np.float32))
+        d = m.depth
+        drawn = d < 1
+        lo, hi = (float(d[drawn].min()), float(d[drawn].max())) if drawn.any() else (0.0, 1.0)
+        g = np.where(drawn, (d - lo) / max(hi - lo, 1e-12) * 0.9, 1.0)[::-1]  # t upward: row 0 at the image's bottom
+        matplotlib.image.imsave(out / f"map{i}.png", np.repeat(g[..., None], 3, -1))
+        names += [f"map{i}.npy", f"map{i}.png"]
+    return names
