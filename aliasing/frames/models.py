@@ -294,25 +294,47 @@ class BabylonCSM:
 
 
 @dataclass(frozen=True)
-class PlayCanvasMeasured:
-    """PlayCanvas 2.23.3, a directional light with (cascaded) shadows: rendered and measured, not predicted.
+class PlayCanvas:
+    """PlayCanvas 2.23.3, a directional light with (cascaded) shadows (npm ``playcanvas``, ``build/playcanvas/src``).
 
     Settings (the light component's own keys): ``shadowBias``, ``normalOffsetBias``,
     ``shadowResolution``, ``numCascades``, ``cascadeDistribution``, ``cascadeBlend``,
-    ``shadowDistance``, ``shadowType``, ``shadowIntensity``; the material's ``cull``.  Its bias
-    is a polygon offset (factor and units −1000 · ``shadowBias``, ``Light._updateShadowBias``)
-    plus a receiver bias of 1e-4 in [0, 1] depth (``getShadowSampleCoord``): the offset's units
-    scale with the depth buffer's resolvable difference, which the GL implementation chooses,
-    so the toolkit does not predict these frames yet.
+    ``shadowDistance``, ``shadowType``, ``shadowIntensity``; the material's ``cull``.
+
+    The model, from the engine's source (files under ``scene/``):
+
+    * splits: ``generateSplitDistances`` (``renderer/shadow-renderer-directional.js`` 182–191),
+      practical with λ = ``cascadeDistribution`` from near to min(far, ``shadowDistance``),
+      stored in a Float32Array (the toolkit's :func:`aliasing.setups.playcanvas.splits`);
+    * fit: the sphere around the slice corners' average, the map side its diameter
+      (``cull``, lines 84–116; the pipeline's ``centroid`` fit); one map of ``shadowResolution``,
+      a 2×2 atlas of half-size cells when there are more cascades (``light.js`` 46–51);
+    * faces: the material's ``cull`` in the caster pass too (CULLFACE_BACK: front faces cast);
+    * bias: the caster pass's polygon offset, factor and units both 10·``shadowBias``
+      (``light.js`` ``_updateShadowBias`` 746–755, the component's −0.01·shadowBias);
+      the receiver's depth ``saturate(z) − 0.0001`` and its point moved by
+      ``normalOffsetBias`` along the world normal (``lightFunctionShadow``, the PCF path
+      ``SHADOW_SAMPLE_SOURCE_ZBUFFER``); :func:`aliasing.frames.predict.playcanvas_factor`;
+    * filter: PCF1/3/5 hardware comparisons (LESS) over the whole atlas (``shadowPCF1/3/5``);
+    * cascade: the number of ends ≤ the eye depth, at most k − 1; none beyond the last end
+      (``shadowCascades`` ``getShadowCascadeIndex``, ``getShadow``'s early return).
+
+    The polygon offset's slope term is the rasterizer's: SwiftShader takes
+    m = max(|∂z/∂x|, |∂z/∂y|) in window units and r = 2^(e − 23) for the 32-bit float depth
+    map, e the exponent of the triangle's largest depth (SwiftShader ``src/Pipeline/SetupRoutine.cpp``).
+    ``cascadeBlend`` (a dither of ``fract(sin(...))``) and the VSM, PCSS and 16-bit types are
+    rendered but not predicted.
     """
 
     engine: str = "playcanvas"
-    predicts: bool = False
     defaults: dict = field(default_factory=lambda: {
         "shadowBias": 0.05, "normalOffsetBias": 0.0, "shadowResolution": 1024, "numCascades": 1, "cascadeDistribution": 0.5,
         "cascadeBlend": 0.0, "shadowDistance": 40.0, "shadowType": 0, "shadowIntensity": 1.0, "cull": "back"})
+    #: shadowType numbers predicted (scene/constants.js): PCF3_32F, PCF5_32F, PCF1_32F and their filter sizes
+    FILTERS = {0: 3, 4: 5, 5: 1}
 
     def settings(self, given: dict | None = None) -> dict:
+        """Every setting, the defaults filled in (the light's and the component's own defaults)."""
         given = dict(given or {})
         unknown = sorted(set(given) - set(self.defaults))
         if unknown:
@@ -325,6 +347,62 @@ class PlayCanvasMeasured:
         if s["shadowResolution"] not in (256, 512, 1024, 2048, 4096):
             raise ValueError(f"shadowResolution must be a power of two in [256, 4096], got {s['shadowResolution']!r}")
         return s
+
+    def predicted(self, s: dict) -> str | None:
+        """Why a setting's frame is rendered but not predicted (None when it is predicted)."""
+        if s["shadowType"] not in self.FILTERS:
+            return "shadowType must be SHADOW_PCF1_32F, SHADOW_PCF3_32F or SHADOW_PCF5_32F for a prediction (VSM, PCSS and 16-bit maps are not modelled)"
+        if s["cascadeBlend"] != 0:
+            return "cascadeBlend must be 0 for a prediction (the blend is a per-pixel dither of fract(sin(...)), not modelled)"
+        if s["shadowIntensity"] != 1:
+            return "shadowIntensity must be 1 for a prediction"
+        return None
+
+    def cast_side(self, s: dict) -> str:
+        """The faces drawn into the map: the material's cull mode, as in the main pass (back culled: front faces cast)."""
+        return {"back": "front", "front": "back", "none": "double"}[s["cull"]]
+
+    def edges(self, s: dict, camera) -> Array:
+        """The cascades' ends, near first [world units], float32 as the engine stores them."""
+        from ..setups.playcanvas import splits
+
+        a, b = splits({"numCascades": s["numCascades"], "cascadeDistribution": s["cascadeDistribution"], "shadowDistance": s["shadowDistance"]},
+                      camera.near, camera.far)
+        return np.concatenate([[a[0]], b])
+
+    def select(self, s: dict, camera, depth: Array) -> NDArray[np.int64]:
+        """``getShadowCascadeIndex``: the number of ends ≤ the eye depth, at most k − 1; −1 beyond the last end."""
+        ends = self.edges(s, camera)[1:]
+        idx = np.minimum(np.searchsorted(ends, depth, side="right"), len(ends) - 1)
+        return np.where(np.isfinite(depth) & (depth <= ends[-1]), idx, -1).astype(np.int64)
+
+    def cells(self, s: dict) -> Array:
+        """Each cascade's atlas cell (x, y, w, h) in [0, 1] (``light.js`` ``directionalCascades``)."""
+        k = int(s["numCascades"])
+        if k == 1:
+            return np.array([[0.0, 0.0, 1.0, 1.0]])
+        return np.array([[0.0, 0.0, 0.5, 0.5], [0.0, 0.5, 0.5, 0.5], [0.5, 0.0, 0.5, 0.5], [0.5, 0.5, 0.5, 0.5]])[:k]
+
+    def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
+        why = self.predicted(s)
+        if why:
+            raise ValueError(why)
+        cam = scene.camera
+        depth = np.where(rb.drawn, cam.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
+        sel = self.select(s, cam, depth)
+        res = int(s["shadowResolution"])
+        cast = scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))]
+        atlas = predict.playcanvas_atlas(cast, rb.matrices, self.cells(s), res, float(s["shadowBias"]))
+        pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+        factor = predict.playcanvas_factor(atlas, rb.matrices, sel, pts, nrm, normal_offset=float(s["normalOffsetBias"]),
+                                           taps=self.FILTERS[int(s["shadowType"])])
+        factor = np.where(rb.drawn, factor, np.nan)
+        ref = reference(scene, sun, rb, res)
+        edges = self.edges(s, cam)
+        k = len(edges) - 1
+        per = res if k == 1 else res // 2
+        sides = np.array([2 * float(stable.centroid_radius(a, b, cam.fov, cam.aspect)) for a, b in zip(edges[:-1], edges[1:])])
+        return Prediction(factor, sel, edges[:-1], sides, np.full(k, float(per))), ref
 
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
         """Each cascade's first depth (the previous cascade's distance), its larger texel side × R (R the atlas's side) and R."""
@@ -345,7 +423,7 @@ def reference(scene, sun: Array, rb, resolution: int) -> NDArray[np.bool_]:
     return ref & rb.drawn & ((nrm @ sun) > 0)
 
 
-MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvasMeasured()}
+MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvas()}
 
 
 _THREE_SIDE = {"FrontSide": "front", "BackSide": "back", "DoubleSide": "double"}

@@ -93,7 +93,9 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     """
     model = MODELS[engine]
     rb = decode(out)
-    if getattr(model, "predicts", True):
+    why_not = model.predicted(settings) if hasattr(model, "predicted") else None
+    predicts = getattr(model, "predicts", True) and why_not is None
+    if predicts:
         pred, ref = model.predict(settings, scene, sun, rb)
     else:  # rendered and measured only: the exact reference, no predicted factor
         from .models import reference
@@ -105,7 +107,6 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     ground = _ground_pixels(scene, rb)
     m_starts, m_sides, m_res = model.measured_cascades(settings, scene.camera, rb)
     h = rb.shadow.shape[0]
-    predicts = getattr(model, "predicts", True)
     measured = {
         "shadow_agreement": compare.agreement(rb.shadow, pred.factor, rb.drawn) if predicts else None,
         "acne": compare.acne(rb.shadow, receivers),
@@ -130,6 +131,8 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     extra = {"pixels": int(drawn.sum()), "receivers": int(receivers.sum()),
              "cascade_agreement": float(np.mean(rb.cascade[drawn] == pred.cascade[drawn])) if drawn.any() and predicts else None,
              "renderer": rb.info.get("renderer"), "engine_ms": rb.info.get("ms"), **extra_pipe}
+    if why_not:
+        extra["not_predicted"] = why_not
     report = {"engine": engine, "release": rb.release, "scene": scene.name, "measured": measured, "predicted": predicted, "details": extra}
     return FrameResult(rb, pred, ref, settings, report)
 
