@@ -205,6 +205,42 @@ def test_playcanvas_bias_and_tuned_settings(playcanvas):
     assert playcanvas["tuned"].settings["numCascades"] == 4
 
 
+# one DirectionalLight whose box (60 x 60, 1024²) the user sets over the boxes
+BOX = {"class": "DirectionalLight", "shadow.camera.left": -30, "shadow.camera.right": 30, "shadow.camera.top": 30, "shadow.camera.bottom": -30,
+       "shadow.camera.far": 200, "shadow.mapSize.width": 1024, "material.shadowSide": "FrontSide"}
+
+
+@pytest.fixture(scope="module")
+def three_single(chromium, boxes):
+    fs, sun = boxes
+    from aliasing.tune import tune
+
+    tuned = {**BOX, **tune(setups.build("threejs", BOX, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")).changed}
+    return {name: _frame(chromium, "threejs", fs, s) for name, s in (("front faces, bias 0", BOX), ("tuned", tuned))}
+
+
+@pytest.mark.parametrize("name", ["front faces, bias 0", "tuned"])
+def test_threejs_directional_light_matches_the_prediction(three_single, name):
+    r = three_single[name].report
+    m, p = r["measured"], r["predicted"]
+    assert r["engine"] == "threejs" and r["release"] == "r187"
+    assert m["shadow_agreement"] >= 0.99, r
+    assert abs(m["acne"] - p["acne"]) <= 0.02, r
+    assert m["gap_px"] is not None and abs(m["gap_px"] - p["gap_px"]) <= 1.0, r
+    got, want = np.array(m["texels_per_pixel"]), np.array(p["texels_per_pixel"])
+    assert got.shape == want.shape == (1,) and np.max(np.abs(got / want - 1)) <= 1e-6, r
+    # the shadow matrix (the light at its target + sun · (near + far)/2, lookAt, the box, [½ bias]) as predicted
+    assert r["details"]["matrices_vs_engine"] <= 1e-9, r
+
+
+def test_threejs_directional_light_acne_and_tuned_normal_bias(three_single):
+    # front faces at bias 0 stripe about half the lit receivers; tune's normalBias leaves almost none
+    for side in ("measured", "predicted"):
+        assert three_single["front faces, bias 0"].report[side]["acne"] > 0.3
+        assert three_single["tuned"].report[side]["acne"] < 0.005
+    assert three_single["tuned"].settings["normalBias"] > 0
+
+
 def test_threejs_tuned_settings_leave_no_acne(three):
     # `aliasing tune` sets a normal bias that leaves no acne with front faces casting: the frame agrees
     assert three["tuned"].report["measured"]["acne"] < 0.01 and three["tuned"].report["predicted"]["acne"] < 0.01
@@ -280,7 +316,7 @@ BASE = ["--scene", "boxes", "--camera", "near=0.5,far=60,fov=50,aspect=16:9,heig
     (["--engine", "threejs", "--sun", "95"], "sun elevation must be in (0, 90]"),
     (["--engine", "threejs", "--set", "shadowBiass=0"], "unknown three.js setting 'shadowBiass'"),
     (["--engine", "threejs@r184"], "the frames render threejs r187 only"),
-    (["--engine", "threejs", "--set", "class=DirectionalLight"], "class must be CSM for the frames"),
+    (["--engine", "threejs", "--set", "class=DirectionalLight", "--path", "sideways:0.1"], "the camera path is rendered for the CSM class only"),
     (["--engine", "babylon", "--path", "sideways:0.1"], "the camera path is rendered for threejs only"),
     (["--engine", "threejs", "--path", "diagonal:0.1"], "--path must be KIND:STEP[:FRAMES]"),
     (["--engine", "threejs", "--scene", "no-such.glb"], "scene must be boxes, city or an existing scene file"),

@@ -67,6 +67,8 @@ def run(args: argparse.Namespace) -> dict:
     if args.path is not None:
         if setup.engine != "threejs":
             raise ValueError(f"--path: the camera path is rendered for threejs only (not yet for {setup.engine})")
+        if setup.settings.get("class") == "DirectionalLight":
+            raise ValueError("--path: the camera path is rendered for the CSM class only (a DirectionalLight's box does not follow the camera)")
         frames_run.parse_path(args.path, scenes.frame_scene("boxes", near=1.0, far=2.0, fov=50.0, aspect=1.0, boxes=0, ground_cells=1).camera)
     if setup.release != PINS[name].release:
         raise ValueError(f"--engine {args.engine}: the frames render {name} {PINS[name].release} only (the pinned npm release), not {setup.release}")

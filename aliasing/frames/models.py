@@ -206,6 +206,97 @@ class ThreeCSM:
 
 
 @dataclass(frozen=True)
+class ThreeDirectional:
+    """three.js r187, one ``DirectionalLight`` shadow (src/lights/DirectionalLightShadow.js, LightShadow.js).
+
+    Settings (the page's keys for the light's own): ``class`` ("DirectionalLight"), the shadow
+    camera's ``left``, ``right``, ``top``, ``bottom``, ``near``, ``far`` (an orthographic box
+    [world units]), ``mapSize`` (square), ``bias``, ``normalBias``, ``radius``; the renderer's
+    ``shadowMapType``; the material's ``side`` and ``shadowSide``.  The frames place the light's
+    target at :func:`aliasing.frames.run.light_target` and the light (near + far)/2 from it
+    towards the sun.  The factor is :func:`aliasing.frames.predict.threejs_factor` of the one
+    map (``shadow.bias`` as CSM's ``shadowBias``: added to the normalized map depth).
+    """
+
+    engine: str = "threejs"
+    defaults: dict = field(default_factory=lambda: {
+        "class": "DirectionalLight", "left": -5.0, "right": 5.0, "top": 5.0, "bottom": -5.0, "near": 0.5, "far": 500.0, "mapSize": 512,
+        "bias": 0.0, "normalBias": 0.0, "radius": 1.0, "shadowMapType": "PCFShadowMap", "side": "front", "shadowSide": None})
+
+    def settings(self, given: dict | None = None) -> dict:
+        """Every setting, the defaults filled in (``DirectionalLightShadow``'s camera, ``LightShadow``'s bias, radius and map size)."""
+        given = dict(given or {})
+        unknown = sorted(set(given) - set(self.defaults))
+        if unknown:
+            raise ValueError(f"unknown three.js DirectionalLight setting {unknown[0]!r}; known: {', '.join(sorted(self.defaults))}")
+        s = {**self.defaults, **given}
+        if s["class"] != "DirectionalLight":
+            raise ValueError(f"class must be DirectionalLight, got {s['class']!r}")
+        if not (s["right"] > s["left"] and s["top"] > s["bottom"] and s["far"] > s["near"] >= 0):
+            raise ValueError("the shadow camera must have right > left, top > bottom and far > near >= 0")
+        if int(s["mapSize"]) != s["mapSize"] or not 16 <= s["mapSize"] <= 8192:
+            raise ValueError(f"mapSize must be a whole number of texels in [16, 8192], got {s['mapSize']!r}")
+        if s["shadowMapType"] not in ("PCFShadowMap", "BasicShadowMap"):
+            raise ValueError(f"shadowMapType must be PCFShadowMap or BasicShadowMap (the filters modelled), got {s['shadowMapType']!r}")
+        if s["side"] not in predict.SIDES or (s["shadowSide"] is not None and s["shadowSide"] not in predict.SIDES):
+            raise ValueError(f"side and shadowSide must be one of {', '.join(predict.SIDES)} (shadowSide also null)")
+        return s
+
+    cast_side = ThreeCSM.cast_side
+
+    def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
+        """The predicted factor of the one map at the engine's pixels (cascade 0 for every drawn pixel), and the exact reference."""
+        cam = scene.camera
+        sel = np.where(rb.drawn, 0, -1).astype(np.int64)
+        res = int(s["mapSize"])
+        cast = scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))]
+        maps = [predict.light_depth_map(cast, rb.matrices[0], res)]
+        h, w = rb.shadow.shape
+        fy, fx = np.mgrid[0:h, 0:w]
+        pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+        factor = predict.threejs_factor(maps, rb.matrices[:1], sel, pts, nrm, fx + 0.5, (h - 1 - fy) + 0.5, bias=float(s["bias"]),
+                                        normal_bias=float(s["normalBias"]), radius=float(s["radius"]), map_type=s["shadowMapType"])
+        factor = np.where(rb.drawn, factor, np.nan)
+        ref = reference(scene, sun, rb, res)
+        side = max(s["right"] - s["left"], s["top"] - s["bottom"])
+        return Prediction(factor, sel, np.array([cam.near]), np.array([float(side)]), np.array([float(res)])), ref
+
+    def matrices(self, s: dict, camera, sun: Array) -> Array:
+        """The shadow matrix (world → [0, 1]³) as ``LightShadow.updateMatrices`` builds it: the camera at the light,
+        ``lookAt`` its target with up +y (``Matrix4.lookAt``'s nudge of z when up ∥ z), the orthographic box, [½ bias]."""
+        from .run import light_target
+
+        target = light_target(camera)
+        sv = np.asarray(sun, float) / np.linalg.norm(sun)
+        eye = target + sv * (s["near"] + s["far"]) / 2
+        z = eye - target
+        z /= np.linalg.norm(z)
+        up = np.array([0.0, 1.0, 0.0])
+        x = np.cross(up, z)
+        if np.dot(x, x) == 0:  # Matrix4.lookAt: up parallel to z
+            z = z + np.array([0.0, 0.0, 0.0001])
+            z /= np.linalg.norm(z)
+            x = np.cross(up, z)
+        x /= np.linalg.norm(x)
+        y = np.cross(z, x)
+        basis = np.stack([x, y, z])
+        view = np.eye(4)
+        view[:3, :3] = basis
+        view[:3, 3] = -basis @ eye
+        l, r, t, b, n, f = (float(s[k]) for k in ("left", "right", "top", "bottom", "near", "far"))
+        proj = np.array([[2 / (r - l), 0, 0, -(r + l) / (r - l)], [0, 2 / (t - b), 0, -(t + b) / (t - b)],
+                         [0, 0, -2 / (f - n), -(f + n) / (f - n)], [0, 0, 0, 1.0]])
+        half = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+        return (half @ proj @ view)[None]
+
+    def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
+        """The one map: the camera's near, the matrix's larger texel side × R, and R."""
+        m = rb.matrices[0]
+        side = max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3]))
+        return np.array([camera.near]), np.array([side]), rb.sizes[:1, 0].astype(float)
+
+
+@dataclass(frozen=True)
 class BabylonCSM:
     """Babylon.js 9.35, CascadedShadowGenerator on a DirectionalLight (Lights/Shadows/cascadedShadowGenerator.pure.js).
 
@@ -424,6 +515,21 @@ def reference(scene, sun: Array, rb, resolution: int) -> NDArray[np.bool_]:
 
 
 MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvas()}
+#: the engines' single-map classes, by the ``class`` setting
+SINGLE = {("threejs", "DirectionalLight"): ThreeDirectional()}
+
+
+def model_for(engine: str, settings: dict):
+    """The model of ``engine`` for these settings: its single-map class where ``settings["class"]`` names one, else its cascades'.
+
+    Example
+    -------
+    >>> type(model_for("threejs", {"class": "DirectionalLight"})).__name__, type(model_for("threejs", {})).__name__
+    ('ThreeDirectional', 'ThreeCSM')
+    """
+    if engine not in MODELS:
+        raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")
+    return SINGLE.get((engine, (settings or {}).get("class")), MODELS[engine])
 
 
 _THREE_SIDE = {"FrontSide": "front", "BackSide": "back", "DoubleSide": "double"}
@@ -447,9 +553,16 @@ def from_setup(setup) -> dict:
     engine, s = setup.engine, dict(setup.settings)
     if engine not in MODELS:
         raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")
-    if engine == "threejs":
+    if engine == "threejs" and s["class"] == "DirectionalLight":
+        out = {"class": "DirectionalLight", "mapSize": s["shadow.mapSize.width"], "bias": s["shadow.bias"], "normalBias": s["shadow.normalBias"],
+               "radius": s["shadow.radius"], "shadowMapType": s["renderer.shadowMap.type"], "side": _THREE_SIDE[s["material.side"]],
+               "shadowSide": None if s["material.shadowSide"] == "null" else _THREE_SIDE[s["material.shadowSide"]],
+               **{k: s[f"shadow.camera.{k}"] for k in ("left", "right", "top", "bottom", "near", "far")}}
+        if out["shadowMapType"] == "PCFSoftShadowMap":  # WebGLShadowMap replaces it (lines 99-102)
+            out["shadowMapType"] = "PCFShadowMap"
+    elif engine == "threejs":
         if s["class"] != "CSM":
-            raise ValueError(f"class must be CSM for the frames (one DirectionalLight is not rendered yet), got {s['class']!r}")
+            raise ValueError(f"class must be CSM or DirectionalLight for the frames, got {s['class']!r}")
         if s["shadow.bias"] != 0:
             raise ValueError("shadow.bias is overwritten by CSM's shadowBias on every cascade light: set shadowBias")
         out = {k: s[k] for k in ("cascades", "maxFar", "mode", "shadowMapSize", "shadowBias", "lightNear", "lightFar", "lightMargin", "fade")}
@@ -475,7 +588,7 @@ def from_setup(setup) -> dict:
                                  "shadowDistance")}
         out["shadowType"] = _PC_TYPES[s["shadowType"]]
         out["cull"] = _PC_CULL[s["material.cull"]]
-    model = MODELS[engine]
+    model = model_for(engine, out)
     full = model.settings(out)
     if getattr(model, "predicts", True):
         faces = _FACES[setup.pipeline.bias.faces]

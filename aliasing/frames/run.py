@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from . import compare
-from .models import MODELS, Prediction
+from .models import MODELS, Prediction, model_for
 from .readback import Readback, decode
 from .scenes import FrameScene, frame_scene  # noqa: F401 - frame_scene for the example
 
@@ -53,7 +53,18 @@ def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: l
     return {"width": w, "height": h, "triangles": base64.b64encode(tri.tobytes()).decode(),
             "camera": {"eye": cam.eye.tolist(), "target": (cam.eye + cam.rotation[2]).tolist(), "up": cam.rotation[1].tolist(),
                        "near": cam.near, "far": cam.far, "fov": cam.fov},
-            "sun": [float(v) for v in sun], "settings": settings, "ground": scene.ground, "path": path}
+            "sun": [float(v) for v in sun], "settings": settings, "ground": scene.ground, "path": path,
+            "lightTarget": light_target(cam).tolist()}
+
+
+def light_target(camera) -> Array:
+    """Where a single (non-cascaded) light looks: the point on the camera's view axis half way from near to far [world units].
+
+    The engines' fixed shadow boxes (three.js's ``DirectionalLight``) are placed at their light
+    and look at its target; the frames put the target here and the light half the shadow
+    camera's near + far from it towards the sun.
+    """
+    return camera.eye + camera.rotation[2] * (camera.near + camera.far) / 2
 
 
 def _ground_pixels(scene: FrameScene, rb: Readback) -> NDArray[np.bool_]:
@@ -76,6 +87,8 @@ def pipeline_footprint(pipeline, camera, sun: Array) -> tuple[Array, Array, Arra
 
     near_i, far_i = np.asarray(pipeline.near_i, float), np.asarray(pipeline.far_i, float)
     res = float(pipeline.resolution)
+    if pipeline.fit == "fixed":  # one box the user sets: its larger side
+        return near_i, np.full(len(near_i), float(max(pipeline.box))), np.full(len(near_i), res)
     if pipeline.fit == "tight":
         sides = np.array([tight_sides(camera, np.array([a, b]), -sun, np.array([0.0, 1.0, 0.0]))[0] for a, b in zip(near_i, far_i)])
     else:
@@ -91,7 +104,7 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     With an :class:`aliasing.setups.Pipeline` the predicted texel footprint is the pipeline's
     (its ranges, fit and snap), and the details say how far its cascade ranges are from the model's.
     """
-    model = MODELS[engine]
+    model = model_for(engine, settings)
     rb = decode(out)
     why_not = model.predicted(settings) if hasattr(model, "predicted") else None
     predicts = getattr(model, "predicts", True) and why_not is None
@@ -200,6 +213,8 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     if path is not None:
         if setup.engine != "threejs":
             raise ValueError(f"--path: the camera path is rendered for threejs only (not yet for {setup.engine})")
+        if settings.get("class") == "DirectionalLight":
+            raise ValueError("--path: the camera path is rendered for the CSM class only (a DirectionalLight's box does not follow the camera)")
         poses = parse_path(path, scene.camera)
     out = browser.render(setup.engine, make_job(scene, sv, settings, cam.height, poses))
     result = measure(setup.engine, scene, sv, settings, out, pipeline=setup.pipeline)
