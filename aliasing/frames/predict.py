@@ -256,26 +256,36 @@ def babylon_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
     return factor
 
 
-def polygon_offset(map_triangles: Array, resolution: int, factor: float, units: float) -> Array:
+def polygon_offset(map_triangles: Array, resolution: int, factor: float, units: float, slope: str = "max") -> Array:
     """Per triangle: the rasterizer's polygon offset [window depth], as SwiftShader applies ``glPolygonOffset(factor, units)``.
 
     ``factor`` · m + ``units`` · r with m = max(|∂z/∂x|, |∂z/∂y|) of the triangle's plane in
     window pixels (``resolution`` texels per map side) and r = 2^(e − 23), e the exponent of its
     largest depth (a 32-bit float depth map; SwiftShader ``src/Pipeline/SetupRoutine.cpp``).
-    ``map_triangles`` (T, 3, 3): corners in map coordinates (s, t, depth) in [0, 1].
+    ``slope`` "length" takes m = √((∂z/∂x)² + (∂z/∂y)²) instead, the OpenGL ES 3.0 definition
+    (§3.6.5) that "max" approximates.  ``map_triangles`` (T, 3, 3): corners in map coordinates
+    (s, t, depth) in [0, 1].
+
+    Example
+    -------
+    >>> tri = np.array([[[0.0, 0.0, 0.5], [1.0, 0.0, 0.5 + 3 / 8], [0.0, 1.0, 0.5 + 4 / 8]]])
+    >>> float(polygon_offset(tri, 8, 1.0, 0.0)[0]), float(polygon_offset(tri, 8, 1.0, 0.0, "length")[0])   # ∂z/∂x = 3/64, ∂z/∂y = 4/64
+    (0.0625, 0.078125)
     """
     t = np.asarray(map_triangles, float)
+    slope = check.choice(slope, "slope", ("max", "length"))
     scale = np.array([resolution, resolution, 1.0])
     n = np.cross((t[:, 1] - t[:, 0]) * scale, (t[:, 2] - t[:, 0]) * scale)
     with np.errstate(divide="ignore", invalid="ignore"):
-        m = np.maximum(np.abs(n[:, 0]), np.abs(n[:, 1])) / np.abs(n[:, 2])
+        gx, gy = np.abs(n[:, 0]) / np.abs(n[:, 2]), np.abs(n[:, 1]) / np.abs(n[:, 2])
+        m = np.maximum(gx, gy) if slope == "max" else np.hypot(gx, gy)
     m = np.where(np.isfinite(m), m, 0.0)
     zmax = np.clip(t[:, :, 2].max(axis=1), 2.0**-126, 1.0)
     r = 2.0 ** (np.floor(np.log2(zmax)) - 23)
     return factor * m + units * r
 
 
-def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution: int, shadow_bias: float) -> Array:
+def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution: int, shadow_bias: float, slope: str = "max") -> Array:
     """PlayCanvas's shadow atlas: each cascade's casters drawn through its palette matrix into its cell, with the polygon offset.
 
     ``matrices`` (k, 4, 4) map world points to the atlas's (s, t, depth) (the engine's
@@ -283,7 +293,7 @@ def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution
     (x, y, w, h) in [0, 1] (the scissor); the stored depth is the window depth plus
     :func:`polygon_offset` with factor and units 10 · clamp(``shadow_bias``, 0, 1)
     (``light.js`` ``_updateShadowBias``: −1000 × the light's −0.01 · shadowBias).
-    Empty texels hold the clear depth 1.  Returns the (R, R) depth array.
+    Empty texels hold the clear depth 1; ``slope``: :func:`polygon_offset`'s.  Returns the (R, R) depth array.
     """
     r = int(resolution)
     out = np.ones((r, r))
@@ -291,7 +301,7 @@ def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution
     centre = (np.arange(r) + 0.5) / r
     for m, (x, y, w, h) in zip(matrices, cells):
         dm = light_depth_map(triangles, m, r)
-        bias = polygon_offset(to_map(m, triangles), r, off, off) if off and len(triangles) else np.zeros(max(len(triangles), 1))
+        bias = polygon_offset(to_map(m, triangles), r, off, off, slope) if off and len(triangles) else np.zeros(max(len(triangles), 1))
         d = np.where(dm.triangle >= 0, dm.depth + bias[np.maximum(dm.triangle, 0)], 1.0)
         cols = (centre >= x) & (centre < x + w)
         rows = (centre >= y) & (centre < y + h)
