@@ -385,6 +385,91 @@ class BabylonCSM:
 
 
 @dataclass(frozen=True)
+class BabylonSingle:
+    """Babylon.js 9.35, one ShadowGenerator of a DirectionalLight with a fixed box (Lights/Shadows/shadowGenerator.js).
+
+    Settings: ``class`` ("ShadowGenerator"), ``mapSize``, ``bias``, ``normalBias``,
+    ``shadowFrustumSize`` (the light's square box side > 0 [world units]), ``shadowMinZ`` and
+    ``shadowMaxZ`` (null: the camera's near and far), ``forceBackFacesOnly``; the material's
+    ``backFaceCulling``.  FILTER_NONE (the class's default) is the filter modelled.  The frames
+    place the light (minZ + maxZ)/2 from :func:`aliasing.frames.run.light_target` towards the sun.
+    """
+
+    engine: str = "babylon"
+    defaults: dict = field(default_factory=lambda: {
+        "class": "ShadowGenerator", "mapSize": 1024, "bias": 0.00005, "normalBias": 0.0, "shadowFrustumSize": 20.0, "shadowMinZ": None,
+        "shadowMaxZ": None, "forceBackFacesOnly": False, "backFaceCulling": True})
+
+    def settings(self, given: dict | None = None) -> dict:
+        """Every setting, the defaults filled in (the generator's constructor; the box side has no engine default > 0)."""
+        given = dict(given or {})
+        unknown = sorted(set(given) - set(self.defaults))
+        if unknown:
+            raise ValueError(f"unknown Babylon.js ShadowGenerator setting {unknown[0]!r}; known: {', '.join(sorted(self.defaults))}")
+        s = {**self.defaults, **given}
+        if s["class"] != "ShadowGenerator":
+            raise ValueError(f"class must be ShadowGenerator, got {s['class']!r}")
+        if not s["shadowFrustumSize"] > 0:
+            raise ValueError(f"shadowFrustumSize must be > 0 [world units] (a fixed box), got {s['shadowFrustumSize']!r}")
+        if s["mapSize"] not in (256, 512, 1024, 2048, 4096):
+            raise ValueError(f"mapSize must be a power of two in [256, 4096], got {s['mapSize']!r}")
+        if not (s["bias"] >= 0 and s["normalBias"] >= 0):
+            raise ValueError("bias and normalBias must be >= 0")
+        return s
+
+    cast_side = BabylonCSM.cast_side
+
+    def depth_range(self, s: dict, camera) -> tuple[float, float]:
+        """The light's depth near and far [world units]: shadowMinZ/shadowMaxZ, else the camera's."""
+        lo = camera.near if s["shadowMinZ"] is None else float(s["shadowMinZ"])
+        hi = camera.far if s["shadowMaxZ"] is None else float(s["shadowMaxZ"])
+        if not hi > lo:
+            raise ValueError(f"shadowMaxZ must exceed shadowMinZ ({lo:g}), got {hi:g}")
+        return lo, hi
+
+    def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
+        cam = scene.camera
+        sel = np.where(rb.drawn, 0, -1).astype(np.int64)
+        res = int(s["mapSize"])
+        cast = predict.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))], sun, float(s["normalBias"]))
+        dm = predict.light_depth_map(cast, rb.matrices[0], res)
+        factor = predict.babylon_single_factor(dm, rb.matrices[0], np.nan_to_num(rb.position), bias=float(s["bias"]))
+        factor = np.where(rb.drawn, factor, np.nan)
+        ref = reference(scene, sun, rb, res)
+        return Prediction(factor, sel, np.array([cam.near]), np.array([float(s["shadowFrustumSize"])]), np.array([float(res)])), ref
+
+    def matrices(self, s: dict, camera, sun: Array) -> Array:
+        """World → [0, 1]³ in the job's (right-handed) world: ``Matrix.LookAtLH(position, position + d, Up)`` and
+        ``OrthoLH(size, size, minZ, maxZ)`` in Babylon's mirrored world (z ↦ −z), window depth (z + 1)/2."""
+        from .run import light_target
+
+        lo, hi = self.depth_range(s, camera)
+        mirror = np.diag([1.0, 1.0, -1.0])
+        sv = np.asarray(sun, float) / np.linalg.norm(sun)
+        eye = mirror @ (light_target(camera) + sv * (lo + hi) / 2)
+        d = mirror @ -sv
+        if abs(abs(d[1]) - 1.0) == 0:  # ShadowGenerator: a light straight along Up gets z = 1e-13
+            d = np.array([d[0], d[1], 1e-13])
+        z = d / np.linalg.norm(d)
+        x = np.cross([0.0, 1.0, 0.0], z)
+        x /= np.linalg.norm(x)
+        y = np.cross(z, x)
+        view = np.eye(4)
+        view[:3, :3] = np.stack([x, y, z]) @ mirror
+        view[:3, 3] = -np.stack([x, y, z]) @ eye
+        size = float(s["shadowFrustumSize"])
+        proj = np.diag([2 / size, 2 / size, 2 / (hi - lo), 1.0])
+        proj[2, 3] = -(hi + lo) / (hi - lo)
+        half = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+        return (half @ proj @ view)[None]
+
+    def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
+        """The one map: the camera's near, the matrix's larger texel side × R, and R."""
+        m = rb.matrices[0]
+        return np.array([camera.near]), np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3]))]), rb.sizes[:1, 0].astype(float)
+
+
+@dataclass(frozen=True)
 class PlayCanvas:
     """PlayCanvas 2.23.3, a directional light with (cascaded) shadows (npm ``playcanvas``, ``build/playcanvas/src``).
 
@@ -516,7 +601,7 @@ def reference(scene, sun: Array, rb, resolution: int) -> NDArray[np.bool_]:
 
 MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvas()}
 #: the engines' single-map classes, by the ``class`` setting
-SINGLE = {("threejs", "DirectionalLight"): ThreeDirectional()}
+SINGLE = {("threejs", "DirectionalLight"): ThreeDirectional(), ("babylon", "ShadowGenerator"): BabylonSingle()}
 
 
 def model_for(engine: str, settings: dict):
@@ -570,9 +655,20 @@ def from_setup(setup) -> dict:
                    side=_THREE_SIDE[s["material.side"]], shadowSide=None if s["material.shadowSide"] == "null" else _THREE_SIDE[s["material.shadowSide"]])
         if out["shadowMapType"] == "PCFSoftShadowMap":  # WebGLShadowMap replaces it (lines 99-102)
             out["shadowMapType"] = "PCFShadowMap"
+    elif engine == "babylon" and s["class"] == "ShadowGenerator":
+        if s["filter"] not in (None, "FILTER_NONE"):
+            raise ValueError(f"filter must be null or FILTER_NONE for a ShadowGenerator's frames (modelled), got {s['filter']!r}")
+        for key, want in (("darkness", 0.0), ("frustumEdgeFalloff", 0.0)):
+            if s[key] != want:
+                raise ValueError(f"{key} must be {want!r} for the frames (modelled), got {s[key]!r}")
+        if s["material.backFaceCulling"] != s["material.cullBackFaces"] and not s["material.cullBackFaces"]:
+            raise ValueError("material.cullBackFaces false (front faces culled) is not rendered by the frames")
+        out = {"class": "ShadowGenerator", "mapSize": s["mapSize"], "bias": s["bias"], "normalBias": s["normalBias"],
+               "shadowFrustumSize": s["light.shadowFrustumSize"], "shadowMinZ": s["light.shadowMinZ"], "shadowMaxZ": s["light.shadowMaxZ"],
+               "forceBackFacesOnly": s["forceBackFacesOnly"], "backFaceCulling": s["material.backFaceCulling"]}
     elif engine == "babylon":
         if s["class"] != "CascadedShadowGenerator":
-            raise ValueError(f"class must be CascadedShadowGenerator for the frames, got {s['class']!r}")
+            raise ValueError(f"class must be CascadedShadowGenerator or ShadowGenerator for the frames, got {s['class']!r}")
         for key, want in (("filter", None), ("minDistance", 0.0), ("maxDistance", 1.0), ("light.shadowMinZ", None), ("light.shadowMaxZ", None),
                           ("light.shadowFrustumSize", 0.0)):
             if s[key] != want:

@@ -357,3 +357,25 @@ def playcanvas_factor(atlas: Array, matrices: Array, cascade: NDArray[np.int64],
             raise ValueError(f"taps must be 1, 3 or 5, got {taps!r}")
         factor[sel] = f
     return factor
+
+
+def babylon_single_factor(depth_map: DepthMap, matrix: Array, points: Array, *, bias: float, half: bool = True) -> Array:
+    """Babylon.js 9.35's ShadowGenerator factor with FILTER_NONE (``computeShadow`` of shadowsFragmentFunctions).
+
+    The map is a colour target holding the caster's window depth + ``bias``
+    (shadowMapVertexMetric's ``vDepthMetricSM``, no depth texture, no depth clamp; cleared to 1),
+    rounded to a half float when ``half`` (the generator takes a half-float target first where
+    the device renders and filters them, shadowGenerator.js 659–668);
+    the receiver's depth is its window depth clamped to [0, 1], compared with the nearest texel
+    (NEAREST sampling): shadowed where it is greater; outside [0, 1]² the factor is 1.
+    """
+    c = to_map(matrix, points)
+    r = depth_map.resolution
+    stored = np.where(np.isfinite(depth_map.depth), depth_map.depth + bias, 1.0)
+    if half:
+        stored = stored.astype(np.float32).astype(np.float16).astype(float)
+    col = np.clip(np.floor(np.nan_to_num(c[..., 0]) * r), 0, r - 1).astype(np.int64)
+    row = np.clip(np.floor(np.nan_to_num(c[..., 1]) * r), 0, r - 1).astype(np.int64)
+    inside = np.all((c[..., :2] >= 0) & (c[..., :2] <= 1), axis=-1)
+    lit = np.clip(c[..., 2], 0.0, 1.0) <= stored[row, col]
+    return np.where(inside & ~lit, 0.0, 1.0)
