@@ -197,6 +197,11 @@ def test_babylon_shadow_generator_half_float_map(babylon_single, boxes):
         receivers = r.reference & ((np.nan_to_num(rb.normal) @ sun) > compare.MIN_COS)
         assert round(100 * compare.acne(f, receivers), 1 if float_pct >= 0.1 else 3) == float_pct
     assert babylon_single["tuned"].settings["normalBias"] == 0.0293 and babylon_single["tuned"].settings["bias"] == 0.0
+    # docs/guide/frames.rst: mask agreement and gaps at their precision
+    for name, agree, gaps in (("bias 4e-4", 1.0, (0.0, 0.0)), ("tuned", 0.996, (0.26, 0.27))):
+        rep = babylon_single[name].report
+        assert round(rep["measured"]["shadow_agreement"], 3) == agree, rep
+        assert (round(rep["measured"]["gap_px"], 2), round(rep["predicted"]["gap_px"], 2)) == gaps, rep
 
 
 def test_babylon_stripes_lit_surfaces(babylon):
@@ -463,3 +468,29 @@ def test_cli_renders_an_exported_scene_file_and_refuses_a_broken_one(tmp_path, c
     bad.write_bytes(b"not a glb")
     done = _cli("--scene", str(bad), *args, "--out", str(tmp_path / "out2"))
     assert done.returncode == 2 and done.stderr.count("\n") == 1 and "could not be loaded" in done.stderr, done.stderr
+
+
+def test_single_map_and_playcanvas_models_without_a_browser():
+    # the models' own rules, checked without rendering: PlayCanvas's cascade pick and atlas cells,
+    # what it does not predict, and the setups' single-map classes mapped to the pages' keys
+    from aliasing.frames.models import from_setup, model_for
+
+    pc = MODELS["playcanvas"]
+    s = pc.settings({"numCascades": 2, "cascadeDistribution": 0.0})
+    cam = setups.build("playcanvas", {}, CAMERA_SPEC).camera
+    ends = pc.edges(s, cam)[1:]  # uniform from near 0.5 to the shadow distance 40, float32
+    assert ends.tolist() == [20.25, 40.0]
+    assert pc.select(s, cam, np.array([0.6, 20.25, 39.0, 40.0, 40.5, np.nan])).tolist() == [0, 1, 1, 1, -1, -1]
+    assert pc.cells(s).tolist() == [[0, 0, 0.5, 0.5], [0, 0.5, 0.5, 0.5]]
+    assert pc.predicted(s) is None
+    assert "cascadeBlend" in pc.predicted(pc.settings({"cascadeBlend": 0.1}))
+    assert "shadowType" in pc.predicted(pc.settings({"shadowType": 2}))
+    three = from_setup(setups.build("threejs", BOX, CAMERA_SPEC, "35@30"))
+    assert type(model_for("threejs", three)).__name__ == "ThreeDirectional"
+    assert (three["left"], three["far"], three["mapSize"], three["shadowSide"]) == (-30, 200, 1024, "front")
+    bab = from_setup(setups.build("babylon", SG, CAMERA_SPEC, "35@30"))
+    assert type(model_for("babylon", bab)).__name__ == "BabylonSingle" and bab["shadowFrustumSize"] == 60
+    with pytest.raises(ValueError, match="filter must be null or FILTER_NONE"):
+        from_setup(setups.build("babylon", {**SG, "filter": "FILTER_PCF"}, CAMERA_SPEC, "35@30"))
+    with pytest.raises(ValueError, match="engine must be one of"):
+        model_for("godot", {})

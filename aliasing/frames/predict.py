@@ -272,7 +272,11 @@ def polygon_offset(map_triangles: Array, resolution: int, factor: float, units: 
     >>> float(polygon_offset(tri, 8, 1.0, 0.0)[0]), float(polygon_offset(tri, 8, 1.0, 0.0, "length")[0])   # ∂z/∂x = 3/64, ∂z/∂y = 4/64
     (0.0625, 0.078125)
     """
-    t = np.asarray(map_triangles, float)
+    t = check.finite(map_triangles, "map_triangles")
+    if t.ndim != 3 or t.shape[1:] != (3, 3):
+        raise ValueError(f"map_triangles must have shape (T, 3, 3), got {t.shape}")
+    if int(resolution) != resolution or resolution < 1:
+        raise ValueError(f"resolution must be a whole number of texels >= 1, got {resolution!r}")
     slope = check.choice(slope, "slope", ("max", "length"))
     scale = np.array([resolution, resolution, 1.0])
     n = np.cross((t[:, 1] - t[:, 0]) * scale, (t[:, 2] - t[:, 0]) * scale)
@@ -296,10 +300,18 @@ def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution
     Empty texels hold the clear depth 1; ``slope``: :func:`polygon_offset`'s.  Returns the (R, R) depth array.
     """
     r = int(resolution)
+    cells = check.finite(cells, "cells")
+    mats = check.finite(matrices, "matrices")
+    if cells.ndim != 2 or cells.shape[1] != 4 or mats.shape != (len(cells), 4, 4):
+        raise ValueError(f"cells must be (k, 4) and matrices (k, 4, 4) for the same k, got {cells.shape} and {mats.shape}")
+    if r != resolution or r < 1:
+        raise ValueError(f"resolution must be a whole number of texels >= 1, got {resolution!r}")
+    if not np.isfinite(shadow_bias):
+        raise ValueError(f"shadow_bias must be finite, got {shadow_bias!r}")
     out = np.ones((r, r))
     off = 10.0 * min(max(shadow_bias, 0.0), 1.0)
     centre = (np.arange(r) + 0.5) / r
-    for m, (x, y, w, h) in zip(matrices, cells):
+    for m, (x, y, w, h) in zip(mats, cells):
         dm = light_depth_map(triangles, m, r)
         bias = polygon_offset(to_map(m, triangles), r, off, off, slope) if off and len(triangles) else np.zeros(max(len(triangles), 1))
         d = np.where(dm.triangle >= 0, dm.depth + bias[np.maximum(dm.triangle, 0)], 1.0)
