@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 from . import compare
 from .models import MODELS, Prediction, model_for
 from .readback import Readback, decode
-from .scenes import FrameScene, frame_scene  # noqa: F401 - frame_scene for the example
+from .scenes import FrameScene, frame_scene, light_target  # noqa: F401 - frame_scene for the example, light_target re-exported
 
 Array = NDArray[np.float64]
 
@@ -56,15 +56,6 @@ def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: l
             "sun": [float(v) for v in sun], "settings": settings, "ground": scene.ground, "path": path,
             "lightTarget": light_target(cam).tolist()}
 
-
-def light_target(camera) -> Array:
-    """Where a single (non-cascaded) light looks: the point on the camera's view axis half way from near to far [world units].
-
-    The engines' fixed shadow boxes (three.js's ``DirectionalLight``) are placed at their light
-    and look at its target; the frames put the target here and the light half the shadow
-    camera's near + far from it towards the sun.
-    """
-    return camera.eye + camera.rotation[2] * (camera.near + camera.far) / 2
 
 
 def _ground_pixels(scene: FrameScene, rb: Readback) -> NDArray[np.bool_]:
