@@ -494,3 +494,30 @@ def test_single_map_and_playcanvas_models_without_a_browser():
         from_setup(setups.build("babylon", {**SG, "filter": "FILTER_PCF"}, CAMERA_SPEC, "35@30"))
     with pytest.raises(ValueError, match="engine must be one of"):
         model_for("godot", {})
+
+
+def test_polygon_offset_fuzz():
+    # the rasterizer's slope measure: max(|dz/dx|, |dz/dy|) <= the gradient's length <= sqrt(2) max,
+    # both >= 0 and finite for any non-degenerate triangle; a bad slope name is a ValueError naming it
+    from hypothesis import given, settings, strategies as st
+
+    from aliasing.frames import predict
+
+    coord = st.floats(0.0, 1.0, allow_nan=False)
+
+    @settings(max_examples=60, deadline=None)
+    @given(st.lists(coord, min_size=9, max_size=9), st.integers(1, 4096), st.floats(0.0, 10.0))
+    def check(c, res, factor):
+        tri = np.array(c, float).reshape(1, 3, 3)
+        a = predict.polygon_offset(tri, res, factor, 0.0, "max")[0]
+        b = predict.polygon_offset(tri, res, factor, 0.0, "length")[0]
+        assert np.isfinite(a) and np.isfinite(b) and 0 <= a <= b * (1 + 1e-12) + 1e-300
+        assert b <= np.sqrt(2) * a * (1 + 1e-12) + 1e-300
+        r = predict.polygon_offset(tri, res, 0.0, 1.0)[0]  # r = 2^(e - 23) of the largest depth
+        assert r <= 2.0**-23 and (r == 2.0**-149 or r >= max(tri[0, :, 2].max(), 2.0**-126) * 2.0**-24)
+
+    check()
+    with pytest.raises(ValueError, match="slope"):
+        predict.polygon_offset(np.zeros((1, 3, 3)), 8, 1.0, 1.0, "mean")
+    with pytest.raises(ValueError, match="map_triangles"):
+        predict.polygon_offset(np.zeros((3, 3)), 8, 1.0, 1.0)
