@@ -66,14 +66,9 @@ def run(args: argparse.Namespace) -> dict:
     if args.scene is None or args.camera is None or args.sun is None or args.out is None:
         raise ValueError("--scene, --camera, --sun and --out are required (or --install)")
     setup = setups.from_args(args)
+    frames_run.refuse_unrendered(setup.engine, setup.settings.get("class"), args.path, args.maps)
     if args.path is not None:
-        if setup.engine not in frames_run.PATH_ENGINES:
-            raise ValueError(f"--path: the camera path is rendered for {' and '.join(frames_run.PATH_ENGINES)} only (not yet for {setup.engine})")
         frames_run.parse_path(args.path, scenes.frame_scene("boxes", near=1.0, far=2.0, fov=50.0, aspect=1.0, boxes=0, ground_cells=1).camera)
-    if args.maps is not None:
-        if setup.engine not in ("threejs", "babylon"):
-            raise ValueError(f"--maps: the shadow maps are read back for threejs and babylon (not yet for {setup.engine})")
-        frames_run._map_side(args.maps)
     if setup.release != PINS[name].release:
         raise ValueError(f"--engine {args.engine}: the frames render {name} {PINS[name].release} only (the pinned npm release), not {setup.release}")
     cam = setup.camera

@@ -23,39 +23,12 @@ from numpy.typing import NDArray
 from .. import partitioning
 from ..engines import stable
 from . import predict
+from .base import Prediction, reference, tight_sides
+from .single import BabylonSingle, ThreeDirectional
 
 Array = NDArray[np.float64]
-
-
-@dataclass(frozen=True)
-class Prediction:
-    """Per pixel: the predicted ``factor`` and ``cascade``; per cascade: ``starts`` [world units] and map ``sides`` [world units]."""
-
-    factor: Array
-    cascade: NDArray[np.int64]
-    starts: Array
-    sides: Array
-    resolution: Array
-
-
-def tight_sides(camera, edges: Array, along: Array, up: Array) -> Array:
-    """Per cascade: the larger side [world units] of the slice corners' box in a light frame whose x axis is ``up`` × ``along``.
-
-    The tight fit's box depends on the light frame's roll about the light direction, which an
-    engine takes from a world up vector (Babylon.js: ``Matrix.LookAtLH(centre, centre + d, Vector3.Up())``),
-    not from the camera: the extents are measured on x ∝ up × d and y ∝ d × x (signs do not
-    change extents; the mirror into Babylon's left-handed world neither).
-    """
-    d = along / np.linalg.norm(along)
-    x = np.cross(up, d)
-    x /= np.linalg.norm(x)
-    y = np.cross(d, x)
-    out = []
-    for a, b in zip(edges[:-1], edges[1:]):
-        corners = camera.view.slice_vertices(a, b)  # eye space (8, 3)
-        world = corners @ camera.rotation + camera.eye
-        out.append(max(np.ptp(world @ x), np.ptp(world @ y)))
-    return np.array(out)
+__all__ = ["MODELS", "SINGLE", "Prediction", "reference", "tight_sides", "ThreeCSM", "ThreeDirectional", "BabylonCSM", "BabylonSingle",
+           "PlayCanvas", "model_for", "from_setup"]
 
 
 @dataclass(frozen=True)
@@ -143,7 +116,7 @@ class ThreeCSM:
         h, w = depth.shape
         fy, fx = np.mgrid[0:h, 0:w]
         gl_y = (h - 1 - fy) + 0.5
-        pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+        pts = np.nan_to_num(rb.position)
         factor = predict.threejs_factor(maps, rb.matrices, sel, pts, nrm, fx + 0.5, gl_y, bias=float(s["shadowBias"]),
                                         normal_bias=float(s["normalBias"]), radius=float(s["shadowRadius"]), map_type=s["shadowMapType"])
         factor = np.where(rb.drawn, factor, np.nan)
@@ -271,7 +244,7 @@ class BabylonCSM:
         maps = [predict.light_depth_map(cast, m, res) for m in rb.matrices]
         edges = self.edges(s, cam)
         pct = float(s["cascadeBlendPercentage"])
-        pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+        pts = np.nan_to_num(rb.position)
         factor = predict.babylon_factor(maps, rb.matrices, sel, depth, pts, ends=edges[1:], lengths=np.diff(edges),
                                         blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
         factor = np.where(rb.drawn, factor, np.nan)
@@ -294,25 +267,47 @@ class BabylonCSM:
 
 
 @dataclass(frozen=True)
-class PlayCanvasMeasured:
-    """PlayCanvas 2.23.3, a directional light with (cascaded) shadows: rendered and measured, not predicted.
+class PlayCanvas:
+    """PlayCanvas 2.23.3, a directional light with (cascaded) shadows (npm ``playcanvas``, ``build/playcanvas/src``).
 
     Settings (the light component's own keys): ``shadowBias``, ``normalOffsetBias``,
     ``shadowResolution``, ``numCascades``, ``cascadeDistribution``, ``cascadeBlend``,
-    ``shadowDistance``, ``shadowType``, ``shadowIntensity``; the material's ``cull``.  Its bias
-    is a polygon offset (factor and units −1000 · ``shadowBias``, ``Light._updateShadowBias``)
-    plus a receiver bias of 1e-4 in [0, 1] depth (``getShadowSampleCoord``): the offset's units
-    scale with the depth buffer's resolvable difference, which the GL implementation chooses,
-    so the toolkit does not predict these frames yet.
+    ``shadowDistance``, ``shadowType``, ``shadowIntensity``; the material's ``cull``.
+
+    The model, from the engine's source (files under ``scene/``):
+
+    * splits: ``generateSplitDistances`` (``renderer/shadow-renderer-directional.js`` 182–191),
+      practical with λ = ``cascadeDistribution`` from near to min(far, ``shadowDistance``),
+      stored in a Float32Array (the toolkit's :func:`aliasing.setups.playcanvas.splits`);
+    * fit: the sphere around the slice corners' average, the map side its diameter
+      (``cull``, lines 84–116; the pipeline's ``centroid`` fit); one map of ``shadowResolution``,
+      a 2×2 atlas of half-size cells when there are more cascades (``light.js`` 46–51);
+    * faces: the material's ``cull`` in the caster pass too (CULLFACE_BACK: front faces cast);
+    * bias: the caster pass's polygon offset, factor and units both 10·``shadowBias``
+      (``light.js`` ``_updateShadowBias`` 746–755, the component's −0.01·shadowBias);
+      the receiver's depth ``saturate(z) − 0.0001`` and its point moved by
+      ``normalOffsetBias`` along the world normal (``lightFunctionShadow``, the PCF path
+      ``SHADOW_SAMPLE_SOURCE_ZBUFFER``); :func:`aliasing.frames.predict.playcanvas_factor`;
+    * filter: PCF1/3/5 hardware comparisons (LESS) over the whole atlas (``shadowPCF1/3/5``);
+    * cascade: the number of ends ≤ the eye depth, at most k − 1; none beyond the last end
+      (``shadowCascades`` ``getShadowCascadeIndex``, ``getShadow``'s early return).
+
+    The polygon offset's slope term is the rasterizer's: SwiftShader takes
+    m = max(|∂z/∂x|, |∂z/∂y|) in window units and r = 2^(e − 23) for the 32-bit float depth
+    map, e the exponent of the triangle's largest depth (SwiftShader ``src/Pipeline/SetupRoutine.cpp``).
+    ``cascadeBlend`` (a dither of ``fract(sin(...))``) and the VSM, PCSS and 16-bit types are
+    rendered but not predicted.
     """
 
     engine: str = "playcanvas"
-    predicts: bool = False
     defaults: dict = field(default_factory=lambda: {
         "shadowBias": 0.05, "normalOffsetBias": 0.0, "shadowResolution": 1024, "numCascades": 1, "cascadeDistribution": 0.5,
         "cascadeBlend": 0.0, "shadowDistance": 40.0, "shadowType": 0, "shadowIntensity": 1.0, "cull": "back"})
+    #: shadowType numbers predicted (scene/constants.js): PCF3_32F, PCF5_32F, PCF1_32F and their filter sizes
+    FILTERS = {0: 3, 4: 5, 5: 1}
 
     def settings(self, given: dict | None = None) -> dict:
+        """Every setting, the defaults filled in (the light's and the component's own defaults)."""
         given = dict(given or {})
         unknown = sorted(set(given) - set(self.defaults))
         if unknown:
@@ -326,6 +321,62 @@ class PlayCanvasMeasured:
             raise ValueError(f"shadowResolution must be a power of two in [256, 4096], got {s['shadowResolution']!r}")
         return s
 
+    def predicted(self, s: dict) -> str | None:
+        """Why a setting's frame is rendered but not predicted (None when it is predicted)."""
+        if s["shadowType"] not in self.FILTERS:
+            return "shadowType must be SHADOW_PCF1_32F, SHADOW_PCF3_32F or SHADOW_PCF5_32F for a prediction (VSM, PCSS and 16-bit maps are not modelled)"
+        if s["cascadeBlend"] != 0:
+            return "cascadeBlend must be 0 for a prediction (the blend is a per-pixel dither of fract(sin(...)), not modelled)"
+        if s["shadowIntensity"] != 1:
+            return "shadowIntensity must be 1 for a prediction"
+        return None
+
+    def cast_side(self, s: dict) -> str:
+        """The faces drawn into the map: the material's cull mode, as in the main pass (back culled: front faces cast)."""
+        return {"back": "front", "front": "back", "none": "double"}[s["cull"]]
+
+    def edges(self, s: dict, camera) -> Array:
+        """The cascades' ends, near first [world units], float32 as the engine stores them."""
+        from ..setups.playcanvas import splits
+
+        a, b = splits({"numCascades": s["numCascades"], "cascadeDistribution": s["cascadeDistribution"], "shadowDistance": s["shadowDistance"]},
+                      camera.near, camera.far)
+        return np.concatenate([[a[0]], b])
+
+    def select(self, s: dict, camera, depth: Array) -> NDArray[np.int64]:
+        """``getShadowCascadeIndex``: the number of ends ≤ the eye depth, at most k − 1; −1 beyond the last end."""
+        ends = self.edges(s, camera)[1:]
+        idx = np.minimum(np.searchsorted(ends, depth, side="right"), len(ends) - 1)
+        return np.where(np.isfinite(depth) & (depth <= ends[-1]), idx, -1).astype(np.int64)
+
+    def cells(self, s: dict) -> Array:
+        """Each cascade's atlas cell (x, y, w, h) in [0, 1] (``light.js`` ``directionalCascades``)."""
+        k = int(s["numCascades"])
+        if k == 1:
+            return np.array([[0.0, 0.0, 1.0, 1.0]])
+        return np.array([[0.0, 0.0, 0.5, 0.5], [0.0, 0.5, 0.5, 0.5], [0.5, 0.0, 0.5, 0.5], [0.5, 0.5, 0.5, 0.5]])[:k]
+
+    def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
+        why = self.predicted(s)
+        if why:
+            raise ValueError(why)
+        cam = scene.camera
+        depth = np.where(rb.drawn, cam.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
+        sel = self.select(s, cam, depth)
+        res = int(s["shadowResolution"])
+        cast = scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))]
+        atlas = predict.playcanvas_atlas(cast, rb.matrices, self.cells(s), res, float(s["shadowBias"]))
+        pts = np.nan_to_num(rb.position)
+        factor = predict.playcanvas_factor(atlas, rb.matrices, sel, pts, nrm, normal_offset=float(s["normalOffsetBias"]),
+                                           taps=self.FILTERS[int(s["shadowType"])])
+        factor = np.where(rb.drawn, factor, np.nan)
+        ref = reference(scene, sun, rb, res)
+        edges = self.edges(s, cam)
+        k = len(edges) - 1
+        per = res if k == 1 else res // 2
+        sides = np.array([2 * float(stable.centroid_radius(a, b, cam.fov, cam.aspect)) for a, b in zip(edges[:-1], edges[1:])])
+        return Prediction(factor, sel, edges[:-1], sides, np.full(k, float(per))), ref
+
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
         """Each cascade's first depth (the previous cascade's distance), its larger texel side × R (R the atlas's side) and R."""
         ends = np.array([c["distance"] for c in rb.info["cascades"]], float)
@@ -334,18 +385,22 @@ class PlayCanvasMeasured:
         return starts, sides, rb.sizes[:, 0].astype(float)
 
 
-def reference(scene, sun: Array, rb, resolution: int) -> NDArray[np.bool_]:
-    """The exact reference's lit pixels, through the matrix of the cascade each pixel sampled (the last one where none)."""
-    pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
-    ref = np.ones(rb.shadow.shape, bool)
-    for i, m in enumerate(rb.matrices):
-        here = rb.drawn & ((rb.cascade == i) | ((rb.cascade < 0) & (i == len(rb.matrices) - 1)))
-        if here.any():
-            ref[here] = predict.reference_lit(scene.triangles, m, resolution, pts[here], nrm[here], sun)
-    return ref & rb.drawn & ((nrm @ sun) > 0)
+MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvas()}
+#: the engines' single-map classes, by the ``class`` setting
+SINGLE = {("threejs", "DirectionalLight"): ThreeDirectional(), ("babylon", "ShadowGenerator"): BabylonSingle()}
 
 
-MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvasMeasured()}
+def model_for(engine: str, settings: dict):
+    """The model of ``engine`` for these settings: its single-map class where ``settings["class"]`` names one, else its cascades'.
+
+    Example
+    -------
+    >>> type(model_for("threejs", {"class": "DirectionalLight"})).__name__, type(model_for("threejs", {})).__name__
+    ('ThreeDirectional', 'ThreeCSM')
+    """
+    if engine not in MODELS:
+        raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")
+    return SINGLE.get((engine, (settings or {}).get("class")), MODELS[engine])
 
 
 _THREE_SIDE = {"FrontSide": "front", "BackSide": "back", "DoubleSide": "double"}
@@ -369,9 +424,16 @@ def from_setup(setup) -> dict:
     engine, s = setup.engine, dict(setup.settings)
     if engine not in MODELS:
         raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")
-    if engine == "threejs":
+    if engine == "threejs" and s["class"] == "DirectionalLight":
+        out = {"class": "DirectionalLight", "mapSize": s["shadow.mapSize.width"], "bias": s["shadow.bias"], "normalBias": s["shadow.normalBias"],
+               "radius": s["shadow.radius"], "shadowMapType": s["renderer.shadowMap.type"], "side": _THREE_SIDE[s["material.side"]],
+               "shadowSide": None if s["material.shadowSide"] == "null" else _THREE_SIDE[s["material.shadowSide"]],
+               **{k: s[f"shadow.camera.{k}"] for k in ("left", "right", "top", "bottom", "near", "far")}}
+        if out["shadowMapType"] == "PCFSoftShadowMap":  # WebGLShadowMap replaces it (lines 99-102)
+            out["shadowMapType"] = "PCFShadowMap"
+    elif engine == "threejs":
         if s["class"] != "CSM":
-            raise ValueError(f"class must be CSM for the frames (one DirectionalLight is not rendered yet), got {s['class']!r}")
+            raise ValueError(f"class must be CSM or DirectionalLight for the frames, got {s['class']!r}")
         if s["shadow.bias"] != 0:
             raise ValueError("shadow.bias is overwritten by CSM's shadowBias on every cascade light: set shadowBias")
         out = {k: s[k] for k in ("cascades", "maxFar", "mode", "shadowMapSize", "shadowBias", "lightNear", "lightFar", "lightMargin", "fade")}
@@ -379,9 +441,20 @@ def from_setup(setup) -> dict:
                    side=_THREE_SIDE[s["material.side"]], shadowSide=None if s["material.shadowSide"] == "null" else _THREE_SIDE[s["material.shadowSide"]])
         if out["shadowMapType"] == "PCFSoftShadowMap":  # WebGLShadowMap replaces it (lines 99-102)
             out["shadowMapType"] = "PCFShadowMap"
+    elif engine == "babylon" and s["class"] == "ShadowGenerator":
+        if s["filter"] not in (None, "FILTER_NONE"):
+            raise ValueError(f"filter must be null or FILTER_NONE for a ShadowGenerator's frames (modelled), got {s['filter']!r}")
+        for key, want in (("darkness", 0.0), ("frustumEdgeFalloff", 0.0)):
+            if s[key] != want:
+                raise ValueError(f"{key} must be {want!r} for the frames (modelled), got {s[key]!r}")
+        if s["material.backFaceCulling"] != s["material.cullBackFaces"] and not s["material.cullBackFaces"]:
+            raise ValueError("material.cullBackFaces false (front faces culled) is not rendered by the frames")
+        out = {"class": "ShadowGenerator", "mapSize": s["mapSize"], "bias": s["bias"], "normalBias": s["normalBias"],
+               "shadowFrustumSize": s["light.shadowFrustumSize"], "shadowMinZ": s["light.shadowMinZ"], "shadowMaxZ": s["light.shadowMaxZ"],
+               "forceBackFacesOnly": s["forceBackFacesOnly"], "backFaceCulling": s["material.backFaceCulling"]}
     elif engine == "babylon":
         if s["class"] != "CascadedShadowGenerator":
-            raise ValueError(f"class must be CascadedShadowGenerator for the frames, got {s['class']!r}")
+            raise ValueError(f"class must be CascadedShadowGenerator or ShadowGenerator for the frames, got {s['class']!r}")
         for key, want in (("filter", None), ("minDistance", 0.0), ("maxDistance", 1.0), ("light.shadowMinZ", None), ("light.shadowMaxZ", None),
                           ("light.shadowFrustumSize", 0.0)):
             if s[key] != want:
@@ -397,7 +470,7 @@ def from_setup(setup) -> dict:
                                  "shadowDistance")}
         out["shadowType"] = _PC_TYPES[s["shadowType"]]
         out["cull"] = _PC_CULL[s["material.cull"]]
-    model = MODELS[engine]
+    model = model_for(engine, out)
     full = model.settings(out)
     if getattr(model, "predicts", True):
         faces = _FACES[setup.pipeline.bias.faces]

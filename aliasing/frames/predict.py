@@ -254,3 +254,140 @@ def babylon_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
                 f[blend] = nxt + (f[blend] - nxt) * ratio[blend]  # mix(next, this, ratio)
         factor[sel] = f
     return factor
+
+
+def polygon_offset(map_triangles: Array, resolution: int, factor: float, units: float, slope: str = "max") -> Array:
+    """Per triangle: the rasterizer's polygon offset [window depth], as SwiftShader applies ``glPolygonOffset(factor, units)``.
+
+    ``factor`` · m + ``units`` · r with m = max(|∂z/∂x|, |∂z/∂y|) of the triangle's plane in
+    window pixels (``resolution`` texels per map side) and r = 2^(e − 23), e the exponent of its
+    largest depth (a 32-bit float depth map; SwiftShader ``src/Pipeline/SetupRoutine.cpp``).
+    ``slope`` "length" takes m = √((∂z/∂x)² + (∂z/∂y)²) instead, the OpenGL ES 3.0 definition
+    (§3.6.5) that "max" approximates.  ``map_triangles`` (T, 3, 3): corners in map coordinates
+    (s, t, depth) in [0, 1].
+
+    Example
+    -------
+    >>> tri = np.array([[[0.0, 0.0, 0.5], [1.0, 0.0, 0.5 + 3 / 8], [0.0, 1.0, 0.5 + 4 / 8]]])
+    >>> float(polygon_offset(tri, 8, 1.0, 0.0)[0]), float(polygon_offset(tri, 8, 1.0, 0.0, "length")[0])   # ∂z/∂x = 3/64, ∂z/∂y = 4/64
+    (0.0625, 0.078125)
+    """
+    t = check.finite(map_triangles, "map_triangles")
+    if t.ndim != 3 or t.shape[1:] != (3, 3):
+        raise ValueError(f"map_triangles must have shape (T, 3, 3), got {t.shape}")
+    if int(resolution) != resolution or resolution < 1:
+        raise ValueError(f"resolution must be a whole number of texels >= 1, got {resolution!r}")
+    slope = check.choice(slope, "slope", ("max", "length"))
+    scale = np.array([resolution, resolution, 1.0])
+    n = np.cross((t[:, 1] - t[:, 0]) * scale, (t[:, 2] - t[:, 0]) * scale)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        gx, gy = np.abs(n[:, 0]) / np.abs(n[:, 2]), np.abs(n[:, 1]) / np.abs(n[:, 2])
+        m = np.maximum(gx, gy) if slope == "max" else np.hypot(gx, gy)
+    m = np.where(np.isfinite(m), m, 0.0)
+    zmax = np.clip(t[:, :, 2].max(axis=1), 2.0**-126, 1.0)
+    r = 2.0 ** (np.floor(np.log2(zmax)) - 23)
+    return factor * m + units * r
+
+
+def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution: int, shadow_bias: float, slope: str = "max") -> Array:
+    """PlayCanvas's shadow atlas: each cascade's casters drawn through its palette matrix into its cell, with the polygon offset.
+
+    ``matrices`` (k, 4, 4) map world points to the atlas's (s, t, depth) (the engine's
+    ``_shadowMatrixPalette``, its viewport included); ``cells`` (k, 4) each cascade's viewport
+    (x, y, w, h) in [0, 1] (the scissor); the stored depth is the window depth plus
+    :func:`polygon_offset` with factor and units 10 · clamp(``shadow_bias``, 0, 1)
+    (``light.js`` ``_updateShadowBias``: −1000 × the light's −0.01 · shadowBias).
+    Empty texels hold the clear depth 1; ``slope``: :func:`polygon_offset`'s.  Returns the (R, R) depth array.
+    """
+    r = int(resolution)
+    cells = check.finite(cells, "cells")
+    mats = check.finite(matrices, "matrices")
+    if cells.ndim != 2 or cells.shape[1] != 4 or mats.shape != (len(cells), 4, 4):
+        raise ValueError(f"cells must be (k, 4) and matrices (k, 4, 4) for the same k, got {cells.shape} and {mats.shape}")
+    if r != resolution or r < 1:
+        raise ValueError(f"resolution must be a whole number of texels >= 1, got {resolution!r}")
+    if not np.isfinite(shadow_bias):
+        raise ValueError(f"shadow_bias must be finite, got {shadow_bias!r}")
+    out = np.ones((r, r))
+    off = 10.0 * min(max(shadow_bias, 0.0), 1.0)
+    centre = (np.arange(r) + 0.5) / r
+    for m, (x, y, w, h) in zip(mats, cells):
+        dm = light_depth_map(triangles, m, r)
+        bias = polygon_offset(to_map(m, triangles), r, off, off, slope) if off and len(triangles) else np.zeros(max(len(triangles), 1))
+        d = np.where(dm.triangle >= 0, dm.depth + bias[np.maximum(dm.triangle, 0)], 1.0)
+        cols = (centre >= x) & (centre < x + w)
+        rows = (centre >= y) & (centre < y + h)
+        cell = rows[:, None] & cols[None, :]
+        out[cell] = d[cell]
+    return out
+
+
+def _playcanvas_pcf3(stored: Array, s: Array, t: Array, ref: Array) -> Array:
+    """PlayCanvas's ``_getShadowPCF3x3``: 4 hardware-PCF (LINEAR, compare LESS) taps with weights /16."""
+    r = stored.shape[0]
+    u, v = s * r, t * r
+    bu, bv = np.floor(u + 0.5), np.floor(v + 0.5)
+    ss, tt = u + 0.5 - bu, v + 0.5 - bv
+    bu, bv = (bu - 0.5) / r, (bv - 0.5) / r
+    uw = (3 - 2 * ss, 1 + 2 * ss)
+    uo = ((2 - ss) / uw[0] - 1, ss / uw[1] + 1)
+    vw = (3 - 2 * tt, 1 + 2 * tt)
+    vo = ((2 - tt) / vw[0] - 1, tt / vw[1] + 1)
+    out = np.zeros_like(ref)
+    for a in range(2):
+        for b in range(2):
+            out += uw[a] * vw[b] * _hardware_compare(stored, uo[a] / r + bu, vo[b] / r + bv, ref, strict=True)
+    return out / 16.0
+
+
+def playcanvas_factor(atlas: Array, matrices: Array, cascade: NDArray[np.int64], points: Array, normals: Array, *,
+                      normal_offset: float, taps: int = 3) -> Array:
+    """PlayCanvas 2.23.3's directional shadow factor (``getShadow`` with a PCF map, ``lightFunctionShadow``).
+
+    The point moves by ``normal_offset`` along its world normal (``SHADOW_SAMPLE_NORMAL_OFFSET``
+    with ``SHADOW_SAMPLE_SOURCE_ZBUFFER``: no n·l factor), its map depth is
+    ``saturate(z) − 0.0001`` (``SHADOW_SAMPLE_ORTHO``), and ``taps`` 1, 3 or 5 picks
+    ``getShadowPCF1x1`` (one hardware comparison), ``PCF3x3`` (4 taps /16) or ``PCF5x5`` (9 taps
+    /144, Castaño's weights as Babylon.js's), all LESS comparisons of the whole atlas (a tap
+    can read a neighbouring cell).  ``cascade`` −1: no shadow (factor 1).
+    """
+    factor = np.ones(points.shape[:-1])
+    for i, m in enumerate(matrices):
+        sel = cascade == i
+        if not sel.any():
+            continue
+        q = points[sel] + normal_offset * normals[sel] if normal_offset else points[sel]
+        c = to_map(m, q)
+        z = np.clip(c[:, 2], 0.0, 1.0) - 0.0001
+        if taps == 1:
+            f = _hardware_compare(atlas, c[:, 0], c[:, 1], z, strict=True)
+        elif taps == 3:
+            f = _playcanvas_pcf3(atlas, c[:, 0], c[:, 1], z)
+        elif taps == 5:
+            f = np.clip(_babylon_pcf5(atlas, c[:, 0], c[:, 1], z), 0.0, 1.0)
+        else:
+            raise ValueError(f"taps must be 1, 3 or 5, got {taps!r}")
+        factor[sel] = f
+    return factor
+
+
+def babylon_single_factor(depth_map: DepthMap, matrix: Array, points: Array, *, bias: float, half: bool = True) -> Array:
+    """Babylon.js 9.35's ShadowGenerator factor with FILTER_NONE (``computeShadow`` of shadowsFragmentFunctions).
+
+    The map is a colour target holding the caster's window depth + ``bias``
+    (shadowMapVertexMetric's ``vDepthMetricSM``, no depth texture, no depth clamp; cleared to 1),
+    rounded to a half float when ``half`` (the generator takes a half-float target first where
+    the device renders and filters them, shadowGenerator.js 659–668);
+    the receiver's depth is its window depth clamped to [0, 1], compared with the nearest texel
+    (NEAREST sampling): shadowed where it is greater; outside [0, 1]² the factor is 1.
+    """
+    c = to_map(matrix, points)
+    r = depth_map.resolution
+    stored = np.where(np.isfinite(depth_map.depth), depth_map.depth + bias, 1.0)
+    if half:
+        stored = stored.astype(np.float32).astype(np.float16).astype(float)
+    col = np.clip(np.floor(np.nan_to_num(c[..., 0]) * r), 0, r - 1).astype(np.int64)
+    row = np.clip(np.floor(np.nan_to_num(c[..., 1]) * r), 0, r - 1).astype(np.int64)
+    inside = np.all((c[..., :2] >= 0) & (c[..., :2] <= 1), axis=-1)
+    lit = np.clip(c[..., 2], 0.0, 1.0) <= stored[row, col]
+    return np.where(inside & ~lit, 0.0, 1.0)

@@ -17,9 +17,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from . import compare
-from .models import MODELS, Prediction
+from .models import MODELS, Prediction, model_for
 from .readback import Readback, decode
-from .scenes import FrameScene, frame_scene  # noqa: F401 - frame_scene for the example
+from .scenes import FrameScene, frame_scene, light_target  # noqa: F401 - frame_scene for the example, light_target re-exported
 
 Array = NDArray[np.float64]
 
@@ -55,7 +55,31 @@ def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: l
             "camera": {"eye": cam.eye.tolist(), "target": (cam.eye + cam.rotation[2]).tolist(), "up": cam.rotation[1].tolist(),
                        "near": cam.near, "far": cam.far, "fov": cam.fov},
             "sun": [float(v) for v in sun], "settings": settings, "ground": scene.ground, "path": path,
-            "maps": None if maps is None else {"side": _map_side(maps)}}
+            "maps": None if maps is None else {"side": _map_side(maps)}, "lightTarget": light_target(cam).tolist()}
+
+
+def refuse_unrendered(engine: str, cls: str | None, path, maps) -> None:
+    """Refuse, in one line, a camera ``path`` or a map read-back (``maps``) that the frames do not render for ``engine``'s ``cls``.
+
+    Example
+    -------
+    >>> refuse_unrendered("threejs", "CSM", "sideways:0.05:4", 256)
+    >>> refuse_unrendered("playcanvas", None, "sideways:0.05:4", None)
+    Traceback (most recent call last):
+    ...
+    ValueError: --path: the camera path is rendered for threejs and babylon only (not yet for playcanvas)
+    """
+    single = cls in ("DirectionalLight", "ShadowGenerator")
+    if path is not None:
+        if engine not in PATH_ENGINES:
+            raise ValueError(f"--path: the camera path is rendered for {' and '.join(PATH_ENGINES)} only (not yet for {engine})")
+        if single:
+            raise ValueError(f"--path: the camera path is rendered for the cascaded classes only (a {cls}'s box does not follow the camera)")
+    if maps is not None:
+        _map_side(maps)
+        if engine not in ("threejs", "babylon") or single:
+            raise ValueError(f"--maps: the shadow maps are read back for three.js's CSM and Babylon.js's CascadedShadowGenerator "
+                             f"only (not yet for {engine}{' ' + cls if cls else ''})")
 
 
 def _map_side(maps) -> int:
@@ -85,6 +109,8 @@ def pipeline_footprint(pipeline, camera, sun: Array) -> tuple[Array, Array, Arra
 
     near_i, far_i = np.asarray(pipeline.near_i, float), np.asarray(pipeline.far_i, float)
     res = float(pipeline.resolution)
+    if pipeline.fit == "fixed":  # one box the user sets: its larger side
+        return near_i, np.full(len(near_i), float(max(pipeline.box))), np.full(len(near_i), res)
     if pipeline.fit == "tight":
         sides = np.array([tight_sides(camera, np.array([a, b]), -sun, np.array([0.0, 1.0, 0.0]))[0] for a, b in zip(near_i, far_i)])
     else:
@@ -100,9 +126,11 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     With an :class:`aliasing.setups.Pipeline` the predicted texel footprint is the pipeline's
     (its ranges, fit and snap), and the details say how far its cascade ranges are from the model's.
     """
-    model = MODELS[engine]
+    model = model_for(engine, settings)
     rb = decode(out)
-    if getattr(model, "predicts", True):
+    why_not = model.predicted(settings) if hasattr(model, "predicted") else None
+    predicts = getattr(model, "predicts", True) and why_not is None
+    if predicts:
         pred, ref = model.predict(settings, scene, sun, rb)
     else:  # rendered and measured only: the exact reference, no predicted factor
         from .models import reference
@@ -114,7 +142,6 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     ground = _ground_pixels(scene, rb)
     m_starts, m_sides, m_res = model.measured_cascades(settings, scene.camera, rb)
     h = rb.shadow.shape[0]
-    predicts = getattr(model, "predicts", True)
     measured = {
         "shadow_agreement": compare.agreement(rb.shadow, pred.factor, rb.drawn) if predicts else None,
         "acne": compare.acne(rb.shadow, receivers),
@@ -139,6 +166,8 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     extra = {"pixels": int(drawn.sum()), "receivers": int(receivers.sum()),
              "cascade_agreement": float(np.mean(rb.cascade[drawn] == pred.cascade[drawn])) if drawn.any() and predicts else None,
              "renderer": rb.info.get("renderer"), "engine_ms": rb.info.get("ms"), **extra_pipe}
+    if why_not:
+        extra["not_predicted"] = why_not
     report = {"engine": engine, "release": rb.release, "scene": scene.name, "measured": measured, "predicted": predicted, "details": extra}
     return FrameResult(rb, pred, ref, settings, report)
 
@@ -183,8 +212,6 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
         raise ValueError(f"setup must be an aliasing.setups.Setup, got {type(setup).__name__}")
     if not isinstance(scene, FrameScene):
         raise ValueError(f"scene must be a FrameScene (aliasing.frames.scenes.frame_scene), got {type(scene).__name__}")
-    from dataclasses import replace
-
     from ..raster.scenes.camera import Camera
     from ..setups import Setup, spec
     from .models import from_setup
@@ -208,13 +235,9 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     sv = np.asarray(sun, float) / np.linalg.norm(sun)
     poses = None
     if path is not None:
-        if setup.engine not in PATH_ENGINES:
-            raise ValueError(f"--path: the camera path is rendered for {' and '.join(PATH_ENGINES)} only (not yet for {setup.engine})")
+        refuse_unrendered(setup.engine, settings.get("class"), path, None)
         poses = parse_path(path, scene.camera)
-    if maps is not None:
-        _map_side(maps)
-        if setup.engine not in ("threejs", "babylon"):
-            raise ValueError(f"--maps: the shadow maps are read back for threejs and babylon (not yet for {setup.engine})")
+    refuse_unrendered(setup.engine, settings.get("class"), None, maps)
     out = browser.render(setup.engine, make_job(scene, sv, settings, cam.height, poses, maps))
     result = measure(setup.engine, scene, sv, settings, out, pipeline=setup.pipeline)
     if maps is not None:
@@ -277,8 +300,6 @@ def parse_path(spec: str, camera) -> list[dict]:
 
 def pose_camera(camera, pose: dict):
     """``camera`` moved to a pose of :func:`parse_path` (its eye, looking at its target, with the camera's own up)."""
-    from dataclasses import replace
-
     from ..raster.scenes.camera import frame
 
     eye = np.asarray(pose["eye"], float)
@@ -295,8 +316,6 @@ def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]
     """``flips_per_frame`` of the engine along ``path`` (its read-back ``path``) and as the toolkit
     predicts it (three.js: each pose's predicted matrices, the toolkit's maps and three.js's filter at
     the same pixels); details: the largest relative difference of the pose matrices."""
-    from dataclasses import replace
-
     from . import predict
 
     rb, s = result.readback, result.settings
@@ -334,8 +353,6 @@ def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]
 def _babylon_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], frames: list[dict], keep) -> dict:
     """Babylon.js's predicted flips: each pose's predicted matrices (:mod:`aliasing.frames.babylon_cascades`),
     the toolkit's maps and Babylon.js's factor at the same pixels (the picture's cascades and depths)."""
-    from dataclasses import replace
-
     from . import babylon_cascades, predict
 
     rb, s = result.readback, result.settings

@@ -193,3 +193,19 @@ def export(scene: FrameScene, path) -> str:
     if not isinstance(scene, FrameScene):
         raise ValueError(f"scene must be a FrameScene, got {type(scene).__name__}")
     return procedural.to_glb(scene.triangles, path, {"frame": scene.camera})
+
+
+def light_target(camera) -> np.ndarray:
+    """Where a single (non-cascaded) light looks: the point on the camera's view axis half way from near to far [world units].
+
+    The engines' fixed shadow boxes (three.js's ``DirectionalLight``, Babylon.js's
+    ``ShadowGenerator``) are placed at their light and look at its target; the frames put the
+    target here and the light half the shadow camera's near + far from it towards the sun.
+
+    Example
+    -------
+    >>> fs = frame_scene("boxes", near=1.0, far=9.0, fov=50.0, aspect=1.0, boxes=1, ground_cells=1)
+    >>> light_target(fs.camera).round(6).tolist()   # the eye at the origin looking along -z
+    [0.0, 0.0, -5.0]
+    """
+    return camera.eye + camera.rotation[2] * (camera.near + camera.far) / 2

@@ -17,6 +17,7 @@ import { Scene } from "/node_modules/@babylonjs/core/scene.js";
 import { FreeCamera } from "/node_modules/@babylonjs/core/Cameras/freeCamera.js";
 import { DirectionalLight } from "/node_modules/@babylonjs/core/Lights/directionalLight.js";
 import { CascadedShadowGenerator } from "/node_modules/@babylonjs/core/Lights/Shadows/cascadedShadowGenerator.js";
+import { ShadowGenerator } from "/node_modules/@babylonjs/core/Lights/Shadows/shadowGenerator.js";
 import "/node_modules/@babylonjs/core/Lights/Shadows/shadowGeneratorSceneComponent.js";
 import { Mesh } from "/node_modules/@babylonjs/core/Meshes/mesh.js";
 import { VertexData } from "/node_modules/@babylonjs/core/Meshes/mesh.vertexData.js";
@@ -42,9 +43,10 @@ function instrument() {
 }
 
 class ReadBack extends MaterialPluginBase {
-  constructor(material, mode) {
+  constructor(material, mode, single) {
     super(material, `FramesReadBack${mode}`, 200, { [`FRAMES_MODE${mode}`]: true, FRAMES_CASCADE: true }, true, true);
     this.mode = mode;
+    this.single = single;                                 // one ShadowGenerator map: cascade 0
     this._enable(true);
   }
   prepareDefines(defines) { defines[`FRAMES_MODE${this.mode}`] = true; defines.FRAMES_CASCADE = true; }
@@ -54,7 +56,7 @@ class ReadBack extends MaterialPluginBase {
     const out = this.mode === 1 ? "gl_FragColor=vec4(aggShadow,frCascade,0.,1.);"
       : this.mode === 2 ? "gl_FragColor=vec4(vPositionW.xy,-vPositionW.z,1.);"
       : this.mode === 3 ? "vec3 frN=gl_FrontFacing?normalW:-normalW;gl_FragColor=vec4(frN.xy,-frN.z,1.);" : "";
-    return { CUSTOM_FRAGMENT_DEFINITIONS: "float frCascade=-1.;", CUSTOM_FRAGMENT_MAIN_END: out };
+    return { CUSTOM_FRAGMENT_DEFINITIONS: this.single ? "float frCascade=0.;" : "float frCascade=-1.;", CUSTOM_FRAGMENT_MAIN_END: out };
   }
 }
 
@@ -86,8 +88,24 @@ window.frame = async (job) => {
   const light = new DirectionalLight("sun", mz([-job.sun[0], -job.sun[1], -job.sun[2]]), scene);
   light.intensity = 1;
   const mapSize = s.mapSize ?? 1024;
-  const csm = new CascadedShadowGenerator(mapSize, light);
-  for (const k of GEN_KEYS) if (s[k] !== undefined) csm[k] = s[k];
+  const single = s.class === "ShadowGenerator";
+  let csm;
+  if (single) {
+    // one ShadowGenerator: a fixed square box (light.shadowFrustumSize) around the light, looking
+    // along its direction, depth shadowMinZ..shadowMaxZ from it (DirectionalLight
+    // _setDefaultFixedFrustumShadowProjectionMatrix); the page puts the light (minZ + maxZ)/2
+    // from job.lightTarget towards the sun
+    const lo = s.shadowMinZ ?? c.near, hi = s.shadowMaxZ ?? c.far, t = job.lightTarget, d = (lo + hi) / 2;
+    light.position = mz([t[0] + job.sun[0] * d, t[1] + job.sun[1] * d, t[2] + job.sun[2] * d]);
+    light.shadowFrustumSize = s.shadowFrustumSize;
+    if (s.shadowMinZ !== null && s.shadowMinZ !== undefined) light.shadowMinZ = s.shadowMinZ;
+    if (s.shadowMaxZ !== null && s.shadowMaxZ !== undefined) light.shadowMaxZ = s.shadowMaxZ;
+    csm = new ShadowGenerator(mapSize, light);
+    for (const k of ["bias", "normalBias", "darkness", "frustumEdgeFalloff", "forceBackFacesOnly"]) if (s[k] !== undefined) csm[k] = s[k];
+  } else {
+    csm = new CascadedShadowGenerator(mapSize, light);
+    for (const k of GEN_KEYS) if (s[k] !== undefined) csm[k] = s[k];
+  }
 
   const pos = decodeF32(job.triangles);
   const nrm = flatNormals(pos);                        // outward, in the job's world
@@ -107,7 +125,7 @@ window.frame = async (job) => {
     m.specularColor = new Color3(0, 0, 0);
     if (mode === 0) m.emissiveColor = new Color3(0.25, 0.25, 0.25);  // the frame only: shadows not black (one light: aggShadow is its factor)
     if (s.backFaceCulling !== undefined) m.backFaceCulling = s.backFaceCulling;
-    if (mode > 0) new ReadBack(m, mode);
+    if (mode > 0) new ReadBack(m, mode, single);
     return m;
   });
   mesh.material = materials[0];
@@ -141,7 +159,12 @@ window.frame = async (job) => {
   }
   const ms = performance.now() - t0;
   const cascades = [];
-  for (let i = 0; i < csm.numCascades; i++) {
+  if (single) {
+    const m = Array.from(csm.getTransformMatrix().m);            // row vectors: clip = [x y z 1] m (Babylon's world)
+    for (let j = 8; j < 12; j++) m[j] = -m[j];
+    cascades.push({ matrix: m, clip: true, size: [mapSize, mapSize], viewZ: c.far });
+  }
+  for (let i = 0; i < (single ? 0 : csm.numCascades); i++) {
     const m = Array.from(csm.getCascadeTransformMatrix(i).m);  // row vectors: clip = [x y z 1] m (Babylon's world)
     for (let j = 8; j < 12; j++) m[j] = -m[j];                    // the row taking z: the job's world
     cascades.push({ matrix: m, clip: true, size: [mapSize, mapSize], viewZ: csm._viewSpaceFrustumsZ[i],
@@ -181,7 +204,7 @@ window.frame = async (job) => {
   const gl = engine._gl;
   const dbg = gl.getExtension("WEBGL_debug_renderer_info");
   const used = {};
-  for (const k of GEN_KEYS) used[k] = csm[k];
+  for (const k of GEN_KEYS) if (!single || k in csm) used[k] = csm[k];
   used.mapSize = mapSize; used.filter = csm.filter; used.backFaceCulling = materials[0].backFaceCulling;
   const res = { engine: "babylon", revision: Engine.Version, width: w, height: h, frame, ...out, cascades, used, ms, maps, path,
                 renderer: dbg ? gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER) };

@@ -84,16 +84,38 @@ window.frame = async (job) => {
 
   const scene = new THREE.Scene();
   const shine = new THREE.Vector3(-job.sun[0], -job.sun[1], -job.sun[2]).normalize(); // along the light
-  const data = { camera, parent: scene, lightDirection: shine };
-  for (const k of ["cascades", "maxFar", "mode", "shadowMapSize", "shadowBias", "lightIntensity", "lightNear", "lightFar", "lightMargin", "fade"]) {
-    if (s[k] !== undefined && k !== "fade") data[k] = s[k];
-  }
-  const csm = new CSM(data);
-  if (s.fade !== undefined) csm.fade = s.fade;
-  for (const light of csm.lights) {
-    if (s.normalBias !== undefined) light.shadow.normalBias = s.normalBias;
-    if (s.bias !== undefined) light.shadow.bias = s.bias;
-    if (s.shadowRadius !== undefined) light.shadow.radius = s.shadowRadius;
+  let csm = null, lights;
+  if (s.class === "DirectionalLight") {
+    // one DirectionalLight: its shadow camera is the orthographic box the user sets, placed at
+    // the light and looking at its target (LightShadow.updateMatrices); the page puts the target
+    // at job.lightTarget and the light (near + far)/2 from it towards the sun
+    const light = new THREE.DirectionalLight(0xffffff, 3);
+    const t = new THREE.Vector3(...job.lightTarget);
+    light.target.position.copy(t);
+    light.position.copy(t).addScaledVector(shine, -(s.near + s.far) / 2);
+    light.castShadow = true;
+    const cam = light.shadow.camera;
+    Object.assign(cam, { left: s.left, right: s.right, top: s.top, bottom: s.bottom, near: s.near, far: s.far });
+    cam.updateProjectionMatrix();
+    light.shadow.mapSize.set(s.mapSize, s.mapSize);
+    light.shadow.bias = s.bias;
+    light.shadow.normalBias = s.normalBias;
+    light.shadow.radius = s.radius;
+    scene.add(light, light.target);
+    lights = [light];
+  } else {
+    const data = { camera, parent: scene, lightDirection: shine };
+    for (const k of ["cascades", "maxFar", "mode", "shadowMapSize", "shadowBias", "lightIntensity", "lightNear", "lightFar", "lightMargin", "fade"]) {
+      if (s[k] !== undefined && k !== "fade") data[k] = s[k];
+    }
+    csm = new CSM(data);
+    if (s.fade !== undefined) csm.fade = s.fade;
+    for (const light of csm.lights) {
+      if (s.normalBias !== undefined) light.shadow.normalBias = s.normalBias;
+      if (s.bias !== undefined) light.shadow.bias = s.bias;
+      if (s.shadowRadius !== undefined) light.shadow.radius = s.shadowRadius;
+    }
+    lights = csm.lights;
   }
   instrument();
   scene.add(new THREE.AmbientLight(0xffffff, 0.25));
@@ -111,7 +133,8 @@ window.frame = async (job) => {
   mesh.frustumCulled = false;
   scene.add(mesh);
 
-  csm.update();
+  if (csm) csm.update();
+  else scene.updateMatrixWorld(true);
   const t0 = performance.now();
   renderer.render(scene, camera);                       // the engine's own frame (shadow maps drawn here)
   const frame = canvas.toDataURL("image/png");
@@ -138,6 +161,7 @@ window.frame = async (job) => {
   // pixel keeps its world point and a change of its factor is the maps' motion alone
   const path = [];
   if (job.path) {
+    if (!csm) throw new Error("a camera path is rendered for the CSM class only");
     const fit = camera.clone();
     csm.camera = fit;
     renderer.shadowMap.autoUpdate = true;
@@ -155,14 +179,14 @@ window.frame = async (job) => {
     }
   }
   const ms = performance.now() - t0;
-  const cascades = csm.lights.map((light) => {
+  const cascades = lights.map((light) => {
     const sh = light.shadow, cam = sh.camera;
     return { matrix: [...sh.matrix.elements], size: [sh.mapSize.x, sh.mapSize.y], near: cam.near, far: cam.far,
              left: cam.left, right: cam.right, top: cam.top, bottom: cam.bottom, bias: sh.bias, normalBias: sh.normalBias, radius: sh.radius };
   });
   const gl = renderer.getContext();
   const dbg = gl.getExtension("WEBGL_debug_renderer_info");
-  return { engine: "threejs", revision: THREE.REVISION, width: w, height: h, frame, ...out, cascades, breaks: [...csm.breaks], path, maps,
+  return { engine: "threejs", revision: THREE.REVISION, width: w, height: h, frame, ...out, cascades, breaks: csm ? [...csm.breaks] : [], path, maps,
            shadowMapType: renderer.shadowMap.type, ms,
            renderer: dbg ? gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER) };
 };

@@ -1,0 +1,208 @@
+"""The engines' single-map classes: three.js's ``DirectionalLight`` and Babylon.js's ``ShadowGenerator`` with a fixed box.
+
+Each draws one shadow map through a box the user sets, placed by the frames at a light looking at
+:func:`aliasing.frames.scenes.light_target`; the models have the cascaded models' methods
+(:mod:`aliasing.frames.models`), and :func:`aliasing.frames.models.model_for` picks them by the
+``class`` setting.
+
+Example
+-------
+>>> ThreeDirectional().settings({"left": -10, "right": 10})["top"]
+5.0
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from . import predict
+from .base import Prediction, reference
+
+Array = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class ThreeDirectional:
+    """three.js r187, one ``DirectionalLight`` shadow (src/lights/DirectionalLightShadow.js, LightShadow.js).
+
+    Settings (the page's keys for the light's own): ``class`` ("DirectionalLight"), the shadow
+    camera's ``left``, ``right``, ``top``, ``bottom``, ``near``, ``far`` (an orthographic box
+    [world units]), ``mapSize`` (square), ``bias``, ``normalBias``, ``radius``; the renderer's
+    ``shadowMapType``; the material's ``side`` and ``shadowSide``.  The frames place the light's
+    target at :func:`aliasing.frames.scenes.light_target` and the light (near + far)/2 from it
+    towards the sun.  The factor is :func:`aliasing.frames.predict.threejs_factor` of the one
+    map (``shadow.bias`` as CSM's ``shadowBias``: added to the normalized map depth).
+    """
+
+    engine: str = "threejs"
+    defaults: dict = field(default_factory=lambda: {
+        "class": "DirectionalLight", "left": -5.0, "right": 5.0, "top": 5.0, "bottom": -5.0, "near": 0.5, "far": 500.0, "mapSize": 512,
+        "bias": 0.0, "normalBias": 0.0, "radius": 1.0, "shadowMapType": "PCFShadowMap", "side": "front", "shadowSide": None})
+
+    def settings(self, given: dict | None = None) -> dict:
+        """Every setting, the defaults filled in (``DirectionalLightShadow``'s camera, ``LightShadow``'s bias, radius and map size)."""
+        given = dict(given or {})
+        unknown = sorted(set(given) - set(self.defaults))
+        if unknown:
+            raise ValueError(f"unknown three.js DirectionalLight setting {unknown[0]!r}; known: {', '.join(sorted(self.defaults))}")
+        s = {**self.defaults, **given}
+        if s["class"] != "DirectionalLight":
+            raise ValueError(f"class must be DirectionalLight, got {s['class']!r}")
+        if not (s["right"] > s["left"] and s["top"] > s["bottom"] and s["far"] > s["near"] >= 0):
+            raise ValueError("the shadow camera must have right > left, top > bottom and far > near >= 0")
+        if int(s["mapSize"]) != s["mapSize"] or not 16 <= s["mapSize"] <= 8192:
+            raise ValueError(f"mapSize must be a whole number of texels in [16, 8192], got {s['mapSize']!r}")
+        if s["shadowMapType"] not in ("PCFShadowMap", "BasicShadowMap"):
+            raise ValueError(f"shadowMapType must be PCFShadowMap or BasicShadowMap (the filters modelled), got {s['shadowMapType']!r}")
+        if s["side"] not in predict.SIDES or (s["shadowSide"] is not None and s["shadowSide"] not in predict.SIDES):
+            raise ValueError(f"side and shadowSide must be one of {', '.join(predict.SIDES)} (shadowSide also null)")
+        return s
+
+    def cast_side(self, s: dict) -> str:
+        """The faces drawn into the map: ``shadowSide``, or the opposite of ``side`` (WebGLShadowMap's table, as for CSM)."""
+        if s["shadowSide"] is not None:
+            return s["shadowSide"]
+        return {"front": "back", "back": "front", "double": "double"}[s["side"]]
+
+    def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
+        """The predicted factor of the one map at the engine's pixels (cascade 0 for every drawn pixel), and the exact reference."""
+        cam = scene.camera
+        sel = np.where(rb.drawn, 0, -1).astype(np.int64)
+        res = int(s["mapSize"])
+        cast = scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))]
+        maps = [predict.light_depth_map(cast, rb.matrices[0], res)]
+        h, w = rb.shadow.shape
+        fy, fx = np.mgrid[0:h, 0:w]
+        pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+        factor = predict.threejs_factor(maps, rb.matrices[:1], sel, pts, nrm, fx + 0.5, (h - 1 - fy) + 0.5, bias=float(s["bias"]),
+                                        normal_bias=float(s["normalBias"]), radius=float(s["radius"]), map_type=s["shadowMapType"])
+        factor = np.where(rb.drawn, factor, np.nan)
+        ref = reference(scene, sun, rb, res)
+        side = max(s["right"] - s["left"], s["top"] - s["bottom"])
+        return Prediction(factor, sel, np.array([cam.near]), np.array([float(side)]), np.array([float(res)])), ref
+
+    def matrices(self, s: dict, camera, sun: Array) -> Array:
+        """The shadow matrix (world → [0, 1]³) as ``LightShadow.updateMatrices`` builds it: the camera at the light,
+        ``lookAt`` its target with up +y (``Matrix4.lookAt``'s nudge of z when up ∥ z), the orthographic box, [½ bias]."""
+        from .scenes import light_target
+
+        target = light_target(camera)
+        sv = np.asarray(sun, float) / np.linalg.norm(sun)
+        eye = target + sv * (s["near"] + s["far"]) / 2
+        z = eye - target
+        z /= np.linalg.norm(z)
+        up = np.array([0.0, 1.0, 0.0])
+        x = np.cross(up, z)
+        if np.dot(x, x) == 0:  # Matrix4.lookAt: up parallel to z
+            z = z + np.array([0.0, 0.0, 0.0001])
+            z /= np.linalg.norm(z)
+            x = np.cross(up, z)
+        x /= np.linalg.norm(x)
+        y = np.cross(z, x)
+        basis = np.stack([x, y, z])
+        view = np.eye(4)
+        view[:3, :3] = basis
+        view[:3, 3] = -basis @ eye
+        l, r, t, b, n, f = (float(s[k]) for k in ("left", "right", "top", "bottom", "near", "far"))
+        proj = np.array([[2 / (r - l), 0, 0, -(r + l) / (r - l)], [0, 2 / (t - b), 0, -(t + b) / (t - b)],
+                         [0, 0, -2 / (f - n), -(f + n) / (f - n)], [0, 0, 0, 1.0]])
+        half = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+        return (half @ proj @ view)[None]
+
+    def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
+        """The one map: the camera's near, the matrix's larger texel side × R, and R."""
+        m = rb.matrices[0]
+        side = max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3]))
+        return np.array([camera.near]), np.array([side]), rb.sizes[:1, 0].astype(float)
+
+
+@dataclass(frozen=True)
+class BabylonSingle:
+    """Babylon.js 9.35, one ShadowGenerator of a DirectionalLight with a fixed box (Lights/Shadows/shadowGenerator.js).
+
+    Settings: ``class`` ("ShadowGenerator"), ``mapSize``, ``bias``, ``normalBias``,
+    ``shadowFrustumSize`` (the light's square box side > 0 [world units]), ``shadowMinZ`` and
+    ``shadowMaxZ`` (null: the camera's near and far), ``forceBackFacesOnly``; the material's
+    ``backFaceCulling``.  FILTER_NONE (the class's default) is the filter modelled.  The frames
+    place the light (minZ + maxZ)/2 from :func:`aliasing.frames.scenes.light_target` towards the sun.
+    """
+
+    engine: str = "babylon"
+    defaults: dict = field(default_factory=lambda: {
+        "class": "ShadowGenerator", "mapSize": 1024, "bias": 0.00005, "normalBias": 0.0, "shadowFrustumSize": 20.0, "shadowMinZ": None,
+        "shadowMaxZ": None, "forceBackFacesOnly": False, "backFaceCulling": True})
+
+    def settings(self, given: dict | None = None) -> dict:
+        """Every setting, the defaults filled in (the generator's constructor; the box side has no engine default > 0)."""
+        given = dict(given or {})
+        unknown = sorted(set(given) - set(self.defaults))
+        if unknown:
+            raise ValueError(f"unknown Babylon.js ShadowGenerator setting {unknown[0]!r}; known: {', '.join(sorted(self.defaults))}")
+        s = {**self.defaults, **given}
+        if s["class"] != "ShadowGenerator":
+            raise ValueError(f"class must be ShadowGenerator, got {s['class']!r}")
+        if not s["shadowFrustumSize"] > 0:
+            raise ValueError(f"shadowFrustumSize must be > 0 [world units] (a fixed box), got {s['shadowFrustumSize']!r}")
+        if s["mapSize"] not in (256, 512, 1024, 2048, 4096):
+            raise ValueError(f"mapSize must be a power of two in [256, 4096], got {s['mapSize']!r}")
+        if not (s["bias"] >= 0 and s["normalBias"] >= 0):
+            raise ValueError("bias and normalBias must be >= 0")
+        return s
+
+    def cast_side(self, s: dict) -> str:
+        """The faces drawn into the map: the material's culling (front faces by default), or back faces only."""
+        if s["forceBackFacesOnly"]:
+            return "back"
+        return "front" if s["backFaceCulling"] else "double"
+
+    def depth_range(self, s: dict, camera) -> tuple[float, float]:
+        """The light's depth near and far [world units]: shadowMinZ/shadowMaxZ, else the camera's."""
+        lo = camera.near if s["shadowMinZ"] is None else float(s["shadowMinZ"])
+        hi = camera.far if s["shadowMaxZ"] is None else float(s["shadowMaxZ"])
+        if not hi > lo:
+            raise ValueError(f"shadowMaxZ must exceed shadowMinZ ({lo:g}), got {hi:g}")
+        return lo, hi
+
+    def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
+        cam = scene.camera
+        sel = np.where(rb.drawn, 0, -1).astype(np.int64)
+        res = int(s["mapSize"])
+        cast = predict.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))], sun, float(s["normalBias"]))
+        dm = predict.light_depth_map(cast, rb.matrices[0], res)
+        factor = predict.babylon_single_factor(dm, rb.matrices[0], np.nan_to_num(rb.position), bias=float(s["bias"]))
+        factor = np.where(rb.drawn, factor, np.nan)
+        ref = reference(scene, sun, rb, res)
+        return Prediction(factor, sel, np.array([cam.near]), np.array([float(s["shadowFrustumSize"])]), np.array([float(res)])), ref
+
+    def matrices(self, s: dict, camera, sun: Array) -> Array:
+        """World → [0, 1]³ in the job's (right-handed) world: ``Matrix.LookAtLH(position, position + d, Up)`` and
+        ``OrthoLH(size, size, minZ, maxZ)`` in Babylon's mirrored world (z ↦ −z), window depth (z + 1)/2."""
+        from .scenes import light_target
+
+        lo, hi = self.depth_range(s, camera)
+        mirror = np.diag([1.0, 1.0, -1.0])
+        sv = np.asarray(sun, float) / np.linalg.norm(sun)
+        eye = mirror @ (light_target(camera) + sv * (lo + hi) / 2)
+        d = mirror @ -sv
+        if abs(abs(d[1]) - 1.0) == 0:  # ShadowGenerator: a light straight along Up gets z = 1e-13
+            d = np.array([d[0], d[1], 1e-13])
+        z = d / np.linalg.norm(d)
+        x = np.cross([0.0, 1.0, 0.0], z)
+        x /= np.linalg.norm(x)
+        y = np.cross(z, x)
+        view = np.eye(4)
+        view[:3, :3] = np.stack([x, y, z]) @ mirror
+        view[:3, 3] = -np.stack([x, y, z]) @ eye
+        size = float(s["shadowFrustumSize"])
+        proj = np.diag([2 / size, 2 / size, 2 / (hi - lo), 1.0])
+        proj[2, 3] = -(hi + lo) / (hi - lo)
+        half = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+        return (half @ proj @ view)[None]
+
+    def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
+        """The one map: the camera's near, the matrix's larger texel side × R, and R."""
+        m = rb.matrices[0]
+        return np.array([camera.near]), np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3]))]), rb.sizes[:1, 0].astype(float)
