@@ -116,7 +116,7 @@ class ThreeCSM:
         h, w = depth.shape
         fy, fx = np.mgrid[0:h, 0:w]
         gl_y = (h - 1 - fy) + 0.5
-        pts = np.nan_to_num(rb.position)
+        pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
         factor = predict.threejs_factor(maps, rb.matrices, sel, pts, nrm, fx + 0.5, gl_y, bias=float(s["shadowBias"]),
                                         normal_bias=float(s["normalBias"]), radius=float(s["shadowRadius"]), map_type=s["shadowMapType"])
         factor = np.where(rb.drawn, factor, np.nan)
@@ -366,7 +366,7 @@ class PlayCanvas:
         res = int(s["shadowResolution"])
         cast = scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))]
         atlas = predict.playcanvas_atlas(cast, rb.matrices, self.cells(s), res, float(s["shadowBias"]))
-        pts = np.nan_to_num(rb.position)
+        pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
         factor = predict.playcanvas_factor(atlas, rb.matrices, sel, pts, nrm, normal_offset=float(s["normalOffsetBias"]),
                                            taps=self.FILTERS[int(s["shadowType"])])
         factor = np.where(rb.drawn, factor, np.nan)
