@@ -489,7 +489,7 @@ def test_cli_bad_input_is_one_line(tmp_path, args, message):
 
 
 @pytest.mark.parametrize("args, message", [
-    (["--engine", "playcanvas", "--maps"], "the shadow maps are read back for threejs and babylon"),
+    (["--engine", "playcanvas", "--maps"], "the shadow maps are read back for three.js's CSM and Babylon.js's CascadedShadowGenerator only (not yet for playcanvas)"),
     (["--engine", "threejs", "--maps", "8"], "--maps SIDE) must be a whole number of texels per side in [16, 4096]"),
     (["--engine", "threejs", "--path", "turn:20"], "--path turn STEP must be at most 10 degrees"),
 ])

@@ -23,7 +23,7 @@ from numpy.typing import NDArray
 from .. import partitioning
 from ..engines import stable
 from . import predict
-from .base import Prediction, reference, tight_sides
+from .predict import Prediction, reference, tight_sides
 from .single import BabylonSingle, ThreeDirectional
 
 Array = NDArray[np.float64]

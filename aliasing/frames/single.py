@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from . import predict
-from .base import Prediction, reference
+from .predict import Prediction, reference
 
 Array = NDArray[np.float64]
 
