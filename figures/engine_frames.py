@@ -1,4 +1,4 @@
-"""The engines' own frames beside the toolkit's prediction: three.js and Babylon.js at their defaults and below the bias they need.
+"""The engines' own frames beside the toolkit's prediction: three.js, Babylon.js and PlayCanvas at their defaults, three.js with front faces casting.
 
 Not a paper figure.  Each engine (pinned npm release) renders the built-in boxes scene in
 headless Chromium with WebGL 2 on SwiftShader (:mod:`aliasing.frames`); per row: the
@@ -28,7 +28,7 @@ from aliasing.view import tan_theta
 
 NAME = "engine-frames"
 CASES = (("threejs", {}, "three.js r187, defaults"), ("threejs", {"material.shadowSide": "FrontSide"}, "three.js r187, front faces cast"),
-         ("babylon", {}, "Babylon.js 9.35, defaults"))
+         ("babylon", {}, "Babylon.js 9.35, defaults"), ("playcanvas", {}, "PlayCanvas 2.23.3, defaults"))
 CAMERA, SUN = "near=0.5,far=60,fov=50,aspect=16:9,height=288", "35@30"
 
 
@@ -47,8 +47,10 @@ def main(out_dir: Path) -> list[Path]:
     sun = scenes.sun_direction(35.0, 30.0, fs.camera)
     with browser.Browser(timeout=120) as b:
         results = [(title, frame_setup(b, setups.build(engine, settings, CAMERA, SUN), fs)) for engine, settings, title in CASES]
-    import matplotlib.image
     import io
+
+    import matplotlib
+    import matplotlib.image
 
     fig, axes = subplots(4, nrows=len(results), width=3.2, height=2.0)
     axes = np.asarray(axes).reshape(len(results), 4)
@@ -57,7 +59,8 @@ def main(out_dir: Path) -> list[Path]:
         rb = r.readback
         ax[0].imshow(matplotlib.image.imread(io.BytesIO(rb.frame)))
         ax[0].set_title(title, fontsize=8)
-        ax[1].imshow(np.where(rb.drawn, r.prediction.factor, np.nan), cmap="gray", vmin=0, vmax=1)
+        gray = matplotlib.colormaps["gray"].with_extremes(bad="black")  # no surface drawn: black, as the engines' clear colour in three.js
+        ax[1].imshow(np.where(rb.drawn, r.prediction.factor, np.nan), cmap=gray, vmin=0, vmax=1)
         ax[1].set_title("toolkit: predicted shadow factor", fontsize=8)
         rec = r.reference & ((np.nan_to_num(rb.normal) @ sun) > 0.05)
         m, p = rec & (np.nan_to_num(rb.shadow, nan=1) < 0.5), rec & (np.nan_to_num(r.prediction.factor, nan=1) < 0.5)
@@ -66,7 +69,7 @@ def main(out_dir: Path) -> list[Path]:
         acne[m & p], acne[m & ~p], acne[~m & p] = (0.85, 0.1, 0.1), (0.95, 0.8, 0.1), (0.1, 0.3, 0.95)
         rep = r.report
         ax[2].imshow(acne)
-        ax[2].set_title(f"acne: engine {100 * rep['measured']['acne']:.1f} %, toolkit {100 * rep['predicted']['acne']:.1f} %", fontsize=8)
+        ax[2].set_title(f"acne: engine {100 * rep['measured']['acne']:.2f} %, toolkit {100 * rep['predicted']['acne']:.2f} %", fontsize=8)
         im = ax[3].imshow(_tpp(r, fs), cmap="viridis", vmin=0, vmax=2)
         ax[3].set_title("texels per pixel (engine's matrices)", fontsize=8)
         fig.colorbar(im, ax=ax[3], shrink=0.8)
