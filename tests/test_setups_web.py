@@ -373,3 +373,19 @@ def test_blend_bands():
     got = threejs.blend_bands(b, 0.1, 500.0)
     for (s0, e1), x in zip(got, b):  # centred on the break in linear depth z/(far − near), 0.25·b² wide
         assert (s0 + e1) / 2 == pytest.approx(x * 499.9, rel=1e-14) and e1 - s0 == pytest.approx(0.25 * x**2 * 499.9, rel=1e-12)
+
+
+def test_babylon_shadow_generator_loses_half_a_half_float_step():
+    # ERRATA F10: FILTER_NONE stores (z + 1)/2 + bias in a half-float target: the rule loses 2⁻¹² of the light's depth
+    # range, no lit gap comes of it, and the bias that removes acne grows by exactly that much (in the engine's units)
+    sg = {"class": "ShadowGenerator", "light.shadowFrustumSize": 60.0, "light.shadowMaxZ": 200.0}
+    rule = setups.build("babylon", sg, CAMERA).pipeline.bias
+    term = rule.term(babylon.HALF_FLOAT)
+    assert term.kind == "depth" and not term.contact and term.value * term.scale == -(2.0**-12) * (200.0 - 0.1)
+    exact = setups.BiasRule(tuple(t for t in rule.terms if t.key != babylon.HALF_FLOAT), rule.faces)
+    w, th, need = 0.06, np.array([5.0, 30.0, 60.0]), np.array([0.001, 0.01, 0.1])
+    gain = np.asarray(rule.minimal("bias", need, w, th)) - np.asarray(exact.minimal("bias", need, w, th))
+    np.testing.assert_allclose(gain, 2.0**-12, rtol=1e-9)  # factor 1 (FILTER_NONE) over the same range
+    assert rule.contact(w) == exact.contact(w)
+    pcf = setups.build("babylon", {**sg, "filter": "FILTER_PCF"}, CAMERA).pipeline.bias  # a depth texture: no half float
+    assert babylon.HALF_FLOAT not in {t.key for t in pcf.terms}

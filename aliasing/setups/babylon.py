@@ -236,6 +236,12 @@ def blend_bands(s: Mapping[str, Any], near: float, far: float) -> tuple:
     return tuple((float(bi - p * (bi - ai)), float(bi)) for ai, bi in zip(a[:-1], b[:-1]))
 
 
+#: The name of the ShadowGenerator's half-float rounding in its bias rule (a fixed part, not a setting).
+HALF_FLOAT = "half-float map"
+#: Half a unit in the last place of a half float in [½, 1): the most the stored depth rounds by [normalized depth].
+HALF_FLOAT_STEP = 2.0**-12
+
+
 def _build(s: Mapping[str, Any], camera) -> Pipeline:
     side = faces(s)
     res = int(s["mapSize"])
@@ -253,7 +259,15 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
         hi = camera.far if s["light.shadowMaxZ"] is None else float(s["light.shadowMaxZ"])
         if not hi > lo:
             raise ValueError(f"light.shadowMaxZ must exceed light.shadowMinZ ({lo:g}), got {hi:g}")
-        rule = BiasRule((BiasTerm("bias", float(s["bias"]), "depth", factor * (hi - lo)), normal), side)
+        terms = (BiasTerm("bias", float(s["bias"]), "depth", factor * (hi - lo)), normal)
+        if filter_name(s) == "FILTER_NONE":
+            # shadowGenerator.js 659–668: the map is a half-float colour target where the device renders and filters half
+            # floats (WebGL 2 does); the stored (z + 1)/2 + bias keeps 11 significant bits, so it lies up to half a unit in
+            # the last place, 2⁻¹² above depth ½, below the caster's: bias lost, not a shift of the surface (no contact)
+            terms += (BiasTerm(HALF_FLOAT, -HALF_FLOAT_STEP, "depth", hi - lo, contact=False),)
+            notes.append(f"the map is half float (11 significant bits): up to 2⁻¹²·(shadowMaxZ − shadowMinZ) = {HALF_FLOAT_STEP * (hi - lo):.3g} "
+                         "world units of the bias is lost to the stored depth's rounding")
+        rule = BiasRule(terms, side)
         return Pipeline((camera.near,), (camera.far,), "fixed", "none", res, rule, _filter(s), box=(size, size), depth_range=(lo, hi),
                         notes=tuple(notes + ["the shadow box is fixed (light.shadowFrustumSize): shadows outside it are lost"]))
     if res < 3:
