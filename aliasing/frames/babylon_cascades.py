@@ -33,13 +33,25 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from .. import _validation as check
+
 Array = NDArray[np.float64]
 MIRROR = np.diag([1.0, 1.0, -1.0])
 UP = np.array([0.0, 1.0, 0.0])
 
 
 def look_at_lh(eye: Array, target: Array, up: Array = UP) -> Array:
-    """``Matrix.LookAtLH`` as a 4×4 column-vector matrix (world → view; x ∝ up × z, z towards the target)."""
+    """``Matrix.LookAtLH`` as a 4×4 column-vector matrix (world → view; x ∝ up × z, z towards the target).
+
+    Example
+    -------
+    >>> v = look_at_lh(np.array([0.0, 0.0, -5.0]), np.zeros(3))   # looking along +z from 5 units before the origin
+    >>> (v @ [0.0, 0.0, 0.0, 1.0]).tolist()                        # the target lies 5 units ahead
+    [0.0, 0.0, 5.0, 1.0]
+    """
+    eye, target, up = (check.finite(v, n) for v, n in ((eye, "eye"), (target, "target"), (up, "up")))
+    if not np.linalg.norm(target - eye) > 0:
+        raise ValueError("target must differ from eye")
     z = target - eye
     z = z / np.linalg.norm(z)
     x = np.cross(up, z)
@@ -54,7 +66,16 @@ def look_at_lh(eye: Array, target: Array, up: Array = UP) -> Array:
 
 
 def ortho_off_center_lh(left: float, right: float, bottom: float, top: float, near: float, far: float) -> Array:
-    """``Matrix.OrthoOffCenterLH`` (NDC z in [−1, 1]) as a 4×4 column-vector matrix."""
+    """``Matrix.OrthoOffCenterLH`` (NDC z in [−1, 1]) as a 4×4 column-vector matrix.
+
+    Example
+    -------
+    >>> p = ortho_off_center_lh(-2.0, 2.0, -1.0, 1.0, 0.0, 10.0)
+    >>> (p @ [2.0, -1.0, 10.0, 1.0]).tolist()                      # the box's corner on the far plane
+    [1.0, -1.0, 1.0, 1.0]
+    """
+    if not (right != left and top != bottom and far != near) or not np.all(np.isfinite([left, right, bottom, top, near, far])):
+        raise ValueError("left, right, bottom, top, near and far must be finite with right ≠ left, top ≠ bottom and far ≠ near")
     p = np.diag([2 / (right - left), 2 / (top - bottom), 2 / (far - near), 1.0])
     p[:3, 3] = [(left + right) / (left - right), (top + bottom) / (bottom - top), -(far + near) / (far - near)]
     return p

@@ -134,6 +134,12 @@ def tolerance(map_triangles: Array, triangle: NDArray[np.int64]) -> Array:
     """Per texel: 2⁻²⁴ + (abs ∂d/∂i + abs ∂d/∂j) / 2^(SUBPIXEL_BITS + 1) of the triangle drawn there
     (``map_triangles``: (T, 3, 3) in map space; ``triangle``: (R, R) indices, −1 empty; the
     derivatives are per texel of the R-texel map).
+
+    Example
+    -------
+    >>> tri = np.array([[[0.0, 0.0, 0.5], [1.0, 0.0, 0.5], [0.0, 1.0, 0.5]]])   # a flat caster: float32 alone
+    >>> float(tolerance(tri, np.zeros((4, 4), np.int64))[0, 0]) == 2.0**-24
+    True
     """
     triangle = np.asarray(triangle)
     if triangle.ndim != 2 or triangle.shape[0] != triangle.shape[1]:

@@ -307,7 +307,20 @@ def pose_camera(camera, pose: dict):
 
 
 def flips(masks: NDArray[np.bool_], keep: NDArray[np.bool_]) -> float:
-    """Mean over consecutive frames of the fraction of ``keep`` pixels whose mask changed."""
+    """Mean over consecutive frames of the fraction of ``keep`` pixels whose mask changed.
+
+    ``masks``: (F, H, W) shadowed or not per frame; ``keep``: (H, W) the pixels counted. NaN for
+    fewer than two frames or no pixel kept.
+
+    Example
+    -------
+    >>> m = np.array([[[True, False]], [[True, True]], [[False, True]]])   # 3 frames of 1 × 2 pixels
+    >>> flips(m, np.ones((1, 2), bool))                                    # one of two pixels flips per frame
+    0.5
+    """
+    masks, keep = np.asarray(masks, bool), np.asarray(keep, bool)
+    if masks.ndim != 3 or masks.shape[1:] != keep.shape:
+        raise ValueError(f"masks must be (F, H, W) with keep (H, W), got {masks.shape} and {keep.shape}")
     m = masks[:, keep]
     return float(np.mean(m[1:] != m[:-1])) if m.shape[1] and len(m) > 1 else float("nan")
 
