@@ -124,17 +124,7 @@ def _ign(x: Array, y: Array) -> Array:
 
 def _hardware_pcf(depth: Array, s: Array, t: Array, ref: Array) -> Array:
     """A LINEAR sampler2DShadow lookup (LessEqual compare): the bilinear weights of the 4 nearest texels' results."""
-    r = depth.shape[0]
-    u, v = s * r - 0.5, t * r - 0.5
-    i0, j0 = np.floor(u), np.floor(v)
-    fu, fv = u - i0, v - j0
-    out = np.zeros_like(ref)
-    for di, wu in ((0, 1 - fu), (1, fu)):
-        for dj, wv in ((0, 1 - fv), (1, fv)):
-            i = np.clip(i0 + di, 0, r - 1).astype(np.int64)
-            j = np.clip(j0 + dj, 0, r - 1).astype(np.int64)
-            out += wu * wv * (ref <= depth[j, i])
-    return out
+    return _hardware_compare(depth, s, t, ref, strict=False)
 
 
 def threejs_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.int64], points: Array, normals: Array,
