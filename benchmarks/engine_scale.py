@@ -23,7 +23,7 @@ Usage::
 
     python benchmarks/engine_scale.py                       # all cases, numpy and gl, best of 1
     python benchmarks/engine_scale.py --cases shimmer --repeats 3 --before /tmp/base
-    python benchmarks/engine_scale.py --cases shimmer --test-step   # also a gl map's steps: draw, test on the device, on the host
+    python benchmarks/engine_scale.py --cases shimmer --test-step   # also a gl map's steps: draw, test on the device, on the host, the floor
 """
 
 from __future__ import annotations
@@ -100,11 +100,11 @@ def summary(name: str, out: str) -> str:
     return f"p50 {s['p50']:.4f}, p99 {s['p99']:.4f}, max {s['max']:.4f}"
 
 
-def test_step(repeats: int) -> None:
+def test_step(repeats: int) -> float | None:
     """The gl shimmer case's frame-0 maps in this process, the steps of one map timed apart
     (the best of ``repeats`` × 10, as the machine's load allows): drawing its box of ids, the shadow test of its points run on
     the device (one bit per point back), and the same test on the host (the texels fetched back,
-    compared in numpy)."""
+    compared in numpy), and the floor of drawing each map's box (:func:`_floor`); returns the mean floor per map [s]."""
     sys.path.insert(0, ROOT)
     import numpy as np
 
@@ -113,7 +113,7 @@ def test_step(repeats: int) -> None:
 
     if not gl.available():
         print(f"test step skipped: {gl._setup()[1]}")
-        return
+        return None
     w = points.world("boxes", near=0.1, far=500.0, fov=50.0, aspect=1.7778)
     pts = points.sample(w, 96)
     cam = w.camera
@@ -123,7 +123,8 @@ def test_step(repeats: int) -> None:
     cache = render.MapCache(w.triangles, backend="gl")
     ctx = gl._context()
     n = 10 * max(repeats, 1)
-    steps = {"draw": [], "device": [], "host": []}
+    steps = {"draw": [], "device": [], "host": [], "floor": []}
+    floor = _floor(ctx, 2048)
     same = True
     for k in np.unique(part[0][part[0] >= 0]):
         sel = np.nonzero(part[0] == k)[0]
@@ -140,6 +141,7 @@ def test_step(repeats: int) -> None:
             times.append(time.perf_counter() - start)
             m.release()
         steps["draw"].append(min(times))
+        steps["floor"].append(floor(box, n))
         for where, on in (("device", True), ("host", False)):
             lookup._ON_DEVICE = on
             times = []
@@ -153,12 +155,50 @@ def test_step(repeats: int) -> None:
             if not on:
                 lookup._ON_DEVICE = True
                 same &= bool(np.array_equal(lit, lookup.shadow_test(lm, sm, sub, p, nrm, bias=cache.bias)))
-        print(f"map {k}: {len(sel)} points, box {box[2]}×{box[3]} texels: draw {steps['draw'][-1] * 1e3:6.2f} ms, "
+        print(f"map {k}: {len(sel)} points, box {box[2]}×{box[3]} texels: draw {steps['draw'][-1] * 1e3:6.2f} ms "
+              f"(floor: clear and one quad {steps['floor'][-1] * 1e3:5.2f} ms), "
               f"test on the device {steps['device'][-1] * 1e3:5.2f} ms, on the host (texels fetched) {steps['host'][-1] * 1e3:5.2f} ms")
     lookup._ON_DEVICE = True
     cache.release()
-    print(f"frame-0 maps, sum: draw {sum(steps['draw']) * 1e3:.1f} ms, test on the device {sum(steps['device']) * 1e3:.2f} ms, "
-          f"on the host {sum(steps['host']) * 1e3:.2f} ms; the same states: {same}")
+    print(f"frame-0 maps, sum: draw {sum(steps['draw']) * 1e3:.1f} ms (floor {sum(steps['floor']) * 1e3:.1f} ms), "
+          f"test on the device {sum(steps['device']) * 1e3:.2f} ms, on the host {sum(steps['host']) * 1e3:.2f} ms; the same states: {same}")
+    return sum(steps["floor"]) / len(steps["floor"])
+
+
+def _floor(ctx, res: int):
+    """A timer of the least that drawing a box of a ``res``² map costs on this device: clearing
+    the box's ids and z-buffer and filling it with one quad of a shader that writes only the
+    primitive's index (no triangle, no depth of our own).  Returns ``time(box, n)``, the best
+    of ``n`` [s]."""
+    import moderngl
+    import numpy as np
+
+    with ctx:
+        ids = ctx.texture((res, res), 1, dtype="i4")
+        fbo = ctx.framebuffer([ids], ctx.depth_renderbuffer((res, res)))
+        prog = ctx.program(vertex_shader="#version 430\nin vec2 p; void main() { gl_Position = vec4(p, 0.5, 1.0); }",
+                           fragment_shader="#version 430\nout int id; void main() { id = gl_PrimitiveID; }")
+        quad = ctx.buffer(np.array([-1, -1, 1, -1, -1, 1, 1, -1, 1, 1, -1, 1], "f4"))
+        vao = ctx.vertex_array(prog, [(quad, "2f", "p")])
+
+    def time_box(box, n: int) -> float:
+        best = float("inf")
+        with ctx:
+            fbo.use()
+            fbo.viewport = (0, 0, res, res)
+            ctx.enable(moderngl.DEPTH_TEST)
+            for _ in range(n):
+                ctx.finish()
+                start = time.perf_counter()
+                fbo.scissor = box
+                fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0, viewport=box)
+                vao.render()
+                ctx.finish()
+                best = min(best, time.perf_counter() - start)
+            fbo.scissor = None
+        return best
+
+    return time_box
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -167,7 +207,7 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--backends", default="numpy,gl")
     ap.add_argument("--repeats", type=int, default=1)
     ap.add_argument("--before", metavar="DIR", help="also run the numpy and gl cases with the package in DIR")
-    ap.add_argument("--test-step", action="store_true", help="also time, in this process, the steps of the gl shimmer case's frame-0 maps: drawing, the test on the device, on the host")
+    ap.add_argument("--test-step", action="store_true", help="also time, in this process, the steps of the gl shimmer case's frame-0 maps: drawing, the test on the device, on the host, and the floor of drawing (a clear and one quad over each map's box)")
     args = ap.parse_args(argv)
     sys.path.insert(0, ROOT)
     from aliasing.raster.draw import gl
@@ -199,7 +239,13 @@ def main(argv: list[str] | None = None) -> None:
                     ratio = f"{wall / base[0]:.3f}" if base else "-"
                     print(f"{name:9s} {b + label:15s} wall {wall:7.2f} s  peak {peak / 2**20:7.0f} MiB  x numpy{label} {ratio:>6s}  {summary(name, out)}", flush=True)
     if args.test_step:
-        test_step(args.repeats)
+        per_map = test_step(args.repeats)
+        shimmer = [(b, results[("shimmer", b)]) for b in backends if ("shimmer", b) in results]
+        for b, (wall, _, out) in shimmer:
+            maps = json.loads(out)[0]["maps_drawn"]
+            if b == "numpy" and per_map is not None:
+                print(f"the gl case's {maps} maps at the frame-0 maps' mean floor ({per_map * 1e3:.2f} ms each) take at least "
+                      f"{maps * per_map:.2f} s = {maps * per_map / wall:.3f} × numpy's shimmer wall time in this run ({wall:.2f} s)")
     print(f"load average after: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
 
 
