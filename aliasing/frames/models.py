@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 
 from .. import partitioning
 from ..engines import stable
+from ..setups import babylon as babylon_setup
 from . import predict
 from .predict import Prediction, reference, tight_sides
 from .single import BabylonSingle, ThreeDirectional
@@ -203,7 +204,7 @@ class BabylonCSM:
             raise ValueError(f"unknown Babylon.js setting {unknown[0]!r}; known: {', '.join(sorted(self.defaults))}")
         s = {**self.defaults, **given}
         checks = [("numCascades", 2 <= s["numCascades"] <= 4, "a whole number in [2, 4]"),
-                  ("lambda", s["lambda"] == 0.5, "0.5 (the split the toolkit's babylon preset models)"),
+                  ("lambda", 0 <= s["lambda"] <= 1, "in [0, 1]"),
                   ("bias", s["bias"] >= 0, ">= 0"), ("normalBias", s["normalBias"] >= 0, ">= 0"),
                   ("darkness", s["darkness"] == 0, "0 (modelled)"), ("frustumEdgeFalloff", s["frustumEdgeFalloff"] == 0, "0 (modelled)"),
                   ("depthClamp", s["depthClamp"] is True, "true (the depth-clamped bias is modelled)"),
@@ -227,7 +228,11 @@ class BabylonCSM:
         return float(camera.far if s["shadowMaxZ"] is None else min(s["shadowMaxZ"], camera.far))
 
     def edges(self, s: dict, camera) -> Array:
-        return partitioning.split_distances("babylon", camera.near, self.shadow_far(s, camera), int(s["numCascades"]))
+        """The cascades' eye depths [world units]: near, then each cascade's end (``_splitFrustum``, blending the
+        logarithmic and the uniform split by ``lambda``, :func:`aliasing.setups.babylon.splits`)."""
+        starts, ends = babylon_setup.splits({"numCascades": s["numCascades"], "lambda": s["lambda"], "minDistance": 0.0, "maxDistance": 1.0,
+                                             "shadowMaxZ": s["shadowMaxZ"]}, camera.near, camera.far)
+        return np.concatenate([starts[:1], ends])
 
     def select(self, s: dict, camera, depth: Array) -> NDArray[np.int64]:
         """lightFragment's loop: the first cascade whose end is at or beyond the eye depth; −1 beyond the last."""

@@ -145,6 +145,7 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     measured = {
         "shadow_agreement": compare.agreement(rb.shadow, pred.factor, rb.drawn) if predicts else None,
         "acne": compare.acne(rb.shadow, receivers),
+        "lost_shadow": compare.lost_shadow(rb.shadow, ref, rb.drawn),
         "gap_px": compare.gap(rb.shadow, ref, ground, rb.drawn),
         "texels_per_pixel": compare.texels_per_pixel(m_starts, m_sides, m_res, scene.camera.fov, h),
     }
@@ -155,9 +156,10 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
         extra_pipe = {"pipeline_fit": pipeline.fit, "pipeline_starts_vs_model": float(np.max(np.abs(starts / pred.starts - 1))) if len(starts) == len(pred.starts) else None}
     predicted = {
         "acne": compare.acne(pred.factor, receivers),
+        "lost_shadow": compare.lost_shadow(pred.factor, ref, rb.drawn),
         "gap_px": compare.gap(pred.factor, ref, ground, rb.drawn),
         "texels_per_pixel": compare.texels_per_pixel(starts, sides, res, scene.camera.fov, h),
-    } if predicts else {"acne": None, "gap_px": None, "texels_per_pixel": None}
+    } if predicts else {"acne": None, "lost_shadow": None, "gap_px": None, "texels_per_pixel": None}
     drawn = rb.drawn
     if predicts and hasattr(model, "matrices"):  # the whole light matrices, predicted from the fit, snap and light frame
         pm = model.matrices(settings, scene.camera, sun)
