@@ -11,9 +11,11 @@ on the same pixels (those the engine drew, at the positions and normals it compu
     The fraction of lit receiver pixels (facing the sun by cos > :data:`MIN_COS` and lit
     in the exact reference) that are shaded as shadowed (factor < ½).
 ``lost_shadow``
-    The other side of the bias: the fraction of the drawn pixels in the exact reference's
-    shadow that are shaded lit (factor ≥ ½).  Filtering alone loses the edge pixels of thin
-    shadows; a bias or normal offset that moves the casters or the lookups loses more.
+    The other side of the bias: the fraction of the pixels facing the sun (cos >
+    :data:`MIN_COS`) and in the exact reference's shadow that are shaded lit (factor ≥ ½).
+    Surfaces facing away from the sun are dark whatever their factor, and left out.
+    Filtering alone loses the edge pixels of thin shadows; a bias or normal offset that moves
+    the casters or the lookups loses more.
 ``gap_px``
     Peter-panning at the feet of boxes: ground pixels in the exact reference's shadow that
     are shaded lit (factor ≥ ½) within :data:`GAP_REACH` px of a non-ground pixel, over the
@@ -67,15 +69,15 @@ def acne(factor: Array, receivers: NDArray[np.bool_]) -> float:
     return float(np.mean(factor[receivers] < 0.5)) if receivers.any() else float("nan")
 
 
-def lost_shadow(factor: Array, ref_lit: NDArray[np.bool_], drawn: NDArray[np.bool_]) -> float:
-    """Fraction of the ``drawn`` pixels in the exact shadow (not ``ref_lit``) shaded lit (factor ≥ ½); NaN when there are none.
+def lost_shadow(factor: Array, ref_lit: NDArray[np.bool_], facing: NDArray[np.bool_]) -> float:
+    """Fraction of the ``facing`` pixels in the exact shadow (not ``ref_lit``) shaded lit (factor ≥ ½); NaN when there are none.
 
     Parameters
     ----------
     factor : array_like, shape (H, W)
         The shadow factor per pixel, 0 (shadowed) to 1 (lit) [1].
-    ref_lit, drawn : array_like of bool, shape (H, W)
-        The exact reference's lit pixels, and the pixels drawn.
+    ref_lit, facing : array_like of bool, shape (H, W)
+        The exact reference's lit pixels, and the drawn pixels facing the sun (cos > :data:`MIN_COS`).
 
     Returns
     -------
@@ -89,10 +91,10 @@ def lost_shadow(factor: Array, ref_lit: NDArray[np.bool_], drawn: NDArray[np.boo
     >>> lost_shadow(f, ref, np.ones((2, 3), bool))             # one of the four shadowed pixels is shaded lit
     0.25
     """
-    factor, ref_lit, drawn = np.asarray(factor, float), np.asarray(ref_lit, bool), np.asarray(drawn, bool)
-    if not factor.shape == ref_lit.shape == drawn.shape:
-        raise ValueError(f"factor, ref_lit and drawn must have one shape, got {factor.shape}, {ref_lit.shape} and {drawn.shape}")
-    shadowed = drawn & ~ref_lit
+    factor, ref_lit, facing = np.asarray(factor, float), np.asarray(ref_lit, bool), np.asarray(facing, bool)
+    if not factor.shape == ref_lit.shape == facing.shape:
+        raise ValueError(f"factor, ref_lit and facing must have one shape, got {factor.shape}, {ref_lit.shape} and {facing.shape}")
+    shadowed = facing & ~ref_lit
     return float(np.mean(np.nan_to_num(factor[shadowed], nan=1.0) >= 0.5)) if shadowed.any() else float("nan")
 
 

@@ -138,14 +138,16 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
         ref = reference(scene, sun, rb, int(rb.sizes[0, 0]))
         k = len(rb.matrices)
         pred = Prediction(np.full(rb.shadow.shape, np.nan), np.full(rb.shadow.shape, -1), np.full(k, np.nan), np.full(k, np.nan), np.full(k, np.nan))
-    receivers = ref & ((np.nan_to_num(rb.normal) @ sun) > compare.MIN_COS)
+    sunward = (np.nan_to_num(rb.normal) @ sun) > compare.MIN_COS
+    receivers = ref & sunward
+    facing = rb.drawn & sunward
     ground = _ground_pixels(scene, rb)
     m_starts, m_sides, m_res = model.measured_cascades(settings, scene.camera, rb)
     h = rb.shadow.shape[0]
     measured = {
         "shadow_agreement": compare.agreement(rb.shadow, pred.factor, rb.drawn) if predicts else None,
         "acne": compare.acne(rb.shadow, receivers),
-        "lost_shadow": compare.lost_shadow(rb.shadow, ref, rb.drawn),
+        "lost_shadow": compare.lost_shadow(rb.shadow, ref, facing),
         "gap_px": compare.gap(rb.shadow, ref, ground, rb.drawn),
         "texels_per_pixel": compare.texels_per_pixel(m_starts, m_sides, m_res, scene.camera.fov, h),
     }
@@ -156,7 +158,7 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
         extra_pipe = {"pipeline_fit": pipeline.fit, "pipeline_starts_vs_model": float(np.max(np.abs(starts / pred.starts - 1))) if len(starts) == len(pred.starts) else None}
     predicted = {
         "acne": compare.acne(pred.factor, receivers),
-        "lost_shadow": compare.lost_shadow(pred.factor, ref, rb.drawn),
+        "lost_shadow": compare.lost_shadow(pred.factor, ref, facing),
         "gap_px": compare.gap(pred.factor, ref, ground, rb.drawn),
         "texels_per_pixel": compare.texels_per_pixel(starts, sides, res, scene.camera.fov, h),
     } if predicts else {"acne": None, "lost_shadow": None, "gap_px": None, "texels_per_pixel": None}
