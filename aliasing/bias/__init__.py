@@ -23,7 +23,7 @@ PlaneBias(depth=0.05, normal=0.035355339059327376)
 
 from __future__ import annotations
 
-from .plane import LOOKUPS, PlaneBias, kernel, lit_gap, map_bias, plane_bias, slope_factor
+from .plane import LOOKUPS, PlaneBias, edge_shift, kernel, lit_gap, map_bias, plane_bias, slope_factor
 from .quantization import quantization_bias
 
-__all__ = ["LOOKUPS", "PlaneBias", "kernel", "lit_gap", "map_bias", "plane_bias", "quantization_bias", "slope_factor"]
+__all__ = ["LOOKUPS", "PlaneBias", "edge_shift", "kernel", "lit_gap", "map_bias", "plane_bias", "quantization_bias", "slope_factor"]

@@ -11,7 +11,8 @@ fastest along the azimuth φ from the map's s axis, needs
 * receiver-plane depth bias (any k): those of nearest lookup.
 
 A constant depth bias b leaves a lit gap of b·cos α at the foot of a vertical caster on
-horizontal ground lit at elevation α (peter-panning).
+horizontal ground lit at elevation α (peter-panning); a normal offset o shortens the shadow by
+o/tan α at its far end (:func:`edge_shift`, any engine's whole rule).
 
 Example
 -------
@@ -185,6 +186,52 @@ def lit_gap(depth_bias: ArrayLike, elevation: ArrayLike, thickness: ArrayLike = 
         raise ValueError(f"thickness must be a finite caster thickness >= 0 [world units], got {check._show(d)}")
     gap = np.where(el < 90, b * np.cos(np.radians(el)), 0.0)  # eq. bias.lit_gap
     return _out(np.maximum(gap - d, 0.0))
+
+
+@check.public
+def edge_shift(rule, texel: ArrayLike, elevation: ArrayLike, extent: ArrayLike | None = None) -> float | NDArray[np.float64]:
+    """How far an engine's whole bias rule moves a shadow's edge on horizontal ground [world units].
+
+    The ground receiver makes θ = 90° − α with the direction to a light at elevation α.  The
+    rule's whole depth bias there, b = ``rule.depth(w, θ, 90°)`` (every term: constant,
+    slope-scaled and normal offsets, as world depth along the light), moves the shadow's edge
+    by :func:`lit_gap` (b) = b·cos α: at the foot of a vertical caster for the depth terms
+    (peter-panning), and at the shadow's far end for a normal offset o·g(θ), whose depth
+    equivalent o·g(θ)/cos θ = o·g(θ)/sin α gives o·g(θ)/tan α: a receiver moved o along the
+    ground's normal is tested o above the ground, where the caster below that height casts no
+    shadow (three.js, PlayCanvas), and a caster offset (Babylon.js) lowers a box's top by
+    o·sin θ = o cos α.  A normal offset cancels at the foot but not at the end.
+
+    Parameters
+    ----------
+    rule : aliasing.setups.BiasRule
+        The engine's bias rule (its :meth:`~aliasing.setups.BiasRule.depth`).
+    texel : array_like
+        The map's texel side w there [world units], > 0.
+    elevation : array_like
+        α, the light's elevation above the ground [deg], in (0, 90].
+    extent : array_like, optional
+        The map's depth range along the light [world units], for rules with range terms.
+
+    Returns
+    -------
+    float or ndarray
+        The shift [world units], ≥ 0 (a rule that lifts the receiver above the light's
+        surface moves nothing).
+
+    Examples
+    --------
+    >>> from aliasing.setups import BiasRule, BiasTerm
+    >>> depth = BiasRule((BiasTerm("bias", 0.1, "depth"),))
+    >>> normal = BiasRule((BiasTerm("normalBias", 0.1, "normal"),))
+    >>> round(edge_shift(depth, 0.01, 45.0), 6), round(edge_shift(normal, 0.01, 45.0), 6)   # b cos α; o / tan α
+    (0.070711, 0.1)
+    """
+    el = check.as_float_array(elevation, "elevation")
+    if not np.isfinite(el).all() or ((el <= 0) | (el > 90)).any():
+        raise ValueError(f"elevation must be in (0, 90] degrees (the light above the ground), got {check._show(el)}")
+    b = np.asarray(rule.depth(texel, 90.0 - el, 90.0, extent), float)
+    return lit_gap(np.maximum(np.nan_to_num(b, nan=0.0, posinf=np.finfo(float).max), 0.0), np.broadcast_to(el, b.shape))
 
 
 @check.public

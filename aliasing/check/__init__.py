@@ -34,9 +34,11 @@ image height, a sun band), :func:`check` evaluates the pipeline the engine build
     draws back faces into the map: closed and one-sided receivers then compare against their
     far side and do not self-shadow).
 ``gap_px``
-    Peter-panning: the lit gap at the foot of a vertical caster on the ground at the lowest sun
-    (:func:`aliasing.bias.lit_gap` of the rule's part along the light,
-    :meth:`~aliasing.setups.BiasRule.contact`), in pixels at the cascade's middle depth.
+    How far the bias moves a shadow's edge on the ground, the worst sun of the band
+    (:func:`aliasing.bias.edge_shift` of the rule's whole depth bias for the ground
+    receiver), in pixels at the cascade's middle depth: the lit gap at the foot of a vertical
+    caster for the depth terms (peter-panning), the shortening of the shadow's far end for a
+    normal offset (o/tan α).
 ``seam_step``
     The texel's growth into the next cascade (:func:`aliasing.bias.filtering.seam_step`; None for
     the last).
@@ -91,7 +93,7 @@ from numpy.typing import ArrayLike
 
 from .. import _table as _tables
 from .. import _validation as check_
-from ..bias import lit_gap, plane_bias
+from ..bias import edge_shift, plane_bias
 from ..bias.filtering import blend_band, pcf_footprint, seam_step
 from ..engines import pipeline as _pipeline
 from ..engines import stable
@@ -335,8 +337,7 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
             needed[key] = v
             if limit:
                 unreachable.setdefault(k, []).append(limit)
-        contact = float(np.max(np.asarray(rule.contact(w[:, k], None if ext is None else ext[:, k]))))
-        gap = float(lit_gap(max(0.0, contact), lo_sun)) / pixel[k]
+        gap = float(np.max(edge_shift(rule, w[:, k], elev, None if ext is None else ext[:, k]))) / pixel[k]  # each sun, its texel
         shimmer = 0.0 if pl.stable else _shimmer(lv, w[:, k], step) / pixel[k]
         row = {
             "cascade": k, "near": float(near_i[k]), "far": float(far_i[k]),
@@ -357,8 +358,8 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
         for limit in unreachable.get(k, []):
             verdicts.append(f"cascade {k}: {limit}")
         if gap >= 1.0:
-            verdicts.append(f"cascade {k}: contact shadows detach by {gap:.1f} px at {lo_sun:g}° sun (the depth bias along the light: "
-                            f"{', '.join(t_.key for t_ in rule.terms if t_.contact)})")
+            verdicts.append(f"cascade {k}: shadow edges on the ground move by {gap:.1f} px at the lowest sun, {lo_sun:g}° (detached at contacts, "
+                            f"shortened by normal offsets: {', '.join(t_.key for t_ in rule.terms)})")
         if k + 1 < K:
             seam = _seam_verdict(k, row, 2 * t / H)  # a pixel's world width per unit of eye depth
             if seam:

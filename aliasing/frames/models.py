@@ -209,7 +209,7 @@ class BabylonCSM:
                   ("darkness", s["darkness"] == 0, "0 (modelled)"), ("frustumEdgeFalloff", s["frustumEdgeFalloff"] == 0, "0 (modelled)"),
                   ("depthClamp", s["depthClamp"] is True, "true (the depth-clamped bias is modelled)"),
                   ("autoCalcDepthBounds", s["autoCalcDepthBounds"] is False, "false"),
-                  ("filteringQuality", s["filteringQuality"] == 0, "0, high quality (PCF5, modelled)"),
+                  ("filteringQuality", s["filteringQuality"] in (0, 1, 2), "0, 1 or 2 (high, medium, low: PCF5, PCF3, PCF1)"),
                   ("usePercentageCloserFiltering", s["usePercentageCloserFiltering"] is True, "true (modelled)"),
                   ("cascadeBlendPercentage", 0 <= s["cascadeBlendPercentage"] <= 1, "in [0, 1]"),
                   ("mapSize", s["mapSize"] in (256, 512, 1024, 2048, 4096), "a power of two in [256, 4096]")]
@@ -251,7 +251,7 @@ class BabylonCSM:
         pct = float(s["cascadeBlendPercentage"])
         pts = np.nan_to_num(rb.position)
         factor = predict.babylon_factor(maps, rb.matrices, sel, depth, pts, ends=edges[1:], lengths=np.diff(edges),
-                                        blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
+                                        blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]), quality=int(s["filteringQuality"]))
         factor = np.where(rb.drawn, factor, np.nan)
         ref = reference(scene, sun, rb, res)
         if s["stabilizeCascades"]:

@@ -203,6 +203,33 @@ def _babylon_pcf5(stored: Array, s: Array, t: Array, ref: Array) -> Array:
     return out / 144.0
 
 
+def _babylon_pcf3(stored: Array, s: Array, t: Array, ref: Array) -> Array:
+    """Babylon.js's computeShadowWithCSMPCF3 (medium quality): 4 hardware-PCF (LINEAR, compare LESS) taps with weights /16."""
+    r = stored.shape[0]
+    u, v = s * r + 0.5, t * r + 0.5
+    st_x, st_y = u - np.floor(u), v - np.floor(v)
+    bu, bv = (np.floor(u) - 0.5) / r, (np.floor(v) - 0.5) / r
+
+    def weights(f):
+        w = (3 - 2 * f, 1 + 2 * f)
+        return w, ((2 - f) / w[0] - 1, f / w[1] + 1)
+
+    (wx, ox), (wy, oy) = weights(st_x), weights(st_y)
+    out = np.zeros_like(ref)
+    for a in range(2):
+        for b in range(2):
+            out += wx[a] * wy[b] * _hardware_compare(stored, bu + ox[a] / r, bv + oy[b] / r, ref, strict=True)
+    return out / 16.0
+
+
+def _babylon_pcf1(stored: Array, s: Array, t: Array, ref: Array) -> Array:
+    """Babylon.js's computeShadowWithCSMPCF1 (low quality): one hardware-PCF (LINEAR, compare LESS) lookup."""
+    return _hardware_compare(stored, s, t, ref, strict=True)
+
+
+BABYLON_PCF = {0: _babylon_pcf5, 1: _babylon_pcf3, 2: _babylon_pcf1}  # filteringQuality: high, medium, low (lightFragment 238–242)
+
+
 def _hardware_compare(depth: Array, s: Array, t: Array, ref: Array, *, strict: bool) -> Array:
     """A LINEAR shadow-sampler lookup: the bilinear weights of the 4 nearest texels' compares (LESS if strict, else LEQUAL), clamped to the edge."""
     r = depth.shape[0]
@@ -220,13 +247,14 @@ def _hardware_compare(depth: Array, s: Array, t: Array, ref: Array, *, strict: b
 
 
 def babylon_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.int64], depth: Array, points: Array, *,
-                   ends: Array, lengths: Array, blend_factor: float, bias: float) -> Array:
+                   ends: Array, lengths: Array, blend_factor: float, bias: float, quality: int = 0) -> Array:
     """Babylon.js 9.35's CSM shadow factor (lightFragment with SHADOWCSM, PCF high quality, depth clamp on).
 
     The stored depth is the caster's window depth + 1.5 · ``bias`` clamped to [0, 1]
     (shadowMapVertexMetric adds bias·w to clip z, i.e. bias/2 in window depth, and
     shadowMapFragment adds ``bias`` again to the clamped depth); the receiver's depth is its
-    window depth clamped to [0, 1 − 2⁻²⁴]; the lookup is :func:`_babylon_pcf5`; a pixel within
+    window depth clamped to [0, 1 − 2⁻²⁴]; the lookup is that of ``quality`` (``filteringQuality``:
+    0 :func:`_babylon_pcf5`, 1 :func:`_babylon_pcf3`, 2 :func:`_babylon_pcf1`); a pixel within
     the last ``1/blend_factor`` of its cascade's length mixes in the next cascade's factor.
     ``cascade`` −1: no shadow (beyond shadowMaxZ).
     """
@@ -235,8 +263,11 @@ def babylon_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
         c = to_map(matrices[i], points[sel])
         stored = np.clip(np.where(np.isfinite(maps[i].depth), maps[i].depth, 1.0) + 1.5 * bias, 0.0, 1.0)
         ref = np.clip(c[:, 2], 0.0, 0.99999994)
-        return _babylon_pcf5(stored, c[:, 0], c[:, 1], ref)
+        return pcf(stored, c[:, 0], c[:, 1], ref)
 
+    if quality not in BABYLON_PCF:
+        raise ValueError(f"quality (filteringQuality) must be 0, 1 or 2 (high, medium, low), got {quality!r}")
+    pcf = BABYLON_PCF[quality]
     factor = np.ones(points.shape[:-1])
     k = len(maps)
     for i in range(k):

@@ -391,7 +391,7 @@ def _babylon_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: l
         worst = max(worst, float(np.max(np.abs(mats - eng)) / np.max(np.abs(eng))))
         maps = [predict.light_depth_map(cast, m, res) for m in mats]
         fac = predict.babylon_factor(maps, mats, result.prediction.cascade, depth, pts, ends=edges[1:], lengths=np.diff(edges),
-                                     blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
+                                     blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]), quality=int(s["filteringQuality"]))
         masks.append(fac < 0.5)
     return {"predicted": flips(np.array(masks), keep), "matrices_vs_engine": worst}
 
@@ -428,7 +428,7 @@ def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict],
 
         def factor(maps, mats):
             return predict.babylon_factor(maps, mats, result.prediction.cascade, depth, pts, ends=edges[1:], lengths=np.diff(edges),
-                                          blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]))
+                                          blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]), quality=int(s["filteringQuality"]))
     else:
         fy, fx = np.mgrid[0:h, 0:w]
         res = int(s["shadowMapSize"])

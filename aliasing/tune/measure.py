@@ -9,8 +9,9 @@ Constraints, measured as :func:`aliasing.check.check` measures them: no acne on 
 ground and the ground tilted ``max_slope`` away from the sun under each sampled elevation (the
 angle to the light θ = 90° − α + slope, up to :data:`MAX_ANGLE`, as check samples them) in
 each cascade's largest texel with the
-filter's kernel; the lit gap at a caster's foot (:func:`aliasing.bias.lit_gap` of the rule's
-contact part, at the lowest sun) in pixels at the middle of the cascade's receivers; the texels
+filter's kernel; how far the bias moves a shadow's edge on the ground (:func:`aliasing.bias.edge_shift`:
+the gap at a caster's foot, the shortening by a normal offset; the worst sun) in pixels at the
+middle of the cascade's receivers; the texels
 of all maps (k·R²); shadows reaching the farthest receiver; a stabilized fit for a moving camera.
 """
 
@@ -23,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _validation as check
-from ..bias import lit_gap, plane_bias
+from ..bias import edge_shift, plane_bias
 from ..engines import pipeline as engine_pipeline
 from ..raster.draw.lookup import PCF_MAX
 from ..setups import Setup
@@ -187,8 +188,8 @@ def measure(setup: Setup, limits: Limits) -> Measure:
     need, have = need2[rows, worst], have2[rows, worst]
     if rule.faces == "back":
         need = np.full_like(texel, -np.inf)  # lit surfaces compare against the far side: no acne whatever the bias
-    contact = np.max(np.maximum(np.asarray(rule.contact(w_sun, ext), float), 0.0) * np.ones_like(w_sun), axis=0)  # worst sun, as check
-    gap = np.asarray(lit_gap(contact, setup.sun.elevation[0]), float)  # worst at the lowest sun
+    elev = setup.sun.elevations(SUN_SAMPLES)[:, None]
+    gap = np.max(np.asarray(edge_shift(rule, w_sun, elev, ext), float) * np.ones_like(w_sun), axis=0)  # the worst sun, as check
     gap_px = np.where(used, gap * cam.height / (2 * t * mid), np.nan)
     covers = float(np.max(pipe.far_i)) >= rf * (1 - 1e-9) or pipe.fit == "fixed"
     return Measure(error, texel, need, have, gap_px, float(np.nanmax(error)), int(pipe.k * pipe.resolution ** 2),
