@@ -1,11 +1,13 @@
 """Babylon.js 9.35's cascade matrices, predicted as ``CascadedShadowGenerator._computeMatrices`` builds them.
 
-Each cascade (Lights/Shadows/cascadedShadowGenerator.pure.js, ``_computeFrustumInWorldSpace``,
-``_computeCascadeFrustum``, ``_computeMatrices``; Babylon.js's left-handed world, which is the
-job's world mirrored in z):
+Each cascade (Lights/Shadows/cascadedShadowGenerator.pure.js, ``_computeFrustumInWorldSpace``
+:437, ``_computeCascadeFrustum`` :474, ``_computeMatrices`` :364; Babylon.js's left-handed
+world, which is the job's world mirrored in z):
 
-* the slice's 8 corners (the camera's near-to-far corner rays cut at the cascade's ends) and
-  their centroid c;
+* the camera's view (the FreeCamera's ``setTarget`` and ``_getViewMatrix``) times its
+  ``PerspectiveFovLH`` (the render's width / height as aspect), inverted, takes the NDC cube's
+  corners to the world; the slice's 8 corners cut the near-to-far corner rays at the cascade's
+  breaks, and c is their centroid;
 * ``stabilizeCascades``: a cube of half side r = ⌈16 · (the corners' largest distance from c)⌉ / 16 about c; otherwise
   the corners' box in the frame ``Matrix.LookAtLH(c, c + d, Up)``;
 * the shadow camera at c + d · min z, ``LookAtLH(camera, c, Up)``; its depth range [0, box depth]
@@ -15,8 +17,18 @@ job's world mirrored in z):
   rounded to a whole texel of the map (the projection translated by the rounding offset).
 
 The result is returned as the read-back's matrices are (:func:`aliasing.frames.readback.decode`):
-world of the job → (s, t, depth) in [0, 1]³, column vectors.  The engine computes in float32
-(ERRATA F6); this is float64.
+world of the job → (s, t, depth) in [0, 1]³, column vectors.
+
+**Float32.** ``Matrix`` keeps its 16 values in a ``Float32Array`` (Babylon.js without
+``useHighPrecisionMatrix``, as the pages run it); ``Vector3`` holds JS numbers (float64).  Every
+matrix the chain stores is rounded to float32 here, where the engine stores it (the camera's
+``LookAtLH``, its inverse, the Euler angles' rotation matrix, the view, the projection, their
+product and its inverse; each cascade's light frame, view, projection, texel shift and their
+products), and everything between (``Vector3.TransformCoordinates``, the corners, the centroid,
+the extents, the rounding of the origin) stays float64, in the engine's order of operations.
+The matrices so predicted equal the engine's bit for bit (node, ``NullEngine``, for the boxes
+and the city; ERRATA F6); ``float32=False`` gives the float64 arithmetic the engine would do
+with high-precision matrices.
 
 Example
 -------
@@ -204,6 +216,24 @@ def _breaks(near: float, far: float, shadow_max_z: float | None, k: int, lam: fl
     return np.array([0.0, *brk[:-1]]), np.array(brk)
 
 
+KEYS = ("mapSize", "numCascades", "lambda", "stabilizeCascades", "depthClamp", "shadowMaxZ")
+
+
+def _settings(settings: dict) -> dict:
+    if not isinstance(settings, dict) or any(k not in settings for k in KEYS):
+        raise ValueError(f"settings must be Babylon.js's filled settings (aliasing.frames.models.MODELS['babylon'].settings), with {', '.join(KEYS)}")
+    s = {k: settings[k] for k in KEYS}
+    checks = [("mapSize", isinstance(s["mapSize"], (int, np.integer)) and 1 <= s["mapSize"] <= 16384, "a whole number of texels in [1, 16384]"),
+              ("numCascades", isinstance(s["numCascades"], (int, np.integer)) and 1 <= s["numCascades"] <= 4, "a whole number in [1, 4]"),
+              ("lambda", np.isfinite(s["lambda"]) and 0 <= s["lambda"] <= 1, "in [0, 1]"),
+              ("depthClamp", s["depthClamp"] is True, "true (the depth range modelled)"),
+              ("shadowMaxZ", s["shadowMaxZ"] is None or (np.isfinite(s["shadowMaxZ"]) and s["shadowMaxZ"] > 0), "null or a positive distance")]
+    for key, ok, what in checks:
+        if not ok:
+            raise ValueError(f"{key} must be {what}, got {s[key]!r}")
+    return s
+
+
 def matrices(settings: dict, camera, sun: Array, triangles: Array, aspect: float | None = None, float32: bool = True) -> Array:
     """Per cascade, the predicted world → [0, 1]³ matrix (k, 4, 4) of the job's world.
 
@@ -236,11 +266,7 @@ def matrices(settings: dict, camera, sun: Array, triangles: Array, aspect: float
         A setting the model does not cover (``depthClamp`` false), ``triangles`` or ``sun`` of
         the wrong shape, or ``aspect`` not positive and finite.
     """
-    from .models import MODELS
-
-    s = MODELS["babylon"].settings(settings)
-    if not s["depthClamp"]:
-        raise ValueError("depthClamp must be true (the depth range modelled)")
+    s = _settings(settings)
     tri = check.finite(triangles, "triangles")
     if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri):
         raise ValueError(f"triangles must have shape (T, 3, 3), T >= 1, got {tri.shape}")
