@@ -711,12 +711,12 @@ def test_babylon_float32_cascades_of_the_city_in_node(tmp_path):
     sun = scenes.sun_direction(*SUN, fs.camera)
     cases = (({}, 6, 1.6e-5), ({"stabilizeCascades": True, "numCascades": 3, "mapSize": 512}, 8, 8e-8))
     jobs = []
-    for n, (given, _, _) in enumerate(cases):
-        jobs.append(make_job(fs, sun, MODELS["babylon"].settings(given), HEIGHT))
+    for n, (changed, _, _) in enumerate(cases):
+        jobs.append(make_job(fs, sun, MODELS["babylon"].settings(changed), HEIGHT))
         (tmp_path / f"job{n}.json").write_text(json.dumps(jobs[-1]))
     out = subprocess.run([node, str(ROOT / "tests" / "engines_js" / "babylon_csm_float32.mjs"), str(root), *(str(tmp_path / f"job{n}.json") for n in range(len(cases)))],
                          capture_output=True, text=True, timeout=120, check=True)
-    for (given, digits, f64_off), job, got in zip(cases, jobs, json.loads(out.stdout), strict=True):
+    for (changed, digits, f64_off), job, got in zip(cases, jobs, json.loads(out.stdout), strict=True):
         assert got["version"] == "9.35.0" and got["float32"] is True
         eng = []
         for mm in got["matrices"]:
@@ -725,10 +725,10 @@ def test_babylon_float32_cascades_of_the_city_in_node(tmp_path):
             eng.append(TO_UNIT @ m.T)
         eng = np.array(eng)
         s, aspect = job["settings"], job["width"] / job["height"]
-        assert np.array_equal(babylon_cascades.matrices(s, fs.camera, sun, fs.triangles, aspect=aspect), eng), given
+        assert np.array_equal(babylon_cascades.matrices(s, fs.camera, sun, fs.triangles, aspect=aspect), eng), changed
         f64 = babylon_cascades.matrices(s, fs.camera, sun, fs.triangles, aspect=aspect, float32=False)
-        assert round(float(np.max(np.abs(babylon_cascades.map_sides(eng) / babylon_cascades.map_sides(f64) - 1))), digits) == f64_off, given
-        if not given:  # and the whole matrices, relative to their largest element
+        assert round(float(np.max(np.abs(babylon_cascades.map_sides(eng) / babylon_cascades.map_sides(f64) - 1))), digits) == f64_off, changed
+        if not changed:  # and the whole matrices, relative to their largest element
             assert round(float(np.max(np.abs(f64 - eng)) / np.max(np.abs(eng))), 6) == 1.9e-5
 
 
