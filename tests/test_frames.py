@@ -141,8 +141,8 @@ def test_threejs_frame_matches_the_prediction(three, name):
 
 
 # Babylon.js computes its matrices in float32 (Matrix is a Float32Array). The cascades' are modelled
-# in float32 (aliasing.frames.babylon_cascades, ERRATA F6); the single ShadowGenerator's box is
-# float64 in the toolkit: LookAtLH and OrthoLH in float32 round its matrix to about 1e-7
+# in float32 (aliasing.frames.babylon_cascades, ERRATA F6); the single ShadowGenerator's matrix is
+# predicted in float64 (aliasing.frames.single) and held to this bound
 BABYLON_FLOAT32 = 1e-5
 
 
