@@ -23,7 +23,7 @@ from numpy.typing import NDArray
 from .. import partitioning
 from ..engines import stable
 from ..setups import babylon as babylon_setup
-from . import predict
+from . import babylon_cascades, predict
 from .predict import Prediction, reference, tight_sides
 from .single import BabylonSingle, ThreeDirectional
 
@@ -191,6 +191,8 @@ class BabylonCSM:
     """
 
     engine: str = "babylon"
+    #: the predicted footprint is the modelled engine's (its float32 matrices), not the setups' float64 fit
+    footprint_from_matrices: bool = True
     defaults: dict = field(default_factory=lambda: {
         "mapSize": 1024, "numCascades": 4, "lambda": 0.5, "bias": 0.00005, "normalBias": 0.0, "darkness": 0.0, "frustumEdgeFalloff": 0.0,
         "stabilizeCascades": False, "cascadeBlendPercentage": 0.1, "depthClamp": True, "autoCalcDepthBounds": False, "shadowMaxZ": None,
@@ -254,21 +256,16 @@ class BabylonCSM:
                                         blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]), quality=int(s["filteringQuality"]))
         factor = np.where(rb.drawn, factor, np.nan)
         ref = reference(scene, sun, rb, res)
-        if s["stabilizeCascades"]:
-            p = stable.PRESETS["babylon"]
-            box = stable.evaluate(edges, cam.near, edges[-1], cam.fov, cam.direction_to_eye(sun)[None], aspect=cam.aspect, fit=p.fit, snap=p.snap,
-                                  resolution=float(res))
-            sides = np.maximum(box.width_x[0], box.width_y[0])
-        else:
-            sides = tight_sides(cam, edges, -sun, np.array([0.0, 1.0, 0.0]))
-        return Prediction(factor, sel, edges[:-1], sides, np.full(len(sides), float(res))), ref
+        # the whole cascade matrices as the engine computes them, in its float32 (ERRATA F6), at the render's aspect
+        mats = babylon_cascades.matrices(s, cam, sun, scene.triangles, aspect=rb.shadow.shape[1] / rb.shadow.shape[0])
+        sides = babylon_cascades.map_sides(mats)
+        return Prediction(factor, sel, edges[:-1], sides, np.full(len(sides), float(res)), mats), ref
 
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
         """From the engine's objects: each cascade's first depth (the previous one's view z), its map's larger side, and R."""
         ends = np.array([c["viewZ"] for c in rb.info["cascades"]], float)
         starts = np.concatenate([[camera.near], ends[:-1]])
-        sides = np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3])) for m in rb.matrices])
-        return starts, sides, rb.sizes[:, 0].astype(float)
+        return starts, babylon_cascades.map_sides(rb.matrices), rb.sizes[:, 0].astype(float)
 
 
 @dataclass(frozen=True)

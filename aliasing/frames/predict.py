@@ -443,6 +443,7 @@ class Prediction:
     starts: Array
     sides: Array
     resolution: Array
+    matrices: Array | None = None  # per cascade, the predicted world → [0, 1]³ matrices, where the model predicts them whole
 
 
 def tight_sides(camera, edges: Array, along: Array, up: Array) -> Array:

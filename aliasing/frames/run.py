@@ -156,6 +156,9 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     if pipeline is not None and predicts:
         starts, sides, res = pipeline_footprint(pipeline, scene.camera, sun)
         extra_pipe = {"pipeline_fit": pipeline.fit, "pipeline_starts_vs_model": float(np.max(np.abs(starts / pred.starts - 1))) if len(starts) == len(pred.starts) else None}
+        if getattr(model, "footprint_from_matrices", False):  # Babylon.js: its float32 matrices modelled; the setups' fit is float64
+            extra_pipe["pipeline_texels_per_pixel"] = compare.texels_per_pixel(starts, sides, res, scene.camera.fov, h)
+            starts, sides, res = pred.starts, pred.sides, pred.resolution
     predicted = {
         "acne": compare.acne(pred.factor, receivers),
         "lost_shadow": compare.lost_shadow(pred.factor, ref, facing),
@@ -163,8 +166,8 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
         "texels_per_pixel": compare.texels_per_pixel(starts, sides, res, scene.camera.fov, h),
     } if predicts else {"acne": None, "lost_shadow": None, "gap_px": None, "texels_per_pixel": None}
     drawn = rb.drawn
-    if predicts and hasattr(model, "matrices"):  # the whole light matrices, predicted from the fit, snap and light frame
-        pm = model.matrices(settings, scene.camera, sun)
+    if predicts and (pred.matrices is not None or hasattr(model, "matrices")):  # the whole light matrices, predicted from the fit, snap and light frame
+        pm = pred.matrices if pred.matrices is not None else model.matrices(settings, scene.camera, sun)
         if pm.shape == rb.matrices.shape:
             extra_pipe["matrices_vs_engine"] = float(np.max(np.abs(pm - rb.matrices)) / np.max(np.abs(rb.matrices)))
     extra = {"pixels": int(drawn.sum()), "receivers": int(receivers.sum()),
@@ -386,7 +389,7 @@ def _babylon_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: l
     masks, worst = [], 0.0
     for pose, f in zip(path, frames):
         cam = pose_camera(cam0, pose)
-        mats = babylon_cascades.matrices(s, cam, sun, scene.triangles)
+        mats = babylon_cascades.matrices(s, cam, sun, scene.triangles, aspect=w / h, float32=False)  # the grid's motion: float64 (ERRATA F8)
         eng = np.array([to_unit @ np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
         worst = max(worst, float(np.max(np.abs(mats - eng)) / np.max(np.abs(eng))))
         maps = [predict.light_depth_map(cast, m, res) for m in mats]
