@@ -424,8 +424,8 @@ def babylon_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
     _factor_inputs(maps, matrices, cascade, points, None)
     if np.shape(depth) != np.shape(cascade):
         raise ValueError(f"depth must have the shape of cascade {np.shape(cascade)}, got {np.shape(depth)}")
-    if np.shape(ends) != (len(maps),) or np.shape(lengths) != (len(maps),):
-        raise ValueError(f"ends and lengths must have one value per map ({len(maps)}), got shapes {np.shape(ends)} and {np.shape(lengths)}")
+    if np.ndim(ends) != 1 or np.ndim(lengths) != 1 or min(len(ends), len(lengths)) < len(maps) - 1:
+        raise ValueError(f"ends and lengths must be 1-d with a value per cascade ({len(maps)}), got shapes {np.shape(ends)} and {np.shape(lengths)}")
     if not check.finite(check.scalar(blend_factor, "blend_factor"), "blend_factor") > 0:
         raise ValueError(f"blend_factor must be in (0, inf), got {blend_factor!r}")
     check.finite(check.scalar(bias, "bias"), "bias")
