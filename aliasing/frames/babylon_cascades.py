@@ -43,8 +43,20 @@ UP = np.array([0.0, 1.0, 0.0])
 def look_at_lh(eye: Array, target: Array, up: Array = UP) -> Array:
     """``Matrix.LookAtLH`` as a 4×4 column-vector matrix (world → view; x ∝ up × z, z towards the target).
 
-    Example
+    Parameters
+    ----------
+    eye, target : array_like (3,)
+        The viewer and the point it looks at [world units], finite, different.
+    up : array_like (3,)
+        The world up (x is ±x of the world when ``up`` is along the view).
+
+    Returns
     -------
+    ndarray (4, 4)
+        World → view [world units] (column vectors).
+
+    Examples
+    --------
     >>> v = look_at_lh(np.array([0.0, 0.0, -5.0]), np.zeros(3))   # looking along +z from 5 units before the origin
     >>> (v @ [0.0, 0.0, 0.0, 1.0]).tolist()                        # the target lies 5 units ahead
     [0.0, 0.0, 5.0, 1.0]
@@ -68,8 +80,20 @@ def look_at_lh(eye: Array, target: Array, up: Array = UP) -> Array:
 def ortho_off_center_lh(left: float, right: float, bottom: float, top: float, near: float, far: float) -> Array:
     """``Matrix.OrthoOffCenterLH`` (NDC z in [−1, 1]) as a 4×4 column-vector matrix.
 
-    Example
+    Parameters
+    ----------
+    left, right, bottom, top : float
+        The box's sides in view x and y [world units], right ≠ left, top ≠ bottom.
+    near, far : float
+        Its depth range along view z [world units], far ≠ near.
+
+    Returns
     -------
+    ndarray (4, 4)
+        View → NDC (column vectors).
+
+    Examples
+    --------
     >>> p = ortho_off_center_lh(-2.0, 2.0, -1.0, 1.0, 0.0, 10.0)
     >>> (p @ [2.0, -1.0, 10.0, 1.0]).tolist()                      # the box's corner on the far plane
     [1.0, -1.0, 1.0, 1.0]
@@ -99,6 +123,22 @@ def matrices(settings: dict, camera, sun: Array, triangles: Array) -> Array:
         World direction towards the sun (the light shines along −sun).
     triangles : array_like (T, 3, 3)
         The shadow casters [world units] (their bounding box sets the depth range).
+
+    Returns
+    -------
+    ndarray (k, 4, 4)
+        Per cascade: world → (s, t, depth) in [0, 1]³ (column vectors), orthographic.
+
+    Examples
+    --------
+    >>> from aliasing.raster.scenes.camera import look_at
+    >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=50.0, fov=50.0)
+    >>> floor = np.array([[[-50.0, -1.0, 10.0], [50.0, -1.0, 10.0], [0.0, -1.0, -90.0]]])
+    >>> m = matrices({"numCascades": 2, "stabilizeCascades": True}, cam, np.array([0.0, 0.8, -0.6]), floor)
+    >>> m.shape, m[:, 3].tolist()                       # two cascades, orthographic (w = 1)
+    ((2, 4, 4), [[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 0.0, 1.0]])
+    >>> [round(1 / float(np.linalg.norm(c[0, :3])), 4) for c in m]   # map sides 2r [world units], r in whole 1/16ths
+    [26.375, 74.125]
     """
     from .models import MODELS
 

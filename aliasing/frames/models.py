@@ -1004,12 +1004,6 @@ def from_setup(setup) -> dict:
     (every key in the engine's own spelling, defaults filled), checked against what is rendered
     and modelled here; the pipeline's faces that cast must be the model's.
 
-    Raises
-    ------
-    ValueError
-        A setting the frames do not render or model (its key and why), or a pipeline that
-        disagrees with the model about the faces that cast.
-
     Parameters
     ----------
     setup : aliasing.setups.Setup
@@ -1019,6 +1013,12 @@ def from_setup(setup) -> dict:
     -------
     dict
         The filled settings of :func:`model_for`'s model (map sizes [texels], distances [world units]).
+
+    Raises
+    ------
+    ValueError
+        A setting the frames do not render or model (its key and why), or a pipeline that
+        disagrees with the model about the faces that cast.
 
     Examples
     --------
