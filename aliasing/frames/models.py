@@ -20,7 +20,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from .. import _validation as check, partitioning
+from .. import partitioning
+from .. import _validation as check
 from ..engines import stable
 from . import predict
 from .predict import Prediction, reference, tight_sides
