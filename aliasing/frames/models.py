@@ -41,22 +41,33 @@ class ThreeCSM:
     ``lightMargin``, ``fade``; each cascade light's shadow ``normalBias`` and ``shadowRadius``
     (``light.shadow.radius``); the renderer's ``shadowMapType``; the material's ``side`` and
     ``shadowSide`` (null: the opposite of ``side``, WebGLShadowMap's ``shadowSide`` table).
-
-    Parameters
-    ----------
-    engine : str
-        "threejs".
-    preset : str
-        The toolkit's split and fit preset (:data:`aliasing.engines.stable.PRESETS`).
-    defaults : dict
-        The engine's defaults (map sizes [texels], distances [world units], biases as the engine takes them).
+    Distances are in world units, ``shadowMapSize`` in texels, ``shadowBias`` in normalized depth.
 
     Examples
     --------
-    >>> m = ThreeCSM()
-    >>> s = m.settings({"cascades": 2})
-    >>> m.cast_side(s), s["shadowMapSize"]                 # front-sided material: back faces cast
-    ('back', 2048)
+    >>> from aliasing.raster.scenes.camera import look_at
+    >>> m, cam = ThreeCSM(), look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
+    >>> s = m.settings({"cascades": 2, "mode": "logarithmic", "maxFar": 400.0})
+    >>> m.cast_side(s), m.shadow_far(s, cam), m.edges(s, cam).tolist()   # back faces cast; ends 1 · 100^(i/2) [world units]
+    ('back', 100.0, [1.0, 10.0, 100.0])
+    >>> m.select(s, cam, np.array([2.0, 30.0, 200.0, np.nan])).tolist()  # the cascade of each eye depth, −1 none
+    [0, 1, -1, -1]
+    >>> from aliasing.frames.readback import Readback
+    >>> from aliasing.frames.scenes import frame_scene, sun_direction
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=1.0, boxes=2, ground_cells=2)
+    >>> sun = sun_direction(20.0, 30.0, fs.camera)
+    >>> pts = np.array([[[-2.0, -1.0, -4.25], [0.0, -1.0, -12.0]]])   # two ground pixels: in a box's shadow, lit
+    >>> def rb(mats, info=None):                                      # what a page would read back there
+    ...     return Readback("", "", np.ones((1, 2)), np.zeros((1, 2), np.int64), pts, np.array([[[0.0, 1.0, 0.0]] * 2]),
+    ...                     mats, np.full((len(mats), 2), 256), info or {}, b"")
+    >>> s = m.settings({"cascades": 2, "shadowMapSize": 256}); mats = m.matrices(s, fs.camera, sun)
+    >>> pred, ref = m.predict(s, fs, sun, rb(mats))
+    >>> pred.cascade.tolist(), (pred.factor < 0.5).tolist(), ref.tolist()
+    ([[0, 1]], [[True, False]], [[False, True]])
+    >>> bool(np.allclose(mats[:, 2, :3] @ sun, -1 / 1999))   # depth grows away from the sun: ½ · 2 / (lightFar − lightNear)
+    True
+    >>> [v.tolist() for v in m.measured_cascades(s, fs.camera, rb(np.diag([0.1, 0.1, 0.01, 1.0])[None], {"breaks": [1.0]}))]
+    [[1.0], [10.0], [256.0]]
     """
 
     engine: str = "threejs"
@@ -67,28 +78,7 @@ class ThreeCSM:
         "normalBias": 0.0, "shadowRadius": 1.0, "shadowMapType": "PCFShadowMap", "side": "front", "shadowSide": None})
 
     def settings(self, given: dict | None = None) -> dict:
-        """Every setting, the defaults filled in, as the engine takes them (CSM's ``x || default`` included).
-
-        Parameters
-        ----------
-        given : dict, optional
-            Settings in the engine's own keys (units as the engine takes them).
-
-        Returns
-        -------
-        dict
-            Every setting.
-
-        Raises
-        ------
-        ValueError
-            An unknown key, or a value outside what is rendered and modelled (the key and its allowed values).
-
-        Examples
-        --------
-        >>> ThreeCSM().settings({"cascades": 0})["cascades"]      # CSM: `data.cascades || 3`
-        3
-        """
+        """Every setting, the defaults filled in, as the engine takes them (CSM's ``x || default`` included)."""
         given = dict(given or {})
         unknown = sorted(set(given) - set(self.defaults))
         if unknown:
@@ -114,75 +104,18 @@ class ThreeCSM:
         return s
 
     def cast_side(self, s: dict) -> str:
-        """The faces drawn into the map: ``shadowSide``, or the opposite of ``side`` (front ↔ back, double stays).
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-
-        Returns
-        -------
-        str
-            "front", "back" or "double" (as seen from the sun).
-
-        Examples
-        --------
-        >>> m = ThreeCSM()
-        >>> m.cast_side(m.settings({"side": "double"})), m.cast_side(m.settings({"shadowSide": "front"}))
-        ('double', 'front')
-        """
+        """The faces drawn into the map: ``shadowSide``, or the opposite of ``side`` (front ↔ back, double stays)."""
         if s["shadowSide"] is not None:
             return s["shadowSide"]
         return {"front": "back", "back": "front", "double": "double"}[s["side"]]
 
     def shadow_far(self, s: dict, camera) -> float:
-        """The last cascade's end [world units]: the camera's far, or less where a setting caps it.
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-        camera : aliasing.raster.scenes.camera.Camera
-            The eye camera.
-
-        Returns
-        -------
-        float
-            The shadow far [world units].
-
-        Examples
-        --------
-        >>> from aliasing.raster.scenes.camera import look_at
-        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
-        >>> ThreeCSM().shadow_far(ThreeCSM().settings({"maxFar": 40.0}), cam)     # min(camera far, maxFar)
-        40.0
-        """
+        """The last cascade's end [world units]: min(the camera's far, ``maxFar``)."""
         return float(min(camera.far, s["maxFar"]))
 
     def edges(self, s: dict, camera) -> Array:
         """The cascades' ends (near … shadow far) [world units]: the toolkit's threejs split for
-        ``practical`` (λ = 0.5), and CSM's ``uniformSplit``/``logarithmicSplit`` for the other modes.
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-        camera : aliasing.raster.scenes.camera.Camera
-            The eye camera (its near and far [world units]).
-
-        Returns
-        -------
-        ndarray (k + 1,)
-            The ends [world units], increasing.
-
-        Examples
-        --------
-        >>> from aliasing.raster.scenes.camera import look_at
-        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
-        >>> ThreeCSM().edges(ThreeCSM().settings({"cascades": 2, "mode": "logarithmic"}), cam).tolist()   # 1 · 100^(i/2)
-        [1.0, 10.0, 100.0]
-        """
+        ``practical`` (λ = 0.5), and CSM's ``uniformSplit``/``logarithmicSplit`` for the other modes."""
         n, f, k = camera.near, self.shadow_far(s, camera), int(s["cascades"])
         if s["mode"] == "practical":
             return partitioning.split_distances(stable.PRESETS[self.preset].split, n, f, k)
@@ -193,30 +126,7 @@ class ThreeCSM:
 
     def select(self, s: dict, camera, depth: Array) -> NDArray[np.int64]:
         """The cascade each eye depth samples (CSMShader, fade off): linearDepth = z / (far − near)
-        against the breaks (end / far); −1 beyond the last (no shadow).
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-        camera : aliasing.raster.scenes.camera.Camera
-            The eye camera.
-        depth : array_like (...)
-            Eye depths [world units] (NaN: nothing drawn).
-
-        Returns
-        -------
-        ndarray of int (...)
-            The cascade, −1 none.
-
-        Examples
-        --------
-        >>> from aliasing.raster.scenes.camera import look_at
-        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
-        >>> s = ThreeCSM().settings({"cascades": 2, "mode": "uniform", "maxFar": 50.0})    # ends 1, 25.5, 50
-        >>> ThreeCSM().select(s, cam, np.array([2.0, 30.0, 60.0, np.nan])).tolist()
-        [0, 1, -1, -1]
-        """
+        against the breaks (end / far); −1 beyond the last (no shadow)."""
         far = self.shadow_far(s, camera)
         breaks = self.edges(s, camera)[1:] / far
         ld = depth / (far - camera.near)
@@ -224,41 +134,7 @@ class ThreeCSM:
         return np.where(np.isfinite(ld) & (idx < len(breaks)), idx, -1).astype(np.int64)
 
     def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
-        """The predicted factor at the engine's pixels, and the exact reference's lit pixels.
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings (:meth:`settings`).
-        scene : FrameScene
-            The scene drawn (:func:`aliasing.frames.scenes.frame_scene`).
-        sun : array_like (3,)
-            World unit direction towards the sun.
-        rb : Readback
-            The engine's pixels: positions [world units], normals, matrices, map sizes [texels].
-
-        Returns
-        -------
-        Prediction
-            Factor [fraction of the sun's light] and cascade per pixel; starts, sides [world units] and resolution [texels] per cascade.
-        ndarray of bool (H, W)
-            The exact reference's lit pixels.
-
-        Examples
-        --------
-        >>> from aliasing.frames.readback import Readback
-        >>> from aliasing.frames.scenes import frame_scene, sun_direction
-        >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=1.0, boxes=2, ground_cells=2)
-        >>> sun = sun_direction(20.0, 30.0, fs.camera)
-        >>> pts = np.array([[[-2.0, -1.0, -4.25], [0.0, -1.0, -12.0]]])        # two ground pixels: in a box's shadow, lit
-        >>> def rb(mats):                                                       # what a page would read back there
-        ...     return Readback("", "", np.ones((1, 2)), np.zeros((1, 2), np.int64), pts, np.array([[[0.0, 1.0, 0.0]] * 2]),
-        ...                     mats, np.full((len(mats), 2), 256), {}, b"")
-        >>> m = ThreeCSM(); s = m.settings({"cascades": 2, "shadowMapSize": 256})
-        >>> pred, ref = m.predict(s, fs, sun, rb(m.matrices(s, fs.camera, sun)))
-        >>> pred.cascade.tolist(), (pred.factor < 0.5).tolist(), ref.tolist()
-        ([[0, 1]], [[True, False]], [[False, True]])
-        """
+        """The predicted factor at the engine's pixels, and the exact reference's lit pixels."""
         cam = scene.camera
         depth = cam.to_eye(np.nan_to_num(rb.position))[..., 2]
         depth = np.where(rb.drawn, depth, np.nan)
@@ -290,29 +166,6 @@ class ThreeCSM:
         and put ``lightMargin`` beyond the box's top in z; the shadow camera sits there looking
         along d (the same frame), orthographic ±side/2, ``lightNear``…``lightFar``; the matrix is
         [½ bias] · projection · view (``LightShadow.updateMatrices``).
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-        camera : aliasing.raster.scenes.camera.Camera
-            The eye camera.
-        sun : array_like (3,)
-            World direction towards the sun, non-zero.
-
-        Returns
-        -------
-        ndarray (k, 4, 4)
-            Per cascade: world → (s, t, depth) in [0, 1]³ (column vectors).
-
-        Examples
-        --------
-        >>> from aliasing.raster.scenes.camera import look_at
-        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
-        >>> sun = np.array([0.0, 0.8, -0.6])
-        >>> mats = ThreeCSM().matrices(ThreeCSM().settings({"cascades": 2}), cam, sun)
-        >>> mats.shape, bool(np.allclose(mats[:, 2, :3] @ sun, -1 / 1999))   # depth grows away from the sun: ½ · 2 / (lightFar − lightNear)
-        ((2, 4, 4), True)
         """
         _sun(sun)
         from ..engines.stable import diagonal
@@ -347,32 +200,7 @@ class ThreeCSM:
         return np.array(out)
 
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
-        """From the engine's objects: each cascade's first depth (its breaks × far), its map's larger texel side × R, and R.
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-        camera : aliasing.raster.scenes.camera.Camera
-            The eye camera.
-        rb : Readback
-            The engine's read-back (its matrices, map sizes and info).
-
-        Returns
-        -------
-        starts, sides, resolution : ndarray (k,)
-            First eye depth [world units], map side [world units], map side [texels].
-
-        Examples
-        --------
-        >>> from aliasing.raster.scenes.camera import look_at
-        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
-        >>> from aliasing.frames.readback import Readback
-        >>> rb = Readback("", "", np.ones((1, 1)), np.zeros((1, 1), np.int64), np.zeros((1, 1, 3)), np.zeros((1, 1, 3)),
-        ...               np.diag([0.1, 0.1, 0.01, 1.0])[None], np.array([[1024, 1024]]), {"breaks": [1.0]}, b"")   # a 10 × 10 box
-        >>> [v.tolist() for v in ThreeCSM().measured_cascades(ThreeCSM().settings({"cascades": 1}), cam, rb)]
-        [[1.0], [10.0], [1024.0]]
-        """
+        """From the engine's objects: each cascade's first depth (its breaks × far), its map's larger texel side × R, and R."""
         far = self.shadow_far(s, camera)
         breaks = np.asarray(rb.info["breaks"], float)
         starts = np.concatenate([[camera.near], breaks[:-1] * far])
@@ -389,20 +217,32 @@ class BabylonCSM:
     ``frustumEdgeFalloff``, ``stabilizeCascades``, ``cascadeBlendPercentage``, ``depthClamp``,
     ``autoCalcDepthBounds``, ``shadowMaxZ`` (null: the camera's far), ``filteringQuality``,
     ``usePercentageCloserFiltering``, ``forceBackFacesOnly``; the material's ``backFaceCulling``.
-
-    Parameters
-    ----------
-    engine : str
-        "babylon".
-    defaults : dict
-        The generator's defaults (``mapSize`` [texels], biases as the engine takes them).
+    Distances are in world units, ``mapSize`` in texels, ``bias`` in normalized depth.
 
     Examples
     --------
-    >>> m = BabylonCSM()
-    >>> s = m.settings({"numCascades": 2})
-    >>> m.cast_side(s), s["mapSize"], s["bias"]
-    ('front', 1024, 5e-05)
+    >>> from aliasing.raster.scenes.camera import look_at
+    >>> m, cam = BabylonCSM(), look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
+    >>> s = m.settings({"numCascades": 2, "shadowMaxZ": 80.0})
+    >>> m.cast_side(s), m.shadow_far(s, cam), m.edges(s, cam).round(3).tolist()   # ends: (uniform + log) / 2 [world units]
+    ('front', 80.0, [1.0, 24.722, 80.0])
+    >>> m.select(s, cam, np.array([2.0, 30.0, 90.0])).tolist()
+    [0, 1, -1]
+    >>> from aliasing.frames.readback import Readback
+    >>> from aliasing.frames.scenes import frame_scene, sun_direction
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=1.0, boxes=2, ground_cells=2)
+    >>> sun = sun_direction(20.0, 30.0, fs.camera)
+    >>> pts = np.array([[[-2.0, -1.0, -4.25], [0.0, -1.0, -12.0]]])   # two ground pixels: in a box's shadow, lit
+    >>> def rb(mats, info=None):                                      # what a page would read back there
+    ...     return Readback("", "", np.ones((1, 2)), np.zeros((1, 2), np.int64), pts, np.array([[[0.0, 1.0, 0.0]] * 2]),
+    ...                     mats, np.full((len(mats), 2), 256), info or {}, b"")
+    >>> from aliasing.frames.babylon_cascades import matrices
+    >>> s = m.settings({"numCascades": 2, "mapSize": 256})
+    >>> pred, ref = m.predict(s, fs, sun, rb(matrices(s, fs.camera, sun, fs.triangles)))
+    >>> pred.cascade.tolist(), (pred.factor < 0.5).tolist(), ref.tolist()
+    ([[0, 1]], [[True, False]], [[False, True]])
+    >>> [v.tolist() for v in m.measured_cascades(s, fs.camera, rb(np.diag([0.1, 0.1, 0.01, 1.0])[None], {"cascades": [{"viewZ": 20.0}]}))]
+    [[1.0], [10.0], [256.0]]
     """
 
     engine: str = "babylon"
@@ -412,30 +252,7 @@ class BabylonCSM:
         "filteringQuality": 0, "usePercentageCloserFiltering": True, "forceBackFacesOnly": False, "backFaceCulling": True})
 
     def settings(self, given: dict | None = None) -> dict:
-        """Every setting, the defaults filled in (the generator's own defaults, read from its constructor).
-
-        Parameters
-        ----------
-        given : dict, optional
-            Settings in the engine's own keys (units as the engine takes them).
-
-        Returns
-        -------
-        dict
-            Every setting.
-
-        Raises
-        ------
-        ValueError
-            An unknown key, or a value outside what is rendered and modelled (the key and its allowed values).
-
-        Examples
-        --------
-        >>> BabylonCSM().settings({"numCascades": 5})
-        Traceback (most recent call last):
-        ...
-        ValueError: numCascades must be a whole number in [2, 4], got 5
-        """
+        """Every setting, the defaults filled in (the generator's own defaults, read from its constructor)."""
         given = dict(given or {})
         unknown = sorted(set(given) - set(self.defaults))
         if unknown:
@@ -457,141 +274,27 @@ class BabylonCSM:
         return s
 
     def cast_side(self, s: dict) -> str:
-        """The faces drawn into the map: the material's culling (front faces by default), or back faces only.
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-
-        Returns
-        -------
-        str
-            "front", "back" or "double" (as seen from the sun).
-
-        Examples
-        --------
-        >>> m = BabylonCSM()
-        >>> m.cast_side(m.settings({"backFaceCulling": False})), m.cast_side(m.settings({"forceBackFacesOnly": True}))
-        ('double', 'back')
-        """
+        """The faces drawn into the map: the material's culling (front faces by default), or back faces only."""
         if s["forceBackFacesOnly"]:
             return "back"
         return "front" if s["backFaceCulling"] else "double"
 
     def shadow_far(self, s: dict, camera) -> float:
-        """The last cascade's end [world units]: the camera's far, or less where a setting caps it.
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-        camera : aliasing.raster.scenes.camera.Camera
-            The eye camera.
-
-        Returns
-        -------
-        float
-            The shadow far [world units].
-
-        Examples
-        --------
-        >>> from aliasing.raster.scenes.camera import look_at
-        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
-        >>> BabylonCSM().shadow_far(BabylonCSM().settings({"shadowMaxZ": 40.0}), cam), BabylonCSM().shadow_far(BabylonCSM().settings(), cam)
-        (40.0, 100.0)
-        """
+        """The last cascade's end [world units]: ``shadowMaxZ`` capped at the camera's far (null: the far)."""
         return float(camera.far if s["shadowMaxZ"] is None else min(s["shadowMaxZ"], camera.far))
 
     def edges(self, s: dict, camera) -> Array:
-        """The cascades' ends (near … shadow far) [world units]: the toolkit's babylon split (λ = 0.5).
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-        camera : aliasing.raster.scenes.camera.Camera
-            The eye camera (its near and far [world units]).
-
-        Returns
-        -------
-        ndarray (k + 1,)
-            The ends [world units], increasing.
-
-        Examples
-        --------
-        >>> from aliasing.raster.scenes.camera import look_at
-        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
-        >>> BabylonCSM().edges(BabylonCSM().settings({"numCascades": 2}), cam).round(3).tolist()   # (uniform + log) / 2
-        [1.0, 30.25, 100.0]
-        """
+        """The cascades' ends (near … shadow far) [world units]: the toolkit's babylon split (λ = 0.5)."""
         return partitioning.split_distances("babylon", camera.near, self.shadow_far(s, camera), int(s["numCascades"]))
 
     def select(self, s: dict, camera, depth: Array) -> NDArray[np.int64]:
-        """lightFragment's loop: the first cascade whose end is at or beyond the eye depth; −1 beyond the last.
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-        camera : aliasing.raster.scenes.camera.Camera
-            The eye camera.
-        depth : array_like (...)
-            Eye depths [world units] (NaN: nothing drawn).
-
-        Returns
-        -------
-        ndarray of int (...)
-            The cascade, −1 none.
-
-        Examples
-        --------
-        >>> from aliasing.raster.scenes.camera import look_at
-        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
-        >>> BabylonCSM().select(BabylonCSM().settings({"numCascades": 2}), cam, np.array([2.0, 30.25, 50.0, 200.0])).tolist()
-        [0, 0, 1, -1]
-        """
+        """lightFragment's loop: the first cascade whose end is at or beyond the eye depth; −1 beyond the last."""
         ends = self.edges(s, camera)[1:]
         idx = np.searchsorted(ends, depth, side="left")
         return np.where(np.isfinite(depth) & (idx < len(ends)), idx, -1).astype(np.int64)
 
     def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
-        """The predicted factor at the engine's pixels (:func:`aliasing.frames.predict.babylon_factor`), and the exact reference's lit pixels.
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings (:meth:`settings`).
-        scene : FrameScene
-            The scene drawn (:func:`aliasing.frames.scenes.frame_scene`).
-        sun : array_like (3,)
-            World unit direction towards the sun.
-        rb : Readback
-            The engine's pixels: positions [world units], normals, matrices, map sizes [texels].
-
-        Returns
-        -------
-        Prediction
-            Factor [fraction of the sun's light] and cascade per pixel; starts, sides [world units] and resolution [texels] per cascade.
-        ndarray of bool (H, W)
-            The exact reference's lit pixels.
-
-        Examples
-        --------
-        >>> from aliasing.frames.readback import Readback
-        >>> from aliasing.frames.scenes import frame_scene, sun_direction
-        >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=1.0, boxes=2, ground_cells=2)
-        >>> sun = sun_direction(20.0, 30.0, fs.camera)
-        >>> pts = np.array([[[-2.0, -1.0, -4.25], [0.0, -1.0, -12.0]]])        # two ground pixels: in a box's shadow, lit
-        >>> def rb(mats):                                                       # what a page would read back there
-        ...     return Readback("", "", np.ones((1, 2)), np.zeros((1, 2), np.int64), pts, np.array([[[0.0, 1.0, 0.0]] * 2]),
-        ...                     mats, np.full((len(mats), 2), 256), {}, b"")
-        >>> from aliasing.frames.babylon_cascades import matrices
-        >>> m = BabylonCSM(); s = m.settings({"numCascades": 2, "mapSize": 256})
-        >>> pred, ref = m.predict(s, fs, sun, rb(matrices(s, fs.camera, sun, fs.triangles)))
-        >>> pred.cascade.tolist(), (pred.factor < 0.5).tolist(), ref.tolist()
-        ([[0, 1]], [[True, False]], [[False, True]])
-        """
+        """The predicted factor at the engine's pixels (:func:`aliasing.frames.predict.babylon_factor`), and the exact reference."""
         cam = scene.camera
         depth = np.where(rb.drawn, cam.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
         sel = self.select(s, cam, depth)
@@ -615,32 +318,7 @@ class BabylonCSM:
         return Prediction(factor, sel, edges[:-1], sides, np.full(len(sides), float(res))), ref
 
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
-        """From the engine's objects: each cascade's first depth (the previous one's view z), its map's larger side, and R.
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-        camera : aliasing.raster.scenes.camera.Camera
-            The eye camera.
-        rb : Readback
-            The engine's read-back (its matrices, map sizes and info).
-
-        Returns
-        -------
-        starts, sides, resolution : ndarray (k,)
-            First eye depth [world units], map side [world units], map side [texels].
-
-        Examples
-        --------
-        >>> from aliasing.raster.scenes.camera import look_at
-        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
-        >>> from aliasing.frames.readback import Readback
-        >>> rb = Readback("", "", np.ones((1, 1)), np.zeros((1, 1), np.int64), np.zeros((1, 1, 3)), np.zeros((1, 1, 3)),
-        ...               np.diag([0.1, 0.1, 0.01, 1.0])[None], np.array([[1024, 1024]]), {"cascades": [{"viewZ": 30.0}]}, b"")   # a 10 × 10 box
-        >>> [v.tolist() for v in BabylonCSM().measured_cascades(BabylonCSM().settings(), cam, rb)]
-        [[1.0], [10.0], [1024.0]]
-        """
+        """From the engine's objects: each cascade's first depth (the previous one's view z), its map's larger side, and R."""
         ends = np.array([c["viewZ"] for c in rb.info["cascades"]], float)
         starts = np.concatenate([[camera.near], ends[:-1]])
         sides = np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3])) for m in rb.matrices])
@@ -677,21 +355,31 @@ class PlayCanvas:
     m = max(|∂z/∂x|, |∂z/∂y|) in window units and r = 2^(e − 23) for the 32-bit float depth
     map, e the exponent of the triangle's largest depth (SwiftShader ``src/Pipeline/SetupRoutine.cpp``).
     ``cascadeBlend`` (a dither of ``fract(sin(...))``) and the VSM, PCSS and 16-bit types are
-    rendered but not predicted.
-
-    Parameters
-    ----------
-    engine : str
-        "playcanvas".
-    defaults : dict
-        The component's defaults (``shadowResolution`` [texels], ``shadowDistance`` [world units], biases as the engine takes them).
+    rendered but not predicted.  Distances are in world units, ``shadowResolution`` in texels.
 
     Examples
     --------
-    >>> m = PlayCanvas()
-    >>> s = m.settings({"numCascades": 3})
-    >>> m.cast_side(s), m.cells(s)[:, 2:].tolist()           # three half-size cells of the 2 × 2 atlas
-    ('front', [[0.5, 0.5], [0.5, 0.5], [0.5, 0.5]])
+    >>> from aliasing.raster.scenes.camera import look_at
+    >>> m, cam = PlayCanvas(), look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
+    >>> s = m.settings({"numCascades": 2, "cull": "none"})
+    >>> m.cast_side(s), m.edges(s, cam).round(3).tolist(), m.cells(s).tolist()   # ends (uniform + log) / 2 up to shadowDistance 40
+    ('double', [1.0, 13.412, 40.0], [[0.0, 0.0, 0.5, 0.5], [0.0, 0.5, 0.5, 0.5]])
+    >>> m.select(s, cam, np.array([2.0, 20.0, 41.0])).tolist(), m.predicted(s)
+    ([0, 1, -1], None)
+    >>> from aliasing.frames.readback import Readback
+    >>> from aliasing.frames.scenes import frame_scene, sun_direction
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=1.0, boxes=2, ground_cells=2)
+    >>> sun = sun_direction(20.0, 30.0, fs.camera)
+    >>> pts = np.array([[[-2.0, -1.0, -4.25], [0.0, -1.0, -12.0]]])   # two ground pixels: in a box's shadow, lit
+    >>> def rb(mats, info=None):                                      # what a page would read back there
+    ...     return Readback("", "", np.ones((1, 2)), np.zeros((1, 2), np.int64), pts, np.array([[[0.0, 1.0, 0.0]] * 2]),
+    ...                     mats, np.full((len(mats), 2), 256), info or {}, b"")
+    >>> mats = ThreeCSM().matrices(ThreeCSM().settings({"cascades": 1}), fs.camera, sun)   # any world → [0, 1]³ box
+    >>> pred, ref = m.predict(m.settings({"shadowResolution": 256}), fs, sun, rb(mats))
+    >>> (pred.factor < 0.5).tolist(), ref.tolist()
+    ([[True, False]], [[False, True]])
+    >>> [v.tolist() for v in m.measured_cascades(s, fs.camera, rb(np.diag([0.1, 0.1, 0.01, 1.0])[None], {"cascades": [{"distance": 40.0}]}))]
+    [[1.0], [10.0], [256.0]]
     """
 
     engine: str = "playcanvas"
@@ -702,28 +390,7 @@ class PlayCanvas:
     FILTERS = {0: 3, 4: 5, 5: 1}
 
     def settings(self, given: dict | None = None) -> dict:
-        """Every setting, the defaults filled in (the light's and the component's own defaults).
-
-        Parameters
-        ----------
-        given : dict, optional
-            Settings in the engine's own keys (units as the engine takes them).
-
-        Returns
-        -------
-        dict
-            Every setting.
-
-        Raises
-        ------
-        ValueError
-            An unknown key, or a value outside what is rendered and modelled (the key and its allowed values).
-
-        Examples
-        --------
-        >>> PlayCanvas().settings({"shadowDistance": 80.0})["shadowResolution"]
-        1024
-        """
+        """Every setting, the defaults filled in (the light's and the component's own defaults)."""
         given = dict(given or {})
         unknown = sorted(set(given) - set(self.defaults))
         if unknown:
@@ -738,24 +405,7 @@ class PlayCanvas:
         return s
 
     def predicted(self, s: dict) -> str | None:
-        """Why a setting's frame is rendered but not predicted (None when it is predicted).
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-
-        Returns
-        -------
-        str or None
-            The reason, in one line.
-
-        Examples
-        --------
-        >>> m = PlayCanvas()
-        >>> m.predicted(m.settings()) is None, m.predicted(m.settings({"cascadeBlend": 0.2})).split(" for")[0]
-        (True, 'cascadeBlend must be 0')
-        """
+        """Why a setting's frame is rendered but not predicted (None when it is predicted)."""
         if s["shadowType"] not in self.FILTERS:
             return "shadowType must be SHADOW_PCF1_32F, SHADOW_PCF3_32F or SHADOW_PCF5_32F for a prediction (VSM, PCSS and 16-bit maps are not modelled)"
         if s["cascadeBlend"] != 0:
@@ -765,47 +415,11 @@ class PlayCanvas:
         return None
 
     def cast_side(self, s: dict) -> str:
-        """The faces drawn into the map: the material's cull mode, as in the main pass (back culled: front faces cast).
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-
-        Returns
-        -------
-        str
-            "front", "back" or "double" (as seen from the sun).
-
-        Examples
-        --------
-        >>> PlayCanvas().cast_side(PlayCanvas().settings({"cull": "none"}))
-        'double'
-        """
+        """The faces drawn into the map: the material's cull mode, as in the main pass (back culled: front faces cast)."""
         return {"back": "front", "front": "back", "none": "double"}[s["cull"]]
 
     def edges(self, s: dict, camera) -> Array:
-        """The cascades' ends, near first [world units], float32 as the engine stores them.
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-        camera : aliasing.raster.scenes.camera.Camera
-            The eye camera (its near and far [world units]).
-
-        Returns
-        -------
-        ndarray (k + 1,)
-            The ends [world units], increasing.
-
-        Examples
-        --------
-        >>> from aliasing.raster.scenes.camera import look_at
-        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
-        >>> PlayCanvas().edges(PlayCanvas().settings({"numCascades": 1}), cam).tolist()   # up to shadowDistance 40
-        [1.0, 40.0]
-        """
+        """The cascades' ends, near first [world units], float32 as the engine stores them."""
         from ..setups.playcanvas import splits
 
         a, b = splits({"numCascades": s["numCascades"], "cascadeDistribution": s["cascadeDistribution"], "shadowDistance": s["shadowDistance"]},
@@ -813,97 +427,20 @@ class PlayCanvas:
         return np.concatenate([[a[0]], b])
 
     def select(self, s: dict, camera, depth: Array) -> NDArray[np.int64]:
-        """``getShadowCascadeIndex``: the number of ends ≤ the eye depth, at most k − 1; −1 beyond the last end.
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-        camera : aliasing.raster.scenes.camera.Camera
-            The eye camera.
-        depth : array_like (...)
-            Eye depths [world units] (NaN: nothing drawn).
-
-        Returns
-        -------
-        ndarray of int (...)
-            The cascade, −1 none.
-
-        Examples
-        --------
-        >>> from aliasing.raster.scenes.camera import look_at
-        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
-        >>> PlayCanvas().select(PlayCanvas().settings({"numCascades": 1}), cam, np.array([2.0, 39.0, 41.0])).tolist()
-        [0, 0, -1]
-        """
+        """``getShadowCascadeIndex``: the number of ends ≤ the eye depth, at most k − 1; −1 beyond the last end."""
         ends = self.edges(s, camera)[1:]
         idx = np.minimum(np.searchsorted(ends, depth, side="right"), len(ends) - 1)
         return np.where(np.isfinite(depth) & (depth <= ends[-1]), idx, -1).astype(np.int64)
 
     def cells(self, s: dict) -> Array:
-        """Each cascade's atlas cell (x, y, w, h) in [0, 1] (``light.js`` ``directionalCascades``).
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings (``numCascades``).
-
-        Returns
-        -------
-        ndarray (k, 4)
-            Per cascade (x, y, w, h) [fraction of the atlas].
-
-        Examples
-        --------
-        >>> PlayCanvas().cells(PlayCanvas().settings({"numCascades": 2})).tolist()
-        [[0.0, 0.0, 0.5, 0.5], [0.0, 0.5, 0.5, 0.5]]
-        """
+        """Each cascade's atlas cell (x, y, w, h) in [0, 1] (``light.js`` ``directionalCascades``)."""
         k = int(s["numCascades"])
         if k == 1:
             return np.array([[0.0, 0.0, 1.0, 1.0]])
         return np.array([[0.0, 0.0, 0.5, 0.5], [0.0, 0.5, 0.5, 0.5], [0.5, 0.0, 0.5, 0.5], [0.5, 0.5, 0.5, 0.5]])[:k]
 
     def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
-        """The predicted factor at the engine's pixels (:func:`aliasing.frames.predict.playcanvas_factor`), and the exact reference's lit pixels.
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings (:meth:`settings`).
-        scene : FrameScene
-            The scene drawn (:func:`aliasing.frames.scenes.frame_scene`).
-        sun : array_like (3,)
-            World unit direction towards the sun.
-        rb : Readback
-            The engine's pixels: positions [world units], normals, matrices, map sizes [texels].
-
-        Returns
-        -------
-        Prediction
-            Factor [fraction of the sun's light] and cascade per pixel; starts, sides [world units] and resolution [texels] per cascade.
-        ndarray of bool (H, W)
-            The exact reference's lit pixels.
-
-        Raises
-        ------
-        ValueError
-            The settings are rendered but not predicted (:meth:`predicted`).
-
-        Examples
-        --------
-        >>> from aliasing.frames.readback import Readback
-        >>> from aliasing.frames.scenes import frame_scene, sun_direction
-        >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=1.0, boxes=2, ground_cells=2)
-        >>> sun = sun_direction(20.0, 30.0, fs.camera)
-        >>> pts = np.array([[[-2.0, -1.0, -4.25], [0.0, -1.0, -12.0]]])        # two ground pixels: in a box's shadow, lit
-        >>> def rb(mats):                                                       # what a page would read back there
-        ...     return Readback("", "", np.ones((1, 2)), np.zeros((1, 2), np.int64), pts, np.array([[[0.0, 1.0, 0.0]] * 2]),
-        ...                     mats, np.full((len(mats), 2), 256), {}, b"")
-        >>> three = ThreeCSM(); mats = three.matrices(three.settings({"cascades": 1}), fs.camera, sun)   # any world → [0, 1]³ box
-        >>> pred, ref = PlayCanvas().predict(PlayCanvas().settings({"shadowResolution": 256}), fs, sun, rb(mats))
-        >>> pred.cascade.tolist(), (pred.factor < 0.5).tolist(), ref.tolist()
-        ([[0, 0]], [[True, False]], [[False, True]])
-        """
+        """The predicted factor at the engine's pixels (:func:`aliasing.frames.predict.playcanvas_factor`), and the exact reference."""
         why = self.predicted(s)
         if why:
             raise ValueError(why)
@@ -925,32 +462,7 @@ class PlayCanvas:
         return Prediction(factor, sel, edges[:-1], sides, np.full(k, float(per))), ref
 
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
-        """Each cascade's first depth (the previous cascade's distance), its larger texel side × R (R the atlas's side) and R.
-
-        Parameters
-        ----------
-        s : dict
-            The filled settings.
-        camera : aliasing.raster.scenes.camera.Camera
-            The eye camera.
-        rb : Readback
-            The engine's read-back (its matrices, map sizes and info).
-
-        Returns
-        -------
-        starts, sides, resolution : ndarray (k,)
-            First eye depth [world units], map side [world units], map side [texels].
-
-        Examples
-        --------
-        >>> from aliasing.raster.scenes.camera import look_at
-        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
-        >>> from aliasing.frames.readback import Readback
-        >>> rb = Readback("", "", np.ones((1, 1)), np.zeros((1, 1), np.int64), np.zeros((1, 1, 3)), np.zeros((1, 1, 3)),
-        ...               np.diag([0.1, 0.1, 0.01, 1.0])[None], np.array([[1024, 1024]]), {"cascades": [{"distance": 40.0}]}, b"")   # a 10 × 10 box
-        >>> [v.tolist() for v in PlayCanvas().measured_cascades(PlayCanvas().settings(), cam, rb)]
-        [[1.0], [10.0], [1024.0]]
-        """
+        """Each cascade's first depth (the previous cascade's distance), its larger texel side × R (R the atlas's side) and R."""
         ends = np.array([c["distance"] for c in rb.info["cascades"]], float)
         starts = np.concatenate([[camera.near], ends[:-1]])
         sides = np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3])) for m in rb.matrices])
@@ -971,17 +483,6 @@ def _sun(sun) -> None:
 
 def model_for(engine: str, settings: dict):
     """The model of ``engine`` for these settings: its single-map class where ``settings["class"]`` names one, else its cascades'.
-
-    Parameters
-    ----------
-    engine : str
-        "threejs", "babylon" or "playcanvas".
-    settings : dict or None
-        The engine's settings (only ``class`` is read).
-
-    Returns
-    -------
-    ThreeCSM, BabylonCSM, PlayCanvas, ThreeDirectional or BabylonSingle
 
     Examples
     --------
@@ -1004,16 +505,6 @@ def from_setup(setup) -> dict:
     """The settings the engine's page and the model take, from an :class:`aliasing.setups.Setup`
     (every key in the engine's own spelling, defaults filled), checked against what is rendered
     and modelled here; the pipeline's faces that cast must be the model's.
-
-    Parameters
-    ----------
-    setup : aliasing.setups.Setup
-        The engine's setup (engine threejs, babylon or playcanvas).
-
-    Returns
-    -------
-    dict
-        The filled settings of :func:`model_for`'s model (map sizes [texels], distances [world units]).
 
     Raises
     ------

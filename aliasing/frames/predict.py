@@ -50,18 +50,6 @@ def _matrix(m: ArrayLike) -> Array:
 def to_map(matrix: ArrayLike, points: ArrayLike) -> Array:
     """Map coordinates (s, t, depth) of world points ``(..., 3)`` through a 4×4 light matrix (column vectors).
 
-    Parameters
-    ----------
-    matrix : array_like (4, 4)
-        World → (s, t, depth) (column vectors), finite.
-    points : array_like (..., 3)
-        World points [world units], finite.
-
-    Returns
-    -------
-    ndarray (..., 3)
-        (s, t) [fraction of the map] and depth [normalized window depth].
-
     Examples
     --------
     >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])   # s = x, t = z, depth = 0.5 − y
@@ -83,20 +71,6 @@ def casting(triangles: ArrayLike, sun: ArrayLike, side: str) -> NDArray[np.bool_
 
     A triangle is front-facing to the sun when its right-handed normal (v1 − v0) × (v2 − v0)
     points towards the sun (``sun``: world direction towards it).
-
-    Parameters
-    ----------
-    triangles : array_like (T, 3, 3)
-        World triangles [world units].
-    sun : array_like (3,)
-        World direction towards the sun.
-    side : str
-        "front", "back" or "double".
-
-    Returns
-    -------
-    ndarray of bool (T,)
-        The triangles drawn (edge-on ones never).
 
     Examples
     --------
@@ -128,11 +102,6 @@ def light_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) ->
     resolution : int
         Texels per side [texels], in [1, 16384].
 
-    Returns
-    -------
-    aliasing.raster.draw.DepthMap
-        Per texel the nearest depth [normalized window depth] (inf where empty) and its triangle (−1 where empty).
-
     Examples
     --------
     >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
@@ -154,24 +123,6 @@ def reference_lit(triangles: Array, matrix: Array, resolution: int, points: Arra
 
     All faces are drawn; the nearest surface is compared as a plane at the point's own (s, t).
     Points outside the map count as lit.
-
-    Parameters
-    ----------
-    triangles : array_like (T, 3, 3)
-        Every world triangle [world units].
-    matrix : array_like (4, 4)
-        World → (s, t, depth) in [0, 1]³.
-    resolution : int
-        The map's side [texels], in [1, 16384].
-    points, normals : array_like (..., 3)
-        World points [world units] and their unit normals.
-    sun : array_like (3,)
-        World direction towards the sun.
-
-    Returns
-    -------
-    ndarray of bool (...)
-        Exactly lit.
 
     Examples
     --------
@@ -237,32 +188,6 @@ def threejs_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
     disk of ``radius`` texels turned by the interleaved gradient noise of the pixel; outside
     [0, 1]² or beyond depth 1 the factor is 1.  ``cascade`` −1: no shadow (factor 1).
 
-    Parameters
-    ----------
-    maps : list of DepthMap
-        Per cascade the toolkit's map (:func:`light_depth_map`).
-    matrices : array_like (k, 4, 4)
-        Per cascade: world → (s, t, depth) in [0, 1]³.
-    cascade : array_like of int (...)
-        The cascade each point samples, −1 none.
-    points, normals : array_like (..., 3)
-        World points [world units] and unit normals.
-    frag_x, frag_y : array_like (...)
-        The pixel's ``gl_FragCoord`` [px] (GL rows: bottom up).
-    bias : float
-        ``shadow.bias`` [normalized depth].
-    normal_bias : float
-        ``shadow.normalBias`` [world units].
-    radius : float
-        ``shadow.radius`` [texels], >= 0.
-    map_type : str
-        "PCFShadowMap" or "BasicShadowMap".
-
-    Returns
-    -------
-    ndarray (...)
-        The shadow factor [fraction of the sun's light, 0 … 1].
-
     Examples
     --------
     >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
@@ -310,20 +235,6 @@ def threejs_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
 def offset_casters(triangles: Array, sun: Array, normal_bias: float) -> Array:
     """Babylon.js's caster-side normal bias (shadowMapVertexNormalBias): each corner moves by
     −n · normalBias · sin(n, l) along its face's unit normal n [world units].
-
-    Parameters
-    ----------
-    triangles : array_like (T, 3, 3)
-        The casters [world units].
-    sun : array_like (3,)
-        Unit world direction towards the sun.
-    normal_bias : float
-        Babylon.js's ``normalBias`` [world units].
-
-    Returns
-    -------
-    ndarray (T, 3, 3)
-        The moved casters [world units].
 
     Examples
     --------
@@ -388,30 +299,6 @@ def babylon_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
     the last ``1/blend_factor`` of its cascade's length mixes in the next cascade's factor.
     ``cascade`` −1: no shadow (beyond shadowMaxZ).
 
-    Parameters
-    ----------
-    maps : list of DepthMap
-        Per cascade the toolkit's map of the (offset) casters.
-    matrices : array_like (k, 4, 4)
-        Per cascade: world → (s, t, depth) in [0, 1]³.
-    cascade : array_like of int (...)
-        The cascade each point samples, −1 none.
-    depth : array_like (...)
-        Each point's eye depth [world units].
-    points : array_like (..., 3)
-        World points [world units].
-    ends, lengths : array_like (k,)
-        Each cascade's end and length [world units].
-    blend_factor : float
-        1 / ``cascadeBlendPercentage``, > 0.
-    bias : float
-        The generator's ``bias`` [normalized depth].
-
-    Returns
-    -------
-    ndarray (...)
-        The shadow factor [fraction of the sun's light, 0 … 1].
-
     Examples
     --------
     >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
@@ -466,22 +353,6 @@ def polygon_offset(map_triangles: Array, resolution: int, factor: float, units: 
     (§3.6.5) that "max" approximates.  ``map_triangles`` (T, 3, 3): corners in map coordinates
     (s, t, depth) in [0, 1].
 
-    Parameters
-    ----------
-    map_triangles : array_like (T, 3, 3)
-        Corners in map space (s, t, depth) [fraction of the map, normalized window depth].
-    resolution : int
-        The map's side [texels], >= 1.
-    factor, units : float
-        ``glPolygonOffset``'s arguments.
-    slope : str
-        "max" or "length".
-
-    Returns
-    -------
-    ndarray (T,)
-        The offset per triangle [normalized window depth].
-
     Examples
     --------
     >>> tri = np.array([[[0.0, 0.0, 0.5], [1.0, 0.0, 0.5 + 3 / 8], [0.0, 1.0, 0.5 + 4 / 8]]])
@@ -514,26 +385,6 @@ def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution
     :func:`polygon_offset` with factor and units 10 · clamp(``shadow_bias``, 0, 1)
     (``light.js`` ``_updateShadowBias``: −1000 × the light's −0.01 · shadowBias).
     Empty texels hold the clear depth 1; ``slope``: :func:`polygon_offset`'s.  Returns the (R, R) depth array.
-
-    Parameters
-    ----------
-    triangles : array_like (T, 3, 3)
-        The casters [world units].
-    matrices : array_like (k, 4, 4)
-        Per cascade: world → atlas (s, t, depth).
-    cells : array_like (k, 4)
-        Per cascade: its viewport (x, y, w, h) [fraction of the atlas].
-    resolution : int
-        The atlas's side [texels], >= 1.
-    shadow_bias : float
-        The light's ``shadowBias`` (clamped to [0, 1]).
-    slope : str
-        "max" or "length".
-
-    Returns
-    -------
-    ndarray (R, R)
-        The stored depth [normalized window depth], 1 where empty.
 
     Examples
     --------
@@ -597,26 +448,6 @@ def playcanvas_factor(atlas: Array, matrices: Array, cascade: NDArray[np.int64],
     /144, Castaño's weights as Babylon.js's), all LESS comparisons of the whole atlas (a tap
     can read a neighbouring cell).  ``cascade`` −1: no shadow (factor 1).
 
-    Parameters
-    ----------
-    atlas : array_like (R, R)
-        The stored depth [normalized window depth] (:func:`playcanvas_atlas`).
-    matrices : array_like (k, 4, 4)
-        Per cascade: world → atlas (s, t, depth).
-    cascade : array_like of int (...)
-        The cascade each point samples, −1 none.
-    points, normals : array_like (..., 3)
-        World points [world units] and unit normals.
-    normal_offset : float
-        ``normalOffsetBias`` [world units].
-    taps : int
-        1, 3 or 5.
-
-    Returns
-    -------
-    ndarray (...)
-        The shadow factor [fraction of the sun's light, 0 … 1].
-
     Examples
     --------
     >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
@@ -666,24 +497,6 @@ def babylon_single_factor(depth_map: DepthMap, matrix: Array, points: Array, *, 
     the receiver's depth is its window depth clamped to [0, 1], compared with the nearest texel
     (NEAREST sampling): shadowed where it is greater; outside [0, 1]² the factor is 1.
 
-    Parameters
-    ----------
-    depth_map : DepthMap
-        The toolkit's map of the (offset) casters.
-    matrix : array_like (4, 4)
-        World → (s, t, depth) in [0, 1]³.
-    points : array_like (..., 3)
-        World points [world units].
-    bias : float
-        The generator's ``bias`` [normalized depth].
-    half : bool
-        Store half floats.
-
-    Returns
-    -------
-    ndarray (...)
-        The shadow factor, 0 or 1 [fraction of the sun's light].
-
     Examples
     --------
     >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
@@ -713,19 +526,6 @@ def babylon_single_factor(depth_map: DepthMap, matrix: Array, points: Array, *, 
 class Prediction:
     """Per pixel: the predicted ``factor`` and ``cascade``; per cascade: ``starts`` [world units] and map ``sides`` [world units].
 
-    Parameters
-    ----------
-    factor : ndarray (H, W)
-        Predicted shadow factor [fraction of the sun's light], NaN where nothing is drawn.
-    cascade : ndarray of int (H, W)
-        Predicted cascade, −1 none.
-    starts : ndarray (k,)
-        Each cascade's first eye depth [world units].
-    sides : ndarray (k,)
-        Each cascade's map side [world units].
-    resolution : ndarray (k,)
-        Each cascade's map resolution [texels].
-
     Examples
     --------
     >>> p = Prediction(np.ones((1, 1)), np.zeros((1, 1), np.int64), np.array([0.5]), np.array([10.0]), np.array([1024.0]))
@@ -747,22 +547,6 @@ def tight_sides(camera, edges: Array, along: Array, up: Array) -> Array:
     engine takes from a world up vector (Babylon.js: ``Matrix.LookAtLH(centre, centre + d, Vector3.Up())``),
     not from the camera: the extents are measured on x ∝ up × d and y ∝ d × x (signs do not
     change extents; the mirror into Babylon's left-handed world neither).
-
-    Parameters
-    ----------
-    camera : aliasing.raster.scenes.camera.Camera
-        The eye camera.
-    edges : array_like (k + 1,)
-        The cascades' ends [world units], increasing.
-    along : array_like (3,)
-        The light's world direction (non-zero, not along ``up``).
-    up : array_like (3,)
-        The world up of the light frame.
-
-    Returns
-    -------
-    ndarray (k,)
-        The larger side per cascade [world units].
 
     Examples
     --------
@@ -791,22 +575,6 @@ def tight_sides(camera, edges: Array, along: Array, up: Array) -> Array:
 
 def reference(scene, sun: Array, rb, resolution: int) -> NDArray[np.bool_]:
     """The exact reference's lit pixels, through the matrix of the cascade each pixel sampled (the last one where none).
-
-    Parameters
-    ----------
-    scene : FrameScene
-        Its ``triangles`` [world units].
-    sun : array_like (3,)
-        World direction towards the sun.
-    rb : Readback
-        The engine's pixels (positions, normals, cascades, matrices).
-    resolution : int
-        The map's side [texels], in [1, 16384].
-
-    Returns
-    -------
-    ndarray of bool (H, W)
-        Exactly lit drawn pixels.
 
     Examples
     --------

@@ -30,19 +30,6 @@ class FrameResult:
     ``prediction``, the exact reference's lit pixels ``reference``, the filled ``settings``, and
     ``report`` (the JSON-ready ``engine``, ``release``, ``measured``, ``predicted``).
 
-    Parameters
-    ----------
-    readback : Readback
-        The engine's pixels.
-    prediction : Prediction
-        The toolkit's factor [fraction of the sun's light] and cascades.
-    reference : ndarray of bool (H, W)
-        The exact reference's lit pixels.
-    settings : dict
-        The engine's filled settings.
-    report : dict
-        The measures (acne [fraction of lit receiver pixels], gap [px], texels per pixel [texels per pixel]).
-
     Examples
     --------
     >>> import base64
@@ -74,26 +61,6 @@ def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: l
     ``height`` [px] in [16, 2160]; the width is round(aspect · height).  ``maps``: read the
     shadow maps back, at most this many texels per side (:mod:`aliasing.frames.maps`).
 
-    Parameters
-    ----------
-    scene : FrameScene
-        The scene (:func:`aliasing.frames.scenes.frame_scene`).
-    sun : array_like (3,)
-        World direction towards the sun, finite and non-zero.
-    settings : dict
-        The engine's filled settings.
-    height : int
-        Image height [px], in [16, 2160].
-    path : list of dict, optional
-        Camera poses (:func:`parse_path`).
-    maps : int, optional
-        At most this many texels per side read back [texels], in [16, 4096].
-
-    Returns
-    -------
-    dict
-        The JSON-ready job.
-
     Examples
     --------
     >>> fs = frame_scene("boxes", near=1.0, far=30.0, fov=50.0, aspect=1.5, boxes=1, ground_cells=1)
@@ -123,21 +90,6 @@ def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: l
 
 def refuse_unrendered(engine: str, cls: str | None, path, maps) -> None:
     """Refuse, in one line, a camera ``path`` or a map read-back (``maps``) that the frames do not render for ``engine``'s ``cls``.
-
-    Parameters
-    ----------
-    engine : str
-        "threejs", "babylon" or "playcanvas".
-    cls : str or None
-        The ``class`` setting (None: the cascaded class).
-    path : str or None
-        ``KIND:STEP[:FRAMES]``.
-    maps : int or None
-        Texels per side to read back [texels], in [16, 4096].
-
-    Returns
-    -------
-    None
 
     Raises
     ------
@@ -187,20 +139,6 @@ def pipeline_footprint(pipeline, camera, sun: Array) -> tuple[Array, Array, Arra
     except the tight fit, measured in the light frame rolled by the world's up
     (:func:`aliasing.frames.models.tight_sides`, ERRATA F5).
 
-    Parameters
-    ----------
-    pipeline : aliasing.setups.Pipeline
-        The setup's pipeline.
-    camera : aliasing.raster.scenes.camera.Camera
-        The eye camera.
-    sun : array_like (3,)
-        World direction towards the sun, finite and non-zero.
-
-    Returns
-    -------
-    starts, sides, resolution : ndarray (k,)
-        First eye depth [world units], map side [world units], resolution [texels].
-
     Examples
     --------
     >>> from aliasing import setups
@@ -235,27 +173,6 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
 
     With an :class:`aliasing.setups.Pipeline` the predicted texel footprint is the pipeline's
     (its ranges, fit and snap), and the details say how far its cascade ranges are from the model's.
-
-    Parameters
-    ----------
-    engine : str
-        "threejs", "babylon" or "playcanvas".
-    scene : FrameScene
-        The scene drawn.
-    sun : array_like (3,)
-        World unit direction towards the sun.
-    settings : dict
-        The engine's filled settings.
-    out : dict
-        The page's answer (:func:`aliasing.frames.readback.decode`).
-    pipeline : aliasing.setups.Pipeline, optional
-        The setup's pipeline.
-
-    Returns
-    -------
-    FrameResult
-        ``report["measured"]`` and ``["predicted"]``: ``acne`` [fraction of lit receiver pixels],
-        ``gap_px`` [px], ``texels_per_pixel`` [texels per pixel]; ``shadow_agreement`` [fraction of pixels].
 
     Examples
     --------
@@ -429,18 +346,6 @@ def parse_path(spec: str, camera) -> list[dict]:
     (the view turned about the world's up, y, through the eye; STEP [degrees per frame, at most 10 in size]);
     FRAMES in [3, 120] (default 30); the first pose is the camera itself.
 
-    Parameters
-    ----------
-    spec : str
-        ``KIND:STEP[:FRAMES]``.
-    camera : aliasing.raster.scenes.camera.Camera
-        The first pose.
-
-    Returns
-    -------
-    list of dict
-        Per frame the ``eye`` and ``target`` [world units].
-
     Examples
     --------
     >>> from aliasing.raster.scenes.camera import look_at
@@ -475,18 +380,6 @@ def parse_path(spec: str, camera) -> list[dict]:
 def pose_camera(camera, pose: dict):
     """``camera`` moved to a pose of :func:`parse_path` (its eye, looking at its target, with the camera's own up).
 
-    Parameters
-    ----------
-    camera : aliasing.raster.scenes.camera.Camera
-        The camera.
-    pose : dict
-        ``eye`` and ``target`` [world units], finite 3-vectors that differ.
-
-    Returns
-    -------
-    aliasing.raster.scenes.camera.Camera
-        The moved camera (near, far, fov and aspect kept).
-
     Examples
     --------
     >>> from aliasing.raster.scenes.camera import look_at
@@ -511,18 +404,6 @@ def flips(masks: NDArray[np.bool_], keep: NDArray[np.bool_]) -> float:
     ``masks``: (F, H, W) shadowed or not per frame; ``keep``: (H, W) the pixels counted. NaN for
     fewer than two frames or no pixel kept.
 
-    Parameters
-    ----------
-    masks : array_like of bool (F, H, W)
-        Shadowed or not, per frame.
-    keep : array_like of bool (H, W)
-        The pixels counted.
-
-    Returns
-    -------
-    float
-        Flips [fraction of kept pixels per frame, in [0, 1]], NaN when undefined.
-
     Examples
     --------
     >>> m = np.array([[[True, False]], [[True, True]], [[False, True]]])   # 3 frames of 1 × 2 pixels
@@ -540,23 +421,6 @@ def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]
     """``flips_per_frame`` of the engine along ``path`` (its read-back ``path``) and as the toolkit
     predicts it (three.js: each pose's predicted matrices, the toolkit's maps and three.js's filter at
     the same pixels); details: the largest relative difference of the pose matrices.
-
-    Parameters
-    ----------
-    result : FrameResult
-        The frame, with the page's ``path`` read back (``readback.info["path"]``).
-    scene : FrameScene
-        The scene drawn.
-    sun : array_like (3,)
-        World unit direction towards the sun.
-    path : list of dict
-        The poses (:func:`parse_path`).
-
-    Returns
-    -------
-    dict
-        ``measured`` and ``predicted`` flips [fraction of kept pixels per frame] (``predicted`` None where
-        not modelled), ``matrices_vs_engine`` [fraction of the largest matrix entry].
 
     Examples
     --------
@@ -651,24 +515,6 @@ def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict],
     SwiftShader: 4; None: exact): ``flips_per_frame`` and ``shared``, the fraction of the engine's
     flips (pixel and frame) that the replay also flips.  A diagnostic of where the engine's flips
     come from, when the toolkit's own prediction is 0 (ERRATA F7, F8).
-
-    Parameters
-    ----------
-    result : FrameResult
-        A three.js or Babylon.js frame with its ``path`` read back.
-    scene : FrameScene
-        The scene drawn.
-    sun : array_like (3,)
-        World unit direction towards the sun.
-    path : list of dict
-        The poses (:func:`parse_path`).
-    subpixel_bits : int or None
-        Sub-texel precision [bits], in [0, 16]; None exact.
-
-    Returns
-    -------
-    dict
-        ``flips_per_frame`` [fraction of kept pixels per frame] and ``shared`` [fraction of the engine's flips], None without flips.
 
     Examples
     --------
