@@ -33,6 +33,7 @@ FRAMES = Path(predict.__file__).parent
 #: callables whose every example line needs a browser (and so is marked +SKIP)
 BROWSER_ONLY = {"browser.Browser.close"}
 FAST = settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+BAD = settings(FAST, max_examples=10)  # each bad-value strategy is small: 10 draws reach its kinds
 
 
 def _examples(doc: str) -> str | None:
@@ -178,7 +179,7 @@ CASES = _cases()
 
 
 @pytest.mark.parametrize("case", sorted(CASES))
-@FAST
+@BAD
 @given(data=st.data())
 def test_bad_input_names_the_parameter(case, data):
     make, name = CASES[case]
