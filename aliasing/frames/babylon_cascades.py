@@ -57,8 +57,20 @@ NDC = np.array([[-1.0, 1, -1], [1, 1, -1], [1, -1, -1], [-1, -1, -1], [-1, 1, 1]
 def look_at_lh(eye: Array, target: Array, up: Array = UP) -> Array:
     """``Matrix.LookAtLH`` as a 4×4 column-vector matrix (world → view; x ∝ up × z, z towards the target).
 
-    Example
+    Parameters
+    ----------
+    eye, target : array_like (3,)
+        The viewer and the point it looks at [world units], finite, different.
+    up : array_like (3,)
+        The world up (x is ±x of the world when ``up`` is along the view).
+
+    Returns
     -------
+    ndarray (4, 4)
+        World → view [world units] (column vectors).
+
+    Examples
+    --------
     >>> v = look_at_lh(np.array([0.0, 0.0, -5.0]), np.zeros(3))   # looking along +z from 5 units before the origin
     >>> (v @ [0.0, 0.0, 0.0, 1.0]).tolist()                        # the target lies 5 units ahead
     [0.0, 0.0, 5.0, 1.0]
@@ -82,8 +94,20 @@ def look_at_lh(eye: Array, target: Array, up: Array = UP) -> Array:
 def ortho_off_center_lh(left: float, right: float, bottom: float, top: float, near: float, far: float) -> Array:
     """``Matrix.OrthoOffCenterLH`` (NDC z in [−1, 1]) as a 4×4 column-vector matrix.
 
-    Example
+    Parameters
+    ----------
+    left, right, bottom, top : float
+        The box's sides in view x and y [world units], right ≠ left, top ≠ bottom.
+    near, far : float
+        Its depth range along view z [world units], far ≠ near.
+
+    Returns
     -------
+    ndarray (4, 4)
+        View → NDC (column vectors).
+
+    Examples
+    --------
     >>> p = ortho_off_center_lh(-2.0, 2.0, -1.0, 1.0, 0.0, 10.0)
     >>> (p @ [2.0, -1.0, 10.0, 1.0]).tolist()                      # the box's corner on the far plane
     [1.0, -1.0, 1.0, 1.0]
@@ -266,8 +290,8 @@ def matrices(settings: dict, camera, sun: Array, triangles: Array, aspect: float
         A setting the model does not cover (``depthClamp`` false), ``triangles`` or ``sun`` of
         the wrong shape, or ``aspect`` not positive and finite.
 
-    Example
-    -------
+    Examples
+    --------
     >>> from aliasing.frames.scenes import frame_scene, sun_direction
     >>> from aliasing.frames.models import MODELS
     >>> fs = frame_scene("boxes", near=0.5, far=60.0, fov=50.0, aspect=16 / 9, boxes=4, ground_cells=2)

@@ -39,11 +39,36 @@ _CALL = """async ({job, ms}) => {
 
 
 class PageError(RuntimeError):
-    """The engine's page threw, timed out or could not load: the message is one line."""
+    """The engine's page threw, timed out or could not load: the message is one line.
+
+    Parameters
+    ----------
+    message : str
+        One line: the engine and the page's first error line.
+
+    Examples
+    --------
+    >>> str(PageError("threejs page threw: x is not defined"))
+    'threejs page threw: x is not defined'
+    """
 
 
 def chromium_path() -> str | None:
-    """The system Chromium (``$ALIASING_CHROMIUM``, or Debian's ``/usr/bin/chromium``), None when there is none."""
+    """The system Chromium (``$ALIASING_CHROMIUM``, or Debian's ``/usr/bin/chromium``), None when there is none.
+
+    Returns
+    -------
+    str or None
+        The executable's path.
+
+    Examples
+    --------
+    >>> old = os.environ.get("ALIASING_CHROMIUM")
+    >>> os.environ["ALIASING_CHROMIUM"] = "/nonexistent/chromium"        # set but not executable: none
+    >>> chromium_path() is None
+    True
+    >>> _ = os.environ.pop("ALIASING_CHROMIUM") if old is None else os.environ.update(ALIASING_CHROMIUM=old)
+    """
     env = os.environ.get("ALIASING_CHROMIUM")
     if env:
         return env if os.access(env, os.X_OK) else None
@@ -71,6 +96,18 @@ class Browser:
     ------
     MissingTool
         Playwright for Python or Chromium is missing (one line saying how to install it).
+
+    Examples
+    --------
+    >>> Browser(timeout=0)
+    Traceback (most recent call last):
+    ...
+    ValueError: timeout must be > 0 seconds, got 0
+
+    Launching Chromium is not run here (it needs the browser and Playwright)::
+
+        with Browser(timeout=120) as b:
+            out = b.render("threejs", job)
     """
 
     def __init__(self, timeout: float = 60.0):
@@ -99,7 +136,19 @@ class Browser:
         self.close()
 
     def close(self) -> None:
-        """Close Chromium and Playwright."""
+        """Close Chromium and Playwright (again: nothing).
+
+        Returns
+        -------
+        None
+
+        Examples
+        --------
+        Needs a running browser, so it is not run here:
+
+        >>> b = Browser()                  # doctest: +SKIP
+        >>> b.close(); b.close()           # doctest: +SKIP
+        """
         if getattr(self, "_browser", None) is not None:
             self._browser.close()
             self._browser = None
@@ -129,6 +178,18 @@ class Browser:
     def render(self, engine: str, job: dict) -> dict:
         """Render ``job`` with ``engine``'s page; the page's read-back as a dict.
 
+        Parameters
+        ----------
+        engine : str
+            One of :data:`aliasing.frames.install.PINS`.
+        job : dict
+            The page's job (:func:`aliasing.frames.run.make_job`; ``width`` and ``height`` [px]).
+
+        Returns
+        -------
+        dict
+            The page's answer (:func:`aliasing.frames.readback.decode`).
+
         Raises
         ------
         ValueError
@@ -137,7 +198,21 @@ class Browser:
             The engine's package is not installed.
         PageError
             The page threw (its first error line), or loading or rendering ran past the time limit.
+
+        Examples
+        --------
+        Needs Chromium and the installed engine, so it is not run here:
+
+        >>> from aliasing.frames.run import make_job, frame_scene
+        >>> job = make_job(frame_scene("boxes", near=1.0, far=30.0, fov=50.0, aspect=1.0), [0.3, 0.9, 0.3], {}, 64)
+        >>> with Browser() as b:                                   # doctest: +SKIP
+        ...     out = b.render("threejs", job)
+        >>> from aliasing.frames.readback import decode
+        >>> decode(out).shadow.shape                               # doctest: +SKIP
+        (64, 64)
         """
+        if not isinstance(job, dict) or not all(k in job for k in ("width", "height")):
+            raise ValueError("job must be the page's job dict with width and height [px] (aliasing.frames.run.make_job)")
         if engine not in PINS:
             raise ValueError(f"engine must be one of {', '.join(sorted(PINS))}, got {engine!r}")
         self._roots[engine] = package_root(engine)

@@ -38,7 +38,39 @@ def _png(path: Path, rgb: np.ndarray) -> None:
 
 
 def write_images(out: Path, result) -> None:
-    """engine.png, predicted.png and difference.png of a :class:`aliasing.frames.run.FrameResult` in ``out``."""
+    """engine.png, predicted.png and difference.png of a :class:`aliasing.frames.run.FrameResult` in ``out``.
+
+    Parameters
+    ----------
+    out : Path
+        An existing directory.
+    result : FrameResult
+        The frame (its ``readback.frame`` PNG bytes, ``readback.shadow`` and ``prediction.factor``
+        [fraction of the sun's light]).
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from types import SimpleNamespace
+    >>> from aliasing.frames.readback import Readback
+    >>> rb = Readback("threejs", "187", np.array([[0.0, 1.0]]), np.zeros((1, 2), np.int64), np.zeros((1, 2, 3)), np.zeros((1, 2, 3)),
+    ...               np.eye(4)[None], np.array([[16, 16]]), {}, b"png")
+    >>> result = SimpleNamespace(readback=rb, prediction=SimpleNamespace(factor=np.array([[1.0, 1.0]])))   # the engine shadows one more pixel
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     write_images(Path(d), result)
+    ...     import matplotlib.image
+    ...     diff = matplotlib.image.imread(Path(d) / "difference.png")
+    ...     names = sorted(p.name for p in Path(d).iterdir())
+    >>> names, diff[0, 0, :3].round(1).tolist()                        # red: the engine shadows, the toolkit lights
+    (['difference.png', 'engine.png', 'predicted.png'], [1.0, 0.1, 0.1])
+    """
+    if not Path(out).is_dir():
+        raise ValueError(f"out must be an existing directory, got {str(out)!r}")
+    out = Path(out)
     (out / "engine.png").write_bytes(result.readback.frame)
     drawn = result.readback.drawn
     pf = np.where(drawn, np.nan_to_num(result.prediction.factor), 0.0)
@@ -53,7 +85,37 @@ def write_images(out: Path, result) -> None:
 
 
 def run(args: argparse.Namespace) -> dict:
-    """Everything checked before the browser starts (the setup through :mod:`aliasing.setups`); the report of the frame."""
+    """Everything checked before the browser starts (the setup through :mod:`aliasing.setups`); the report of the frame.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed ``aliasing frames`` arguments (:func:`add_frames_parser`).
+
+    Returns
+    -------
+    dict
+        The JSON-ready report (also written to ``--out``/frames.json).
+
+    Raises
+    ------
+    ValueError
+        An argument out of range, naming it; a missing tool or a page error, in one line.
+
+    Examples
+    --------
+    >>> parser = argparse.ArgumentParser(prog="aliasing"); _ = add_frames_parser(parser.add_subparsers())
+    >>> run(parser.parse_args(["frames", "--engine", "unity-urp", "--scene", "boxes"]))   # refused before any browser starts
+    Traceback (most recent call last):
+    ...
+    ValueError: --engine must be one of babylon, playcanvas, threejs (the engines drawn in a browser), got 'unity-urp'
+
+    A frame itself needs Chromium and the installed engine, so it is not run here:
+
+    >>> run(parser.parse_args(["frames", "--engine", "threejs", "--scene", "boxes", "--camera", "near=1,far=60,fov=50,aspect=1,height=64",
+    ...                        "--sun", "35@30", "--out", "out"]))["measured"]["acne"]     # doctest: +SKIP
+    0.0
+    """
     from .. import setups
     from . import browser, run as frames_run, scenes
     from .models import from_setup
@@ -120,7 +182,25 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def add_frames_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
-    """Add the ``frames`` subcommand to the ``aliasing`` command's subparsers ``sub``."""
+    """Add the ``frames`` subcommand to the ``aliasing`` command's subparsers ``sub``.
+
+    Parameters
+    ----------
+    sub : argparse._SubParsersAction
+        The ``aliasing`` parser's subparsers.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        The ``frames`` parser.
+
+    Examples
+    --------
+    >>> p = add_frames_parser(argparse.ArgumentParser(prog="aliasing").add_subparsers())
+    >>> a = p.parse_args(["--engine", "threejs", "--maps"])
+    >>> a.engine, a.maps, a.format, a.timeout                           # --maps alone: at most 1024 texels per side
+    ('threejs', 1024, 'json', 120.0)
+    """
     p = sub.add_parser(
         "frames",
         help="an engine's own frame (three.js, Babylon.js, PlayCanvas in headless Chromium) against the toolkit's prediction: shadow mask, acne, gap, texel footprint",

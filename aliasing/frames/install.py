@@ -33,13 +33,35 @@ HERE = Path(__file__).parent / "pins"
 
 
 class MissingTool(RuntimeError):
-    """A tool the frames need (node, npm, Chromium, an installed engine) is missing; the message says how to install it."""
+    """A tool the frames need (node, npm, Chromium, an installed engine) is missing; the message says how to install it.
+
+    Parameters
+    ----------
+    message : str
+        One line saying what is missing and how to install it.
+
+    Examples
+    --------
+    >>> issubclass(MissingTool, RuntimeError), str(MissingTool("npm not found"))
+    (True, 'npm not found')
+    """
 
 
 @dataclass(frozen=True)
 class Pin:
     """One engine's pinned npm package: ``engine`` (toolkit name), ``release`` (toolkit spelling),
-    ``package`` (npm name), ``version`` (npm version), ``pin`` (the directory name under ``pins/``)."""
+    ``package`` (npm name), ``version`` (npm version), ``pin`` (the directory name under ``pins/``).
+
+    Parameters
+    ----------
+    engine, release, package, version : str
+        As above.
+
+    Examples
+    --------
+    >>> PINS["babylon"].package, PINS["babylon"].version
+    ('@babylonjs/core', '9.35.0')
+    """
 
     engine: str
     release: str
@@ -48,6 +70,18 @@ class Pin:
 
     @property
     def pin(self) -> str:
+        """The pin's directory name under ``pins/`` (the package's ``/`` spelled ``+``).
+
+        Returns
+        -------
+        str
+            ``<package>@<version>``.
+
+        Examples
+        --------
+        >>> PINS["babylon"].pin
+        '@babylonjs+core@9.35.0'
+        """
         return f"{self.package.replace('/', '+')}@{self.version}"
 
 
@@ -59,7 +93,21 @@ PINS = {
 
 
 def cache() -> Path:
-    """The cache directory of installed engine packages (``$ALIASING_ENGINES_JS_CACHE`` or ``~/.cache/aliasing-engines-js``)."""
+    """The cache directory of installed engine packages (``$ALIASING_ENGINES_JS_CACHE`` or ``~/.cache/aliasing-engines-js``).
+
+    Returns
+    -------
+    Path
+        The directory (it may not exist yet).
+
+    Examples
+    --------
+    >>> old = os.environ.get("ALIASING_ENGINES_JS_CACHE")
+    >>> os.environ["ALIASING_ENGINES_JS_CACHE"] = "/tmp/engines"
+    >>> cache().as_posix()
+    '/tmp/engines'
+    >>> _ = os.environ.pop("ALIASING_ENGINES_JS_CACHE") if old is None else os.environ.update(ALIASING_ENGINES_JS_CACHE=old)
+    """
     return Path(os.environ.get("ALIASING_ENGINES_JS_CACHE", Path.home() / ".cache" / "aliasing-engines-js"))
 
 
@@ -67,7 +115,33 @@ def tree_digest(root: Path) -> str:
     """SHA-256 over the installed package files (path and content), npm's own bookkeeping left out.
 
     The node tests (``tests/test_engines_js.py``) check their installs with it too.
+
+    Parameters
+    ----------
+    root : path
+        The directory holding ``node_modules``.
+
+    Returns
+    -------
+    str
+        The SHA-256 hex digest (64 characters).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     (Path(d) / "node_modules").mkdir()
+    ...     _ = (Path(d) / "node_modules" / "a.js").write_text("x")
+    ...     before = tree_digest(d)
+    ...     _ = (Path(d) / "node_modules" / ".package-lock.json").write_text("{}")   # npm's bookkeeping: left out
+    ...     same = tree_digest(d) == before
+    ...     _ = (Path(d) / "node_modules" / "a.js").write_text("y")
+    ...     changed = tree_digest(d) != before
+    >>> len(before), same, changed
+    (64, True, True)
     """
+    if not Path(root).is_dir():
+        raise ValueError(f"root must be an existing directory, got {str(root)!r}")
     h = hashlib.sha256()
     base = Path(root) / "node_modules"
     for path in sorted(base.rglob("*")):
@@ -92,12 +166,35 @@ def _same(root: Path, src: Path) -> bool:
 def package_root(engine: str) -> Path:
     """The checked install of ``engine``'s pinned package (the directory holding ``node_modules``).
 
+    Parameters
+    ----------
+    engine : str
+        One of :data:`PINS`.
+
+    Returns
+    -------
+    Path
+        The directory holding ``node_modules``.
+
     Raises
     ------
     ValueError
         ``engine`` is not one of :data:`PINS`.
     MissingTool
         It is not installed, or its files differ from the pinned tree: one line saying how to install it.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> old = os.environ.get("ALIASING_ENGINES_JS_CACHE")
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     os.environ["ALIASING_ENGINES_JS_CACHE"] = d                      # an empty cache
+    ...     try:
+    ...         package_root("threejs")
+    ...     except MissingTool as e:
+    ...         print(e)
+    three 0.187.0 is not installed: run `aliasing frames --install` (npm ci from the pinned lockfile)
+    >>> _ = os.environ.pop("ALIASING_ENGINES_JS_CACHE") if old is None else os.environ.update(ALIASING_ENGINES_JS_CACHE=old)
     """
     p = _pin(engine)
     src, root = HERE / p.pin, cache() / p.pin
@@ -130,6 +227,18 @@ def install(engine: str, *, timeout: float = 600.0) -> Path:
         npm is missing or ``npm ci`` failed (one line).
     RuntimeError
         The installed files differ from the committed tree digest.
+
+    Examples
+    --------
+    >>> install("unity")
+    Traceback (most recent call last):
+    ...
+    ValueError: engine must be one of babylon, playcanvas, threejs, got 'unity'
+
+    Installing runs ``npm ci`` (it downloads the pinned tarballs), so it is not run here:
+
+    >>> install("threejs").name                # doctest: +SKIP
+    'three@0.187.0'
     """
     p = _pin(engine)
     if not timeout > 0:

@@ -43,6 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import ndimage
 
+from .. import _validation as check
 from . import predict
 
 Array = NDArray[np.float64]
@@ -55,7 +56,23 @@ MAX_SIDE = 1024
 class EngineMap:
     """One cascade's map as the engine stored it: ``depth`` (n, n) in [0, 1] (row j: t index
     j·stride, column i: s index i·stride; 1 where nothing was drawn), the map's ``size`` R
-    [texels] and the ``stride`` of the texels read."""
+    [texels] and the ``stride`` of the texels read.
+
+    Parameters
+    ----------
+    depth : ndarray (n, n)
+        The stored depth read back [normalized window depth, 0 … 1], 1 where nothing was drawn.
+    size : int
+        The map's side R [texels].
+    stride : int
+        Every ``stride``-th texel was read in s and t [texels].
+
+    Examples
+    --------
+    >>> m = EngineMap(np.ones((2, 2)), 4, 2)     # a 4 × 4 map, every second texel read back
+    >>> m.depth.shape, m.size // m.stride
+    ((2, 2), 2)
+    """
 
     depth: Array
     size: int
@@ -65,10 +82,29 @@ class EngineMap:
 def decode_maps(out: dict) -> list[EngineMap]:
     """The page's ``maps`` (base64 float32 per cascade) as :class:`EngineMap` s.
 
+    Parameters
+    ----------
+    out : dict
+        The page's answer; ``out["maps"]`` lists per cascade ``side`` [texels read per side],
+        ``size`` [texels], ``stride`` [texels] and ``depth`` (base64 float32, side² values
+        [normalized window depth]).
+
+    Returns
+    -------
+    list of EngineMap
+        One per cascade.
+
     Raises
     ------
     ValueError
         The page returned no maps, or a map whose buffer does not match its side.
+
+    Examples
+    --------
+    >>> d = base64.b64encode(np.array([0.5, 1, 1, 0.25], np.float32).tobytes()).decode()
+    >>> m = decode_maps({"maps": [{"side": 2, "size": 4, "stride": 2, "depth": d}]})[0]
+    >>> m.depth.tolist(), m.size, m.stride
+    ([[0.5, 1.0], [1.0, 0.25]], 4, 2)
     """
     maps = out.get("maps") if isinstance(out, dict) else None
     if not maps:
@@ -87,8 +123,24 @@ def snapped_depth_map(triangles: Array, matrix: Array, size: int, subpixel_bits:
     """:func:`aliasing.frames.predict.light_depth_map` with each corner's (s, t) rounded to 1/2^bits of
     a texel first, as a rasterizer with ``subpixel_bits`` of sub-texel precision places it (None: exact).
 
-    Example
+    Parameters
+    ----------
+    triangles : array_like (T, 3, 3)
+        World triangles [world units].
+    matrix : array_like (4, 4)
+        World → (s, t, depth) in [0, 1]³ (column vectors).
+    size : int
+        The map's side [texels], >= 1.
+    subpixel_bits : int or None
+        Sub-texel precision [bits], in [0, 16]; None: exact corners.
+
+    Returns
     -------
+    aliasing.raster.draw.DepthMap
+        The depth [normalized window depth] and nearest triangle per texel.
+
+    Examples
+    --------
     >>> tri = np.array([[[0.1, 0.1, 0.5], [0.9, 0.1, 0.5], [0.1, 0.9, 0.5]]])
     >>> float(snapped_depth_map(tri, np.eye(4), 8).depth[1, 1])
     0.5
@@ -113,7 +165,41 @@ def stored_depth(engine: str, settings: dict, triangles: Array, sun: Array, matr
     triangle per texel (−1 empty) and the map-space triangles drawn (for :func:`tolerance`).
 
     ``settings`` are the engine's filled settings (:data:`aliasing.frames.models.MODELS`).
+
+    Parameters
+    ----------
+    engine : str
+        "threejs" or "babylon".
+    settings : dict
+        The engine's filled settings.
+    triangles : array_like (T, 3, 3)
+        World triangles [world units] (rounded to float32, as the page drew them).
+    sun : array_like (3,)
+        World direction towards the sun.
+    matrix : array_like (4, 4)
+        World → (s, t, depth) in [0, 1]³ (column vectors).
+    size : int
+        The map's side R [texels], in [1, 16384].
+
+    Returns
+    -------
+    depth : ndarray (R, R)
+        Stored depth [normalized window depth], 1 where empty.
+    triangle : ndarray of int (R, R)
+        The nearest caster per texel, −1 where empty.
+    map_triangles : ndarray (C, 3, 3)
+        The casters drawn, in map space (s, t, depth).
+
+    Examples
+    --------
+    >>> from aliasing.frames.models import MODELS
+    >>> floor = np.array([[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]])   # faces down: a back face casts in three.js
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
+    >>> depth, tid, mt = stored_depth("threejs", MODELS["threejs"].settings(), floor, [0.0, 1.0, 0.0], m, 4)
+    >>> depth[0].tolist(), tid[0].tolist()
+    ([0.5, 0.5, 0.5, 1.0], [0, 0, 0, -1])
     """
+    check.whole(size, "size", 1, 16384, " [texels]")
     from .models import MODELS
 
     if engine not in ("threejs", "babylon"):
@@ -135,8 +221,20 @@ def tolerance(map_triangles: Array, triangle: NDArray[np.int64]) -> Array:
     (``map_triangles``: (T, 3, 3) in map space; ``triangle``: (R, R) indices, −1 empty; the
     derivatives are per texel of the R-texel map).
 
-    Example
+    Parameters
+    ----------
+    map_triangles : array_like (T, 3, 3)
+        Triangles in map space (s, t, depth) [fraction of the map, normalized window depth].
+    triangle : array_like of int (R, R)
+        The triangle drawn per texel (an index into ``map_triangles``), −1 where empty.
+
+    Returns
     -------
+    ndarray (R, R)
+        The tolerance per texel [normalized window depth].
+
+    Examples
+    --------
     >>> tri = np.array([[[0.0, 0.0, 0.5], [1.0, 0.0, 0.5], [0.0, 1.0, 0.5]]])   # a flat caster: float32 alone
     >>> float(tolerance(tri, np.zeros((4, 4), np.int64))[0, 0]) == 2.0**-24
     True
@@ -144,6 +242,11 @@ def tolerance(map_triangles: Array, triangle: NDArray[np.int64]) -> Array:
     triangle = np.asarray(triangle)
     if triangle.ndim != 2 or triangle.shape[0] != triangle.shape[1]:
         raise ValueError(f"triangle must be a square (R, R) array of indices, got shape {triangle.shape}")
+    mt = check.as_float_array(map_triangles, "map_triangles")
+    if len(mt) and (mt.ndim != 3 or mt.shape[1:] != (3, 3)):
+        raise ValueError(f"map_triangles must have shape (T, 3, 3), got {mt.shape}")
+    if triangle.size and int(triangle.max()) >= len(mt):
+        raise ValueError(f"triangle must hold indices in [-1, {len(mt) - 1}] (into map_triangles), got {int(triangle.max())}")
     r = triangle.shape[0]
     t = np.asarray(map_triangles, float)
     if len(t):
@@ -165,6 +268,29 @@ def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], to
     ``interior`` (covered texels away from triangle edges), ``agreement`` (fraction of those
     within the tolerance), ``max_difference`` (the largest absolute engine − toolkit difference there) and
     ``max_over_tolerance`` (the largest difference over its tolerance).
+
+    Parameters
+    ----------
+    engine_map : EngineMap
+        The engine's read-back map.
+    depth : array_like (R, R)
+        The toolkit's stored depth [normalized window depth], 1 where empty.
+    triangle : array_like of int (R, R)
+        The toolkit's nearest triangle per texel, −1 where empty.
+    tol : array_like (R, R)
+        The tolerance per texel [normalized window depth] (:func:`tolerance`).
+
+    Returns
+    -------
+    dict
+        As above (agreements [fraction of texels], differences [normalized window depth]).
+
+    Examples
+    --------
+    >>> e = EngineMap(np.array([[0.5, 0.5], [0.5, 1.0]]), 2, 1)
+    >>> c = compare(e, np.full((2, 2), 0.5), np.zeros((2, 2), int), np.full((2, 2), 1e-6))
+    >>> c["coverage_agreement"], c["interior"], c["agreement"]      # the engine left one texel empty
+    (0.75, 4, 0.75)
     """
     if not isinstance(engine_map, EngineMap):
         raise ValueError(f"engine_map must be an EngineMap, got {type(engine_map).__name__}")
@@ -195,7 +321,40 @@ def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], to
 def measure_maps(engine: str, settings: dict, triangles: Array, sun: Array, matrices: Array, maps: list[EngineMap]) -> dict:
     """Every cascade's read-back map against the toolkit's: ``cascades`` (per cascade :func:`compare`
     and the light ``matrix`` used, world → [0, 1]³, column vectors), ``agreement`` (the smallest),
-    ``max_difference`` (the largest), the ``tolerance`` rule."""
+    ``max_difference`` (the largest), the ``tolerance`` rule.
+
+    Parameters
+    ----------
+    engine : str
+        "threejs" or "babylon".
+    settings : dict
+        The engine's filled settings (:data:`aliasing.frames.models.MODELS`).
+    triangles : array_like (T, 3, 3)
+        World triangles [world units].
+    sun : array_like (3,)
+        World direction towards the sun.
+    matrices : array_like (k, 4, 4)
+        Per cascade: world → (s, t, depth) in [0, 1]³.
+    maps : list of EngineMap
+        The engine's read-back maps, one per matrix.
+
+    Returns
+    -------
+    dict
+        As above (agreement [fraction of interior texels], max_difference [normalized window depth]).
+
+    Examples
+    --------
+    >>> from aliasing.frames.models import MODELS
+    >>> floor = np.array([[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]])
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])   # s = x, t = z, depth = 0.5 − y
+    >>> engine = EngineMap(np.array([[0.5] * 7 + [1.0]] * 8), 8, 1)                   # what the engine might store
+    >>> r = measure_maps("threejs", MODELS["threejs"].settings(), floor, [0.0, 1.0, 0.0], [m], [engine])
+    >>> r["cascades"][0]["interior"] > 0, r["agreement"], r["max_difference"]
+    (True, 1.0, 0.0)
+    """
+    if not isinstance(maps, (list, tuple)) or not all(isinstance(m, EngineMap) for m in maps):
+        raise ValueError("maps must be a list of EngineMap (decode_maps)")
     if len(maps) != len(matrices):
         raise ValueError(f"{len(maps)} maps for {len(matrices)} light matrices")
     per = []
@@ -210,7 +369,32 @@ def measure_maps(engine: str, settings: dict, triangles: Array, sun: Array, matr
 
 def write_maps(out: Path, maps: list[EngineMap], predicted: list[Array] | None = None) -> list[str]:
     """``map<i>.npy`` (the engine's read-back depths, float32) and ``map<i>.png`` (grey, drawn
-    depths stretched to their range, white empty) per cascade in ``out``; the file names."""
+    depths stretched to their range, white empty) per cascade in ``out``; the file names.
+
+    Parameters
+    ----------
+    out : path
+        An existing directory.
+    maps : list of EngineMap
+        The engine's read-back maps.
+    predicted : list of ndarray, optional
+        Not written (kept for the call's shape).
+
+    Returns
+    -------
+    list of str
+        The names written, two per cascade.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     write_maps(Path(d), [EngineMap(np.array([[0.25, 1.0], [0.5, 0.75]]), 2, 1)])
+    ['map0.npy', 'map0.png']
+    """
+    if not Path(out).is_dir():
+        raise ValueError(f"out must be an existing directory, got {str(out)!r}")
+    out = Path(out)
     import matplotlib.image
 
     names = []

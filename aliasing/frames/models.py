@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .. import partitioning
+from .. import _validation as check
 from ..engines import stable
 from ..setups import babylon as babylon_setup
 from . import babylon_cascades, predict
@@ -41,6 +42,33 @@ class ThreeCSM:
     ``lightMargin``, ``fade``; each cascade light's shadow ``normalBias`` and ``shadowRadius``
     (``light.shadow.radius``); the renderer's ``shadowMapType``; the material's ``side`` and
     ``shadowSide`` (null: the opposite of ``side``, WebGLShadowMap's ``shadowSide`` table).
+    Distances are in world units, ``shadowMapSize`` in texels, ``shadowBias`` in normalized depth.
+
+    Examples
+    --------
+    >>> from aliasing.raster.scenes.camera import look_at
+    >>> m, cam = ThreeCSM(), look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
+    >>> s = m.settings({"cascades": 2, "mode": "logarithmic", "maxFar": 400.0})
+    >>> m.cast_side(s), m.shadow_far(s, cam), m.edges(s, cam).tolist()   # back faces cast; ends 1 · 100^(i/2) [world units]
+    ('back', 100.0, [1.0, 10.0, 100.0])
+    >>> m.select(s, cam, np.array([2.0, 30.0, 200.0, np.nan])).tolist()  # the cascade of each eye depth, −1 none
+    [0, 1, -1, -1]
+    >>> from aliasing.frames.readback import Readback
+    >>> from aliasing.frames.scenes import frame_scene, sun_direction
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=1.0, boxes=2, ground_cells=2)
+    >>> sun = sun_direction(20.0, 30.0, fs.camera)
+    >>> pts = np.array([[[-2.0, -1.0, -4.25], [0.0, -1.0, -12.0]]])   # two ground pixels: in a box's shadow, lit
+    >>> def rb(mats, info=None):                                      # what a page would read back there
+    ...     return Readback("", "", np.ones((1, 2)), np.zeros((1, 2), np.int64), pts, np.array([[[0.0, 1.0, 0.0]] * 2]),
+    ...                     mats, np.full((len(mats), 2), 256), info or {}, b"")
+    >>> s = m.settings({"cascades": 2, "shadowMapSize": 256}); mats = m.matrices(s, fs.camera, sun)
+    >>> pred, ref = m.predict(s, fs, sun, rb(mats))
+    >>> pred.cascade.tolist(), (pred.factor < 0.5).tolist(), ref.tolist()
+    ([[0, 1]], [[True, False]], [[False, True]])
+    >>> bool(np.allclose(mats[:, 2, :3] @ sun, -1 / 1999))   # depth grows away from the sun: ½ · 2 / (lightFar − lightNear)
+    True
+    >>> [v.tolist() for v in m.measured_cascades(s, fs.camera, rb(np.diag([0.1, 0.1, 0.01, 1.0])[None], {"breaks": [1.0]}))]
+    [[1.0], [10.0], [256.0]]
     """
 
     engine: str = "threejs"
@@ -83,6 +111,7 @@ class ThreeCSM:
         return {"front": "back", "back": "front", "double": "double"}[s["side"]]
 
     def shadow_far(self, s: dict, camera) -> float:
+        """The last cascade's end [world units]: min(the camera's far, ``maxFar``)."""
         return float(min(camera.far, s["maxFar"]))
 
     def edges(self, s: dict, camera) -> Array:
@@ -139,6 +168,7 @@ class ThreeCSM:
         along d (the same frame), orthographic ±side/2, ``lightNear``…``lightFar``; the matrix is
         [½ bias] · projection · view (``LightShadow.updateMatrices``).
         """
+        _sun(sun)
         from ..engines.stable import diagonal
 
         d = -np.asarray(sun, float) / np.linalg.norm(sun)
@@ -188,6 +218,32 @@ class BabylonCSM:
     ``frustumEdgeFalloff``, ``stabilizeCascades``, ``cascadeBlendPercentage``, ``depthClamp``,
     ``autoCalcDepthBounds``, ``shadowMaxZ`` (null: the camera's far), ``filteringQuality``,
     ``usePercentageCloserFiltering``, ``forceBackFacesOnly``; the material's ``backFaceCulling``.
+    Distances are in world units, ``mapSize`` in texels, ``bias`` in normalized depth.
+
+    Examples
+    --------
+    >>> from aliasing.raster.scenes.camera import look_at
+    >>> m, cam = BabylonCSM(), look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
+    >>> s = m.settings({"numCascades": 2, "shadowMaxZ": 80.0})
+    >>> m.cast_side(s), m.shadow_far(s, cam), m.edges(s, cam).round(3).tolist()   # ends: (uniform + log) / 2 [world units]
+    ('front', 80.0, [1.0, 24.722, 80.0])
+    >>> m.select(s, cam, np.array([2.0, 30.0, 90.0])).tolist()
+    [0, 1, -1]
+    >>> from aliasing.frames.readback import Readback
+    >>> from aliasing.frames.scenes import frame_scene, sun_direction
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=1.0, boxes=2, ground_cells=2)
+    >>> sun = sun_direction(20.0, 30.0, fs.camera)
+    >>> pts = np.array([[[-2.0, -1.0, -4.25], [0.0, -1.0, -12.0]]])   # two ground pixels: in a box's shadow, lit
+    >>> def rb(mats, info=None):                                      # what a page would read back there
+    ...     return Readback("", "", np.ones((1, 2)), np.zeros((1, 2), np.int64), pts, np.array([[[0.0, 1.0, 0.0]] * 2]),
+    ...                     mats, np.full((len(mats), 2), 256), info or {}, b"")
+    >>> from aliasing.frames.babylon_cascades import matrices
+    >>> s = m.settings({"numCascades": 2, "mapSize": 256})
+    >>> pred, ref = m.predict(s, fs, sun, rb(matrices(s, fs.camera, sun, fs.triangles)))
+    >>> pred.cascade.tolist(), (pred.factor < 0.5).tolist(), ref.tolist()
+    ([[0, 1]], [[True, False]], [[False, True]])
+    >>> [v.tolist() for v in m.measured_cascades(s, fs.camera, rb(np.diag([0.1, 0.1, 0.01, 1.0])[None], {"cascades": [{"viewZ": 20.0}]}))]
+    [[1.0], [10.0], [256.0]]
     """
 
     engine: str = "babylon"
@@ -227,6 +283,7 @@ class BabylonCSM:
         return "front" if s["backFaceCulling"] else "double"
 
     def shadow_far(self, s: dict, camera) -> float:
+        """The last cascade's end [world units]: ``shadowMaxZ`` capped at the camera's far (null: the far)."""
         return float(camera.far if s["shadowMaxZ"] is None else min(s["shadowMaxZ"], camera.far))
 
     def edges(self, s: dict, camera) -> Array:
@@ -243,6 +300,7 @@ class BabylonCSM:
         return np.where(np.isfinite(depth) & (idx < len(ends)), idx, -1).astype(np.int64)
 
     def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
+        """The predicted factor at the engine's pixels (:func:`aliasing.frames.predict.babylon_factor`), and the exact reference."""
         cam = scene.camera
         depth = np.where(rb.drawn, cam.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
         sel = self.select(s, cam, depth)
@@ -298,7 +356,31 @@ class PlayCanvas:
     m = max(|∂z/∂x|, |∂z/∂y|) in window units and r = 2^(e − 23) for the 32-bit float depth
     map, e the exponent of the triangle's largest depth (SwiftShader ``src/Pipeline/SetupRoutine.cpp``).
     ``cascadeBlend`` (a dither of ``fract(sin(...))``) and the VSM, PCSS and 16-bit types are
-    rendered but not predicted.
+    rendered but not predicted.  Distances are in world units, ``shadowResolution`` in texels.
+
+    Examples
+    --------
+    >>> from aliasing.raster.scenes.camera import look_at
+    >>> m, cam = PlayCanvas(), look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
+    >>> s = m.settings({"numCascades": 2, "cull": "none"})
+    >>> m.cast_side(s), m.edges(s, cam).round(3).tolist(), m.cells(s).tolist()   # ends (uniform + log) / 2 up to shadowDistance 40
+    ('double', [1.0, 13.412, 40.0], [[0.0, 0.0, 0.5, 0.5], [0.0, 0.5, 0.5, 0.5]])
+    >>> m.select(s, cam, np.array([2.0, 20.0, 41.0])).tolist(), m.predicted(s)
+    ([0, 1, -1], None)
+    >>> from aliasing.frames.readback import Readback
+    >>> from aliasing.frames.scenes import frame_scene, sun_direction
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=1.0, boxes=2, ground_cells=2)
+    >>> sun = sun_direction(20.0, 30.0, fs.camera)
+    >>> pts = np.array([[[-2.0, -1.0, -4.25], [0.0, -1.0, -12.0]]])   # two ground pixels: in a box's shadow, lit
+    >>> def rb(mats, info=None):                                      # what a page would read back there
+    ...     return Readback("", "", np.ones((1, 2)), np.zeros((1, 2), np.int64), pts, np.array([[[0.0, 1.0, 0.0]] * 2]),
+    ...                     mats, np.full((len(mats), 2), 256), info or {}, b"")
+    >>> mats = ThreeCSM().matrices(ThreeCSM().settings({"cascades": 1}), fs.camera, sun)   # any world → [0, 1]³ box
+    >>> pred, ref = m.predict(m.settings({"shadowResolution": 256}), fs, sun, rb(mats))
+    >>> (pred.factor < 0.5).tolist(), ref.tolist()
+    ([[True, False]], [[False, True]])
+    >>> [v.tolist() for v in m.measured_cascades(s, fs.camera, rb(np.diag([0.1, 0.1, 0.01, 1.0])[None], {"cascades": [{"distance": 40.0}]}))]
+    [[1.0], [10.0], [256.0]]
     """
 
     engine: str = "playcanvas"
@@ -359,6 +441,7 @@ class PlayCanvas:
         return np.array([[0.0, 0.0, 0.5, 0.5], [0.0, 0.5, 0.5, 0.5], [0.5, 0.0, 0.5, 0.5], [0.5, 0.5, 0.5, 0.5]])[:k]
 
     def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
+        """The predicted factor at the engine's pixels (:func:`aliasing.frames.predict.playcanvas_factor`), and the exact reference."""
         why = self.predicted(s)
         if why:
             raise ValueError(why)
@@ -392,11 +475,18 @@ MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanv
 SINGLE = {("threejs", "DirectionalLight"): ThreeDirectional(), ("babylon", "ShadowGenerator"): BabylonSingle()}
 
 
+def _sun(sun) -> None:
+    """Refuse a sun that is not a finite non-zero 3-vector, naming it."""
+    sv = check.finite(sun, "sun")
+    if sv.shape != (3,) or not np.linalg.norm(sv) > 0:
+        raise ValueError(f"sun must be a finite non-zero 3-vector (world direction towards the sun), got shape {sv.shape}")
+
+
 def model_for(engine: str, settings: dict):
     """The model of ``engine`` for these settings: its single-map class where ``settings["class"]`` names one, else its cascades'.
 
-    Example
-    -------
+    Examples
+    --------
     >>> type(model_for("threejs", {"class": "DirectionalLight"})).__name__, type(model_for("threejs", {})).__name__
     ('ThreeDirectional', 'ThreeCSM')
     """
@@ -422,7 +512,16 @@ def from_setup(setup) -> dict:
     ValueError
         A setting the frames do not render or model (its key and why), or a pipeline that
         disagrees with the model about the faces that cast.
+
+    Examples
+    --------
+    >>> from aliasing import setups
+    >>> s = from_setup(setups.build("threejs", {"cascades": 2}, "near=0.5,far=60,fov=50,aspect=16:9,height=144", "35@30"))
+    >>> s["cascades"], s["shadowMapSize"], s["side"]
+    (2, 2048, 'front')
     """
+    if not (hasattr(setup, "settings") and hasattr(setup, "engine") and hasattr(setup, "pipeline")):
+        raise ValueError(f"setup must be an aliasing.setups.Setup, got {type(setup).__name__}")
     engine, s = setup.engine, dict(setup.settings)
     if engine not in MODELS:
         raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")

@@ -48,7 +48,17 @@ def _matrix(m: ArrayLike) -> Array:
 
 
 def to_map(matrix: ArrayLike, points: ArrayLike) -> Array:
-    """Map coordinates (s, t, depth) of world points ``(..., 3)`` through a 4×4 light matrix (column vectors)."""
+    """Map coordinates (s, t, depth) of world points ``(..., 3)`` through a 4×4 light matrix (column vectors).
+
+    Examples
+    --------
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])   # s = x, t = z, depth = 0.5 − y
+    >>> to_map(m, [[0.25, 0.1, 0.75], [1.0, 0.0, 0.0]]).tolist()
+    [[0.25, 0.75, 0.4], [1.0, 0.0, 0.5]]
+    """
+    if np.shape(points)[-1:] != (3,):
+        raise ValueError(f"points must have shape (..., 3), got {np.shape(points)}")
+    check.finite(points, "points")
     m = _matrix(matrix)
     p = np.asarray(points, float)
     h = p @ m[:3, :3].T + m[:3, 3]
@@ -61,7 +71,17 @@ def casting(triangles: ArrayLike, sun: ArrayLike, side: str) -> NDArray[np.bool_
 
     A triangle is front-facing to the sun when its right-handed normal (v1 − v0) × (v2 − v0)
     points towards the sun (``sun``: world direction towards it).
+
+    Examples
+    --------
+    >>> tri = np.array([[[0, 0, 0], [0, 0, 1], [1, 0, 0]], [[0, 0, 0], [1, 0, 0], [0, 0, 1]]], float)   # facing up, down
+    >>> casting(tri, [0.0, 1.0, 0.0], "back").tolist(), casting(tri, [0.0, 1.0, 0.0], "double").tolist()
+    ([False, True], [True, True])
     """
+    if np.shape(triangles)[1:] != (3, 3) or np.ndim(triangles) != 3:
+        raise ValueError(f"triangles must have shape (T, 3, 3), got {np.shape(triangles)}")
+    if np.shape(sun) != (3,):
+        raise ValueError(f"sun must be a 3-vector, got shape {np.shape(sun)}")
     tri = check.finite(triangles, "triangles")
     s = check.finite(sun, "sun")
     side = check.choice(side, "side", SIDES)
@@ -80,8 +100,16 @@ def light_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) ->
     matrix : array_like (4, 4)
         World → (s, t, depth) in [0, 1]³ (an orthographic light: w = 1).
     resolution : int
-        Texels per side.
+        Texels per side [texels], in [1, 16384].
+
+    Examples
+    --------
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
+    >>> dm = light_depth_map([[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]], m, 4)      # half the map (s + t < 1), at depth 0.25
+    >>> dm.depth[1].tolist(), dm.triangle[1].tolist()                                # row t = 3/8: centres s = 1/8, 3/8 inside
+    ([0.25, 0.25, inf, inf], [0, 0, -1, -1])
     """
+    check.whole(resolution, "resolution", 1, 16384, " [texels]")
     tri = check.finite(triangles, "triangles")
     if tri.ndim != 3 or tri.shape[1:] != (3, 3):
         raise ValueError(f"triangles must have shape (T, 3, 3), got {tri.shape}")
@@ -95,7 +123,20 @@ def reference_lit(triangles: Array, matrix: Array, resolution: int, points: Arra
 
     All faces are drawn; the nearest surface is compared as a plane at the point's own (s, t).
     Points outside the map count as lit.
+
+    Examples
+    --------
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
+    >>> roof = np.array([[[0.0, 0.25, 0.0], [2.0, 0.25, 0.0], [0.0, 0.25, 2.0]]])     # covers the map at depth 0.25
+    >>> pts = np.array([[0.5, 0.0, 0.5], [0.5, 0.3, 0.5]]); up = np.array([[0.0, 1.0, 0.0]] * 2)   # under it, above it
+    >>> reference_lit(roof, m, 4, pts, up, np.array([0.0, 1.0, 0.0])).tolist()
+    [False, True]
     """
+    if np.shape(points)[-1:] != (3,) or np.shape(normals) != np.shape(points):
+        raise ValueError(f"points and normals must have one shape (..., 3), got {np.shape(points)} and {np.shape(normals)}")
+    if np.shape(sun) != (3,):
+        raise ValueError(f"sun must be a 3-vector, got shape {np.shape(sun)}")
+    normals, sun = check.finite(normals, "normals"), check.finite(sun, "sun")
     dm = light_depth_map(triangles, matrix, resolution)
     c = to_map(matrix, points)
     r = dm.resolution
@@ -113,6 +154,17 @@ def reference_lit(triangles: Array, matrix: Array, resolution: int, points: Arra
     eps = 1e-6
     lit = ~inside | (tid < 0) | ~np.isfinite(plane_d) | (c[..., 2] <= plane_d + eps)
     return lit & ((normals @ sun) > 0)
+
+
+def _factor_inputs(maps, matrices, cascade, points, normals) -> None:
+    """Refuse the factor functions' per-cascade and per-point arrays of mismatched shapes, naming them."""
+    mats = check.finite(matrices, "matrices")
+    if mats.ndim != 3 or mats.shape[1:] != (4, 4) or len(mats) != len(maps):
+        raise ValueError(f"matrices must have shape (k, 4, 4) with one map each (k = {len(maps)}), got {mats.shape}")
+    if np.shape(points)[-1:] != (3,) or np.shape(cascade) != np.shape(points)[:-1]:
+        raise ValueError(f"points must have shape (..., 3) and cascade (...), got {np.shape(points)} and {np.shape(cascade)}")
+    if normals is not None and np.shape(normals) != np.shape(points):
+        raise ValueError(f"normals must have the shape of points {np.shape(points)}, got {np.shape(normals)}")
 
 
 def _ign(x: Array, y: Array) -> Array:
@@ -135,7 +187,24 @@ def threejs_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
     gains ``bias`` (normalized depth), and PCF averages 5 taps of hardware 2×2 PCF on a Vogel
     disk of ``radius`` texels turned by the interleaved gradient noise of the pixel; outside
     [0, 1]² or beyond depth 1 the factor is 1.  ``cascade`` −1: no shadow (factor 1).
+
+    Examples
+    --------
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
+    >>> roof = np.array([[[0.0, 0.25, 0.0], [2.0, 0.25, 0.0], [0.0, 0.25, 2.0]]])     # covers the map at depth 0.25
+    >>> pts = np.array([[0.5, 0.0, 0.5], [0.5, 0.3, 0.5]]); up = np.array([[0.0, 1.0, 0.0]] * 2)   # under it, above it
+    >>> maps = [light_depth_map(roof, m, 4)]
+    >>> threejs_factor(maps, m[None], np.array([0, 0]), pts, up, np.array([0.5, 1.5]), np.array([0.5, 0.5]),
+    ...                bias=0.0, normal_bias=0.0, radius=1.0).tolist()
+    [0.0, 1.0]
     """
+    if map_type not in ("PCFShadowMap", "BasicShadowMap"):
+        raise ValueError(f"map_type must be PCFShadowMap or BasicShadowMap, got {map_type!r}")
+    _factor_inputs(maps, matrices, cascade, points, normals)
+    for v, n in ((bias, "bias"), (normal_bias, "normal_bias")):
+        check.finite(check.scalar(v, n), n)
+    if not check.finite(check.scalar(radius, "radius"), "radius") >= 0:
+        raise ValueError(f"radius must be in [0, inf) texels, got {radius!r}")
     factor = np.ones(points.shape[:-1])
     for i, (dm, m) in enumerate(zip(maps, matrices)):
         sel = cascade == i
@@ -167,8 +236,8 @@ def offset_casters(triangles: Array, sun: Array, normal_bias: float) -> Array:
     """Babylon.js's caster-side normal bias (shadowMapVertexNormalBias): each corner moves by
     −n · normalBias · sin(n, l) along its face's unit normal n [world units].
 
-    Example
-    -------
+    Examples
+    --------
     >>> wall = np.array([[[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]])   # normal +x, the sun overhead
     >>> offset_casters(wall, np.array([0.0, 1.0, 0.0]), 0.1)[0, 0].tolist()      # moved 0.1 · sin 90° inwards
     [-0.1, 0.0, 0.0]
@@ -257,7 +326,24 @@ def babylon_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
     0 :func:`_babylon_pcf5`, 1 :func:`_babylon_pcf3`, 2 :func:`_babylon_pcf1`); a pixel within
     the last ``1/blend_factor`` of its cascade's length mixes in the next cascade's factor.
     ``cascade`` −1: no shadow (beyond shadowMaxZ).
+
+    Examples
+    --------
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
+    >>> roof = np.array([[[0.0, 0.25, 0.0], [2.0, 0.25, 0.0], [0.0, 0.25, 2.0]]])     # covers the map at depth 0.25
+    >>> pts = np.array([[0.5, 0.0, 0.5], [0.5, 0.3, 0.5]]); up = np.array([[0.0, 1.0, 0.0]] * 2)   # under it, above it
+    >>> babylon_factor([light_depth_map(roof, m, 4)], m[None], np.array([0, 0]), np.array([5.0, 5.0]), pts,
+    ...                ends=np.array([10.0]), lengths=np.array([10.0]), blend_factor=10.0, bias=0.0).tolist()
+    [0.0, 1.0]
     """
+    _factor_inputs(maps, matrices, cascade, points, None)
+    if np.shape(depth) != np.shape(cascade):
+        raise ValueError(f"depth must have the shape of cascade {np.shape(cascade)}, got {np.shape(depth)}")
+    if np.ndim(ends) != 1 or np.ndim(lengths) != 1 or min(len(ends), len(lengths)) < len(maps) - 1:
+        raise ValueError(f"ends and lengths must be 1-d with a value per cascade ({len(maps)}), got shapes {np.shape(ends)} and {np.shape(lengths)}")
+    if not check.finite(check.scalar(blend_factor, "blend_factor"), "blend_factor") > 0:
+        raise ValueError(f"blend_factor must be in (0, inf), got {blend_factor!r}")
+    check.finite(check.scalar(bias, "bias"), "bias")
 
     def lookup(i: int, sel: NDArray[np.bool_]) -> Array:
         c = to_map(matrices[i], points[sel])
@@ -298,8 +384,8 @@ def polygon_offset(map_triangles: Array, resolution: int, factor: float, units: 
     (§3.6.5) that "max" approximates.  ``map_triangles`` (T, 3, 3): corners in map coordinates
     (s, t, depth) in [0, 1].
 
-    Example
-    -------
+    Examples
+    --------
     >>> tri = np.array([[[0.0, 0.0, 0.5], [1.0, 0.0, 0.5 + 3 / 8], [0.0, 1.0, 0.5 + 4 / 8]]])
     >>> float(polygon_offset(tri, 8, 1.0, 0.0)[0]), float(polygon_offset(tri, 8, 1.0, 0.0, "length")[0])   # ∂z/∂x = 3/64, ∂z/∂y = 4/64
     (0.0625, 0.078125)
@@ -330,6 +416,16 @@ def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution
     :func:`polygon_offset` with factor and units 10 · clamp(``shadow_bias``, 0, 1)
     (``light.js`` ``_updateShadowBias``: −1000 × the light's −0.01 · shadowBias).
     Empty texels hold the clear depth 1; ``slope``: :func:`polygon_offset`'s.  Returns the (R, R) depth array.
+
+    Examples
+    --------
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
+    >>> roof = np.array([[[0.0, 0.25, 0.0], [2.0, 0.25, 0.0], [0.0, 0.25, 2.0]]])     # covers the map at depth 0.25
+    >>> pts = np.array([[0.5, 0.0, 0.5], [0.5, 0.3, 0.5]]); up = np.array([[0.0, 1.0, 0.0]] * 2)   # under it, above it
+    >>> playcanvas_atlas(roof, m[None], [[0.0, 0.0, 1.0, 1.0]], 4, 0.0)[2].tolist()     # no bias: the window depth
+    [0.25, 0.25, 0.25, 0.25]
+    >>> float(playcanvas_atlas(roof, m[None], [[0.0, 0.0, 1.0, 1.0]], 4, 0.05)[2, 2] - 0.25) == 0.5 * 2.0**-25   # a flat caster: units · r
+    True
     """
     r = int(resolution)
     cells = check.finite(cells, "cells")
@@ -382,7 +478,26 @@ def playcanvas_factor(atlas: Array, matrices: Array, cascade: NDArray[np.int64],
     ``getShadowPCF1x1`` (one hardware comparison), ``PCF3x3`` (4 taps /16) or ``PCF5x5`` (9 taps
     /144, Castaño's weights as Babylon.js's), all LESS comparisons of the whole atlas (a tap
     can read a neighbouring cell).  ``cascade`` −1: no shadow (factor 1).
+
+    Examples
+    --------
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
+    >>> roof = np.array([[[0.0, 0.25, 0.0], [2.0, 0.25, 0.0], [0.0, 0.25, 2.0]]])     # covers the map at depth 0.25
+    >>> pts = np.array([[0.5, 0.0, 0.5], [0.5, 0.3, 0.5]]); up = np.array([[0.0, 1.0, 0.0]] * 2)   # under it, above it
+    >>> atlas = playcanvas_atlas(roof, m[None], [[0.0, 0.0, 1.0, 1.0]], 4, 0.0)
+    >>> playcanvas_factor(atlas, m[None], np.array([0, 0]), pts, up, normal_offset=0.0).tolist()
+    [0.0, 1.0]
     """
+    if taps not in (1, 3, 5):
+        raise ValueError(f"taps must be 1, 3 or 5, got {taps!r}")
+    if np.ndim(atlas) != 2 or np.shape(atlas)[0] != np.shape(atlas)[1]:
+        raise ValueError(f"atlas must be a square (R, R) array, got shape {np.shape(atlas)}")
+    check.finite(matrices, "matrices")
+    if np.shape(matrices)[1:] != (4, 4) or np.ndim(matrices) != 3:
+        raise ValueError(f"matrices must have shape (k, 4, 4), got {np.shape(matrices)}")
+    if np.shape(points)[-1:] != (3,) or np.shape(normals) != np.shape(points) or np.shape(cascade) != np.shape(points)[:-1]:
+        raise ValueError(f"points and normals must be (..., 3) with cascade (...), got {np.shape(points)}, {np.shape(normals)} and {np.shape(cascade)}")
+    check.finite(check.scalar(normal_offset, "normal_offset"), "normal_offset")
     factor = np.ones(points.shape[:-1])
     for i, m in enumerate(matrices):
         sel = cascade == i
@@ -412,7 +527,18 @@ def babylon_single_factor(depth_map: DepthMap, matrix: Array, points: Array, *, 
     the device renders and filters them, shadowGenerator.js 659–668);
     the receiver's depth is its window depth clamped to [0, 1], compared with the nearest texel
     (NEAREST sampling): shadowed where it is greater; outside [0, 1]² the factor is 1.
+
+    Examples
+    --------
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
+    >>> roof = np.array([[[0.0, 0.25, 0.0], [2.0, 0.25, 0.0], [0.0, 0.25, 2.0]]])     # covers the map at depth 0.25
+    >>> pts = np.array([[0.5, 0.0, 0.5], [0.5, 0.3, 0.5]]); up = np.array([[0.0, 1.0, 0.0]] * 2)   # under it, above it
+    >>> babylon_single_factor(light_depth_map(roof, m, 4), m, pts, bias=0.0).tolist()
+    [0.0, 1.0]
     """
+    if not isinstance(depth_map, DepthMap):
+        raise ValueError(f"depth_map must be a DepthMap (light_depth_map), got {type(depth_map).__name__}")
+    check.finite(check.scalar(bias, "bias"), "bias")
     c = to_map(matrix, points)
     r = depth_map.resolution
     stored = np.where(np.isfinite(depth_map.depth), depth_map.depth + bias, 1.0)
@@ -431,8 +557,8 @@ def babylon_single_factor(depth_map: DepthMap, matrix: Array, points: Array, *, 
 class Prediction:
     """Per pixel: the predicted ``factor`` and ``cascade``; per cascade: ``starts`` [world units] and map ``sides`` [world units].
 
-    Example
-    -------
+    Examples
+    --------
     >>> p = Prediction(np.ones((1, 1)), np.zeros((1, 1), np.int64), np.array([0.5]), np.array([10.0]), np.array([1024.0]))
     >>> float(p.sides[0] / p.resolution[0])   # the texel [world units]
     0.009765625
@@ -453,7 +579,20 @@ def tight_sides(camera, edges: Array, along: Array, up: Array) -> Array:
     engine takes from a world up vector (Babylon.js: ``Matrix.LookAtLH(centre, centre + d, Vector3.Up())``),
     not from the camera: the extents are measured on x ∝ up × d and y ∝ d × x (signs do not
     change extents; the mirror into Babylon's left-handed world neither).
+
+    Examples
+    --------
+    >>> from aliasing.raster.scenes.camera import look_at
+    >>> cam = look_at("0,0,0", "0,0,-1", fov=90.0)              # aspect 1
+    >>> tight_sides(cam, np.array([1.0, 2.0]), np.array([0.0, -1.0, 0.0]), np.array([0.0, 0.0, 1.0])).tolist()   # from above: the far end's width
+    [4.0]
     """
+    edges = check.finite(edges, "edges")
+    if edges.ndim != 1 or len(edges) < 2 or not np.all(np.diff(edges) > 0):
+        raise ValueError(f"edges must be an increasing 1-d array of at least 2 depths [world units], got {edges.tolist()}")
+    along, up = check.finite(along, "along"), check.finite(up, "up")
+    if along.shape != (3,) or up.shape != (3,) or not np.linalg.norm(np.cross(up, along)) > 0:
+        raise ValueError("along and up must be non-zero 3-vectors that are not parallel")
     d = along / np.linalg.norm(along)
     x = np.cross(up, d)
     x /= np.linalg.norm(x)
@@ -467,7 +606,20 @@ def tight_sides(camera, edges: Array, along: Array, up: Array) -> Array:
 
 
 def reference(scene, sun: Array, rb, resolution: int) -> NDArray[np.bool_]:
-    """The exact reference's lit pixels, through the matrix of the cascade each pixel sampled (the last one where none)."""
+    """The exact reference's lit pixels, through the matrix of the cascade each pixel sampled (the last one where none).
+
+    Examples
+    --------
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
+    >>> roof = np.array([[[0.0, 0.25, 0.0], [2.0, 0.25, 0.0], [0.0, 0.25, 2.0]]])     # covers the map at depth 0.25
+    >>> pts = np.array([[0.5, 0.0, 0.5], [0.5, 0.3, 0.5]]); up = np.array([[0.0, 1.0, 0.0]] * 2)   # under it, above it
+    >>> from types import SimpleNamespace
+    >>> from aliasing.frames.readback import Readback
+    >>> rb = Readback("threejs", "187", np.ones((1, 2)), np.zeros((1, 2), np.int64), pts[None], up[None], m[None], np.full((1, 2), 4), {}, b"")
+    >>> reference(SimpleNamespace(triangles=roof), np.array([0.0, 1.0, 0.0]), rb, 4).tolist()
+    [[False, True]]
+    """
+    check.whole(resolution, "resolution", 1, 16384, " [texels]")
     pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
     ref = np.ones(rb.shadow.shape, bool)
     for i, m in enumerate(rb.matrices):

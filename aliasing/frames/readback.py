@@ -50,6 +50,13 @@ class Readback:
         Everything else the page returned (cascade boxes, breaks, biases, renderer string, timing).
     frame : bytes
         The engine's own shaded frame (PNG).
+
+    Examples
+    --------
+    >>> rb = Readback("threejs", "187", np.array([[1.0, np.nan]]), np.array([[0, -1]]), np.zeros((1, 2, 3)), np.zeros((1, 2, 3)),
+    ...               np.eye(4)[None], np.array([[1024, 1024]]), {}, b"")
+    >>> rb.drawn.tolist(), rb.matrices.shape
+    ([[True, False]], (1, 4, 4))
     """
 
     engine: str
@@ -65,7 +72,20 @@ class Readback:
 
     @property
     def drawn(self) -> NDArray[np.bool_]:
-        """(H, W): pixels where the engine drew geometry."""
+        """(H, W): pixels where the engine drew geometry.
+
+        Returns
+        -------
+        ndarray of bool (H, W)
+            Where the shadow factor is finite.
+
+        Examples
+        --------
+        >>> rb = Readback("", "", np.array([[0.5, np.nan]]), np.zeros((1, 2), np.int64), np.zeros((1, 2, 3)), np.zeros((1, 2, 3)),
+        ...               np.eye(4)[None], np.array([[16, 16]]), {}, b"")
+        >>> rb.drawn.tolist()
+        [[True, False]]
+        """
         return np.isfinite(self.shadow)
 
 
@@ -79,16 +99,43 @@ def _f32(b64: str, h: int, w: int) -> Array:
 def decode(out: dict) -> Readback:
     """The page's answer (a dict of base64 float32 buffers and per-cascade lists) as a :class:`Readback`.
 
+    Parameters
+    ----------
+    out : dict
+        ``engine``, ``width`` and ``height`` [px], ``shadow`` (per pixel: factor, cascade, n·l),
+        ``position`` (world x, y, z [world units] and 1 where drawn) and ``normal`` (base64 float32,
+        H × W × 4, GL rows bottom up), ``cascades`` (per cascade ``matrix``, 16 numbers column-major,
+        and ``size`` [texels]), ``frame`` (a PNG data URL), and anything else (kept in ``info``).
+
+    Returns
+    -------
+    Readback
+        Rows top down.
+
     Raises
     ------
     ValueError
         ``out`` misses a field or its buffers do not match its size.
+
+    Examples
+    --------
+    >>> b64 = lambda a: base64.b64encode(np.asarray(a, np.float32).tobytes()).decode()
+    >>> rb = decode({"engine": "threejs", "revision": "187", "width": 1, "height": 2, "frame": "data:image/png;base64,",
+    ...              "shadow": b64([[[0.0, 1, 0.5, 0]], [[1.0, 0, 0.5, 0]]]),            # GL row 0 (bottom), row 1
+    ...              "position": b64([[[0, 0, -5, 1]], [[0, 0, 0, 0]]]), "normal": b64([[[0, 2, 0, 0]], [[0, 0, 0, 0]]]),
+    ...              "cascades": [{"matrix": np.eye(4).ravel().tolist(), "size": [512, 512]}]})
+    >>> rb.shadow.tolist(), rb.cascade.tolist(), rb.normal[1, 0].tolist()       # top row: nothing drawn
+    ([[nan], [0.0]], [[-1], [1]], [0.0, 1.0, 0.0])
     """
     if not isinstance(out, dict):
         raise ValueError(f"out must be the page's dict, got {type(out).__name__}")
     missing = [k for k in ("engine", "width", "height", "shadow", "position", "normal", "cascades", "frame") if k not in out]
     if missing:
         raise ValueError(f"the page's answer misses {', '.join(missing)}")
+    for k in ("width", "height"):
+        v = out[k]
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) or not np.isfinite(v) or v != int(v) or not 1 <= v <= 16384:
+            raise ValueError(f"out[{k!r}] must be a whole number of pixels in [1, 16384], got {v!r}")
     h, w = int(out["height"]), int(out["width"])
     sh, pos, nrm = (_f32(out[k], h, w) for k in ("shadow", "position", "normal"))
     drawn = pos[..., 3] > 0.5

@@ -28,7 +28,25 @@ Array = NDArray[np.float64]
 class FrameResult:
     """An engine's frame against the toolkit's prediction: ``readback`` (:class:`Readback`),
     ``prediction``, the exact reference's lit pixels ``reference``, the filled ``settings``, and
-    ``report`` (the JSON-ready ``engine``, ``release``, ``measured``, ``predicted``)."""
+    ``report`` (the JSON-ready ``engine``, ``release``, ``measured``, ``predicted``).
+
+    Examples
+    --------
+    >>> import base64
+    >>> from aliasing.frames.models import MODELS
+    >>> from aliasing.frames.scenes import sun_direction
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=2.0, boxes=2, ground_cells=2)
+    >>> sun = sun_direction(20.0, 30.0, fs.camera); m = MODELS["threejs"]; s = m.settings({"cascades": 2, "shadowMapSize": 256})
+    >>> b64 = lambda a: base64.b64encode(np.asarray(a, np.float32).tobytes()).decode()
+    >>> out = {"engine": "threejs", "revision": "187", "width": 2, "height": 1, "frame": "data:image/png;base64,",   # a page's answer, by hand:
+    ...        "shadow": b64([[[0, 0, 0, 0], [1, 1, 0.3, 0]]]),                     # per pixel factor, cascade, n·l
+    ...        "position": b64([[[-2.0, -1.0, -4.25, 1.0], [0.0, -1.0, -12.0, 1.0]]]), # two ground pixels, drawn (w = 1)
+    ...        "normal": b64([[[0, 1, 0, 0]] * 2]), "breaks": (m.edges(s, fs.camera)[1:] / 20.0).tolist(),
+    ...        "cascades": [{"matrix": c.T.ravel().tolist(), "size": [256, 256]} for c in m.matrices(s, fs.camera, sun)]}
+    >>> r = measure("threejs", fs, sun, s, out)                                  # a FrameResult
+    >>> r.readback.shadow.tolist(), r.prediction.factor.tolist(), r.reference.tolist()
+    ([[0.0, 1.0]], [[0.0, 1.0]], [[False, True]])
+    """
 
     readback: Readback
     prediction: Prediction
@@ -42,7 +60,19 @@ def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: l
 
     ``height`` [px] in [16, 2160]; the width is round(aspect · height).  ``maps``: read the
     shadow maps back, at most this many texels per side (:mod:`aliasing.frames.maps`).
+
+    Examples
+    --------
+    >>> fs = frame_scene("boxes", near=1.0, far=30.0, fov=50.0, aspect=1.5, boxes=1, ground_cells=1)
+    >>> job = make_job(fs, [0.0, 1.0, 0.0], {}, 100, maps=256)
+    >>> job["width"], job["maps"], len(base64.b64decode(job["triangles"])) == fs.triangles.size * 4   # float32 triangles
+    (150, {'side': 256}, True)
     """
+    if not isinstance(scene, FrameScene):
+        raise ValueError(f"scene must be a FrameScene (aliasing.frames.scenes.frame_scene), got {type(scene).__name__}")
+    sv = np.asarray(sun, float) if not isinstance(sun, str) else np.full(1, np.nan)
+    if sv.shape != (3,) or not np.all(np.isfinite(sv)) or not np.linalg.norm(sv) > 0:
+        raise ValueError(f"sun must be a finite non-zero 3-vector (world direction towards the sun), got {sun!r}")
     h = int(height)
     if h != height or not 16 <= h <= 2160:
         raise ValueError(f"height must be a whole number of pixels in [16, 2160], got {height!r}")
@@ -61,8 +91,13 @@ def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: l
 def refuse_unrendered(engine: str, cls: str | None, path, maps) -> None:
     """Refuse, in one line, a camera ``path`` or a map read-back (``maps``) that the frames do not render for ``engine``'s ``cls``.
 
-    Example
-    -------
+    Raises
+    ------
+    ValueError
+        What is not rendered, naming ``--path`` or ``--maps``.
+
+    Examples
+    --------
     >>> refuse_unrendered("threejs", "CSM", "sideways:0.05:4", 256)
     >>> refuse_unrendered("playcanvas", None, "sideways:0.05:4", None)
     Traceback (most recent call last):
@@ -103,7 +138,20 @@ def pipeline_footprint(pipeline, camera, sun: Array) -> tuple[Array, Array, Arra
     The sides are :func:`aliasing.engines.stable.evaluate` of the pipeline's ranges, fit and snap,
     except the tight fit, measured in the light frame rolled by the world's up
     (:func:`aliasing.frames.models.tight_sides`, ERRATA F5).
+
+    Examples
+    --------
+    >>> from aliasing import setups
+    >>> from aliasing.frames.scenes import sun_direction
+    >>> su = setups.build("threejs", {"cascades": 2}, "near=1,far=20,fov=50,aspect=2,height=64", "20@30")
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=2.0, boxes=1, ground_cells=1)
+    >>> starts, sides, res = pipeline_footprint(su.pipeline, fs.camera, sun_direction(20.0, 30.0, fs.camera))
+    >>> starts.round(3).tolist(), bool((sides > 0).all()), res.tolist()
+    ([1.0, 7.486], True, [2048.0, 2048.0])
     """
+    sv = np.asarray(sun, float) if not isinstance(sun, str) else np.full(1, np.nan)
+    if sv.shape != (3,) or not np.all(np.isfinite(sv)) or not np.linalg.norm(sv) > 0:
+        raise ValueError(f"sun must be a finite non-zero 3-vector (world direction towards the sun), got {sun!r}")
     from ..engines import stable
     from .models import tight_sides
 
@@ -125,7 +173,31 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
 
     With an :class:`aliasing.setups.Pipeline` the predicted texel footprint is the pipeline's
     (its ranges, fit and snap), and the details say how far its cascade ranges are from the model's.
+
+    Examples
+    --------
+    >>> import base64
+    >>> from aliasing.frames.models import MODELS
+    >>> from aliasing.frames.scenes import sun_direction
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=2.0, boxes=2, ground_cells=2)
+    >>> sun = sun_direction(20.0, 30.0, fs.camera); m = MODELS["threejs"]; s = m.settings({"cascades": 2, "shadowMapSize": 256})
+    >>> b64 = lambda a: base64.b64encode(np.asarray(a, np.float32).tobytes()).decode()
+    >>> out = {"engine": "threejs", "revision": "187", "width": 2, "height": 1, "frame": "data:image/png;base64,",   # a page's answer, by hand:
+    ...        "shadow": b64([[[0, 0, 0, 0], [1, 1, 0.3, 0]]]),                     # per pixel factor, cascade, n·l
+    ...        "position": b64([[[-2.0, -1.0, -4.25, 1.0], [0.0, -1.0, -12.0, 1.0]]]), # two ground pixels, drawn (w = 1)
+    ...        "normal": b64([[[0, 1, 0, 0]] * 2]), "breaks": (m.edges(s, fs.camera)[1:] / 20.0).tolist(),
+    ...        "cascades": [{"matrix": c.T.ravel().tolist(), "size": [256, 256]} for c in m.matrices(s, fs.camera, sun)]}
+    >>> rep = measure("threejs", fs, sun, s, out).report
+    >>> rep["measured"]["acne"], rep["predicted"]["acne"], rep["details"]["matrices_vs_engine"]
+    (0.0, 0.0, 0.0)
+    >>> np.round(rep["measured"]["texels_per_pixel"], 6).tolist() == np.round(rep["predicted"]["texels_per_pixel"], 6).tolist()
+    True
     """
+    if not isinstance(scene, FrameScene):
+        raise ValueError(f"scene must be a FrameScene (aliasing.frames.scenes.frame_scene), got {type(scene).__name__}")
+    sv = np.asarray(sun, float) if not isinstance(sun, str) else np.full(1, np.nan)
+    if sv.shape != (3,) or not np.all(np.isfinite(sv)) or not np.linalg.norm(sv) > 0:
+        raise ValueError(f"sun must be a finite non-zero 3-vector (world direction towards the sun), got {sun!r}")
     model = model_for(engine, settings)
     rb = decode(out)
     why_not = model.predicted(settings) if hasattr(model, "predicted") else None
@@ -204,8 +276,15 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
         ``maps`` texels per side come back, and add ``report["maps"]``: the engine's maps
         against the toolkit's rasterizer (:func:`aliasing.frames.maps.measure_maps`).
 
-    Example
+    Returns
     -------
+    FrameResult
+        The engine's frame against the prediction (:func:`measure`).
+
+    Examples
+    --------
+    The engine draws in a browser, so the example is not run here:
+
     >>> from aliasing import setups
     >>> from aliasing.frames.browser import Browser
     >>> s = setups.build("threejs", {}, "near=0.5,far=60,fov=50,aspect=16:9,height=144", "35@30")
@@ -274,8 +353,8 @@ def parse_path(spec: str, camera) -> list[dict]:
     (the view turned about the world's up, y, through the eye; STEP [degrees per frame, at most 10 in size]);
     FRAMES in [3, 120] (default 30); the first pose is the camera itself.
 
-    Example
-    -------
+    Examples
+    --------
     >>> from aliasing.raster.scenes.camera import look_at
     >>> [p["eye"] for p in parse_path("sideways:0.5:3", look_at("0,0,0", "0,0,-1"))]
     [[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [1.0, 0.0, 0.0]]
@@ -306,7 +385,20 @@ def parse_path(spec: str, camera) -> list[dict]:
 
 
 def pose_camera(camera, pose: dict):
-    """``camera`` moved to a pose of :func:`parse_path` (its eye, looking at its target, with the camera's own up)."""
+    """``camera`` moved to a pose of :func:`parse_path` (its eye, looking at its target, with the camera's own up).
+
+    Examples
+    --------
+    >>> from aliasing.raster.scenes.camera import look_at
+    >>> c = pose_camera(look_at("0,0,0", "0,0,-1"), {"eye": [1.0, 2.0, 0.0], "target": [1.0, 2.0, 5.0]})
+    >>> c.eye.tolist(), np.round(c.rotation[2], 12).tolist()          # now looking along +z
+    ([1.0, 2.0, 0.0], [0.0, 0.0, 1.0])
+    """
+    if not isinstance(pose, dict) or "eye" not in pose or "target" not in pose:
+        raise ValueError(f"pose must be a dict with eye and target (parse_path), got {pose!r}")
+    e, t = np.asarray(pose["eye"], float), np.asarray(pose["target"], float)
+    if e.shape != (3,) or t.shape != (3,) or not np.all(np.isfinite(e) & np.isfinite(t)) or not np.linalg.norm(t - e) > 0:
+        raise ValueError(f"pose eye and target must be finite 3-vectors [world units] that differ, got {pose!r}")
     from ..raster.scenes.camera import frame
 
     eye = np.asarray(pose["eye"], float)
@@ -319,8 +411,8 @@ def flips(masks: NDArray[np.bool_], keep: NDArray[np.bool_]) -> float:
     ``masks``: (F, H, W) shadowed or not per frame; ``keep``: (H, W) the pixels counted. NaN for
     fewer than two frames or no pixel kept.
 
-    Example
-    -------
+    Examples
+    --------
     >>> m = np.array([[[True, False]], [[True, True]], [[False, True]]])   # 3 frames of 1 × 2 pixels
     >>> flips(m, np.ones((1, 2), bool))                                    # one of two pixels flips per frame
     0.5
@@ -335,7 +427,32 @@ def flips(masks: NDArray[np.bool_], keep: NDArray[np.bool_]) -> float:
 def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]) -> dict:
     """``flips_per_frame`` of the engine along ``path`` (its read-back ``path``) and as the toolkit
     predicts it (three.js: each pose's predicted matrices, the toolkit's maps and three.js's filter at
-    the same pixels); details: the largest relative difference of the pose matrices."""
+    the same pixels); details: the largest relative difference of the pose matrices.
+
+    Examples
+    --------
+    >>> import base64
+    >>> from aliasing.frames.models import MODELS
+    >>> from aliasing.frames.scenes import sun_direction
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=2.0, boxes=2, ground_cells=2)
+    >>> sun = sun_direction(20.0, 30.0, fs.camera); m = MODELS["threejs"]; s = m.settings({"cascades": 2, "shadowMapSize": 256})
+    >>> b64 = lambda a: base64.b64encode(np.asarray(a, np.float32).tobytes()).decode()
+    >>> out = {"engine": "threejs", "revision": "187", "width": 2, "height": 1, "frame": "data:image/png;base64,",   # a page's answer, by hand:
+    ...        "shadow": b64([[[0, 0, 0, 0], [1, 1, 0.3, 0]]]),                     # per pixel factor, cascade, n·l
+    ...        "position": b64([[[-2.0, -1.0, -4.25, 1.0], [0.0, -1.0, -12.0, 1.0]]]), # two ground pixels, drawn (w = 1)
+    ...        "normal": b64([[[0, 1, 0, 0]] * 2]), "breaks": (m.edges(s, fs.camera)[1:] / 20.0).tolist(),
+    ...        "cascades": [{"matrix": c.T.ravel().tolist(), "size": [256, 256]} for c in m.matrices(s, fs.camera, sun)]}
+    >>> path = parse_path("sideways:0.05:3", fs.camera)                          # and its camera path: the same two pixels
+    >>> out["path"] = [{"shadow": b64([[0, 1]]), "matrices": [c.T.ravel().tolist() for c in m.matrices(s, pose_camera(fs.camera, p), sun)]}
+    ...                for p in path]
+    >>> r = measure("threejs", fs, sun, s, out)
+    >>> shimmer(r, fs, sun, path)
+    {'measured': 0.0, 'predicted': 0.0, 'matrices_vs_engine': 0.0}
+    """
+    if not isinstance(result, FrameResult):
+        raise ValueError(f"result must be a FrameResult (measure, frame_setup), got {type(result).__name__}")
+    if not isinstance(path, list) or len(path) < 2:
+        raise ValueError(f"path must be a list of at least 2 poses (parse_path), got {type(path).__name__}")
     from . import predict
 
     rb, s = result.readback, result.settings
@@ -405,7 +522,31 @@ def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict],
     SwiftShader: 4; None: exact): ``flips_per_frame`` and ``shared``, the fraction of the engine's
     flips (pixel and frame) that the replay also flips.  A diagnostic of where the engine's flips
     come from, when the toolkit's own prediction is 0 (ERRATA F7, F8).
+
+    Examples
+    --------
+    >>> import base64
+    >>> from aliasing.frames.models import MODELS
+    >>> from aliasing.frames.scenes import sun_direction
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=2.0, boxes=2, ground_cells=2)
+    >>> sun = sun_direction(20.0, 30.0, fs.camera); m = MODELS["threejs"]; s = m.settings({"cascades": 2, "shadowMapSize": 256})
+    >>> b64 = lambda a: base64.b64encode(np.asarray(a, np.float32).tobytes()).decode()
+    >>> out = {"engine": "threejs", "revision": "187", "width": 2, "height": 1, "frame": "data:image/png;base64,",   # a page's answer, by hand:
+    ...        "shadow": b64([[[0, 0, 0, 0], [1, 1, 0.3, 0]]]),                     # per pixel factor, cascade, n·l
+    ...        "position": b64([[[-2.0, -1.0, -4.25, 1.0], [0.0, -1.0, -12.0, 1.0]]]), # two ground pixels, drawn (w = 1)
+    ...        "normal": b64([[[0, 1, 0, 0]] * 2]), "breaks": (m.edges(s, fs.camera)[1:] / 20.0).tolist(),
+    ...        "cascades": [{"matrix": c.T.ravel().tolist(), "size": [256, 256]} for c in m.matrices(s, fs.camera, sun)]}
+    >>> path = parse_path("sideways:0.05:3", fs.camera)                          # and its camera path: the same two pixels
+    >>> out["path"] = [{"shadow": b64([[0, 1]]), "matrices": [c.T.ravel().tolist() for c in m.matrices(s, pose_camera(fs.camera, p), sun)]}
+    ...                for p in path]
+    >>> r = measure("threejs", fs, sun, s, out)
+    >>> replay(r, fs, sun, path)
+    {'flips_per_frame': 0.0, 'shared': None}
     """
+    if not isinstance(result, FrameResult):
+        raise ValueError(f"result must be a FrameResult (measure, frame_setup), got {type(result).__name__}")
+    if subpixel_bits is not None and not (isinstance(subpixel_bits, (int, np.integer)) and 0 <= subpixel_bits <= 16):
+        raise ValueError(f"subpixel_bits must be a whole number in [0, 16] or None, got {subpixel_bits!r}")
     from . import maps as frame_maps, predict
 
     rb, s = result.readback, result.settings

@@ -46,7 +46,25 @@ BUILTIN = ("boxes", "city")
 class FrameScene:
     """World triangles (T, 3, 3) [world units] wound outward where known, the number of leading
     ground triangles ``ground``, the world ``camera`` (:class:`aliasing.raster.scenes.camera.Camera`
-    with the image aspect) and the scene's ``name``."""
+    with the image aspect) and the scene's ``name``.
+
+    Parameters
+    ----------
+    triangles : ndarray (T, 3, 3)
+        World triangles [world units].
+    ground : int
+        The number of leading ground triangles.
+    camera : aliasing.raster.scenes.camera.Camera
+        The world camera (near, far [world units], fov [deg], aspect).
+    name : str
+        The scene's name.
+
+    Examples
+    --------
+    >>> fs = FrameScene(np.zeros((1, 3, 3)), 0, look_at("0,0,0", "0,0,-1"), "empty")
+    >>> fs.triangles.shape, fs.camera.fov
+    ((1, 3, 3), 60.0)
+    """
 
     triangles: Array
     ground: int
@@ -61,8 +79,18 @@ def wind_outward(triangles: ArrayLike) -> Array:
     its normal's sign is kept when it is vertical), any other part is taken as convex and
     faces away from the average of its corners.
 
-    Example
+    Parameters
+    ----------
+    triangles : array_like (T, 3, 3)
+        World triangles [world units], T >= 1, finite.
+
+    Returns
     -------
+    ndarray (T, 3, 3)
+        The same triangles, some with two corners swapped.
+
+    Examples
+    --------
     >>> t = np.array([[[0, 0, 0], [1, 0, 0], [0, 0, 1]]], float)   # facing −y
     >>> wind_outward(t)[0].tolist()
     [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]
@@ -125,6 +153,13 @@ def frame_scene(scene: str, *, near: float, far: float, fov: float, aspect: floa
     Returns
     -------
     FrameScene
+        The wound triangles, the ground count and the camera with the image aspect.
+
+    Examples
+    --------
+    >>> fs = frame_scene("boxes", near=1.0, far=40.0, fov=50.0, aspect=2.0, boxes=3, ground_cells=2)
+    >>> fs.name, fs.ground, fs.camera.aspect, fs.camera.eye.tolist()
+    ('boxes', 8, 2.0, [0.0, 0.0, 0.0])
     """
     if not isinstance(scene, str) or not scene:
         raise ValueError(f"scene must be boxes, city or a scene file, got {scene!r}")
@@ -165,8 +200,22 @@ def sun_direction(elevation: float, azimuth: float, camera: Camera) -> Array:
     """World unit vector towards the sun: ``elevation`` [deg] above the ground, ``azimuth`` [deg]
     from the camera's horizontal view direction (towards the camera's right for positive angles).
 
-    Example
+    Parameters
+    ----------
+    elevation : float
+        Above the ground [deg], in [−90, 90].
+    azimuth : float
+        From the camera's horizontal view direction [deg], finite.
+    camera : aliasing.raster.scenes.camera.Camera
+        The camera (not looking straight up or down).
+
+    Returns
     -------
+    ndarray (3,)
+        World unit vector towards the sun.
+
+    Examples
+    --------
     >>> cam = look_at("0,0,0", "0,0,-1")
     >>> np.round(sun_direction(90.0, 0.0, cam), 12).tolist()
     [0.0, 1.0, 0.0]
@@ -189,6 +238,28 @@ def export(scene: FrameScene, path) -> str:
 
     Loading it back (``aliasing frames --scene FILE --eye ... --target ...``) gives the engines
     the same triangles (float32, as glTF stores them) with the same winding.
+
+    Parameters
+    ----------
+    scene : FrameScene
+        The scene.
+    path : str or path
+        The GLB file to write.
+
+    Returns
+    -------
+    str
+        The path written.
+
+    Examples
+    --------
+    >>> import tempfile, pytest
+    >>> _ = pytest.importorskip("trimesh")
+    >>> fs = frame_scene("boxes", near=1.0, far=10.0, fov=50.0, aspect=1.0, boxes=1, ground_cells=1)
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     back = load_scene(export(fs, Path(d) / "s.glb"))
+    >>> back.triangles.shape == fs.triangles.shape
+    True
     """
     if not isinstance(scene, FrameScene):
         raise ValueError(f"scene must be a FrameScene, got {type(scene).__name__}")
@@ -202,8 +273,18 @@ def light_target(camera) -> np.ndarray:
     ``ShadowGenerator``) are placed at their light and look at its target; the frames put the
     target here and the light half the shadow camera's near + far from it towards the sun.
 
-    Example
+    Parameters
+    ----------
+    camera : aliasing.raster.scenes.camera.Camera
+        The eye camera (near and far [world units]).
+
+    Returns
     -------
+    ndarray (3,)
+        The target [world units].
+
+    Examples
+    --------
     >>> fs = frame_scene("boxes", near=1.0, far=9.0, fov=50.0, aspect=1.0, boxes=1, ground_cells=1)
     >>> light_target(fs.camera).round(6).tolist()   # the eye at the origin looking along -z
     [0.0, 0.0, -5.0]

@@ -35,6 +35,20 @@ class ThreeDirectional:
     target at :func:`aliasing.frames.scenes.light_target` and the light (near + far)/2 from it
     towards the sun.  The factor is :func:`aliasing.frames.predict.threejs_factor` of the one
     map (``shadow.bias`` as CSM's ``shadowBias``: added to the normalized map depth).
+
+    Parameters
+    ----------
+    engine : str
+        "threejs".
+    defaults : dict
+        The light's defaults (box [world units], ``mapSize`` [texels], biases as the engine takes them).
+
+    Examples
+    --------
+    >>> m = ThreeDirectional()
+    >>> s = m.settings({"mapSize": 1024})
+    >>> m.cast_side(s), s["right"] - s["left"]            # back faces cast; the box 10 wide [world units]
+    ('back', 10.0)
     """
 
     engine: str = "threejs"
@@ -43,7 +57,30 @@ class ThreeDirectional:
         "bias": 0.0, "normalBias": 0.0, "radius": 1.0, "shadowMapType": "PCFShadowMap", "side": "front", "shadowSide": None})
 
     def settings(self, given: dict | None = None) -> dict:
-        """Every setting, the defaults filled in (``DirectionalLightShadow``'s camera, ``LightShadow``'s bias, radius and map size)."""
+        """Every setting, the defaults filled in (``DirectionalLightShadow``'s camera, ``LightShadow``'s bias, radius and map size).
+
+        Parameters
+        ----------
+        given : dict, optional
+            Settings in the engine's own keys (units as the engine takes them).
+
+        Returns
+        -------
+        dict
+            Every setting.
+
+        Raises
+        ------
+        ValueError
+            An unknown key, or a value outside what is rendered and modelled (the key and its allowed values).
+
+        Examples
+        --------
+        >>> ThreeDirectional().settings({"left": 5.0})
+        Traceback (most recent call last):
+        ...
+        ValueError: the shadow camera must have right > left, top > bottom and far > near >= 0
+        """
         given = dict(given or {})
         unknown = sorted(set(given) - set(self.defaults))
         if unknown:
@@ -62,13 +99,64 @@ class ThreeDirectional:
         return s
 
     def cast_side(self, s: dict) -> str:
-        """The faces drawn into the map: ``shadowSide``, or the opposite of ``side`` (WebGLShadowMap's table, as for CSM)."""
+        """The faces drawn into the map: ``shadowSide``, or the opposite of ``side`` (WebGLShadowMap's table, as for CSM).
+
+        Parameters
+        ----------
+        s : dict
+            The filled settings.
+
+        Returns
+        -------
+        str
+            "front", "back" or "double" (as seen from the sun).
+
+        Examples
+        --------
+        >>> m = ThreeDirectional()
+        >>> m.cast_side(m.settings({"side": "back"})), m.cast_side(m.settings({"shadowSide": "double"}))
+        ('front', 'double')
+        """
         if s["shadowSide"] is not None:
             return s["shadowSide"]
         return {"front": "back", "back": "front", "double": "double"}[s["side"]]
 
     def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
-        """The predicted factor of the one map at the engine's pixels (cascade 0 for every drawn pixel), and the exact reference."""
+        """The predicted factor of the one map at the engine's pixels (cascade 0 for every drawn pixel), and the exact reference.
+
+        Parameters
+        ----------
+        s : dict
+            The filled settings (:meth:`settings`).
+        scene : FrameScene
+            The scene drawn (:func:`aliasing.frames.scenes.frame_scene`).
+        sun : array_like (3,)
+            World unit direction towards the sun.
+        rb : Readback
+            The engine's pixels: positions [world units], normals, matrices, map sizes [texels].
+
+        Returns
+        -------
+        Prediction
+            Factor [fraction of the sun's light] and cascade per pixel; starts, sides [world units] and resolution [texels] per cascade.
+        ndarray of bool (H, W)
+            The exact reference's lit pixels.
+
+        Examples
+        --------
+        >>> from aliasing.frames.readback import Readback
+        >>> from aliasing.frames.scenes import frame_scene, sun_direction
+        >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=1.0, boxes=2, ground_cells=2)
+        >>> sun = sun_direction(20.0, 30.0, fs.camera)
+        >>> pts = np.array([[[-2.0, -1.0, -4.25], [0.0, -1.0, -12.0]]])        # two ground pixels: in a box's shadow, lit
+        >>> def rb(mats):                                                       # what a page would read back there
+        ...     return Readback("", "", np.ones((1, 2)), np.zeros((1, 2), np.int64), pts, np.array([[[0.0, 1.0, 0.0]] * 2]),
+        ...                     mats, np.full((len(mats), 2), 256), {}, b"")
+        >>> m = ThreeDirectional(); s = m.settings({"left": -15, "right": 15, "top": 15, "bottom": -15, "mapSize": 256})
+        >>> pred, ref = m.predict(s, fs, sun, rb(m.matrices(s, fs.camera, sun)))
+        >>> pred.cascade.tolist(), (pred.factor < 0.5).tolist(), ref.tolist()
+        ([[0, 0]], [[True, False]], [[False, True]])
+        """
         cam = scene.camera
         sel = np.where(rb.drawn, 0, -1).astype(np.int64)
         res = int(s["mapSize"])
@@ -86,7 +174,33 @@ class ThreeDirectional:
 
     def matrices(self, s: dict, camera, sun: Array) -> Array:
         """The shadow matrix (world → [0, 1]³) as ``LightShadow.updateMatrices`` builds it: the camera at the light,
-        ``lookAt`` its target with up +y (``Matrix4.lookAt``'s nudge of z when up ∥ z), the orthographic box, [½ bias]."""
+        ``lookAt`` its target with up +y (``Matrix4.lookAt``'s nudge of z when up ∥ z), the orthographic box, [½ bias].
+
+            Parameters
+            ----------
+            s : dict
+                The filled settings.
+            camera : aliasing.raster.scenes.camera.Camera
+                The eye camera (it places the light's target, :func:`aliasing.frames.scenes.light_target`).
+            sun : array_like (3,)
+                World direction towards the sun, non-zero.
+
+            Returns
+            -------
+            ndarray (1, 4, 4)
+                World → (s, t, depth) in [0, 1]³ (column vectors).
+
+        Examples
+        --------
+        >>> from aliasing.raster.scenes.camera import look_at
+        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
+        >>> m = ThreeDirectional().matrices(ThreeDirectional().settings(), cam, np.array([0.0, 1.0, 0.0]))   # the sun overhead
+        >>> np.round(m[0] @ [0.0, 0.0, -50.5, 1.0], 6).tolist()    # the target: the box's centre, half way in depth
+        [0.5, 0.5, 0.5, 1.0]
+        """
+        check_sun = np.asarray(sun, float)
+        if check_sun.shape != (3,) or not np.all(np.isfinite(check_sun)) or not np.linalg.norm(check_sun) > 0:
+            raise ValueError(f"sun must be a finite non-zero 3-vector (world direction towards the sun), got {check_sun.tolist()}")
         from .scenes import light_target
 
         target = light_target(camera)
@@ -113,7 +227,32 @@ class ThreeDirectional:
         return (half @ proj @ view)[None]
 
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
-        """The one map: the camera's near, the matrix's larger texel side × R, and R."""
+        """The one map: the camera's near, the matrix's larger texel side × R, and R.
+
+        Parameters
+        ----------
+        s : dict
+            The filled settings.
+        camera : aliasing.raster.scenes.camera.Camera
+            The eye camera.
+        rb : Readback
+            The engine's read-back (its matrices, map sizes and info).
+
+        Returns
+        -------
+        starts, sides, resolution : ndarray (k,)
+            First eye depth [world units], map side [world units], map side [texels].
+
+        Examples
+        --------
+        >>> from aliasing.raster.scenes.camera import look_at
+        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
+        >>> from aliasing.frames.readback import Readback
+        >>> rb = Readback("", "", np.ones((1, 1)), np.zeros((1, 1), np.int64), np.zeros((1, 1, 3)), np.zeros((1, 1, 3)),
+        ...               np.diag([0.1, 0.1, 0.01, 1.0])[None], np.array([[1024, 1024]]), {}, b"")   # a 10 × 10 box
+        >>> [v.tolist() for v in ThreeDirectional().measured_cascades(ThreeDirectional().settings(), cam, rb)]
+        [[1.0], [10.0], [1024.0]]
+        """
         m = rb.matrices[0]
         side = max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3]))
         return np.array([camera.near]), np.array([side]), rb.sizes[:1, 0].astype(float)
@@ -128,6 +267,20 @@ class BabylonSingle:
     ``shadowMaxZ`` (null: the camera's near and far), ``forceBackFacesOnly``; the material's
     ``backFaceCulling``.  FILTER_NONE (the class's default) is the filter modelled.  The frames
     place the light (minZ + maxZ)/2 from :func:`aliasing.frames.scenes.light_target` towards the sun.
+
+    Parameters
+    ----------
+    engine : str
+        "babylon".
+    defaults : dict
+        The generator's defaults (``mapSize`` [texels], ``shadowFrustumSize`` [world units], biases as the engine takes them).
+
+    Examples
+    --------
+    >>> m = BabylonSingle()
+    >>> s = m.settings({"shadowFrustumSize": 30.0})
+    >>> m.cast_side(s), s["mapSize"]
+    ('front', 1024)
     """
 
     engine: str = "babylon"
@@ -136,7 +289,30 @@ class BabylonSingle:
         "shadowMaxZ": None, "forceBackFacesOnly": False, "backFaceCulling": True})
 
     def settings(self, given: dict | None = None) -> dict:
-        """Every setting, the defaults filled in (the generator's constructor; the box side has no engine default > 0)."""
+        """Every setting, the defaults filled in (the generator's constructor; the box side has no engine default > 0).
+
+        Parameters
+        ----------
+        given : dict, optional
+            Settings in the engine's own keys (units as the engine takes them).
+
+        Returns
+        -------
+        dict
+            Every setting.
+
+        Raises
+        ------
+        ValueError
+            An unknown key, or a value outside what is rendered and modelled (the key and its allowed values).
+
+        Examples
+        --------
+        >>> BabylonSingle().settings({"shadowFrustumSize": 0})
+        Traceback (most recent call last):
+        ...
+        ValueError: shadowFrustumSize must be > 0 [world units] (a fixed box), got 0
+        """
         given = dict(given or {})
         unknown = sorted(set(given) - set(self.defaults))
         if unknown:
@@ -153,13 +329,49 @@ class BabylonSingle:
         return s
 
     def cast_side(self, s: dict) -> str:
-        """The faces drawn into the map: the material's culling (front faces by default), or back faces only."""
+        """The faces drawn into the map: the material's culling (front faces by default), or back faces only.
+
+        Parameters
+        ----------
+        s : dict
+            The filled settings.
+
+        Returns
+        -------
+        str
+            "front", "back" or "double" (as seen from the sun).
+
+        Examples
+        --------
+        >>> BabylonSingle().cast_side(BabylonSingle().settings({"backFaceCulling": False}))
+        'double'
+        """
         if s["forceBackFacesOnly"]:
             return "back"
         return "front" if s["backFaceCulling"] else "double"
 
     def depth_range(self, s: dict, camera) -> tuple[float, float]:
-        """The light's depth near and far [world units]: shadowMinZ/shadowMaxZ, else the camera's."""
+        """The light's depth near and far [world units]: shadowMinZ/shadowMaxZ, else the camera's.
+
+        Parameters
+        ----------
+        s : dict
+            The filled settings.
+        camera : aliasing.raster.scenes.camera.Camera
+            The eye camera (its near and far [world units]).
+
+        Returns
+        -------
+        tuple of float
+            (near, far) [world units], far > near.
+
+        Examples
+        --------
+        >>> from aliasing.raster.scenes.camera import look_at
+        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
+        >>> BabylonSingle().depth_range(BabylonSingle().settings({"shadowMaxZ": 50.0}), cam)
+        (1.0, 50.0)
+        """
         lo = camera.near if s["shadowMinZ"] is None else float(s["shadowMinZ"])
         hi = camera.far if s["shadowMaxZ"] is None else float(s["shadowMaxZ"])
         if not hi > lo:
@@ -167,6 +379,41 @@ class BabylonSingle:
         return lo, hi
 
     def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
+        """The predicted factor of the one map (:func:`aliasing.frames.predict.babylon_single_factor`), and the exact reference.
+
+        Parameters
+        ----------
+        s : dict
+            The filled settings (:meth:`settings`).
+        scene : FrameScene
+            The scene drawn (:func:`aliasing.frames.scenes.frame_scene`).
+        sun : array_like (3,)
+            World unit direction towards the sun.
+        rb : Readback
+            The engine's pixels: positions [world units], normals, matrices, map sizes [texels].
+
+        Returns
+        -------
+        Prediction
+            Factor [fraction of the sun's light] and cascade per pixel; starts, sides [world units] and resolution [texels] per cascade.
+        ndarray of bool (H, W)
+            The exact reference's lit pixels.
+
+        Examples
+        --------
+        >>> from aliasing.frames.readback import Readback
+        >>> from aliasing.frames.scenes import frame_scene, sun_direction
+        >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=1.0, boxes=2, ground_cells=2)
+        >>> sun = sun_direction(20.0, 30.0, fs.camera)
+        >>> pts = np.array([[[-2.0, -1.0, -4.25], [0.0, -1.0, -12.0]]])        # two ground pixels: in a box's shadow, lit
+        >>> def rb(mats):                                                       # what a page would read back there
+        ...     return Readback("", "", np.ones((1, 2)), np.zeros((1, 2), np.int64), pts, np.array([[[0.0, 1.0, 0.0]] * 2]),
+        ...                     mats, np.full((len(mats), 2), 256), {}, b"")
+        >>> m = BabylonSingle(); s = m.settings({"shadowFrustumSize": 30.0, "mapSize": 256})
+        >>> pred, ref = m.predict(s, fs, sun, rb(m.matrices(s, fs.camera, sun)))
+        >>> pred.factor.tolist(), ref.tolist()
+        ([[0.0, 1.0]], [[False, True]])
+        """
         cam = scene.camera
         sel = np.where(rb.drawn, 0, -1).astype(np.int64)
         res = int(s["mapSize"])
@@ -179,7 +426,33 @@ class BabylonSingle:
 
     def matrices(self, s: dict, camera, sun: Array) -> Array:
         """World → [0, 1]³ in the job's (right-handed) world: ``Matrix.LookAtLH(position, position + d, Up)`` and
-        ``OrthoLH(size, size, minZ, maxZ)`` in Babylon's mirrored world (z ↦ −z), window depth (z + 1)/2."""
+        ``OrthoLH(size, size, minZ, maxZ)`` in Babylon's mirrored world (z ↦ −z), window depth (z + 1)/2.
+
+            Parameters
+            ----------
+            s : dict
+                The filled settings.
+            camera : aliasing.raster.scenes.camera.Camera
+                The eye camera (it places the light's target, :func:`aliasing.frames.scenes.light_target`).
+            sun : array_like (3,)
+                World direction towards the sun, non-zero.
+
+            Returns
+            -------
+            ndarray (1, 4, 4)
+                World → (s, t, depth) in [0, 1]³ (column vectors).
+
+        Examples
+        --------
+        >>> from aliasing.raster.scenes.camera import look_at
+        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
+        >>> m = BabylonSingle().matrices(BabylonSingle().settings({"shadowFrustumSize": 20.0}), cam, np.array([0.0, 1.0, 0.0]))
+        >>> np.round(m[0] @ [0.0, -1.0, -50.5, 1.0], 6).tolist()   # below the target: the box's centre in s, t
+        [0.5, 0.5, 0.510101, 1.0]
+        """
+        check_sun = np.asarray(sun, float)
+        if check_sun.shape != (3,) or not np.all(np.isfinite(check_sun)) or not np.linalg.norm(check_sun) > 0:
+            raise ValueError(f"sun must be a finite non-zero 3-vector (world direction towards the sun), got {check_sun.tolist()}")
         from .scenes import light_target
 
         lo, hi = self.depth_range(s, camera)
@@ -203,6 +476,31 @@ class BabylonSingle:
         return (half @ proj @ view)[None]
 
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
-        """The one map: the camera's near, the matrix's larger texel side × R, and R."""
+        """The one map: the camera's near, the matrix's larger texel side × R, and R.
+
+        Parameters
+        ----------
+        s : dict
+            The filled settings.
+        camera : aliasing.raster.scenes.camera.Camera
+            The eye camera.
+        rb : Readback
+            The engine's read-back (its matrices, map sizes and info).
+
+        Returns
+        -------
+        starts, sides, resolution : ndarray (k,)
+            First eye depth [world units], map side [world units], map side [texels].
+
+        Examples
+        --------
+        >>> from aliasing.raster.scenes.camera import look_at
+        >>> cam = look_at("0,0,0", "0,0,-1", near=1.0, far=100.0, fov=50.0)
+        >>> from aliasing.frames.readback import Readback
+        >>> rb = Readback("", "", np.ones((1, 1)), np.zeros((1, 1), np.int64), np.zeros((1, 1, 3)), np.zeros((1, 1, 3)),
+        ...               np.diag([0.1, 0.1, 0.01, 1.0])[None], np.array([[1024, 1024]]), {}, b"")   # a 10 × 10 box
+        >>> [v.tolist() for v in BabylonSingle().measured_cascades(BabylonSingle().settings(), cam, rb)]
+        [[1.0], [10.0], [1024.0]]
+        """
         m = rb.matrices[0]
         return np.array([camera.near]), np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3]))]), rb.sizes[:1, 0].astype(float)
