@@ -12,8 +12,9 @@ default map size (the count and the size kept, so the memory is the same), front
 * middle: the steepest receiver free of acne per cascade, as its angle to the light, scanned from
   the flattest receiver of the band (the ground under the highest sun, 30°; "acne" where even it
   acnes) up to 85° (the ground at the lowest sun is 75°; the dotted line the steepest asked for);
-* right: the peter-panning, the lit gap at a wall's foot at the lowest sun in pixels at each
-  cascade's middle depth, with the memory in the title.
+* right: how far the bias moves a shadow's edge on the ground (:func:`aliasing.bias.edge_shift`:
+  the lit gap at a wall's foot for a depth bias, the shortening of the shadow for a normal offset),
+  the worst sun, in pixels at each cascade's middle depth, with the memory in the title.
 
 Beside the tuned settings, each other bias setting of the engine at its own minimum alone (the
 search tried it and kept the one with the smaller gap).
@@ -109,7 +110,7 @@ def _figure(engine: str, t, cols: dict[str, np.ndarray], out_dir: Path) -> list[
     need = min(90 - t.setup.sun.elevation[0] + SLOPE, 85.0)
     for ax, key, title, ylabel in ((axes[0], "error", "Worst error per cascade", "texels per pixel (error)"),
                                    (axes[1], "angle", "Steepest receiver free of acne", "angle to the light [deg]"),
-                                   (axes[2], "gap", "Peter-panning at the lowest sun", "lit gap at a wall's foot [px]")):
+                                   (axes[2], "gap", "Shadow edges moved", "edge shift on the ground [px]")):
         for j, label in enumerate(labels):
             v = cols[f"{key}|{label}"]
             x = k + (j - (len(labels) - 1) / 2) * w
@@ -126,7 +127,7 @@ def _figure(engine: str, t, cols: dict[str, np.ndarray], out_dir: Path) -> list[
     axes[1].legend(fontsize=7, loc="upper right")
     axes[2].set_yscale("symlog", linthresh=1.0)
     axes[2].set_ylim(0, max(10.0, float(np.nanmax([cols[c] for c in cols if c.startswith("gap|")]))) * 5)
-    axes[2].set_title(f"Peter-panning at the lowest sun ({cols['memory|tuned'][0] / 2**20:.0f} MiB each)", fontsize=10)
+    axes[2].set_title(f"Shadow edges moved by the bias ({cols['memory|tuned'][0] / 2**20:.0f} MiB each)", fontsize=10)
     changed = ", ".join(f"{key}={v:.4g}" if isinstance(v, float) else f"{key}={v}" for key, v in t.changed.items())
     head = f"{t.setup.profile.title} {t.setup.release} (4 cascades, 1920×1080, fov 50°, near 0.1 m, far 500 m, sun 15–60°), defaults vs tuned"
     lines = textwrap.wrap(f"tuned: {changed}", 150)
