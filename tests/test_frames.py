@@ -230,7 +230,15 @@ def playcanvas(chromium, boxes):
     from aliasing.tune import tune
 
     tuned = tune(setups.build("playcanvas", {}, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")).changed  # what `aliasing tune` sets
-    return {name: _frame(chromium, "playcanvas", fs, s) for name, s in (("defaults", {}), ("bias 0", {"shadowBias": 0}), ("tuned", tuned))}
+    # each frame also follows a camera path (the frame's own numbers are taken before it); the defaults
+    # (one map, a polygon offset of 0.5 per texel of depth slope) and the tuned one (four cascades in
+    # the 2x2 atlas, no offset) read their maps back
+    return {name: _frame(chromium, "playcanvas", fs, s, **extra) for name, s, extra in (
+        ("defaults", {}, {"path": PC_PATHS["defaults"], "maps": 256}), ("bias 0", {"shadowBias": 0}, {"path": PC_PATHS["bias 0"]}),
+        ("tuned", tuned, {"path": PC_PATHS["tuned"], "maps": 256}))}
+
+
+PC_PATHS = {"defaults": "sideways:0.05:3", "bias 0": "forward:0.2:3", "tuned": "turn:0.5:3"}
 
 
 # PlayCanvas stores its cascade ends in a Float32Array and fits them in float32 matrices
@@ -267,6 +275,80 @@ def test_playcanvas_bias_and_tuned_settings(playcanvas):
         acne = {name: playcanvas[name].report[side]["acne"] for name in playcanvas}
         assert acne["defaults"] < 0.02 < 0.25 < acne["bias 0"] and acne["tuned"] < 0.001, (side, acne)
     assert playcanvas["tuned"].settings["numCascades"] == 4
+
+
+@pytest.mark.parametrize("name", ["defaults", "bias 0", "tuned"])
+def test_playcanvas_shimmer_along_a_path(playcanvas, boxes, name):
+    # the cascades follow a camera moving sideways (one map), forward (bias 0: 31 % acne, the frame
+    # most sensitive to a sub-texel drift) or turning (four cascades) while the picture's camera
+    # stays. PlayCanvas snaps each cascade's centre to a multiple of 4r/R, a whole texel of its cell
+    # (two of a single map), and the slice's radius r does not change with the pose: the toolkit's
+    # maps through its own pose matrices flip no pixel, and neither does the engine (ERRATA F11)
+    from aliasing.frames import predict
+    from aliasing.frames.run import flips, parse_path, pose_camera
+
+    fs, sun = boxes
+    r = playcanvas[name]
+    rep = r.report
+    assert rep["details"]["path"] == PC_PATHS[name]
+    assert rep["measured"]["flips_per_frame"] == 0.0 and rep["predicted"]["flips_per_frame"] == 0.0, rep
+    # the pose matrices: s and t rows to float32; the depth row to one float32 step of the camera
+    # placed 1e6 away (2^-4 world units over the casters' depth range, ERRATA F11)
+    assert rep["details"]["path_grid_vs_engine"] <= PLAYCANVAS_FLOAT32 and rep["details"]["path_matrices_vs_engine"] <= 1e-3, rep["details"]
+    assert rep["details"]["matrices_vs_engine"] <= 1e-3 and rep["details"]["grid_vs_engine"] <= PLAYCANVAS_FLOAT32, rep["details"]
+    frames = r.readback.info["path"]
+    eng = np.array([[np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]] for f in frames])
+    moved = np.abs(np.diff(eng[:, :, :2, 3], axis=0)) * r.settings["shadowResolution"]  # the grid's shift [atlas texels]
+    assert moved.max() >= 1 - 1e-3 and np.allclose(moved, np.round(moved), atol=1e-3), moved
+    # the test can fail: without the snap the toolkit's maps along the same path flip pixels
+    model, s = MODELS["playcanvas"], r.settings
+    cast = fs.triangles[predict.casting(fs.triangles, sun, model.cast_side(s))]
+    pts, nrm = np.nan_to_num(r.readback.position), np.nan_to_num(r.readback.normal)
+    masks = []
+    for pose in parse_path(PC_PATHS[name], fs.camera):
+        mats = model.light_matrices(s, pose_camera(fs.camera, pose), sun, fs.triangles, snap=False)
+        atlas = predict.playcanvas_atlas(cast, mats, model.cells(s), s["shadowResolution"], s["shadowBias"])
+        masks.append(predict.playcanvas_factor(atlas, mats, r.prediction.cascade, pts, nrm, normal_offset=s["normalOffsetBias"]) < 0.5)
+    unsnapped = flips(np.array(masks), r.readback.drawn & (r.readback.cascade >= 0))
+    assert unsnapped > 1e-3, unsnapped
+
+
+def test_playcanvas_atlas_is_the_toolkits(playcanvas, boxes):
+    # the shadow atlas (DEPTH_COMPONENT32F; four cascades: 2x2 cells of half size) read back, each
+    # cascade's cell compared with the toolkit's rasterizer through the engine's palette matrix, the
+    # polygon offset included, texel for texel within float32 depth and 1/16-texel snapping
+    from aliasing.frames import maps as frame_maps
+
+    fs, sun = boxes
+    for name, k in (("defaults", 1), ("tuned", 4)):
+        r = playcanvas[name]
+        maps = r.report["maps"]
+        res = r.settings["shadowResolution"]
+        # the snapping's share of the bound per cell: 0.87 (one map); 0.80, 0.82, 0.71, 0.83 (the atlas)
+        _maps_agree(maps, k, res, res // 256, coverage=0.9998)
+        assert all(c["texels"] == (256 if k == 1 else 128) ** 2 for c in maps["cascades"]), maps  # a cell: a quarter of the atlas
+        assert round(maps["max_difference"], 7) == {"defaults": 6.49e-5, "tuned": 1.032e-4}[name], maps  # the docs' numbers
+    # the test sees the offset: the toolkit's map without it (shadowBias 0) is off everywhere by more than the tolerance
+    r = playcanvas["defaults"]
+    got = frame_maps.decode_maps(r.readback.info)
+    mats = np.array([np.asarray(m, float).reshape(4, 4).T for m in r.readback.info["maps"][0]["matrices"]])
+    without = frame_maps.measure_maps("playcanvas", {**r.settings, "shadowBias": 0.0}, fs.triangles, sun, mats, got)
+    assert without["agreement"] == 0.0, without
+    # where one atlas draws a texel and the other does not (up to 2 of a cell's 16 384), the texel lies on a
+    # triangle's edge in the toolkit's map: the snapped edge decides its coverage
+    from scipy import ndimage
+
+    r = playcanvas["tuned"]
+    got = frame_maps.decode_maps(r.readback.info)[0]
+    mats = np.array([np.asarray(m, float).reshape(4, 4).T for m in r.readback.info["maps"][0]["matrices"]])
+    res, st = got.size, got.stride
+    centre = (np.arange(0, res, st) + 0.5) / res
+    for (x, y, w, h), m in zip(MODELS["playcanvas"].cells(r.settings), mats):
+        depth, tid, _ = frame_maps.stored_depth("playcanvas", r.settings, fs.triangles, sun, m, res)
+        edge = (ndimage.maximum_filter(tid, 3, mode="nearest") != ndimage.minimum_filter(tid, 3, mode="nearest"))[::st, ::st]
+        cell = ((centre >= y) & (centre < y + h))[:, None] & ((centre >= x) & (centre < x + w))[None, :]
+        differ = cell & ((got.depth < 1) != (depth[::st, ::st] < 1))
+        assert differ.sum() <= 2 and edge[differ].all(), np.argwhere(differ)
 
 
 # one DirectionalLight whose box (60 x 60, 1024²) the user sets over the boxes
@@ -374,17 +456,17 @@ def test_threejs_shimmer_along_a_sideways_path(chromium, boxes):
     assert (((pair > 0.05) & (pair < 0.95)).any(0))[flipped].all()
 
 
-def _maps_agree(maps: dict, k: int, size: int, stride: int) -> None:
+def _maps_agree(maps: dict, k: int, size: int, stride: int, snapped: float = 0.7, coverage: float = 0.9999) -> None:
     # the engine's stored depths equal the toolkit's rasterizer's, texel for texel away from triangle
     # edges, within float32 depth and SwiftShader's 1/16-texel vertex snapping; drawn where it draws
     assert len(maps["cascades"]) == k, maps
     for c in maps["cascades"]:
-        assert c["size"] == size and c["stride"] == stride and c["texels"] == (size // stride) ** 2, c
+        assert c["size"] == size and c["stride"] == stride and c["texels"] in ((size // stride) ** 2, (size // stride // 2) ** 2), c
         assert c["interior"] > 1000 and c["agreement"] == 1.0 and c["max_over_tolerance"] < 1.0, c
-        assert c["coverage_agreement"] >= 0.9999, c
+        assert c["coverage_agreement"] >= coverage, c
     # the differences reach 70-95 % of the 1/32-texel bound: the snapping is real, and coarser than
     # 8 subpixel bits (which would bound them 16 times lower)
-    assert all(c["max_over_tolerance"] > 0.7 for c in maps["cascades"]), maps
+    assert all(c["max_over_tolerance"] > snapped for c in maps["cascades"]), maps
 
 
 def test_babylon_shimmer_along_a_turning_path(chromium, boxes, babylon):
@@ -475,7 +557,7 @@ BASE = ["--scene", "boxes", "--camera", "near=0.5,far=60,fov=50,aspect=16:9,heig
     (["--engine", "threejs", "--sun", "95"], "sun elevation must be in (0, 90]"),
     (["--engine", "threejs", "--set", "shadowBiass=0"], "unknown three.js setting 'shadowBiass'"),
     (["--engine", "threejs@r184"], "the frames render threejs r187 only"),
-    (["--engine", "playcanvas", "--path", "sideways:0.1"], "the camera path is rendered for threejs and babylon only"),
+    (["--engine", "playcanvas", "--set", "numCascades=4", "--path", "sideways:0.1:2"], "--path FRAMES must be in [3, 120]"),
     (["--engine", "threejs", "--set", "class=DirectionalLight", "--path", "sideways:0.1"], "the camera path is rendered for the cascaded classes only"),
     (["--engine", "threejs", "--set", "class=DirectionalLight", "--maps", "64"], "shadow maps are read back for three.js's CSM"),
     (["--engine", "threejs", "--path", "diagonal:0.1"], "--path must be KIND:STEP[:FRAMES]"),
@@ -490,7 +572,8 @@ def test_cli_bad_input_is_one_line(tmp_path, args, message):
 
 
 @pytest.mark.parametrize("args, message", [
-    (["--engine", "playcanvas", "--maps"], "the shadow maps are read back for three.js's CSM and Babylon.js's CascadedShadowGenerator only (not yet for playcanvas)"),
+    (["--engine", "babylon", "--set", "class=ShadowGenerator", "--set", "light.shadowFrustumSize=60", "--maps"],
+     "the shadow maps are read back for three.js's CSM, Babylon.js's CascadedShadowGenerator and PlayCanvas's directional light only (not yet for babylon ShadowGenerator)"),
     (["--engine", "threejs", "--maps", "8"], "--maps SIDE) must be a whole number of texels per side in [16, 4096]"),
     (["--engine", "threejs", "--path", "turn:20"], "--path turn STEP must be at most 10 degrees"),
 ])

@@ -116,8 +116,8 @@ def stored_depth(engine: str, settings: dict, triangles: Array, sun: Array, matr
     """
     from .models import MODELS
 
-    if engine not in ("threejs", "babylon"):
-        raise ValueError(f"engine must be threejs or babylon for the shadow maps, got {engine!r}")
+    if engine not in ("threejs", "babylon", "playcanvas"):
+        raise ValueError(f"engine must be threejs, babylon or playcanvas for the shadow maps, got {engine!r}")
     model = MODELS[engine]
     tri = np.asarray(triangles, np.float32).astype(float)  # what the page drew
     cast = tri[predict.casting(tri, sun, model.cast_side(settings))]
@@ -127,7 +127,12 @@ def stored_depth(engine: str, settings: dict, triangles: Array, sun: Array, matr
     depth = np.where(np.isfinite(dm.depth), dm.depth, 1.0)
     if engine == "babylon":  # shadowMapFragment with depth clamp: + bias twice over (ERRATA F4), clamped
         depth = np.clip(depth + 1.5 * float(settings["bias"]), 0.0, 1.0)
-    return depth, dm.triangle, predict.to_map(matrix, cast) if len(cast) else np.zeros((0, 3, 3))
+    mt = predict.to_map(matrix, cast) if len(cast) else np.zeros((0, 3, 3))
+    if engine == "playcanvas" and len(cast):  # the caster pass's polygon offset (ERRATA F9), in the depth buffer's [0, 1]
+        off = 10.0 * min(max(float(settings["shadowBias"]), 0.0), 1.0)
+        if off:
+            depth = np.where(dm.triangle >= 0, np.clip(depth + predict.polygon_offset(mt, size, off, off)[np.maximum(dm.triangle, 0)], 0.0, 1.0), 1.0)
+    return depth, dm.triangle, mt
 
 
 def tolerance(map_triangles: Array, triangle: NDArray[np.int64]) -> Array:
@@ -157,8 +162,10 @@ def tolerance(map_triangles: Array, triangle: NDArray[np.int64]) -> Array:
     return FLOAT32_DEPTH + slope / 2.0 ** (SUBPIXEL_BITS + 1)
 
 
-def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], tol: Array) -> dict:
+def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], tol: Array, region: NDArray[np.bool_] | None = None) -> dict:
     """One cascade: the engine's map against the toolkit's (full-size ``depth``, ``triangle``, ``tol``).
+
+    ``region`` (R, R), optional: only the texels there count (a cascade's cell of an atlas).
 
     Returns ``size``, ``stride``, ``texels`` (read back), ``covered`` (drawn in either map),
     ``coverage_agreement`` (fraction of the read texels drawn in both or in neither),
@@ -182,6 +189,12 @@ def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], to
     interior_full &= tid >= 0
     inside = interior_full[::s, ::s][:n, :n]
     e = engine_map.depth
+    if region is not None:
+        region = np.asarray(region, bool)
+        if region.shape != (r, r):
+            raise ValueError(f"region must have the map's shape ({r}, {r}), got {region.shape}")
+        sub = region[::s, ::s][:n, :n]
+        p, tt, inside, e = p[sub], tt[sub], inside[sub], e[sub]
     covered = (e < 1) | (p < 1)
     keep = covered & inside
     diff = np.abs(e - p)
@@ -195,13 +208,26 @@ def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], to
 def measure_maps(engine: str, settings: dict, triangles: Array, sun: Array, matrices: Array, maps: list[EngineMap]) -> dict:
     """Every cascade's read-back map against the toolkit's: ``cascades`` (per cascade :func:`compare`
     and the light ``matrix`` used, world → [0, 1]³, column vectors), ``agreement`` (the smallest),
-    ``max_difference`` (the largest), the ``tolerance`` rule."""
+    ``max_difference`` (the largest), the ``tolerance`` rule.  PlayCanvas: ``maps`` is its one atlas,
+    each cascade compared in its own cell."""
+    regions = [None] * len(maps)
+    if engine == "playcanvas":  # one atlas: each cascade's cell of it ((x, y, w, h) in [0, 1], the scissor)
+        from .models import MODELS
+
+        if len(maps) != 1:
+            raise ValueError(f"PlayCanvas draws one shadow atlas, got {len(maps)} maps")
+        centre = (np.arange(maps[0].size) + 0.5) / maps[0].size
+        cells = MODELS["playcanvas"].cells(settings)
+        if len(cells) != len(matrices):
+            raise ValueError(f"{len(cells)} atlas cells for {len(matrices)} light matrices")
+        regions = [((centre >= y) & (centre < y + h))[:, None] & ((centre >= x) & (centre < x + w))[None, :] for x, y, w, h in cells]
+        maps = maps * len(cells)
     if len(maps) != len(matrices):
         raise ValueError(f"{len(maps)} maps for {len(matrices)} light matrices")
     per = []
-    for m, mat in zip(maps, matrices):
+    for m, mat, region in zip(maps, matrices, regions):
         depth, tid, mt = stored_depth(engine, settings, triangles, sun, mat, m.size)
-        per.append({**compare(m, depth, tid, tolerance(mt, tid)), "matrix": np.asarray(mat, float).tolist()})
+        per.append({**compare(m, depth, tid, tolerance(mt, tid), region), "matrix": np.asarray(mat, float).tolist()})
     ag = [c["agreement"] for c in per if c["agreement"] is not None]
     mx = [c["max_difference"] for c in per if c["max_difference"] is not None]
     return {"cascades": per, "agreement": min(ag) if ag else None, "max_difference": max(mx) if mx else None,
