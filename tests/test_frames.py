@@ -15,7 +15,11 @@ depth bias, PCF's five rotated hardware-PCF taps), and the two are measured alik
 * the engines' shadow maps, read back, equal to the toolkit's rasterizer's texel for texel
   within float32 depth and SwiftShader's 1/16-texel snapping (three.js, Babylon.js);
 * shimmer along a camera path: three.js and Babylon.js (turning: ratio 0.8-1.25 to the
-  prediction; stabilized: none; moving forward: the engine's flips replayed, ERRATA F8).
+  prediction; stabilized: none; moving forward: the engine's flips replayed, ERRATA F8);
+  PlayCanvas, which snaps every cascade: none along sideways, forward and turning paths, as
+  predicted (ERRATA F11);
+* PlayCanvas's shadow atlas read back, each cascade's cell against the toolkit's rasterizer with
+  the polygon offset.
 
 Babylon.js 9.35 (CascadedShadowGenerator) and PlayCanvas 2.23.3 (a cascaded directional light:
 its polygon-offset bias as SwiftShader applies it, the 2×2 atlas, PCF3) are held to the same
@@ -294,12 +298,13 @@ def test_playcanvas_shimmer_along_a_path(playcanvas, boxes, name):
     assert rep["measured"]["flips_per_frame"] == 0.0 and rep["predicted"]["flips_per_frame"] == 0.0, rep
     # the pose matrices: s and t rows to float32; the depth row to one float32 step of the camera
     # placed 1e6 away (2^-4 world units over the casters' depth range, ERRATA F11)
-    assert rep["details"]["path_grid_vs_engine"] <= PLAYCANVAS_FLOAT32 and rep["details"]["path_matrices_vs_engine"] <= 1e-3, rep["details"]
-    assert rep["details"]["matrices_vs_engine"] <= 1e-3 and rep["details"]["grid_vs_engine"] <= PLAYCANVAS_FLOAT32, rep["details"]
+    assert rep["details"]["path_grid_vs_engine"] <= 2e-7 and rep["details"]["path_matrices_vs_engine"] <= 1e-3, rep["details"]
+    assert rep["details"]["matrices_vs_engine"] <= 2e-7 and rep["details"]["grid_vs_engine"] <= 2e-7, rep["details"]
     frames = r.readback.info["path"]
     eng = np.array([[np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]] for f in frames])
     moved = np.abs(np.diff(eng[:, :, :2, 3], axis=0)) * r.settings["shadowResolution"]  # the grid's shift [atlas texels]
-    assert moved.max() >= 1 - 1e-3 and np.allclose(moved, np.round(moved), atol=1e-3), moved
+    # whole texels: 2 (one map), 1 (a cell), up to the float32 rounding of two translations below 2 (2^-23 each side: x R)
+    assert moved.max() >= 1 and np.abs(moved - np.round(moved)).max() <= 2.0**-23 * r.settings["shadowResolution"], moved
     # the test can fail: without the snap the toolkit's maps along the same path flip pixels
     model, s = MODELS["playcanvas"], r.settings
     cast = fs.triangles[predict.casting(fs.triangles, sun, model.cast_side(s))]
@@ -310,7 +315,18 @@ def test_playcanvas_shimmer_along_a_path(playcanvas, boxes, name):
         atlas = predict.playcanvas_atlas(cast, mats, model.cells(s), s["shadowResolution"], s["shadowBias"])
         masks.append(predict.playcanvas_factor(atlas, mats, r.prediction.cascade, pts, nrm, normal_offset=s["normalOffsetBias"]) < 0.5)
     unsnapped = flips(np.array(masks), r.readback.drawn & (r.readback.cascade >= 0))
-    assert unsnapped > 1e-3, unsnapped
+    assert round(unsnapped, 4) == {"defaults": 0.0196, "bias 0": 0.3109, "tuned": 0.0042}[name], unsnapped  # the docs' numbers
+    # ERRATA F11: the depth range is fitted with the shadow camera 1e6 away in float32; the toolkit repeats
+    # that rounding. Placed exactly, its camera is up to 0.057 world units off along the light (tuned frame);
+    # one pose of the turn rounds a float32 entry at 1e6 the other way: one step of 2^-4 world units
+    if name == "tuned":
+        assert round(rep["details"]["path_matrices_vs_engine"], 5) == 8.1e-4, rep["details"]
+        eng = r.readback.matrices
+        exact = model.light_matrices(s, fs.camera, sun, fs.triangles, float32_depth=False)
+        shift = (exact - eng)[:, 2, 3] / np.linalg.norm(eng[:, 2, :3], axis=1)  # [world units along the light]
+        assert round(float(np.abs(shift).max()), 3) == 0.057 and np.abs(exact - eng)[:, :2].max() <= PLAYCANVAS_FLOAT32, shift
+    else:
+        assert rep["details"]["path_matrices_vs_engine"] < 1e-7, rep["details"]
 
 
 def test_playcanvas_atlas_is_the_toolkits(playcanvas, boxes):
@@ -324,8 +340,9 @@ def test_playcanvas_atlas_is_the_toolkits(playcanvas, boxes):
         r = playcanvas[name]
         maps = r.report["maps"]
         res = r.settings["shadowResolution"]
-        # the snapping's share of the bound per cell: 0.87 (one map); 0.80, 0.82, 0.71, 0.83 (the atlas)
-        _maps_agree(maps, k, res, res // 256, coverage=0.9998)
+        # the snapping's share of the bound per cell, the docs' numbers
+        _maps_agree(maps, k, res, res // 256, coverage=0.9999 if k == 1 else 0.9998)
+        assert [round(c["max_over_tolerance"], 2) for c in maps["cascades"]] == {"defaults": [0.87], "tuned": [0.8, 0.82, 0.71, 0.83]}[name], maps
         assert all(c["texels"] == (256 if k == 1 else 128) ** 2 for c in maps["cascades"]), maps  # a cell: a quarter of the atlas
         assert round(maps["max_difference"], 7) == {"defaults": 6.49e-5, "tuned": 1.032e-4}[name], maps  # the docs' numbers
     # the test sees the offset: the toolkit's map without it (shadowBias 0) is off everywhere by more than the tolerance
@@ -742,3 +759,60 @@ def test_polygon_offset_fuzz():
         predict.polygon_offset(np.zeros((1, 3, 3)), 8, 1.0, 1.0, "mean")
     with pytest.raises(ValueError, match="map_triangles"):
         predict.polygon_offset(np.zeros((3, 3)), 8, 1.0, 1.0)
+
+
+_FUZZ_SCENE = scenes.frame_scene("boxes", **CAMERA, boxes=3, ground_cells=2)
+
+
+@hsettings(max_examples=25, deadline=None)
+@given(elev=st.floats(-90.0, 90.0), az=st.floats(-180.0, 180.0), k=st.integers(1, 4), res=st.sampled_from([256, 1024, 4096]),
+       move=st.lists(st.floats(-5.0, 5.0), min_size=3, max_size=3), turn=st.floats(-10.0, 10.0))
+def test_playcanvas_light_matrices_fuzz(elev, az, k, res, move, turn):
+    # any sun (straight up and straight down included), any number of cascades: each slice's centroid maps
+    # into its own cell; moving or turning the camera shifts every cascade's grid by whole texels (the snap)
+    from aliasing.frames.run import pose_camera
+
+    pc = MODELS["playcanvas"]
+    s = pc.settings({"numCascades": k, "shadowResolution": res})
+    fs = _FUZZ_SCENE
+    e, a = np.radians(elev), np.radians(az)
+    sun = np.array([np.cos(e) * np.sin(a), np.sin(e), np.cos(e) * np.cos(a)]) if abs(elev) < 89.99 else np.array([0.0, np.sign(elev), 0.0])
+    m = pc.light_matrices(s, fs.camera, sun, fs.triangles)
+    assert m.shape == (k, 4, 4) and np.isfinite(m).all()
+    edges = pc.edges(s, fs.camera)
+    for (lo, hi), (x, y, w, h), mm in zip(zip(edges[:-1], edges[1:]), pc.cells(s), m):
+        c = (fs.camera.view.slice_vertices(lo, hi) @ fs.camera.rotation + fs.camera.eye).mean(0)
+        st_ = mm[:3, :3] @ c + mm[:3, 3]
+        assert x <= st_[0] <= x + w and y <= st_[1] <= y + h, (st_, (x, y, w, h))
+    rot = np.array([[np.cos(np.radians(turn)), 0, np.sin(np.radians(turn))], [0, 1, 0], [-np.sin(np.radians(turn)), 0, np.cos(np.radians(turn))]])
+    eye = fs.camera.eye + np.array(move)
+    moved = pc.light_matrices(s, pose_camera(fs.camera, {"eye": eye.tolist(), "target": (eye + rot @ fs.camera.rotation[2]).tolist()}), sun, fs.triangles)
+    assert np.allclose(moved[:, :2, :3], m[:, :2, :3], rtol=0, atol=1e-12)  # the same light frame and texel
+    shift = (moved[:, :2, 3] - m[:, :2, 3]) * res
+    assert np.allclose(shift, np.round(shift), rtol=0, atol=1e-6), shift
+    with pytest.raises(ValueError, match="sun"):
+        pc.light_matrices(s, fs.camera, np.zeros(3), fs.triangles)
+
+
+def test_atlas_cells_and_their_input_checks():
+    # an atlas cell compared alone (region), and the atlas helpers' bad input: one ValueError naming it
+    from aliasing.frames import maps as frame_maps, predict
+
+    tri = np.array([[[0.0, 0.0, 0.25], [0.5, 0.0, 0.25], [0.0, 0.5, 0.25]]])  # covers the lower-left cell's corner
+    depth, tid, mt = frame_maps.stored_depth("playcanvas", MODELS["playcanvas"].settings({"shadowBias": 0.0}), tri, np.array([0.0, 0.0, 1.0]),
+                                             np.eye(4), 16)
+    eng = frame_maps.EngineMap(depth[::2, ::2], 16, 2)  # every second texel, as the page reads it
+    cell = np.zeros((16, 16), bool)
+    cell[:8, :8] = True
+    c = frame_maps.compare(eng, depth, tid, frame_maps.tolerance(mt, tid), cell)
+    assert c["texels"] == 16 and c["agreement"] == 1.0 and c["max_difference"] == 0.0, c
+    with pytest.raises(ValueError, match="region"):
+        frame_maps.compare(eng, depth, tid, frame_maps.tolerance(mt, tid), cell[:8])
+    with pytest.raises(ValueError, match="one shadow atlas"):
+        frame_maps.measure_maps("playcanvas", MODELS["playcanvas"].settings({}), tri, np.array([0.0, 0.0, 1.0]), np.eye(4)[None], [eng, eng])
+    with pytest.raises(ValueError, match="subpixel_bits"):
+        predict.playcanvas_atlas(tri, np.eye(4)[None], np.array([[0.0, 0.0, 1.0, 1.0]]), 16, 0.05, subpixel_bits=20)
+    # snapped to 1/16 texel, a corner on the grid stays: the snapped atlas is the exact one
+    exact = predict.playcanvas_atlas(tri, np.eye(4)[None], np.array([[0.0, 0.0, 1.0, 1.0]]), 16, 0.05)
+    snapped = predict.playcanvas_atlas(tri, np.eye(4)[None], np.array([[0.0, 0.0, 1.0, 1.0]]), 16, 0.05, subpixel_bits=4)
+    assert np.array_equal(exact, snapped)

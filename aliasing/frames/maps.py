@@ -3,7 +3,7 @@
 WebGL 2 cannot ``readPixels`` a depth texture.  With ``job["maps"]`` the engine's page draws
 each cascade's own depth texture (the one its shadow lookup samples: three.js's
 ``light.shadow.map.depthTexture``, Babylon.js's depth-stencil texture array of the
-``CascadedShadowGenerator``) through a small pass of ``texelFetch`` into an RGBA32F colour
+``CascadedShadowGenerator``, PlayCanvas's one ``DEPTH_COMPONENT32F`` atlas) through a small pass of ``texelFetch`` into an RGBA32F colour
 target and reads that (``pages/common.mjs``, ``readDepthTexture``): the stored depth in
 [0, 1] as float32, every ``stride``-th texel in s and t so that at most ``side`` texels per
 side come back (a map of 2048² at ``side`` 1024: every second texel).
@@ -12,7 +12,9 @@ The toolkit draws the same maps with its own rasterizer (:func:`aliasing.raster.
 through the engine's own light matrices, from the faces the engine casts, at the engine's
 map size, and stores what the engine stores (:func:`stored_depth`): three.js the window depth;
 Babylon.js, with its default depth clamp, the window depth of the casters moved by the normal
-bias, plus 1.5 × ``bias``, clamped to [0, 1] (ERRATA F4).  The triangles are the float32 ones
+bias, plus 1.5 × ``bias``, clamped to [0, 1] (ERRATA F4); PlayCanvas the window depth through the
+cascade's palette matrix plus the caster pass's polygon offset (ERRATA F9), each cascade compared
+in its own cell of the atlas (:func:`measure_maps`).  The triangles are the float32 ones
 the page drew.
 
 The tolerance (:func:`tolerance`) is derived, not fitted: the float32 depth's rounding
