@@ -322,6 +322,7 @@ def test_playcanvas_shimmer_along_a_path(playcanvas, boxes, name):
     if name == "tuned":
         assert round(rep["details"]["path_matrices_vs_engine"], 5) == 8.1e-4, rep["details"]
         eng = r.readback.matrices
+        assert round(1 / float(np.linalg.norm(eng[0, 2, :3])), 1) == 76.8  # the shadow camera's far − near [world units]
         exact = model.light_matrices(s, fs.camera, sun, fs.triangles, float32_depth=False)
         shift = (exact - eng)[:, 2, 3] / np.linalg.norm(eng[:, 2, :3], axis=1)  # [world units along the light]
         assert round(float(np.abs(shift).max()), 3) == 0.057 and np.abs(exact - eng)[:, :2].max() <= PLAYCANVAS_FLOAT32, shift
