@@ -15,7 +15,11 @@ depth bias, PCF's five rotated hardware-PCF taps), and the two are measured alik
 * the engines' shadow maps, read back, equal to the toolkit's rasterizer's texel for texel
   within float32 depth and SwiftShader's 1/16-texel snapping (three.js, Babylon.js);
 * shimmer along a camera path: three.js and Babylon.js (turning: ratio 0.8-1.25 to the
-  prediction; stabilized: none; moving forward: the engine's flips replayed, ERRATA F8).
+  prediction; stabilized: none; moving forward: the engine's flips replayed, ERRATA F8);
+  PlayCanvas, which snaps every cascade: none along sideways, forward and turning paths, as
+  predicted (ERRATA F11);
+* PlayCanvas's shadow atlas read back, each cascade's cell against the toolkit's rasterizer with
+  the polygon offset.
 
 Babylon.js 9.35 (CascadedShadowGenerator) and PlayCanvas 2.23.3 (a cascaded directional light:
 its polygon-offset bias as SwiftShader applies it, the 2×2 atlas, PCF3) are held to the same
@@ -104,7 +108,8 @@ def babylon(chromium, boxes):
     # the 4e-4 one follows a camera moving forward
     return {name: _frame(chromium, "babylon", fs, settings, **extra) for name, settings, extra in (
         ("defaults", {}, {"path": "turn:0.2:4", "maps": 256}), ("bias 0", {"bias": 0}, {}),
-        ("bias 4e-4", {"bias": 0.0004}, {"path": "forward:0.05:4"}), ("tuned", _tuned("babylon", {}), {}))}
+        ("bias 4e-4", {"bias": 0.0004}, {"path": "forward:0.05:4"}), ("tuned", _tuned("babylon", {}), {}),
+        ("normal offset", {"lambda": 1.0, "bias": 0.0, "normalBias": 0.2771}, {}))}  # tune's choice while a normal offset was free (F13)
 
 
 @pytest.fixture(scope="module")
@@ -114,7 +119,10 @@ def three(chromium, boxes):
     from aliasing.tune import tune
 
     tuned = {**front, **tune(setups.build("threejs", front, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")).changed}  # what `aliasing tune` sets
-    return {name: _frame(chromium, "threejs", fs, settings) for name, settings in (("defaults", {}), ("front faces cast", front), ("tuned", tuned))}
+    # "normal offset": what tune set while it counted a normal offset as free (ERRATA F13)
+    offset = {**front, "cascades": 8, "mode": "logarithmic", "shadowMapSize": 1024, "shadow.normalBias": 0.1382}
+    return {name: _frame(chromium, "threejs", fs, settings) for name, settings in (("defaults", {}), ("front faces cast", front), ("tuned", tuned),
+                                                                                   ("normal offset", offset))}
 
 
 def test_pins_are_the_node_tests_pins():
@@ -131,7 +139,7 @@ def test_pins_are_the_node_tests_pins():
         assert lock["packages"][f"node_modules/{p.package}"]["version"] == p.version
 
 
-@pytest.mark.parametrize("name", ["defaults", "front faces cast", "tuned"])
+@pytest.mark.parametrize("name", ["defaults", "front faces cast", "tuned", "normal offset"])
 def test_threejs_frame_matches_the_prediction(three, name):
     r = three[name].report
     m, p = r["measured"], r["predicted"]
@@ -154,7 +162,7 @@ def test_threejs_frame_matches_the_prediction(three, name):
 BABYLON_FLOAT32 = 1e-5
 
 
-@pytest.mark.parametrize("name", ["defaults", "bias 0", "bias 4e-4", "tuned"])
+@pytest.mark.parametrize("name", ["defaults", "bias 0", "bias 4e-4", "tuned", "normal offset"])
 def test_babylon_frame_matches_the_prediction(babylon, name):
     r = babylon[name].report
     m, p = r["measured"], r["predicted"]
@@ -207,10 +215,11 @@ def babylon_single(babylon, chromium, boxes):
     from aliasing.tune import tune
 
     tuned = {**SG, **tune(setups.build("babylon", SG, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")).changed}
-    return {name: _frame(chromium, "babylon", fs, s) for name, s in (("bias 4e-4", {**SG, "bias": 0.0004}), ("tuned", tuned))}
+    return {name: _frame(chromium, "babylon", fs, s) for name, s in (("bias 4e-4", {**SG, "bias": 0.0004}), ("tuned", tuned),
+                                                                    ("normal offset", {**SG, "bias": 0.0, "normalBias": 0.06341}))}
 
 
-@pytest.mark.parametrize("name", ["bias 4e-4", "tuned"])
+@pytest.mark.parametrize("name", ["bias 4e-4", "tuned", "normal offset"])
 def test_babylon_shadow_generator_matches_the_prediction(babylon_single, name):
     r = babylon_single[name].report
     m, p = r["measured"], r["predicted"]
@@ -227,14 +236,15 @@ def test_babylon_shadow_generator_matches_the_prediction(babylon_single, name):
 
 def test_babylon_shadow_generator_half_float_map(babylon_single, boxes):
     # ERRATA F10: the map is a half-float target, so the depth the receiver compares with is rounded
-    # to 11 bits; the setups' rule counts the rounding, and tune's settings (bias 0, normalBias 0.06341)
-    # leave 0.19 % acne in the frame, 0.27 % predicted, 0.1 % with a float32 map (with the rule of an
-    # exact depth tune set normalBias 0.0293, which kept 15 %); bias 4e-4: 0.56 % against 0.007 %
+    # to 11 bits; the setups' rule counts the rounding, and the normal offset it then needs (bias 0, normalBias
+    # 0.06341) leaves 0.19 % acne in the frame, 0.27 % predicted, 0.1 % with a float32 map (with the rule of an
+    # exact depth tune set normalBias 0.0293, which kept 15 %); bias 4e-4: 0.56 % against 0.007 %; tune's settings
+    # now (bias 0.0004539, F13): 0.04 % and 0.04 %
     from aliasing.frames import compare, predict
     from aliasing.frames.models import model_for
 
     fs, sun = boxes
-    want = {"tuned": (2, 0.19, 0.27, 0.1), "bias 4e-4": (2, 0.56, 0.55, 0.007)}  # digits, engine, toolkit, a float32 map [%]
+    want = {"normal offset": (2, 0.19, 0.27, 0.1), "bias 4e-4": (2, 0.56, 0.55, 0.007), "tuned": (2, 0.04, 0.04, 0.007)}  # digits, engine, toolkit, float32 [%]
     for name, (digits, engine_pct, half_pct, float_pct) in want.items():
         r = babylon_single[name]
         rb, s = r.readback, r.settings
@@ -246,9 +256,9 @@ def test_babylon_shadow_generator_half_float_map(babylon_single, boxes):
         f = np.where(rb.drawn, predict.babylon_single_factor(dm, rb.matrices[0], np.nan_to_num(rb.position), bias=s["bias"], half=False), np.nan)
         receivers = r.reference & ((np.nan_to_num(rb.normal) @ sun) > compare.MIN_COS)
         assert round(100 * compare.acne(f, receivers), 1 if float_pct >= 0.1 else 3) == float_pct
-    assert babylon_single["tuned"].settings["normalBias"] == 0.06341 and babylon_single["tuned"].settings["bias"] == 0.0
+    assert babylon_single["tuned"].settings["bias"] == 0.0004539 and babylon_single["tuned"].settings["normalBias"] == 0.0
     # docs/guide/frames.rst: mask agreement and gaps at their precision
-    for name, agree, gaps in (("bias 4e-4", 1.0, (0.0, 0.0)), ("tuned", 0.999, (0.63, 0.59))):
+    for name, agree, gaps in (("bias 4e-4", 1.0, (0.0, 0.0)), ("normal offset", 0.999, (0.63, 0.59)), ("tuned", 1.0, (0.0, 0.0))):
         rep = babylon_single[name].report
         assert round(rep["measured"]["shadow_agreement"], 3) == agree, rep
         assert (round(rep["measured"]["gap_px"], 2), round(rep["predicted"]["gap_px"], 2)) == gaps, rep
@@ -271,14 +281,23 @@ def playcanvas(chromium, boxes):
     from aliasing.tune import tune
 
     tuned = tune(setups.build("playcanvas", {}, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")).changed  # what `aliasing tune` sets
-    return {name: _frame(chromium, "playcanvas", fs, s) for name, s in (("defaults", {}), ("bias 0", {"shadowBias": 0}), ("tuned", tuned))}
+    # each frame also follows a camera path (the frame's own numbers are taken before it); the defaults
+    # (one map, a polygon offset of 0.5 per texel of depth slope) and the tuned one (four cascades in
+    # the 2x2 atlas, shadowBias 0.1465) read their maps back; "normal offset": tune's choice while it was free (F13)
+    return {name: _frame(chromium, "playcanvas", fs, s, **extra) for name, s, extra in (
+        ("defaults", {}, {"path": PC_PATHS["defaults"], "maps": 256}), ("bias 0", {"shadowBias": 0}, {"path": PC_PATHS["bias 0"]}),
+        ("tuned", tuned, {"path": PC_PATHS["tuned"], "maps": 256}),
+        ("normal offset", {"numCascades": 4, "cascadeDistribution": 1.0, "shadowBias": 0.0, "normalOffsetBias": 0.1889}, {}))}
+
+
+PC_PATHS = {"defaults": "sideways:0.05:3", "bias 0": "forward:0.2:3", "tuned": "turn:0.5:3"}
 
 
 # PlayCanvas stores its cascade ends in a Float32Array and fits them in float32 matrices
 PLAYCANVAS_FLOAT32 = 1e-6
 
 
-@pytest.mark.parametrize("name", ["defaults", "bias 0", "tuned"])
+@pytest.mark.parametrize("name", ["defaults", "bias 0", "tuned", "normal offset"])
 def test_playcanvas_frame_matches_the_prediction(playcanvas, boxes, name):
     r = playcanvas[name]
     rep = r.report
@@ -309,6 +328,94 @@ def test_playcanvas_bias_and_tuned_settings(playcanvas):
         acne = {name: playcanvas[name].report[side]["acne"] for name in playcanvas}
         assert acne["defaults"] < 0.02 < 0.25 < acne["bias 0"] and acne["tuned"] < 0.001, (side, acne)
     assert playcanvas["tuned"].settings["numCascades"] == 4
+
+
+@pytest.mark.parametrize("name", ["defaults", "bias 0", "tuned"])
+def test_playcanvas_shimmer_along_a_path(playcanvas, boxes, name):
+    # the cascades follow a camera moving sideways (one map), forward (bias 0: 31 % acne, the frame
+    # most sensitive to a sub-texel drift) or turning (four cascades) while the picture's camera
+    # stays. PlayCanvas snaps each cascade's centre to a multiple of 4r/R, a whole texel of its cell
+    # (two of a single map), and the slice's radius r does not change with the pose: the toolkit's
+    # maps through its own pose matrices flip no pixel, and neither does the engine (ERRATA F11)
+    from aliasing.frames import predict
+    from aliasing.frames.run import flips, parse_path, pose_camera
+
+    fs, sun = boxes
+    r = playcanvas[name]
+    rep = r.report
+    assert rep["details"]["path"] == PC_PATHS[name]
+    assert rep["measured"]["flips_per_frame"] == 0.0 and rep["predicted"]["flips_per_frame"] == 0.0, rep
+    # the pose matrices: s and t rows to float32; the depth row to one float32 step of the camera
+    # placed 1e6 away (2^-4 world units over the casters' depth range, ERRATA F11)
+    assert rep["details"]["path_grid_vs_engine"] <= 2e-7 and rep["details"]["path_matrices_vs_engine"] <= 1e-3, rep["details"]
+    assert rep["details"]["matrices_vs_engine"] <= 2e-7 and rep["details"]["grid_vs_engine"] <= 2e-7, rep["details"]
+    frames = r.readback.info["path"]
+    eng = np.array([[np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]] for f in frames])
+    moved = np.abs(np.diff(eng[:, :, :2, 3], axis=0)) * r.settings["shadowResolution"]  # the grid's shift [atlas texels]
+    # whole texels: 2 (one map), 1 (a cell), up to the float32 rounding of two translations below 2 (2^-23 each side: x R)
+    assert moved.max() >= 1 and np.abs(moved - np.round(moved)).max() <= 2.0**-23 * r.settings["shadowResolution"], moved
+    # the test can fail: without the snap the toolkit's maps along the same path flip pixels
+    model, s = MODELS["playcanvas"], r.settings
+    cast = fs.triangles[predict.casting(fs.triangles, sun, model.cast_side(s))]
+    pts, nrm = np.nan_to_num(r.readback.position), np.nan_to_num(r.readback.normal)
+    masks = []
+    for pose in parse_path(PC_PATHS[name], fs.camera):
+        mats = model.light_matrices(s, pose_camera(fs.camera, pose), sun, fs.triangles, snap=False)
+        atlas = predict.playcanvas_atlas(cast, mats, model.cells(s), s["shadowResolution"], s["shadowBias"])
+        masks.append(predict.playcanvas_factor(atlas, mats, r.prediction.cascade, pts, nrm, normal_offset=s["normalOffsetBias"]) < 0.5)
+    unsnapped = flips(np.array(masks), r.readback.drawn & (r.readback.cascade >= 0))
+    assert round(unsnapped, 4) == {"defaults": 0.0196, "bias 0": 0.3109, "tuned": 0.0042}[name], unsnapped  # the docs' numbers
+    # ERRATA F11: the depth range is fitted with the shadow camera 1e6 away in float32; the toolkit repeats
+    # that rounding. Placed exactly, its camera is up to 0.057 world units off along the light (tuned frame);
+    # one pose of the turn rounds a float32 entry at 1e6 the other way: one step of 2^-4 world units
+    if name == "tuned":
+        assert round(rep["details"]["path_matrices_vs_engine"], 5) == 8.1e-4, rep["details"]
+        eng = r.readback.matrices
+        assert round(1 / float(np.linalg.norm(eng[0, 2, :3])), 1) == 76.8  # the shadow camera's far − near [world units]
+        exact = model.light_matrices(s, fs.camera, sun, fs.triangles, float32_depth=False)
+        shift = (exact - eng)[:, 2, 3] / np.linalg.norm(eng[:, 2, :3], axis=1)  # [world units along the light]
+        assert round(float(np.abs(shift).max()), 3) == 0.057 and np.abs(exact - eng)[:, :2].max() <= PLAYCANVAS_FLOAT32, shift
+    else:
+        assert rep["details"]["path_matrices_vs_engine"] < 1e-7, rep["details"]
+
+
+def test_playcanvas_atlas_is_the_toolkits(playcanvas, boxes):
+    # the shadow atlas (DEPTH_COMPONENT32F; four cascades: 2x2 cells of half size) read back, each
+    # cascade's cell compared with the toolkit's rasterizer through the engine's palette matrix, the
+    # polygon offset included, texel for texel within float32 depth and 1/16-texel snapping
+    from aliasing.frames import maps as frame_maps
+
+    fs, sun = boxes
+    for name, k in (("defaults", 1), ("tuned", 4)):
+        r = playcanvas[name]
+        maps = r.report["maps"]
+        res = r.settings["shadowResolution"]
+        # the snapping's share of the bound per cell, the docs' numbers
+        _maps_agree(maps, k, res, res // 256, coverage=0.9999 if k == 1 else 0.9998)
+        assert [round(c["max_over_tolerance"], 2) for c in maps["cascades"]] == {"defaults": [0.87], "tuned": [0.8, 0.82, 0.71, 0.83]}[name], maps
+        assert all(c["texels"] == (256 if k == 1 else 128) ** 2 for c in maps["cascades"]), maps  # a cell: a quarter of the atlas
+        assert round(maps["max_difference"], 7) == {"defaults": 6.49e-5, "tuned": 1.032e-4}[name], maps  # the docs' numbers
+    # the test sees the offset: the toolkit's map without it (shadowBias 0) is off everywhere by more than the tolerance
+    r = playcanvas["defaults"]
+    got = frame_maps.decode_maps(r.readback.info)
+    mats = np.array([np.asarray(m, float).reshape(4, 4).T for m in r.readback.info["maps"][0]["matrices"]])
+    without = frame_maps.measure_maps("playcanvas", {**r.settings, "shadowBias": 0.0}, fs.triangles, sun, mats, got)
+    assert without["agreement"] == 0.0, without
+    # where one atlas draws a texel and the other does not (up to 2 of a cell's 16 384), the texel lies on a
+    # triangle's edge in the toolkit's map: the snapped edge decides its coverage
+    from scipy import ndimage
+
+    r = playcanvas["tuned"]
+    got = frame_maps.decode_maps(r.readback.info)[0]
+    mats = np.array([np.asarray(m, float).reshape(4, 4).T for m in r.readback.info["maps"][0]["matrices"]])
+    res, st = got.size, got.stride
+    centre = (np.arange(0, res, st) + 0.5) / res
+    for (x, y, w, h), m in zip(MODELS["playcanvas"].cells(r.settings), mats):
+        depth, tid, _ = frame_maps.stored_depth("playcanvas", r.settings, fs.triangles, sun, m, res)
+        edge = (ndimage.maximum_filter(tid, 3, mode="nearest") != ndimage.minimum_filter(tid, 3, mode="nearest"))[::st, ::st]
+        cell = ((centre >= y) & (centre < y + h))[:, None] & ((centre >= x) & (centre < x + w))[None, :]
+        differ = cell & ((got.depth < 1) != (depth[::st, ::st] < 1))
+        assert differ.sum() <= 2 and edge[differ].all(), np.argwhere(differ)
 
 
 # one DirectionalLight whose box (60 x 60, 1024²) the user sets over the boxes
@@ -353,24 +460,23 @@ def _rel(rep) -> float:
 
 
 def test_frames_numbers_in_the_docs(playcanvas, three_single, boxes):
-    # docs/guide/frames.rst (PlayCanvas and three.js's single light at 256 x 144) and ERRATA F9, at their precision
-    pct = {"defaults": (1, 1.0), "bias 0": (0, 31.0), "tuned": (2, 0.01), "front faces, bias 0": (0, 50.0)}
-    gaps = {"defaults": 0.15, "bias 0": 0.12, "tuned": 2.05, "front faces, bias 0": 0.01}
-    for runs, names, bound in ((playcanvas, ("defaults", "bias 0", "tuned"), 1e-7), (three_single, ("front faces, bias 0", "tuned"), 1e-12)):
-        for name in names:
-            rep = runs[name].report
-            digits, want = pct[name] if (runs is playcanvas or name != "tuned") else (2, 0.07)
-            gap = gaps[name] if (runs is playcanvas or name != "tuned") else 0.65
-            assert round(rep["measured"]["shadow_agreement"], 3) == 1.0, rep
-            for side in ("measured", "predicted"):
-                assert round(100 * rep[side]["acne"], digits) == want, (name, side, rep)
-                assert round(rep[side]["gap_px"], 2) == gap, (name, side, rep)
-            assert _rel(rep) < bound, rep
-            if runs is playcanvas:  # ERRATA F9: acne and gap agree to 0.2 point and 0.01 px
-                assert abs(rep["measured"]["acne"] - rep["predicted"]["acne"]) <= 0.002 and abs(rep["measured"]["gap_px"] - rep["predicted"]["gap_px"]) <= 0.01
+    # docs/guide/frames.rst (PlayCanvas and three.js's single light at 256 x 144) and ERRATA F9, at their precision:
+    # (acne digits, engine acne, toolkit acne [%], engine gap, toolkit gap [px])
+    want = {(playcanvas, "defaults"): (1, 1.0, 1.0, 0.15, 0.15), (playcanvas, "bias 0"): (0, 31.0, 31.0, 0.12, 0.12),
+            (playcanvas, "tuned"): (2, 0.07, 0.07, 0.18, 0.19), (playcanvas, "normal offset"): (2, 0.01, 0.01, 2.05, 2.05),
+            (three_single, "front faces, bias 0"): (0, 50.0, 50.0, 0.01, 0.01), (three_single, "tuned"): (2, 0.33, 0.07, 0.21, 0.21)}
+    for (runs, name), (digits, acne_e, acne_t, gap_e, gap_t) in want.items():
+        rep = runs[name].report
+        assert round(rep["measured"]["shadow_agreement"], 3) == 1.0, rep
+        got = (round(100 * rep["measured"]["acne"], digits), round(100 * rep["predicted"]["acne"], digits),
+               round(rep["measured"]["gap_px"], 2), round(rep["predicted"]["gap_px"], 2))
+        assert got == (acne_e, acne_t, gap_e, gap_t), (name, got)
+        assert _rel(rep) < (1e-7 if runs is playcanvas else 1e-12), rep
+        if runs is playcanvas:  # ERRATA F9: acne and gap agree to 0.2 point and 0.01 px
+            assert abs(rep["measured"]["acne"] - rep["predicted"]["acne"]) <= 0.002 and abs(rep["measured"]["gap_px"] - rep["predicted"]["gap_px"]) <= 0.01
     assert {k: playcanvas["tuned"].settings[k] for k in ("numCascades", "cascadeDistribution", "shadowBias", "normalOffsetBias")} == \
-        {"numCascades": 4, "cascadeDistribution": 1.0, "shadowBias": 0.0, "normalOffsetBias": 0.1889}
-    assert three_single["tuned"].settings["normalBias"] == 0.072
+        {"numCascades": 4, "cascadeDistribution": 1.0, "shadowBias": 0.1465, "normalOffsetBias": 0.0}
+    assert three_single["tuned"].settings["normalBias"] == 0.024 and three_single["tuned"].settings["shadowMapType"] == "BasicShadowMap"
     # ERRATA F9: with the gradient's length as the polygon offset's slope the default frame keeps 0.9 % acne
     from aliasing.frames import compare, predict
 
@@ -417,17 +523,17 @@ def test_threejs_shimmer_along_a_sideways_path(chromium, boxes):
     assert (((pair > 0.05) & (pair < 0.95)).any(0))[flipped].all()
 
 
-def _maps_agree(maps: dict, k: int, size: int, stride: int) -> None:
+def _maps_agree(maps: dict, k: int, size: int, stride: int, snapped: float = 0.7, coverage: float = 0.9999) -> None:
     # the engine's stored depths equal the toolkit's rasterizer's, texel for texel away from triangle
     # edges, within float32 depth and SwiftShader's 1/16-texel vertex snapping; drawn where it draws
     assert len(maps["cascades"]) == k, maps
     for c in maps["cascades"]:
-        assert c["size"] == size and c["stride"] == stride and c["texels"] == (size // stride) ** 2, c
+        assert c["size"] == size and c["stride"] == stride and c["texels"] in ((size // stride) ** 2, (size // stride // 2) ** 2), c
         assert c["interior"] > 1000 and c["agreement"] == 1.0 and c["max_over_tolerance"] < 1.0, c
-        assert c["coverage_agreement"] >= 0.9999, c
+        assert c["coverage_agreement"] >= coverage, c
     # the differences reach 70-95 % of the 1/32-texel bound: the snapping is real, and coarser than
     # 8 subpixel bits (which would bound them 16 times lower)
-    assert all(c["max_over_tolerance"] > 0.7 for c in maps["cascades"]), maps
+    assert all(c["max_over_tolerance"] > snapped for c in maps["cascades"]), maps
 
 
 def test_babylon_shimmer_along_a_turning_path(chromium, boxes, babylon):
@@ -518,7 +624,7 @@ BASE = ["--scene", "boxes", "--camera", "near=0.5,far=60,fov=50,aspect=16:9,heig
     (["--engine", "threejs", "--sun", "95"], "sun elevation must be in (0, 90]"),
     (["--engine", "threejs", "--set", "shadowBiass=0"], "unknown three.js setting 'shadowBiass'"),
     (["--engine", "threejs@r184"], "the frames render threejs r187 only"),
-    (["--engine", "playcanvas", "--path", "sideways:0.1"], "the camera path is rendered for threejs and babylon only"),
+    (["--engine", "playcanvas", "--set", "numCascades=4", "--path", "sideways:0.1:2"], "--path FRAMES must be in [3, 120]"),
     (["--engine", "threejs", "--set", "class=DirectionalLight", "--path", "sideways:0.1"], "the camera path is rendered for the cascaded classes only"),
     (["--engine", "threejs", "--set", "class=DirectionalLight", "--maps", "64"], "shadow maps are read back for three.js's CSM"),
     (["--engine", "threejs", "--path", "diagonal:0.1"], "--path must be KIND:STEP[:FRAMES]"),
@@ -533,7 +639,8 @@ def test_cli_bad_input_is_one_line(tmp_path, args, message):
 
 
 @pytest.mark.parametrize("args, message", [
-    (["--engine", "playcanvas", "--maps"], "the shadow maps are read back for three.js's CSM and Babylon.js's CascadedShadowGenerator only (not yet for playcanvas)"),
+    (["--engine", "babylon", "--set", "class=ShadowGenerator", "--set", "light.shadowFrustumSize=60", "--maps"],
+     "the shadow maps are read back for three.js's CSM, Babylon.js's CascadedShadowGenerator and PlayCanvas's directional light only (not yet for babylon ShadowGenerator)"),
     (["--engine", "threejs", "--maps", "8"], "--maps SIDE) must be a whole number of texels per side in [16, 4096]"),
     (["--engine", "threejs", "--path", "turn:20"], "--path turn STEP must be at most 10 degrees"),
 ])
@@ -704,26 +811,30 @@ def test_polygon_offset_fuzz():
         predict.polygon_offset(np.zeros((3, 3)), 8, 1.0, 1.0)
 
 
-def test_tuned_normal_offsets_lose_shadow(three, playcanvas, babylon, babylon_single):
-    # ERRATA F13, at its printed precision: tune's normal offsets leave no acne but shade lit a third to
-    # two thirds of the pixels in the exact shadow, in the engine's frame and in the prediction alike
-    table = ((three, "front faces cast", (0.5, 0.5), 1), (three, "tuned", (44, 44), 0), (playcanvas, "defaults", (33, 33), 0),
-             (playcanvas, "tuned", (64, 64), 0), (babylon, "defaults", (1.6, 1.6), 1), (babylon, "tuned", (38, 38), 0),
-             (babylon_single, "bias 4e-4", (18, 18), 0), (babylon_single, "tuned", (29, 28), 0))
-    for runs, name, want, digits in table:
-        rep = runs[name].report
-        got = tuple(round(100 * rep[side]["lost_shadow"], digits) for side in ("measured", "predicted"))
-        assert got == want, (name, rep["engine"], got)
-    for runs in (three, playcanvas, babylon, babylon_single):
-        for side in ("measured", "predicted"):
-            assert runs["tuned"].report[side]["acne"] < 0.01
-    # docs/guide/frames.rst: Babylon.js's cascades at tune's settings
-    rep = babylon["tuned"].report
-    assert {k: babylon["tuned"].settings[k] for k in ("lambda", "bias", "normalBias")} == {"lambda": 1.0, "bias": 0.0, "normalBias": 0.2771}
-    assert rep["measured"]["shadow_agreement"] == 1.0
-    assert [round(100 * rep[side]["acne"], 2) for side in ("measured", "predicted")] == [0.77, 0.77]
-    assert [round(rep[side]["gap_px"], 2) for side in ("measured", "predicted")] == [1.32, 1.34]
+def test_tuned_settings_keep_the_shadow(three, playcanvas, babylon, babylon_single):
+    # ERRATA F13, at its printed precision: the normal offsets tune set while it counted them as free left no acne
+    # but shaded lit 25-63 % of the sunward pixels in the exact shadow (1-13 % at the engines' defaults); tune's
+    # settings now keep the acne away and lose 0.9-19 %, in the engine's frame and in the prediction alike
+    runs = {"threejs": three, "playcanvas": playcanvas, "babylon": babylon, "babylon SG": babylon_single}
 
+    def lost(engine, name, digits):
+        rep = runs[engine][name].report
+        return tuple(round(100 * rep[side]["lost_shadow"], digits) for side in ("measured", "predicted"))
+
+    assert [lost(e, "defaults", 0)[0] for e in ("threejs", "babylon", "playcanvas")] == [1, 1, 13]
+    before = {e: lost(e, "normal offset", 0)[0] for e in runs}
+    assert before == {"threejs": 42, "playcanvas": 63, "babylon": 36, "babylon SG": 25}
+    after = {"threejs": ((2, 0.04, 0.01), (0, 19, 19)), "playcanvas": ((2, 0.07, 0.07), (1, 7.7, 7.9)),
+             "babylon": ((2, 0.01, 0.01), (1, 0.9, 0.9)), "babylon SG": ((2, 0.04, 0.04), (1, 6.8, 6.8))}
+    for engine, ((da, *acne), (dl, *kept)) in after.items():
+        rep = runs[engine]["tuned"].report
+        assert [round(100 * rep[side]["acne"], da) for side in ("measured", "predicted")] == acne, engine
+        assert list(lost(engine, "tuned", dl)) == kept, engine
+    changed = {e: {k: v for k, v in runs[e]["tuned"].settings.items() if runs[e]["normal offset"].settings.get(k) != v} for e in runs}
+    assert changed["babylon"] == {"bias": 0.001368, "normalBias": 0.0, "filteringQuality": 2}
+    assert changed["babylon SG"] == {"bias": 0.0004539, "normalBias": 0.0}
+    assert changed["playcanvas"] == {"shadowBias": 0.1465, "normalOffsetBias": 0.0}
+    assert changed["threejs"] == {"normalBias": 0.0468, "shadowMapType": "BasicShadowMap"}
 
 def test_babylon_float32_cascades_of_the_city_in_node(tmp_path):
     # ERRATA F6: Babylon.js's own generator in node (a NullEngine, its default float32 matrices), set
@@ -801,3 +912,60 @@ def test_babylon_cascade_matrices_fuzz(look, sun, stabilize, aspect):
     m64 = babylon_cascades.matrices(s, fs.camera, sv, fs.triangles, float32=False)
     assert m32.shape == (4, 4, 4) and np.isfinite(m32).all()
     assert np.max(np.abs(babylon_cascades.map_sides(m32) / babylon_cascades.map_sides(m64) - 1)) < 2.0**-24 * 120 * 8
+
+
+_FUZZ_SCENE = scenes.frame_scene("boxes", **CAMERA, boxes=3, ground_cells=2)
+
+
+@hsettings(max_examples=25, deadline=None)
+@given(elev=st.floats(-90.0, 90.0), az=st.floats(-180.0, 180.0), k=st.integers(1, 4), res=st.sampled_from([256, 1024, 4096]),
+       move=st.lists(st.floats(-5.0, 5.0), min_size=3, max_size=3), turn=st.floats(-10.0, 10.0))
+def test_playcanvas_light_matrices_fuzz(elev, az, k, res, move, turn):
+    # any sun (straight up and straight down included), any number of cascades: each slice's centroid maps
+    # into its own cell; moving or turning the camera shifts every cascade's grid by whole texels (the snap)
+    from aliasing.frames.run import pose_camera
+
+    pc = MODELS["playcanvas"]
+    s = pc.settings({"numCascades": k, "shadowResolution": res})
+    fs = _FUZZ_SCENE
+    e, a = np.radians(elev), np.radians(az)
+    sun = np.array([np.cos(e) * np.sin(a), np.sin(e), np.cos(e) * np.cos(a)]) if abs(elev) < 89.99 else np.array([0.0, np.sign(elev), 0.0])
+    m = pc.light_matrices(s, fs.camera, sun, fs.triangles)
+    assert m.shape == (k, 4, 4) and np.isfinite(m).all()
+    edges = pc.edges(s, fs.camera)
+    for (lo, hi), (x, y, w, h), mm in zip(zip(edges[:-1], edges[1:]), pc.cells(s), m):
+        c = (fs.camera.view.slice_vertices(lo, hi) @ fs.camera.rotation + fs.camera.eye).mean(0)
+        st_ = mm[:3, :3] @ c + mm[:3, 3]
+        assert x <= st_[0] <= x + w and y <= st_[1] <= y + h, (st_, (x, y, w, h))
+    rot = np.array([[np.cos(np.radians(turn)), 0, np.sin(np.radians(turn))], [0, 1, 0], [-np.sin(np.radians(turn)), 0, np.cos(np.radians(turn))]])
+    eye = fs.camera.eye + np.array(move)
+    moved = pc.light_matrices(s, pose_camera(fs.camera, {"eye": eye.tolist(), "target": (eye + rot @ fs.camera.rotation[2]).tolist()}), sun, fs.triangles)
+    assert np.allclose(moved[:, :2, :3], m[:, :2, :3], rtol=0, atol=1e-12)  # the same light frame and texel
+    shift = (moved[:, :2, 3] - m[:, :2, 3]) * res
+    assert np.allclose(shift, np.round(shift), rtol=0, atol=1e-6), shift
+    with pytest.raises(ValueError, match="sun"):
+        pc.light_matrices(s, fs.camera, np.zeros(3), fs.triangles)
+
+
+def test_atlas_cells_and_their_input_checks():
+    # an atlas cell compared alone (region), and the atlas helpers' bad input: one ValueError naming it
+    from aliasing.frames import maps as frame_maps, predict
+
+    tri = np.array([[[0.0, 0.0, 0.25], [0.5, 0.0, 0.25], [0.0, 0.5, 0.25]]])  # covers the lower-left cell's corner
+    depth, tid, mt = frame_maps.stored_depth("playcanvas", MODELS["playcanvas"].settings({"shadowBias": 0.0}), tri, np.array([0.0, 0.0, 1.0]),
+                                             np.eye(4), 16)
+    eng = frame_maps.EngineMap(depth[::2, ::2], 16, 2)  # every second texel, as the page reads it
+    cell = np.zeros((16, 16), bool)
+    cell[:8, :8] = True
+    c = frame_maps.compare(eng, depth, tid, frame_maps.tolerance(mt, tid), cell)
+    assert c["texels"] == 16 and c["agreement"] == 1.0 and c["max_difference"] == 0.0, c
+    with pytest.raises(ValueError, match="region"):
+        frame_maps.compare(eng, depth, tid, frame_maps.tolerance(mt, tid), cell[:8])
+    with pytest.raises(ValueError, match="one shadow atlas"):
+        frame_maps.measure_maps("playcanvas", MODELS["playcanvas"].settings({}), tri, np.array([0.0, 0.0, 1.0]), np.eye(4)[None], [eng, eng])
+    with pytest.raises(ValueError, match="subpixel_bits"):
+        predict.playcanvas_atlas(tri, np.eye(4)[None], np.array([[0.0, 0.0, 1.0, 1.0]]), 16, 0.05, subpixel_bits=20)
+    # snapped to 1/16 texel, a corner on the grid stays: the snapped atlas is the exact one
+    exact = predict.playcanvas_atlas(tri, np.eye(4)[None], np.array([[0.0, 0.0, 1.0, 1.0]]), 16, 0.05)
+    snapped = predict.playcanvas_atlas(tri, np.eye(4)[None], np.array([[0.0, 0.0, 1.0, 1.0]]), 16, 0.05, subpixel_bits=4)
+    assert np.array_equal(exact, snapped)

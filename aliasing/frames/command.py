@@ -11,7 +11,8 @@
 writes ``DIR/engine.png`` (the engine's frame), ``DIR/predicted.png`` (the toolkit's shadow
 factor), ``DIR/difference.png`` (red: the engine shadows what the toolkit lights; blue: the
 reverse) and ``DIR/frames.json`` (``engine``, ``release``, ``measured``, ``predicted``; with
-``--maps`` also ``maps``, and ``DIR/map<i>.npy``/``.png`` the engine's shadow maps), and
+``--maps`` also ``maps``, and ``DIR/map<i>.npy``/``.png`` the engine's shadow maps, PlayCanvas's one
+atlas as ``map0``), and
 prints the JSON (or a table).  Nothing is downloaded unless ``--install`` is given: without the
 engine's pinned package, Chromium or Playwright, one line says how to install it (exit 2).
 A sun range ``LO..HI`` is drawn at its middle elevation (a frame has one sun).  ``--engine``,
@@ -213,11 +214,11 @@ def add_frames_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
     p.add_argument("--scene", help="boxes, city or a scene file (.glb, .gltf, .obj, .ply, .stl)")
     p.add_argument("--eye", metavar="X,Y,Z", help="camera position, world space (a scene file needs it; write --eye=-5,2,0 when X is negative)")
     p.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at, world space")
-    p.add_argument("--path", metavar="KIND:STEP[:FRAMES]", help="a camera path for shimmer (threejs, babylon): sideways or forward, STEP world units per "
+    p.add_argument("--path", metavar="KIND:STEP[:FRAMES]", help="a camera path for shimmer (threejs, babylon, playcanvas): sideways or forward, STEP world units per "
                    "frame, or turn, STEP degrees per frame about the world's up; FRAMES (default 30); the cascades follow it while the picture's camera stays, and flips_per_frame is added")
     p.add_argument("--maps", nargs="?", type=int, const=1024, metavar="SIDE",
-                   help="read the shadow maps back (threejs, babylon): every stride-th texel, at most SIDE per side (default 1024); "
-                   "writes map<i>.npy and map<i>.png and adds maps (agreement with the toolkit's rasterizer) to the JSON")
+                   help="read the shadow maps back (threejs, babylon; playcanvas: its one atlas, each cascade compared in its cell): every stride-th texel, "
+                   "at most SIDE per side (default 1024); writes map<i>.npy and map<i>.png and adds maps (agreement with the toolkit's rasterizer) to the JSON")
     p.add_argument("--out", metavar="DIR", help="directory for engine.png, predicted.png, difference.png, frames.json")
     p.add_argument("--format", default="json", choices=["json", "table"], help="what is printed (default json)")
     p.add_argument("--timeout", type=float, default=120.0, help="seconds a page load or a frame may take (default 120)")

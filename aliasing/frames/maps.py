@@ -3,7 +3,7 @@
 WebGL 2 cannot ``readPixels`` a depth texture.  With ``job["maps"]`` the engine's page draws
 each cascade's own depth texture (the one its shadow lookup samples: three.js's
 ``light.shadow.map.depthTexture``, Babylon.js's depth-stencil texture array of the
-``CascadedShadowGenerator``) through a small pass of ``texelFetch`` into an RGBA32F colour
+``CascadedShadowGenerator``, PlayCanvas's one ``DEPTH_COMPONENT32F`` atlas) through a small pass of ``texelFetch`` into an RGBA32F colour
 target and reads that (``pages/common.mjs``, ``readDepthTexture``): the stored depth in
 [0, 1] as float32, every ``stride``-th texel in s and t so that at most ``side`` texels per
 side come back (a map of 2048² at ``side`` 1024: every second texel).
@@ -12,7 +12,9 @@ The toolkit draws the same maps with its own rasterizer (:func:`aliasing.raster.
 through the engine's own light matrices, from the faces the engine casts, at the engine's
 map size, and stores what the engine stores (:func:`stored_depth`): three.js the window depth;
 Babylon.js, with its default depth clamp, the window depth of the casters moved by the normal
-bias, plus 1.5 × ``bias``, clamped to [0, 1] (ERRATA F4).  The triangles are the float32 ones
+bias, plus 1.5 × ``bias``, clamped to [0, 1] (ERRATA F4); PlayCanvas the window depth through the
+cascade's palette matrix plus the caster pass's polygon offset (ERRATA F9), each cascade compared
+in its own cell of the atlas (:func:`measure_maps`).  The triangles are the float32 ones
 the page drew.
 
 The tolerance (:func:`tolerance`) is derived, not fitted: the float32 depth's rounding
@@ -202,8 +204,8 @@ def stored_depth(engine: str, settings: dict, triangles: Array, sun: Array, matr
     check.whole(size, "size", 1, 16384, " [texels]")
     from .models import MODELS
 
-    if engine not in ("threejs", "babylon"):
-        raise ValueError(f"engine must be threejs or babylon for the shadow maps, got {engine!r}")
+    if engine not in ("threejs", "babylon", "playcanvas"):
+        raise ValueError(f"engine must be threejs, babylon or playcanvas for the shadow maps, got {engine!r}")
     model = MODELS[engine]
     tri = np.asarray(triangles, np.float32).astype(float)  # what the page drew
     cast = tri[predict.casting(tri, sun, model.cast_side(settings))]
@@ -213,7 +215,12 @@ def stored_depth(engine: str, settings: dict, triangles: Array, sun: Array, matr
     depth = np.where(np.isfinite(dm.depth), dm.depth, 1.0)
     if engine == "babylon":  # shadowMapFragment with depth clamp: + bias twice over (ERRATA F4), clamped
         depth = np.clip(depth + 1.5 * float(settings["bias"]), 0.0, 1.0)
-    return depth, dm.triangle, predict.to_map(matrix, cast) if len(cast) else np.zeros((0, 3, 3))
+    mt = predict.to_map(matrix, cast) if len(cast) else np.zeros((0, 3, 3))
+    if engine == "playcanvas" and len(cast):  # the caster pass's polygon offset (ERRATA F9), in the depth buffer's [0, 1]
+        off = 10.0 * min(max(float(settings["shadowBias"]), 0.0), 1.0)
+        if off:
+            depth = np.where(dm.triangle >= 0, np.clip(depth + predict.polygon_offset(mt, size, off, off)[np.maximum(dm.triangle, 0)], 0.0, 1.0), 1.0)
+    return depth, dm.triangle, mt
 
 
 def tolerance(map_triangles: Array, triangle: NDArray[np.int64]) -> Array:
@@ -260,8 +267,10 @@ def tolerance(map_triangles: Array, triangle: NDArray[np.int64]) -> Array:
     return FLOAT32_DEPTH + slope / 2.0 ** (SUBPIXEL_BITS + 1)
 
 
-def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], tol: Array) -> dict:
+def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], tol: Array, region: NDArray[np.bool_] | None = None) -> dict:
     """One cascade: the engine's map against the toolkit's (full-size ``depth``, ``triangle``, ``tol``).
+
+    ``region`` (R, R), optional: only the texels there count (a cascade's cell of an atlas).
 
     Returns ``size``, ``stride``, ``texels`` (read back), ``covered`` (drawn in either map),
     ``coverage_agreement`` (fraction of the read texels drawn in both or in neither),
@@ -308,6 +317,12 @@ def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], to
     interior_full &= tid >= 0
     inside = interior_full[::s, ::s][:n, :n]
     e = engine_map.depth
+    if region is not None:
+        region = np.asarray(region, bool)
+        if region.shape != (r, r):
+            raise ValueError(f"region must have the map's shape ({r}, {r}), got {region.shape}")
+        sub = region[::s, ::s][:n, :n]
+        p, tt, inside, e = p[sub], tt[sub], inside[sub], e[sub]
     covered = (e < 1) | (p < 1)
     keep = covered & inside
     diff = np.abs(e - p)
@@ -321,12 +336,13 @@ def compare(engine_map: EngineMap, depth: Array, triangle: NDArray[np.int64], to
 def measure_maps(engine: str, settings: dict, triangles: Array, sun: Array, matrices: Array, maps: list[EngineMap]) -> dict:
     """Every cascade's read-back map against the toolkit's: ``cascades`` (per cascade :func:`compare`
     and the light ``matrix`` used, world → [0, 1]³, column vectors), ``agreement`` (the smallest),
-    ``max_difference`` (the largest), the ``tolerance`` rule.
+    ``max_difference`` (the largest), the ``tolerance`` rule.  PlayCanvas: ``maps`` is its one atlas,
+    each cascade compared in its own cell.
 
     Parameters
     ----------
     engine : str
-        "threejs" or "babylon".
+        "threejs", "babylon" or "playcanvas".
     settings : dict
         The engine's filled settings (:data:`aliasing.frames.models.MODELS`).
     triangles : array_like (T, 3, 3)
@@ -355,12 +371,24 @@ def measure_maps(engine: str, settings: dict, triangles: Array, sun: Array, matr
     """
     if not isinstance(maps, (list, tuple)) or not all(isinstance(m, EngineMap) for m in maps):
         raise ValueError("maps must be a list of EngineMap (decode_maps)")
+    regions = [None] * len(maps)
+    if engine == "playcanvas":  # one atlas: each cascade's cell of it ((x, y, w, h) in [0, 1], the scissor)
+        from .models import MODELS
+
+        if len(maps) != 1:
+            raise ValueError(f"PlayCanvas draws one shadow atlas, got {len(maps)} maps")
+        centre = (np.arange(maps[0].size) + 0.5) / maps[0].size
+        cells = MODELS["playcanvas"].cells(settings)
+        if len(cells) != len(matrices):
+            raise ValueError(f"{len(cells)} atlas cells for {len(matrices)} light matrices")
+        regions = [((centre >= y) & (centre < y + h))[:, None] & ((centre >= x) & (centre < x + w))[None, :] for x, y, w, h in cells]
+        maps = maps * len(cells)
     if len(maps) != len(matrices):
         raise ValueError(f"{len(maps)} maps for {len(matrices)} light matrices")
     per = []
-    for m, mat in zip(maps, matrices):
+    for m, mat, region in zip(maps, matrices, regions):
         depth, tid, mt = stored_depth(engine, settings, triangles, sun, mat, m.size)
-        per.append({**compare(m, depth, tid, tolerance(mt, tid)), "matrix": np.asarray(mat, float).tolist()})
+        per.append({**compare(m, depth, tid, tolerance(mt, tid), region), "matrix": np.asarray(mat, float).tolist()})
     ag = [c["agreement"] for c in per if c["agreement"] is not None]
     mx = [c["max_difference"] for c in per if c["max_difference"] is not None]
     return {"cascades": per, "agreement": min(ag) if ag else None, "max_difference": max(mx) if mx else None,

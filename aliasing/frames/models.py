@@ -462,12 +462,103 @@ class PlayCanvas:
         sides = np.array([2 * float(stable.centroid_radius(a, b, cam.fov, cam.aspect)) for a, b in zip(edges[:-1], edges[1:])])
         return Prediction(factor, sel, edges[:-1], sides, np.full(k, float(per))), ref
 
+    def light_matrices(self, s: dict, camera, sun: Array, triangles: Array, float32_depth: bool = True, snap: bool = True) -> Array:
+        """The toolkit's prediction of each cascade's palette matrix (world → the atlas's (s, t, depth) in [0, 1]³),
+        as ``ShadowRendererDirectional.cull`` and ``ShadowRenderer.dispatchUniforms`` build it (float64).
+
+        Per cascade (``renderer/shadow-renderer-directional.js``): the light's rotation turned −90° about
+        its x (69–83: the shadow camera looks along −``sun``, its up the light's −z, its right the
+        light's x); the slice corners' centroid c and radius r, the largest corner distance (84–100);
+        the centre snapped up to a multiple of 4r/R along up and right (104–111: ``sizeRatio`` =
+        R/(4r), ``Math.ceil``), which is one texel of a half-size atlas cell (two of a whole map);
+        orthographic ±r (116); the depth from the casters' bounding box (``meshInstance.aabb``,
+        ``triangles`` [world units]) seen along the light, the camera 0.1 before its nearest corner
+        and far 0.2 beyond its depth (174–177, near 0.01); then the cell's viewport (``Mat4.setViewport``,
+        ``shadow-renderer.js`` 261–266).  The light entity turns +y onto ``sun`` about y × sun (the page's rotation).
+
+        The depth range is measured with the shadow camera first put 10⁶ behind the centre
+        (``translateLocal(0, 0, 1e6)``, line 113) in a float32 world matrix (``Mat4``), inverted into
+        float32: the casters' nearest depth, and so the camera's final place along the light, is off by
+        that rounding (up to about 2⁻⁴ world units; ERRATA F11).  ``float32_depth`` (default) repeats
+        that arithmetic; False places the camera exactly 0.1 before the box.  Neither changes s or t.
+        ``snap`` False leaves the centre where the slice puts it (what the maps would do unsnapped).
+
+        Example
+        -------
+        >>> from aliasing.frames.scenes import frame_scene, sun_direction
+        >>> fs = frame_scene("boxes", near=0.5, far=60.0, fov=50.0, aspect=16 / 9, boxes=4, ground_cells=2)
+        >>> pc = MODELS["playcanvas"]
+        >>> s = pc.settings({"numCascades": 2})
+        >>> m = pc.light_matrices(s, fs.camera, sun_direction(35, 30, fs.camera), fs.triangles)
+        >>> a, b = pc.edges(s, fs.camera)[1:3]                                   # cascade 1's slice
+        >>> st = m[1] @ [*(fs.camera.view.slice_vertices(a, b) @ fs.camera.rotation + fs.camera.eye).mean(0), 1.0]
+        >>> m.shape, bool(0 <= st[0] <= 0.5 <= st[1] <= 1)                     # its centre: in its cell, the atlas's upper left quarter
+        ((2, 4, 4), True)
+        """
+        from .. import _validation as check
+
+        sv = check.finite(sun, "sun")
+        if sv.shape != (3,) or not np.linalg.norm(sv) > 0:
+            raise ValueError(f"sun must be a non-zero 3-vector, got {sv.tolist()}")
+        tri = check.finite(triangles, "triangles")
+        if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri):
+            raise ValueError(f"triangles must have shape (T, 3, 3), T >= 1, got {tri.shape}")
+        rot = _light_rotation(sv / np.linalg.norm(sv))
+        right, up, back = rot[:, 0], -rot[:, 2], rot[:, 1]  # the shadow camera's x, y and z (it looks along −z = −sun)
+        res = float(s["shadowResolution"])
+        pts = tri.reshape(-1, 3)
+        lo, hi = pts.min(0), pts.max(0)
+        corners_box = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
+        box = corners_box @ back
+        depth = float(box.max() - box.min())
+        near, far = 0.01, depth + 0.2
+        edges = self.edges(s, camera)
+        out = []
+        for (a, b), (x0, y0, w, h) in zip(zip(edges[:-1], edges[1:]), self.cells(s)):
+            corners = camera.view.slice_vertices(a, b) @ camera.rotation + camera.eye
+            c = corners.mean(0)
+            r = float(np.max(np.linalg.norm(corners - c, axis=1)))
+            ratio = 0.25 * res / r
+            basis = np.stack([right, up, back])
+            snapped = up * (np.ceil(c @ up * ratio) / ratio) + right * (np.ceil(c @ right * ratio) / ratio) if snap else up * (c @ up) + right * (c @ right)
+            nearest = box.max()
+            if float32_depth:  # the camera 1e6 behind the centre, its world matrix and inverse in float32
+                far_cam = np.eye(4)
+                far_cam[:3, :3] = basis.T
+                far_cam[:3, 3] = snapped + back * (c @ back) + 1e6 * back
+                inv = np.linalg.inv(far_cam.astype(np.float32).astype(float)).astype(np.float32).astype(float)
+                nearest = float(np.max(corners_box @ inv[2, :3] + inv[2, 3])) + (far_cam[:3, 3] @ back)
+            pos = snapped + back * (nearest + 0.1)
+            view = np.eye(4)
+            view[:3, :3] = basis
+            view[:3, 3] = -basis @ pos
+            proj = np.diag([1 / r, 1 / r, -2 / (far - near), 1.0])
+            proj[2, 3] = -(far + near) / (far - near)
+            vp = np.diag([w / 2, h / 2, 0.5, 1.0])
+            vp[:3, 3] = [x0 + w / 2, y0 + h / 2, 0.5]
+            out.append(vp @ proj @ view)
+        return np.array(out)
+
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
         """Each cascade's first depth (the previous cascade's distance), its larger texel side × R (R the atlas's side) and R."""
         ends = np.array([c["distance"] for c in rb.info["cascades"]], float)
         starts = np.concatenate([[camera.near], ends[:-1]])
         sides = np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3])) for m in rb.matrices])
         return starts, sides, rb.sizes[:, 0].astype(float)
+
+
+def _light_rotation(sun: Array) -> Array:
+    """The page's light rotation (3 × 3, columns: the light's x, y, z in the world): +y turned onto the unit
+    ``sun`` about y × sun (``Quat.setFromAxisAngle``); about x by 0° or 180° when the sun is along ±y."""
+    y = np.array([0.0, 1.0, 0.0])
+    axis = np.cross(y, sun)
+    n = np.linalg.norm(axis)
+    if n < 1e-9:
+        return np.eye(3) if sun[1] > 0 else np.diag([1.0, -1.0, -1.0])
+    k = axis / n
+    ang = np.arccos(np.clip(y @ sun, -1.0, 1.0))
+    kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + np.sin(ang) * kx + (1 - np.cos(ang)) * kx @ kx  # Rodrigues
 
 
 MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvas()}

@@ -407,7 +407,8 @@ def polygon_offset(map_triangles: Array, resolution: int, factor: float, units: 
     return factor * m + units * r
 
 
-def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution: int, shadow_bias: float, slope: str = "max") -> Array:
+def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution: int, shadow_bias: float, slope: str = "max",
+                     subpixel_bits: int | None = None) -> Array:
     """PlayCanvas's shadow atlas: each cascade's casters drawn through its palette matrix into its cell, with the polygon offset.
 
     ``matrices`` (k, 4, 4) map world points to the atlas's (s, t, depth) (the engine's
@@ -415,7 +416,9 @@ def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution
     (x, y, w, h) in [0, 1] (the scissor); the stored depth is the window depth plus
     :func:`polygon_offset` with factor and units 10 · clamp(``shadow_bias``, 0, 1)
     (``light.js`` ``_updateShadowBias``: −1000 × the light's −0.01 · shadowBias).
-    Empty texels hold the clear depth 1; ``slope``: :func:`polygon_offset`'s.  Returns the (R, R) depth array.
+    Empty texels hold the clear depth 1; ``slope``: :func:`polygon_offset`'s.  ``subpixel_bits``: each
+    corner's (s, t) first rounded to 1/2^bits of a texel, as a rasterizer with that sub-texel precision
+    places it (SwiftShader: 4; None: exact).  Returns the (R, R) depth array.
 
     Examples
     --------
@@ -439,9 +442,18 @@ def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution
     out = np.ones((r, r))
     off = 10.0 * min(max(shadow_bias, 0.0), 1.0)
     centre = (np.arange(r) + 0.5) / r
+    if subpixel_bits is not None and not (isinstance(subpixel_bits, (int, np.integer)) and 0 <= subpixel_bits <= 16):
+        raise ValueError(f"subpixel_bits must be a whole number in [0, 16] or None, got {subpixel_bits!r}")
     for m, (x, y, w, h) in zip(mats, cells):
-        dm = light_depth_map(triangles, m, r)
-        bias = polygon_offset(to_map(m, triangles), r, off, off, slope) if off and len(triangles) else np.zeros(max(len(triangles), 1))
+        if subpixel_bits is None or not len(triangles):
+            dm = light_depth_map(triangles, m, r)
+            mt = to_map(m, triangles) if len(triangles) else None
+        else:
+            mt = to_map(m, check.finite(triangles, "triangles"))
+            q = r * 2.0**subpixel_bits
+            mt[..., :2] = np.floor(mt[..., :2] * q + 0.5) / q
+            dm = rasterize(mt, r)
+        bias = polygon_offset(mt, r, off, off, slope) if off and len(triangles) else np.zeros(max(len(triangles), 1))
         d = np.where(dm.triangle >= 0, dm.depth + bias[np.maximum(dm.triangle, 0)], 1.0)
         cols = (centre >= x) & (centre < x + w)
         rows = (centre >= y) & (centre < y + h)

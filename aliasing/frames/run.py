@@ -99,22 +99,23 @@ def refuse_unrendered(engine: str, cls: str | None, path, maps) -> None:
     Examples
     --------
     >>> refuse_unrendered("threejs", "CSM", "sideways:0.05:4", 256)
-    >>> refuse_unrendered("playcanvas", None, "sideways:0.05:4", None)
+    >>> refuse_unrendered("playcanvas", None, "turn:0.5:4", 256)
+    >>> refuse_unrendered("babylon", "ShadowGenerator", None, 256)
     Traceback (most recent call last):
     ...
-    ValueError: --path: the camera path is rendered for threejs and babylon only (not yet for playcanvas)
+    ValueError: --maps: the shadow maps are read back for three.js's CSM, Babylon.js's CascadedShadowGenerator and PlayCanvas's directional light only (not yet for babylon ShadowGenerator)
     """
     single = cls in ("DirectionalLight", "ShadowGenerator")
     if path is not None:
         if engine not in PATH_ENGINES:
-            raise ValueError(f"--path: the camera path is rendered for {' and '.join(PATH_ENGINES)} only (not yet for {engine})")
+            raise ValueError(f"--path: the camera path is rendered for {', '.join(PATH_ENGINES)} only (not for {engine})")
         if single:
             raise ValueError(f"--path: the camera path is rendered for the cascaded classes only (a {cls}'s box does not follow the camera)")
     if maps is not None:
         _map_side(maps)
-        if engine not in ("threejs", "babylon") or single:
-            raise ValueError(f"--maps: the shadow maps are read back for three.js's CSM and Babylon.js's CascadedShadowGenerator "
-                             f"only (not yet for {engine}{' ' + cls if cls else ''})")
+        if engine not in PATH_ENGINES or single:
+            raise ValueError(f"--maps: the shadow maps are read back for three.js's CSM, Babylon.js's CascadedShadowGenerator and "
+                             f"PlayCanvas's directional light only (not yet for {engine}{' ' + cls if cls else ''})")
 
 
 def _map_side(maps) -> int:
@@ -242,6 +243,11 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
         pm = pred.matrices if pred.matrices is not None else model.matrices(settings, scene.camera, sun)
         if pm.shape == rb.matrices.shape:
             extra_pipe["matrices_vs_engine"] = float(np.max(np.abs(pm - rb.matrices)) / np.max(np.abs(rb.matrices)))
+    if predicts and hasattr(model, "light_matrices"):  # PlayCanvas: the palette, from the fit, snap and the casters' box
+        pm = model.light_matrices(settings, scene.camera, sun, scene.triangles)
+        if pm.shape == rb.matrices.shape:
+            extra_pipe["matrices_vs_engine"] = float(np.max(np.abs(pm - rb.matrices)) / np.max(np.abs(rb.matrices)))
+            extra_pipe["grid_vs_engine"] = float(np.max(np.abs(pm - rb.matrices)[:, :2]) / np.max(np.abs(rb.matrices)))
     extra = {"pixels": int(drawn.sum()), "receivers": int(receivers.sum()),
              "cascade_agreement": float(np.mean(rb.cascade[drawn] == pred.cascade[drawn])) if drawn.any() and predicts else None,
              "renderer": rb.info.get("renderer"), "engine_ms": rb.info.get("ms"), **extra_pipe}
@@ -272,7 +278,7 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     path : str, optional
         ``KIND:STEP[:FRAMES]`` (:func:`parse_path`): adds ``flips_per_frame``.
     maps : int, optional
-        Read the shadow maps back (three.js, Babylon.js), every stride-th texel so that at most
+        Read the shadow maps back (three.js, Babylon.js; PlayCanvas's atlas), every stride-th texel so that at most
         ``maps`` texels per side come back, and add ``report["maps"]``: the engine's maps
         against the toolkit's rasterizer (:func:`aliasing.frames.maps.measure_maps`).
 
@@ -330,7 +336,12 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
         from . import maps as frame_maps
 
         got = frame_maps.decode_maps(out)
-        mats = np.array([np.asarray(m["matrix"], float).reshape(4, 4).T for m in out["maps"]]) if "matrix" in out["maps"][0] else result.readback.matrices
+        if "matrices" in out["maps"][0]:  # one atlas, drawn with these palette matrices
+            mats = np.array([np.asarray(m, float).reshape(4, 4).T for m in out["maps"][0]["matrices"]])
+        elif "matrix" in out["maps"][0]:
+            mats = np.array([np.asarray(m["matrix"], float).reshape(4, 4).T for m in out["maps"]])
+        else:
+            mats = result.readback.matrices
         result.report["maps"] = frame_maps.measure_maps(setup.engine, settings, scene.triangles, sv, mats, got)
     if poses is not None:
         sh = shimmer(result, scene, sv, poses)
@@ -338,13 +349,15 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
         result.report["predicted"]["flips_per_frame"] = sh["predicted"]
         result.report["details"]["path"] = path
         result.report["details"]["path_matrices_vs_engine"] = sh["matrices_vs_engine"]
+        if "grid_vs_engine" in sh:
+            result.report["details"]["path_grid_vs_engine"] = sh["grid_vs_engine"]
     result.report["details"]["engine_revision"] = result.report["release"]
     result.report["release"] = setup.release
     return result
 
 
 PATHS = ("sideways", "forward", "turn")
-PATH_ENGINES = ("threejs", "babylon")
+PATH_ENGINES = ("threejs", "babylon", "playcanvas")
 
 
 def parse_path(spec: str, camera) -> list[dict]:
@@ -427,7 +440,8 @@ def flips(masks: NDArray[np.bool_], keep: NDArray[np.bool_]) -> float:
 def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]) -> dict:
     """``flips_per_frame`` of the engine along ``path`` (its read-back ``path``) and as the toolkit
     predicts it (three.js: each pose's predicted matrices, the toolkit's maps and three.js's filter at
-    the same pixels); details: the largest relative difference of the pose matrices.
+    the same pixels; Babylon.js and PlayCanvas alike with their own); details: the largest relative
+    difference of the pose matrices.
 
     Examples
     --------
@@ -465,6 +479,8 @@ def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]
     out = {"measured": flips(measured < 0.5, keep), "predicted": None, "matrices_vs_engine": None}
     if rb.engine == "babylon":
         return {**out, **_babylon_shimmer(result, scene, sun, path, frames, keep)}
+    if rb.engine == "playcanvas":
+        return {**out, **_playcanvas_shimmer(result, scene, sun, path, frames, keep)}
     model = MODELS[rb.engine] if rb.engine in MODELS else None
     if model is None or not hasattr(model, "matrices"):
         return out
@@ -516,12 +532,41 @@ def _babylon_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: l
     return {"predicted": flips(np.array(masks), keep), "matrices_vs_engine": worst}
 
 
+def _playcanvas_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], frames: list[dict], keep) -> dict:
+    """PlayCanvas's predicted flips: each pose's predicted palette (:meth:`aliasing.frames.models.PlayCanvas.light_matrices`),
+    the toolkit's atlas and PlayCanvas's factor at the same pixels (the picture's cascades); details:
+    the largest relative difference of the pose matrices, whole and in their s and t rows."""
+    from . import predict
+
+    rb, s = result.readback, result.settings
+    model = MODELS["playcanvas"]
+    if model.predicted(s):
+        return {"predicted": None, "matrices_vs_engine": None}
+    cast = scene.triangles[predict.casting(scene.triangles, sun, model.cast_side(s))]
+    pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+    masks, worst, grid = [], 0.0, 0.0
+    for pose, f in zip(path, frames):
+        mats = model.light_matrices(s, pose_camera(scene.camera, pose), sun, scene.triangles)
+        eng = np.array([np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
+        worst = max(worst, float(np.max(np.abs(mats - eng)) / np.max(np.abs(eng))))
+        grid = max(grid, float(np.max(np.abs(mats - eng)[:, :2]) / np.max(np.abs(eng))))
+        masks.append(_playcanvas_factor(model, s, cast, mats, result.prediction.cascade, pts, nrm, None) < 0.5)
+    return {"predicted": flips(np.array(masks), keep), "matrices_vs_engine": worst, "grid_vs_engine": grid}
+
+
+def _playcanvas_factor(model, s: dict, cast: Array, mats: Array, cascade, pts: Array, nrm: Array, subpixel_bits: int | None) -> Array:
+    from . import predict
+
+    atlas = predict.playcanvas_atlas(cast, mats, model.cells(s), int(s["shadowResolution"]), float(s["shadowBias"]), subpixel_bits=subpixel_bits)
+    return predict.playcanvas_factor(atlas, mats, cascade, pts, nrm, normal_offset=float(s["normalOffsetBias"]), taps=model.FILTERS[int(s["shadowType"])])
+
+
 def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], subpixel_bits: int | None = 4) -> dict:
     """An engine's path replayed by the toolkit through the *engine's* pose matrices (read back),
     with the casters' corners snapped to 1/2^``subpixel_bits`` texel (:func:`aliasing.frames.maps.snapped_depth_map`;
     SwiftShader: 4; None: exact): ``flips_per_frame`` and ``shared``, the fraction of the engine's
     flips (pixel and frame) that the replay also flips.  A diagnostic of where the engine's flips
-    come from, when the toolkit's own prediction is 0 (ERRATA F7, F8).
+    come from, when the toolkit's own prediction is 0 (ERRATA F7, F8, F11).
 
     Examples
     --------
@@ -551,7 +596,7 @@ def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict],
 
     rb, s = result.readback, result.settings
     if rb.engine not in PATH_ENGINES:
-        raise ValueError(f"replay is for {' and '.join(PATH_ENGINES)} frames, got {rb.engine!r}")
+        raise ValueError(f"replay is for {', '.join(PATH_ENGINES)} frames, got {rb.engine!r}")
     frames = rb.info.get("path") or []
     if len(frames) != len(path):
         raise ValueError("the page returned no camera path")
@@ -563,6 +608,13 @@ def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict],
     cast = tri[predict.casting(tri, sun, model.cast_side(s))]
     to_unit = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
     engine = np.array([np.frombuffer(__import__("base64").b64decode(f["shadow"]), np.float32).reshape(h, w)[::-1] for f in frames]) < 0.5
+    if rb.engine == "playcanvas":
+        if model.predicted(s):
+            raise ValueError(f"replay needs predicted PlayCanvas settings: {model.predicted(s)}")
+        masks = np.array([_playcanvas_factor(model, s, cast, np.array([np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]]),
+                                             result.prediction.cascade, pts, nrm, subpixel_bits) < 0.5 for f in frames])
+        fe, fp = np.diff(engine[:, keep], axis=0), np.diff(masks[:, keep], axis=0)
+        return {"flips_per_frame": flips(masks, keep), "shared": float((fe & fp).sum() / fe.sum()) if fe.any() else None}
     if rb.engine == "babylon":
         cast = predict.offset_casters(cast, sun, float(s["normalBias"]))
         depth = np.where(rb.drawn, scene.camera.to_eye(pts)[..., 2], np.nan)

@@ -6,10 +6,14 @@
 //             dAtten (after the shadow intensity), the cascade getShadow0 picked
 //   position  per pixel: vPositionW;  normal: dVertexNormalW turned towards the eye
 //   cascades  per cascade: the shadow matrix palette entry, map size (the atlas cell)
+//   path      (job.path) per pose: the factor with the maps fitted to a camera at that pose
+//             (the picture's camera stays: drawn once at the pose for the maps, once in place
+//             for the factor, the maps kept), and the palette
+//   maps      (job.maps) the shadow atlas as last drawn, every stride-th texel, with its palette
 // The statements are added to the material's own shader chunks (lightFunctionLightPS,
 // lightFunctionShadowPS) and the outputs written in its outputPS chunk.
 import * as pc from "/node_modules/playcanvas/build/playcanvas.mjs";
-import { decodeF32, encode, flatNormals } from "./common.mjs";
+import { decodeF32, encode, flatNormals, readDepthTexture } from "./common.mjs";
 
 const DECL = "#ifndef FRAMES_DECL\n#define FRAMES_DECL\nfloat frShadow = 1.0;\nfloat frCascade = -1.0;\n#endif\n";
 
@@ -107,19 +111,47 @@ window.frame = async (job) => {
     const px = await tex.read(0, 0, w, h, { renderTarget: rt, immediate: true });
     out[name] = encode(new Float32Array(px.buffer, px.byteOffset, w * h * 4));
   }
-  const ms = performance.now() - t0;
   const L = light.light.light;
+  const palette16 = () => Array.from({ length: L.numCascades }, (_, i) => Array.from(L._shadowMatrixPalette.slice(16 * i, 16 * i + 16)));
   const size = L.shadowResolution;
-  const cascades = [];
-  const palette = L._shadowMatrixPalette;
-  for (let i = 0; i < L.numCascades; i++) {
-    cascades.push({ matrix: Array.from(palette.slice(16 * i, 16 * i + 16)), size: [size, size], distance: L._shadowCascadeDistances[i] });
+  const cascades = palette16().map((matrix, i) => ({ matrix, size: [size, size], distance: L._shadowCascadeDistances[i] }));
+  // a camera path: the cascades follow the camera drawn at each pose (app.render with the maps
+  // updated), then the picture's camera, back in place, draws the factor with those maps kept, so
+  // every pixel keeps its world point and a change of its factor is the maps' motion alone
+  const path = [];
+  if (job.path) {
+    mi.material = materials[1];
+    const target = new pc.Vec3(...c.target), up = new pc.Vec3(...c.up);
+    for (const pose of job.path) {
+      camera.setPosition(...pose.eye);
+      camera.lookAt(new pc.Vec3(...pose.target), up);
+      light.light.shadowUpdateMode = pc.SHADOWUPDATE_REALTIME;
+      app.render();                                         // the maps and the palette fitted to this pose
+      camera.setPosition(...c.eye);
+      camera.lookAt(target, up);
+      light.light.shadowUpdateMode = pc.SHADOWUPDATE_NONE;
+      app.render();
+      const px = await tex.read(0, 0, w, h, { renderTarget: rt, immediate: true });
+      const buf = new Float32Array(px.buffer, px.byteOffset, w * h * 4);
+      const factor = new Float32Array(w * h);
+      for (let i = 0; i < w * h; i++) factor[i] = buf[4 * i];
+      path.push({ shadow: encode(factor), matrices: palette16() });
+    }
   }
+  // the shadow atlas as last drawn (the DEPTH_COMPONENT32F texture the PCF lookup samples), read
+  // last: the pass changes GL state behind the engine's caches and the app is destroyed after it
+  let maps = null;
+  if (job.maps) {
+    const atlas = L._shadowMap.texture, size = atlas.width, stride = Math.max(1, Math.ceil(size / job.maps.side));
+    const got = readDepthTexture(device.gl, atlas.impl._glTexture, size, stride, null);
+    maps = [{ depth: got.maps[0], side: got.side, stride, size, matrices: palette16() }];
+  }
+  const ms = performance.now() - t0;
   const used = {};
   for (const k of LIGHT_KEYS) used[k] = light.light[k];
   const gl = device.gl;
   const dbg = gl.getExtension("WEBGL_debug_renderer_info");
-  const res = { engine: "playcanvas", revision: pc.version, width: w, height: h, frame, ...out, cascades, used, ms,
+  const res = { engine: "playcanvas", revision: pc.version, width: w, height: h, frame, ...out, cascades, used, ms, path, maps,
                 renderer: dbg ? gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER) };
   app.destroy();
   return res;
