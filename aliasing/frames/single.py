@@ -232,7 +232,7 @@ class Filament:
       of the scene through the camera, checked against what the engine drew (``details``).
     * **Light matrices.**  Not readable from JavaScript: ``texels_per_pixel`` is not measured, and
       the exact reference shadows are drawn through the toolkit's own light box around the
-      scene (:meth:`reference_matrix`, 4096² texels).
+      scene (:meth:`reference_matrix`, 2048² texels).
     """
 
     engine: str = "filament"
@@ -242,7 +242,7 @@ class Filament:
         "shadowFarHint": 100.0, "stable": False, "polygonOffsetConstant": 0.5, "polygonOffsetSlope": 2.0, "screenSpaceContactShadows": False,
         "stepCount": 8, "maxShadowDistance": 0.3})
     #: the exact reference's light-map side [texels]
-    REFERENCE = 4096
+    REFERENCE = 2048
 
     def settings(self, given: dict | None = None) -> dict:
         """The ShadowOptions (defaults filled in); anything but the defaults is refused (the binding cannot set them)."""

@@ -149,9 +149,9 @@ window.frame = async (job) => {
   const t0 = performance.now();
   const draw = async (receive) => {
     for (const e of entities) { const inst = rm.getInstance(e); rm.setReceiveShadows(inst, receive); rm.setCastShadows(inst, true); inst.delete(); }
-    // a frame Filament skips (beginFrame false) is not drawn: draw `settle` frames after the first one drawn
+    // a frame Filament skips (beginFrame false) is not drawn: draw `settle` frames (default 1), then read
     let drawn = 0, tries = 0;
-    while (drawn < (job.settle ?? 2) && tries++ < 200) {
+    while (drawn < (job.settle ?? 1) && tries++ < 200) {
       if (renderer.beginFrame(swap)) { renderer.renderView(view); renderer.endFrame(); drawn++; }
       engine.execute();
       await nextFrame();
