@@ -67,10 +67,10 @@ def test_the_page_renders_with_the_toolkits_camera(frames):
         d = r.report["details"]
         assert r.report["engine"] == "filament" and d["engine_revision"] == "1.53.4" and "SwiftShader" in d["renderer"]
         assert d["relit_changed"] == 0                       # the lit frame drawn again is the same, byte for byte
-        assert d["view_vs_toolkit"] < 1e-6 and d["projection_vs_toolkit"] < 1e-6
-        assert d["coverage_vs_engine"] < 0.005              # silhouette pixels only
+        assert d["view_vs_toolkit"] == 0 and d["projection_vs_toolkit"] < 5e-8
         assert d["pixels"] > 10_000
-    assert frames["boxes"].report["details"]["coverage_vs_engine"] > 0   # the measure can fail: box edges differ
+    assert 0 < frames["boxes"].report["details"]["coverage_vs_engine"] < 0.0006   # silhouette pixels only (0.05 %)
+    assert frames["overhead"].report["details"]["coverage_vs_engine"] == 0
     rb = frames["boxes"].readback
     assert np.nanmin(rb.shadow) == 0 and np.nanmax(rb.shadow) == 1
 
@@ -80,21 +80,21 @@ def test_the_factor_is_one_on_a_fully_lit_face_on_receiver(frames):
     f = rb.shadow[rb.drawn]
     assert rb.drawn.sum() > 10_000
     assert np.all(np.abs(f - 1) <= 1 / 255)
-    assert frames["overhead"].report["details"]["unlit_min_facing"] >= 128   # precision of the ratio: better than 1/128
+    assert frames["overhead"].report["details"]["unlit_min_facing"] >= 208   # precision of the ratio: better than 1/128
 
 
 def test_the_shadows_agree_with_the_exact_ones(frames):
     r = frames["boxes"]
     m = r.report["measured"]
-    assert r.report["details"]["agreement_vs_exact"] >= 0.99
-    assert m["acne"] < 0.01 and m["gap_px"] < 1.0
+    assert r.report["details"]["agreement_vs_exact"] >= 0.995    # the docs: 100 % (asked: >= 99 %)
+    assert 0.0025 <= m["acne"] < 0.0035 and 0.18 <= m["gap_px"] < 0.28   # the docs: 0.3 %, 0.23 px
     assert m["shadow_agreement"] is None and r.report["predicted"]["acne"] is None    # not predicted: said why
     assert "LiSPSM" in r.report["details"]["not_predicted"]
     # the ratio sees shading below the 1/2 threshold: lit ground far from any exact shadow that reads 0.97-0.99
     rb, ref = r.readback, r.reference
     far = ref & ~ndimage.binary_dilation(~ref & rb.drawn, iterations=3) & ndimage.binary_erosion(rb.drawn, iterations=3)
     part = np.mean(rb.shadow[far] < 1 - 1 / 255)
-    assert 0.05 < part < 0.4 and np.min(rb.shadow[far]) > 0.5
+    assert 0.205 <= part < 0.215 and np.min(rb.shadow[far]) > 0.6     # the docs: 21 %, none below 0.6
 
 
 @pytest.mark.parametrize("extra, message", [
