@@ -23,11 +23,14 @@ import shutil
 
 import numpy as np
 import pytest
+from hypothesis import given, settings, strategies as st
+from hypothesis.extra import numpy as hnp
 from scipy import ndimage
 
 from aliasing import cli, setups
 from aliasing.frames import browser as fb
-from aliasing.frames import install, scenes
+from aliasing.frames import install, predict, scenes
+from aliasing.frames.models import FILAMENT
 from aliasing.frames.run import frame_setup
 
 CI = os.environ.get("CI", "").lower() == "true"
@@ -107,3 +110,38 @@ def test_cli_refusals_are_one_line(extra, message, capsys, tmp_path):
     code = cli.main(["frames", "--engine", "filament", "--scene", "boxes", "--camera", SPEC, "--sun", "35@30", "--out", str(tmp_path), *extra])
     err = capsys.readouterr().err
     assert code == 2 and err.count("\n") == 1 and message in err
+
+
+def test_cli_refuses_an_odd_width_minus_height(capsys, tmp_path):
+    code = cli.main(["frames", "--engine", "filament", "--scene", "boxes", "--camera", "near=0.5,far=60,fov=50,aspect=1.5,height=101",
+                     "--sun", "35@30", "--out", str(tmp_path)])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1 and "need an even width − height" in err and "got 152×101" in err
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.dictionaries(st.sampled_from(sorted(FILAMENT.defaults) + ["lispsm", "bias"]),
+                       st.one_of(st.integers(-5, 5000), st.floats(allow_nan=True), st.booleans(), st.text(max_size=3)), max_size=3))
+def test_settings_are_the_defaults_or_one_refusal(given_settings):
+    try:
+        got = FILAMENT.settings(given_settings)
+    except ValueError as e:
+        assert "\n" not in str(e)
+    else:
+        assert got == FILAMENT.defaults and all(FILAMENT.defaults[k] == v for k, v in given_settings.items())
+
+
+@settings(max_examples=60, deadline=None)
+@given(hnp.arrays(np.float64, (4, 3, 3), elements=st.floats(-1e3, 1e3)),
+       hnp.arrays(np.float64, 3, elements=st.floats(-1, 1)))
+def test_the_reference_box_holds_the_scene(tri, sun):
+    if not np.linalg.norm(sun) > 0:
+        with pytest.raises(ValueError, match="sun must be"):
+            FILAMENT.reference_matrix(tri, sun)
+        return
+    m = FILAMENT.reference_matrix(tri, sun)
+    p = predict.to_map(m, tri)
+    assert np.all(p >= -1e-9) and np.all(p <= 1 + 1e-9)
+    # the depth axis runs along the light: nearer the sun, smaller depth
+    a, b = np.zeros(3), np.asarray(sun) / np.linalg.norm(sun)
+    assert predict.to_map(m, b)[2] < predict.to_map(m, a)[2]

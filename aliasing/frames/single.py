@@ -281,13 +281,21 @@ class Filament:
         >>> bool(((p >= 0) & (p <= 1)).all())
         True
         """
-        d = -np.asarray(sun, float) / np.linalg.norm(sun)        # along the light
+        from .. import _validation as check
+
+        tri = check.finite(triangles, "triangles")
+        if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri):
+            raise ValueError(f"triangles must have shape (T, 3, 3) with T >= 1, got {tri.shape}")
+        sv = check.finite(sun, "sun")
+        if sv.shape != (3,) or not np.linalg.norm(sv) > 0:
+            raise ValueError(f"sun must be a non-zero 3-vector (world direction towards the sun), got {np.asarray(sun).tolist()}")
+        d = -sv / np.linalg.norm(sv)                              # along the light
         up = np.array([0.0, 0.0, 1.0]) if abs(d[1]) > 0.9 else np.array([0.0, 1.0, 0.0])
         x = np.cross(up, d)
         x /= np.linalg.norm(x)
         y = np.cross(d, x)
         rot = np.array([x, y, d])
-        p = np.asarray(triangles, float).reshape(-1, 3) @ rot.T
+        p = tri.reshape(-1, 3) @ rot.T
         lo, hi = p.min(axis=0), p.max(axis=0)
         pad = 1e-3 * float(np.max(hi - lo)) + 1e-9
         lo, hi = lo - pad, hi + pad
@@ -351,8 +359,14 @@ class Filament:
                 "cascades": [{"matrix": m.T.ravel().tolist(), "size": [self.REFERENCE, self.REFERENCE], "reference": True}]}
 
     def from_setup(self, setup) -> dict:
-        """The settings of a Filament :class:`aliasing.setups.Setup`: the ShadowOptions, which must be the defaults."""
+        """The settings of a Filament :class:`aliasing.setups.Setup`: the ShadowOptions, which must be the defaults,
+        for an image whose width − height is even (:meth:`readback`)."""
         s = dict(setup.settings)
+        cam = setup.camera
+        w = round(cam.aspect * cam.height)
+        if (w - cam.height) % 2:
+            raise ValueError(f"--camera: Filament's frames need an even width − height (the eye pass's square pixel grid), "
+                             f"got {w}×{cam.height}: change the height by one")
         if s.get("View.shadowType", "PCF") != "PCF":
             raise ValueError(f"View.shadowType: Filament 1.53.4's JavaScript binding has no View.setShadowType, the frames render PCF, got {s['View.shadowType']!r}")
         if s.get("lispsm", True) is not True:
