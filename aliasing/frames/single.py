@@ -218,7 +218,9 @@ class Filament:
     * **Settings.**  Its JavaScript binding registers ``LightManager$ShadowOptions`` in the typings
       (``filament.d.ts``) and in ``Filament.shadowOptions`` (filament.js) but not the value type
       behind ``LightManager.Builder.shadowOptions`` and ``LightManager.setShadowOptions``: both
-      throw "Cannot call … due to unbound types".  The light keeps the C++ defaults of
+      throw "Cannot call … due to unbound types" (``web/filament-js/jsbindings.cpp``, google/filament
+      as stored, commit 4c8b73e5: the value object's field ``transform`` is a ``mat4f``, a type embind
+      never registers; only the ``flatmat4`` wrapper is).  The light keeps the C++ defaults of
       ``ShadowOptions`` (``mapSize`` 1024, one cascade, ``constantBias`` 0.001, ``normalBias`` 1,
       ``polygonOffsetConstant`` 0.5, ``polygonOffsetSlope`` 2, ``stable`` false, ``lispsm`` true);
       any other value is refused.  ``View.setShadowType`` is not bound either (PCF).
