@@ -74,6 +74,9 @@ def test_the_page_renders_with_the_toolkits_camera(frames):
         assert d["pixels"] > 10_000
     assert 0 < frames["boxes"].report["details"]["coverage_vs_engine"] < 0.0006   # silhouette pixels only (0.05 %)
     assert frames["overhead"].report["details"]["coverage_vs_engine"] == 0
+    # the normals: the unshadowed colour per n·l is one number on the ground and on the boxes' sides
+    p5, p50, p95 = frames["boxes"].report["details"]["unlit_per_ndotl"]
+    assert 0.84 <= p50 <= 0.86 and p5 >= 0.82 and p95 <= 0.93          # the docs: 0.85 (0.83-0.92)
     rb = frames["boxes"].readback
     assert np.nanmin(rb.shadow) == 0 and np.nanmax(rb.shadow) == 1
 

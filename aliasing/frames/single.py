@@ -343,6 +343,7 @@ class Filament:
         position = np.concatenate([pos, hit[..., None].astype(float)], -1)
         normal = np.concatenate([nrm, one[..., None]], -1)
         facing = hit & (ndotl > 0.05)
+        lit_enough = facing & engine_drawn & (ndotl > 0.2) & (g_un > 0)
         expect_v = np.array([[*cam.rotation[0], -cam.rotation[0] @ cam.eye], [*cam.rotation[1], -cam.rotation[1] @ cam.eye],
                              [*-cam.rotation[2], cam.rotation[2] @ cam.eye], [0, 0, 0, 1]])
         f = 1 / np.tan(np.radians(cam.fov) / 2)
@@ -354,6 +355,8 @@ class Filament:
             "unlit_dark_facing": float(np.mean(g_un[facing] == 0)) if facing.any() else None,
             "unlit_min_facing": float(g_un[facing].min()) if facing.any() else None,
             "relit_changed": out.get("relit_changed"),
+            # the unshadowed colour per n·l of the eye pass's normals (BRDF · intensity: constant for a diffuse surface)
+            "unlit_per_ndotl": np.percentile(g_un[lit_enough] / 255 / ndotl[lit_enough], [5, 50, 95]).tolist() if lit_enough.any() else None,
         }
         m = self.reference_matrix(scene.triangles, sun)
         rest = {k: v for k, v in out.items() if k not in ("lit", "unlit")}

@@ -15,7 +15,7 @@
 // window.frame(job) returns
 //   lit, unlit   base64 RGBA8 of the two frames (rows bottom-up, as WebGL reads them)
 //   projection, view   the camera's matrices as Filament holds them (column-major)
-//   used   the ShadowOptions passed to the light (the JS binding's fields)
+//   shadowOptions   Filament.shadowOptions of the settings (the binding's defaults: the light keeps them)
 import { decodeF32 } from "./common.mjs";
 
 const OPTIONS = ["mapSize", "shadowCascades", "constantBias", "normalBias", "shadowFar", "shadowNearHint", "shadowFarHint", "stable",
@@ -170,7 +170,7 @@ window.frame = async (job) => {
   const dbg = gl && gl.getExtension("WEBGL_debug_renderer_info");
   const res = { engine: "filament", revision: "1.53.4", width: w, height: h, frame, lit: b64(lit), unlit: b64(unlit), relit_changed: changed,
                 projection: Array.from(camera.getProjectionMatrix()), view: Array.from(camera.getViewMatrix()),
-                used: F.shadowOptions(options), albedo: ALBEDO, ms, cascades: [],
+                shadowOptions: F.shadowOptions(options), albedo: ALBEDO, ms, cascades: [],
                 renderer: dbg ? gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL) : (gl ? gl.getParameter(gl.RENDERER) : "") };
   return res;
 };
