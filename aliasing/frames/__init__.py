@@ -8,7 +8,9 @@ sampled, the world position and normal, and per cascade the light matrix and map
 (:mod:`.readback`).  The toolkit predicts the same pixels with its own rasterizer and the
 engine's rules (:mod:`.models`, :mod:`.predict`), and both are measured alike
 (:mod:`.compare`, :mod:`.run`); the shadow maps themselves can be read back and checked texel
-for texel (:mod:`.maps`), and Babylon.js's cascade matrices are predicted (:mod:`.babylon_cascades`);
+for texel (:mod:`.maps`), and Babylon.js's cascade matrices are predicted (:mod:`.babylon_cascades`).
+Filament (npm, WebGL 2) is rendered and measured against the exact shadows, not predicted: its
+factor is the ratio of two 8-bit frames (:class:`.models.Filament`);
 ``aliasing frames`` is the command (:mod:`.command`).
 
 ``import aliasing.frames`` needs neither Playwright nor Chromium: they are looked for when a
@@ -18,7 +20,7 @@ Example
 -------
 >>> from aliasing import frames
 >>> sorted(frames.PINS)
-['babylon', 'playcanvas', 'threejs']
+['babylon', 'filament', 'playcanvas', 'threejs']
 """
 
 from .install import PINS, MissingTool

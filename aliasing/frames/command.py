@@ -2,7 +2,7 @@
 
 ::
 
-    aliasing frames --engine threejs|babylon|playcanvas --scene boxes|city|FILE [--eye X,Y,Z --target X,Y,Z]
+    aliasing frames --engine threejs|babylon|playcanvas|filament --scene boxes|city|FILE [--eye X,Y,Z --target X,Y,Z]
                     --camera near=N,far=F,fov=DEG,aspect=A,height=PX --sun ELEV[..ELEV][@AZ]
                     [--settings FILE] [--set KEY=VALUE]... [--path KIND:STEP[:FRAMES]] [--maps [SIDE]]
                     --out DIR [--format json|table]
@@ -204,7 +204,7 @@ def add_frames_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
     """
     p = sub.add_parser(
         "frames",
-        help="an engine's own frame (three.js, Babylon.js, PlayCanvas in headless Chromium) against the toolkit's prediction: shadow mask, acne, gap, texel footprint",
+        help="an engine's own frame (three.js, Babylon.js, PlayCanvas, Filament in headless Chromium) against the toolkit's prediction: shadow mask, acne, gap, texel footprint",
         description="Renders the scene with the engine itself (pinned npm release, system Chromium, WebGL 2 on SwiftShader), reads back its "
         "shadow factor, positions, normals and light matrices, and measures them against the toolkit's prediction for the same pixels.",
     )

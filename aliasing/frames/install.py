@@ -14,7 +14,7 @@ checked tree, and says in one line how to install it when there is none
 Example
 -------
 >>> sorted(PINS)
-['babylon', 'playcanvas', 'threejs']
+['babylon', 'filament', 'playcanvas', 'threejs']
 >>> PINS["threejs"].release, PINS["threejs"].package
 ('r187', 'three')
 """
@@ -89,6 +89,7 @@ PINS = {
     "threejs": Pin("threejs", "r187", "three", "0.187.0"),
     "babylon": Pin("babylon", "9.35", "@babylonjs/core", "9.35.0"),  # releases as aliasing.setups names them
     "playcanvas": Pin("playcanvas", "2.23", "playcanvas", "2.23.3"),
+    "filament": Pin("filament", "1.5x", "filament", "1.53.4")  # the setups profile spells 1.5x,
 }
 
 

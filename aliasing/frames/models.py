@@ -26,11 +26,11 @@ from ..engines import stable
 from ..setups import babylon as babylon_setup
 from . import babylon_cascades, predict
 from .predict import Prediction, reference, tight_sides
-from .single import BabylonSingle, ThreeDirectional
+from .single import BabylonSingle, Filament, ThreeDirectional
 
 Array = NDArray[np.float64]
 __all__ = ["MODELS", "SINGLE", "Prediction", "reference", "tight_sides", "ThreeCSM", "ThreeDirectional", "BabylonCSM", "BabylonSingle",
-           "PlayCanvas", "model_for", "from_setup"]
+           "PlayCanvas", "Filament", "model_for", "from_setup"]
 
 
 @dataclass(frozen=True)
@@ -581,6 +581,8 @@ def model_for(engine: str, settings: dict):
     >>> type(model_for("threejs", {"class": "DirectionalLight"})).__name__, type(model_for("threejs", {})).__name__
     ('ThreeDirectional', 'ThreeCSM')
     """
+    if engine == "filament":
+        return FILAMENT
     if engine not in MODELS:
         raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")
     return SINGLE.get((engine, (settings or {}).get("class")), MODELS[engine])
@@ -614,6 +616,8 @@ def from_setup(setup) -> dict:
     if not (hasattr(setup, "settings") and hasattr(setup, "engine") and hasattr(setup, "pipeline")):
         raise ValueError(f"setup must be an aliasing.setups.Setup, got {type(setup).__name__}")
     engine, s = setup.engine, dict(setup.settings)
+    if engine == "filament":
+        return FILAMENT.from_setup(setup)
     if engine not in MODELS:
         raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")
     if engine == "threejs" and s["class"] == "DirectionalLight":
@@ -669,3 +673,6 @@ def from_setup(setup) -> dict:
         if faces != model.cast_side(full):
             raise ValueError(f"the setup's pipeline casts {setup.pipeline.bias.faces} faces, the frames' model {model.cast_side(full)}")
     return full
+
+
+FILAMENT = Filament()

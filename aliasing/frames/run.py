@@ -200,6 +200,8 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     if sv.shape != (3,) or not np.all(np.isfinite(sv)) or not np.linalg.norm(sv) > 0:
         raise ValueError(f"sun must be a finite non-zero 3-vector (world direction towards the sun), got {sun!r}")
     model = model_for(engine, settings)
+    if hasattr(model, "readback"):  # a page that returns colours only (Filament): the model makes the read-back
+        out = model.readback(out, scene, sun)
     rb = decode(out)
     why_not = model.predicted(settings) if hasattr(model, "predicted") else None
     predicts = getattr(model, "predicts", True) and why_not is None
@@ -250,9 +252,10 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
             extra_pipe["grid_vs_engine"] = float(np.max(np.abs(pm - rb.matrices)[:, :2]) / np.max(np.abs(rb.matrices)))
     extra = {"pixels": int(drawn.sum()), "receivers": int(receivers.sum()),
              "cascade_agreement": float(np.mean(rb.cascade[drawn] == pred.cascade[drawn])) if drawn.any() and predicts else None,
-             "renderer": rb.info.get("renderer"), "engine_ms": rb.info.get("ms"), **extra_pipe}
+             "renderer": rb.info.get("renderer"), "engine_ms": rb.info.get("ms"), **extra_pipe, **rb.info.get("checks", {})}
     if why_not:
         extra["not_predicted"] = why_not
+        extra["agreement_vs_exact"] = compare.agreement(rb.shadow, np.where(ref, 1.0, 0.0), rb.drawn)  # the engine's mask against the exact shadows
     report = {"engine": engine, "release": rb.release, "scene": scene.name, "measured": measured, "predicted": predicted, "details": extra}
     return FrameResult(rb, pred, ref, settings, report)
 
