@@ -240,7 +240,7 @@ def test_babylon_shadow_generator_half_float_map(babylon_single, boxes):
     # 0.06341) leaves 0.19 % acne in the frame, 0.27 % predicted, 0.1 % with a float32 map (with the rule of an
     # exact depth tune set normalBias 0.0293, which kept 15 %); bias 4e-4: 0.56 % against 0.007 %; tune's settings
     # now (bias 0.0004539, F13): 0.04 % and 0.04 %
-    from aliasing.frames import compare, predict
+    from aliasing.frames import compare, predict, single
     from aliasing.frames.models import model_for
 
     fs, sun = boxes
@@ -253,7 +253,7 @@ def test_babylon_shadow_generator_half_float_map(babylon_single, boxes):
         model = model_for("babylon", s)
         cast = predict.offset_casters(fs.triangles[predict.casting(fs.triangles, sun, model.cast_side(s))], sun, s["normalBias"])
         dm = predict.light_depth_map(cast, rb.matrices[0], s["mapSize"])
-        f = np.where(rb.drawn, predict.babylon_single_factor(dm, rb.matrices[0], np.nan_to_num(rb.position), bias=s["bias"], half=False), np.nan)
+        f = np.where(rb.drawn, single.babylon_single_factor(dm, rb.matrices[0], np.nan_to_num(rb.position), bias=s["bias"], half=False), np.nan)
         receivers = r.reference & ((np.nan_to_num(rb.normal) @ sun) > compare.MIN_COS)
         assert round(100 * compare.acne(f, receivers), 1 if float_pct >= 0.1 else 3) == float_pct
     assert babylon_single["tuned"].settings["bias"] == 0.0004539 and babylon_single["tuned"].settings["normalBias"] == 0.0

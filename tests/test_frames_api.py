@@ -25,7 +25,7 @@ from hypothesis import HealthCheck, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 from hypothesis.extra import numpy as hnp  # noqa: E402
 
-from aliasing.frames import babylon_cascades, compare, maps, predict, readback, run, scenes  # noqa: E402
+from aliasing.frames import babylon_cascades, compare, maps, models, predict, readback, run, scenes, single  # noqa: E402
 from aliasing.frames.models import MODELS  # noqa: E402
 from aliasing.raster.scenes.camera import look_at  # noqa: E402
 
@@ -44,14 +44,15 @@ def _examples(doc: str) -> str | None:
 
 def _public_callables():
     """(dotted name, its Examples text, its class's Examples text or None) of every public function, class and method."""
-    for path in sorted(FRAMES.glob("*.py")):
+    for path in sorted(FRAMES.rglob("*.py")):
         tree = ast.parse(path.read_text())
+        stem = ".".join(path.relative_to(FRAMES).with_suffix("").parts).removesuffix(".__init__")
 
         def walk(nodes, prefix, owner):
             for n in nodes:
                 if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)) and not n.name.startswith("_"):
                     own = _examples(ast.get_docstring(n) or "")
-                    yield f"{path.stem}.{prefix}{n.name}", own, owner
+                    yield f"{stem}.{prefix}{n.name}", own, owner
                     if isinstance(n, ast.ClassDef):
                         yield from walk(n.body, f"{prefix}{n.name}.", own)
 
@@ -158,10 +159,10 @@ def _cases():
             blend_factor=d.draw(st.one_of(st.floats(-1e3, 0), nonfinite)), bias=0.0), "blend_factor"),
         "predict.playcanvas_factor": (lambda d: lambda: predict.playcanvas_factor(
             np.ones((4, 4)), M[None], np.zeros(2, int), PTS, UP, normal_offset=0.0, taps=d.draw(st.integers(-3, 9).filter(lambda t: t not in (1, 3, 5)))), "taps"),
-        "predict.babylon_single_factor": (lambda d: lambda: predict.babylon_single_factor(DM, M, PTS, bias=d.draw(nonfinite)), "bias"),
+        "single.babylon_single_factor": (lambda d: lambda: single.babylon_single_factor(DM, M, PTS, bias=d.draw(nonfinite)), "bias"),
         "predict.polygon_offset": (lambda d: lambda: predict.polygon_offset(predict.to_map(M, ROOF), d.draw(st.one_of(st.integers(-5, 0), st.floats(1.1, 9.9))), 1.0, 1.0), "resolution"),
         "predict.offset_casters": (lambda d: lambda: predict.offset_casters(ROOF, np.array([0.0, 1.0, 0.0]), d.draw(nonfinite)), "normal_bias"),
-        "predict.tight_sides": (lambda d: lambda: predict.tight_sides(CAM, np.array(d.draw(st.sampled_from([[1.0], [2.0, 1.0], [1.0, 1.0], [1.0, np.nan]]))),
+        "models.tight_sides": (lambda d: lambda: models.tight_sides(CAM, np.array(d.draw(st.sampled_from([[1.0], [2.0, 1.0], [1.0, 1.0], [1.0, np.nan]]))),
                                                                       np.array([0.0, -1.0, 0.0]), np.array([0.0, 0.0, 1.0])), "edges"),
         "predict.reference": (lambda d: lambda: predict.reference(SCENE, np.array([0.0, 1.0, 0.0]), None, d.draw(bad_size)), "resolution"),
         "scenes.sun_direction": (lambda d: lambda: scenes.sun_direction(d.draw(st.one_of(st.floats(90.001, 1e3), st.floats(-1e3, -90.001), nonfinite)), 0.0, CAM), "elevation"),
@@ -298,7 +299,7 @@ def test_factors_on_a_4x4_map_are_in_0_1(y, bias):
     c = np.zeros(1, int)
     f3 = predict.threejs_factor([DM], M[None], c, pts, UP[:1], np.ones(1), np.ones(1), bias=bias, normal_bias=0.0, radius=1.0)
     fb = predict.babylon_factor([DM], M[None], c, np.ones(1), pts, ends=np.ones(1), lengths=np.ones(1), blend_factor=10.0, bias=bias)
-    fs = predict.babylon_single_factor(DM, M, pts, bias=bias)
+    fs = single.babylon_single_factor(DM, M, pts, bias=bias)
     atlas = predict.playcanvas_atlas(ROOF, M[None], [[0.0, 0.0, 1.0, 1.0]], 4, 0.0)
     fp = predict.playcanvas_factor(atlas, M[None], c, pts, UP[:1], normal_offset=0.0)
     for f in (f3, fb, fs, fp):

@@ -16,8 +16,8 @@ factor is the ratio of two 8-bit frames (:class:`.models.Filament`);
 ``import aliasing.frames`` needs neither Playwright nor Chromium: they are looked for when a
 frame is rendered.
 
-Example
--------
+Examples
+--------
 >>> from aliasing import frames
 >>> sorted(frames.PINS)
 ['babylon', 'filament', 'playcanvas', 'threejs']

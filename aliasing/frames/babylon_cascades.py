@@ -30,8 +30,8 @@ The matrices so predicted equal the engine's bit for bit (node, ``NullEngine``, 
 and the city; ERRATA F6); ``float32=False`` gives the float64 arithmetic the engine would do
 with high-precision matrices.
 
-Example
--------
+Examples
+--------
 >>> from aliasing.frames.scenes import frame_scene, sun_direction
 >>> fs = frame_scene("boxes", near=0.5, far=60.0, fov=50.0, aspect=16 / 9, boxes=4, ground_cells=2)
 >>> from aliasing.frames.models import MODELS
@@ -371,8 +371,8 @@ def matrices(settings: dict, camera, sun: Array, triangles: Array, aspect: float
 def map_sides(matrices: Array) -> Array:
     """Per cascade: the map's larger side [world units] of world → [0, 1]³ matrices (k, 4, 4), 1 / the shorter row of x and y.
 
-    Example
-    -------
+    Examples
+    --------
     >>> m = np.diag([1 / 20, 1 / 10, 1.0, 1.0])[None]   # a 20 x 10 box
     >>> map_sides(m).tolist()
     [20.0]

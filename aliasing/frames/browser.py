@@ -9,8 +9,8 @@ is fetched from the network, and any other request is refused.  WebGL 2 runs on 
 its ``window.frame(job)`` and returns what the page read back.  Each page load and each frame
 has a time limit; a page that throws reports its first error line (:class:`PageError`).
 
-Example
--------
+Examples
+--------
 >>> chromium_path() is None or chromium_path().endswith("chromium")
 True
 """

@@ -26,8 +26,8 @@ on the same pixels (those the engine drew, at the positions and normals it compu
     larger side (2 d tan(fov/2) / H over side / R), from the engine's light matrices and
     breaks (measured) and from the toolkit's split and fit (predicted).
 
-Example
--------
+Examples
+--------
 >>> m = np.array([[True, True, False, False, False]] * 3)
 >>> away_from_edges(m, m).astype(int).tolist()[1]
 [1, 0, 0, 1, 1]

@@ -11,8 +11,8 @@ Nothing is downloaded during a rendering command: :func:`package_root` only find
 checked tree, and says in one line how to install it when there is none
 (``aliasing frames --install``, which calls :func:`install`).
 
-Example
--------
+Examples
+--------
 >>> sorted(PINS)
 ['babylon', 'filament', 'playcanvas', 'threejs']
 >>> PINS["threejs"].release, PINS["threejs"].package
@@ -234,7 +234,7 @@ def install(engine: str, *, timeout: float = 600.0) -> Path:
     >>> install("unity")
     Traceback (most recent call last):
     ...
-    ValueError: engine must be one of babylon, playcanvas, threejs, got 'unity'
+    ValueError: engine must be one of babylon, filament, playcanvas, threejs, got 'unity'
 
     Installing runs ``npm ci`` (it downloads the pinned tarballs), so it is not run here:
 

@@ -27,8 +27,8 @@ depth's derivatives per texel of the triangle drawn there.  Texels on a triangle
 different nearest triangle in the toolkit's 3 × 3 neighbourhood) are left out: there the
 snapped edge decides which triangle covers the texel.
 
-Example
--------
+Examples
+--------
 >>> tri = np.array([[[0, 0, 0.0], [1, 0, 0.0], [0, 1, 1.0]]])   # map space: depth = t
 >>> tol = tolerance(tri, np.zeros((4, 4), int))                  # a map of 4 texels: 1/4 of depth per texel in t
 >>> bool(np.allclose(tol, 2 ** -24 + 0.25 / 32))

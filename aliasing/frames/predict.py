@@ -17,8 +17,8 @@ The reference (what is really lit) is exact: for each pixel, the surface nearest
 its texel of a map of *all* faces is compared as a plane at the pixel's own map position
 (as :func:`aliasing.raster.draw.lookup.shadow_test` does), so it neither acnes nor peter-pans.
 
-Example
--------
+Examples
+--------
 >>> m = np.eye(4)
 >>> tri = np.array([[[0.1, 0.1, 0.5], [0.9, 0.1, 0.5], [0.1, 0.9, 0.5]]])
 >>> dm = light_depth_map(tri, m, 8)
@@ -530,39 +530,6 @@ def playcanvas_factor(atlas: Array, matrices: Array, cascade: NDArray[np.int64],
     return factor
 
 
-def babylon_single_factor(depth_map: DepthMap, matrix: Array, points: Array, *, bias: float, half: bool = True) -> Array:
-    """Babylon.js 9.35's ShadowGenerator factor with FILTER_NONE (``computeShadow`` of shadowsFragmentFunctions).
-
-    The map is a colour target holding the caster's window depth + ``bias``
-    (shadowMapVertexMetric's ``vDepthMetricSM``, no depth texture, no depth clamp; cleared to 1),
-    rounded to a half float when ``half`` (the generator takes a half-float target first where
-    the device renders and filters them, shadowGenerator.js 659–668);
-    the receiver's depth is its window depth clamped to [0, 1], compared with the nearest texel
-    (NEAREST sampling): shadowed where it is greater; outside [0, 1]² the factor is 1.
-
-    Examples
-    --------
-    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
-    >>> roof = np.array([[[0.0, 0.25, 0.0], [2.0, 0.25, 0.0], [0.0, 0.25, 2.0]]])     # covers the map at depth 0.25
-    >>> pts = np.array([[0.5, 0.0, 0.5], [0.5, 0.3, 0.5]]); up = np.array([[0.0, 1.0, 0.0]] * 2)   # under it, above it
-    >>> babylon_single_factor(light_depth_map(roof, m, 4), m, pts, bias=0.0).tolist()
-    [0.0, 1.0]
-    """
-    if not isinstance(depth_map, DepthMap):
-        raise ValueError(f"depth_map must be a DepthMap (light_depth_map), got {type(depth_map).__name__}")
-    check.finite(check.scalar(bias, "bias"), "bias")
-    c = to_map(matrix, points)
-    r = depth_map.resolution
-    stored = np.where(np.isfinite(depth_map.depth), depth_map.depth + bias, 1.0)
-    if half:
-        stored = stored.astype(np.float32).astype(np.float16).astype(float)
-    col = np.clip(np.floor(np.nan_to_num(c[..., 0]) * r), 0, r - 1).astype(np.int64)
-    row = np.clip(np.floor(np.nan_to_num(c[..., 1]) * r), 0, r - 1).astype(np.int64)
-    inside = np.all((c[..., :2] >= 0) & (c[..., :2] <= 1), axis=-1)
-    lit = np.clip(c[..., 2], 0.0, 1.0) <= stored[row, col]
-    return np.where(inside & ~lit, 0.0, 1.0)
-
-
 # ----------------------------------------------------------------------------- what every engine model shares
 
 @dataclass(frozen=True)
@@ -582,39 +549,6 @@ class Prediction:
     sides: Array
     resolution: Array
     matrices: Array | None = None  # per cascade, the predicted world → [0, 1]³ matrices, where the model predicts them whole
-
-
-def tight_sides(camera, edges: Array, along: Array, up: Array) -> Array:
-    """Per cascade: the larger side [world units] of the slice corners' box in a light frame whose x axis is ``up`` × ``along``.
-
-    The tight fit's box depends on the light frame's roll about the light direction, which an
-    engine takes from a world up vector (Babylon.js: ``Matrix.LookAtLH(centre, centre + d, Vector3.Up())``),
-    not from the camera: the extents are measured on x ∝ up × d and y ∝ d × x (signs do not
-    change extents; the mirror into Babylon's left-handed world neither).
-
-    Examples
-    --------
-    >>> from aliasing.raster.scenes.camera import look_at
-    >>> cam = look_at("0,0,0", "0,0,-1", fov=90.0)              # aspect 1
-    >>> tight_sides(cam, np.array([1.0, 2.0]), np.array([0.0, -1.0, 0.0]), np.array([0.0, 0.0, 1.0])).tolist()   # from above: the far end's width
-    [4.0]
-    """
-    edges = check.finite(edges, "edges")
-    if edges.ndim != 1 or len(edges) < 2 or not np.all(np.diff(edges) > 0):
-        raise ValueError(f"edges must be an increasing 1-d array of at least 2 depths [world units], got {edges.tolist()}")
-    along, up = check.finite(along, "along"), check.finite(up, "up")
-    if along.shape != (3,) or up.shape != (3,) or not np.linalg.norm(np.cross(up, along)) > 0:
-        raise ValueError("along and up must be non-zero 3-vectors that are not parallel")
-    d = along / np.linalg.norm(along)
-    x = np.cross(up, d)
-    x /= np.linalg.norm(x)
-    y = np.cross(d, x)
-    out = []
-    for a, b in zip(edges[:-1], edges[1:]):
-        corners = camera.view.slice_vertices(a, b)  # eye space (8, 3)
-        world = corners @ camera.rotation + camera.eye
-        out.append(max(np.ptp(world @ x), np.ptp(world @ y)))
-    return np.array(out)
 
 
 def reference(scene, sun: Array, rb, resolution: int) -> NDArray[np.bool_]:

@@ -4,8 +4,8 @@ Rows are top-down (row 0 is the image's top), as in the PNG; the pages read WebG
 bottom-up rows and :func:`decode` flips them.  ``gl_y`` keeps the GL pixel row (for effects
 that depend on ``gl_FragCoord``, such as three.js's rotated PCF taps).
 
-Example
--------
+Examples
+--------
 >>> import base64
 >>> z = base64.b64encode(np.zeros(2 * 1 * 4, np.float32).tobytes()).decode()
 >>> rb = decode({"engine": "threejs", "revision": "187", "width": 2, "height": 1, "shadow": z, "position": z,
@@ -21,6 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
+
+from .predict import Prediction
 
 Array = NDArray[np.float64]
 
@@ -155,3 +157,36 @@ def decode(out: dict) -> Readback:
     info["ndotl"] = np.where(drawn, sh[..., 2], np.nan)
     return Readback(str(out["engine"]), str(out.get("revision", out.get("release", ""))), shadow, cascade, position, normal,
                     mats, sizes, info, base64.b64decode(png))
+
+
+@dataclass(frozen=True)
+class FrameResult:
+    """An engine's frame against the toolkit's prediction: ``readback`` (:class:`Readback`),
+    ``prediction``, the exact reference's lit pixels ``reference``, the filled ``settings``, and
+    ``report`` (the JSON-ready ``engine``, ``release``, ``measured``, ``predicted``).
+
+    Examples
+    --------
+    >>> import base64
+    >>> from aliasing.frames.models import MODELS
+    >>> from aliasing.frames.paths import parse_path, pose_camera
+    >>> from aliasing.frames.run import measure
+    >>> from aliasing.frames.scenes import frame_scene, sun_direction
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=2.0, boxes=2, ground_cells=2)
+    >>> sun = sun_direction(20.0, 30.0, fs.camera); m = MODELS["threejs"]; s = m.settings({"cascades": 2, "shadowMapSize": 256})
+    >>> b64 = lambda a: base64.b64encode(np.asarray(a, np.float32).tobytes()).decode()
+    >>> out = {"engine": "threejs", "revision": "187", "width": 2, "height": 1, "frame": "data:image/png;base64,",   # a page's answer, by hand:
+    ...        "shadow": b64([[[0, 0, 0, 0], [1, 1, 0.3, 0]]]),                     # per pixel factor, cascade, n·l
+    ...        "position": b64([[[-2.0, -1.0, -4.25, 1.0], [0.0, -1.0, -12.0, 1.0]]]), # two ground pixels, drawn (w = 1)
+    ...        "normal": b64([[[0, 1, 0, 0]] * 2]), "breaks": (m.edges(s, fs.camera)[1:] / 20.0).tolist(),
+    ...        "cascades": [{"matrix": c.T.ravel().tolist(), "size": [256, 256]} for c in m.matrices(s, fs.camera, sun)]}
+    >>> r = measure("threejs", fs, sun, s, out)                                  # a FrameResult
+    >>> r.readback.shadow.tolist(), r.prediction.factor.tolist(), r.reference.tolist()
+    ([[0.0, 1.0]], [[0.0, 1.0]], [[False, True]])
+    """
+
+    readback: Readback
+    prediction: Prediction
+    reference: NDArray[np.bool_]
+    settings: dict
+    report: dict

@@ -11,8 +11,8 @@ The toolkit's own triangles carry no winding (its rasterizer draws both sides); 
 it and cast shadows from one side, so the built-in scenes are wound outward first
 (:func:`wind_outward`: every part of them is convex, or planar and facing up).
 
-Example
--------
+Examples
+--------
 >>> fs = frame_scene("boxes", near=1.0, far=40.0, fov=50.0, aspect=16 / 9, boxes=4, ground_cells=2)
 >>> fs.triangles.shape, fs.ground
 ((56, 3, 3), 8)
