@@ -108,6 +108,83 @@ def snapped_depth_map(triangles: Array, matrix: Array, size: int, subpixel_bits:
     return rasterize(mt, int(size))
 
 
+def _matvec32(matrix, points):
+    """``matrix`` (4, 4) · ``points`` (N, 4) in float32 as SwiftShader's OpMatrixTimesVector sums it:
+    the first column's product, then each further column's product added in order, every step
+    rounded to float32 (an FMA rounds once: the same corners here, measured)."""
+    m = np.asarray(matrix, float).astype(np.float32)
+    p = np.asarray(points, np.float32)
+    out = np.empty(p.shape, np.float32)
+    for i in range(4):
+        v = m[i, 0] * p[:, 0]
+        for j in range(1, 4):
+            v = v + m[i, j] * p[:, j]
+        out[:, i] = v
+    return out
+
+
+def gpu_depth_map(triangles: Array, view: Array, projection: Array, size: int, subpixel_bits: int = SUBPIXEL_BITS):
+    """three.js's depth pass as a float32 GPU draws it, then the toolkit's rasterizer.
+
+    three.js uploads the caster's ``modelViewMatrix`` (the shadow camera's ``matrixWorldInverse``
+    times the mesh's ``matrixWorld``, float64 in JavaScript: ``view``) and the shadow camera's
+    ``projectionMatrix`` as float32 uniforms (WebGLShadowMap.js 530), and the vertex shader computes
+    ``projectionMatrix * ( modelViewMatrix * vec4( position, 1.0 ) )`` in float32 (project_vertex.glsl.js
+    16–18).  The viewport transform places each corner at ``round(X0·2^b + x·(R/2)·2^b)`` in
+    1/2^b texel (SwiftShader's VertexRoutine; ``b`` = ``subpixel_bits``, rounded to nearest, ties
+    to even).  The corners are those of a light camera that moved by whole texels, but not its
+    float32 translation: a corner within about 10⁻³ texel of a rounding boundary lands on a
+    different 1/16 step from pose to pose (ERRATA F7).  Triangles crossing the map's border are
+    not clipped here (the GPU clips them in float32): the map's outermost texels may differ.
+
+    Parameters
+    ----------
+    triangles : array_like (T, 3, 3)
+        World triangles [world units], taken as float32 (the page's vertex buffer).
+    view, projection : array_like (4, 4)
+        The uniforms (column vectors), float64: rounded to float32 here.
+    size : int
+        Texels per side R, in [1, 16384].
+    subpixel_bits : int
+        In [0, 16].
+
+    Returns
+    -------
+    aliasing.raster.draw.DepthMap
+        Depth as stored: the window depth (clip z + 1)/2 in float32.
+
+    Example
+    -------
+    >>> tri = np.array([[[-0.9, -0.9, 0.0], [0.9, -0.9, 0.0], [-0.9, 0.9, 0.0]]])   # clip space through identities
+    >>> float(gpu_depth_map(tri, np.eye(4), np.eye(4), 8).depth[1, 1])
+    0.5
+    """
+    tri = np.asarray(triangles, float)
+    if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not np.all(np.isfinite(tri)):
+        raise ValueError(f"triangles must be finite with shape (T, 3, 3), got shape {tri.shape}")
+    mats = []
+    for name, m in (("view", view), ("projection", projection)):
+        m = np.asarray(m, float)
+        if m.shape != (4, 4) or not np.all(np.isfinite(m)):
+            raise ValueError(f"{name} must be a finite 4×4 matrix, got shape {m.shape}")
+        mats.append(m)
+    if not (isinstance(size, (int, np.integer)) and 1 <= size <= 16384):
+        raise ValueError(f"size must be a whole number of texels in [1, 16384], got {size!r}")
+    if not (isinstance(subpixel_bits, (int, np.integer)) and 0 <= subpixel_bits <= 16):
+        raise ValueError(f"subpixel_bits must be a whole number in [0, 16], got {subpixel_bits!r}")
+    from ..raster.draw import rasterize
+
+    if not len(tri):
+        return predict.light_depth_map(tri.reshape(0, 3, 3), np.eye(4), size)
+    p = np.concatenate([tri.reshape(-1, 3).astype(np.float32), np.ones((tri.size // 3, 1), np.float32)], 1)
+    clip = _matvec32(mats[1], _matvec32(mats[0], p))  # orthographic: w = 1 exactly
+    half = np.float32(size * 2.0 ** (subpixel_bits - 1))  # X0·2^b = (R/2)·2^b = half
+    scale = float(size) * 2.0**subpixel_bits
+    st = [np.rint(half + clip[:, k] * half).astype(float) / scale for k in (0, 1)]  # float32 sums, then round to even
+    z = (clip[:, 2] * np.float32(0.5) + np.float32(0.5)).astype(float)
+    return rasterize(np.stack([st[0], st[1], z], -1).reshape(tri.shape), int(size))
+
+
 def stored_depth(engine: str, settings: dict, triangles: Array, sun: Array, matrix: Array, size: int) -> tuple[Array, NDArray[np.int64], Array]:
     """The toolkit's map of what ``engine`` stores: depth (R, R) (1 where empty), the nearest
     triangle per texel (−1 empty) and the map-space triangles drawn (for :func:`tolerance`).

@@ -392,13 +392,19 @@ def _babylon_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: l
     return {"predicted": flips(np.array(masks), keep), "matrices_vs_engine": worst}
 
 
-def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], subpixel_bits: int | None = 4) -> dict:
+def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], subpixel_bits: int | None = 4,
+           float32_vertices: bool = False) -> dict:
     """An engine's path replayed by the toolkit through the *engine's* pose matrices (read back),
     with the casters' corners snapped to 1/2^``subpixel_bits`` texel (:func:`aliasing.frames.maps.snapped_depth_map`;
     SwiftShader: 4; None: exact): ``flips_per_frame`` and ``shared``, the fraction of the engine's
-    flips (pixel and frame) that the replay also flips.  A diagnostic of where the engine's flips
-    come from, when the toolkit's own prediction is 0 (ERRATA F7, F8).
+    flips (pixel and frame) that the replay also flips, and ``shared_pixels``, the fraction of the
+    pixels the engine flips somewhere along the path that the replay flips too.  A diagnostic of where the engine's flips
+    come from, when the toolkit's own prediction is 0 (ERRATA F7, F8).  ``float32_vertices``
+    (three.js): the corners as the GPU's float32 vertex shader places them from each pose's own
+    uniforms (:func:`aliasing.frames.maps.gpu_depth_map`; ``subpixel_bits`` must then be a number).
     """
+    if float32_vertices and (result.readback.engine != "threejs" or subpixel_bits is None):
+        raise ValueError("float32_vertices is modelled for three.js's depth pass only, with subpixel_bits a number")
     from . import maps as frame_maps, predict
 
     rb, s = result.readback, result.settings
@@ -435,7 +441,16 @@ def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict],
     masks = []
     for f in frames:
         mats = np.array([(to_unit if rb.engine == "babylon" else np.eye(4)) @ np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
-        masks.append(factor([frame_maps.snapped_depth_map(cast, m, res, subpixel_bits) for m in mats], mats) < 0.5)
+        if float32_vertices:  # the depth pass's own uniforms of this pose
+            if "views" not in f:
+                raise ValueError("the page returned no depth-pass uniforms (views, projections) for the path")
+            views, projs = ([np.asarray(m, float).reshape(4, 4).T for m in f[k]] for k in ("views", "projections"))
+            maps = [frame_maps.gpu_depth_map(cast, v, p, res, subpixel_bits) for v, p in zip(views, projs)]
+        else:
+            maps = [frame_maps.snapped_depth_map(cast, m, res, subpixel_bits) for m in mats]
+        masks.append(factor(maps, mats) < 0.5)
     masks = np.array(masks)
     fe, fp = np.diff(engine[:, keep], axis=0), np.diff(masks[:, keep], axis=0)
-    return {"flips_per_frame": flips(masks, keep), "shared": float((fe & fp).sum() / fe.sum()) if fe.any() else None}
+    pe, pp = fe.any(axis=0), fp.any(axis=0)  # the pixels that flip at all along the path
+    return {"flips_per_frame": flips(masks, keep), "shared": float((fe & fp).sum() / fe.sum()) if fe.any() else None,
+            "shared_pixels": float((pe & pp).sum() / pe.sum()) if pe.any() else None}
