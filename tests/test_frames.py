@@ -353,25 +353,60 @@ def test_threejs_defaults_show_no_acne_and_front_faces_do(three):
     assert three["front faces cast"].report["measured"]["acne"] > 0.3
 
 
-def test_threejs_shimmer_along_a_sideways_path(chromium, boxes):
+@pytest.fixture(scope="module")
+def three_sideways(chromium, boxes):
+    fs, sun = boxes
+    return frame_setup(chromium, setups.build("threejs", {}, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}"), fs, path=THREE_PATH)
+
+
+THREE_PATH = "sideways:0.05:10"
+
+
+def _path_factors(r):
+    import base64
+
+    h, w = r.readback.shadow.shape
+    return np.array([np.frombuffer(base64.b64decode(p["shadow"]), np.float32).reshape(h, w)[::-1] for p in r.readback.info["path"]])
+
+
+def test_threejs_shimmer_along_a_sideways_path(three_sideways):
     # the cascades follow a camera moving sideways while the picture's camera stays: three.js floors
     # each box's centre to a texel, so the toolkit predicts the same maps shifted by whole texels
     # (no flip) and the engine's pose matrices equal the predicted ones; the engine's residual flips
     # are all on soft shadow edges (ERRATA F7)
-    import base64
-
-    fs, sun = boxes
-    setup = setups.build("threejs", {}, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")
-    r = frame_setup(chromium, setup, fs, path="sideways:0.05:6")
+    r = three_sideways
     rep = r.report
     assert rep["predicted"]["flips_per_frame"] == 0.0
     assert rep["details"]["path_matrices_vs_engine"] <= 1e-9
     assert rep["measured"]["flips_per_frame"] < 0.005
-    h, w = r.readback.shadow.shape
-    f = np.array([np.frombuffer(base64.b64decode(p["shadow"]), np.float32).reshape(h, w)[::-1] for p in r.readback.info["path"]])[:, r.readback.drawn]
+    f = _path_factors(r)[:, r.readback.drawn]
     flipped = np.diff(f < 0.5, axis=0)
     pair = np.stack([f[1:], f[:-1]])
     assert (((pair > 0.05) & (pair < 0.95)).any(0))[flipped].all()
+
+
+def test_threejs_sideways_path_flips_are_the_float32_vertex_shader(three_sideways, boxes):
+    # three.js's light camera moves by whole texels, but the depth pass transforms the casters with
+    # float32 uniforms (modelViewMatrix, projectionMatrix) in float32, and SwiftShader snaps the
+    # corners to 1/16 texel: a corner near a rounding boundary lands on another step from pose to
+    # pose. The toolkit's maps through the engine's matrices in float64, snapped alike, flip no pixel;
+    # through the float32 vertex shader they flip the engine's pixels (ERRATA F7)
+    from aliasing.frames.run import parse_path, replay
+
+    fs, sun = boxes
+    r = three_sideways
+    m = r.report["measured"]["flips_per_frame"]
+    f = _path_factors(r)[:, r.readback.drawn & (r.readback.cascade >= 0)]
+    flipped, jump = np.diff(f < 0.5, axis=0), np.abs(np.diff(f, axis=0))
+    # a stored depth changes, not a lookup's rounding: almost every flip is a jump of a texel's weight
+    assert np.mean(jump[flipped] > 0.01) >= 0.9, jump[flipped]
+    poses = parse_path(THREE_PATH, fs.camera)
+    exact = replay(r, fs, sun, poses)
+    assert exact["flips_per_frame"] == 0.0 and m > 1e-4, (exact, m)  # float64 corners, snapped: whole-texel shifts
+    gpu = replay(r, fs, sun, poses, float32_vertices=True)
+    assert 0.8 <= m / gpu["flips_per_frame"] <= 1.25 and gpu["shared_pixels"] >= 0.7, (m, gpu)
+    # the docs' numbers
+    assert (round(100 * m, 3), round(100 * gpu["flips_per_frame"], 3), round(gpu["shared"], 2), round(gpu["shared_pixels"], 2)) == (0.032, 0.028, 0.53, 0.75), (m, gpu)
 
 
 def _maps_agree(maps: dict, k: int, size: int, stride: int) -> None:
