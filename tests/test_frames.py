@@ -15,7 +15,9 @@ depth bias, PCF's five rotated hardware-PCF taps), and the two are measured alik
 * the engines' shadow maps, read back, equal to the toolkit's rasterizer's texel for texel
   within float32 depth and SwiftShader's 1/16-texel snapping (three.js, Babylon.js);
 * shimmer along a camera path: three.js and Babylon.js (turning: ratio 0.8-1.25 to the
-  prediction; stabilized: none; moving forward: the engine's flips replayed, ERRATA F8).
+  prediction; stabilized: none; Babylon.js moving forward and three.js moving sideways: the
+  engine's flips replayed, through float32 matrices and 1/16-texel snapping (ERRATA F8) and
+  three.js's float32 depth pass (ERRATA F7)).
 
 Babylon.js 9.35 (CascadedShadowGenerator) and PlayCanvas 2.23.3 (a cascaded directional light:
 its polygon-offset bias as SwiftShader applies it, the 2×2 atlas, PCF3) are held to the same
@@ -641,6 +643,31 @@ def test_snapped_maps_and_tolerance_fuzz(tri, bits):
     assert bits is None or 0 <= bits <= 16
     tol = tolerance(t, dm.triangle)
     assert tol.shape == (16, 16) and (tol >= 2.0**-24).all()
+
+
+@hsettings(max_examples=40, deadline=None)
+@given(tri=st.lists(st.floats(-2, 2, width=32), min_size=9, max_size=9), bits=st.integers(-2, 20))
+def test_gpu_depth_map_fuzz(tri, bits):
+    # through identity uniforms the float32 vertex stage is exact: the corners land where the
+    # float64 snapping puts them (away from exact rounding ties, which the GPU breaks to even)
+    from aliasing.frames.maps import gpu_depth_map, snapped_depth_map
+
+    t = np.array(tri, float).reshape(1, 3, 3)
+    try:
+        dm = gpu_depth_map(t, np.eye(4), np.eye(4), 16, bits)
+    except ValueError as e:
+        assert "subpixel_bits" in str(e) and not 0 <= bits <= 16
+        return
+    half = 16 * 2.0 ** (bits - 1)
+    if np.any(np.abs((half + t[..., :2] * half) % 1 - 0.5) < 1e-6):
+        return
+    to_unit = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+    ref = snapped_depth_map(t, to_unit, 16, bits)
+    assert np.array_equal(dm.triangle, ref.triangle)
+    drawn = dm.triangle >= 0
+    assert np.allclose(dm.depth[drawn], ref.depth[drawn], atol=1e-6)
+    with pytest.raises(ValueError, match="view"):
+        gpu_depth_map(t, np.eye(3), np.eye(4), 16)
 
 
 def test_single_map_and_playcanvas_models_without_a_browser():
