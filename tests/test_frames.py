@@ -391,8 +391,9 @@ def test_threejs_sideways_path_flips_are_the_float32_vertex_shader(three_sideway
     # three.js's light camera moves by whole texels, but the depth pass transforms the casters with
     # float32 uniforms (modelViewMatrix, projectionMatrix) in float32, and SwiftShader snaps the
     # corners to 1/16 texel: a corner near a rounding boundary lands on another step from pose to
-    # pose. The toolkit's maps through the engine's matrices in float64, snapped alike, flip no pixel;
-    # through the float32 vertex shader they flip the engine's pixels (ERRATA F7)
+    # pose. The toolkit's maps through the engine's matrices in float64, snapped alike, flip no pixel,
+    # nor many with float32 shadow coordinates; through the float32 vertex shader they flip the
+    # engine's pixels (ERRATA F7)
     from aliasing.frames.run import parse_path, replay
 
     fs, sun = boxes
@@ -405,6 +406,9 @@ def test_threejs_sideways_path_flips_are_the_float32_vertex_shader(three_sideway
     poses = parse_path(THREE_PATH, fs.camera)
     exact = replay(r, fs, sun, poses)
     assert exact["flips_per_frame"] == 0.0 and m > 1e-4, (exact, m)  # float64 corners, snapped: whole-texel shifts
+    # the receiver's side alone (each pixel's shadow coordinate in float32 on those maps) flips few
+    receivers = replay(r, fs, sun, poses, float32_receivers=True)
+    assert receivers["flips_per_frame"] < 0.25 * m and round(100 * receivers["flips_per_frame"], 3) == 0.002, receivers
     gpu = replay(r, fs, sun, poses, float32_vertices=True)
     assert 0.8 <= m / gpu["flips_per_frame"] <= 1.25 and gpu["shared_pixels"] >= 0.7, (m, gpu)
     # the docs' numbers

@@ -108,21 +108,6 @@ def snapped_depth_map(triangles: Array, matrix: Array, size: int, subpixel_bits:
     return rasterize(mt, int(size))
 
 
-def _matvec32(matrix, points):
-    """``matrix`` (4, 4) · ``points`` (N, 4) in float32 as SwiftShader's OpMatrixTimesVector sums it:
-    the first column's product, then each further column's product added in order, every step
-    rounded to float32 (an FMA rounds once: the same corners here, measured)."""
-    m = np.asarray(matrix, float).astype(np.float32)
-    p = np.asarray(points, np.float32)
-    out = np.empty(p.shape, np.float32)
-    for i in range(4):
-        v = m[i, 0] * p[:, 0]
-        for j in range(1, 4):
-            v = v + m[i, j] * p[:, j]
-        out[:, i] = v
-    return out
-
-
 def gpu_depth_map(triangles: Array, view: Array, projection: Array, size: int, subpixel_bits: int = SUBPIXEL_BITS):
     """three.js's depth pass as a float32 GPU draws it, then the toolkit's rasterizer.
 
@@ -130,7 +115,8 @@ def gpu_depth_map(triangles: Array, view: Array, projection: Array, size: int, s
     times the mesh's ``matrixWorld``, float64 in JavaScript: ``view``) and the shadow camera's
     ``projectionMatrix`` as float32 uniforms (WebGLShadowMap.js 530), and the vertex shader computes
     ``projectionMatrix * ( modelViewMatrix * vec4( position, 1.0 ) )`` in float32 (project_vertex.glsl.js
-    16–18).  The viewport transform places each corner at ``round(X0·2^b + x·(R/2)·2^b)`` in
+    16–18; :func:`aliasing.frames.predict.to_map32`).  The viewport transform places each corner
+    at ``round(X0·2^b + x·(R/2)·2^b)`` in
     1/2^b texel (SwiftShader's VertexRoutine; ``b`` = ``subpixel_bits``, rounded to nearest, ties
     to even).  The corners are those of a light camera that moved by whole texels, but not its
     float32 translation: a corner within about 10⁻³ texel of a rounding boundary lands on a
@@ -176,10 +162,10 @@ def gpu_depth_map(triangles: Array, view: Array, projection: Array, size: int, s
 
     if not len(tri):
         return predict.light_depth_map(tri.reshape(0, 3, 3), np.eye(4), size)
-    p = np.concatenate([tri.reshape(-1, 3).astype(np.float32), np.ones((tri.size // 3, 1), np.float32)], 1)
-    clip = _matvec32(mats[1], _matvec32(mats[0], p))  # orthographic: w = 1 exactly
+    clip = predict.to_map32(mats[1], predict.to_map32(mats[0], tri.reshape(-1, 3)))  # orthographic: w = 1 exactly
     half = np.float32(size * 2.0 ** (subpixel_bits - 1))  # X0·2^b = (R/2)·2^b = half
     scale = float(size) * 2.0**subpixel_bits
+    clip = clip.astype(np.float32)  # float32 values already: exact
     st = [np.rint(half + clip[:, k] * half).astype(float) / scale for k in (0, 1)]  # float32 sums, then round to even
     z = (clip[:, 2] * np.float32(0.5) + np.float32(0.5)).astype(float)
     return rasterize(np.stack([st[0], st[1], z], -1).reshape(tri.shape), int(size))

@@ -393,7 +393,7 @@ def _babylon_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: l
 
 
 def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], subpixel_bits: int | None = 4,
-           float32_vertices: bool = False) -> dict:
+           float32_vertices: bool = False, float32_receivers: bool = False) -> dict:
     """An engine's path replayed by the toolkit through the *engine's* pose matrices (read back),
     with the casters' corners snapped to 1/2^``subpixel_bits`` texel (:func:`aliasing.frames.maps.snapped_depth_map`;
     SwiftShader: 4; None: exact): ``flips_per_frame`` and ``shared``, the fraction of the engine's
@@ -401,10 +401,13 @@ def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict],
     pixels the engine flips somewhere along the path that the replay flips too.  A diagnostic of where the engine's flips
     come from, when the toolkit's own prediction is 0 (ERRATA F7, F8).  ``float32_vertices``
     (three.js): the corners as the GPU's float32 vertex shader places them from each pose's own
-    uniforms (:func:`aliasing.frames.maps.gpu_depth_map`; ``subpixel_bits`` must then be a number).
+    uniforms (:func:`aliasing.frames.maps.gpu_depth_map`; ``subpixel_bits`` must then be a number);
+    ``float32_receivers`` (three.js): each pixel's shadow coordinate in float32 (``threejs_factor(float32=True)``).
     """
     if float32_vertices and (result.readback.engine != "threejs" or subpixel_bits is None):
         raise ValueError("float32_vertices is modelled for three.js's depth pass only, with subpixel_bits a number")
+    if float32_receivers and result.readback.engine != "threejs":
+        raise ValueError("float32_receivers is modelled for three.js's shadow lookup only")
     from . import maps as frame_maps, predict
 
     rb, s = result.readback, result.settings
@@ -437,7 +440,8 @@ def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict],
 
         def factor(maps, mats):
             return predict.threejs_factor(maps, mats, result.prediction.cascade, pts, nrm, fx + 0.5, (h - 1 - fy) + 0.5, bias=float(s["shadowBias"]),
-                                          normal_bias=float(s["normalBias"]), radius=float(s["shadowRadius"]), map_type=s["shadowMapType"])
+                                          normal_bias=float(s["normalBias"]), radius=float(s["shadowRadius"]), map_type=s["shadowMapType"],
+                                          float32=float32_receivers)
     masks = []
     for f in frames:
         mats = np.array([(to_unit if rb.engine == "babylon" else np.eye(4)) @ np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
