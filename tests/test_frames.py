@@ -408,7 +408,7 @@ def test_threejs_sideways_path_flips_are_the_float32_vertex_shader(three_sideway
     assert exact["flips_per_frame"] == 0.0 and m > 1e-4, (exact, m)  # float64 corners, snapped: whole-texel shifts
     # the receiver's side alone (each pixel's shadow coordinate in float32 on those maps) flips few
     receivers = replay(r, fs, sun, poses, float32_receivers=True)
-    assert receivers["flips_per_frame"] < 0.25 * m and round(100 * receivers["flips_per_frame"], 3) == 0.002, receivers
+    assert receivers["flips_per_frame"] < 0.1 * m and round(100 * receivers["flips_per_frame"], 3) == 0.002, receivers
     gpu = replay(r, fs, sun, poses, float32_vertices=True)
     assert 0.8 <= m / gpu["flips_per_frame"] <= 1.25 and gpu["shared_pixels"] >= 0.7, (m, gpu)
     # the docs' numbers
