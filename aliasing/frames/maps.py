@@ -116,12 +116,12 @@ def gpu_depth_map(triangles: Array, view: Array, projection: Array, size: int, s
     ``projectionMatrix`` as float32 uniforms (WebGLShadowMap.js 530), and the vertex shader computes
     ``projectionMatrix * ( modelViewMatrix * vec4( position, 1.0 ) )`` in float32 (project_vertex.glsl.js
     16–18; :func:`aliasing.frames.predict.to_map32`).  The viewport transform places each corner
-    at ``round(X0·2^b + x·(R/2)·2^b)`` in
-    1/2^b texel (SwiftShader's VertexRoutine; ``b`` = ``subpixel_bits``, rounded to nearest, ties
-    to even).  The corners are those of a light camera that moved by whole texels, but not its
-    float32 translation: a corner within about 10⁻³ texel of a rounding boundary lands on a
-    different 1/16 step from pose to pose (ERRATA F7).  Triangles crossing the map's border are
-    not clipped here (the GPU clips them in float32): the map's outermost texels may differ.
+    at ``round(X0·2^b + x·(R/2)·2^b)`` in 1/2^b texel (SwiftShader's VertexRoutine; ``b`` =
+    ``subpixel_bits``, rounded to nearest, ties to even).  The corners are those of a light camera
+    that moved by whole texels, but not its float32 translation: a corner within about 10⁻⁴ texel
+    of a rounding boundary lands on a different 1/16 step from pose to pose (ERRATA F7).
+    Triangles crossing the map's border are not clipped here (the GPU clips them in float32):
+    texels on those triangles' clipped edges may differ.
 
     Parameters
     ----------

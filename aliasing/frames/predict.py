@@ -60,7 +60,7 @@ def to_map32(matrix: ArrayLike, points: ArrayLike) -> Array:
     """:func:`to_map` as a float32 shader computes ``matrix * vec4( point, 1.0 )``: the matrix and the
     points rounded to float32, then per row the first column's product and each further column's
     product added in order, every step rounded to float32 (SwiftShader's ``OpMatrixTimesVector``).
-    For an orthographic matrix (last row 0, 0, 0, 1), as here.
+    The last row is not used: w = 1, an orthographic matrix (the lights' here).
 
     Example
     -------

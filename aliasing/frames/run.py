@@ -398,8 +398,8 @@ def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict],
     with the casters' corners snapped to 1/2^``subpixel_bits`` texel (:func:`aliasing.frames.maps.snapped_depth_map`;
     SwiftShader: 4; None: exact): ``flips_per_frame`` and ``shared``, the fraction of the engine's
     flips (pixel and frame) that the replay also flips, and ``shared_pixels``, the fraction of the
-    pixels the engine flips somewhere along the path that the replay flips too.  A diagnostic of where the engine's flips
-    come from, when the toolkit's own prediction is 0 (ERRATA F7, F8).  ``float32_vertices``
+    pixels the engine flips somewhere along the path that the replay flips too.  A diagnostic of
+    where the engine's flips come from, when the toolkit's own prediction is 0 (ERRATA F7, F8).  ``float32_vertices``
     (three.js): the corners as the GPU's float32 vertex shader places them from each pose's own
     uniforms (:func:`aliasing.frames.maps.gpu_depth_map`; ``subpixel_bits`` must then be a number);
     ``float32_receivers`` (three.js): each pixel's shadow coordinate in float32 (``threejs_factor(float32=True)``).
