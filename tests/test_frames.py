@@ -15,9 +15,10 @@ depth bias, PCF's five rotated hardware-PCF taps), and the two are measured alik
 * the engines' shadow maps, read back, equal to the toolkit's rasterizer's texel for texel
   within float32 depth and SwiftShader's 1/16-texel snapping (three.js, Babylon.js);
 * shimmer along a camera path: three.js and Babylon.js (turning: ratio 0.8-1.25 to the
-  prediction; stabilized: none; moving forward: the engine's flips replayed, ERRATA F8);
-  PlayCanvas, which snaps every cascade: none along sideways, forward and turning paths, as
-  predicted (ERRATA F11);
+  prediction; stabilized: none; Babylon.js moving forward and three.js moving sideways: the
+  engine's flips replayed, through float32 matrices and 1/16-texel snapping (ERRATA F8) and
+  three.js's float32 depth pass (ERRATA F7)); PlayCanvas, which snaps every cascade: none along
+  sideways, forward and turning paths, as predicted (ERRATA F11);
 * PlayCanvas's shadow atlas read back, each cascade's cell against the toolkit's rasterizer with
   the polygon offset.
 
@@ -240,7 +241,7 @@ def test_babylon_shadow_generator_half_float_map(babylon_single, boxes):
     # 0.06341) leaves 0.19 % acne in the frame, 0.27 % predicted, 0.1 % with a float32 map (with the rule of an
     # exact depth tune set normalBias 0.0293, which kept 15 %); bias 4e-4: 0.56 % against 0.007 %; tune's settings
     # now (bias 0.0004539, F13): 0.04 % and 0.04 %
-    from aliasing.frames import compare, predict, single
+    from aliasing.frames import babylon_cascades, compare, predict, single
     from aliasing.frames.models import model_for
 
     fs, sun = boxes
@@ -251,7 +252,7 @@ def test_babylon_shadow_generator_half_float_map(babylon_single, boxes):
         assert round(100 * r.report["measured"]["acne"], digits) == engine_pct, r.report
         assert round(100 * r.report["predicted"]["acne"], digits) == half_pct, r.report
         model = model_for("babylon", s)
-        cast = predict.offset_casters(fs.triangles[predict.casting(fs.triangles, sun, model.cast_side(s))], sun, s["normalBias"])
+        cast = babylon_cascades.offset_casters(fs.triangles[predict.casting(fs.triangles, sun, model.cast_side(s))], sun, s["normalBias"])
         dm = predict.light_depth_map(cast, rb.matrices[0], s["mapSize"])
         f = np.where(rb.drawn, single.babylon_single_factor(dm, rb.matrices[0], np.nan_to_num(rb.position), bias=s["bias"], half=False), np.nan)
         receivers = r.reference & ((np.nan_to_num(rb.normal) @ sun) > compare.MIN_COS)
@@ -502,25 +503,64 @@ def test_threejs_defaults_show_no_acne_and_front_faces_do(three):
     assert three["front faces cast"].report["measured"]["acne"] > 0.3
 
 
-def test_threejs_shimmer_along_a_sideways_path(chromium, boxes):
+@pytest.fixture(scope="module")
+def three_sideways(chromium, boxes):
+    fs, sun = boxes
+    return frame_setup(chromium, setups.build("threejs", {}, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}"), fs, path=THREE_PATH)
+
+
+THREE_PATH = "sideways:0.05:10"
+
+
+def _path_factors(r):
+    import base64
+
+    h, w = r.readback.shadow.shape
+    return np.array([np.frombuffer(base64.b64decode(p["shadow"]), np.float32).reshape(h, w)[::-1] for p in r.readback.info["path"]])
+
+
+def test_threejs_shimmer_along_a_sideways_path(three_sideways):
     # the cascades follow a camera moving sideways while the picture's camera stays: three.js floors
     # each box's centre to a texel, so the toolkit predicts the same maps shifted by whole texels
     # (no flip) and the engine's pose matrices equal the predicted ones; the engine's residual flips
     # are all on soft shadow edges (ERRATA F7)
-    import base64
-
-    fs, sun = boxes
-    setup = setups.build("threejs", {}, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")
-    r = frame_setup(chromium, setup, fs, path="sideways:0.05:6")
+    r = three_sideways
     rep = r.report
     assert rep["predicted"]["flips_per_frame"] == 0.0
     assert rep["details"]["path_matrices_vs_engine"] <= 1e-9
     assert rep["measured"]["flips_per_frame"] < 0.005
-    h, w = r.readback.shadow.shape
-    f = np.array([np.frombuffer(base64.b64decode(p["shadow"]), np.float32).reshape(h, w)[::-1] for p in r.readback.info["path"]])[:, r.readback.drawn]
+    f = _path_factors(r)[:, r.readback.drawn]
     flipped = np.diff(f < 0.5, axis=0)
     pair = np.stack([f[1:], f[:-1]])
     assert (((pair > 0.05) & (pair < 0.95)).any(0))[flipped].all()
+
+
+def test_threejs_sideways_path_flips_are_the_float32_vertex_shader(three_sideways, boxes):
+    # three.js's light camera moves by whole texels, but the depth pass transforms the casters with
+    # float32 uniforms (modelViewMatrix, projectionMatrix) in float32, and SwiftShader snaps the
+    # corners to 1/16 texel: a corner near a rounding boundary lands on another step from pose to
+    # pose. The toolkit's maps through the engine's matrices in float64, snapped alike, flip no pixel,
+    # nor many with float32 shadow coordinates; through the float32 vertex shader they flip the
+    # engine's pixels (ERRATA F7)
+    from aliasing.frames.run import parse_path, replay
+
+    fs, sun = boxes
+    r = three_sideways
+    m = r.report["measured"]["flips_per_frame"]
+    f = _path_factors(r)[:, r.readback.drawn & (r.readback.cascade >= 0)]
+    flipped, jump = np.diff(f < 0.5, axis=0), np.abs(np.diff(f, axis=0))
+    # a stored depth changes, not a lookup's rounding: almost every flip is a jump of a texel's weight
+    assert np.mean(jump[flipped] > 0.01) >= 0.9, jump[flipped]
+    poses = parse_path(THREE_PATH, fs.camera)
+    exact = replay(r, fs, sun, poses)
+    assert exact["flips_per_frame"] == 0.0 and m > 1e-4, (exact, m)  # float64 corners, snapped: whole-texel shifts
+    # the receiver's side alone (each pixel's shadow coordinate in float32 on those maps) flips few
+    receivers = replay(r, fs, sun, poses, float32_receivers=True)
+    assert receivers["flips_per_frame"] < 0.1 * m and round(100 * receivers["flips_per_frame"], 3) == 0.002, receivers
+    gpu = replay(r, fs, sun, poses, float32_vertices=True)
+    assert 0.8 <= m / gpu["flips_per_frame"] <= 1.25 and gpu["shared_pixels"] >= 0.7, (m, gpu)
+    # the docs' numbers
+    assert (round(100 * m, 3), round(100 * gpu["flips_per_frame"], 3), round(gpu["shared"], 2), round(gpu["shared_pixels"], 2)) == (0.032, 0.028, 0.53, 0.75), (m, gpu)
 
 
 def _maps_agree(maps: dict, k: int, size: int, stride: int, snapped: float = 0.7, coverage: float = 0.9999) -> None:
@@ -756,6 +796,31 @@ def test_snapped_maps_and_tolerance_fuzz(tri, bits):
     assert bits is None or 0 <= bits <= 16
     tol = tolerance(t, dm.triangle)
     assert tol.shape == (16, 16) and (tol >= 2.0**-24).all()
+
+
+@hsettings(max_examples=40, deadline=None)
+@given(tri=st.lists(st.floats(-2, 2, width=32), min_size=9, max_size=9), bits=st.integers(-2, 20))
+def test_gpu_depth_map_fuzz(tri, bits):
+    # through identity uniforms the float32 vertex stage is exact: the corners land where the
+    # float64 snapping puts them (away from exact rounding ties, which the GPU breaks to even)
+    from aliasing.frames.maps import gpu_depth_map, snapped_depth_map
+
+    t = np.array(tri, float).reshape(1, 3, 3)
+    try:
+        dm = gpu_depth_map(t, np.eye(4), np.eye(4), 16, bits)
+    except ValueError as e:
+        assert "subpixel_bits" in str(e) and not 0 <= bits <= 16
+        return
+    half = 16 * 2.0 ** (bits - 1)
+    if np.any(np.abs((half + t[..., :2] * half) % 1 - 0.5) < 1e-6):
+        return
+    to_unit = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+    ref = snapped_depth_map(t, to_unit, 16, bits)
+    assert np.array_equal(dm.triangle, ref.triangle)
+    drawn = dm.triangle >= 0
+    assert np.allclose(dm.depth[drawn], ref.depth[drawn], atol=1e-6)
+    with pytest.raises(ValueError, match="view"):
+        gpu_depth_map(t, np.eye(3), np.eye(4), 16)
 
 
 def test_single_map_and_playcanvas_models_without_a_browser():

@@ -381,3 +381,23 @@ def map_sides(matrices: Array) -> Array:
     if m.ndim != 3 or m.shape[1:] != (4, 4):
         raise ValueError(f"matrices must have shape (k, 4, 4), got {m.shape}")
     return np.maximum(1 / np.linalg.norm(m[:, 0, :3], axis=1), 1 / np.linalg.norm(m[:, 1, :3], axis=1))
+
+
+def offset_casters(triangles: Array, sun: Array, normal_bias: float) -> Array:
+    """Babylon.js's caster-side normal bias (shadowMapVertexNormalBias): each corner moves by
+    −n · normalBias · sin(n, l) along its face's unit normal n [world units].
+
+    Examples
+    --------
+    >>> wall = np.array([[[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]])   # normal +x, the sun overhead
+    >>> offset_casters(wall, np.array([0.0, 1.0, 0.0]), 0.1)[0, 0].tolist()      # moved 0.1 · sin 90° inwards
+    [-0.1, 0.0, 0.0]
+    """
+    triangles, sun = check.finite(triangles, "triangles"), check.finite(sun, "sun")
+    normal_bias = float(check.finite(normal_bias, "normal_bias"))
+    if normal_bias == 0:
+        return triangles
+    n = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    n = n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+    cos = n @ sun
+    return triangles - (normal_bias * np.sqrt(np.clip(1 - cos**2, 0, 1)))[:, None, None] * n[:, None, :]

@@ -46,7 +46,7 @@ from numpy.typing import NDArray
 from scipy import ndimage
 
 from .. import _validation as check
-from . import predict
+from . import babylon_cascades, predict
 
 Array = NDArray[np.float64]
 SUBPIXEL_BITS = 4
@@ -162,6 +162,69 @@ def snapped_depth_map(triangles: Array, matrix: Array, size: int, subpixel_bits:
     return rasterize(mt, int(size))
 
 
+def gpu_depth_map(triangles: Array, view: Array, projection: Array, size: int, subpixel_bits: int = SUBPIXEL_BITS):
+    """three.js's depth pass as a float32 GPU draws it, then the toolkit's rasterizer.
+
+    three.js uploads the caster's ``modelViewMatrix`` (the shadow camera's ``matrixWorldInverse``
+    times the mesh's ``matrixWorld``, float64 in JavaScript: ``view``) and the shadow camera's
+    ``projectionMatrix`` as float32 uniforms (WebGLShadowMap.js 530), and the vertex shader computes
+    ``projectionMatrix * ( modelViewMatrix * vec4( position, 1.0 ) )`` in float32 (project_vertex.glsl.js
+    16–18; :func:`aliasing.frames.predict.to_map32`).  The viewport transform places each corner
+    at ``round(X0·2^b + x·(R/2)·2^b)`` in 1/2^b texel (SwiftShader's VertexRoutine; ``b`` =
+    ``subpixel_bits``, rounded to nearest, ties to even).  The corners are those of a light camera
+    that moved by whole texels, but not its float32 translation: a corner within about 10⁻⁴ texel
+    of a rounding boundary lands on a different 1/16 step from pose to pose (ERRATA F7).
+    Triangles crossing the map's border are not clipped here (the GPU clips them in float32):
+    texels on those triangles' clipped edges may differ.
+
+    Parameters
+    ----------
+    triangles : array_like (T, 3, 3)
+        World triangles [world units], taken as float32 (the page's vertex buffer).
+    view, projection : array_like (4, 4)
+        The uniforms (column vectors), float64: rounded to float32 here.
+    size : int
+        Texels per side R, in [1, 16384].
+    subpixel_bits : int
+        In [0, 16].
+
+    Returns
+    -------
+    aliasing.raster.draw.DepthMap
+        Depth as stored: the window depth (clip z + 1)/2 in float32.
+
+    Examples
+    --------
+    >>> tri = np.array([[[-0.9, -0.9, 0.0], [0.9, -0.9, 0.0], [-0.9, 0.9, 0.0]]])   # clip space through identities
+    >>> float(gpu_depth_map(tri, np.eye(4), np.eye(4), 8).depth[1, 1])
+    0.5
+    """
+    tri = np.asarray(triangles, float)
+    if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not np.all(np.isfinite(tri)):
+        raise ValueError(f"triangles must be finite with shape (T, 3, 3), got shape {tri.shape}")
+    mats = []
+    for name, m in (("view", view), ("projection", projection)):
+        m = np.asarray(m, float)
+        if m.shape != (4, 4) or not np.all(np.isfinite(m)):
+            raise ValueError(f"{name} must be a finite 4×4 matrix, got shape {m.shape}")
+        mats.append(m)
+    if not (isinstance(size, (int, np.integer)) and 1 <= size <= 16384):
+        raise ValueError(f"size must be a whole number of texels in [1, 16384], got {size!r}")
+    if not (isinstance(subpixel_bits, (int, np.integer)) and 0 <= subpixel_bits <= 16):
+        raise ValueError(f"subpixel_bits must be a whole number in [0, 16], got {subpixel_bits!r}")
+    from ..raster.draw import rasterize
+
+    if not len(tri):
+        return predict.light_depth_map(tri.reshape(0, 3, 3), np.eye(4), size)
+    clip = predict.to_map32(mats[1], predict.to_map32(mats[0], tri.reshape(-1, 3)))  # orthographic: w = 1 exactly
+    half = np.float32(size * 2.0 ** (subpixel_bits - 1))  # X0·2^b = (R/2)·2^b = half
+    scale = float(size) * 2.0**subpixel_bits
+    clip = clip.astype(np.float32)  # float32 values already: exact
+    st = [np.rint(half + clip[:, k] * half).astype(float) / scale for k in (0, 1)]  # float32 sums, then round to even
+    z = (clip[:, 2] * np.float32(0.5) + np.float32(0.5)).astype(float)
+    return rasterize(np.stack([st[0], st[1], z], -1).reshape(tri.shape), int(size))
+
+
 def stored_depth(engine: str, settings: dict, triangles: Array, sun: Array, matrix: Array, size: int) -> tuple[Array, NDArray[np.int64], Array]:
     """The toolkit's map of what ``engine`` stores: depth (R, R) (1 where empty), the nearest
     triangle per texel (−1 empty) and the map-space triangles drawn (for :func:`tolerance`).
@@ -210,7 +273,7 @@ def stored_depth(engine: str, settings: dict, triangles: Array, sun: Array, matr
     tri = np.asarray(triangles, np.float32).astype(float)  # what the page drew
     cast = tri[predict.casting(tri, sun, model.cast_side(settings))]
     if engine == "babylon":
-        cast = predict.offset_casters(cast, sun, float(settings["normalBias"]))
+        cast = babylon_cascades.offset_casters(cast, sun, float(settings["normalBias"]))
     dm = predict.light_depth_map(cast, matrix, size)
     depth = np.where(np.isfinite(dm.depth), dm.depth, 1.0)
     if engine == "babylon":  # shadowMapFragment with depth clamp: + bias twice over (ERRATA F4), clamped

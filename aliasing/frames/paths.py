@@ -20,6 +20,7 @@ from dataclasses import replace
 import numpy as np
 from numpy.typing import NDArray
 
+from . import babylon_cascades
 from .models import MODELS
 from .readback import FrameResult
 from .scenes import FrameScene, frame_scene  # noqa: F401 - frame_scene for the examples
@@ -187,7 +188,7 @@ def _babylon_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: l
     edges = model.edges(s, cam0)
     pct = float(s["cascadeBlendPercentage"])
     res = int(s["mapSize"])
-    cast = predict.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, model.cast_side(s))], sun, float(s["normalBias"]))
+    cast = babylon_cascades.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, model.cast_side(s))], sun, float(s["normalBias"]))
     pts = np.nan_to_num(rb.position)
     to_unit = np.array([[0.5, 0, 0, 0.5], [0, 0.5, 0, 0.5], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
     masks, worst = [], 0.0
@@ -232,12 +233,18 @@ def _playcanvas_factor(model, s: dict, cast: Array, mats: Array, cascade, pts: A
     return predict.playcanvas_factor(atlas, mats, cascade, pts, nrm, normal_offset=float(s["normalOffsetBias"]), taps=model.FILTERS[int(s["shadowType"])])
 
 
-def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], subpixel_bits: int | None = 4) -> dict:
+def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], subpixel_bits: int | None = 4,
+           float32_vertices: bool = False, float32_receivers: bool = False) -> dict:
     """An engine's path replayed by the toolkit through the *engine's* pose matrices (read back),
     with the casters' corners snapped to 1/2^``subpixel_bits`` texel (:func:`aliasing.frames.maps.snapped_depth_map`;
     SwiftShader: 4; None: exact): ``flips_per_frame`` and ``shared``, the fraction of the engine's
-    flips (pixel and frame) that the replay also flips.  A diagnostic of where the engine's flips
-    come from, when the toolkit's own prediction is 0 (ERRATA F7, F8, F11).
+    flips (pixel and frame) that the replay also flips, and ``shared_pixels``, the fraction of the
+    pixels the engine flips somewhere along the path that the replay flips too.  A diagnostic of
+    where the engine's flips come from, when the toolkit's own prediction is 0 (ERRATA F7, F8, F11).
+    ``float32_vertices`` (three.js): the corners as the GPU's float32 vertex shader places them from
+    each pose's own uniforms (:func:`aliasing.frames.maps.gpu_depth_map`; ``subpixel_bits`` must then
+    be a number); ``float32_receivers`` (three.js): each pixel's shadow coordinate in float32
+    (``threejs_factor(float32=True)``).
 
     Examples
     --------
@@ -258,12 +265,16 @@ def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict],
     ...                for p in path]
     >>> r = measure("threejs", fs, sun, s, out)
     >>> replay(r, fs, sun, path)
-    {'flips_per_frame': 0.0, 'shared': None}
+    {'flips_per_frame': 0.0, 'shared': None, 'shared_pixels': None}
     """
     if not isinstance(result, FrameResult):
         raise ValueError(f"result must be a FrameResult (measure, frame_setup), got {type(result).__name__}")
     if subpixel_bits is not None and not (isinstance(subpixel_bits, (int, np.integer)) and 0 <= subpixel_bits <= 16):
         raise ValueError(f"subpixel_bits must be a whole number in [0, 16] or None, got {subpixel_bits!r}")
+    if float32_vertices and (result.readback.engine != "threejs" or subpixel_bits is None):
+        raise ValueError("float32_vertices is modelled for three.js's depth pass only, with subpixel_bits a number")
+    if float32_receivers and result.readback.engine != "threejs":
+        raise ValueError("float32_receivers is modelled for three.js's shadow lookup only")
     from . import maps as frame_maps, predict
 
     rb, s = result.readback, result.settings
@@ -288,7 +299,7 @@ def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict],
         fe, fp = np.diff(engine[:, keep], axis=0), np.diff(masks[:, keep], axis=0)
         return {"flips_per_frame": flips(masks, keep), "shared": float((fe & fp).sum() / fe.sum()) if fe.any() else None}
     if rb.engine == "babylon":
-        cast = predict.offset_casters(cast, sun, float(s["normalBias"]))
+        cast = babylon_cascades.offset_casters(cast, sun, float(s["normalBias"]))
         depth = np.where(rb.drawn, scene.camera.to_eye(pts)[..., 2], np.nan)
         edges = model.edges(s, scene.camera)
         pct = float(s["cascadeBlendPercentage"])
@@ -303,11 +314,21 @@ def replay(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict],
 
         def factor(maps, mats):
             return predict.threejs_factor(maps, mats, result.prediction.cascade, pts, nrm, fx + 0.5, (h - 1 - fy) + 0.5, bias=float(s["shadowBias"]),
-                                          normal_bias=float(s["normalBias"]), radius=float(s["shadowRadius"]), map_type=s["shadowMapType"])
+                                          normal_bias=float(s["normalBias"]), radius=float(s["shadowRadius"]), map_type=s["shadowMapType"],
+                                          float32=float32_receivers)
     masks = []
     for f in frames:
         mats = np.array([(to_unit if rb.engine == "babylon" else np.eye(4)) @ np.asarray(m, float).reshape(4, 4).T for m in f["matrices"]])
-        masks.append(factor([frame_maps.snapped_depth_map(cast, m, res, subpixel_bits) for m in mats], mats) < 0.5)
+        if float32_vertices:  # the depth pass's own uniforms of this pose
+            if "views" not in f:
+                raise ValueError("the page returned no depth-pass uniforms (views, projections) for the path")
+            views, projs = ([np.asarray(m, float).reshape(4, 4).T for m in f[k]] for k in ("views", "projections"))
+            maps = [frame_maps.gpu_depth_map(cast, v, p, res, subpixel_bits) for v, p in zip(views, projs)]
+        else:
+            maps = [frame_maps.snapped_depth_map(cast, m, res, subpixel_bits) for m in mats]
+        masks.append(factor(maps, mats) < 0.5)
     masks = np.array(masks)
     fe, fp = np.diff(engine[:, keep], axis=0), np.diff(masks[:, keep], axis=0)
-    return {"flips_per_frame": flips(masks, keep), "shared": float((fe & fp).sum() / fe.sum()) if fe.any() else None}
+    pe, pp = fe.any(axis=0), fp.any(axis=0)  # the pixels that flip at all along the path
+    return {"flips_per_frame": flips(masks, keep), "shared": float((fe & fp).sum() / fe.sum()) if fe.any() else None,
+            "shared_pixels": float((pe & pp).sum() / pe.sum()) if pe.any() else None}

@@ -66,6 +66,31 @@ def to_map(matrix: ArrayLike, points: ArrayLike) -> Array:
     return h / w[..., None]
 
 
+def to_map32(matrix: ArrayLike, points: ArrayLike) -> Array:
+    """:func:`to_map` as a float32 shader computes ``matrix * vec4( point, 1.0 )``: the matrix and the
+    points rounded to float32, then per row the first column's product and each further column's
+    product added in order, every step rounded to float32 (SwiftShader's ``OpMatrixTimesVector``).
+    The last row is not used: w = 1, an orthographic matrix (the lights' here).
+
+    Examples
+    --------
+    >>> float(to_map32(np.eye(4), [[0.1, 0.2, 0.3]])[0, 0]) == float(np.float32(0.1))
+    True
+    """
+    m = _matrix(matrix).astype(np.float32)
+    p = np.asarray(points, float)
+    if p.shape[-1:] != (3,):
+        raise ValueError(f"points must have shape (..., 3), got {p.shape}")
+    q = p.reshape(-1, 3).astype(np.float32)
+    out = np.empty(q.shape, np.float32)
+    for i in range(3):
+        v = m[i, 0] * q[:, 0]
+        for j in (1, 2):
+            v = v + m[i, j] * q[:, j]
+        out[:, i] = v + m[i, 3]  # times w = 1
+    return out.astype(float).reshape(p.shape)
+
+
 def casting(triangles: ArrayLike, sun: ArrayLike, side: str) -> NDArray[np.bool_]:
     """Which triangles are drawn into the shadow map: ``side`` "front", "back" or "double" as seen from the sun.
 
@@ -180,13 +205,16 @@ def _hardware_pcf(depth: Array, s: Array, t: Array, ref: Array) -> Array:
 
 
 def threejs_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.int64], points: Array, normals: Array,
-                   frag_x: Array, frag_y: Array, *, bias: float, normal_bias: float, radius: float, map_type: str = "PCFShadowMap") -> Array:
+                   frag_x: Array, frag_y: Array, *, bias: float, normal_bias: float, radius: float, map_type: str = "PCFShadowMap",
+                   float32: bool = False) -> Array:
     """three.js r187's shadow factor (``getShadow`` of shadowmap_pars_fragment, PCFShadowMap or BasicShadowMap).
 
     The point moves by ``normal_bias`` along its world normal (shadowmap_vertex), its map depth
     gains ``bias`` (normalized depth), and PCF averages 5 taps of hardware 2×2 PCF on a Vogel
     disk of ``radius`` texels turned by the interleaved gradient noise of the pixel; outside
     [0, 1]² or beyond depth 1 the factor is 1.  ``cascade`` −1: no shadow (factor 1).
+    ``float32``: the shadow coordinate as the shader computes it per point in float32
+    (:func:`to_map32`; the GPU computes it per vertex and interpolates, with rounding of the same size).
 
     Examples
     --------
@@ -211,7 +239,7 @@ def threejs_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
         if not sel.any():
             continue
         q = points[sel] + normal_bias * normals[sel]
-        c = to_map(m, q)
+        c = to_map32(m, q) if float32 else to_map(m, q)
         z = c[:, 2] + bias
         inside = (c[:, 0] >= 0) & (c[:, 0] <= 1) & (c[:, 1] >= 0) & (c[:, 1] <= 1) & (z <= 1)
         r = dm.depth.shape[0]
@@ -230,26 +258,6 @@ def threejs_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
             f *= 0.2
         factor[sel] = np.where(inside, f, 1.0)
     return factor
-
-
-def offset_casters(triangles: Array, sun: Array, normal_bias: float) -> Array:
-    """Babylon.js's caster-side normal bias (shadowMapVertexNormalBias): each corner moves by
-    −n · normalBias · sin(n, l) along its face's unit normal n [world units].
-
-    Examples
-    --------
-    >>> wall = np.array([[[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]])   # normal +x, the sun overhead
-    >>> offset_casters(wall, np.array([0.0, 1.0, 0.0]), 0.1)[0, 0].tolist()      # moved 0.1 · sin 90° inwards
-    [-0.1, 0.0, 0.0]
-    """
-    triangles, sun = check.finite(triangles, "triangles"), check.finite(sun, "sun")
-    normal_bias = float(check.finite(normal_bias, "normal_bias"))
-    if normal_bias == 0:
-        return triangles
-    n = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
-    n = n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
-    cos = n @ sun
-    return triangles - (normal_bias * np.sqrt(np.clip(1 - cos**2, 0, 1)))[:, None, None] * n[:, None, :]
 
 
 def _babylon_pcf5(stored: Array, s: Array, t: Array, ref: Array) -> Array:

@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 
 from .. import _validation as check
 from ..raster.draw import DepthMap
-from . import predict
+from . import babylon_cascades, predict
 from .predict import Prediction, reference, to_map
 
 Array = NDArray[np.float64]
@@ -420,7 +420,7 @@ class BabylonSingle:
         cam = scene.camera
         sel = np.where(rb.drawn, 0, -1).astype(np.int64)
         res = int(s["mapSize"])
-        cast = predict.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))], sun, float(s["normalBias"]))
+        cast = babylon_cascades.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))], sun, float(s["normalBias"]))
         dm = predict.light_depth_map(cast, rb.matrices[0], res)
         factor = babylon_single_factor(dm, rb.matrices[0], np.nan_to_num(rb.position), bias=float(s["bias"]))
         factor = np.where(rb.drawn, factor, np.nan)

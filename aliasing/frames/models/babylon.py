@@ -145,7 +145,7 @@ class BabylonCSM:
         depth = np.where(rb.drawn, cam.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
         sel = self.select(s, cam, depth)
         res = int(s["mapSize"])
-        cast = predict.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))], sun, float(s["normalBias"]))
+        cast = babylon_cascades.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))], sun, float(s["normalBias"]))
         maps = [predict.light_depth_map(cast, m, res) for m in rb.matrices]
         edges = self.edges(s, cam)
         pct = float(s["cascadeBlendPercentage"])

@@ -175,7 +175,20 @@ window.frame = async (job) => {
       const buf = readTarget(renderer, scene, camera, target, w, h);
       const factor = new Float32Array(w * h);
       for (let i = 0; i < w * h; i++) factor[i] = buf[4 * i];
-      path.push({ shadow: encode(factor), matrices: csm.lights.map((l) => [...l.shadow.matrix.elements]) });
+      // the depth pass's own uniforms (WebGLShadowMap.renderObject: modelViewMatrix = shadow camera's
+      // matrixWorldInverse × the mesh's matrixWorld, the identity here; projectionMatrix), float64 here
+      const got = { shadow: encode(factor), matrices: csm.lights.map((l) => [...l.shadow.matrix.elements]),
+                    views: csm.lights.map((l) => [...l.shadow.camera.matrixWorldInverse.elements]),
+                    projections: csm.lights.map((l) => [...l.shadow.camera.projectionMatrix.elements]) };
+      if (job.maps) {                                   // this pose's maps, as read for the frame above
+        got.maps = csm.lights.map((l) => {
+          const size = l.shadow.map.width, stride = Math.max(1, Math.ceil(size / job.maps.side));
+          const read = readDepthTexture(gl0, renderer.properties.get(l.shadow.map.depthTexture).__webglTexture, size, stride, null);
+          return { depth: read.maps[0], side: read.side, stride, size };
+        });
+        renderer.resetState();
+      }
+      path.push(got);
     }
   }
   const ms = performance.now() - t0;
