@@ -110,7 +110,7 @@ def babylon(chromium, boxes):
     return {name: _frame(chromium, "babylon", fs, settings, **extra) for name, settings, extra in (
         ("defaults", {}, {"path": "turn:0.2:4", "maps": 256}), ("bias 0", {"bias": 0}, {}),
         ("bias 4e-4", {"bias": 0.0004}, {"path": "forward:0.05:4"}), ("tuned", _tuned("babylon", {}), {}),
-        ("normal offset", {"lambda": 1.0, "bias": 0.0, "normalBias": 0.2771}, {}))}  # tune's choice while a normal offset was free (F13)
+        ("normal offset", {"lambda": 1.0, "bias": 0.0, "normalBias": 0.2771}, {}))}  # tune's choice while a normal offset was free (F12)
 
 
 @pytest.fixture(scope="module")
@@ -120,7 +120,7 @@ def three(chromium, boxes):
     from aliasing.tune import tune
 
     tuned = {**front, **tune(setups.build("threejs", front, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")).changed}  # what `aliasing tune` sets
-    # "normal offset": what tune set while it counted a normal offset as free (ERRATA F13)
+    # "normal offset": what tune set while it counted a normal offset as free (ERRATA F12)
     offset = {**front, "cascades": 8, "mode": "logarithmic", "shadowMapSize": 1024, "shadow.normalBias": 0.1382}
     return {name: _frame(chromium, "threejs", fs, settings) for name, settings in (("defaults", {}), ("front faces cast", front), ("tuned", tuned),
                                                                                    ("normal offset", offset))}
@@ -240,12 +240,12 @@ def test_babylon_shadow_generator_half_float_map(babylon_single, boxes):
     # to 11 bits; the setups' rule counts the rounding, and the normal offset it then needs (bias 0, normalBias
     # 0.06341) leaves 0.19 % acne in the frame, 0.27 % predicted, 0.1 % with a float32 map (with the rule of an
     # exact depth tune set normalBias 0.0293, which kept 15 %); bias 4e-4: 0.56 % against 0.007 %; tune's settings
-    # now (bias 0.0004539, F13): 0.04 % and 0.04 %
+    # now (bias 0.0004539, F12): 0.04 % and 0.04 %, 0 with a float32 map
     from aliasing.frames import babylon_cascades, compare, predict, single
     from aliasing.frames.models import model_for
 
     fs, sun = boxes
-    want = {"normal offset": (2, 0.19, 0.27, 0.1), "bias 4e-4": (2, 0.56, 0.55, 0.007), "tuned": (2, 0.04, 0.04, 0.007)}  # digits, engine, toolkit, float32 [%]
+    want = {"normal offset": (2, 0.19, 0.27, 0.1), "bias 4e-4": (2, 0.56, 0.55, 0.007), "tuned": (2, 0.04, 0.04, 0.0)}  # digits, engine, toolkit, float32 [%]
     for name, (digits, engine_pct, half_pct, float_pct) in want.items():
         r = babylon_single[name]
         rb, s = r.readback, r.settings
@@ -284,7 +284,7 @@ def playcanvas(chromium, boxes):
     tuned = tune(setups.build("playcanvas", {}, CAMERA_SPEC, f"{SUN[0]:g}@{SUN[1]:g}")).changed  # what `aliasing tune` sets
     # each frame also follows a camera path (the frame's own numbers are taken before it); the defaults
     # (one map, a polygon offset of 0.5 per texel of depth slope) and the tuned one (four cascades in
-    # the 2x2 atlas, shadowBias 0.1465) read their maps back; "normal offset": tune's choice while it was free (F13)
+    # the 2x2 atlas, shadowBias 0.1465) read their maps back; "normal offset": tune's choice while it was free (F12)
     return {name: _frame(chromium, "playcanvas", fs, s, **extra) for name, s, extra in (
         ("defaults", {}, {"path": PC_PATHS["defaults"], "maps": 256}), ("bias 0", {"shadowBias": 0}, {"path": PC_PATHS["bias 0"]}),
         ("tuned", tuned, {"path": PC_PATHS["tuned"], "maps": 256}),
@@ -365,7 +365,7 @@ def test_playcanvas_shimmer_along_a_path(playcanvas, boxes, name):
         atlas = predict.playcanvas_atlas(cast, mats, model.cells(s), s["shadowResolution"], s["shadowBias"])
         masks.append(predict.playcanvas_factor(atlas, mats, r.prediction.cascade, pts, nrm, normal_offset=s["normalOffsetBias"]) < 0.5)
     unsnapped = flips(np.array(masks), r.readback.drawn & (r.readback.cascade >= 0))
-    assert round(unsnapped, 4) == {"defaults": 0.0196, "bias 0": 0.3109, "tuned": 0.0042}[name], unsnapped  # the docs' numbers
+    assert round(unsnapped, 4) == {"defaults": 0.0196, "bias 0": 0.3109, "tuned": 0.0055}[name], unsnapped  # the docs' numbers
     # ERRATA F11: the depth range is fitted with the shadow camera 1e6 away in float32; the toolkit repeats
     # that rounding. Placed exactly, its camera is up to 0.057 world units off along the light (tuned frame);
     # one pose of the turn rounds a float32 entry at 1e6 the other way: one step of 2^-4 world units
@@ -393,9 +393,9 @@ def test_playcanvas_atlas_is_the_toolkits(playcanvas, boxes):
         res = r.settings["shadowResolution"]
         # the snapping's share of the bound per cell, the docs' numbers
         _maps_agree(maps, k, res, res // 256, coverage=0.9999 if k == 1 else 0.9998)
-        assert [round(c["max_over_tolerance"], 2) for c in maps["cascades"]] == {"defaults": [0.87], "tuned": [0.8, 0.82, 0.71, 0.83]}[name], maps
+        assert [round(c["max_over_tolerance"], 2) for c in maps["cascades"]] == {"defaults": [0.87], "tuned": [0.79, 0.81, 0.72, 0.82]}[name], maps
         assert all(c["texels"] == (256 if k == 1 else 128) ** 2 for c in maps["cascades"]), maps  # a cell: a quarter of the atlas
-        assert round(maps["max_difference"], 7) == {"defaults": 6.49e-5, "tuned": 1.032e-4}[name], maps  # the docs' numbers
+        assert round(maps["max_difference"], 7) == {"defaults": 6.49e-5, "tuned": 1.054e-4}[name], maps  # the docs' numbers
     # the test sees the offset: the toolkit's map without it (shadowBias 0) is off everywhere by more than the tolerance
     r = playcanvas["defaults"]
     got = frame_maps.decode_maps(r.readback.info)
@@ -463,10 +463,10 @@ def _rel(rep) -> float:
 def test_frames_numbers_in_the_docs(playcanvas, three_single, boxes):
     # docs/guide/frames.rst (PlayCanvas and three.js's single light at 256 x 144) and ERRATA F9, at their precision:
     # (acne digits, engine acne, toolkit acne [%], engine gap, toolkit gap [px])
-    want = {(playcanvas, "defaults"): (1, 1.0, 1.0, 0.15, 0.15), (playcanvas, "bias 0"): (0, 31.0, 31.0, 0.12, 0.12),
-            (playcanvas, "tuned"): (2, 0.07, 0.07, 0.18, 0.19), (playcanvas, "normal offset"): (2, 0.01, 0.01, 2.05, 2.05),
-            (three_single, "front faces, bias 0"): (0, 50.0, 50.0, 0.01, 0.01), (three_single, "tuned"): (2, 0.33, 0.07, 0.21, 0.21)}
-    for (runs, name), (digits, acne_e, acne_t, gap_e, gap_t) in want.items():
+    want = (((playcanvas, "defaults"), (1, 1.0, 1.0, 0.15, 0.15)), ((playcanvas, "bias 0"), (0, 31.0, 31.0, 0.12, 0.12)),
+            ((playcanvas, "tuned"), (2, 0.07, 0.07, 0.18, 0.19)), ((playcanvas, "normal offset"), (2, 0.01, 0.01, 2.05, 2.05)),
+            ((three_single, "front faces, bias 0"), (0, 50.0, 50.0, 0.01, 0.01)), ((three_single, "tuned"), (2, 0.33, 0.07, 0.21, 0.21)))
+    for (runs, name), (digits, acne_e, acne_t, gap_e, gap_t) in want:
         rep = runs[name].report
         assert round(rep["measured"]["shadow_agreement"], 3) == 1.0, rep
         got = (round(100 * rep["measured"]["acne"], digits), round(100 * rep["predicted"]["acne"], digits),
@@ -877,7 +877,7 @@ def test_polygon_offset_fuzz():
 
 
 def test_tuned_settings_keep_the_shadow(three, playcanvas, babylon, babylon_single):
-    # ERRATA F13, at its printed precision: the normal offsets tune set while it counted them as free left no acne
+    # ERRATA F12, at its printed precision: the normal offsets tune set while it counted them as free left no acne
     # but shaded lit 25-63 % of the sunward pixels in the exact shadow (1-13 % at the engines' defaults); tune's
     # settings now keep the acne away and lose 0.9-19 %, in the engine's frame and in the prediction alike
     runs = {"threejs": three, "playcanvas": playcanvas, "babylon": babylon, "babylon SG": babylon_single}

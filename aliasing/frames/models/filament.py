@@ -7,6 +7,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from ...view import tan_theta
+
 
 Array = NDArray[np.float64]
 
@@ -145,7 +147,7 @@ class Filament:
             raise ValueError(f"Filament's frames need an even width − height (the eye pass's square pixels), got {w}×{h}")
         lit, unlit = (np.frombuffer(base64.b64decode(out[k]), np.uint8).reshape(h, w, 4).astype(float) for k in ("lit", "unlit"))
         cam = scene.camera
-        half = np.arctan(np.tan(np.radians(cam.fov) / 2) * w / h)
+        half = np.arctan(tan_theta(cam.fov) * w / h)
         eb = eye_pass(cam.to_eye(scene.triangles), float(np.degrees(2 * half)), w, near=cam.near)
         k0 = (w - h) // 2
         pos_e, nrm_e = eb.position[k0:k0 + h], eb.normal[k0:k0 + h]          # rows bottom-up, as WebGL's
@@ -166,7 +168,7 @@ class Filament:
         lit_enough = facing & engine_drawn & (ndotl > 0.2) & (g_un > 0)
         expect_v = np.array([[*cam.rotation[0], -cam.rotation[0] @ cam.eye], [*cam.rotation[1], -cam.rotation[1] @ cam.eye],
                              [*-cam.rotation[2], cam.rotation[2] @ cam.eye], [0, 0, 0, 1]])
-        f = 1 / np.tan(np.radians(cam.fov) / 2)
+        f = 1 / tan_theta(cam.fov)
         expect_p = np.array([[f * h / w, 0, 0, 0], [0, f, 0, 0], [0, 0, -1, -2 * cam.near], [0, 0, -1, 0]])   # Filament: infinite far
         checks = {
             "view_vs_toolkit": float(np.max(np.abs(np.asarray(out["view"], float).reshape(4, 4).T - expect_v))),
