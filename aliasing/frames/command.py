@@ -39,7 +39,7 @@ def _png(path: Path, rgb: np.ndarray) -> None:
 
 
 def write_images(out: Path, result) -> None:
-    """engine.png, predicted.png and difference.png of a :class:`aliasing.frames.run.FrameResult` in ``out``.
+    """engine.png, predicted.png and difference.png of a :class:`aliasing.frames.readback.FrameResult` in ``out``.
 
     Parameters
     ----------

@@ -174,7 +174,7 @@ def add_tune_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         help="what to set: the engine's own shadow settings with the lowest worst error for a camera, a sun band and limits",
         description="Search the engine's own shadow settings (split mode and λ or fractions, cascade count, map size, biases, filter, "
         "stabilization) for the lowest worst-case perspective error over the receivers and the sun band, with no acne up to "
-        "--max-slope, peter-panning within --max-gap-px, the texels within --max-texels and, with --moving, no shimmer. Settings "
+        "--max-slope, shadow edges moved within --max-gap-px, the texels within --max-texels and, with --moving, no shimmer. Settings "
         "given with --settings or --set are kept. Biases are set to the closed-form minimum, not searched.",
         epilog="Example: aliasing tune --engine threejs --set cascades=4 --set shadowMapSize=2048 "
         "--camera near=0.1,far=500,fov=50,aspect=16:9,height=1080 --sun 15..60 --receivers 1..200.  Where the limits cannot all "
@@ -184,7 +184,7 @@ def add_tune_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument("--receivers", metavar="NEAR..FAR", help="eye depths of the receivers [world units] (default the camera's near..far)")
     p.add_argument("--scene", metavar="FILE", help="a scene (glTF/GLB with a camera, OBJ, PLY, STL) whose visible depths give the receivers")
     p.add_argument("--max-texels", metavar="N|KxR", help="texels of all maps together, a number or K x R (default: those of the given settings)")
-    p.add_argument("--max-gap-px", type=float, metavar="P", help="the most peter-panning allowed [pixels] (default: no limit)")
+    p.add_argument("--max-gap-px", type=float, metavar="P", help="the most a bias may move a shadow's edge on the ground [pixels]: the gap at a contact, the shortening by a normal offset (default: no limit)")
     p.add_argument("--max-slope", type=float, default=0.0, metavar="DEG",
                    help="the steepest receiver that must stay free of acne, degrees tilted from the ground away from the sun (default 0: the ground)")
     p.add_argument("--moving", action="store_true", help="the camera moves: the fit must be stabilized (no shimmer)")
