@@ -98,7 +98,8 @@ def _extremum(func: Callable[[Array], Array], lo: ArrayLike, hi: ArrayLike, samp
     lo, hi = np.asarray(lo, float), np.asarray(hi, float)
     grid = np.linspace(0.0, 1.0, samples).reshape((-1,) + (1,) * max(lo.ndim, hi.ndim))
     xs = lo + (hi - lo) * grid
-    vals = sign * func(xs) + 0.0 * xs  # func may not depend on its argument
+    out = sign * func(xs)
+    vals = np.broadcast_to(out, np.broadcast_shapes(np.shape(out), xs.shape))  # func may not depend on its argument
     xs = np.broadcast_to(xs, vals.shape)
     k = np.argmax(vals, axis=0)[None]
     step = (hi - lo) / (samples - 1)
@@ -353,7 +354,7 @@ def optimal_factors(kind: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, 
     target = {"s": "S", "r_s": "R_s", "r_t": "R_t"}[check.choice(minimize, "minimize", ["s", "r_s", "r_t"])]
     a_top = check.positive(a_max, "a_max")
     y0, y1, _, _ = logpsm.side_face(near, far, fov)
-    tau_max = np.log1p(a_top * y1 / y0)
+    tau_max = np.logaddexp(0.0, np.log(a_top) + np.log(y1) - np.log(y0))  # log1p(a_top·y1/y0), finite where the ratio overflows
 
     def value(tau):
         return face_factors(key, near, far, fov, lx=lx, ly=ly, lz=lz, directional=directional, a=y0 * np.expm1(tau), b=b, samples=samples)[target]
