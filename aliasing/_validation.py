@@ -51,6 +51,22 @@ def finite(value: ArrayLike, name: str) -> NDArray[np.float64]:
     return arr
 
 
+def triangles(value: ArrayLike, name: str = "triangles", *, empty: bool = False) -> NDArray[np.float64]:
+    """Finite triangles of shape (T, 3, 3) [world units], T ≥ 1 unless ``empty``."""
+    arr = finite(value, name)
+    if arr.ndim != 3 or arr.shape[1:] != (3, 3) or not (empty or len(arr)):
+        raise ValueError(f"{name} must have shape (T, 3, 3), T >= {0 if empty else 1}, got {arr.shape}")
+    return arr
+
+
+def direction(value: ArrayLike, name: str = "sun") -> NDArray[np.float64]:
+    """A finite non-zero 3-vector (a direction, not yet normalized)."""
+    arr = finite(value, name) if not isinstance(value, str) else as_float_array(np.nan, name)
+    if arr.shape != (3,) or not np.linalg.norm(arr) > 0:
+        raise ValueError(f"{name} must be a finite non-zero 3-vector (a world direction), got {_repr(value)}")
+    return arr
+
+
 def scalar(value: ArrayLike, name: str) -> float:
     """One real number (a 0-d or one-element array is accepted); NaN refused, inf kept."""
     arr = as_float_array(value, name)

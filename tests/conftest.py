@@ -109,3 +109,32 @@ if _hsettings is not None:
     _hsettings.register_profile("ci", derandomize=True, deadline=None, print_blob=True)
     _hsettings.register_profile("long", max_examples=50_000, derandomize=False, deadline=None, print_blob=True)
     _hsettings.load_profile(_os.environ.get("ALIASING_HYPOTHESIS", "ci"))
+
+
+def need(what: str, how: str) -> None:
+    """A tool the engines' frames need is missing: fail under CI (``CI=true``), skip in one line elsewhere."""
+    import os
+
+    if os.environ.get("CI", "").lower() == "true":
+        pytest.fail(f"{what} missing under CI: {how}")
+    pytest.skip(f"{what} missing: the engines' frames are not rendered ({how})")
+
+
+def need_frames(engine: str, title: str) -> None:
+    """Playwright, the system Chromium, npm and ``engine``'s pinned package (installed from its lockfile), or :func:`need`."""
+    import shutil
+
+    from aliasing.frames import browser, install
+
+    try:
+        import playwright  # noqa: F401
+    except ImportError:
+        need("Playwright for Python", "pip install '.[frames]'")
+    if browser.chromium_path() is None:
+        need("Chromium", "Debian: apt-get install chromium")
+    if shutil.which("npm") is None:
+        need("npm", "Debian: apt-get install nodejs npm")
+    try:
+        install.install(engine)
+    except install.MissingTool as e:
+        need(f"the pinned {title} package", str(e))

@@ -18,8 +18,6 @@ Without Chromium, npm or Playwright the browser tests skip with one line, except
 
 from __future__ import annotations
 
-import os
-import shutil
 
 import numpy as np
 import pytest
@@ -29,35 +27,18 @@ from scipy import ndimage
 
 from aliasing import cli, setups
 from aliasing.frames import browser as fb
-from aliasing.frames import install, predict, scenes
+from aliasing.frames import predict, scenes
 from aliasing.frames.models import FILAMENT
 from aliasing.frames.run import frame_setup
+from conftest import need_frames
 
-CI = os.environ.get("CI", "").lower() == "true"
 CAMERA = dict(near=0.5, far=60.0, fov=50.0, aspect=16 / 9)
 SPEC = "near=0.5,far=60,fov=50,aspect=16:9,height=144"
 
 
-def _need(what: str, how: str) -> None:
-    if CI:
-        pytest.fail(f"{what} missing under CI: {how}")
-    pytest.skip(f"{what} missing: Filament's frames are not rendered ({how})")
-
-
 @pytest.fixture(scope="module")
 def frames():
-    try:
-        import playwright  # noqa: F401
-    except ImportError:
-        _need("Playwright for Python", "pip install '.[frames]'")
-    if fb.chromium_path() is None:
-        _need("Chromium", "Debian: apt-get install chromium")
-    if shutil.which("npm") is None:
-        _need("npm", "Debian: apt-get install nodejs npm")
-    try:
-        install.install("filament")
-    except install.MissingTool as e:
-        _need("the pinned Filament package", str(e))
+    need_frames("filament", "Filament")
     setup = setups.build("filament", {}, SPEC, "35@30")
     boxes = scenes.frame_scene("boxes", **CAMERA)
     ground = scenes.frame_scene("boxes", **CAMERA, boxes=0, ground_cells=2)

@@ -304,12 +304,8 @@ def matrices(settings: dict, camera, sun: Array, triangles: Array, aspect: float
     2.6e-06
     """
     s = _settings(settings)
-    tri = check.finite(triangles, "triangles")
-    if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri):
-        raise ValueError(f"triangles must have shape (T, 3, 3), T >= 1, got {tri.shape}")
-    sv = check.finite(sun, "sun")
-    if sv.shape != (3,) or not np.linalg.norm(sv) > 0:
-        raise ValueError(f"sun must be a non-zero 3-vector, got {sv.tolist()}")
+    tri = check.triangles(triangles)
+    sv = check.direction(sun)
     aspect = float(camera.aspect if aspect is None else aspect)
     if not (np.isfinite(aspect) and aspect > 0):
         raise ValueError(f"aspect must be a positive finite width / height, got {aspect!r}")

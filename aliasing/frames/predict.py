@@ -135,9 +135,7 @@ def light_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) ->
     ([0.25, 0.25, inf, inf], [0, 0, -1, -1])
     """
     check.whole(resolution, "resolution", 1, 16384, " [texels]")
-    tri = check.finite(triangles, "triangles")
-    if tri.ndim != 3 or tri.shape[1:] != (3, 3):
-        raise ValueError(f"triangles must have shape (T, 3, 3), got {tri.shape}")
+    tri = check.triangles(triangles, empty=True)
     if not len(tri):
         tri = np.full((1, 3, 3), 10.0)  # nothing casts: one triangle far outside the map
     return rasterize(to_map(matrix, tri), int(resolution))
@@ -260,43 +258,39 @@ def threejs_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
     return factor
 
 
-def _babylon_pcf5(stored: Array, s: Array, t: Array, ref: Array) -> Array:
-    """Babylon.js's computeShadowWithCSMPCF5: 9 hardware-PCF (LINEAR, compare LESS) taps with weights /144."""
+def _weighted_taps(stored: Array, s: Array, t: Array, ref: Array, weights, norm: float) -> Array:
+    """Babylon.js's optimized PCF (``shadowsFragmentFunctions``): around the texel corner nearest (s, t), hardware-PCF
+    (LINEAR, compare LESS) taps at offsets ``weights(f)`` → (w, o) per axis of the fractional position f, weighted
+    w_a·w_b and divided by ``norm``."""
     r = stored.shape[0]
     u, v = s * r + 0.5, t * r + 0.5
-    st_x, st_y = u - np.floor(u), v - np.floor(v)
     bu, bv = (np.floor(u) - 0.5) / r, (np.floor(v) - 0.5) / r
-
-    def weights(f):
-        w = (4 - 3 * f, np.full_like(f, 7.0), 1 + 3 * f)
-        o = ((3 - 2 * f) / w[0] - 2, (3 + f) / w[1], f / w[2] + 2)
-        return w, o
-
-    (wx, ox), (wy, oy) = weights(st_x), weights(st_y)
+    (wx, ox), (wy, oy) = weights(u - np.floor(u)), weights(v - np.floor(v))
     out = np.zeros_like(ref)
-    for a in range(3):
-        for b in range(3):
+    for a in range(len(wx)):
+        for b in range(len(wy)):
             out += wx[a] * wy[b] * _hardware_compare(stored, bu + ox[a] / r, bv + oy[b] / r, ref, strict=True)
-    return out / 144.0
+    return out / norm
+
+
+def _pcf5_weights(f: Array) -> tuple:
+    w = (4 - 3 * f, np.full_like(f, 7.0), 1 + 3 * f)
+    return w, ((3 - 2 * f) / w[0] - 2, (3 + f) / w[1], f / w[2] + 2)
+
+
+def _pcf3_weights(f: Array) -> tuple:
+    w = (3 - 2 * f, 1 + 2 * f)
+    return w, ((2 - f) / w[0] - 1, f / w[1] + 1)
+
+
+def _babylon_pcf5(stored: Array, s: Array, t: Array, ref: Array) -> Array:
+    """Babylon.js's computeShadowWithCSMPCF5 (high quality): 9 hardware-PCF taps with weights /144."""
+    return _weighted_taps(stored, s, t, ref, _pcf5_weights, 144.0)
 
 
 def _babylon_pcf3(stored: Array, s: Array, t: Array, ref: Array) -> Array:
-    """Babylon.js's computeShadowWithCSMPCF3 (medium quality): 4 hardware-PCF (LINEAR, compare LESS) taps with weights /16."""
-    r = stored.shape[0]
-    u, v = s * r + 0.5, t * r + 0.5
-    st_x, st_y = u - np.floor(u), v - np.floor(v)
-    bu, bv = (np.floor(u) - 0.5) / r, (np.floor(v) - 0.5) / r
-
-    def weights(f):
-        w = (3 - 2 * f, 1 + 2 * f)
-        return w, ((2 - f) / w[0] - 1, f / w[1] + 1)
-
-    (wx, ox), (wy, oy) = weights(st_x), weights(st_y)
-    out = np.zeros_like(ref)
-    for a in range(2):
-        for b in range(2):
-            out += wx[a] * wy[b] * _hardware_compare(stored, bu + ox[a] / r, bv + oy[b] / r, ref, strict=True)
-    return out / 16.0
+    """Babylon.js's computeShadowWithCSMPCF3 (medium quality): 4 hardware-PCF taps with weights /16."""
+    return _weighted_taps(stored, s, t, ref, _pcf3_weights, 16.0)
 
 
 def _babylon_pcf1(stored: Array, s: Array, t: Array, ref: Array) -> Array:

@@ -16,6 +16,7 @@ from dataclasses import replace
 import numpy as np
 from numpy.typing import NDArray
 
+from .. import _validation as check
 from . import compare
 from .models import Prediction, model_for
 from .paths import PATH_ENGINES, flips, parse_path, pose_camera, replay, shimmer  # noqa: F401 - flips, pose_camera, replay re-exported
@@ -40,9 +41,7 @@ def make_job(scene: FrameScene, sun: Array, settings: dict, height: int, path: l
     """
     if not isinstance(scene, FrameScene):
         raise ValueError(f"scene must be a FrameScene (aliasing.frames.scenes.frame_scene), got {type(scene).__name__}")
-    sv = np.asarray(sun, float) if not isinstance(sun, str) else np.full(1, np.nan)
-    if sv.shape != (3,) or not np.all(np.isfinite(sv)) or not np.linalg.norm(sv) > 0:
-        raise ValueError(f"sun must be a finite non-zero 3-vector (world direction towards the sun), got {sun!r}")
+    check.direction(sun)
     h = int(height)
     if h != height or not 16 <= h <= 2160:
         raise ValueError(f"height must be a whole number of pixels in [16, 2160], got {height!r}")
@@ -120,9 +119,7 @@ def pipeline_footprint(pipeline, camera, sun: Array) -> tuple[Array, Array, Arra
     >>> starts.round(3).tolist(), bool((sides > 0).all()), res.tolist()
     ([1.0, 7.486], True, [2048.0, 2048.0])
     """
-    sv = np.asarray(sun, float) if not isinstance(sun, str) else np.full(1, np.nan)
-    if sv.shape != (3,) or not np.all(np.isfinite(sv)) or not np.linalg.norm(sv) > 0:
-        raise ValueError(f"sun must be a finite non-zero 3-vector (world direction towards the sun), got {sun!r}")
+    check.direction(sun)
     from ..engines import stable
     from .models import tight_sides
 
@@ -166,9 +163,7 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     """
     if not isinstance(scene, FrameScene):
         raise ValueError(f"scene must be a FrameScene (aliasing.frames.scenes.frame_scene), got {type(scene).__name__}")
-    sv = np.asarray(sun, float) if not isinstance(sun, str) else np.full(1, np.nan)
-    if sv.shape != (3,) or not np.all(np.isfinite(sv)) or not np.linalg.norm(sv) > 0:
-        raise ValueError(f"sun must be a finite non-zero 3-vector (world direction towards the sun), got {sun!r}")
+    check.direction(sun)
     model = model_for(engine, settings)
     if hasattr(model, "readback"):  # a page that returns colours only (Filament): the model makes the read-back
         out = model.readback(out, scene, sun)

@@ -95,9 +95,7 @@ def wind_outward(triangles: ArrayLike) -> Array:
     >>> wind_outward(t)[0].tolist()
     [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]
     """
-    tri = check.finite(triangles, "triangles")
-    if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri):
-        raise ValueError(f"triangles must have shape (T, 3, 3), T >= 1, got {tri.shape}")
+    tri = check.triangles(triangles)
     t = len(tri)
     _, vid = np.unique(np.round(tri.reshape(-1, 3), 9), axis=0, return_inverse=True)
     vid = vid.reshape(t, 3)

@@ -201,9 +201,7 @@ class ThreeDirectional:
         >>> np.round(m[0] @ [0.0, 0.0, -50.5, 1.0], 6).tolist()    # the target: the box's centre, half way in depth
         [0.5, 0.5, 0.5, 1.0]
         """
-        check_sun = np.asarray(sun, float)
-        if check_sun.shape != (3,) or not np.all(np.isfinite(check_sun)) or not np.linalg.norm(check_sun) > 0:
-            raise ValueError(f"sun must be a finite non-zero 3-vector (world direction towards the sun), got {check_sun.tolist()}")
+        check.direction(sun)
         from .scenes import light_target
 
         target = light_target(camera)
@@ -453,9 +451,7 @@ class BabylonSingle:
         >>> np.round(m[0] @ [0.0, -1.0, -50.5, 1.0], 6).tolist()   # below the target: the box's centre in s, t
         [0.5, 0.5, 0.510101, 1.0]
         """
-        check_sun = np.asarray(sun, float)
-        if check_sun.shape != (3,) or not np.all(np.isfinite(check_sun)) or not np.linalg.norm(check_sun) > 0:
-            raise ValueError(f"sun must be a finite non-zero 3-vector (world direction towards the sun), got {check_sun.tolist()}")
+        check.direction(sun)
         from .scenes import light_target
 
         lo, hi = self.depth_range(s, camera)

@@ -107,12 +107,8 @@ class Filament:
         """
         from ... import _validation as check
 
-        tri = check.finite(triangles, "triangles")
-        if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri):
-            raise ValueError(f"triangles must have shape (T, 3, 3) with T >= 1, got {tri.shape}")
-        sv = check.finite(sun, "sun")
-        if sv.shape != (3,) or not np.linalg.norm(sv) > 0:
-            raise ValueError(f"sun must be a non-zero 3-vector (world direction towards the sun), got {np.asarray(sun).tolist()}")
+        tri = check.triangles(triangles)
+        sv = check.direction(sun)
         d = -sv / np.linalg.norm(sv)                              # along the light
         up = np.array([0.0, 0.0, 1.0]) if abs(d[1]) > 0.9 else np.array([0.0, 1.0, 0.0])
         x = np.cross(up, d)

@@ -201,12 +201,8 @@ class PlayCanvas:
         """
         from ... import _validation as check
 
-        sv = check.finite(sun, "sun")
-        if sv.shape != (3,) or not np.linalg.norm(sv) > 0:
-            raise ValueError(f"sun must be a non-zero 3-vector, got {sv.tolist()}")
-        tri = check.finite(triangles, "triangles")
-        if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri):
-            raise ValueError(f"triangles must have shape (T, 3, 3), T >= 1, got {tri.shape}")
+        sv = check.direction(sun)
+        tri = check.triangles(triangles)
         rot = _light_rotation(sv / np.linalg.norm(sv))
         right, up, back = rot[:, 0], -rot[:, 2], rot[:, 1]  # the shadow camera's x, y and z (it looks along −z = −sun)
         res = float(s["shadowResolution"])

@@ -18,9 +18,7 @@ Array = NDArray[np.float64]
 
 def _sun(sun) -> None:
     """Refuse a sun that is not a finite non-zero 3-vector, naming it."""
-    sv = check.finite(sun, "sun")
-    if sv.shape != (3,) or not np.linalg.norm(sv) > 0:
-        raise ValueError(f"sun must be a finite non-zero 3-vector (world direction towards the sun), got shape {sv.shape}")
+    check.direction(sun)
 
 
 @dataclass(frozen=True)
