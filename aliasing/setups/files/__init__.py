@@ -33,7 +33,7 @@ from pathlib import Path
 from types import ModuleType
 from typing import Any
 
-from .common import FileError, Found, sun_from_directions, vertical_fov
+from .common import FileError, Found, merge_camera, sun_from_directions, vertical_fov
 
 #: The formats, by the toolkit's engine name, and the module that reads them.
 FORMATS: dict[str, str] = {
@@ -46,7 +46,7 @@ FORMATS: dict[str, str] = {
     "filament": "filament",
 }
 
-__all__ = ["FORMATS", "FileError", "Found", "detect", "patch", "read", "reader", "sun_from_directions", "vertical_fov", "write"]
+__all__ = ["FORMATS", "FileError", "Found", "detect", "merge_camera", "patch", "read", "reader", "sun_from_directions", "vertical_fov", "write"]
 
 
 def reader(engine: str) -> ModuleType:

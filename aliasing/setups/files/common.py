@@ -43,6 +43,8 @@ from typing import Any
 
 import numpy as np
 
+from ..spec import CAMERA_DEFAULTS, _aspect
+
 
 class FileError(ValueError):
     """A damaged or foreign project file: one line naming the file, the line or key, and what was expected.
@@ -118,3 +120,74 @@ def sun_from_directions(towards_sun, camera_forward, up=(0.0, 1.0, 0.0)) -> tupl
     right = np.cross(fh, u)
     azimuth = math.degrees(math.atan2(float(s @ right), float(s @ fh)))
     return round(elevation, 12), round(azimuth, 12) + 0.0
+
+
+def merge_camera(found: Mapping[str, Any] | None, user: Mapping[str, Any] | None) -> tuple[dict[str, Any], tuple[str, ...]]:
+    """The camera fields of a project's camera (``found``) with the user's own fields over them.
+
+    A file may give a horizontal field of view (``horizontal_fov`` [deg]: Godot's KEEP_WIDTH, Babylon's
+    FOVMODE_HORIZONTAL_FIXED, PlayCanvas's ``horizontalFov``): it becomes the vertical ``fov`` at the
+    final aspect (the user's, else the file's, else the toolkit's 16:9), unless the user gives ``fov``.
+    Returns (the fields for :func:`aliasing.setups.parse_camera`, notes on the conversion).
+
+    Examples
+    --------
+    >>> merge_camera({"near": 0.5, "far": 800.0, "fov": 45.0}, {"far": 100})[0]
+    {'near': 0.5, 'far': 100, 'fov': 45.0}
+    >>> fields, notes = merge_camera({"horizontal_fov": 90.0}, {"aspect": "1"})
+    >>> fields["fov"], notes
+    (90.0, ('camera.fov: the horizontal 90° at aspect 1 is a vertical 90°',))
+    """
+    out = {k: v for k, v in (found or {}).items()}
+    out.update(user or {})
+    horizontal = out.pop("horizontal_fov", None)
+    if horizontal is None or (user and "fov" in user):
+        return out, ()
+    aspect = _aspect(out["aspect"]) if "aspect" in out else CAMERA_DEFAULTS["aspect"]
+    out["fov"] = vertical_fov(float(horizontal), aspect)
+    return out, (f"camera.fov: the horizontal {float(horizontal):.12g}° at aspect {aspect:.6g} is a vertical {out['fov']:.12g}°",)
+
+
+def number(path: str | Path, where: str, value: Any, expected: str = "a finite number") -> float:
+    """``value`` as a finite float, else a :class:`FileError` naming ``where``.
+
+    Examples
+    --------
+    >>> number("a.json", "fov", 0.8)
+    0.8
+    """
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(float(value)):
+        raise FileError(path, where, expected, repr(value)[:60])
+    return float(value)
+
+
+def vector(path: str | Path, where: str, value: Any, n: int = 3) -> np.ndarray:
+    """``value`` as ``n`` finite floats, else a :class:`FileError` naming ``where``.
+
+    Examples
+    --------
+    >>> vector("a.json", "position", [0, 1, 2]).tolist()
+    [0.0, 1.0, 2.0]
+    """
+    if not isinstance(value, (list, tuple)) or len(value) != n:
+        raise FileError(path, where, f"{n} numbers", repr(value)[:60])
+    return np.array([number(path, f"{where}[{i}]", v) for i, v in enumerate(value)])
+
+
+def direction(path: str | Path, where: str, v: np.ndarray) -> np.ndarray:
+    """``v`` normalised, else a :class:`FileError` (a zero direction)."""
+    n = float(np.linalg.norm(v))
+    if not n > 1e-12 or not math.isfinite(n):
+        raise FileError(path, where, "a non-zero direction", str(v.tolist()))
+    return v / n
+
+
+def pick(path: str | Path, kind: str, names: list[str], want: str | None, flag: str) -> int:
+    """The index of the one ``kind`` to take among ``names`` (``want`` picks by name), else a FileError naming the candidates."""
+    if want is not None:
+        if want not in names:
+            raise FileError(path, f"{kind} {want!r}", f"one of: {', '.join(map(repr, names)) or 'none in the file'}")
+        return names.index(want)
+    if len(names) > 1:
+        raise FileError(path, kind, f"one {kind}, or {flag} NAME to pick one of: {', '.join(map(repr, names))}", f"{len(names)}")
+    return 0

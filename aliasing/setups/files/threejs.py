@@ -1,0 +1,191 @@
+"""three.js's Object JSON (format 4.x): what ``scene.toJSON()`` and the editor's scene export write.
+
+Read as the pinned npm ``three`` 0.187.0 writes it:
+
+* ``src/core/Object3D.js`` ``toJSON`` (line 1294): ``metadata.type`` ``"Object"``, the ``object`` tree
+  (``type``, ``name``, ``uuid``, ``children``), each node's ``matrix``: its LOCAL transform, 16 numbers
+  column-major (``Matrix4.toArray``), composed with its parents' for the world;
+* ``src/cameras/PerspectiveCamera.js`` ``toJSON`` (line 383): ``fov`` (vertical, [deg]), ``zoom``
+  (the view's fov is 2·atan(tan(fov/2)/zoom)), ``near``, ``far``, ``aspect``; a camera looks along its
+  local −z;
+* ``src/lights/DirectionalLight.js`` ``toJSON`` (line 100): ``shadow`` (``src/lights/LightShadow.js``
+  ``toJSON``: ``bias``, ``normalBias``, ``radius``, ``blurSamples``, ``mapSize`` [w, h], ``camera``:
+  the OrthographicCamera's ``left``, ``right``, ``top``, ``bottom``, ``near``, ``far``) and ``target``:
+  the uuid of the object the light shines towards (``src/loaders/ObjectLoader.js``
+  ``bindLightTargets``: an object of the file, else a new Object3D at the origin); the light shines
+  from its world position towards its target's.
+
+The file holds one DirectionalLight's own shadow, so the profile's ``class`` is ``DirectionalLight``;
+the CSM addon's options and the renderer's ``shadowMap.type`` are not in it (``--set`` them).
+
+Examples
+--------
+>>> import json
+>>> light = {"type": "DirectionalLight", "name": "Sun", "uuid": "l", "castShadow": True, "target": "t",
+...          "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 10, 10, 1], "shadow": {"bias": -0.001, "mapSize": [1024, 1024]}}
+>>> cam = {"type": "PerspectiveCamera", "name": "Camera", "uuid": "c", "fov": 40, "near": 0.5, "far": 300, "aspect": 2,
+...        "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}
+>>> doc = {"metadata": {"type": "Object", "version": 4.7}, "object": {"type": "Scene", "uuid": "s", "children": [light, cam]}}
+>>> f = read([(Path("scene.json"), json.dumps(doc))], None, None)
+>>> f.settings, f.camera, f.sun
+({'class': 'DirectionalLight', 'shadow.bias': -0.001, 'shadow.mapSize.width': 1024}, {'near': 0.5, 'far': 300.0, 'fov': 40.0, 'aspect': 2.0}, (45.0, 180.0))
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from . import jsontext
+from .common import FileError, Found, direction, number, pick, sun_from_directions
+
+ENGINE = "threejs"
+TITLE = "three.js Object JSON (scene.toJSON(), the editor's scene export)"
+SOURCE = ("npm three 0.187.0: src/core/Object3D.js toJSON (line 1294), src/lights/DirectionalLight.js toJSON (line 100), "
+          "src/lights/LightShadow.js toJSON, src/cameras/PerspectiveCamera.js toJSON (line 383), src/loaders/ObjectLoader.js bindLightTargets")
+#: LightShadow.toJSON's keys and the profile's
+SHADOW = {"bias": "shadow.bias", "normalBias": "shadow.normalBias", "radius": "shadow.radius", "blurSamples": "shadow.blurSamples"}
+BOX = ("left", "right", "top", "bottom", "near", "far")
+
+
+def sniff(path: Path, text: str) -> bool:
+    """JSON whose ``metadata.type`` is ``"Object"`` (Object3D.toJSON's header)."""
+    head = text.lstrip()[:1]
+    return head == "{" and '"metadata"' in text and '"Object"' in text and '"object"' in text
+
+
+def _walk(path: Path, node: Any, where: tuple, parent: np.ndarray, out: list) -> None:
+    if not isinstance(node, dict):
+        raise FileError(path, _name(where), "an object of the scene tree", type(node).__name__)
+    m = node.get("matrix")
+    local = np.eye(4)
+    if m is not None:
+        if not isinstance(m, list) or len(m) != 16:
+            raise FileError(path, _name(where + ("matrix",)), "16 numbers (column-major)", repr(m)[:60])
+        local = np.array([number(path, _name(where + ("matrix", i)), v) for i, v in enumerate(m)]).reshape(4, 4).T
+    world = parent @ local
+    out.append((node, where, world))
+    kids = node.get("children", [])
+    if not isinstance(kids, list):
+        raise FileError(path, _name(where + ("children",)), "a list", type(kids).__name__)
+    for i, kid in enumerate(kids):
+        _walk(path, kid, where + ("children", i), world, out)
+
+
+def _name(where: tuple) -> str:
+    return "".join(f"[{s}]" if isinstance(s, int) else (f".{s}" if i else s) for i, s in enumerate(where))
+
+
+def _doc(path: Path, text: str) -> list:
+    data = jsontext.load(path, text)
+    if not isinstance(data, dict) or not isinstance(data.get("metadata"), dict) or data["metadata"].get("type") != "Object":
+        raise FileError(path, "metadata.type", '"Object" (three.js Object JSON of scene.toJSON())', "another JSON")
+    if not isinstance(data.get("object"), dict):
+        raise FileError(path, "object", "the scene's object tree", type(data.get("object")).__name__)
+    out: list = []
+    _walk(path, data["object"], ("object",), np.eye(4), out)
+    return out
+
+
+def _pick(path: Path, nodes: list, kind: str, want: str | None, flag: str) -> tuple | None:
+    found = [n for n in nodes if n[0].get("type") == kind]
+    if not found and want is None:
+        return None
+    names = [str(n[0].get("name") or n[0].get("uuid")) for n in found]
+    return found[pick(path, kind, names, want, flag)]
+
+
+def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found:
+    """The DirectionalLight's shadow, the PerspectiveCamera and the sun of one Object JSON file."""
+    if len(files) != 1:
+        raise ValueError(f"project must be one three.js Object JSON file, got {len(files)} files")
+    path, text = files[0]
+    nodes = _doc(path, text)
+    settings: dict[str, Any] = {}
+    where: dict[str, str] = {}
+    notes: list[str] = []
+    cam = towards = forward = None
+    lname = cname = None
+    lt = _pick(path, nodes, "DirectionalLight", light, "--light-node")
+    if lt is not None:
+        node, at, world = lt
+        lname = str(node.get("name") or node.get("uuid"))
+        settings["class"], where["class"] = "DirectionalLight", f"{path.name} {_name(at)}.type"
+        notes.append("class DirectionalLight: the file's light casts its own shadow (--set class=CSM for the CSM addon)")
+        if node.get("castShadow") is not True:
+            notes.append(f"{lname}: castShadow is false: the light casts no shadow; this is the shadow it casts when true")
+        shadow = node.get("shadow", {})
+        if not isinstance(shadow, dict):
+            raise FileError(path, _name(at + ("shadow",)), "LightShadow.toJSON's object", type(shadow).__name__)
+        for key, ours in SHADOW.items():
+            if key in shadow:
+                settings[ours], where[ours] = shadow[key], f"{path.name} {_name(at + ('shadow', key))}"
+        if "mapSize" in shadow:
+            size = shadow["mapSize"]
+            if not isinstance(size, list) or len(size) != 2:
+                raise FileError(path, _name(at + ("shadow", "mapSize")), "[width, height] texels", repr(size)[:40])
+            settings["shadow.mapSize.width"], where["shadow.mapSize.width"] = size[0], f"{path.name} {_name(at + ('shadow', 'mapSize'))}"
+            if size[1] != size[0]:
+                notes.append(f"shadow.mapSize is {size[0]}×{size[1]}: the toolkit takes the width")
+        box = shadow.get("camera", {})
+        if isinstance(box, dict):
+            for key in BOX:
+                if key in box:
+                    settings[f"shadow.camera.{key}"] = box[key]
+                    where[f"shadow.camera.{key}"] = f"{path.name} {_name(at + ('shadow', 'camera', key))}"
+            if box.get("zoom", 1) != 1:
+                notes.append(f"shadow.camera.zoom {box['zoom']} is not modelled (the box is taken at zoom 1)")
+        target = next((n for n in nodes if n[0].get("uuid") == node.get("target")), None)
+        if target is None:
+            notes.append("the light's target is not in the file: at the origin (ObjectLoader.bindLightTargets)")
+        aim = target[2][:3, 3] if target is not None else np.zeros(3)
+        towards = direction(path, f"{_name(at)}.matrix (the light at its target)", world[:3, 3] - aim)
+    ct = _pick(path, nodes, "PerspectiveCamera", camera, "--camera-node")
+    if ct is not None:
+        node, at, world = ct
+        cname = str(node.get("name") or node.get("uuid"))
+        cam = {}
+        for key in ("near", "far", "fov", "aspect"):
+            if key in node:
+                cam[key] = number(path, _name(at + (key,)), node[key])
+                where[f"camera.{key}"] = f"{path.name} {_name(at + (key,))}"
+        zoom = number(path, _name(at + ("zoom",)), node.get("zoom", 1))
+        if zoom != 1 and "fov" in cam:
+            if not zoom > 0:
+                raise FileError(path, _name(at + ("zoom",)), "a zoom > 0", repr(zoom))
+            fov = math.degrees(2 * math.atan(math.tan(math.radians(cam["fov"]) / 2) / zoom))
+            notes.append(f"camera.fov {cam['fov']:.12g}° at zoom {zoom:g} = {fov:.12g}° (PerspectiveCamera.getEffectiveFOV)")
+            cam["fov"] = fov
+        forward = -world[:3, 2]
+    sun = None
+    if towards is not None and forward is not None:
+        sun = sun_from_directions(towards, forward)
+        if not sun[0] > 0:
+            notes.append(f"the light shines from below the horizon (elevation {sun[0]:.6g}°): the sun is --sun's")
+            sun = None
+    return Found(ENGINE, settings, camera=cam, sun=sun, light=lname, camera_name=cname, where=where, notes=tuple(notes))
+
+
+def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> str:
+    """``text`` with ``changes`` (the profile's ``shadow.*`` keys) written into the light's ``shadow`` object."""
+    lt = _pick(path, _doc(path, text), "DirectionalLight", found.light, "--light-node")
+    if lt is None:
+        raise FileError(path, "object", "a DirectionalLight to write to", "none")
+    at = lt[1]
+    ours = {v: k for k, v in SHADOW.items()}
+    for key, v in changes.items():
+        if key in ours:
+            text = jsontext.put(text, at + ("shadow", ours[key]), v)
+        elif key == "shadow.mapSize.width":
+            text = jsontext.put(text, at + ("shadow", "mapSize"), [v, v]) if "mapSize" not in lt[0].get("shadow", {}) else \
+                jsontext.put(jsontext.put(text, at + ("shadow", "mapSize", 0), v), at + ("shadow", "mapSize", 1), v)
+        elif key.startswith("shadow.camera.") and key[len("shadow.camera."):] in BOX:
+            text = jsontext.put(text, at + ("shadow", "camera", key[len("shadow.camera."):]), v)
+        else:
+            raise ValueError(f"{path.name}: {key} is not kept in three.js Object JSON (it keeps the light's shadow.*: "
+                             f"{', '.join(list(ours) + ['shadow.mapSize.width'] + [f'shadow.camera.{b}' for b in BOX])})")
+    return text
