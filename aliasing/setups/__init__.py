@@ -211,9 +211,10 @@ def from_args(args: argparse.Namespace) -> Setup:
         camera, notes = fields, found.notes + converted
         if found.sun is not None and (sun is None or isinstance(sun, _Default)):
             sun = Sun((found.sun[0], found.sun[0]), found.sun[1])
-    for note in notes:
+    setup = build(engine, settings, camera, sun or "15..60")
+    for note in notes:  # after the setup is built: a refusal stays one line
         warnings.warn(f"--project: {note}", ProjectNote, stacklevel=2)
-    return build(engine, settings, camera, sun or "15..60")
+    return setup
 
 
 def resolve(args: argparse.Namespace) -> tuple[Setup | None, Camera | None, Sun | None]:

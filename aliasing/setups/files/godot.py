@@ -330,9 +330,11 @@ def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> st
             if not key.startswith("rendering/" + PROJECT):
                 raise ValueError(f"{path.name}: {key} is a light property, kept in the scene (.tscn), not in project.godot")
             sec = next((s for s in sections if s.kind == "rendering"), None)
-            if sec is None:
-                lines[len(lines) - (1 if lines[-1] == "" else 0):] = ["", "[rendering]", ""] + ([""] if lines[-1] == "" else [])
-                sec = next(s for s in parse(path, "\n".join(lines)) if s.kind == "rendering")
+            if sec is None:  # a new section at the end, laid out as Godot writes it
+                while lines and lines[-1] == "":
+                    lines.pop()
+                lines += ["", "[rendering]", "", f"{key[len('rendering/'):]}={_godot(v, key)}", ""]
+                continue
             _set_line(lines, sec, key[len("rendering/"):], _godot(v, key), "=")
         else:
             if key not in LIGHT_KEYS:
