@@ -396,3 +396,20 @@ def test_the_engine_made_samples_regenerate_byte_for_byte():
         sys.path.pop(0)
     for name, text in make.outputs().items():
         assert (HERE / name).read_text(encoding="utf-8") == text, f"{name} differs from what the pinned engine writes now"
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(name=st.sampled_from(sorted(PATCHES)), value=st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.text(max_size=8),
+       st.none(), st.booleans(), st.integers(-10**30, 10**30), st.lists(st.integers(), max_size=2)))
+def test_a_patch_with_a_bad_value_is_refused_by_key_and_touches_nothing(name, value, tmp_path_factory):
+    p = tmp_path_factory.mktemp("v") / name
+    p.write_bytes((HERE / name).read_bytes())
+    key = next(iter(PATCHES[name][0]))
+    try:
+        files.write(p, {key: value})
+    except ValueError as exc:
+        assert str(exc).startswith(f"changes[{key!r}]: "), str(exc)
+        assert p.read_bytes() == (HERE / name).read_bytes()
+    else:
+        back = files.read([p]).settings[key]
+        assert back == files.reader(files.detect(p)).PROFILE.setting(key).coerce(value)

@@ -135,8 +135,17 @@ def patch(path: str | Path, changes: Mapping[str, Any], light: str | None = None
     p, text = _text(path)
     engine = detect(p, text)
     mod = reader(engine)
+    profile = getattr(mod, "PROFILE", None)
+    typed = {}
+    for key, value in changes.items():
+        if not isinstance(key, str):
+            raise ValueError(f"changes must map the engine's setting keys (text) to values, got the key {key!r}")
+        try:
+            typed[key] = value if profile is None else profile.setting(key).coerce(value)
+        except ValueError as exc:
+            raise ValueError(f"changes[{key!r}]: {exc}") from None
     found = mod.read([(p, text)], light, camera)
-    return mod.patch(p, text, dict(changes), found)
+    return mod.patch(p, text, typed, found)
 
 
 def write(path: str | Path, changes: Mapping[str, Any], light: str | None = None, camera: str | None = None) -> Path:
@@ -148,7 +157,9 @@ def write(path: str | Path, changes: Mapping[str, Any], light: str | None = None
     p = Path(path)
     engine = detect(p, new)
     back = reader(engine).read([(p, new)], light, camera)
-    wrong = {k: (v, back.settings.get(k)) for k, v in changes.items() if back.settings.get(k) != v}
+    profile = getattr(reader(engine), "PROFILE", None)
+    typed = {k: v if profile is None else profile.setting(k).coerce(v) for k, v in changes.items()}
+    wrong = {k: (v, back.settings.get(k)) for k, v in typed.items() if back.settings.get(k) != v}
     if wrong:
         raise ValueError(f"{p.name}: the patch does not read back as written ({wrong}); the file is unchanged")
     fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", dir=p.parent)

@@ -46,9 +46,12 @@ from typing import Any
 import numpy as np
 
 from . import jsontext
+from ..babylon import PROFILES
 from .common import FileError, Found, direction, number, pick, sun_from_directions, vector
 
 ENGINE = "babylon"
+#: the profile whose settings the file keeps (values are checked against it before a patch)
+PROFILE = PROFILES[0]
 TITLE = "a Babylon.js .babylon scene (SceneSerializer JSON)"
 SOURCE = ("npm @babylonjs/core 9.35.0: Misc/sceneSerializer.js Serialize, Lights/Shadows/shadowGenerator.js serialize (line 1587) "
           "and Parse (line 1634), Lights/Shadows/cascadedShadowGenerator.pure.js serialize (line 930), Cameras/camera.pure.js")

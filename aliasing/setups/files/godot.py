@@ -48,9 +48,12 @@ from typing import Any
 
 import numpy as np
 
+from ..godot import PROFILES
 from .common import FileError, Found, direction, pick, sun_from_directions
 
 ENGINE = "godot"
+#: the profile whose settings the file keeps (values are checked against it before a patch)
+PROFILE = PROFILES[0]
 TITLE = "Godot 4 project.godot and .tscn/.tres scenes"
 SOURCE = ("Godot docs 'TSCN file format'; godotengine/godot core/io/config_file.cpp, scene/resources/resource_format_text.cpp, "
           "core/variant/variant_parser.cpp VariantWriter::write (TRANSFORM3D: basis rows, then origin)")

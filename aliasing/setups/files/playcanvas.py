@@ -46,9 +46,12 @@ from typing import Any
 import numpy as np
 
 from . import jsontext
+from ..playcanvas import PROFILES
 from .common import FileError, Found, direction, number, pick, sun_from_directions, vector
 
 ENGINE = "playcanvas"
+#: the profile whose settings the file keeps (values are checked against it before a patch)
+PROFILE = PROFILES[0]
 TITLE = "a PlayCanvas scene JSON (the editor's format, SceneParser)"
 SOURCE = ("npm playcanvas 2.23.3: build/playcanvas/src/framework/parsers/scene.js SceneParser, framework/components/light/system.js "
           "initializeComponentData, core/math/quat.js setFromEulerAngles, scene/constants.js lines 71–84")

@@ -41,9 +41,12 @@ from typing import Any
 import numpy as np
 
 from . import jsontext
+from ..threejs import PROFILES
 from .common import FileError, Found, direction, number, pick, sun_from_directions
 
 ENGINE = "threejs"
+#: the profile whose settings the file keeps (values are checked against it before a patch)
+PROFILE = PROFILES[0]
 TITLE = "three.js Object JSON (scene.toJSON(), the editor's scene export)"
 SOURCE = ("npm three 0.187.0: src/core/Object3D.js toJSON (line 1294), src/lights/DirectionalLight.js toJSON (line 100), "
           "src/lights/LightShadow.js toJSON, src/cameras/PerspectiveCamera.js toJSON (line 383), src/loaders/ObjectLoader.js bindLightTargets")
