@@ -103,9 +103,15 @@ def vertical_fov(horizontal_deg: float, aspect: float) -> float:
 
 def sun_from_directions(towards_sun, camera_forward, up=(0.0, 1.0, 0.0)) -> tuple[float, float]:
     """(elevation, azimuth) [deg] of the world direction towards the sun, the azimuth from the camera's
-    horizontal forward direction, positive to the camera's right (:mod:`aliasing.setups.spec`).
+    horizontal forward direction, positive to the camera's right (:mod:`aliasing.setups.spec`), in a
+    right-handed world with ``up`` (a left-handed one, Babylon's, is mirrored first).
 
     A camera looking straight up or down has no horizontal forward: the azimuth is then 0.
+
+    Examples
+    --------
+    >>> sun_from_directions([1.0, 1.0, 0.0], [0.0, 0.0, -1.0])       # three.js: forward −z, right +x
+    (45.0, 90.0)
     """
     s = np.asarray(towards_sun, float)
     f = np.asarray(camera_forward, float)
@@ -175,7 +181,13 @@ def vector(path: str | Path, where: str, value: Any, n: int = 3) -> np.ndarray:
 
 
 def direction(path: str | Path, where: str, v: np.ndarray) -> np.ndarray:
-    """``v`` normalised, else a :class:`FileError` (a zero direction)."""
+    """``v`` normalised, else a :class:`FileError` (a zero direction).
+
+    Examples
+    --------
+    >>> direction("a.json", "direction", np.array([0.0, 3.0, 4.0])).tolist()
+    [0.0, 0.6, 0.8]
+    """
     n = float(np.linalg.norm(v))
     if not n > 1e-12 or not math.isfinite(n):
         raise FileError(path, where, "a non-zero direction", str(v.tolist()))
@@ -183,7 +195,17 @@ def direction(path: str | Path, where: str, v: np.ndarray) -> np.ndarray:
 
 
 def pick(path: str | Path, kind: str, names: list[str], want: str | None, flag: str) -> int:
-    """The index of the one ``kind`` to take among ``names`` (``want`` picks by name), else a FileError naming the candidates."""
+    """The index of the one ``kind`` to take among ``names`` (``want`` picks by name), else a FileError naming the candidates.
+
+    Examples
+    --------
+    >>> pick("s.tscn", "Camera3D", ["A", "B"], "B", "--camera-node")
+    1
+    >>> pick("s.tscn", "Camera3D", ["A", "B"], None, "--camera-node")
+    Traceback (most recent call last):
+    ...
+    aliasing.setups.files.common.FileError: s.tscn: Camera3D: expected one Camera3D, or --camera-node NAME to pick one of: 'A', 'B', got 2
+    """
     if want is not None:
         if want not in names:
             raise FileError(path, f"{kind} {want!r}", f"one of: {', '.join(map(repr, names)) or 'none in the file'}")

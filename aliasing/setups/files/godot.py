@@ -85,7 +85,13 @@ class Section:
 
 
 def parse(path: Path, text: str) -> list[Section]:
-    """The sections of a Godot text file (ConfigFile or TSCN), or a :class:`FileError` naming the broken line."""
+    """The sections of a Godot text file (ConfigFile or TSCN), or a :class:`FileError` naming the broken line.
+
+    Examples
+    --------
+    >>> [(s.kind, s.props) for s in parse(Path("project.godot"), "config_version=5\\n[rendering]\\na/b=2\\n")]
+    [('', {'config_version': ('5', 0)}), ('rendering', {'a/b': ('2', 2)})]
+    """
     sections: list[Section] = []
     lines = text.split("\n")
     i = 0
@@ -140,7 +146,13 @@ def _open(value: str) -> int:
 
 
 def value(path: Path, line: int, key: str, text: str) -> Any:
-    """A Godot value: a number, ``true``/``false``, a string, or ``Transform3D(…)`` (its 12 numbers)."""
+    """A Godot value: a number, ``true``/``false``, a string, or ``Transform3D(…)`` (its 12 numbers).
+
+    Examples
+    --------
+    >>> value(Path("a.tscn"), 0, "fov", "60.0"), value(Path("a.tscn"), 0, "on", "true")
+    (60.0, True)
+    """
     t = text.strip()
     if t in ("true", "false"):
         return t == "true"

@@ -35,7 +35,15 @@ _DECODER = json.JSONDecoder()
 
 
 def load(path: str | Path, text: str) -> Any:
-    """``text`` parsed as JSON, else a :class:`FileError` naming the line and column."""
+    """``text`` parsed as JSON, else a :class:`FileError` naming the line and column.
+
+    Examples
+    --------
+    >>> load("a.json", '{"a": [1,')
+    Traceback (most recent call last):
+    ...
+    aliasing.setups.files.common.FileError: a.json: line 1 column 10: expected valid JSON, got expecting value
+    """
     if not text.strip():
         raise FileError(path, "line 1", "JSON text", "an empty file")
     try:
@@ -60,7 +68,13 @@ def _end(text: str, i: int) -> int:
 
 
 def locate(text: str, path: Sequence[str | int]) -> tuple[int, int]:
-    """(start, end) of the value at ``path`` in ``text``; KeyError where the path is not there."""
+    """(start, end) of the value at ``path`` in ``text``; KeyError where the path is not there.
+
+    Examples
+    --------
+    >>> locate('{"a": [10, 20]}', ("a", 1))
+    (11, 13)
+    """
     i = _skip(text, 0)
     for step in path:
         if isinstance(step, str):
@@ -93,7 +107,13 @@ def locate(text: str, path: Sequence[str | int]) -> tuple[int, int]:
 
 
 def dumps(value: Any) -> str:
-    """``value`` as JSON text: numbers repr-exact, finite only."""
+    """``value`` as JSON text: numbers repr-exact, finite only.
+
+    Examples
+    --------
+    >>> dumps(0.1 + 0.2)
+    '0.30000000000000004'
+    """
     return json.dumps(value, allow_nan=False)
 
 
