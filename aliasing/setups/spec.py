@@ -3,7 +3,8 @@
 Built and validated once where it enters (:func:`build`, or :func:`from_args` on the command
 line), then passed on as a value.  The one vocabulary of every command:
 
-* ``--engine NAME[@RELEASE]``;
+* ``--engine NAME[@RELEASE]``, or ``--project FILE`` (repeatable): the engine's own project files
+  (:mod:`aliasing.setups.files`), whose settings, camera and sun the options below go over;
 * ``--settings FILE`` (JSON or TOML, the engine's own keys) and repeatable ``--set KEY=VALUE``;
 * ``--camera near=N,far=F,fov=DEG,aspect=A,height=PX``: the vertical field of view in degrees,
   the aspect as ``16:9`` or a number, the image height in pixels (the width is aspect·height);

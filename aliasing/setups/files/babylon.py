@@ -47,7 +47,7 @@ import numpy as np
 
 from . import jsontext
 from ..babylon import PROFILES
-from .common import FileError, Found, direction, number, pick, sun_from_directions, vector
+from .common import FileError, Found, direction, number, one_file, pick, sun_above, vector
 
 ENGINE = "babylon"
 #: the profile whose settings the file keeps (values are checked against it before a patch)
@@ -146,9 +146,7 @@ def _forward(path: Path, where: str, c: dict) -> np.ndarray:
 
 def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found:
     """The shadow generator, its light and the active camera of one ``.babylon`` scene."""
-    if len(files) != 1:
-        raise ValueError(f"project must be one .babylon scene for Babylon.js, got {len(files)} files")
-    path, text = files[0]
+    path, text = one_file(files, "one .babylon scene for Babylon.js")
     data = _scene(path, text)
     gi, g, lt = _generator(path, data, light)
     name = str(lt.get("name", lt.get("id")))
@@ -202,12 +200,9 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
             notes.append(f"camera.fov {fov:.12g} rad ({'horizontal' if mode == 1 else 'vertical'}) = {deg:.12g}°")
         fwd = _forward(path, cw, c)
         flip = np.array([1.0, 1.0, 1.0 if handed else -1.0])  # left-handed: mirror z into the right-handed frame
-        sun = sun_from_directions(towards * flip, fwd * flip)
+        sun = sun_above(towards * flip, fwd * flip, notes)
     else:
         notes.append("no camera in the file: the sun's azimuth is --sun's")
-    if sun is not None and not sun[0] > 0:
-        notes.append(f"the light shines from below the horizon (elevation {sun[0]:.6g}°): the sun is --sun's")
-        sun = None
     return Found(ENGINE, settings, camera=cam, sun=sun, light=name, camera_name=cname, where=where, notes=tuple(notes))
 
 

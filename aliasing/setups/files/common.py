@@ -213,3 +213,35 @@ def pick(path: str | Path, kind: str, names: list[str], want: str | None, flag: 
     if len(names) > 1:
         raise FileError(path, kind, f"one {kind}, or {flag} NAME to pick one of: {', '.join(map(repr, names))}", f"{len(names)}")
     return 0
+
+
+def sun_above(towards, forward, notes: list[str]) -> tuple[float, float] | None:
+    """:func:`sun_from_directions` where both directions are known and the light is above the horizon; else None
+    (a light from below the horizon is said in ``notes``: the sun is then ``--sun``'s).
+
+    Examples
+    --------
+    >>> notes = []
+    >>> sun_above([0.0, -1.0, 1.0], [0.0, 0.0, -1.0], notes), notes
+    (None, ["the light shines from below the horizon (elevation -45°): the sun is --sun's"])
+    """
+    if towards is None or forward is None:
+        return None
+    sun = sun_from_directions(towards, forward)
+    if not sun[0] > 0:
+        notes.append(f"the light shines from below the horizon (elevation {sun[0]:.6g}°): the sun is --sun's")
+        return None
+    return sun
+
+
+def one_file(files: list, what: str) -> tuple[Path, str]:
+    """The one (path, text) of a format kept in one file, else a ValueError naming ``project``.
+
+    Examples
+    --------
+    >>> one_file([(Path("a.babylon"), "{}")], "one .babylon scene")[0].name
+    'a.babylon'
+    """
+    if len(files) != 1:
+        raise ValueError(f"project must be {what}, got {len(files)} files")
+    return files[0]

@@ -49,7 +49,7 @@ from typing import Any
 import numpy as np
 
 from ..godot import PROFILES
-from .common import FileError, Found, direction, pick, sun_from_directions
+from .common import FileError, Found, direction, pick, sun_above
 
 ENGINE = "godot"
 #: the profile whose settings the file keeps (values are checked against it before a patch)
@@ -303,12 +303,7 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
         _scene_read(p, t, light, camera, out)
         if "towards" not in out:
             out["notes"].append(f"{p.name}: no DirectionalLight3D (the light's settings are the defaults and --set's)")
-    sun = None
-    if "towards" in out and "forward" in out:
-        sun = sun_from_directions(out["towards"], out["forward"])
-        if not sun[0] > 0:
-            out["notes"].append(f"the light shines from below the horizon (elevation {sun[0]:.6g}°): the sun is --sun's")
-            sun = None
+    sun = sun_above(out.get("towards"), out.get("forward"), out["notes"])
     return Found(ENGINE, out["settings"], camera=out["camera"], sun=sun, light=out["light"], camera_name=out["camera_name"],
                  where=out["where"], notes=tuple(out["notes"]))
 

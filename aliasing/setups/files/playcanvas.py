@@ -47,7 +47,7 @@ import numpy as np
 
 from . import jsontext
 from ..playcanvas import PROFILES
-from .common import FileError, Found, direction, number, pick, sun_from_directions, vector
+from .common import FileError, Found, direction, number, one_file, pick, sun_above, vector
 
 ENGINE = "playcanvas"
 #: the profile whose settings the file keeps (values are checked against it before a patch)
@@ -134,9 +134,7 @@ def _is_directional(c: dict) -> bool:
 
 def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found:
     """The directional light's component, the camera's and the sun of one scene JSON."""
-    if len(files) != 1:
-        raise ValueError(f"project must be one PlayCanvas scene JSON, got {len(files)} files")
-    path, text = files[0]
+    path, text = one_file(files, "one PlayCanvas scene JSON")
     ents = _entities(path, text)
     settings: dict[str, Any] = {}
     where: dict[str, str] = {}
@@ -168,12 +166,7 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
             cam["horizontal_fov"] = cam.pop("fov")
             notes.append(f"camera.fov: horizontalFov is true: fov {cam['horizontal_fov']:g}° is horizontal")
         forward = -_world(path, ents, ckey)[:, 2]
-    sun = None
-    if towards is not None and forward is not None:
-        sun = sun_from_directions(towards, forward)
-        if not sun[0] > 0:
-            notes.append(f"the light shines from below the horizon (elevation {sun[0]:.6g}°): the sun is --sun's")
-            sun = None
+    sun = sun_above(towards, forward, notes)
     return Found(ENGINE, settings, camera=cam, sun=sun, light=None if lkey is None else str(ents[lkey].get("name", lkey)),
                  camera_name=None if ckey is None else str(ents[ckey].get("name", ckey)), where=where, notes=tuple(notes))
 

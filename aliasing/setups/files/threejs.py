@@ -42,7 +42,7 @@ import numpy as np
 
 from . import jsontext
 from ..threejs import PROFILES
-from .common import FileError, Found, direction, number, pick, sun_from_directions
+from .common import FileError, Found, direction, number, one_file, pick, sun_above
 
 ENGINE = "threejs"
 #: the profile whose settings the file keeps (values are checked against it before a patch)
@@ -104,9 +104,7 @@ def _pick(path: Path, nodes: list, kind: str, want: str | None, flag: str) -> tu
 
 def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found:
     """The DirectionalLight's shadow, the PerspectiveCamera and the sun of one Object JSON file."""
-    if len(files) != 1:
-        raise ValueError(f"project must be one three.js Object JSON file, got {len(files)} files")
-    path, text = files[0]
+    path, text = one_file(files, "one three.js Object JSON file")
     nodes = _doc(path, text)
     settings: dict[str, Any] = {}
     where: dict[str, str] = {}
@@ -164,12 +162,7 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
             notes.append(f"camera.fov {cam['fov']:.12g}° at zoom {zoom:g} = {fov:.12g}° (PerspectiveCamera.getEffectiveFOV)")
             cam["fov"] = fov
         forward = -world[:3, 2]
-    sun = None
-    if towards is not None and forward is not None:
-        sun = sun_from_directions(towards, forward)
-        if not sun[0] > 0:
-            notes.append(f"the light shines from below the horizon (elevation {sun[0]:.6g}°): the sun is --sun's")
-            sun = None
+    sun = sun_above(towards, forward, notes)
     return Found(ENGINE, settings, camera=cam, sun=sun, light=lname, camera_name=cname, where=where, notes=tuple(notes))
 
 
