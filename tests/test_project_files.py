@@ -206,6 +206,8 @@ def test_the_users_values_go_over_the_projects():
     (["--engine", "babylon", "--light-node", "sun"], "--light-node picks a node of --project FILE"),
     (["--project", str(BABYLON), "--light-node", "moon"], "scene.babylon: light 'moon': expected one of: 'sun'"),
     (["--project", str(HERE / "missing.tscn")], "cannot be read"),
+    (["--project", str(HERE / "project.godot"), "--project", str(BABYLON)], "project files must be one engine's"),
+    (["--project", str(THREE), "--camera-node", "Cam"], "scene.three.json: PerspectiveCamera 'Cam': expected one of: 'Camera'"),
 ])
 def test_refusals_are_one_line(argv, message, capsys):
     code, _, err = _cli(["check", *argv], capsys)
