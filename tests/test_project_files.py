@@ -415,3 +415,22 @@ def test_a_patch_with_a_bad_value_is_refused_by_key_and_touches_nothing(name, va
     else:
         back = files.read([p]).settings[key]
         assert back == files.reader(files.detect(p)).PROFILE.setting(key).coerce(value)
+
+
+def test_threejs_editors_project_keeps_the_renderers_shadow_type_and_its_camera(tmp_path):
+    """editor/js/Editor.js toJSON: {"metadata", "project": {"shadows", "shadowType", ...}, "camera", "scene", ...}."""
+    scene = json.loads(THREE.read_text())
+    camera = {"metadata": scene["metadata"], "object": {**scene["object"]["children"][0], "name": "Viewport", "fov": 40}}
+    app = {"metadata": {}, "project": {"shadows": True, "shadowType": 2, "toneMapping": 0, "toneMappingExposure": 1},
+           "camera": camera, "scene": scene, "scripts": {}, "history": {}}
+    p = tmp_path / "app.json"
+    p.write_text(json.dumps(app, indent="\t"))
+    f = files.read(p)
+    assert f.settings["renderer.shadowMap.type"] == "PCFSoftShadowMap" and f.where["renderer.shadowMap.type"] == "app.json project.shadowType"
+    assert f.camera_name == "Viewport" and f.camera["fov"] == 40.0 and f.sun == files.read(THREE).sun  # the app's camera, not the scene's
+    files.write(p, {"renderer.shadowMap.type": "VSMShadowMap", "shadow.bias": 0.001})
+    assert json.loads(p.read_text())["project"]["shadowType"] == 3 and files.read(p).settings["shadow.bias"] == 0.001
+    q = tmp_path / "scene.json"
+    q.write_bytes(THREE.read_bytes())
+    with pytest.raises(ValueError, match="renderer.shadowMap.type is the renderer's, not kept in scene.toJSON"):
+        files.write(q, {"renderer.shadowMap.type": "VSMShadowMap"})

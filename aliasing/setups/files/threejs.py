@@ -16,7 +16,12 @@ Read as the pinned npm ``three`` 0.187.0 writes it:
   from its world position towards its target's.
 
 The file holds one DirectionalLight's own shadow, so the profile's ``class`` is ``DirectionalLight``;
-the CSM addon's options and the renderer's ``shadowMap.type`` are not in it (``--set`` them).
+the CSM addon's options are not in it (``--set`` them).  The editor's project file (``app.json``,
+``editor/js/Editor.js`` ``toJSON``: ``{"project": {"shadows", "shadowType", …}, "camera": …, "scene": …}``)
+is read too: ``project.shadowType`` is the renderer's ``shadowMap.type`` (0 BasicShadowMap, 1
+PCFShadowMap, 2 PCFSoftShadowMap, 3 VSMShadowMap: ``src/constants.js``), ``camera`` the camera the
+published app renders with; a bare ``scene.toJSON()`` file has no renderer: ``--set`` its
+``renderer.shadowMap.type``.
 
 Examples
 --------
@@ -55,8 +60,12 @@ SHADOW = {"bias": "shadow.bias", "normalBias": "shadow.normalBias", "radius": "s
 BOX = ("left", "right", "top", "bottom", "near", "far")
 
 
+#: the renderer's shadowMap.type numbers (src/constants.js lines 57–84) as the editor's project.shadowType keeps them
+SHADOW_TYPES = {0: "BasicShadowMap", 1: "PCFShadowMap", 2: "PCFSoftShadowMap", 3: "VSMShadowMap"}
+
+
 def sniff(path: Path, text: str) -> bool:
-    """JSON whose ``metadata.type`` is ``"Object"`` (Object3D.toJSON's header)."""
+    """JSON whose ``metadata.type`` is ``"Object"`` (Object3D.toJSON's header), or the editor's project (``app.json``)."""
     head = text.lstrip()[:1]
     return head == "{" and '"metadata"' in text and '"Object"' in text and '"object"' in text
 
@@ -83,15 +92,27 @@ def _name(where: tuple) -> str:
     return "".join(f"[{s}]" if isinstance(s, int) else (f".{s}" if i else s) for i, s in enumerate(where))
 
 
-def _doc(path: Path, text: str) -> list:
-    data = jsontext.load(path, text)
+def _object(path: Path, data: Any, at: tuple) -> dict:
+    """The Object JSON at ``at`` (its ``metadata.type`` checked)."""
     if not isinstance(data, dict) or not isinstance(data.get("metadata"), dict) or data["metadata"].get("type") != "Object":
-        raise FileError(path, "metadata.type", '"Object" (three.js Object JSON of scene.toJSON())', "another JSON")
+        raise FileError(path, _name(at + ("metadata", "type")), '"Object" (three.js Object JSON of scene.toJSON())', "another JSON")
     if not isinstance(data.get("object"), dict):
-        raise FileError(path, "object", "the scene's object tree", type(data.get("object")).__name__)
+        raise FileError(path, _name(at + ("object",)), "the scene's object tree", type(data.get("object")).__name__)
+    return data
+
+
+def _doc(path: Path, text: str) -> tuple[list, dict | None, list]:
+    """(the scene's nodes, the editor's ``project`` or None, the editor's camera node where it has one)."""
+    data = jsontext.load(path, text)
     out: list = []
-    _walk(path, data["object"], ("object",), np.eye(4), out)
-    return out
+    if isinstance(data, dict) and isinstance(data.get("scene"), dict) and isinstance(data.get("project"), dict):  # editor/js/Editor.js toJSON
+        _walk(path, _object(path, data["scene"], ("scene",))["object"], ("scene", "object"), np.eye(4), out)
+        cams: list = []
+        if data.get("camera") is not None:
+            _walk(path, _object(path, data["camera"], ("camera",))["object"], ("camera", "object"), np.eye(4), cams)
+        return out, data["project"], cams[:1]
+    _walk(path, _object(path, data, ())["object"], ("object",), np.eye(4), out)
+    return out, None, []
 
 
 def _pick(path: Path, nodes: list, kind: str, want: str | None, flag: str) -> tuple | None:
@@ -105,10 +126,19 @@ def _pick(path: Path, nodes: list, kind: str, want: str | None, flag: str) -> tu
 def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found:
     """The DirectionalLight's shadow, the PerspectiveCamera and the sun of one Object JSON file."""
     path, text = one_file(files, "one three.js Object JSON file")
-    nodes = _doc(path, text)
+    nodes, project, app_camera = _doc(path, text)
     settings: dict[str, Any] = {}
     where: dict[str, str] = {}
     notes: list[str] = []
+    if project is not None:
+        if "shadowType" in project:
+            if project["shadowType"] not in SHADOW_TYPES or isinstance(project["shadowType"], bool):
+                raise FileError(path, "project.shadowType", "one of " + ", ".join(f"{i} ({n})" for i, n in SHADOW_TYPES.items()),
+                                repr(project["shadowType"]))
+            settings["renderer.shadowMap.type"] = SHADOW_TYPES[project["shadowType"]]
+            where["renderer.shadowMap.type"] = f"{path.name} project.shadowType"
+        if project.get("shadows") is False:
+            notes.append("project.shadows is false: the renderer draws no shadows; this is the shadow it draws when true")
     cam = towards = forward = None
     lname = cname = None
     lt = _pick(path, nodes, "DirectionalLight", light, "--light-node")
@@ -145,7 +175,8 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
             notes.append("the light's target is not in the file: at the origin (ObjectLoader.bindLightTargets)")
         aim = target[2][:3, 3] if target is not None else np.zeros(3)
         towards = direction(path, f"{_name(at)}.matrix (the light at its target)", world[:3, 3] - aim)
-    ct = _pick(path, nodes, "PerspectiveCamera", camera, "--camera-node")
+    ct = app_camera[0] if app_camera and camera is None and app_camera[0][0].get("type") == "PerspectiveCamera" else \
+        _pick(path, nodes, "PerspectiveCamera", camera, "--camera-node")
     if ct is not None:
         node, at, world = ct
         cname = str(node.get("name") or node.get("uuid"))
@@ -168,7 +199,17 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
 
 def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> str:
     """``text`` with ``changes`` (the profile's ``shadow.*`` keys) written into the light's ``shadow`` object."""
-    lt = _pick(path, _doc(path, text), "DirectionalLight", found.light, "--light-node")
+    nodes, project, _ = _doc(path, text)
+    if "renderer.shadowMap.type" in changes:
+        if project is None:
+            raise ValueError(f"{path.name}: renderer.shadowMap.type is the renderer's, not kept in scene.toJSON()'s Object JSON "
+                             "(the editor's project file keeps it as project.shadowType)")
+        number_ = next(i for i, n in SHADOW_TYPES.items() if n == changes["renderer.shadowMap.type"])
+        text = jsontext.put(text, ("project", "shadowType"), number_)
+        changes = {k: v for k, v in changes.items() if k != "renderer.shadowMap.type"}
+    if not changes:
+        return text
+    lt = _pick(path, nodes, "DirectionalLight", found.light, "--light-node")
     if lt is None:
         raise FileError(path, "object", "a DirectionalLight to write to", "none")
     at = lt[1]
