@@ -434,3 +434,11 @@ def test_threejs_editors_project_keeps_the_renderers_shadow_type_and_its_camera(
     q.write_bytes(THREE.read_bytes())
     with pytest.raises(ValueError, match="renderer.shadowMap.type is the renderer's, not kept in scene.toJSON"):
         files.write(q, {"renderer.shadowMap.type": "VSMShadowMap"})
+
+
+def test_godot_headers_with_groups_and_unique_ids(tmp_path):
+    """Godot 4 writes groups=["a", "b"] (with a space) and unique_id=N in node headers."""
+    p = tmp_path / "g.tscn"
+    p.write_text('[gd_scene load_steps=2 format=3 uid="uid://x"]\n\n[node name="Main" type="Node3D" unique_id=1]\n\n'
+                 '[node name="Sun" type="DirectionalLight3D" parent="." groups=["lights", "sun"] unique_id=2]\nshadow_bias = 0.3\n')
+    assert files.read(p).settings == {"shadow_bias": 0.3}

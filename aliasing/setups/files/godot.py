@@ -67,7 +67,7 @@ PROJECT = "lights_and_shadows/directional_shadow/"
 PROJECT_KEYS = ("size", "soft_shadow_filter_quality", "16_bits")
 #: Camera3D's defaults (scene/3d/camera_3d.cpp Camera3D::Camera3D: fov 75°, near 0.05, far 4000)
 CAMERA_DEFAULTS = {"fov": 75.0, "near": 0.05, "far": 4000.0}
-_HEADER = re.compile(r"^\[(\w+)((?:\s+[\w/]+=(?:\"(?:[^\"\\]|\\.)*\"|[^\s\]]+))*)\s*\]\s*$")
+_HEADER = re.compile(r"^\[(\w+)(\s.*)?\]\s*$")  # the attributes' values may be arrays: groups=["a", "b"]
 _ATTR = re.compile(r"([\w/]+)=(\"(?:[^\"\\]|\\.)*\"|[^\s\]]+)")
 _LINE = re.compile(r"^([\w/.\-:]+)\s*=\s*(.*)$")
 _NUMBER = re.compile(r"^[+-]?(\d+\.?\d*([eE][+-]?\d+)?|\.\d+([eE][+-]?\d+)?)$")
@@ -106,7 +106,7 @@ def parse(path: Path, text: str) -> list[Section]:
             m = _HEADER.match(s)
             if not m:
                 raise FileError(path, f"line {i + 1}", "a section header [name key=value …]", repr(s[:60]))
-            attrs = {k: v[1:-1] if v.startswith('"') else v for k, v in _ATTR.findall(m.group(2))}
+            attrs = {k: v[1:-1] if v.startswith('"') else v for k, v in _ATTR.findall(m.group(2) or "")}
             sections.append(Section(m.group(1), attrs, i, last=i))
             i += 1
             continue
