@@ -442,3 +442,12 @@ def test_godot_headers_with_groups_and_unique_ids(tmp_path):
     p.write_text('[gd_scene load_steps=2 format=3 uid="uid://x"]\n\n[node name="Main" type="Node3D" unique_id=1]\n\n'
                  '[node name="Sun" type="DirectionalLight3D" parent="." groups=["lights", "sun"] unique_id=2]\nshadow_bias = 0.3\n')
     assert files.read(p).settings == {"shadow_bias": 0.3}
+
+
+def test_babylon_camera_forward_is_the_engines_own():
+    """ArcRotateCamera (alpha, beta, radius, target) and FreeCamera (rotation: yaw y, pitch x) as Babylon serializes them,
+    against the engine's getDirection(Vector3.Forward()) (float32 there)."""
+    reader = files.reader("babylon")
+    for case in json.loads((HERE / "babylon_cameras.json").read_text()):
+        forward = reader._forward(Path("cameras.json"), "cameras[0]", case["camera"])
+        assert forward.tolist() == pytest.approx(case["forward"], abs=1e-6), case["camera"]["type"]

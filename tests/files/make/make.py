@@ -4,6 +4,8 @@
                                                            # aliasing frames --install)
 
 * ``scene.babylon``: Babylon.js's ``SceneSerializer.Serialize`` (``babylon_scene.mjs``);
+* ``babylon_cameras.json``: Babylon.js's serialized ArcRotateCamera and FreeCamera with each one's own
+  forward direction (``babylon_cameras.mjs``);
 * ``scene.three.json``: three.js's ``scene.toJSON()`` (``three_scene.mjs``);
 * ``scene.playcanvas.parsed.json``: what PlayCanvas's own ``SceneParser`` makes of the hand-written
   ``scene.playcanvas.json`` (``playcanvas_scene.mjs``; the editor's format, which the engine only reads).
@@ -38,7 +40,8 @@ def outputs() -> dict[str, str]:
             raise RuntimeError(f"{script} failed: {done.stderr.strip()[-2000:]}")
         return done.stdout
 
-    return {"scene.babylon": run("babylon_scene.mjs", "babylon"), "scene.three.json": run("three_scene.mjs", "threejs"),
+    return {"scene.babylon": run("babylon_scene.mjs", "babylon"), "babylon_cameras.json": run("babylon_cameras.mjs", "babylon"),
+            "scene.three.json": run("three_scene.mjs", "threejs"),
             "scene.playcanvas.parsed.json": run("playcanvas_scene.mjs", "playcanvas", str(FILES / "scene.playcanvas.json"))}
 
 
