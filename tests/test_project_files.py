@@ -451,3 +451,24 @@ def test_babylon_camera_forward_is_the_engines_own():
     for case in json.loads((HERE / "babylon_cameras.json").read_text()):
         forward = reader._forward(Path("cameras.json"), "cameras[0]", case["camera"])
         assert forward.tolist() == pytest.approx(case["forward"], abs=1e-6), case["camera"]["type"]
+
+
+@settings(max_examples=80, deadline=None)
+@given(args=st.lists(st.one_of(st.none(), st.booleans(), st.floats(), st.text(max_size=6), st.integers(-10, 10),
+                               st.lists(st.floats(), max_size=4), st.dictionaries(st.text(max_size=4), st.floats(), max_size=2)),
+                     min_size=3, max_size=3),
+       which=st.sampled_from(["sun_from_directions", "vertical_fov", "merge_camera", "detect", "read", "patch"]))
+def test_the_public_helpers_refuse_garbage_by_name(args, which):
+    fn = getattr(files, which)
+    call = {"sun_from_directions": lambda: fn(*args), "vertical_fov": lambda: fn(args[0], args[1]),
+            "merge_camera": lambda: fn(args[0], args[1]), "detect": lambda: fn(args[0], args[1]), "read": lambda: fn(args[0], args[1], args[2]),
+            "patch": lambda: fn(args[0], args[1])}[which]
+    try:
+        out = call()
+    except ValueError as exc:
+        names = {"sun_from_directions": ("towards_sun", "camera_forward", "up"), "vertical_fov": ("horizontal_deg", "aspect"),
+                 "merge_camera": ("found", "user", "camera"), "detect": ("text", "path", "project"),
+                 "read": ("project", "light", "camera"), "patch": ("project", "changes")}[which]
+        assert str(exc).startswith(names) or any(f" {n} " in str(exc) for n in names), str(exc)
+    else:
+        assert "nan" not in repr(out).lower()

@@ -88,6 +88,10 @@ def detect(path: str | Path, text: str | None = None) -> str:
     ValueError
         Naming the file and the formats it could be.
     """
+    if text is not None and not isinstance(text, str):
+        raise ValueError(f"text must be the file's text (str) or None to read the file, got {type(text).__name__}")
+    if text is not None and (not isinstance(path, (str, Path)) or not str(path).strip()):
+        raise ValueError(f"path must be a file path, got {path!r}")
     p, t = _text(path) if text is None else (Path(path), text)
     hits = [m.ENGINE for m in _readers() if m.sniff(p, t)]
     if not hits:

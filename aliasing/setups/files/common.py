@@ -97,8 +97,31 @@ class Found:
 
 
 def vertical_fov(horizontal_deg: float, aspect: float) -> float:
-    """The vertical field of view [deg] of a horizontal one [deg] at ``aspect`` (width/height)."""
+    """The vertical field of view [deg] of a horizontal one [deg] at ``aspect`` (width/height).
+
+    Raises
+    ------
+    ValueError
+        ``horizontal_deg`` outside (0, 180) or ``aspect`` not a finite number > 0.
+    """
+    for name, value, ok in (("horizontal_deg", horizontal_deg, lambda x: 0 < x < 180), ("aspect", aspect, lambda x: 0 < x < math.inf)):
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) or not ok(float(value)):
+            raise ValueError(f"{name} must be {'in (0, 180) degrees' if name == 'horizontal_deg' else 'a finite number > 0'}, got {value!r}")
     return math.degrees(2.0 * math.atan(math.tan(math.radians(horizontal_deg) / 2.0) / aspect))
+
+
+def _direction3(value: Any, name: str) -> np.ndarray:
+    """``value`` as a unit 3-vector, else a ValueError naming ``name``."""
+    try:
+        v = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        v = np.empty(0)
+    if v.shape != (3,) or not np.all(np.isfinite(v)):
+        raise ValueError(f"{name} must be 3 finite numbers (a direction), got {value!r}")
+    n = float(np.linalg.norm(v))
+    if not (n > 0 and math.isfinite(n)):
+        raise ValueError(f"{name} must be a non-zero direction of finite length, got {value!r}")
+    return v / n
 
 
 def sun_from_directions(towards_sun, camera_forward, up=(0.0, 1.0, 0.0)) -> tuple[float, float]:
@@ -113,11 +136,7 @@ def sun_from_directions(towards_sun, camera_forward, up=(0.0, 1.0, 0.0)) -> tupl
     >>> sun_from_directions([1.0, 1.0, 0.0], [0.0, 0.0, -1.0])       # three.js: forward −z, right +x
     (45.0, 90.0)
     """
-    s = np.asarray(towards_sun, float)
-    f = np.asarray(camera_forward, float)
-    u = np.asarray(up, float)
-    s = s / np.linalg.norm(s)
-    u = u / np.linalg.norm(u)
+    s, f, u = (_direction3(v, name) for v, name in ((towards_sun, "towards_sun"), (camera_forward, "camera_forward"), (up, "up")))
     elevation = math.degrees(math.asin(float(np.clip(s @ u, -1.0, 1.0))))
     fh = f - (f @ u) * u
     if np.linalg.norm(fh) < 1e-12:
@@ -144,12 +163,17 @@ def merge_camera(found: Mapping[str, Any] | None, user: Mapping[str, Any] | None
     >>> fields["fov"], notes
     (90.0, ('camera.fov: the horizontal 90° at aspect 1 is a vertical 90°',))
     """
-    out = {k: v for k, v in (found or {}).items()}
+    for name, value in (("found", found), ("user", user)):
+        if value is not None and not isinstance(value, Mapping):
+            raise ValueError(f"{name} must be a mapping of camera fields (near, far, fov, aspect, height, horizontal_fov), got {value!r}")
+    out = dict(found or {})
     out.update(user or {})
     horizontal = out.pop("horizontal_fov", None)
     if horizontal is None or (user and "fov" in user):
         return out, ()
     aspect = _aspect(out["aspect"]) if "aspect" in out else CAMERA_DEFAULTS["aspect"]
+    if isinstance(horizontal, bool) or not isinstance(horizontal, (int, float)) or not 0 < float(horizontal) < 180:
+        raise ValueError(f"camera horizontal_fov must be in (0, 180) degrees, got {horizontal!r}")
     out["fov"] = vertical_fov(float(horizontal), aspect)
     return out, (f"camera.fov: the horizontal {float(horizontal):.12g}° at aspect {aspect:.6g} is a vertical {out['fov']:.12g}°",)
 
