@@ -472,3 +472,33 @@ def test_the_public_helpers_refuse_garbage_by_name(args, which):
         assert str(exc).startswith(names) or any(f" {n} " in str(exc) for n in names), str(exc)
     else:
         assert "nan" not in repr(out).lower()
+
+
+def test_horizontal_fields_of_view_become_vertical_at_the_final_aspect(tmp_path, recwarn):
+    from aliasing import setups
+    from aliasing.cli import build_parser
+
+    data = json.loads(BABYLON.read_text())
+    data["cameras"][0]["fovMode"] = 1  # FOVMODE_HORIZONTAL_FIXED
+    p = tmp_path / "h.babylon"
+    p.write_text(json.dumps(data))
+    assert files.read(p).camera == {"near": 0.5, "far": 800.0, "horizontal_fov": math.degrees(0.8)}
+    s = setups.from_args(build_parser().parse_args(["check", "--project", str(p), "--camera", "aspect=2"]))
+    assert s.camera.fov == pytest.approx(math.degrees(2 * math.atan(math.tan(0.4) / 2)), rel=1e-12)
+    scene = json.loads(PLAYCANVAS.read_text())
+    scene["entities"]["camera"]["components"]["camera"]["horizontalFov"] = True
+    q = tmp_path / "pc.json"
+    q.write_text(json.dumps(scene))
+    s = setups.from_args(build_parser().parse_args(["check", "--project", str(q)]))  # the toolkit's 16:9
+    assert s.camera.fov == pytest.approx(math.degrees(2 * math.atan(math.tan(math.radians(27.5)) * 9 / 16)), rel=1e-12)
+    assert any("horizontal 55° at aspect 1.77778" in str(w.message) for w in recwarn.list)
+
+
+def test_a_json_patch_inserts_a_key_the_file_leaves_at_the_default(tmp_path):
+    p = tmp_path / "scene.json"
+    p.write_bytes(PLAYCANVAS.read_bytes())
+    files.write(p, {"shadowSamples": 32})
+    lines = p.read_text().splitlines()
+    at = lines.index('          "shadowSamples": 32,')
+    assert lines[at - 1] == '        "light": {' and lines[at + 1] == '          "enabled": true,'  # first in its object, its indentation
+    assert files.read(p).settings["shadowSamples"] == 32
