@@ -502,3 +502,27 @@ def test_a_json_patch_inserts_a_key_the_file_leaves_at_the_default(tmp_path):
     at = lines.index('          "shadowSamples": 32,')
     assert lines[at - 1] == '        "light": {' and lines[at + 1] == '          "enabled": true,'  # first in its object, its indentation
     assert files.read(p).settings["shadowSamples"] == 32
+
+
+def test_the_current_camera_is_taken_and_orthographic_cameras_are_refused(tmp_path):
+    p = tmp_path / "cams.tscn"
+    p.write_text('[gd_scene format=3]\n[node name="Main" type="Node3D"]\n[node name="A" type="Camera3D" parent="."]\nfov = 40.0\n'
+                 '[node name="B" type="Camera3D" parent="."]\ncurrent = true\nfov = 60.0\n'
+                 '[node name="C" type="Camera3D" parent="."]\nprojection = 1\n')
+    f = files.read(p)
+    assert f.camera_name == "B" and f.camera["fov"] == 60.0  # Camera3D.current: the one Godot renders with
+    assert files.read(p, camera="A").camera["fov"] == 40.0
+    with pytest.raises(FileError, match=r"cams\.tscn: line 9 projection: expected 0 \(PROJECTION_PERSPECTIVE\)"):
+        files.read(p, camera="C")
+    data = json.loads(BABYLON.read_text())
+    data["cameras"][0]["mode"] = 1
+    q = tmp_path / "o.babylon"
+    q.write_text(json.dumps(data))
+    with pytest.raises(FileError, match=r"o\.babylon: cameras\[0\]\.mode: expected 0 \(PERSPECTIVE_CAMERA\)"):
+        files.read(q)
+    scene = json.loads(PLAYCANVAS.read_text())
+    scene["entities"]["camera"]["components"]["camera"]["projection"] = 1
+    r = tmp_path / "o.json"
+    r.write_text(json.dumps(scene))
+    with pytest.raises(FileError, match=r"o\.json: entities\.camera\.components\.camera\.projection: expected 0"):
+        files.read(r)

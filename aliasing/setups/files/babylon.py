@@ -185,6 +185,8 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
         ci, c = found_cam
         cname = str(c.get("name", c.get("id")))
         cw = f"cameras[{ci}]"
+        if c.get("mode", 0) != 0:  # Camera.PERSPECTIVE_CAMERA 0, ORTHOGRAPHIC_CAMERA 1 (Cameras/camera.pure.js)
+            raise FileError(path, f"{cw}.mode", "0 (PERSPECTIVE_CAMERA): the toolkit's camera is a perspective one", repr(c.get("mode")))
         cam = {}
         for key, ours in (("minZ", "near"), ("maxZ", "far")):
             if key in c:

@@ -241,9 +241,15 @@ def _scene_read(path: Path, text: str, light: str | None, camera: str | None, ou
         if enabled is None or value(path, enabled[1], "shadow_enabled", enabled[0]) is not True:
             out["notes"].append(f"{key}: shadow_enabled is false (the default): the light casts no shadow; this is the shadow it casts when true")
         out["towards"] = direction(path, f"line {sec.line + 1} transform", _world(path, nodes, key)[:3, 2])
+    current = [k for k in cams if value(path, 0, "current", nodes[k].props.get("current", ("false", 0))[0]) is True]
     if cams or camera is not None:
-        key = cams[pick(path, "Camera3D", cams, by_name(cams, camera), "--camera-node")]
+        # several cameras: the one marked current = true is the one Godot renders with (Camera3D::make_current)
+        key = current[0] if camera is None and len(cams) > 1 and len(current) == 1 else \
+            cams[pick(path, "Camera3D", cams, by_name(cams, camera), "--camera-node")]
         sec = nodes[key]
+        if "projection" in sec.props and value(path, sec.props["projection"][1], "projection", sec.props["projection"][0]) != 0:
+            raise FileError(path, f"line {sec.props['projection'][1] + 1} projection", "0 (PROJECTION_PERSPECTIVE): the toolkit's camera is a "
+                            "perspective one", sec.props["projection"][0])
         out["camera_name"] = key
         fields = dict(CAMERA_DEFAULTS)  # a property at its default is not written
         for prop in ("fov", "near", "far"):

@@ -157,6 +157,9 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
     if ckey is not None:
         comp = ents[ckey]["components"]["camera"]
         at = f"entities.{ckey}.components.camera"
+        if comp.get("projection", 0) != 0:  # PROJECTION_PERSPECTIVE 0, PROJECTION_ORTHOGRAPHIC 1 (scene/constants.js)
+            raise FileError(path, f"{at}.projection", "0 (PROJECTION_PERSPECTIVE): the toolkit's camera is a perspective one",
+                            repr(comp.get("projection")))
         cam = dict(CAMERA_DEFAULTS)  # a key the scene leaves out is the component's default
         for key, ours in (("nearClip", "near"), ("farClip", "far"), ("fov", "fov")):
             if key in comp:
