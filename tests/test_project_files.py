@@ -13,7 +13,9 @@
 
 from __future__ import annotations
 
+import contextlib
 import difflib
+import io
 import json
 import math
 import shutil
@@ -22,6 +24,8 @@ import warnings
 from pathlib import Path
 
 import pytest
+
+from conftest import need
 
 from aliasing.cli import main
 from aliasing.setups import files
@@ -363,8 +367,6 @@ def test_check_on_a_corrupted_project_is_a_report_or_one_line(name, data, tmp_pa
     out_err = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        import contextlib
-        import io
         err = io.StringIO()
         with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
             code = main(["check", "--project", str(p), "--samples", "2", "--format", "json"])
@@ -381,15 +383,11 @@ def test_the_engine_made_samples_regenerate_byte_for_byte():
     from aliasing.frames import install
 
     if shutil.which("node") is None:
-        from conftest import need
-
         need("node", "Debian: apt-get install nodejs npm")
     for engine in ("babylon", "threejs", "playcanvas"):
         try:
             install.package_root(engine)
         except install.MissingTool as e:
-            from conftest import need
-
             need(f"the pinned {engine} package", str(e))
     sys.path.insert(0, str(HERE / "make"))
     try:
