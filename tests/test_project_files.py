@@ -524,3 +524,18 @@ def test_the_current_camera_is_taken_and_orthographic_cameras_are_refused(tmp_pa
     r.write_text(json.dumps(scene))
     with pytest.raises(FileError, match=r"o\.json: entities\.camera\.components\.camera\.projection: expected 0"):
         files.read(r)
+
+
+def test_babylon_filter_flags_round_trip_and_filter_none_is_refused_with_the_reason(tmp_path):
+    p = tmp_path / "scene.babylon"
+    p.write_bytes(BABYLON.read_bytes())
+    files.write(p, {"filter": "FILTER_PCSS"})
+    data = json.loads(p.read_text())["shadowGenerators"][0]
+    assert data["useContactHardeningShadow"] is True and data["usePercentageCloserFiltering"] is False
+    assert files.read(p).settings["filter"] == "FILTER_PCSS"
+    files.write(p, {"filter": None})  # no flag: the class's default
+    assert "filter" not in files.read(p).settings
+    before = p.read_bytes()
+    with pytest.raises(ValueError, match="cannot keep filter FILTER_NONE: ShadowGenerator.Parse leaves the class's default"):
+        files.write(p, {"filter": "FILTER_NONE"})
+    assert p.read_bytes() == before

@@ -222,6 +222,9 @@ def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> st
         elif key == "filteringQuality":
             text = jsontext.put(text, ("shadowGenerators", gi, key), QUALITIES.index(value))
         elif key == "filter":
+            if value == "FILTER_NONE":  # Parse sets the first true flag; none true leaves the class's default filter
+                raise ValueError(f"{path.name}: a .babylon scene cannot keep filter FILTER_NONE: ShadowGenerator.Parse leaves the class's "
+                                 "default filter when no filter flag is true (CascadedShadowGenerator: FILTER_PCF); null writes no flag")
             for flag, name_ in FLAGS:
                 if flag in g or name_ == value:
                     text = jsontext.put(text, ("shadowGenerators", gi, flag), name_ == value)
