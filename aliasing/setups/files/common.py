@@ -15,6 +15,7 @@ Every reader module defines::
     def sniff(path: Path, text: str) -> bool          # is this file of this format?
     def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found
     def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> str
+    PROFILE: Profile                 # optional: the engine's profile; patch() checks each changed value against it
 
 ``read`` gets every file of its engine that the user named (an engine may split its settings over
 files: Godot's ``project.godot`` and a scene); ``light`` and ``camera`` name the node or object to
@@ -74,7 +75,9 @@ class Found:
         profile's types; only the keys the files set.
     camera : dict or None
         The camera in the toolkit's fields (:data:`aliasing.setups.CAMERA_SPEC`): ``near``, ``far`` [world
-        units], ``fov`` (vertical, [deg]), and ``aspect``/``height`` where the files fix them.
+        units], ``fov`` (vertical, [deg]), and ``aspect``/``height`` where the files fix them; a camera whose
+        file fixes its horizontal field of view gives ``horizontal_fov`` [deg] instead of ``fov``
+        (:func:`merge_camera` converts it at the final aspect).
     sun : tuple or None
         (elevation [deg], azimuth from the view direction [deg]) where the light's direction (and the
         camera's, for the azimuth) is in the files.
