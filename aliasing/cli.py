@@ -370,8 +370,8 @@ def build_parser(full: bool = True) -> argparse.ArgumentParser:
     bias = add_bias_parser(sub)
     plain_bias = bias.get_default("run")
 
-    def _bias(args: argparse.Namespace) -> int:  # with --engine: the engine's own rule, through aliasing.check (a layer above bias)
-        if getattr(args, "engine", None) and not args.list:
+    def _bias(args: argparse.Namespace) -> int:  # with --engine or --project: the engine's own rule, through aliasing.check (a layer above bias)
+        if (getattr(args, "engine", None) or getattr(args, "project", None)) and not args.list:
             from .check.command import run_bias
 
             return run_bias(args)

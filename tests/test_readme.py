@@ -33,7 +33,13 @@ def test_python_block_runs(index, tmp_path, monkeypatch):
     exec(compile(_blocks("python")[index], f"README.md python block {index}", "exec"), {})
 
 
+#: the engines' sample project files the README's --project commands read (tests/files)
+SAMPLES = Path(__file__).resolve().parent / "files"
+
+
 @pytest.mark.parametrize("command", _commands())
 def test_command_runs(command, tmp_path, monkeypatch, capsys):
+    for name in ("project.godot", "main.tscn", "scene.babylon", "scene.three.json", "scene.playcanvas.json"):
+        (tmp_path / name).write_bytes((SAMPLES / name).read_bytes())
     monkeypatch.chdir(tmp_path)
     assert main(shlex.split(command)[1:]) == 0

@@ -60,7 +60,7 @@ def _run(args: argparse.Namespace) -> int:
         return 0
     setup, camera, sun = setups.resolve(args)
     if setup is not None:
-        raise ValueError("bias --engine runs through 'aliasing bias' of the aliasing command (aliasing.cli)")  # wired in aliasing.cli
+        raise ValueError("bias --engine (or --project) runs through 'aliasing bias' of the aliasing command (aliasing.cli)")  # wired in aliasing.cli
     if camera is not None:  # --image is the image's rows: the camera's height
         args.near, args.far, args.fov, args.aspect, args.image = camera.near, camera.far, camera.fov, camera.aspect, camera.height
     if sun is not None:

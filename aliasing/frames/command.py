@@ -121,19 +121,21 @@ def run(args: argparse.Namespace) -> dict:
     from . import browser, run as frames_run, scenes
     from .models import from_setup
 
-    if not args.engine:
-        raise ValueError(f"--engine is required: one of {', '.join(sorted(PINS))}")
-    name = args.engine.split("@")[0]
+    engine = args.engine or (setups.project(args).engine if getattr(args, "project", None) else None)
+    if not engine:
+        raise ValueError(f"--engine (one of {', '.join(sorted(PINS))}) or --project FILE is required")
+    name = engine.split("@")[0]
     if name not in PINS:
-        raise ValueError(f"--engine must be one of {', '.join(sorted(PINS))} (the engines drawn in a browser), got {args.engine!r}")
-    if args.scene is None or args.camera is None or args.sun is None or args.out is None:
-        raise ValueError("--scene, --camera, --sun and --out are required (or --install)")
+        raise ValueError(f"--engine must be one of {', '.join(sorted(PINS))} (the engines drawn in a browser), got {engine!r}")
+    own = bool(getattr(args, "project", None))  # the project's camera and sun stand in for --camera and --sun
+    if args.scene is None or (args.camera is None and not own) or (args.sun is None and not own) or args.out is None:
+        raise ValueError("--scene, --camera, --sun and --out are required (--camera and --sun may come from --project; or --install)")
     setup = setups.from_args(args)
     frames_run.refuse_unrendered(setup.engine, setup.settings.get("class"), args.path, args.maps)
     if args.path is not None:
         frames_run.parse_path(args.path, scenes.frame_scene("boxes", near=1.0, far=2.0, fov=50.0, aspect=1.0, boxes=0, ground_cells=1).camera)
     if setup.release != PINS[name].release:
-        raise ValueError(f"--engine {args.engine}: the frames render {name} {PINS[name].release} only (the pinned npm release), not {setup.release}")
+        raise ValueError(f"--engine {engine}: the frames render {name} {PINS[name].release} only (the pinned npm release), not {setup.release}")
     cam = setup.camera
     if not 16 <= cam.height <= 2160:
         raise ValueError(f"--camera height must be in [16, 2160] pixels for a frame, got {cam.height}")

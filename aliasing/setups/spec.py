@@ -3,7 +3,8 @@
 Built and validated once where it enters (:func:`build`, or :func:`from_args` on the command
 line), then passed on as a value.  The one vocabulary of every command:
 
-* ``--engine NAME[@RELEASE]``;
+* ``--engine NAME[@RELEASE]``, or ``--project FILE`` (repeatable): the engine's own project files
+  (:mod:`aliasing.setups.files`), whose settings, camera and sun the options below go over;
 * ``--settings FILE`` (JSON or TOML, the engine's own keys) and repeatable ``--set KEY=VALUE``;
 * ``--camera near=N,far=F,fov=DEG,aspect=A,height=PX``: the vertical field of view in degrees,
   the aspect as ``16:9`` or a number, the image height in pixels (the width is aspect·height);
@@ -124,6 +125,29 @@ class Camera:
         return f"near={self.near:g},far={self.far:g},fov={self.fov:g},aspect={self.aspect:.6g},height={self.height}"
 
 
+def camera_items(spec: str | Mapping[str, Any] | None) -> dict[str, Any]:
+    """The fields a camera spec gives, as written (``near=0.1,fov=50`` -> ``{'near': '0.1', 'fov': '50'}``), unchecked.
+
+    Example
+    -------
+    >>> camera_items("near=0.5, FOV=40")
+    {'near': '0.5', 'fov': '40'}
+    """
+    if spec is None:
+        return {}
+    if isinstance(spec, Mapping):
+        return dict(spec)
+    if not isinstance(spec, str):
+        raise ValueError(f"camera must be {CAMERA_SPEC}, got {spec!r}")
+    items: dict[str, Any] = {}
+    for part in filter(None, (p.strip() for p in spec.split(","))):
+        key, eq, value = part.partition("=")
+        if not eq:
+            raise ValueError(f"camera must be {CAMERA_SPEC}, got {spec!r} (a field without '=': {part!r})")
+        items[key.strip().lower()] = value.strip()
+    return items
+
+
 def parse_camera(spec: str | Mapping[str, Any] | Camera | None, *, warn: bool = True) -> Camera:
     """A :class:`Camera` from ``near=N,far=F,fov=DEG,aspect=A,height=PX`` (any subset; the rest
     default to near 0.1, far 500, fov 50, aspect 16:9, height 1080) or a mapping of those keys.
@@ -138,19 +162,7 @@ def parse_camera(spec: str | Mapping[str, Any] | Camera | None, *, warn: bool = 
     if isinstance(spec, Camera):
         return spec
     fields: dict[str, Any] = dict(CAMERA_DEFAULTS)
-    if spec is None:
-        items: dict[str, Any] = {}
-    elif isinstance(spec, Mapping):
-        items = dict(spec)
-    elif isinstance(spec, str):
-        items = {}
-        for part in filter(None, (p.strip() for p in spec.split(","))):
-            key, eq, value = part.partition("=")
-            if not eq:
-                raise ValueError(f"camera must be {CAMERA_SPEC}, got {spec!r} (a field without '=': {part!r})")
-            items[key.strip().lower()] = value.strip()
-    else:
-        raise ValueError(f"camera must be {CAMERA_SPEC}, got {spec!r}")
+    items = camera_items(spec)
     from .. import _validation as check
 
     for key, value in items.items():

@@ -33,7 +33,7 @@ from pathlib import Path
 from types import ModuleType
 from typing import Any
 
-from .common import FileError, Found, sun_from_directions, vertical_fov
+from .common import FileError, Found, merge_camera, sun_from_directions, vertical_fov
 
 #: The formats, by the toolkit's engine name, and the module that reads them.
 FORMATS: dict[str, str] = {
@@ -46,7 +46,7 @@ FORMATS: dict[str, str] = {
     "filament": "filament",
 }
 
-__all__ = ["FORMATS", "FileError", "Found", "detect", "patch", "read", "reader", "sun_from_directions", "vertical_fov", "write"]
+__all__ = ["FORMATS", "FileError", "Found", "detect", "merge_camera", "patch", "read", "reader", "sun_from_directions", "vertical_fov", "write"]
 
 
 def reader(engine: str) -> ModuleType:
@@ -88,6 +88,10 @@ def detect(path: str | Path, text: str | None = None) -> str:
     ValueError
         Naming the file and the formats it could be.
     """
+    if text is not None and not isinstance(text, str):
+        raise ValueError(f"text must be the file's text (str) or None to read the file, got {type(text).__name__}")
+    if text is not None and (not isinstance(path, (str, Path)) or not str(path).strip()):
+        raise ValueError(f"path must be a file path, got {path!r}")
     p, t = _text(path) if text is None else (Path(path), text)
     hits = [m.ENGINE for m in _readers() if m.sniff(p, t)]
     if not hits:
@@ -135,8 +139,17 @@ def patch(path: str | Path, changes: Mapping[str, Any], light: str | None = None
     p, text = _text(path)
     engine = detect(p, text)
     mod = reader(engine)
+    profile = getattr(mod, "PROFILE", None)
+    typed = {}
+    for key, value in changes.items():
+        if not isinstance(key, str):
+            raise ValueError(f"changes must map the engine's setting keys (text) to values, got the key {key!r}")
+        try:
+            typed[key] = value if profile is None else profile.setting(key).coerce(value)
+        except ValueError as exc:
+            raise ValueError(f"changes[{key!r}]: {exc}") from None
     found = mod.read([(p, text)], light, camera)
-    return mod.patch(p, text, dict(changes), found)
+    return mod.patch(p, text, typed, found)
 
 
 def write(path: str | Path, changes: Mapping[str, Any], light: str | None = None, camera: str | None = None) -> Path:
@@ -148,7 +161,9 @@ def write(path: str | Path, changes: Mapping[str, Any], light: str | None = None
     p = Path(path)
     engine = detect(p, new)
     back = reader(engine).read([(p, new)], light, camera)
-    wrong = {k: (v, back.settings.get(k)) for k, v in changes.items() if back.settings.get(k) != v}
+    profile = getattr(reader(engine), "PROFILE", None)
+    typed = {k: v if profile is None else profile.setting(k).coerce(v) for k, v in changes.items()}
+    wrong = {k: (v, back.settings.get(k)) for k, v in typed.items() if back.settings.get(k) != v}
     if wrong:
         raise ValueError(f"{p.name}: the patch does not read back as written ({wrong}); the file is unchanged")
     fd, tmp = tempfile.mkstemp(prefix=f".{p.name}.", dir=p.parent)

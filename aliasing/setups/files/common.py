@@ -15,6 +15,7 @@ Every reader module defines::
     def sniff(path: Path, text: str) -> bool          # is this file of this format?
     def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found
     def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> str
+    PROFILE: Profile                 # optional: the engine's profile; patch() checks each changed value against it
 
 ``read`` gets every file of its engine that the user named (an engine may split its settings over
 files: Godot's ``project.godot`` and a scene); ``light`` and ``camera`` name the node or object to
@@ -44,6 +45,7 @@ from typing import Any
 import numpy as np
 
 from ...view import vertical_fov
+from ..spec import CAMERA_DEFAULTS, _aspect
 
 
 class FileError(ValueError):
@@ -74,7 +76,9 @@ class Found:
         profile's types; only the keys the files set.
     camera : dict or None
         The camera in the toolkit's fields (:data:`aliasing.setups.CAMERA_SPEC`): ``near``, ``far`` [world
-        units], ``fov`` (vertical, [deg]), and ``aspect``/``height`` where the files fix them.
+        units], ``fov`` (vertical, [deg]), and ``aspect``/``height`` where the files fix them; a camera whose
+        file fixes its horizontal field of view gives ``horizontal_fov`` [deg] instead of ``fov``
+        (:func:`merge_camera` converts it at the final aspect).
     sun : tuple or None
         (elevation [deg], azimuth from the view direction [deg]) where the light's direction (and the
         camera's, for the azimuth) is in the files.
@@ -96,17 +100,33 @@ class Found:
     notes: tuple[str, ...] = ()
 
 
+def _direction3(value: Any, name: str) -> np.ndarray:
+    """``value`` as a unit 3-vector, else a ValueError naming ``name``."""
+    try:
+        v = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        v = np.empty(0)
+    if v.shape != (3,) or not np.all(np.isfinite(v)):
+        raise ValueError(f"{name} must be 3 finite numbers (a direction), got {value!r}")
+    n = float(np.linalg.norm(v))
+    if not (n > 0 and math.isfinite(n)):
+        raise ValueError(f"{name} must be a non-zero direction of finite length, got {value!r}")
+    return v / n
+
+
 def sun_from_directions(towards_sun, camera_forward, up=(0.0, 1.0, 0.0)) -> tuple[float, float]:
     """(elevation, azimuth) [deg] of the world direction towards the sun, the azimuth from the camera's
-    horizontal forward direction, positive to the camera's right (:mod:`aliasing.setups.spec`).
+    horizontal forward direction, positive to the camera's right (:mod:`aliasing.setups.spec`), in a
+    right-handed world with ``up`` (a left-handed one, Babylon's, is mirrored first).
 
     A camera looking straight up or down has no horizontal forward: the azimuth is then 0.
+
+    Examples
+    --------
+    >>> sun_from_directions([1.0, 1.0, 0.0], [0.0, 0.0, -1.0])       # three.js: forward −z, right +x
+    (45.0, 90.0)
     """
-    s = np.asarray(towards_sun, float)
-    f = np.asarray(camera_forward, float)
-    u = np.asarray(up, float)
-    s = s / np.linalg.norm(s)
-    u = u / np.linalg.norm(u)
+    s, f, u = (_direction3(v, name) for v, name in ((towards_sun, "towards_sun"), (camera_forward, "camera_forward"), (up, "up")))
     elevation = math.degrees(math.asin(float(np.clip(s @ u, -1.0, 1.0))))
     fh = f - (f @ u) * u
     if np.linalg.norm(fh) < 1e-12:
@@ -115,3 +135,127 @@ def sun_from_directions(towards_sun, camera_forward, up=(0.0, 1.0, 0.0)) -> tupl
     right = np.cross(fh, u)
     azimuth = math.degrees(math.atan2(float(s @ right), float(s @ fh)))
     return round(elevation, 12), round(azimuth, 12) + 0.0
+
+
+def merge_camera(found: Mapping[str, Any] | None, user: Mapping[str, Any] | None) -> tuple[dict[str, Any], tuple[str, ...]]:
+    """The camera fields of a project's camera (``found``) with the user's own fields over them.
+
+    A file may give a horizontal field of view (``horizontal_fov`` [deg]: Godot's KEEP_WIDTH, Babylon's
+    FOVMODE_HORIZONTAL_FIXED, PlayCanvas's ``horizontalFov``): it becomes the vertical ``fov`` at the
+    final aspect (the user's, else the file's, else the toolkit's 16:9), unless the user gives ``fov``.
+    Returns (the fields for :func:`aliasing.setups.parse_camera`, notes on the conversion).
+
+    Examples
+    --------
+    >>> merge_camera({"near": 0.5, "far": 800.0, "fov": 45.0}, {"far": 100})[0]
+    {'near': 0.5, 'far': 100, 'fov': 45.0}
+    >>> fields, notes = merge_camera({"horizontal_fov": 90.0}, {"aspect": "1"})
+    >>> fields["fov"], notes
+    (90.0, ('camera.fov: the horizontal 90° at aspect 1 is a vertical 90°',))
+    """
+    for name, value in (("found", found), ("user", user)):
+        if value is not None and not isinstance(value, Mapping):
+            raise ValueError(f"{name} must be a mapping of camera fields (near, far, fov, aspect, height, horizontal_fov), got {value!r}")
+    out = dict(found or {})
+    out.update(user or {})
+    horizontal = out.pop("horizontal_fov", None)
+    if horizontal is None or (user and "fov" in user):
+        return out, ()
+    aspect = _aspect(out["aspect"]) if "aspect" in out else CAMERA_DEFAULTS["aspect"]
+    if isinstance(horizontal, bool) or not isinstance(horizontal, (int, float)) or not 0 < float(horizontal) < 180:
+        raise ValueError(f"camera horizontal_fov must be in (0, 180) degrees, got {horizontal!r}")
+    out["fov"] = vertical_fov(float(horizontal), aspect)
+    return out, (f"camera.fov: the horizontal {float(horizontal):.12g}° at aspect {aspect:.6g} is a vertical {out['fov']:.12g}°",)
+
+
+def number(path: str | Path, where: str, value: Any, expected: str = "a finite number") -> float:
+    """``value`` as a finite float, else a :class:`FileError` naming ``where``.
+
+    Examples
+    --------
+    >>> number("a.json", "fov", 0.8)
+    0.8
+    """
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(float(value)):
+        raise FileError(path, where, expected, repr(value)[:60])
+    return float(value)
+
+
+def vector(path: str | Path, where: str, value: Any, n: int = 3) -> np.ndarray:
+    """``value`` as ``n`` finite floats, else a :class:`FileError` naming ``where``.
+
+    Examples
+    --------
+    >>> vector("a.json", "position", [0, 1, 2]).tolist()
+    [0.0, 1.0, 2.0]
+    """
+    if not isinstance(value, (list, tuple)) or len(value) != n:
+        raise FileError(path, where, f"{n} numbers", repr(value)[:60])
+    return np.array([number(path, f"{where}[{i}]", v) for i, v in enumerate(value)])
+
+
+def direction(path: str | Path, where: str, v: np.ndarray) -> np.ndarray:
+    """``v`` normalised, else a :class:`FileError` (a zero direction).
+
+    Examples
+    --------
+    >>> direction("a.json", "direction", np.array([0.0, 3.0, 4.0])).tolist()
+    [0.0, 0.6, 0.8]
+    """
+    n = float(np.linalg.norm(v))
+    if not n > 1e-12 or not math.isfinite(n):
+        raise FileError(path, where, "a non-zero direction", str(v.tolist()))
+    return v / n
+
+
+def pick(path: str | Path, kind: str, names: list[str], want: str | None, flag: str) -> int:
+    """The index of the one ``kind`` to take among ``names`` (``want`` picks by name), else a FileError naming the candidates.
+
+    Examples
+    --------
+    >>> pick("s.tscn", "Camera3D", ["A", "B"], "B", "--camera-node")
+    1
+    >>> pick("s.tscn", "Camera3D", ["A", "B"], None, "--camera-node")
+    Traceback (most recent call last):
+    ...
+    aliasing.setups.files.common.FileError: s.tscn: Camera3D: expected one Camera3D, or --camera-node NAME to pick one of: 'A', 'B', got 2
+    """
+    if want is not None:
+        if want not in names:
+            raise FileError(path, f"{kind} {want!r}", f"one of: {', '.join(map(repr, names)) or 'none in the file'}")
+        return names.index(want)
+    if len(names) > 1:
+        raise FileError(path, kind, f"one {kind}, or {flag} NAME to pick one of: {', '.join(map(repr, names))}", f"{len(names)}")
+    return 0
+
+
+def sun_above(towards, forward, notes: list[str]) -> tuple[float, float] | None:
+    """:func:`sun_from_directions` where both directions are known and the light is above the horizon; else None
+    (a light from below the horizon is said in ``notes``: the sun is then ``--sun``'s).
+
+    Examples
+    --------
+    >>> notes = []
+    >>> sun_above([0.0, -1.0, 1.0], [0.0, 0.0, -1.0], notes), notes
+    (None, ["the light shines from below the horizon (elevation -45°): the sun is --sun's"])
+    """
+    if towards is None or forward is None:
+        return None
+    sun = sun_from_directions(towards, forward)
+    if not sun[0] > 0:
+        notes.append(f"the light shines from below the horizon (elevation {sun[0]:.6g}°): the sun is --sun's")
+        return None
+    return sun
+
+
+def one_file(files: list, what: str) -> tuple[Path, str]:
+    """The one (path, text) of a format kept in one file, else a ValueError naming ``project``.
+
+    Examples
+    --------
+    >>> one_file([(Path("a.babylon"), "{}")], "one .babylon scene")[0].name
+    'a.babylon'
+    """
+    if len(files) != 1:
+        raise ValueError(f"project must be {what}, got {len(files)} files")
+    return files[0]
