@@ -234,6 +234,23 @@ def half_angle(fov: ArrayLike, name: str = "fov") -> Array:
     return np.radians(check.fov(fov, name)) / 2
 
 
+def narrowed_fov(fov: ArrayLike, factor: ArrayLike, name: str = "fov") -> float | Array:
+    """The full field of view [deg] whose tan(half) is tan(``fov``/2)/``factor`` (``fov`` [deg], ``factor`` > 0).
+
+    A camera zoomed by ``factor`` (three.js's ``PerspectiveCamera.zoom``), or a horizontal field of view
+    at aspect ``factor`` seen vertically (:func:`vertical_fov`).
+
+    Example
+    -------
+    >>> round(float(narrowed_fov(90.0, 2.0)), 4)      # tan 45° / 2 = tan 26.565°
+    53.1301
+    """
+    f = check.as_float_array(factor, "factor")
+    if not np.all(np.isfinite(f) & (f > 0)):
+        raise ValueError(f"factor must be in (0, inf), got {check._show(f)}")
+    return _store(np.degrees(2.0 * np.arctan(np.tan(half_angle(fov, name)) / f)))
+
+
 def vertical_fov(hfov: ArrayLike, aspect: ArrayLike, name: str = "hfov") -> float | Array:
     """The vertical full field of view [deg] of a horizontal one ``hfov`` [deg] at ``aspect`` (width/height).
 
@@ -246,8 +263,7 @@ def vertical_fov(hfov: ArrayLike, aspect: ArrayLike, name: str = "hfov") -> floa
     >>> round(float(vertical_fov(90.0, 16 / 9)), 4)
     58.7155
     """
-    a = check_aspect(aspect)
-    return _store(np.degrees(2.0 * np.arctan(np.tan(half_angle(hfov, name)) / a)))
+    return narrowed_fov(hfov, check_aspect(aspect), name)
 
 
 def theta_of(fov: View | ArrayLike, name: str = "fov") -> float | Array:

@@ -46,6 +46,7 @@ from typing import Any
 import numpy as np
 
 from . import jsontext
+from ...view import narrowed_fov
 from ..threejs import PROFILES
 from .common import FileError, Found, direction, number, one_file, pick, sun_above
 
@@ -189,7 +190,7 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
         if zoom != 1 and "fov" in cam:
             if not zoom > 0:
                 raise FileError(path, _name(at + ("zoom",)), "a zoom > 0", repr(zoom))
-            fov = math.degrees(2 * math.atan(math.tan(math.radians(cam["fov"]) / 2) / zoom))
+            fov = float(narrowed_fov(cam["fov"], zoom, "camera.fov"))
             notes.append(f"camera.fov {cam['fov']:.12g}° at zoom {zoom:g} = {fov:.12g}° (PerspectiveCamera.getEffectiveFOV)")
             cam["fov"] = fov
         forward = -world[:3, 2]
