@@ -235,6 +235,11 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
         raise FileError(path, "the top level", "the viewer's Settings: an object with \"lighting\" or \"view\"", ", ".join(map(repr, data))[:80] or "{}")
     spans = _spans(text)
     shape = _shape(data)
+    base = _paths(shape)["mapSize"][:-1]
+    for at in [base[:k] for k in range(1, len(base) + 1)] + [("view",), ("viewer",), ("camera",)]:
+        v = _at(data, at)
+        if v is not None and not isinstance(v, dict):
+            raise FileError(path, f"line {_line(text, spans[at][0])} / {_name(at)}", "a JSON object", json.dumps(v)[:60])
     settings: dict[str, Any] = {}
     where: dict[str, str] = {}
     notes: list[str] = []
