@@ -125,17 +125,23 @@ def _scalar(path: str | Path, n: int, raw: str, value: str, col: int) -> Node:
     return Scalar(text, n, col, col + len(value), multiline)
 
 
+def _skip(rows: list[tuple[int, str]], i: int) -> tuple[int, int, str, int, str]:
+    """(index, line, raw, indent, body) of the first non-blank row from ``i`` (index len(rows) and indent −1 at the end)."""
+    while i < len(rows) and not rows[i][1].strip():
+        i += 1
+    if i == len(rows):
+        return i, 0, "", -1, ""
+    n, raw = rows[i]
+    ind = len(raw) - len(raw.lstrip(" "))
+    return i, n, raw, ind, raw[ind:]
+
+
 def _block(path: str | Path, rows: list[tuple[int, str]], i: int, indent: int) -> tuple[dict, int]:
     out: dict = {}
-    while i < len(rows):
-        n, raw = rows[i]
-        if not raw.strip():
-            i += 1
-            continue
-        ind = len(raw) - len(raw.lstrip(" "))
+    while True:
+        i, n, raw, ind, body = _skip(rows, i)
         if ind < indent:
             break
-        body = raw[ind:]
         if ind > indent or body.startswith("- ") or body == "-":
             if ind == indent:
                 break  # a sequence at the parent key's indent
@@ -153,11 +159,7 @@ def _block(path: str | Path, rows: list[tuple[int, str]], i: int, indent: int) -
                 node.multiline = True  # a plain or quoted string running on
                 i += 1
         else:
-            j = i
-            while j < len(rows) and not rows[j][1].strip():
-                j += 1
-            nxt = len(rows[j][1]) - len(rows[j][1].lstrip(" ")) if j < len(rows) else -1
-            nbody = rows[j][1].lstrip(" ") if j < len(rows) else ""
+            j, _, _, nxt, nbody = _skip(rows, i)
             if nxt >= indent and (nbody.startswith("- ") or nbody == "-"):
                 node, i = _seq(path, rows, j, nxt)
             elif nxt > indent:
@@ -172,13 +174,10 @@ def _block(path: str | Path, rows: list[tuple[int, str]], i: int, indent: int) -
 
 def _seq(path: str | Path, rows: list[tuple[int, str]], i: int, indent: int) -> tuple[list, int]:
     out: list = []
-    while i < len(rows):
-        n, raw = rows[i]
-        if not raw.strip():
-            i += 1
-            continue
-        ind = len(raw) - len(raw.lstrip(" "))
-        body = raw[ind:]
+    while True:
+        i, n, raw, ind, body = _skip(rows, i)
+        if ind < 0:
+            break
         if ind != indent or not (body.startswith("- ") or body == "-"):
             if ind > indent:
                 raise _bad(path, n, raw, "- ITEM at the sequence's indent")
