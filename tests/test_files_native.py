@@ -101,6 +101,13 @@ def test_urp_light_under_a_rotated_parent_and_several_lights(tmp_path):
     assert files.read(two, light="Sun B").sun[0] == pytest.approx(30.0, abs=1e-5)
     with pytest.raises(FileError, match="'Sun C'"):
         files.read(two, light="Sun C")
+    # URP's main light (GetMainLightIndex): RenderSettings.sun, else the brightest directional light
+    text = two.read_text()
+    two.write_text(text + "--- !u!104 &3\nRenderSettings:\n  m_Sun: {fileID: 202}\n")
+    assert files.read(two).light == "Sun B"
+    two.write_text(text.replace("  m_Type: 1\n", "  m_Type: 1\n  m_Intensity: 2\n", 1).replace("  m_Type: 1\n  m_Shadows", "  m_Type: 1\n  m_Intensity: 1\n  m_Shadows"))
+    found = files.read(two)
+    assert found.light == "Sun A" and any("the brightest" in n for n in found.notes)
 
 
 # ---------------------------------------------------------------- Unreal
@@ -348,3 +355,39 @@ def test_corrupted_samples_are_read_or_refused_in_one_line_and_never_half_writte
 def test_every_sample_is_detected_as_its_engine(name):
     engine = {"urp": "unity-urp", "unreal": "unreal", "filament": "filament"}[name.split("_")[0]]
     assert files.detect(HERE / name) == engine
+
+
+READERS = ("unity_urp", "unreal", "filament")
+GARBAGE = st.one_of(st.none(), st.integers(), st.floats(allow_nan=True), st.text(max_size=8), st.lists(st.integers(), max_size=3),
+                    st.dictionaries(st.text(max_size=4), st.integers(), max_size=2), st.binary(max_size=4))
+
+
+@pytest.mark.parametrize("module", READERS)
+@settings(max_examples=40, deadline=None, derandomize=True)
+@given(files_=GARBAGE, light=GARBAGE, camera=GARBAGE, changes=GARBAGE)
+def test_reader_functions_refuse_garbage_naming_the_parameter(module, files_, light, camera, changes):
+    import importlib
+
+    mod = importlib.import_module(f"aliasing.setups.files.{module}")
+    with pytest.raises(ValueError, match="files|light|camera"):
+        mod.read(files_, light, camera)
+    sample = {"unity_urp": "urp_high.asset", "unreal": "unreal_DefaultEngine.ini", "filament": "filament_settings.json"}[module]
+    path = HERE / sample
+    text = path.read_text()
+    found = mod.read([(path, text)], None, None)
+    with pytest.raises(ValueError, match=r"changes|setting|must be"):
+        mod.patch(path, text, changes if not isinstance(changes, dict) or changes else {"": 1}, found)
+
+
+@settings(max_examples=60, deadline=None, derandomize=True)
+@given(value=GARBAGE)
+def test_write_refuses_a_garbage_value_naming_the_key(value, tmp_path_factory):
+    path = _copy(tmp_path_factory.mktemp("w"), "filament_settings.json")
+    before = path.read_bytes()
+    try:
+        files.write(path, {"mapSize": value})
+    except ValueError as err:
+        assert str(err).startswith("mapSize must be")
+        assert path.read_bytes() == before
+    else:
+        assert files.read(path).settings["mapSize"] == value

@@ -17,6 +17,7 @@ aliasing.setups.files.common.FileError: URP.asset: line 12 / shadowCascadeCount:
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -42,6 +43,17 @@ def coerce(path: str | Path, line: int | str, engine: str, key: str, value: Any)
         raise FileError(path, where, s.allowed() + unit, repr(value)) from None
 
 
+def pairs(files: Any, light: Any, camera: Any) -> list[tuple[Path, str]]:
+    """``files`` as a non-empty list of (path, text) pairs, and ``light``/``camera`` None or names (ValueError naming them)."""
+    if not isinstance(files, (list, tuple)) or not files or not all(
+            isinstance(f, tuple) and len(f) == 2 and isinstance(f[0], Path) and isinstance(f[1], str) for f in files):
+        raise ValueError(f"files must be a non-empty list of (Path, text) pairs, got {type(files).__name__}")
+    for name, value in (("light", light), ("camera", camera)):
+        if value is not None and (not isinstance(value, str) or not value.strip()):
+            raise ValueError(f"{name} must be a node or object name, got {value!r}")
+    return list(files)
+
+
 def text_of(path: str | Path, text: str, what: str) -> None:
     """Refuse text that is empty or holds NUL bytes (a binary file decoded as UTF-8)."""
     if not text.strip():
@@ -60,8 +72,10 @@ def number_text(value: Any) -> str:
     return repr(value) if isinstance(value, float) else str(value)
 
 
-def typed_changes(path: str | Path, engine: str, changes: dict[str, Any]) -> dict[str, Any]:
+def typed_changes(path: str | Path, engine: str, changes: Any) -> dict[str, Any]:
     """``changes`` (engine keys to values) typed and range-checked by the profile (ValueError naming the key)."""
+    if not isinstance(changes, Mapping) or not all(isinstance(k, str) for k in changes):
+        raise ValueError(f"changes must be a mapping of {engine} setting names to values, got {changes!r:.80}")
     profile = get(engine)
     return {key: profile.setting(key).coerce(value) for key, value in changes.items()}
 

@@ -153,11 +153,14 @@ def _block(path: str | Path, rows: list[tuple[int, str]], i: int, indent: int) -
         i += 1
         if value:
             node = _scalar(path, n, raw, value, ind + at)
-            while i < len(rows) and rows[i][1].strip() and len(rows[i][1]) - len(rows[i][1].lstrip(" ")) > indent:
+            while True:  # a plain or quoted string running on over deeper lines (blank lines within)
+                j, jn, jraw, jind, _ = _skip(rows, i)
+                if jind <= indent:
+                    break
                 if not isinstance(node, Scalar):
-                    raise _bad(path, rows[i][0], rows[i][1])
-                node.multiline = True  # a plain or quoted string running on
-                i += 1
+                    raise _bad(path, jn, jraw)
+                node.multiline = True
+                i = j + 1
         else:
             j, _, _, nxt, nbody = _skip(rows, i)
             if nxt >= indent and (nbody.startswith("- ") or nbody == "-"):

@@ -41,7 +41,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import get
-from ._native import coerce, text_of, typed_changes
+from ._native import coerce, pairs, text_of, typed_changes
 from .common import FileError, Found, sun_from_directions, vertical_fov
 
 ENGINE = "filament"
@@ -224,6 +224,7 @@ def _sun(path: Path, data: dict, shape: str, text: str, spans: dict, where: dict
 
 def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found:
     """The shadow options, shadow type, sun and camera of one viewer settings file."""
+    files = pairs(files, light, camera)
     if len(files) != 1:
         raise ValueError(f"project must be one Filament settings JSON, got {len(files)} files")
     for name, value in (("light", light), ("camera", camera)):
@@ -290,7 +291,7 @@ def _insert(text: str, spans: dict, data: dict, path: tuple, value: Any) -> str:
 def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> str:
     """``text`` with each changed value rewritten in place (the rest byte for byte); a key the
     file lacks is added to its object (the object, or its parents, created where absent)."""
-    new = typed_changes(path, ENGINE, dict(changes))
+    new = typed_changes(path, ENGINE, changes)
     data = _load(path, text)
     paths = _paths(_shape(data))
     splits = {k: v for k, v in new.items() if k in SPLITS}

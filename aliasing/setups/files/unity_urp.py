@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from ._native import coerce, number_text, splice, text_of, typed_changes
+from ._native import coerce, number_text, pairs, splice, text_of, typed_changes
 from ._unity_yaml import WHAT, Document, Scalar, parse, ref, scalar
 from .common import FileError, Found, sun_from_directions
 
@@ -67,7 +67,7 @@ ENUMS = {"softShadowQuality": {1: "Low", 2: "Medium", 3: "High"},
          "light.softShadowQuality": {0: "UsePipelineSettings", 1: "Low", 2: "Medium", 3: "High"},
          "light.shadows": {1: "Hard", 2: "Soft"}}
 BOOLS = ("supportsSoftShadows", "light.usePipelineSettings")
-LIGHT_CLASS, CAMERA_CLASS, TRANSFORM_CLASSES, GAMEOBJECT_CLASS = 108, 20, (4, 224), 1
+LIGHT_CLASS, CAMERA_CLASS, TRANSFORM_CLASSES, GAMEOBJECT_CLASS, RENDER_SETTINGS_CLASS = 108, 20, (4, 224), 1, 104
 
 
 def sniff(path: Path, text: str) -> bool:
@@ -130,6 +130,12 @@ class _Scene:
 
     def name(self, d: Document) -> str:
         return self.names.get(ref(d.fields.get("m_GameObject")) or "", "") or f"&{d.file_id}"
+
+    def tag(self, d: Document) -> str:
+        """The ``m_TagString`` of ``d``'s GameObject ("" where none)."""
+        go = self.by_id.get(ref(d.fields.get("m_GameObject")) or "")
+        s = scalar(go.fields.get("m_TagString")) if go is not None else None
+        return s.text.strip() if s is not None else ""
 
     def component(self, go: str | None, test) -> Document | None:
         return next((d for d in self.docs if ref(d.fields.get("m_GameObject")) == go and test(d)), None)
@@ -209,13 +215,41 @@ def _files(files: list[tuple[Path, str]]) -> tuple[tuple[Path, Document] | None,
     return asset, scenes
 
 
-def _light(scene: _Scene, name: str | None) -> Document | None:
+def _enabled(docs: list[Document]) -> list[Document]:
+    """The components not switched off (``m_Enabled: 0``); all of them where every one is."""
+    on = [d for d in docs if not (scalar(d.fields.get("m_Enabled")) and d.fields["m_Enabled"].text.strip() == "0")]
+    return on or docs
+
+
+def _light(scene: _Scene, name: str | None, notes: list[str] | None = None) -> Document | None:
+    """The directional light ``name``, else URP's main light: ``RenderSettings.sun`` (the scene's
+    ``m_Sun``), else the brightest (``UniversalRenderPipeline.GetMainLightIndex``)."""
     lights = [d for d in scene.docs if d.class_id == LIGHT_CLASS and scalar(d.fields.get("m_Type")) and d.fields["m_Type"].text.strip() == "1"]
+    if name is None and len(_enabled(lights)) > 1:
+        lights = _enabled(lights)
+        sun = next((ref(d.fields.get("m_Sun")) for d in scene.docs if d.class_id == RENDER_SETTINGS_CLASS), None)
+        main = [d for d in lights if d.file_id == sun]
+        if not main:
+            power = {d.file_id: _number(scene.path, d.fields.get("m_Intensity"), "m_Intensity", "") for d in lights if "m_Intensity" in d.fields}
+            top = max(power.values(), default=None)
+            main = [d for d in lights if power.get(d.file_id) == top] if top is not None else []
+        if len(main) == 1:
+            if notes is not None:
+                how = "RenderSettings m_Sun" if main[0].file_id == sun else "the brightest (m_Intensity)"
+                notes.append(f"light {scene.name(main[0])!r}: URP's main light of {len(lights)} directional lights, {how} (GetMainLightIndex)")
+            return main[0]
     return _pick(scene.path, lights, scene, name, "light")
 
 
-def _camera(scene: _Scene, name: str | None) -> Document | None:
+def _camera(scene: _Scene, name: str | None, notes: list[str] | None = None) -> Document | None:
+    """The camera ``name``, else the one camera, else the enabled one on the GameObject tagged MainCamera (``Camera.main``)."""
     cams = [d for d in scene.docs if d.class_id == CAMERA_CLASS]
+    if name is None and len(cams) > 1:
+        tagged = [d for d in _enabled(cams) if scene.tag(d) == "MainCamera"]
+        if len(tagged) == 1:
+            if notes is not None:
+                notes.append(f"camera {scene.name(tagged[0])!r}: the one tagged MainCamera of {len(cams)} cameras (Camera.main)")
+            return tagged[0]
     return _pick(scene.path, cams, scene, name, "camera")
 
 
@@ -225,6 +259,7 @@ def _extra(scene: _Scene, light: Document) -> Document | None:
 
 def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found:
     """The URP asset's settings and, from a scene, the light's settings, the camera and the sun."""
+    files = pairs(files, light, camera)
     asset, scenes = _files(files)
     settings: dict[str, Any] = {}
     where: dict[str, str] = {}
@@ -256,7 +291,7 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
     if len(scenes) > 1:
         raise FileError(scenes[1].path, "the whole file", "one scene with the camera and the light", "a second scene")
     if scene is not None:
-        ld, cd = _light(scene, light), _camera(scene, camera)
+        ld, cd = _light(scene, light, notes), _camera(scene, camera, notes)
         if ld is not None:
             light_name = scene.name(ld)
             take(scene.path, ld.fields, LIGHT)
@@ -292,7 +327,7 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
 
 def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> str:
     """``text`` with each changed value rewritten in its field's line (the rest byte for byte)."""
-    new = typed_changes(path, ENGINE, dict(changes))
+    new = typed_changes(path, ENGINE, changes)
     asset, scenes = _files([(path, text)])
     lines = text.splitlines(keepends=True)
     edits: list[tuple[int, int, int, str]] = []

@@ -41,7 +41,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import get
-from ._native import coerce, number_text, text_of, typed_changes
+from ._native import coerce, number_text, pairs, text_of, typed_changes
 from .common import FileError, Found
 
 ENGINE = "unreal"
@@ -150,6 +150,7 @@ def _value(path: Path, e: _Entry) -> Any:
 def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found:
     """The console variables of one or more ``.ini`` files (later files override earlier ones, as
     Unreal's hierarchy does for ``DefaultEngine.ini`` over ``BaseEngine.ini``)."""
+    files = pairs(files, light, camera)
     for name, value in (("light", light), ("camera", camera)):
         if value is not None:
             raise ValueError(f"{name} {value!r}: DefaultEngine.ini holds no lights or cameras (the level does); "
@@ -178,13 +179,12 @@ def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> st
     """``text`` with each changed console variable's value rewritten on the line that sets it (the
     strongest section's), or a new line at the end of the last ``[SystemSettings]`` section (one
     added at the end of the file where there is none)."""
+    new = typed_changes(path, ENGINE, changes)  # unknown keys: a did-you-mean
     cvars = set(_cvars().values())
-    for key in changes:
-        get(ENGINE).setting(key)  # unknown keys: a did-you-mean
+    for key in new:
         if key not in cvars:
             raise ValueError(f"{key} is a property of the DirectionalLight (in the level), not a console variable of "
                              f"{path.name}: set it in the editor or give it with --set")
-    new = typed_changes(path, ENGINE, dict(changes))
     by_key, _, sections = _parse(path, text)
     lines = text.splitlines(keepends=True)
     eol = "\r\n" if "\r\n" in text else "\n"
