@@ -15,7 +15,10 @@ Read from google/filament as stored in the index (1.5x): ``libs/viewer/include/v
   {``near``, ``far``, ``focalLength`` [mm], ``horizontalFov`` [deg] (0: the focal length),
   ``center``, ``lookAt``, ``up``};
 
-and ``view.shadowType`` (``PCF``, ``VSM``, ``DPCF``, ``PCSS``) in both.  The focal length is that
+and ``view.shadowType`` (``PCF``, ``VSM``, ``DPCF``, ``PCSS``) in both.  Older viewers' parsers (a
+stored ``Settings.cpp`` with ``// TODO: constantBias``) read only ``mapSize``, ``shadowCascades``,
+``cascadeSplitPositions``, ``stable``, ``lispsm``, ``screenSpaceContactShadows`` and ``vsm`` and skip
+the other options with a warning; the toolkit reads every option, as later viewers do.  The focal length is that
 of a 35 mm camera: the frame is 24 mm high (``FCamera::projection``, ``filament/src/details/Camera.cpp``:
 h = near/2 · 24 mm / focal length), so the vertical field of view is 2·atan(12 mm / focal length).
 The settings are read in the profile's keys (:mod:`aliasing.setups.filament`), distances in metres.
@@ -46,8 +49,9 @@ from .common import FileError, Found, sun_from_directions, vertical_fov
 
 ENGINE = "filament"
 TITLE = "Filament viewer settings JSON (lighting.shadowOptions, view.shadowType)"
-SOURCE = ("google/filament libs/viewer/include/viewer/Settings.h and libs/viewer/src/Settings.cpp, Settings_generated.cpp "
-          "(JsonSerializer::readJson), as stored in the index (1.5x)")
+SOURCE = ("google/filament libs/viewer/include/viewer/Settings.h (commit 000e151b: lighting.sunlight and camera; an earlier stored "
+          "1.5x version: lighting.shadowOptions, lighting.sunlightDirection, viewer.camera*) and libs/viewer/src/Settings.cpp "
+          "(commit 523a261b: the ShadowOptions parser, JsonSerializer::readJson); filament/src/details/Camera.cpp FCamera::projection")
 
 #: The ShadowOptions fields the profile has, as the JSON spells them (the profile's key is the same).
 OPTIONS = ("mapSize", "shadowCascades", "constantBias", "normalBias", "shadowFar", "shadowNearHint", "shadowFarHint", "stable", "lispsm",
@@ -59,7 +63,19 @@ _WS = re.compile(r"[ \t\n\r]*")
 
 
 def sniff(path: Path, text: str) -> bool:
-    """A JSON object with the viewer's ``lighting`` (with shadow options or the sun) or ``view.shadowType``."""
+    """A JSON object with the viewer's ``lighting`` (with shadow options or the sun) or ``view.shadowType``.
+
+    Parameters
+    ----------
+    path : Path
+        The file's path (its suffix counts).
+    text : str
+        Its text.
+
+    Returns
+    -------
+    bool
+    """
     if text.lstrip()[:1] != "{" or '"entities"' in text:  # a PlayCanvas scene has entities (and a shadowType per light)
         return False
     return '"lighting"' in text and ('"shadowOptions"' in text or '"sunlight' in text) or '"view"' in text and '"shadowType"' in text
@@ -223,7 +239,25 @@ def _sun(path: Path, data: dict, shape: str, text: str, spans: dict, where: dict
 
 
 def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found:
-    """The shadow options, shadow type, sun and camera of one viewer settings file."""
+    """The shadow options, shadow type, sun and camera of one viewer settings file.
+
+    Parameters
+    ----------
+    files : list of (Path, str)
+        The files and their text, as :func:`aliasing.setups.files.read` passes them.
+    light, camera : str or None
+        Refused where given: the viewer's settings hold one sun and one camera, unnamed.
+
+    Returns
+    -------
+    Found
+        The settings in the profile's keys and types, the camera (near, far [m], vertical fov [deg]) and the sun (elevation, azimuth [deg]), where each was found, and notes.
+
+    Raises
+    ------
+    ValueError
+        :class:`~.common.FileError` naming the file, the line and the key for a damaged or foreign file.
+    """
     files = pairs(files, light, camera)
     if len(files) != 1:
         raise ValueError(f"project must be one Filament settings JSON, got {len(files)} files")
@@ -290,7 +324,24 @@ def _insert(text: str, spans: dict, data: dict, path: tuple, value: Any) -> str:
 
 def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> str:
     """``text`` with each changed value rewritten in place (the rest byte for byte); a key the
-    file lacks is added to its object (the object, or its parents, created where absent)."""
+    file lacks is added to its object (the object, or its parents, created where absent).
+
+    Parameters
+    ----------
+    path : Path
+        The file (its name appears in messages).
+    text : str
+        Its text.
+    changes : mapping
+        Profile keys to new values (typed and range-checked by the profile).
+    found : Found
+        What :func:`read` found in ``text`` (the light it took).
+
+    Returns
+    -------
+    str
+        The new text; reading it back gives ``changes`` exactly.
+    """
     new = typed_changes(path, ENGINE, changes)
     data = _load(path, text)
     paths = _paths(_shape(data))

@@ -49,8 +49,10 @@ from .common import FileError, Found, sun_from_directions
 
 ENGINE = "unity-urp"
 TITLE = "Unity URP asset (UniversalRenderPipelineAsset .asset YAML) and a .unity scene's camera and directional light"
-SOURCE = ("com.unity.render-pipelines.universal/Runtime/Data/UniversalRenderPipelineAsset.cs and Runtime/UniversalAdditionalLightData.cs "
-          "(Unity-Technologies/Graphics as stored); Unity's manual 'Format of Text Serialized files' and 'YAML Class ID Reference'")
+SOURCE = ("Unity-Technologies/Graphics Packages/com.unity.render-pipelines.universal/Runtime/Data/UniversalRenderPipelineAsset.cs "
+          "(commit 016e6c15, the serialized shadow fields), Runtime/UniversalAdditionalLightData.cs (commit 4627c944: m_UsePipelineSettings, "
+          "m_SoftShadowQuality), UniversalRenderPipeline.cs GetMainLightIndex; Unity's manual 'Format of Text Serialized files' and "
+          "'YAML Class ID Reference'")
 
 #: Profile key -> the asset's field path.
 ASSET = {"shadowDistance": ("m_ShadowDistance",), "shadowCascadeCount": ("m_ShadowCascadeCount",), "cascade2Split": ("m_Cascade2Split",),
@@ -71,7 +73,19 @@ LIGHT_CLASS, CAMERA_CLASS, TRANSFORM_CLASSES, GAMEOBJECT_CLASS, RENDER_SETTINGS_
 
 
 def sniff(path: Path, text: str) -> bool:
-    """Unity's YAML with a URP asset's shadow fields, or a ``.unity`` scene."""
+    """Unity's YAML with a URP asset's shadow fields, or a ``.unity`` scene.
+
+    Parameters
+    ----------
+    path : Path
+        The file's path (its suffix counts).
+    text : str
+        Its text.
+
+    Returns
+    -------
+    bool
+    """
     if not text.lstrip().startswith("%YAML") or "--- !u!" not in text:
         return False
     return path.suffix.lower() == ".unity" or "m_ShadowCascadeCount:" in text or "\nLight:" in text
@@ -258,7 +272,25 @@ def _extra(scene: _Scene, light: Document) -> Document | None:
 
 
 def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found:
-    """The URP asset's settings and, from a scene, the light's settings, the camera and the sun."""
+    """The URP asset's settings and, from a scene, the light's settings, the camera and the sun.
+
+    Parameters
+    ----------
+    files : list of (Path, str)
+        The files and their text, as :func:`aliasing.setups.files.read` passes them.
+    light, camera : str or None
+        The names of the directional light and the camera (their GameObjects' ``m_Name``) where a scene holds several.
+
+    Returns
+    -------
+    Found
+        The settings in the profile's keys and types, the camera (near, far [m], vertical fov [deg]) and the sun (elevation, azimuth [deg]) from a scene, where each was found, and notes.
+
+    Raises
+    ------
+    ValueError
+        :class:`~.common.FileError` naming the file, the line and the key for a damaged or foreign file.
+    """
     files = pairs(files, light, camera)
     asset, scenes = _files(files)
     settings: dict[str, Any] = {}
@@ -326,7 +358,24 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
 
 
 def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> str:
-    """``text`` with each changed value rewritten in its field's line (the rest byte for byte)."""
+    """``text`` with each changed value rewritten in its field's line (the rest byte for byte).
+
+    Parameters
+    ----------
+    path : Path
+        The file (its name appears in messages).
+    text : str
+        Its text.
+    changes : mapping
+        Profile keys to new values (typed and range-checked by the profile).
+    found : Found
+        What :func:`read` found in ``text`` (the light it took).
+
+    Returns
+    -------
+    str
+        The new text; reading it back gives ``changes`` exactly.
+    """
     new = typed_changes(path, ENGINE, changes)
     asset, scenes = _files([(path, text)])
     lines = text.splitlines(keepends=True)

@@ -68,7 +68,19 @@ class _Entry:
 
 
 def sniff(path: Path, text: str) -> bool:
-    """An ``.ini`` file, or any text with one of the console-variable sections."""
+    """An ``.ini`` file, or any text with one of the console-variable sections.
+
+    Parameters
+    ----------
+    path : Path
+        The file's path (its suffix counts).
+    text : str
+        Its text.
+
+    Returns
+    -------
+    bool
+    """
     if path.suffix.lower() == ".ini":
         return True
     return any(m and m.group(1).strip().lower() in SECTIONS for m in map(_SECTION.match, text.splitlines()[:5000]))
@@ -149,7 +161,25 @@ def _value(path: Path, e: _Entry) -> Any:
 
 def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found:
     """The console variables of one or more ``.ini`` files (later files override earlier ones, as
-    Unreal's hierarchy does for ``DefaultEngine.ini`` over ``BaseEngine.ini``)."""
+    Unreal's hierarchy does for ``DefaultEngine.ini`` over ``BaseEngine.ini``).
+
+    Parameters
+    ----------
+    files : list of (Path, str)
+        The files and their text, as :func:`aliasing.setups.files.read` passes them.
+    light, camera : str or None
+        Refused where given: the ini holds no lights or cameras.
+
+    Returns
+    -------
+    Found
+        The settings in the profile's keys and types, no camera and no sun, where each was found, and notes.
+
+    Raises
+    ------
+    ValueError
+        :class:`~.common.FileError` naming the file, the line and the key for a damaged or foreign file.
+    """
     files = pairs(files, light, camera)
     for name, value in (("light", light), ("camera", camera)):
         if value is not None:
@@ -178,7 +208,24 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
 def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> str:
     """``text`` with each changed console variable's value rewritten on the line that sets it (the
     strongest section's), or a new line at the end of the last ``[SystemSettings]`` section (one
-    added at the end of the file where there is none)."""
+    added at the end of the file where there is none).
+
+    Parameters
+    ----------
+    path : Path
+        The file (its name appears in messages).
+    text : str
+        Its text.
+    changes : mapping
+        Profile keys to new values (typed and range-checked by the profile).
+    found : Found
+        What :func:`read` found in ``text`` (the light it took).
+
+    Returns
+    -------
+    str
+        The new text; reading it back gives ``changes`` exactly.
+    """
     new = typed_changes(path, ENGINE, changes)  # unknown keys: a did-you-mean
     cvars = set(_cvars().values())
     for key in new:
