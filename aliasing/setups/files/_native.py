@@ -1,5 +1,5 @@
 """What the Unity URP, Unreal and Filament readers share: typing a file's value as the profile's
-setting (a one-line :class:`~.common.FileError` where it does not fit), writing a value back in
+setting (a one-line :class:`~aliasing.setups.files.common.FileError` where it does not fit), writing a value back in
 the file's spelling, and the text checks every reader makes first.
 
 Examples

@@ -1,7 +1,7 @@
 """Unity URP: the ``UniversalRenderPipelineAsset`` (``.asset``) and, optionally, a ``.unity`` scene's
 main camera and directional light.
 
-Both are Unity's text serialization (:mod:`._unity_yaml`; Unity's manual *Format of Text
+Both are Unity's text serialization (``aliasing.setups.files._unity_yaml``; Unity's manual *Format of Text
 Serialized files*).  The asset's fields, as ``UniversalRenderPipelineAsset.cs`` declares them
 (``com.unity.render-pipelines.universal/Runtime/Data/UniversalRenderPipelineAsset.cs``,
 Unity-Technologies/Graphics as stored, the release :mod:`aliasing.setups.unity_urp` reads), map to the
@@ -289,7 +289,7 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
     Raises
     ------
     ValueError
-        :class:`~.common.FileError` naming the file, the line and the key for a damaged or foreign file.
+        :class:`~aliasing.setups.files.common.FileError` naming the file, the line and the key for a damaged or foreign file.
     """
     files = pairs(files, light, camera)
     asset, scenes = _files(files)

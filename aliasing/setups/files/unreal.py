@@ -178,7 +178,7 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
     Raises
     ------
     ValueError
-        :class:`~.common.FileError` naming the file, the line and the key for a damaged or foreign file.
+        :class:`~aliasing.setups.files.common.FileError` naming the file, the line and the key for a damaged or foreign file.
     """
     files = pairs(files, light, camera)
     for name, value in (("light", light), ("camera", camera)):
