@@ -341,6 +341,10 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
             if ortho is not None and ortho.text.strip() == "1":
                 raise FileError(scene.path, f"line {ortho.line} / orthographic", "a perspective camera (orthographic: 0)", "1")
             notes.append("camera: Unity stores the field of view vertical [deg] (m_FOVAxisMode only picks the inspector's axis); near and far in metres")
+            mode = scalar(cd.fields.get("m_projectionMatrixMode"))
+            if mode is not None and mode.text.strip() == "2":
+                notes.append("camera: a physical camera (m_projectionMatrixMode 2): the stored field of view is taken; "
+                             "the sensor's gate fit (m_GateFitMode, m_SensorSize, m_LensShift) is not modelled")
         if ld is not None:
             towards = -_forward(scene.rotation(ld, notes))
             if cd is not None:
