@@ -63,19 +63,7 @@ _WS = re.compile(r"[ \t\n\r]*")
 
 
 def sniff(path: Path, text: str) -> bool:
-    """A JSON object with the viewer's ``lighting`` (with shadow options or the sun) or ``view.shadowType``.
-
-    Parameters
-    ----------
-    path : Path
-        The file's path (its suffix counts).
-    text : str
-        Its text.
-
-    Returns
-    -------
-    bool
-    """
+    """A JSON object with the viewer's ``lighting`` (with shadow options or the sun) or ``view.shadowType``."""
     if text.lstrip()[:1] != "{" or '"entities"' in text:  # a PlayCanvas scene has entities (and a shadowType per light)
         return False
     return '"lighting"' in text and ('"shadowOptions"' in text or '"sunlight' in text) or '"view"' in text and '"shadowType"' in text
@@ -241,22 +229,10 @@ def _sun(path: Path, data: dict, shape: str, text: str, spans: dict, where: dict
 def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found:
     """The shadow options, shadow type, sun and camera of one viewer settings file.
 
-    Parameters
-    ----------
-    files : list of (Path, str)
-        The files and their text, as :func:`aliasing.setups.files.read` passes them.
-    light, camera : str or None
-        Refused where given: the viewer's settings hold one sun and one camera, unnamed.
-
-    Returns
-    -------
-    Found
-        The settings in the profile's keys and types, the camera (near, far [m], vertical fov [deg]) and the sun (elevation, azimuth [deg]), where each was found, and notes.
-
-    Raises
-    ------
-    ValueError
-        :class:`~aliasing.setups.files.common.FileError` naming the file, the line and the key for a damaged or foreign file.
+    ``files``: one (path, text) pair; ``light`` and ``camera`` are refused (the settings hold one
+    sun and one camera, unnamed).  Returns the settings in the profile's keys and types, the camera
+    (near, far [m], vertical fov [deg]) and the sun (elevation, azimuth [deg]), where each was found, and notes.
+    A damaged or foreign file raises :class:`~aliasing.setups.files.common.FileError` (file, line, key).
     """
     files = pairs(files, light, camera)
     if len(files) != 1:
@@ -326,21 +302,9 @@ def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> st
     """``text`` with each changed value rewritten in place (the rest byte for byte); a key the
     file lacks is added to its object (the object, or its parents, created where absent).
 
-    Parameters
-    ----------
-    path : Path
-        The file (its name appears in messages).
-    text : str
-        Its text.
-    changes : mapping
-        Profile keys to new values (typed and range-checked by the profile).
-    found : Found
-        What :func:`read` found in ``text`` (the light it took).
-
-    Returns
-    -------
-    str
-        The new text; reading it back gives ``changes`` exactly.
+    The reader interface (:mod:`aliasing.setups.files.common`): ``changes`` are profile keys to values,
+    typed and range-checked by the profile (ValueError naming the key); ``found`` is what :func:`read`
+    found in ``text``.  Reading the result back gives ``changes`` exactly.
     """
     new = typed_changes(path, ENGINE, changes)
     data = _load(path, text)

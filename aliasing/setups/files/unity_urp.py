@@ -73,19 +73,7 @@ LIGHT_CLASS, CAMERA_CLASS, TRANSFORM_CLASSES, GAMEOBJECT_CLASS, RENDER_SETTINGS_
 
 
 def sniff(path: Path, text: str) -> bool:
-    """Unity's YAML with a URP asset's shadow fields, or a ``.unity`` scene.
-
-    Parameters
-    ----------
-    path : Path
-        The file's path (its suffix counts).
-    text : str
-        Its text.
-
-    Returns
-    -------
-    bool
-    """
+    """Unity's YAML with a URP asset's shadow fields, or a ``.unity`` scene."""
     if not text.lstrip().startswith("%YAML") or "--- !u!" not in text:
         return False
     return path.suffix.lower() == ".unity" or "m_ShadowCascadeCount:" in text or "\nLight:" in text
@@ -274,22 +262,11 @@ def _extra(scene: _Scene, light: Document) -> Document | None:
 def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -> Found:
     """The URP asset's settings and, from a scene, the light's settings, the camera and the sun.
 
-    Parameters
-    ----------
-    files : list of (Path, str)
-        The files and their text, as :func:`aliasing.setups.files.read` passes them.
-    light, camera : str or None
-        The names of the directional light and the camera (their GameObjects' ``m_Name``) where a scene holds several.
-
-    Returns
-    -------
-    Found
-        The settings in the profile's keys and types, the camera (near, far [m], vertical fov [deg]) and the sun (elevation, azimuth [deg]) from a scene, where each was found, and notes.
-
-    Raises
-    ------
-    ValueError
-        :class:`~aliasing.setups.files.common.FileError` naming the file, the line and the key for a damaged or foreign file.
+    ``files``: (path, text) pairs, the URP asset and at most one scene; ``light``, ``camera``: the
+    names of the directional light and the camera (their GameObjects' ``m_Name``) where a scene holds
+    several.  Returns the settings in the profile's keys and types, the camera (near, far [m], vertical
+    fov [deg]) and the sun (elevation, azimuth [deg]) from a scene, where each was found, and notes.
+    A damaged or foreign file raises :class:`~aliasing.setups.files.common.FileError` (file, line, key).
     """
     files = pairs(files, light, camera)
     asset, scenes = _files(files)
@@ -364,21 +341,9 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
 def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> str:
     """``text`` with each changed value rewritten in its field's line (the rest byte for byte).
 
-    Parameters
-    ----------
-    path : Path
-        The file (its name appears in messages).
-    text : str
-        Its text.
-    changes : mapping
-        Profile keys to new values (typed and range-checked by the profile).
-    found : Found
-        What :func:`read` found in ``text`` (the light it took).
-
-    Returns
-    -------
-    str
-        The new text; reading it back gives ``changes`` exactly.
+    The reader interface (:mod:`aliasing.setups.files.common`): ``changes`` are profile keys to values,
+    typed and range-checked by the profile (ValueError naming the key); ``found`` is what :func:`read`
+    found in ``text``.  Reading the result back gives ``changes`` exactly.
     """
     new = typed_changes(path, ENGINE, changes)
     asset, scenes = _files([(path, text)])

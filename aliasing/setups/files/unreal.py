@@ -68,19 +68,7 @@ class _Entry:
 
 
 def sniff(path: Path, text: str) -> bool:
-    """An ``.ini`` file, or any text with one of the console-variable sections.
-
-    Parameters
-    ----------
-    path : Path
-        The file's path (its suffix counts).
-    text : str
-        Its text.
-
-    Returns
-    -------
-    bool
-    """
+    """An ``.ini`` file, or any text with one of the console-variable sections."""
     if path.suffix.lower() == ".ini":
         return True
     return any(m and m.group(1).strip().lower() in SECTIONS for m in map(_SECTION.match, text.splitlines()[:5000]))
@@ -163,22 +151,9 @@ def read(files: list[tuple[Path, str]], light: str | None, camera: str | None) -
     """The console variables of one or more ``.ini`` files (later files override earlier ones, as
     Unreal's hierarchy does for ``DefaultEngine.ini`` over ``BaseEngine.ini``).
 
-    Parameters
-    ----------
-    files : list of (Path, str)
-        The files and their text, as :func:`aliasing.setups.files.read` passes them.
-    light, camera : str or None
-        Refused where given: the ini holds no lights or cameras.
-
-    Returns
-    -------
-    Found
-        The settings in the profile's keys and types, no camera and no sun, where each was found, and notes.
-
-    Raises
-    ------
-    ValueError
-        :class:`~aliasing.setups.files.common.FileError` naming the file, the line and the key for a damaged or foreign file.
+    ``files``: (path, text) pairs; ``light`` and ``camera`` are refused (the ini holds no lights or
+    cameras).  Returns the console variables in the profile's types, where each was set, and notes.
+    A damaged or foreign file raises :class:`~aliasing.setups.files.common.FileError` (file, line, key).
     """
     files = pairs(files, light, camera)
     for name, value in (("light", light), ("camera", camera)):
@@ -210,21 +185,9 @@ def patch(path: Path, text: str, changes: Mapping[str, Any], found: Found) -> st
     strongest section's), or a new line at the end of the last ``[SystemSettings]`` section (one
     added at the end of the file where there is none).
 
-    Parameters
-    ----------
-    path : Path
-        The file (its name appears in messages).
-    text : str
-        Its text.
-    changes : mapping
-        Profile keys to new values (typed and range-checked by the profile).
-    found : Found
-        What :func:`read` found in ``text`` (the light it took).
-
-    Returns
-    -------
-    str
-        The new text; reading it back gives ``changes`` exactly.
+    The reader interface (:mod:`aliasing.setups.files.common`): ``changes`` are profile keys to values,
+    typed and range-checked by the profile (ValueError naming the key); ``found`` is what :func:`read`
+    found in ``text``.  Reading the result back gives ``changes`` exactly.
     """
     new = typed_changes(path, ENGINE, changes)  # unknown keys: a did-you-mean
     cvars = set(_cvars().values())
