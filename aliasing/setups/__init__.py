@@ -144,7 +144,8 @@ def add_arguments(parser: argparse.ArgumentParser, *, sun: str | None = "15..60"
                         "files' engine)" + (" (needed, or --project)" if required else "") + (f"; {uses}" if uses else ""))
     parser.add_argument("--project", action="append", metavar="FILE",
                         help="the engine's own project file, read in the engine's names and units (repeatable: Godot's project.godot "
-                        "and a .tscn scene; a .babylon scene; three.js Object JSON; a PlayCanvas scene JSON); --settings, --set, "
+                        "and a .tscn scene; a .babylon scene; three.js Object JSON; a PlayCanvas scene JSON; a Unity URP asset and a .unity scene; "
+                        "Unreal's DefaultEngine.ini; Filament's viewer settings JSON); --settings, --set, "
                         "--camera and --sun go over its values")
     parser.add_argument("--light-node", metavar="NAME", help="the light (Babylon: its shadow generator's light) to take from --project "
                         "where the files hold several")
