@@ -238,10 +238,10 @@ def synthetic_frame(setup, scene: FrameScene, sun: Array | None = None) -> Frame
     sun = check.direction(sun)
     sun = np.asarray(sun, float) / np.linalg.norm(sun)
     geometry = eye_geometry(scene, cam.width, cam.height, VISIBLE[setup.engine](settings))
-    return predict_synthetic(model, settings, scene, sun, geometry, setup.engine)
+    return predict_synthetic(model, settings, scene, sun, geometry, setup.engine, setup.release)
 
 
-def predict_synthetic(model, settings: dict, scene: FrameScene, sun: Array, geometry: tuple, engine: str) -> FrameResult:
+def predict_synthetic(model, settings: dict, scene: FrameScene, sun: Array, geometry: tuple, engine: str, release: str = "") -> FrameResult:
     """:func:`synthetic_frame` on checked values and a drawn ``geometry`` (:func:`eye_geometry`), for many suns over one eye pass.
 
     Examples
@@ -263,6 +263,6 @@ def predict_synthetic(model, settings: dict, scene: FrameScene, sun: Array, geom
     predicted = {**shading(pred.factor, ref, receivers, facing, ground, rb.drawn),
                  "texels_per_pixel": texels_per_pixel(pred.starts, pred.sides, pred.resolution, scene.camera.fov, h)}
     rb = Readback(rb.engine, rb.release, pred.factor, rb.cascade, rb.position, rb.normal, rb.matrices, rb.sizes, rb.info, rb.frame)
-    report = {"engine": engine, "release": "toolkit", "scene": scene.name, "predicted": predicted,
+    report = {"engine": engine, "release": release, "scene": scene.name, "predicted": predicted,
               "details": {"pixels": int(rb.drawn.sum()), "receivers": int(receivers.sum())}}
     return FrameResult(rb, pred, ref, settings, report)
