@@ -26,8 +26,14 @@ from ... import _validation as check
 from ...raster.scenes.builtin import _box
 from ..scenes import FrameScene, frame_scene, wind_outward
 
-#: Boxes, walls, ground cells per side and the seed of the reference scene.
-BOXES, WALLS, GROUND_CELLS, SEED = 24, 4, 8, 7
+#: Boxes in the reference scene.
+BOXES = 24
+#: Walls in the reference scene.
+WALLS = 4
+#: Ground cells per side.
+GROUND_CELLS = 8
+#: The scene's seed.
+SEED = 7
 
 
 def reference_scene(near: float, far: float, fov: float, aspect: float) -> FrameScene:
@@ -45,7 +51,7 @@ def reference_scene(near: float, far: float, fov: float, aspect: float) -> Frame
     Returns
     -------
     FrameScene
-        Named ``reference``; its ground first (:attr:`FrameScene.ground` triangles).
+        Named ``reference``; its ground first (the first ``ground`` triangles).
 
     Examples
     --------

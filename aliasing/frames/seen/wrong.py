@@ -1,7 +1,7 @@
 """The wrong-pixel measure: how much of what the user sees a setup's shadows get wrong, per cascade.
 
-For a :class:`aliasing.setups.Setup` and a scene (default :func:`~.scene.reference_scene`), the
-frame the engine would draw is predicted without a browser (:mod:`.synth`) for ``suns`` suns
+For a :class:`aliasing.setups.Setup` and a scene (default :func:`~aliasing.frames.seen.scene.reference_scene`), the
+frame the engine would draw is predicted without a browser (:mod:`aliasing.frames.seen.synth`) for ``suns`` suns
 evenly over the setup's elevation band (at its azimuth), on a small image of the setup's camera
 (``height`` rows: a sample of the view; the fractions are of its area).  Each drawn pixel is
 compared with the exact shadow (:func:`aliasing.frames.predict.reference`); shaded means a
@@ -149,7 +149,7 @@ def wrong_pixels(setup, scene: FrameScene | str | None = None, *, eye=None, targ
         Engine threejs, babylon or playcanvas (:data:`aliasing.frames.seen.ENGINES`), its
         settings, camera and sun band.
     scene : FrameScene or str, optional
-        None: :func:`~.scene.reference_scene`; ``"boxes"``, ``"city"`` or a scene file
+        None: :func:`~aliasing.frames.seen.scene.reference_scene`; ``"boxes"``, ``"city"`` or a scene file
         (:func:`aliasing.frames.scenes.frame_scene`, with ``eye`` and ``target`` for a file); or a
         FrameScene built with the setup's camera.
     eye, target : array_like or "X,Y,Z", optional
