@@ -310,6 +310,36 @@ def at_pixel_aspect(setup, scene: FrameScene):
     return setup, scene
 
 
+def frame_inputs(setup, scene: FrameScene, sun: Array | None = None):
+    """A frame's checked setup and scene (:func:`at_pixel_aspect`) and its unit sun: the middle of the setup's band unless ``sun`` is given.
+
+    Raises
+    ------
+    ValueError
+        Naming ``setup``, ``scene`` or ``sun``.
+
+    Examples
+    --------
+    >>> from aliasing import setups
+    >>> s = setups.build("threejs", {}, "near=0.5,far=60,fov=50,aspect=2,height=100", "20..40")
+    >>> _, fs, sun = frame_inputs(s, frame_scene("boxes", near=0.5, far=60.0, fov=50.0, aspect=2.0, boxes=1, ground_cells=1))
+    >>> round(float(np.degrees(np.arcsin(sun[1]))), 9)       # 30° above the ground
+    30.0
+    """
+    from .scenes import sun_direction
+
+    if not (hasattr(setup, "pipeline") and hasattr(setup, "profile")):
+        raise ValueError(f"setup must be an aliasing.setups.Setup, got {type(setup).__name__}")
+    if not isinstance(scene, FrameScene):
+        raise ValueError(f"scene must be a FrameScene (aliasing.frames.scenes.frame_scene), got {type(scene).__name__}")
+    setup, scene = at_pixel_aspect(setup, scene)
+    if sun is None:
+        lo, hi = setup.sun.elevation
+        sun = sun_direction((lo + hi) / 2, setup.sun.azimuth, scene.camera)
+    sv = check.direction(sun)
+    return setup, scene, np.asarray(sv, float) / np.linalg.norm(sv)
+
+
 def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, path: str | None = None, maps: int | None = None) -> FrameResult:
     """Render an :class:`aliasing.setups.Setup` (engine, settings, camera with image size, sun) on ``scene``.
 
@@ -353,20 +383,11 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     >>> r.report["measured"]["acne"] < 0.01                   # doctest: +SKIP
     True
     """
-    if not (hasattr(setup, "pipeline") and hasattr(setup, "profile")):
-        raise ValueError(f"setup must be an aliasing.setups.Setup, got {type(setup).__name__}")
-    if not isinstance(scene, FrameScene):
-        raise ValueError(f"scene must be a FrameScene (aliasing.frames.scenes.frame_scene), got {type(scene).__name__}")
     from .models import from_setup
-    from .scenes import sun_direction
 
-    setup, scene = at_pixel_aspect(setup, scene)
+    setup, scene, sv = frame_inputs(setup, scene, sun)
     cam = setup.camera
-    if sun is None:
-        lo, hi = setup.sun.elevation
-        sun = sun_direction((lo + hi) / 2, setup.sun.azimuth, scene.camera)
     settings = from_setup(setup)
-    sv = np.asarray(sun, float) / np.linalg.norm(sun)
     poses = None
     if path is not None:
         refuse_unrendered(setup.engine, settings.get("class"), path, None)

@@ -45,8 +45,8 @@ from ...raster.draw import eye_pass
 from .. import babylon_cascades
 from ..models import from_setup, model_for
 from ..readback import FrameResult, Readback
-from ..run import at_pixel_aspect, pixel_masks, predict_readback, shading
-from ..scenes import FrameScene, sun_direction
+from ..run import frame_inputs, pixel_masks, predict_readback, shading
+from ..scenes import FrameScene, sun_direction  # noqa: F401 - sun_direction for the examples
 
 Array = NDArray[np.float64]
 
@@ -228,15 +228,8 @@ def synthetic_frame(setup, scene: FrameScene, sun: Array | None = None) -> Frame
     (True, (32, 64))
     """
     model, settings = engine_settings(setup)
-    if not isinstance(scene, FrameScene):
-        raise ValueError(f"scene must be a FrameScene (aliasing.frames.scenes.frame_scene), got {type(scene).__name__}")
-    setup, scene = at_pixel_aspect(setup, scene)
+    setup, scene, sun = frame_inputs(setup, scene, sun)
     cam = setup.camera
-    if sun is None:
-        lo, hi = setup.sun.elevation
-        sun = sun_direction((lo + hi) / 2, setup.sun.azimuth, scene.camera)
-    sun = check.direction(sun)
-    sun = np.asarray(sun, float) / np.linalg.norm(sun)
     geometry = eye_geometry(scene, cam.width, cam.height, VISIBLE[setup.engine](settings))
     return predict_synthetic(model, settings, scene, sun, geometry, setup.engine, setup.release)
 
