@@ -200,6 +200,29 @@ def test_eye_geometry_and_reach_refuse_by_name(width, side):
         reach_px(width, np.ones(2), np.ones(2))
 
 
+@settings(max_examples=8, deadline=None, suppress_health_check=list(HealthCheck))
+@given(engine=st.sampled_from(["threejs", "babylon", "playcanvas"]), low=st.floats(1.0, 90.0), span=st.floats(0.0, 60.0),
+       azimuth=st.floats(-360.0, 360.0), near=st.floats(0.05, 2.0), ratio=st.floats(5.0, 5000.0))
+def test_any_valid_sun_band_and_camera_give_fractions_and_strict_json(engine, low, span, azimuth, near, ratio):
+    small = {"threejs": {"shadowMapSize": 256, "cascades": 2}, "babylon": {"mapSize": 256, "numCascades": 2},
+             "playcanvas": {"shadowResolution": 256}}[engine]
+    far = max(near * ratio, 5.0)  # the ground, 1 below the eye, enters the view at a depth of 1 / tan 25° = 2.1
+    s = setups.build(engine, small, f"near={near!r},far={far!r},fov=50,aspect=16:9,height=480", f"{low!r}..{min(90.0, low + span)!r}@{azimuth!r}")
+    w = wrong_pixels(s, height=24, suns=2)
+    json.dumps(w.to_dict(), allow_nan=False)
+    t = w.total
+    assert all(t[k] is None or 0 <= t[k] <= 1 for k in ("acne", "false_shadow", "lost_shadow", "wrong", "blocky"))
+    if t["pixels"] == 0:  # a sun too low for any surface to face it (cos <= 0.05): nothing to count
+        assert t["acne"] is t["wrong"] is None
+    else:
+        assert math.isclose(t["wrong"], t["acne"] + t["false_shadow"] + t["lost_shadow"], rel_tol=1e-12, abs_tol=1e-15)
+
+
+def test_a_view_that_draws_nothing_is_refused_by_name():
+    with pytest.raises(ValueError, match="scene: nothing is drawn"):
+        wrong_pixels(setups.build("playcanvas", {"shadowResolution": 256}, "near=0.25,far=1.25,fov=50,aspect=16:9,height=480", 30))
+
+
 def test_engines_without_predicted_matrices_are_refused_or_reported():
     godot = setups.build("godot", {}, USER, 30)
     with pytest.raises(ValueError, match="engine must be one of threejs, babylon, playcanvas"):
@@ -223,7 +246,7 @@ def test_cli_check_seen_json_and_table(capsys):
 
     args = ["check", "--engine", "playcanvas", "--set", "shadowResolution=512", "--camera", "near=0.5,far=60,fov=50,aspect=16:9,height=720", "--sun", "40"]
     assert main(args + ["--seen", "--format", "json"]) == 0
-    out = json.loads(capsys.readouterr().out)
+    out = json.loads(capsys.readouterr().out, parse_constant=lambda c: pytest.fail(f"{c} in the JSON"))
     assert out["seen"]["total"]["wrong"] is not None
     assert main(args + ["--no-seen", "--format", "json"]) == 0
     assert "seen" not in json.loads(capsys.readouterr().out)
