@@ -45,7 +45,7 @@ def seen_block(setup, scene: object = None, eye=None, target=None, *, height: in
     Returns
     -------
     dict
-        ``cascades``, ``total``, ``sample`` and ``units`` (:meth:`aliasing.frames.seen.Wrong.to_dict`),
+        ``cascades``, ``total``, ``sample`` and ``units`` (:meth:`aliasing.frames.seen.wrong.Wrong.to_dict`),
         or ``not_predicted`` (why not).
 
     Examples
