@@ -100,6 +100,7 @@ from ..engines import stable
 from ..raster.draw.lookup import PCF_MAX
 from ..setups import Setup
 from .scene import scene_pixels as _scene_pixels
+from .seen import seen_block, seen_text
 
 __all__ = ["MAX_ANGLE", "Report", "check"]
 
@@ -144,7 +145,8 @@ class Report:
     """What :func:`check` found: per cascade rows, verdict lines, and the setup they came from.
 
     ``cascades`` holds one dict per cascade (the module docstring's fields; ``texel`` as [s, t]),
-    ``verdicts`` the lines, ``sample`` the receivers and suns evaluated.
+    ``verdicts`` the lines, ``sample`` the receivers and suns evaluated, ``seen`` the wrong-pixel
+    measure (:mod:`aliasing.check.seen`) when asked for.
 
     Example
     -------
@@ -160,15 +162,17 @@ class Report:
     cascades: tuple
     verdicts: tuple
     sample: dict = field(default_factory=dict)
+    seen: dict | None = None
 
     def to_dict(self) -> dict[str, Any]:
-        """The JSON contract: ``engine``, ``release``, ``settings`` (every key), ``cascades``, ``verdicts``."""
+        """The JSON contract: ``engine``, ``release``, ``settings`` (every key), ``cascades``, ``verdicts`` (and ``seen`` when measured)."""
         return {
             "engine": self.setup.engine,
             "release": self.setup.release,
             "settings": dict(self.setup.settings),
             "cascades": [_json(c) for c in self.cascades],
             "verdicts": list(self.verdicts),
+            **({"seen": self.seen} if self.seen is not None else {}),
         }
 
     def to_rows(self) -> list[dict]:
@@ -195,7 +199,7 @@ class Report:
         s = self.setup
         head = (f"{s.profile.title} {s.release}: camera {s.camera.spec()} ({s.camera.width}x{s.camera.height}), sun {s.sun.spec()}; "
                 f"changed: {', '.join(f'{k}={v}' for k, v in s.changed().items()) or 'none'}\n")
-        return head + _tables.table(rows) + "".join(f"- {v}\n" for v in self.verdicts)
+        return head + _tables.table(rows) + "".join(f"- {v}\n" for v in self.verdicts) + ("" if self.seen is None else seen_text(self.seen))
 
     def __str__(self) -> str:
         return self.text()
@@ -215,7 +219,7 @@ def _json(c: dict) -> dict:
 
 
 def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = None, eye: ArrayLike | str | None = None,
-          target: ArrayLike | str | None = None, pixels: int = 256, walk: float = 0.05, samples: int = 7) -> Report:
+          target: ArrayLike | str | None = None, pixels: int = 256, walk: float = 0.05, samples: int = 7, wrong: bool = False) -> Report:
     """The per-cascade report of an engine's setup (module docstring).
 
     Parameters
@@ -238,6 +242,9 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
         0.05: 3 m/s at 60 frames per second), for ``shimmer_px``.
     samples : int
         Sun elevations over the band, 1 to 361 (default 7; one for a single sun).
+    wrong : bool
+        Also predict what the user sees wrong per cascade (``Report.seen``, :mod:`aliasing.check.seen`):
+        the engine's frame predicted without a browser, one to a few seconds (default False).
 
     Returns
     -------
@@ -268,6 +275,8 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
     if not (math.isfinite(step) and step > 0):
         raise ValueError(f"walk must be a finite step per frame > 0 [world units], got {walk!r}")
     n = check_.whole(samples, "samples", 1, 361, " (sun elevations over the band)")
+    if not isinstance(wrong, (bool, np.bool_)):
+        raise ValueError(f"wrong must be True or False, got {wrong!r}")
     pl, cam, sun, profile = setup.pipeline, setup.camera, setup.sun, setup.profile
     elev = sun.elevations(n)
     lv = sun.direction(elev)  # (E, 3) eye-space vectors towards the sun
@@ -375,7 +384,7 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
     verdicts += [f"not modelled: {note}" for note in pl.notes]
     sample = {"elevations": elev.tolist(), "max_angle": MAX_ANGLE, "lookup": lookup, "walk": step}
     sample |= {"slopes": slopes.tolist()} if seen is None else {"scene": seen.source, "pixels": int(len(seen.position))}
-    return Report(setup, tuple(cascades), tuple(verdicts), sample)
+    return Report(setup, tuple(cascades), tuple(verdicts), sample, seen_block(setup, scene, eye, target) if wrong else None)
 
 
 def _acne_verdict(k: int, short: np.ndarray, slopes: np.ndarray, elev: np.ndarray, needed: dict, rule, acne: float) -> str:

@@ -4,7 +4,7 @@
 
     aliasing check --engine ENGINE[@RELEASE] [--settings FILE] [--set KEY=VALUE]... \\
         --camera near=N,far=F,fov=DEG,aspect=A,height=PX --sun ELEV[..ELEV][@AZ] \\
-        [--receivers SLOPES] [--samples N] [--walk STEP] [--format table|csv|json]
+        [--receivers SLOPES] [--samples N] [--walk STEP] [--seen] [--format table|csv|json]
 
 Bad input (an unknown engine, release or setting, a malformed settings file, a value the
 engine does not accept, a camera or sun typo) is one line on stderr and exit status 2
@@ -40,7 +40,7 @@ def run(args: argparse.Namespace):
     """The :class:`aliasing.check.Report` of the parsed options."""
     setup = setups.from_args(args)
     return check(setup, receivers=_slopes(args.receivers), scene=args.scene, eye=args.eye, target=args.target, pixels=args.pixels,
-                 walk=args.walk, samples=args.samples)
+                 walk=args.walk, samples=args.samples, wrong=bool(getattr(args, "seen", False)))
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -96,6 +96,11 @@ def add_check_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser
     p.add_argument("--samples", type=int, default=7, help="sun elevations sampled over the --sun band (default 7)")
     p.add_argument("--walk", type=float, default=0.05, help="camera step per frame along the view [world units] for the shimmer "
                    "(default 0.05: 3 m/s at 60 fps)")
+    p.add_argument("--seen", action=argparse.BooleanOptionalAction, default=False,
+                   help="also predict what the user sees wrong per cascade (acne, false and lost shadow as fractions of the pixels facing "
+                   "the sun, blocky texels, memory in bytes): the engine's frame of the reference scene (or --scene) drawn by the "
+                   "toolkit with the engine's rules, no browser; threejs, babylon and playcanvas; a few seconds (default --no-seen); "
+                   "in the table and JSON formats")
     p.add_argument("--format", default="table", choices=["table", "csv", "json"], help="output format (default table: the table, then the verdicts)")
     p.set_defaults(run=_run)
     return p

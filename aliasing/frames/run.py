@@ -136,6 +136,71 @@ def pipeline_footprint(pipeline, camera, sun: Array) -> tuple[Array, Array, Arra
     return near_i, sides, np.full(len(sides), res)
 
 
+def predict_readback(model, settings: dict, scene: FrameScene, sun: Array, rb: Readback) -> tuple[Prediction, NDArray[np.bool_], bool, str | None]:
+    """The model's predicted factor at a read-back's pixels and the exact reference's lit pixels.
+
+    Shared by :func:`measure` (an engine's read-back) and :mod:`aliasing.frames.seen` (a
+    read-back synthesized by the toolkit).  Returns ``(prediction, reference, predicts, why_not)``:
+    where the model renders these settings but does not predict them (``why_not`` says why), the
+    prediction is NaN and the reference is drawn through the read-back's first map size.
+
+    Examples
+    --------
+    >>> from aliasing.frames.models import MODELS
+    >>> from aliasing.frames.scenes import sun_direction
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=2.0, boxes=2, ground_cells=2)
+    >>> sun = sun_direction(20.0, 30.0, fs.camera); m = MODELS["threejs"]; s = m.settings({"cascades": 2, "shadowMapSize": 256})
+    >>> rb = Readback("threejs", "187", np.ones((1, 2)), np.array([[0, 1]]), np.array([[[-2.0, -1.0, -4.25], [0.0, -1.0, -12.0]]]),
+    ...               np.array([[[0.0, 1.0, 0.0]] * 2]), m.matrices(s, fs.camera, sun), np.full((2, 2), 256), {}, b"")
+    >>> pred, ref, predicts, why_not = predict_readback(m, s, fs, sun, rb)
+    >>> (pred.factor < 0.5).tolist(), ref.tolist(), predicts, why_not    # in a box's shadow, lit
+    ([[True, False]], [[False, True]], True, None)
+    """
+    why_not = model.predicted(settings) if hasattr(model, "predicted") else None
+    predicts = getattr(model, "predicts", True) and why_not is None
+    if predicts:
+        pred, ref = model.predict(settings, scene, sun, rb)
+    else:  # rendered and measured only: the exact reference, no predicted factor
+        from .models import reference
+
+        ref = reference(scene, sun, rb, int(rb.sizes[0, 0]))
+        k = len(rb.matrices)
+        pred = Prediction(np.full(rb.shadow.shape, np.nan), np.full(rb.shadow.shape, -1), np.full(k, np.nan), np.full(k, np.nan), np.full(k, np.nan))
+    return pred, ref, predicts, why_not
+
+
+def pixel_masks(scene: FrameScene, sun: Array, rb: Readback, ref: NDArray[np.bool_]) -> tuple[NDArray[np.bool_], NDArray[np.bool_], NDArray[np.bool_]]:
+    """The pixels the measures count (:mod:`aliasing.frames.compare`): ``(receivers, facing, ground)``.
+
+    ``facing``: drawn and turned towards the sun (cos > :data:`~aliasing.frames.compare.MIN_COS`);
+    ``receivers``: those lit in the exact reference ``ref``; ``ground``: the scene's ground pixels.
+
+    Examples
+    --------
+    >>> fs = frame_scene("boxes", near=1.0, far=20.0, fov=50.0, aspect=2.0, boxes=2, ground_cells=2)
+    >>> rb = Readback("", "", np.ones((1, 2)), np.zeros((1, 2), np.int64), np.array([[[0.0, -1.0, -4.0], [0.0, -1.0, -9.0]]]),
+    ...               np.array([[[0.0, 1.0, 0.0]] * 2]), np.eye(4)[None], np.full((1, 2), 16), {}, b"")
+    >>> [m.tolist() for m in pixel_masks(fs, np.array([0.0, 1.0, 0.0]), rb, np.array([[True, False]]))]
+    [[[True, False]], [[True, True]], [[True, True]]]
+    """
+    sunward = (np.nan_to_num(rb.normal) @ sun) > compare.MIN_COS
+    return ref & sunward, rb.drawn & sunward, _ground_pixels(scene, rb)
+
+
+def shading(factor: Array, ref: NDArray[np.bool_], receivers: NDArray[np.bool_], facing: NDArray[np.bool_], ground: NDArray[np.bool_],
+            drawn: NDArray[np.bool_]) -> dict:
+    """``acne``, ``lost_shadow`` [fractions] and ``gap_px`` [px] of a shadow ``factor`` on the pixels of :func:`pixel_masks`.
+
+    Examples
+    --------
+    >>> ref = np.array([[True, False]]); every = np.ones((1, 2), bool)
+    >>> shading(np.array([[0.0, 1.0]]), ref, ref, every, ~every, every)   # the lit pixel shaded, the shadowed one lit
+    {'acne': 1.0, 'lost_shadow': 1.0, 'gap_px': None}
+    """
+    return {"acne": compare.acne(factor, receivers), "lost_shadow": compare.lost_shadow(factor, ref, facing),
+            "gap_px": compare.gap(factor, ref, ground, drawn)}
+
+
 def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dict, pipeline=None) -> FrameResult:
     """Decode the page's answer ``out`` for ``scene`` and ``sun``, predict it and measure both.
 
@@ -168,27 +233,13 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     if hasattr(model, "readback"):  # a page that returns colours only (Filament): the model makes the read-back
         out = model.readback(out, scene, sun)
     rb = decode(out)
-    why_not = model.predicted(settings) if hasattr(model, "predicted") else None
-    predicts = getattr(model, "predicts", True) and why_not is None
-    if predicts:
-        pred, ref = model.predict(settings, scene, sun, rb)
-    else:  # rendered and measured only: the exact reference, no predicted factor
-        from .models import reference
-
-        ref = reference(scene, sun, rb, int(rb.sizes[0, 0]))
-        k = len(rb.matrices)
-        pred = Prediction(np.full(rb.shadow.shape, np.nan), np.full(rb.shadow.shape, -1), np.full(k, np.nan), np.full(k, np.nan), np.full(k, np.nan))
-    sunward = (np.nan_to_num(rb.normal) @ sun) > compare.MIN_COS
-    receivers = ref & sunward
-    facing = rb.drawn & sunward
-    ground = _ground_pixels(scene, rb)
+    pred, ref, predicts, why_not = predict_readback(model, settings, scene, sun, rb)
+    receivers, facing, ground = pixel_masks(scene, sun, rb, ref)
     m_starts, m_sides, m_res = model.measured_cascades(settings, scene.camera, rb)
     h = rb.shadow.shape[0]
     measured = {
         "shadow_agreement": compare.agreement(rb.shadow, pred.factor, rb.drawn) if predicts else None,
-        "acne": compare.acne(rb.shadow, receivers),
-        "lost_shadow": compare.lost_shadow(rb.shadow, ref, facing),
-        "gap_px": compare.gap(rb.shadow, ref, ground, rb.drawn),
+        **shading(rb.shadow, ref, receivers, facing, ground, rb.drawn),
         "texels_per_pixel": compare.texels_per_pixel(m_starts, m_sides, m_res, scene.camera.fov, h),
     }
     starts, sides, res = pred.starts, pred.sides, pred.resolution
@@ -200,9 +251,7 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
             extra_pipe["pipeline_texels_per_pixel"] = compare.texels_per_pixel(starts, sides, res, scene.camera.fov, h)
             starts, sides, res = pred.starts, pred.sides, pred.resolution
     predicted = {
-        "acne": compare.acne(pred.factor, receivers),
-        "lost_shadow": compare.lost_shadow(pred.factor, ref, facing),
-        "gap_px": compare.gap(pred.factor, ref, ground, rb.drawn),
+        **shading(pred.factor, ref, receivers, facing, ground, rb.drawn),
         "texels_per_pixel": compare.texels_per_pixel(starts, sides, res, scene.camera.fov, h),
     } if predicts else {"acne": None, "lost_shadow": None, "gap_px": None, "texels_per_pixel": None}
     drawn = rb.drawn
@@ -223,6 +272,72 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
         extra["agreement_vs_exact"] = compare.agreement(rb.shadow, np.where(ref, 1.0, 0.0), rb.drawn)  # the engine's mask against the exact shadows
     report = {"engine": engine, "release": rb.release, "scene": scene.name, "measured": measured, "predicted": predicted, "details": extra}
     return FrameResult(rb, pred, ref, settings, report)
+
+
+def at_pixel_aspect(setup, scene: FrameScene):
+    """The setup and the scene with the image's pixel aspect round(aspect · height) / height, and checked to share one camera.
+
+    The engines project with the canvas's width/height: where that is not the setup's aspect,
+    the setup and the scene's camera take it.
+
+    Raises
+    ------
+    ValueError
+        ``scene`` not built with the setup's camera (near, far, fov, aspect).
+
+    Examples
+    --------
+    >>> from aliasing import setups
+    >>> s = setups.build("threejs", {}, "near=0.5,far=60,fov=50,aspect=16:9,height=100", "35@30")
+    >>> s2, fs = at_pixel_aspect(s, frame_scene("boxes", near=0.5, far=60.0, fov=50.0, aspect=16 / 9, boxes=1, ground_cells=1))
+    >>> s2.camera.aspect, fs.camera.aspect       # 178 x 100 pixels
+    (1.78, 1.78)
+    """
+    from ..raster.scenes.camera import Camera
+    from ..setups import Setup, spec
+
+    cam = setup.camera
+    pixel_aspect = round(cam.aspect * cam.height) / cam.height
+    if pixel_aspect != cam.aspect:
+        # the engines project with the canvas's width/height: the setup and the scene take that aspect
+        setup = Setup(setup.profile, dict(setup.settings), spec.Camera(cam.near, cam.far, cam.fov, pixel_aspect, cam.height), setup.sun)
+        c = scene.camera
+        scene = replace(scene, camera=Camera(c.eye, c.rotation, c.near, c.far, c.fov, c.name, pixel_aspect))
+        cam = setup.camera
+    if abs(scene.camera.near - cam.near) > 0 or abs(scene.camera.far - cam.far) > 0 or abs(scene.camera.fov - cam.fov) > 0 \
+            or abs(scene.camera.aspect - cam.aspect) > 1e-9:
+        raise ValueError("scene must be built with the setup's camera (near, far, fov, aspect)")
+    return setup, scene
+
+
+def frame_inputs(setup, scene: FrameScene, sun: Array | None = None):
+    """A frame's checked setup and scene (:func:`at_pixel_aspect`) and its unit sun: the middle of the setup's band unless ``sun`` is given.
+
+    Raises
+    ------
+    ValueError
+        Naming ``setup``, ``scene`` or ``sun``.
+
+    Examples
+    --------
+    >>> from aliasing import setups
+    >>> s = setups.build("threejs", {}, "near=0.5,far=60,fov=50,aspect=2,height=100", "20..40")
+    >>> _, fs, sun = frame_inputs(s, frame_scene("boxes", near=0.5, far=60.0, fov=50.0, aspect=2.0, boxes=1, ground_cells=1))
+    >>> round(float(np.degrees(np.arcsin(sun[1]))), 9)       # 30° above the ground
+    30.0
+    """
+    from .scenes import sun_direction
+
+    if not (hasattr(setup, "pipeline") and hasattr(setup, "profile")):
+        raise ValueError(f"setup must be an aliasing.setups.Setup, got {type(setup).__name__}")
+    if not isinstance(scene, FrameScene):
+        raise ValueError(f"scene must be a FrameScene (aliasing.frames.scenes.frame_scene), got {type(scene).__name__}")
+    setup, scene = at_pixel_aspect(setup, scene)
+    if sun is None:
+        lo, hi = setup.sun.elevation
+        sun = sun_direction((lo + hi) / 2, setup.sun.azimuth, scene.camera)
+    sv = check.direction(sun)
+    return setup, scene, np.asarray(sv, float) / np.linalg.norm(sv)
 
 
 def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, path: str | None = None, maps: int | None = None) -> FrameResult:
@@ -268,31 +383,11 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     >>> r.report["measured"]["acne"] < 0.01                   # doctest: +SKIP
     True
     """
-    if not (hasattr(setup, "pipeline") and hasattr(setup, "profile")):
-        raise ValueError(f"setup must be an aliasing.setups.Setup, got {type(setup).__name__}")
-    if not isinstance(scene, FrameScene):
-        raise ValueError(f"scene must be a FrameScene (aliasing.frames.scenes.frame_scene), got {type(scene).__name__}")
-    from ..raster.scenes.camera import Camera
-    from ..setups import Setup, spec
     from .models import from_setup
-    from .scenes import sun_direction
 
+    setup, scene, sv = frame_inputs(setup, scene, sun)
     cam = setup.camera
-    pixel_aspect = round(cam.aspect * cam.height) / cam.height
-    if pixel_aspect != cam.aspect:
-        # the engines project with the canvas's width/height: the setup and the scene take that aspect
-        setup = Setup(setup.profile, dict(setup.settings), spec.Camera(cam.near, cam.far, cam.fov, pixel_aspect, cam.height), setup.sun)
-        c = scene.camera
-        scene = replace(scene, camera=Camera(c.eye, c.rotation, c.near, c.far, c.fov, c.name, pixel_aspect))
-        cam = setup.camera
-    if abs(scene.camera.near - cam.near) > 0 or abs(scene.camera.far - cam.far) > 0 or abs(scene.camera.fov - cam.fov) > 0 \
-            or abs(scene.camera.aspect - cam.aspect) > 1e-9:
-        raise ValueError("scene must be built with the setup's camera (near, far, fov, aspect)")
-    if sun is None:
-        lo, hi = setup.sun.elevation
-        sun = sun_direction((lo + hi) / 2, setup.sun.azimuth, scene.camera)
     settings = from_setup(setup)
-    sv = np.asarray(sun, float) / np.linalg.norm(sun)
     poses = None
     if path is not None:
         refuse_unrendered(setup.engine, settings.get("class"), path, None)
