@@ -160,7 +160,7 @@ def _cases():
         "predict.playcanvas_factor": (lambda d: lambda: predict.playcanvas_factor(
             np.ones((4, 4)), M[None], np.zeros(2, int), PTS, UP, normal_offset=0.0, taps=d.draw(st.integers(-3, 9).filter(lambda t: t not in (1, 3, 5)))), "taps"),
         "single.babylon_single_factor": (lambda d: lambda: single.babylon_single_factor(DM, M, PTS, bias=d.draw(nonfinite)), "bias"),
-        "predict.polygon_offset": (lambda d: lambda: predict.polygon_offset(predict.to_map(M, ROOF), d.draw(st.one_of(st.integers(-5, 0), st.floats(1.1, 9.9))), 1.0, 1.0), "resolution"),
+        "predict.polygon_offset": (lambda d: lambda: predict.polygon_offset(predict.to_map(M, ROOF), d.draw(st.one_of(st.integers(-5, 0), st.floats(1.1, 9.9).filter(lambda v: v != int(v)))), 1.0, 1.0), "resolution"),
         "babylon_cascades.offset_casters": (lambda d: lambda: babylon_cascades.offset_casters(ROOF, np.array([0.0, 1.0, 0.0]), d.draw(nonfinite)), "normal_bias"),
         "models.tight_sides": (lambda d: lambda: models.tight_sides(CAM, np.array(d.draw(st.sampled_from([[1.0], [2.0, 1.0], [1.0, 1.0], [1.0, np.nan]]))),
                                                                       np.array([0.0, -1.0, 0.0]), np.array([0.0, 0.0, 1.0])), "edges"),
