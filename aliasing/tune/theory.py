@@ -42,7 +42,7 @@ METHODS = ("start", "tuned", "log", "practical", "equal-error", "budget")
 
 
 def _errors(pipe, cam, lights, near_i, far_i, receivers) -> np.ndarray:
-    """Worst error per cascade [px per texel] of contiguous ranges with the pipeline's fit, over the sun band and receivers."""
+    """Worst error per cascade [texels per pixel] of contiguous ranges with the pipeline's fit, over the sun band and receivers."""
     a, b = np.asarray(near_i, float), np.asarray(far_i, float)
     r = stable.evaluate((a, b), cam.near, float(b.max()), cam.fov, lights, aspect=cam.aspect, fit=pipe.fit, snap=pipe.snap,
                         resolution=float(pipe.resolution))
@@ -94,14 +94,14 @@ def compare_splits(tuned: Tuned) -> list[dict[str, Any]]:
     """The tuned split against the papers' (module docstring): one row per method.
 
     Each row: ``method``, ``splits`` (C_0 … C_k [world units]), ``error`` (the worst over the
-    receivers and the sun band [px per texel]) and ``ratio`` (error over the equal-error split's).
+    receivers and the sun band [texels per pixel]) and ``ratio`` (error over the equal-error split's).
 
     Example
     -------
     >>> from aliasing import setups
     >>> from aliasing.tune import tune
     >>> s = setups.build("threejs", {"cascades": 4}, "near=0.1,far=500,fov=50,aspect=16:9,height=1080", "15..60")
-    >>> rows = {r["method"]: r for r in compare_splits(tune(s, fixed=("cascades", "shadowMapSize")))}
+    >>> rows = {r["method"]: r for r in compare_splits(tune(s, keep=("cascades", "shadowMapSize")))}
     >>> round(rows["tuned"]["error"], 2), round(rows["equal-error"]["error"], 2), round(rows["practical"]["error"], 1)
     (9.05, 9.05, 677.2)
     """
