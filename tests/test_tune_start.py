@@ -275,3 +275,18 @@ def test_write_is_atomic(capsys, monkeypatch, tmp_path):
     status = main(["tune", "--engine", "threejs", "--camera", CAMERA, "--receivers", "1..200", "--keep", "cascades", "--write"])
     assert status == 2 and "does not read back" in capsys.readouterr().err
     assert light.read_text() == text and sorted(p.name for p in tmp_path.iterdir()) == ["scene.light"]
+
+
+def test_readme_and_guide_numbers():
+    """README's 'Tune your engine': count and size kept 67.7 → 5.33 with the seam step ×2.3 → ×4.96 named; free, 8 × 1024² (half the memory) give 5.03.
+    The guide's Godot case: 24.4 → 3.67 texels per pixel, or 24.41 holding the start's 29.52 px."""
+    start = setups.build("threejs", {"cascades": 4, "shadowMapSize": 2048}, CAMERA, "15..60")
+    kept = tune(start, receivers=(1.0, 200.0), keep="cascades,shadowMapSize".split(","))
+    assert (round(kept.before.objective, 1), round(kept.objective, 2)) == (67.7, 5.33)
+    assert [w["line"] for w in worse(kept)] == ["seam step: ×2.3 → ×4.96 (worse)"]
+    free = tune(start, receivers=(1.0, 200.0))
+    assert (free.setup.pipeline.k, free.setup.pipeline.resolution, round(free.objective, 2)) == (8, 1024, 5.03)
+    assert 2 * free.measure.texels == kept.measure.texels  # half the memory
+    g = tune(setups.build("godot", {"directional_shadow_max_distance": 200}, CAMERA, "15..60"), receivers=(1.0, 100.0))
+    assert (round(g.before.objective, 1), round(g.objective, 2)) == (24.4, 3.67)
+    assert round(g.held_gap.limits.max_gap_px, 2) == 29.52 and round(g.held_gap.objective, 2) == 24.41 and not g.held_gap.changed
