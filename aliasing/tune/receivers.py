@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import _validation as check
 from ..setups import Setup
 
 
@@ -24,6 +25,8 @@ def scene_receivers(scene: Any, setup: Setup, samples: int = 6) -> tuple[float, 
         ``(T, 3, 3)`` (z the depth in front of the eye).
     setup : Setup
         The camera.
+    samples : int
+        Steps per triangle edge, 1 to 64.
 
     Example
     -------
@@ -38,13 +41,14 @@ def scene_receivers(scene: Any, setup: Setup, samples: int = 6) -> tuple[float, 
 
     if not isinstance(setup, Setup):
         raise ValueError(f"setup must be an aliasing.setups.Setup (setups.build(...)), got {type(setup).__name__}")
+    samples = check.whole(samples, "samples", 1, 64)
     cam = setup.camera
     if isinstance(scene, (str, bytes)) or hasattr(scene, "__fspath__"):
         ws = load_scene(scene)
         if not ws.cameras:
             raise ValueError(f"scene {str(scene)!r} has no glTF camera to place the receivers: give receivers NEAR..FAR instead")
         scene = ws.in_eye_space(ws.camera(sorted(ws.cameras)[0], near=cam.near, far=cam.far, fov=cam.fov))
-    tri = np.asarray(getattr(scene, "triangles", scene), float)
+    tri = check.as_float_array(getattr(scene, "triangles", scene), "scene")
     if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri) or not np.isfinite(tri).all():
         raise ValueError(f"scene must be a scene file, a Scene or eye-space triangles of shape (T, 3, 3), got shape {tri.shape}")
     n = samples

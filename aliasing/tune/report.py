@@ -18,6 +18,8 @@ import numpy as np
 from ..check import check
 from .search import Tuned
 
+__all__ = ["MEASURES", "changes_text", "worse"]
+
 #: The measures compared: (name, words, unit).
 MEASURES = (("error", "worst error over the receivers", "texels per pixel"), ("acne", "acne", "of the sampled receivers"),
             ("gap_px", "gap at the walls' foot over the receivers", "px"), ("seam_step", "seam step", "×"), ("shimmer_px", "shimmer", "px per frame"),

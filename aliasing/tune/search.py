@@ -45,6 +45,7 @@ from typing import Any
 import numpy as np
 from scipy import optimize
 
+from .. import _validation as check_names
 from ..setups import Setup, Tunable
 from .measure import AZIMUTH, LIMITS, Limits, Measure, limits, measure, sample, sample_extent, steepest
 from .receivers import scene_receivers
@@ -350,6 +351,12 @@ def closed_form_bias(setup: Setup, key: str, *, max_slope: float = 0.0, receiver
     >>> 0.1 < v < 1.0
     True
     """
+    if not isinstance(setup, Setup):
+        raise ValueError(f"setup must be an aliasing.setups.Setup (setups.build(...)), got {type(setup).__name__}")
+    terms = [t.key for t in setup.pipeline.bias.terms]
+    if not isinstance(key, str) or key not in terms:
+        raise ValueError(f"key must be a bias setting of {setup.profile.title}, one of {', '.join(terms)}; got {key!r}"
+                         + check_names.did_you_mean(key, terms))
     lim = limits(setup, receivers=receivers, max_slope=max_slope)
     free = [t.key for t in setup.profile.tunable if t.role == "bias" and t.active(setup.settings)]
     s = setup.with_settings(**{k: _neutral(setup.profile.setting(k)) for k in free if k != key})
