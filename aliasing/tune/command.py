@@ -13,8 +13,10 @@ declares tunable are searched from there.  Every changed setting is listed with 
 and after in the engine's units, and every measure that got worse (:func:`aliasing.tune.report.worse`)
 on its own line.  JSON: the ``check`` object of the tuned settings (feeding its ``settings`` back
 through ``aliasing check --settings`` gives the same numbers), plus ``objective``, ``binding``,
-``feasible``, ``changed``, ``changes`` (``[{key, before, after, unit}]``), ``worse``, ``snippet``,
-``tradeoff``, ``limits``, ``measured`` and ``defaults`` (the ``check`` object of the start).  No
+``feasible``, ``changed``, ``changes`` (``[{key, before, after, unit}]``), ``worse``, ``keep``,
+``held_gap`` (where the gap grew unasked: the search with the start's gap as the limit, its
+objective and changes), ``snippet``, ``tradeoff``, ``limits``, ``measured`` and ``defaults`` (the
+``check`` object of the start); with ``--patch`` and ``--format json``, ``patch`` (file -> diff).  No
 NaN or inf: a number that does not exist is ``null`` with a reason beside it.  ``--patch`` prints
 the changes as a unified diff of the project's own files, ``--write`` applies it (both need
 ``--project``).  Limits that cannot all be met are exit status 0 with ``binding``; a malformed
@@ -226,7 +228,7 @@ def text(result: dict[str, Any]) -> str:
     lines.append("binding: " + (", ".join(_FLAGS.get(b, "--" + b.replace("_", "-")) for b in tuned.binding) or "none"))
     if tuned.keep:
         lines.append("kept: " + ", ".join(tuned.keep))
-    lines.append("changes (before → after, in the engine's units):" if tuned.changed else "changes: none, your settings are already the best")
+    lines.append("changes (before → after, in the engine's units):" if tuned.changed else "changes: none (your settings are the best found within the limits)")
     lines += ["  " + ln for ln in report.changes_text(tuned)]
     lines += [w["line"] for w in result["worse"]]
     if tuned.held_gap is not None:

@@ -25,9 +25,10 @@ the start itself is a candidate, so a start that meets the limits is never repla
 one.  ``keep`` holds settings at the start's values.  Among equal errors the search keeps the
 smaller gap, then the fewer changed settings.
 
-The start's gap is not held as a limit: a split that brings the first cascade closer to the eye
-shows the same world bias larger on screen (Godot's ``shadow_bias`` scales with the pancake, not
-the texel), so holding it would mostly keep the start's split.  Instead, where ``max_gap_px`` is
+The start's gap is not held as a limit: a better split brings the first cascade closer to the eye,
+where the gap is measured in pixels, so holding it would often keep the start's split (Godot,
+``directional_shadow_max_distance`` 200 and receivers 1..100: every split with a lower error had a
+larger gap, and the search held to it returned the start).  Instead, where ``max_gap_px`` is
 not given, the start leaves no acne and the tuned gap is larger than the start's (and than one
 pixel), :attr:`Tuned.held_gap` is the search again with the start's gap as ``max_gap_px``: what
 holding it would cost in error, for the user to choose.
