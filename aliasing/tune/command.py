@@ -132,7 +132,7 @@ def placed(paths: list[Path], changes: Mapping[str, Any], where: Mapping[str, st
            camera: str | None = None) -> dict[Path, dict[str, Any]]:
     """The changed settings grouped by the project file that holds each.
 
-    A key is in the file that :attr:`aliasing.setups.files.Found.where` names for it (``"main.tscn line 12"``: the
+    A key is in the file that ``Found.where`` (:class:`aliasing.setups.files.Found`) names for it (``"main.tscn line 12"``: the
     file's name first).  A key no file holds goes to the first file whose reader's patch takes it (a reader refuses,
     with a ValueError, a key that does not belong in its file).
     """

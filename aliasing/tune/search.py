@@ -30,7 +30,7 @@ where the gap is measured in pixels, so holding it would often keep the start's 
 ``directional_shadow_max_distance`` 200 and receivers 1..100: every split with a lower error had a
 larger gap, and the search held to it returned the start).  Instead, where ``max_gap_px`` is
 not given, the start leaves no acne and the tuned gap is larger than the start's (and than one
-pixel), :attr:`Tuned.held_gap` is the search again with the start's gap as ``max_gap_px``: what
+pixel), ``Tuned.held_gap`` is the search again with the start's gap as ``max_gap_px``: what
 holding it would cost in error, for the user to choose.
 """
 
