@@ -204,6 +204,19 @@ def measure(setup: Setup, limits: Limits) -> Measure:
 # -- limits ----------------------------------------------------------------------------------
 
 
+def depths(receivers: object, name: str = "receivers") -> tuple[float, float]:
+    """``receivers`` as (NEAR, FAR) eye depths with 0 < NEAR < FAR, finite [world units]; a ValueError naming ``name`` otherwise."""
+    try:
+        if isinstance(receivers, (str, bytes)):
+            raise TypeError
+        rn, rf = (float(x) for x in receivers)  # type: ignore[union-attr]
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{name} must be (near, far) eye depths [world units], got {receivers!r}") from None
+    if not (math.isfinite(rn) and math.isfinite(rf) and 0 < rn < rf):
+        raise ValueError(f"{name} must be NEAR..FAR eye depths with 0 < NEAR < FAR [world units], got {rn:g}..{rf:g}")
+    return rn, rf
+
+
 def limits(setup: Setup, *, receivers: Iterable[float] | None = None, max_texels: int | None = None, max_gap_px: float | None = None,
            max_slope: float = 0.0, moving: bool = False) -> Limits:
     """The validated :class:`Limits` of :func:`tune` (defaults filled from ``setup``).
@@ -236,14 +249,7 @@ def limits(setup: Setup, *, receivers: Iterable[float] | None = None, max_texels
     if receivers is None:  # where the setup casts shadows now: the camera's near to the shadows' end
         rn, rf = cam.near, min(cam.far, float(max(setup.pipeline.far_i)))
     else:
-        try:
-            if isinstance(receivers, (str, bytes)):
-                raise TypeError
-            rn, rf = (float(x) for x in receivers)
-        except (TypeError, ValueError, OverflowError):
-            raise ValueError(f"receivers must be (near, far) eye depths [world units], got {receivers!r}") from None
-        if not (math.isfinite(rn) and math.isfinite(rf) and 0 < rn < rf):
-            raise ValueError(f"receivers must be NEAR..FAR eye depths with 0 < NEAR < FAR [world units], got {rn:g}..{rf:g}")
+        rn, rf = depths(receivers)
         if rn >= cam.far or rf <= cam.near:
             raise ValueError(f"receivers {rn:g}..{rf:g} must overlap the camera's near..far {cam.near:g}..{cam.far:g}")
         rn, rf = max(rn, cam.near), min(rf, cam.far)

@@ -38,6 +38,7 @@ from .. import _validation as _check
 from .. import budgets, partitioning
 from ..engines import stable
 from ..setups import Camera, Pipeline
+from .measure import depths
 from .search import Tuned
 
 METHODS = ("start", "tuned", "log", "practical", "equal-error", "budget")
@@ -91,15 +92,7 @@ def equal_error_split(pipe, cam, lights, k: int, near: float, far: float, receiv
     near, far = _check.scalar(near, "near"), _check.scalar(far, "far")
     if not (math.isfinite(near) and math.isfinite(far) and 0 < near < far):
         raise ValueError(f"near and far must be finite with 0 < near < far [world units], got {near!r}, {far!r}")
-    try:
-        if isinstance(receivers, (str, bytes)):
-            raise TypeError
-        rn, rf = (float(x) for x in receivers)
-    except (TypeError, ValueError, OverflowError):
-        raise ValueError(f"receivers must be (near, far) eye depths [world units], got {receivers!r}") from None
-    if not (math.isfinite(rn) and math.isfinite(rf) and 0 < rn < rf):
-        raise ValueError(f"receivers must be finite with 0 < NEAR < FAR [world units], got {rn!r}, {rf!r}")
-    receivers = (rn, rf)
+    receivers = depths(receivers)
     iterations = _check.whole(iterations, "iterations", 1, 200)
 
     def walk(e: float) -> np.ndarray | None:
