@@ -29,6 +29,16 @@ def _json(capsys, argv):
     return json.loads(out.out, parse_constant=lambda c: pytest.fail(f"{c} in JSON")), out
 
 
+def _both(argv):
+    """One search, both outputs: the JSON object (as the command writes it, parsed back refusing NaN) and the table."""
+    from aliasing.cli import build_parser
+    from aliasing.tune import command
+
+    result = command.run(build_parser().parse_args(argv))
+    text = json.dumps(command.to_dict(result), allow_nan=False)
+    return json.loads(text, parse_constant=lambda c: pytest.fail(f"{c} in JSON")), command.text(result)
+
+
 def test_the_users_settings_are_the_start(capsys):
     """Babylon with λ 0.7: 'before' is 0.7 (not the engine's 0.5), λ moves, and --keep lambda holds it."""
     argv = ["tune", "--engine", "babylon", "--set", "lambda=0.7", "--camera", CAMERA, "--receivers", "1..200"]
@@ -41,41 +51,42 @@ def test_the_users_settings_are_the_start(capsys):
     assert kept["objective"] >= got["objective"] * (1 - 1e-9)
 
 
-def test_every_change_has_its_line(capsys):
+def test_every_change_has_its_line():
     """A setting the user did not give that tune changes is listed; every key whose value differs has a line, in both outputs."""
     argv = ["tune", "--engine", "threejs", "--camera", CAMERA, "--set", "material.shadowSide=FrontSide", "--receivers", "1..200"]
-    got, _ = _json(capsys, argv)
+    got, out = _both(argv)
     differ = {k for k, v in got["settings"].items() if got["defaults"]["settings"][k] != v}
     assert differ and {c["key"] for c in got["changes"]} == differ == set(got["changed"])
     assert "maxFar" in differ  # not given by the user: the engine's default 100000 was the start
     profile = setups.get("threejs")
     for c in got["changes"]:
         assert c["unit"] == profile.setting(c["key"]).unit and c["after"] == got["settings"][c["key"]]
-    assert main(argv) == 0
-    out = capsys.readouterr().out
     for k in differ:
         assert re.search(rf"^  {re.escape(k)}: .+ → ", out, re.M), k
 
 
-def test_godot_max_distance_is_listed_and_the_worse_gap_named(capsys):
+def test_godot_max_distance_is_listed_and_the_worse_gap_named():
     """The user's 200 m shadow distance is the start; tune's 100 m is listed with its unit, and the gap that grows says so."""
     argv = ["tune", "--engine", "godot", "--set", "directional_shadow_max_distance=200", "--camera", CAMERA, "--receivers", "1..100"]
-    got, _ = _json(capsys, argv)
+    got, out = _both(argv)
     change = {c["key"]: c for c in got["changes"]}["directional_shadow_max_distance"]
     assert (change["before"], change["after"], change["unit"]) == (200.0, 100.0, "m")
     gap = {w["measure"]: w for w in got["worse"]}["gap_px"]
     assert gap["after"] > gap["before"] and "(worse)" in gap["line"]
     held = got["held_gap"]
     assert held["max_gap_px"] == pytest.approx(gap["before"]) and held["objective"] >= got["objective"]
-    assert main(argv) == 0
-    out = capsys.readouterr().out
     assert "directional_shadow_max_distance: 200.0 → 100.0 [m]" in out and gap["line"] in out
 
 
-def test_worse_lists_what_grew_and_nothing_else():
+@pytest.fixture(scope="module")
+def godot():
+    """The Godot case: the user's 200 m shadow distance, receivers 1..100 m."""
+    return tune(setups.build("godot", {"directional_shadow_max_distance": 200}, CAMERA, "15..60"), receivers=(1.0, 100.0))
+
+
+def test_worse_lists_what_grew_and_nothing_else(godot):
     """Each entry of worse is a measure that grew; the error (lower after tuning) is never one."""
-    s = setups.build("godot", {"directional_shadow_max_distance": 200}, CAMERA, "15..60")
-    t = tune(s, receivers=(1.0, 100.0))
+    t = godot
     got = worse(t)
     assert got and all(w["after"] > w["before"] for w in got)
     assert "error" not in {w["measure"] for w in got} and t.objective < t.before.objective
@@ -83,14 +94,13 @@ def test_worse_lists_what_grew_and_nothing_else():
         worse("tuned")
 
 
-def test_no_nan_in_json_when_the_start_misses_the_receivers(capsys):
+def test_no_nan_in_json_when_the_start_misses_the_receivers():
     """Unity's shadows end at 50 m: receivers at 100..200 m have no error before: null with the reason, never NaN."""
-    got, _ = _json(capsys, ["tune", "--engine", "unity-urp", "--receivers", "100..200"])
+    got, out = _both(["tune", "--engine", "unity-urp", "--receivers", "100..200"])
     assert got["measured"]["objective_before"] is None
     assert "50" in got["measured"]["objective_before_reason"] and "100" in got["measured"]["objective_before_reason"]
     assert got["objective"] is not None and math.isfinite(got["objective"])
-    assert main(["tune", "--engine", "unity-urp", "--receivers", "100..200"]) == 0
-    assert "worst perspective error: none (the start's shadows end at 50" in capsys.readouterr().out
+    assert "worst perspective error: none (the start's shadows end at 50" in out
 
 
 #: Settings an engine sets as one whole (Bevy's cascade config is built from all its builder's fields).
@@ -277,7 +287,7 @@ def test_write_is_atomic(capsys, monkeypatch, tmp_path):
     assert light.read_text() == text and sorted(p.name for p in tmp_path.iterdir()) == ["scene.light"]
 
 
-def test_readme_and_guide_numbers():
+def test_readme_and_guide_numbers(godot):
     """README's 'Tune your engine': count and size kept 67.7 → 5.33 with the seam step ×2.3 → ×4.96 named; free, 8 × 1024² (half the memory) give 5.03.
     The guide's Godot case: 24.4 → 3.67 texels per pixel, or 24.41 holding the start's 29.52 px."""
     start = setups.build("threejs", {"cascades": 4, "shadowMapSize": 2048}, CAMERA, "15..60")
@@ -287,6 +297,6 @@ def test_readme_and_guide_numbers():
     free = tune(start, receivers=(1.0, 200.0))
     assert (free.setup.pipeline.k, free.setup.pipeline.resolution, round(free.objective, 2)) == (8, 1024, 5.03)
     assert 2 * free.measure.texels == kept.measure.texels  # half the memory
-    g = tune(setups.build("godot", {"directional_shadow_max_distance": 200}, CAMERA, "15..60"), receivers=(1.0, 100.0))
+    g = godot
     assert (round(g.before.objective, 1), round(g.objective, 2)) == (24.4, 3.67)
     assert round(g.held_gap.limits.max_gap_px, 2) == 29.52 and round(g.held_gap.objective, 2) == 24.41 and not g.held_gap.changed
