@@ -81,7 +81,19 @@ def worse(tuned: Tuned) -> list[dict[str, Any]]:
 
 
 def changes_text(tuned: Tuned) -> list[str]:
-    """One line per changed setting: ``key: before → after [unit]`` (the engine's units)."""
+    """One line per changed setting: ``key: before → after [unit]`` (the engine's units; a value the engine derives, None, in words).
+
+    Example
+    -------
+    >>> from aliasing import setups
+    >>> from aliasing.tune import tune
+    >>> s = setups.build("babylon", {"lambda": 0.7}, sun="15..60")
+    >>> changes_text(tune(s, receivers=(1, 200), keep=("bias", "normalBias", "filteringQuality", "numCascades", "mapSize")))
+    ['lambda: 0.7 → 0.9132', 'shadowMaxZ: unset (the engine derives it) → 200.0 [world units]']
+    """
     if not isinstance(tuned, Tuned):
         raise ValueError(f"tuned must be the result of aliasing.tune.tune, got {type(tuned).__name__}")
-    return [f"{c['key']}: {c['before']!r} → {c['after']!r}" + (f" [{c['unit']}]" if c["unit"] else "") for c in tuned.changes]
+    def value(v: Any) -> str:
+        return "unset (the engine derives it)" if v is None else repr(v)
+
+    return [f"{c['key']}: {value(c['before'])} → {value(c['after'])}" + (f" [{c['unit']}]" if c["unit"] else "") for c in tuned.changes]
