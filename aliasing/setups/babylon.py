@@ -292,8 +292,11 @@ def snippet(s: Mapping[str, Any], keys: Any = None, light: str | None = None) ->
     """JavaScript that sets ``keys`` of ``s`` (None: every setting, on a new generator) on the user's light's generator.
 
     ``light`` is the light's name in the scene (``scene.getLightByName``); None writes a placeholder.
-    The generator is the light's own (``light.getShadowGenerator()``); its map size through the
-    ``mapSize`` setter, which recreates the map (ShadowGenerator.mapSize, src/Lights/Shadows/shadowGenerator.ts).
+    The generator is the light's own: the one for ``camera`` (a cascaded generator is registered
+    under its camera), else the light's first (``Light.getShadowGenerator(camera)`` returns null for
+    an unregistered camera and ``getShadowGenerators()`` lists them all, src/Lights/light.ts; the
+    inspector takes it the same way); its map size through the ``mapSize`` setter, which recreates
+    the map (``ShadowGenerator.mapSize``, src/Lights/Shadows/shadowGenerator.ts).
     """
     cls = s["class"]
     if keys is None:
@@ -302,7 +305,7 @@ def snippet(s: Mapping[str, Any], keys: Any = None, light: str | None = None) ->
     else:
         want = set(keys)
         lines = [f"const light = scene.getLightByName({light!r});" if light else "const light = sun;  // your DirectionalLight",
-                 "const gen = light.getShadowGenerator();"]
+                 "const gen = light.getShadowGenerator(camera) ?? light.getShadowGenerators().values().next().value;"]
         if "mapSize" in want:
             lines.append(f"gen.mapSize = {s['mapSize']};")
     order = (["numCascades", "lambda", "cascadeBlendPercentage", "stabilizeCascades", "depthClamp", "autoCalcDepthBounds"]
