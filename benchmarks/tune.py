@@ -64,7 +64,7 @@ def main() -> None:
                                    ("everything free (3 x 2048^2 texels)", {}, ())):
         start = setups.build("threejs", {**settings, "material.shadowSide": "FrontSide"}, CAMERA, "15..60")
         budget = start.pipeline.k * start.pipeline.resolution ** 2
-        t_tune, tuned = median_of(lambda: tune(start, fixed=fixed, max_slope=10.0), args.runs)
+        t_tune, tuned = median_of(lambda: tune(start, keep=fixed, max_slope=10.0), args.runs)
         t_check, _ = median_of(lambda: check(start), args.runs)
         t_grid, (best, n) = median_of(lambda: grid(start, fixed, budget), args.runs)
         print(f"-- {label}")

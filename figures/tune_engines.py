@@ -48,7 +48,7 @@ def case(engine: str):
         return None
     start = setups.build(engine, SETTINGS.get(engine, {}), CAMERA, SUN)
     fixed = tuple(t.key for t in profile.tunable if t.role in ("cascades", "size"))
-    return tune(start, fixed=fixed, max_slope=SLOPE)
+    return tune(start, keep=fixed, max_slope=SLOPE)
 
 
 def acne_free(setup) -> np.ndarray:
@@ -87,7 +87,7 @@ def data(t) -> dict[str, np.ndarray]:
         if b.key in t.changed:
             continue
         others = tuple(x.key for x in t.setup.profile.tunable if x.role == "bias" and x.key != b.key)
-        alt = tune(t.start, fixed=fixed + others, max_slope=SLOPE)
+        alt = tune(t.start, keep=fixed + others, max_slope=SLOPE)
         runs.append((f"{b.key} alone", alt.setup, alt.measure))
     n = len(t.measure.error)
     cols: dict[str, np.ndarray] = {"cascade": np.arange(n, dtype=float)}

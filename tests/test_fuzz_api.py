@@ -48,6 +48,8 @@ WITH_ALL = [
     "aliasing.aliasing_matrix",
     "aliasing.parameterizations",
     "aliasing.raster",
+    "aliasing.tune",
+    "aliasing.tune.report",
 ]
 NO_ALL = ["aliasing.geometry", "aliasing.warping", "aliasing.schemes", "aliasing.directional", "aliasing.faces"]
 
@@ -64,6 +66,10 @@ EXCLUDED = {
     "aliasing.partitioning.resolve_name",
     # reads a file path: covered by the file scenarios of tests/test_raster.py
     "aliasing.raster.scenes.loading.load_mesh",
+    # one call searches for a second or more: fuzzed argument by argument in tests/test_tune_start.py
+    "aliasing.tune.search.tune",
+    # its name is the rasterizer's measure in BASE below; its garbage is refused in tests/test_tune_start.py
+    "aliasing.tune.measure.measure",
 }
 
 EYE = Camera(axes=np.eye(3), position=[0.0, 0.0, 5.0])
@@ -89,6 +95,9 @@ _MAPS = _lazy(lambda: aliasing.raster.map_set(1.0, 50.0, 60.0, "gamma:60", "ZP2+
 _FIT = _lazy(lambda: aliasing.directional.fit(aliasing.geometry.frustum_vertices(1.0, 10.0, 60.0), [0.0, 1.0, 0.3]))
 _FRAME = _lazy(lambda: aliasing.directional.light_frame(aliasing.View(1.0, 100.0, 60.0), [[0.0, 1.0, 0.3], [0.2, 0.5, -0.8]]))
 _SLICES = _lazy(lambda: aliasing.directional.slice_fit(_FRAME(), [1.0, 10.0], [10.0, 100.0]))
+_SETUP = _lazy(lambda: aliasing.setups.build("threejs", {"cascades": 2, "shadowMapSize": 512, "material.shadowSide": "FrontSide"},
+                                              "near=0.5,far=60,fov=50,aspect=1,height=64", "30"))
+_TUNED = _lazy(lambda: aliasing.tune.tune(_SETUP(), receivers=(1.0, 50.0), keep=("cascades", "shadowMapSize", "mode", "renderer.shadowMap.type")))
 _FACTORS = _lazy(lambda: aliasing.face_factors.face_factors("logp", 1.0, 10.0, 60.0, ly=[0.5, 1.0], lz=1.0, samples=9))
 
 # A valid value per parameter name; BASE overrides it per function.
@@ -165,6 +174,15 @@ BASE: dict[str, dict[str, object]] = {
     "slice_fit": {"frame": _FRAME, "near": [1.0, 10.0], "far": [10.0, 100.0]},
     "slice_errors": {"sf": _SLICES, "n_prime": 5.0},
     "evaluate_many": {"names": ["P", "ZP2+LogP"], "light": "sphere:4"},
+    # aliasing.tune: a small three.js setup and its tuned result
+    "limits": {"setup": _SETUP},
+    "closed_form_bias": {"setup": _SETUP, "key": "shadow.normalBias"},
+    "compare_splits": {"tuned": _TUNED},
+    "worse": {"tuned": _TUNED},
+    "changes_text": {"tuned": _TUNED},
+    "scene_receivers": {"scene": [[[-1.0, -1.0, 5.0], [1.0, -1.0, 5.0], [0.0, 1.0, 6.0]]], "setup": _SETUP},
+    "equal_error_split": {"pipe": _lazy(lambda: _SETUP().pipeline), "cam": _lazy(lambda: _SETUP().camera), "lights": [[0.0, 0.5, 0.866]],
+                          "k": 2, "near": 0.5, "far": 60.0, "receivers": (1.0, 50.0), "iterations": 8},
     "fixed_face_map": {"far": 50.0, "fov": 60.0, "light": [0.0, 1.0, 0.3], "face": "bottom", "parameterization": "perspective"},
 }
 # Results that may hold NaN by contract (documented in the function's docstring).

@@ -101,7 +101,7 @@ def test_tune_no_worse_than_the_grid(engine):
     start = setups.build(engine, START.get(engine), CAMERA, "15..60")
     assert start.profile.tunable, f"{engine}: no tunable settings declared"
     fixed = tuple(t.key for t in start.profile.tunable if t.role in ("cascades", "size"))
-    t = tune(start, fixed=fixed)
+    t = tune(start, keep=fixed)
     assert t.feasible and not t.measure.violations(t.limits)
     _holds(t)
     splits = [u for u in start.profile.tunable if u.role == "split" and u.range is not None and u.active(start.settings)]
@@ -197,19 +197,19 @@ def test_tune_no_worse_than_the_grid_of_counts_and_sizes():
 
 
 def test_issue_case_numbers():
-    """The three.js developer's case: λ 0.5 gives 677 px per texel at 10 cm; 0.95 gives 76; the search goes further."""
+    """The three.js developer's case: λ 0.5 gives 677 texels per pixel at 10 cm; 0.95 gives 76; the search goes further."""
     start = _setup()
     lim = limits(start)
     assert round(measure(start, lim).objective, 1) == 677.2
     assert round(measure(start.with_settings(mode="custom", customSplitsLambda=0.95), lim).objective, 1) == 75.9
-    t = tune(start, fixed=("cascades", "shadowMapSize"))
+    t = tune(start, keep=("cascades", "shadowMapSize"))
     assert t.setup.settings["mode"] == "logarithmic" and round(t.objective, 2) == 9.05
 
 
 def test_receivers_end_the_shadows_and_move_the_split():
     start = _setup()
     fixed = ("cascades", "shadowMapSize")
-    t = tune(start, receivers=(1.0, 200.0), fixed=fixed)
+    t = tune(start, receivers=(1.0, 200.0), keep=fixed)
     assert t.setup.settings["maxFar"] == 200.0
     assert t.setup.settings["mode"] == "custom" and t.setup.settings["customSplitsLambda"] == 0.9132  # the README's numbers
     assert (round(t.before.objective, 1), round(t.objective, 2)) == (67.7, 5.33)
@@ -222,7 +222,7 @@ def test_receivers_end_the_shadows_and_move_the_split():
 def test_bias_is_the_closed_form(slope):
     """Front faces cast, the depth bias kept: the normal offset is (k/2)·w·sin θ at the steepest receiver in the largest texel (θ ≤ 85°)."""
     start = _setup(**{"material.shadowSide": "FrontSide"})
-    t = tune(start, max_slope=slope, fixed=("cascades", "shadowMapSize", "shadowBias"))
+    t = tune(start, max_slope=slope, keep=("cascades", "shadowMapSize", "shadowBias"))
     s = t.setup
     theta = min(90 - 15 + slope, 85.0)
     w = t.measure.texel.max()
@@ -251,7 +251,7 @@ def test_the_bias_that_moves_the_shadow_less():
 
     gaps = {}
     for slope in (0.0, 20.0):
-        t = tune(_setup(**{"material.shadowSide": "FrontSide"}), max_slope=slope, fixed=("cascades", "shadowMapSize"))
+        t = tune(_setup(**{"material.shadowSide": "FrontSide"}), max_slope=slope, keep=("cascades", "shadowMapSize"))
         taken = "shadow.normalBias" if "shadow.normalBias" in t.changed else "shadowBias"
         other = "shadowBias" if taken == "shadow.normalBias" else "shadow.normalBias"
         alt = t.setup.with_settings(**{taken: t.start.settings[taken], other: closed_form_bias(t.setup, other, max_slope=slope)})
@@ -266,13 +266,13 @@ def test_the_bias_that_moves_the_shadow_less():
 
 
 def test_back_faces_need_no_bias():
-    t = tune(_setup(), fixed=("cascades", "shadowMapSize"))
+    t = tune(_setup(), keep=("cascades", "shadowMapSize"))
     assert t.setup.settings["shadow.normalBias"] == 0.0 and t.setup.settings["shadowBias"] == pytest.approx(1e-6)
 
 
 def test_depth_bias_alone_when_the_normal_offset_is_fixed():
     start = _setup(**{"material.shadowSide": "FrontSide"})
-    t = tune(start, fixed=("cascades", "shadowMapSize", "shadow.normalBias"))
+    t = tune(start, keep=("cascades", "shadowMapSize", "shadow.normalBias"))
     s = t.setup
     # three.js adds shadowBias to the receiver's depth over lightFar − lightNear: a negative value lifts it
     w = t.measure.texel.max()
@@ -284,7 +284,7 @@ def test_depth_bias_alone_when_the_normal_offset_is_fixed():
 
 def test_infeasible_gap_says_what_binds_and_the_tradeoff():
     start = _setup(**{"material.shadowSide": "FrontSide"})
-    t = tune(start, receivers=(2.0, 500.0), max_gap_px=1.0, fixed=("cascades", "shadowMapSize", "shadow.normalBias"))
+    t = tune(start, receivers=(2.0, 500.0), max_gap_px=1.0, keep=("cascades", "shadowMapSize", "shadow.normalBias"))
     assert not t.feasible
     assert set(t.binding) == {"max_gap_px", "max_slope"}
     assert "max_slope" not in t.measure.violations(t.limits)  # the closest keeps the acne away
@@ -307,7 +307,7 @@ def test_texel_budget_binds():
 
 def test_fixed_settings_are_kept():
     start = _setup(mode="uniform", shadowMapSize=1024)
-    t = tune(start, fixed=("mode", "cascades", "shadowMapSize"))
+    t = tune(start, keep=("mode", "cascades", "shadowMapSize"))
     assert (t.setup.settings["mode"], t.setup.settings["cascades"], t.setup.settings["shadowMapSize"]) == ("uniform", 4, 1024)
 
 
@@ -321,7 +321,9 @@ def test_fixed_settings_are_kept():
     ({"max_texels": 0}, "max_texels"),
     ({"max_texels": 2.5}, "max_texels"),
     ({"moving": "yes"}, "moving"),
-    ({"fixed": ("cascade",)}, "cascades"),
+    ({"keep": ("cascade",)}, "cascades"),
+    ({"keep": 3}, "keep"),
+    ({"keep": (3,)}, "keep"),
 ])
 def test_bad_limits_name_the_parameter(kwargs, match):
     with pytest.raises((ValueError, TypeError), match=match):
@@ -345,7 +347,7 @@ def test_fuzz_limits(near, span, gap, slope, lo, width):
     """Any valid limits: a result whose violations are exactly what it reports as infeasible."""
     start = setups.build("threejs", {"cascades": 2, "material.shadowSide": "FrontSide"}, CAMERA, f"{lo}..{min(lo + width, 90.0)}")
     try:
-        t = tune(start, receivers=(near, near * span), max_gap_px=gap, max_slope=slope, fixed=("cascades", "shadowMapSize", "mode"))
+        t = tune(start, receivers=(near, near * span), max_gap_px=gap, max_slope=slope, keep=("cascades", "shadowMapSize", "mode"))
     except ValueError as exc:  # receivers that miss the camera's near..far
         assert "receivers" in str(exc) and (near * span <= 0.1 or near >= 500)
         return
@@ -359,7 +361,7 @@ def test_splits_against_the_papers():
     """Receivers 1..200 m: three.js's λ family against the log, practical, equal-error and eq. 83 budget splits."""
     from aliasing.tune.theory import _errors, compare_splits
 
-    t = tune(_setup(), receivers=(1.0, 200.0), fixed=("cascades", "shadowMapSize"))
+    t = tune(_setup(), receivers=(1.0, 200.0), keep=("cascades", "shadowMapSize"))
     rows = {r["method"]: r for r in compare_splits(t)}
     best = rows["equal-error"]
     assert best["error"] <= min(rows[m]["error"] for m in ("tuned", "log", "practical")) * (1 + 1e-3)
@@ -377,7 +379,7 @@ def test_guide_numbers():
 
     front = _setup(**{"material.shadowSide": "FrontSide"})
     fixed = ("cascades", "shadowMapSize")
-    t = tune(front, receivers=(1.0, 200.0), max_slope=10.0, fixed=fixed)
+    t = tune(front, receivers=(1.0, 200.0), max_slope=10.0, keep=fixed)
     assert t.changed == {"maxFar": 200.0, "mode": "custom", "customSplitsLambda": 0.9132, "shadow.normalBias": 0.09271,
                          "renderer.shadowMap.type": "BasicShadowMap"}
     assert round(float(np.nanmax(t.measure.gap_px))) == 134
@@ -388,7 +390,7 @@ def test_guide_numbers():
                                                                    "equal-error": 4.05, "budget": 5.64}
     assert {m: round(rows[m]["ratio"], 2) for m in ("tuned", "log", "practical", "budget")} == {"tuned": 1.32, "log": 1.78, "practical": 6.75,
                                                                                               "budget": 1.39}
-    bad = tune(front.with_settings(**{"shadow.normalBias": 0.0}), receivers=(1.0, 200.0), max_gap_px=1.0, fixed=fixed + ("shadow.normalBias",))
+    bad = tune(front.with_settings(**{"shadow.normalBias": 0.0}), receivers=(1.0, 200.0), max_gap_px=1.0, keep=fixed + ("shadow.normalBias",))
     assert round(float(np.nanmax(bad.measure.gap_px)), 1) == 15.2 and set(bad.binding) == {"max_gap_px", "max_slope"}
     assert (bad.setup.settings["mode"], bad.setup.settings["renderer.shadowMap.type"]) == ("uniform", "BasicShadowMap")
     curve = [(round(p["angle"], 1), float(f"{p['gap_px']:.3g}")) for p in bad.tradeoff]
@@ -423,6 +425,6 @@ def test_free_splits_equalize_from_a_stalled_start():
     """Godot, receivers 1..200 m: one fraction at a time stops with two cascades at the worst error (7.57, the later two
     near 2.5); all three together reach every split at the same, lower error."""
     start = setups.build("godot", None, CAMERA, "15..60")
-    t = tune(start, receivers=(1.0, 200.0), fixed=("directional_shadow_mode", "rendering/lights_and_shadows/directional_shadow/size"))
+    t = tune(start, receivers=(1.0, 200.0), keep=("directional_shadow_mode", "rendering/lights_and_shadows/directional_shadow/size"))
     assert np.nanmax(t.measure.error) <= np.nanmin(t.measure.error) * 1.002
     assert t.objective < 4.5

@@ -9,6 +9,8 @@ limits that bind and the snippet's first lines.
 
 from __future__ import annotations
 
+import math
+
 from typing import Any
 
 import numpy as np
@@ -79,10 +81,10 @@ def compute(engine: str, near: float, far: float, fov: float, aspect: float, hei
     lo, hi = sorted((float(sun_low), float(sun_high)))
     start = setups.build(engine, settings, cam, setups.Sun((lo, hi)))
     gap = str(max_gap_px).strip()
-    limit = None if gap in ("", "inf", "none") else float(gap)
-    fixed = tuple(t.key for t in start.profile.tunable if t.role in ("cascades", "size")) if keep_budget_shape else ()
+    limit = math.inf if gap in ("", "inf", "none") else float(gap)
+    kept = tuple(t.key for t in start.profile.tunable if t.role in ("cascades", "size")) if keep_budget_shape else ()
     t = tune(start, receivers=(float(receivers_near), float(receivers_far)), max_texels=int(budget), max_gap_px=limit,
-             max_slope=float(max_slope), moving=bool(moving), fixed=fixed)
+             max_slope=float(max_slope), moving=bool(moving), keep=kept)
     return {"engine": engine, "title": start.profile.title, "before": t.before.error, "after": t.measure.error, "objective": t.objective,
             "objective_before": t.before.objective, "changed": dict(t.changed), "binding": list(t.binding), "feasible": t.feasible,
             "snippet": t.snippet(), "gap_px": float(np.nanmax(t.measure.gap_px, initial=0.0)), "splits": [*t.setup.pipeline.near_i,

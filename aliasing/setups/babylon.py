@@ -288,32 +288,50 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
                     notes=tuple(notes), bands=blend_bands(s, camera.near, camera.far))
 
 
-def snippet(s: Mapping[str, Any]) -> str:
-    """JavaScript that sets the settings on a generator ``gen`` of ``light`` for ``camera``."""
+def snippet(s: Mapping[str, Any], keys: Any = None, light: str | None = None) -> str:
+    """JavaScript that sets ``keys`` of ``s`` (None: every setting, on a new generator) on the user's light's generator.
+
+    ``light`` is the light's name in the scene (``scene.getLightByName``); None writes a placeholder.
+    The generator is the light's own: the one for ``camera`` (a cascaded generator is registered
+    under its camera), else the light's first (``Light.getShadowGenerator(camera)`` returns null for
+    an unregistered camera and ``getShadowGenerators()`` lists them all, src/Lights/light.ts; the
+    inspector takes it the same way); its map size through the ``mapSize`` setter, which recreates
+    the map (``ShadowGenerator.mapSize``, src/Lights/Shadows/shadowGenerator.ts).
+    """
     cls = s["class"]
-    lines = [f"const gen = new BABYLON.{cls}({s['mapSize']}, light{', undefined, camera' if cls == 'CascadedShadowGenerator' else ''});"]
-    keys = (["numCascades", "lambda", "cascadeBlendPercentage", "stabilizeCascades", "depthClamp", "autoCalcDepthBounds"]
-            if cls == "CascadedShadowGenerator" else [])
-    keys += ["bias", "normalBias", "frustumEdgeFalloff", "forceBackFacesOnly", "contactHardeningLightSizeUVRatio", "darkness"]
+    if keys is None:
+        want = set(s)
+        lines = [f"const gen = new BABYLON.{cls}({s['mapSize']}, light{', undefined, camera' if cls == 'CascadedShadowGenerator' else ''});"]
+    else:
+        want = set(keys)
+        lines = [f"const light = scene.getLightByName({light!r});" if light else "const light = sun;  // your DirectionalLight",
+                 "const gen = light.getShadowGenerator(camera) ?? light.getShadowGenerators().values().next().value;"]
+        if "mapSize" in want:
+            lines.append(f"gen.mapSize = {s['mapSize']};")
+    order = (["numCascades", "lambda", "cascadeBlendPercentage", "stabilizeCascades", "depthClamp", "autoCalcDepthBounds"]
+             if cls == "CascadedShadowGenerator" else [])
+    order += ["bias", "normalBias", "frustumEdgeFalloff", "forceBackFacesOnly", "contactHardeningLightSizeUVRatio", "darkness"]
     if s["filter"] is not None and "EXPONENTIAL" in s["filter"]:
-        keys += ["depthScale", "useKernelBlur", "blurKernel", "blurBoxOffset", "blurScale"]
-    lines += [f"gen.{k} = {_js(s[k])};" for k in keys]
+        order += ["depthScale", "useKernelBlur", "blurKernel", "blurBoxOffset", "blurScale"]
+    lines += [f"gen.{k} = {_js(s[k])};" for k in order if k in want]
     if cls == "CascadedShadowGenerator":
-        if s["shadowMaxZ"] is not None:
+        if s["shadowMaxZ"] is not None and "shadowMaxZ" in want:
             lines.append(f"gen.shadowMaxZ = {_js(s['shadowMaxZ'])};")
-        if (s["minDistance"], s["maxDistance"]) != (0.0, 1.0):
+        if want & {"minDistance", "maxDistance"} and (keys is not None or (s["minDistance"], s["maxDistance"]) != (0.0, 1.0)):
             lines.append(f"gen.setMinMaxDistance({_js(s['minDistance'])}, {_js(s['maxDistance'])});")
     else:
-        lines.append(f"light.shadowFrustumSize = {_js(s['light.shadowFrustumSize'])};")
+        if "light.shadowFrustumSize" in want:
+            lines.append(f"light.shadowFrustumSize = {_js(s['light.shadowFrustumSize'])};")
         for k in ("light.shadowMinZ", "light.shadowMaxZ"):
-            if s[k] is not None:
+            if s[k] is not None and k in want:
                 lines.append(f"{k} = {_js(s[k])};")
-    if s["filter"] is not None:
+    if s["filter"] is not None and "filter" in want:
         lines.append(f"gen.filter = BABYLON.ShadowGenerator.{s['filter']};")
-    lines.append(f"gen.filteringQuality = BABYLON.ShadowGenerator.{s['filteringQuality']};")
+    if "filteringQuality" in want:
+        lines.append(f"gen.filteringQuality = BABYLON.ShadowGenerator.{s['filteringQuality']};")
     for k in ("material.backFaceCulling", "material.cullBackFaces"):
-        if not s[k]:
-            lines.append(f"{k} = false;")
+        if k in want and (keys is not None or not s[k]):
+            lines.append(f"{k} = {_js(s[k])};")
     return "\n".join(lines)
 
 

@@ -117,28 +117,48 @@ def _rs(v: Any) -> str:
     return f"{float(v)!r}" if isinstance(v, float) else str(v)
 
 
-def snippet(s: Mapping[str, Any]) -> str:
-    """Rust that sets the settings (a DirectionalLight entity with its cascade config)."""
-    return "\n".join([
-        f"app.insert_resource(DirectionalLightShadowMap {{ size: {int(s['DirectionalLightShadowMap.size'])} }});",
-        "commands.spawn((",
-        "    DirectionalLight {",
-        "        shadows_enabled: true,",
-        f"        shadow_depth_bias: {_rs(s['shadow_depth_bias'])},",
-        f"        shadow_normal_bias: {_rs(s['shadow_normal_bias'])},",
-        "        ..default()",
-        "    },",
-        "    CascadeShadowConfigBuilder {",
-        f"        num_cascades: {int(s['num_cascades'])},",
-        f"        minimum_distance: {_rs(s['minimum_distance'])},",
-        f"        maximum_distance: {_rs(s['maximum_distance'])},",
-        f"        first_cascade_far_bound: {_rs(s['first_cascade_far_bound'])},",
-        f"        overlap_proportion: {_rs(s['overlap_proportion'])},",
-        "    }",
-        "    .build(),",
-        "));",
-        f"// on the camera entity: ShadowFilteringMethod::{s['ShadowFilteringMethod']}",
-    ])
+def snippet(s: Mapping[str, Any], keys: Any = None, light: str | None = None) -> str:
+    """Rust that sets ``keys`` of ``s``: None spawns a DirectionalLight entity with every setting; otherwise a system sets
+    the changed ones on the user's light (the entity whose ``Name`` is ``light``; None: every DirectionalLight).
+
+    The cascade config is rebuilt whole from its builder (CascadeShadowConfigBuilder::build, crates/bevy_pbr/src/light/mod.rs).
+    """
+    config = ["    CascadeShadowConfigBuilder {",
+              f"        num_cascades: {int(s['num_cascades'])},",
+              f"        minimum_distance: {_rs(s['minimum_distance'])},",
+              f"        maximum_distance: {_rs(s['maximum_distance'])},",
+              f"        first_cascade_far_bound: {_rs(s['first_cascade_far_bound'])},",
+              f"        overlap_proportion: {_rs(s['overlap_proportion'])},",
+              "    }"]
+    if keys is None:
+        return "\n".join([
+            f"app.insert_resource(DirectionalLightShadowMap {{ size: {int(s['DirectionalLightShadowMap.size'])} }});",
+            "commands.spawn((",
+            "    DirectionalLight {",
+            "        shadows_enabled: true,",
+            f"        shadow_depth_bias: {_rs(s['shadow_depth_bias'])},",
+            f"        shadow_normal_bias: {_rs(s['shadow_normal_bias'])},",
+            "        ..default()",
+            "    },",
+            *config,
+            "    .build(),",
+            "));",
+            f"// on the camera entity: ShadowFilteringMethod::{s['ShadowFilteringMethod']}",
+        ])
+    want = set(keys)
+    lines = ["fn tune_shadows(mut map: ResMut<DirectionalLightShadowMap>,",
+             "                mut lights: Query<(&Name, &mut DirectionalLight, &mut CascadeShadowConfig)>) {"]
+    if "DirectionalLightShadowMap.size" in want:
+        lines.append(f"    map.size = {int(s['DirectionalLightShadowMap.size'])};")
+    lines.append("    for (name, mut light, mut config) in &mut lights {")
+    lines.append(f"        if name.as_str() != {light!r} {{ continue; }}".replace("'", '"') if light else "        // every DirectionalLight: filter by your light's Name")
+    lines += [f"        light.{k} = {_rs(s[k])};" for k in ("shadow_depth_bias", "shadow_normal_bias") if k in want]
+    if want & {"num_cascades", "minimum_distance", "maximum_distance", "first_cascade_far_bound", "overlap_proportion"}:
+        lines += ["        *config = " + config[0].strip()] + ["    " + c for c in config[1:]] + ["        .build();"]
+    lines += ["    }", "}"]
+    if "ShadowFilteringMethod" in want:
+        lines.append(f"// on the camera entity: ShadowFilteringMethod::{s['ShadowFilteringMethod']}")
+    return "\n".join(lines)
 
 
 #: What :func:`aliasing.tune.tune` searches: the count, the first cascade's far bound (metres,

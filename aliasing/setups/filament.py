@@ -110,17 +110,30 @@ def _cpp(v: Any) -> str:
     return str(v)
 
 
-def snippet(s: Mapping[str, Any]) -> str:
-    """C++ that sets the settings (ShadowOptions on the light's builder, the View's shadow type)."""
-    lines = ["LightManager::ShadowOptions options;"]
-    for key in ("mapSize", "shadowCascades", "constantBias", "normalBias", "shadowFar", "shadowNearHint", "shadowFarHint", "stable", "lispsm",
-                "polygonOffsetConstant", "polygonOffsetSlope", "screenSpaceContactShadows", "stepCount", "maxShadowDistance"):
-        lines.append(f"options.{key} = {_cpp(s[key])};")
-    for i in range(3):
-        lines.append(f"options.cascadeSplitPositions[{i}] = {_cpp(s[f'cascadeSplitPositions[{i}]'])};")
-    lines += ["LightManager::Builder(LightManager::Type::SUN).castShadows(true).shadowOptions(options).build(*engine, sun);",
-              f"view->setShadowType(View::ShadowType::{s['View.shadowType']});"]
-    return "\n".join(lines)
+def snippet(s: Mapping[str, Any], keys: Any = None, light: str | None = None) -> str:
+    """C++ that sets ``keys`` of ``s`` (None: every setting, on a new light) on the user's sun entity.
+
+    With ``keys`` the light's own ShadowOptions are read, changed and set back
+    (``LightManager::getShadowOptions``/``setShadowOptions``, filament/include/filament/LightManager.h); ``light``
+    names the entity's variable (None: ``sun``, marked as a placeholder).
+    """
+    want = set(s) if keys is None else set(keys)
+    order = ("mapSize", "shadowCascades", "constantBias", "normalBias", "shadowFar", "shadowNearHint", "shadowFarHint", "stable", "lispsm",
+             "polygonOffsetConstant", "polygonOffsetSlope", "screenSpaceContactShadows", "stepCount", "maxShadowDistance")
+    sets = [f"options.{k} = {_cpp(s[k])};" for k in order if k in want]
+    sets += [f"options.cascadeSplitPositions[{i}] = {_cpp(s[f'cascadeSplitPositions[{i}]'])};" for i in range(3)
+             if f"cascadeSplitPositions[{i}]" in want]
+    view = [f"view->setShadowType(View::ShadowType::{s['View.shadowType']});"] if "View.shadowType" in want else []
+    if keys is None:
+        return "\n".join(["LightManager::ShadowOptions options;", *sets,
+                          "LightManager::Builder(LightManager::Type::SUN).castShadows(true).shadowOptions(options).build(*engine, sun);", *view])
+    if not sets:
+        return "\n".join(view)
+    entity = light or "sun"
+    return "\n".join(["auto& lm = engine->getLightManager();",
+                      f"auto instance = lm.getInstance({entity});" + ("" if light else "  // sun: your light's entity"),
+                      "LightManager::ShadowOptions options = lm.getShadowOptions(instance);", *sets,
+                      "lm.setShadowOptions(instance, options);", *view])
 
 
 #: What :func:`aliasing.tune.tune` searches: the cascade count, the split positions that count

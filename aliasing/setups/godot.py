@@ -180,17 +180,28 @@ def _gd(v: Any) -> str:
     return f"{v:g}" if isinstance(v, float) else str(v)
 
 
-def snippet(s: Mapping[str, Any]) -> str:
-    """GDScript that sets the settings (the light's properties, then the project settings' renderer calls)."""
-    lines = ["var light := DirectionalLight3D.new()", "light.shadow_enabled = true",
-             f"light.directional_shadow_mode = DirectionalLight3D.{s['directional_shadow_mode']}"]
+def snippet(s: Mapping[str, Any], keys: Any = None, light: str | None = None) -> str:
+    """GDScript that sets ``keys`` of ``s`` (None: every setting) on the user's light, then the project settings' renderer calls.
+
+    ``light`` is the DirectionalLight3D's node name (``$Name``); None writes ``$Sun`` marked as a placeholder.
+    """
+    want = set(s) if keys is None else set(keys)
+    node = f"${light}" if light and light.replace("_", "").isalnum() else f'get_node("{light}")' if light else "$Sun  # your light"
+    lines = [f"var light: DirectionalLight3D = {node}"]
+    if keys is None:
+        lines.append("light.shadow_enabled = true")
+    if "directional_shadow_mode" in want:
+        lines.append(f"light.directional_shadow_mode = DirectionalLight3D.{s['directional_shadow_mode']}")
     for key in ("directional_shadow_split_1", "directional_shadow_split_2", "directional_shadow_split_3", "directional_shadow_blend_splits",
                 "directional_shadow_fade_start", "directional_shadow_max_distance", "directional_shadow_pancake_size", "shadow_bias",
                 "shadow_normal_bias", "shadow_blur", "shadow_reverse_cull_face", "light_angular_distance"):
-        lines.append(f"light.{key} = {_gd(s[key])}")
-    lines.append(f"RenderingServer.directional_shadow_atlas_set_size({s[SIZE]}, {_gd(s[BITS])})  # {SIZE}, {BITS}")
-    quality = ("HARD", "SOFT_VERY_LOW", "SOFT_LOW", "SOFT_MEDIUM", "SOFT_HIGH", "SOFT_ULTRA")[int(s[QUALITY])]
-    lines.append(f"RenderingServer.directional_soft_shadow_filter_set_quality(RenderingServer.SHADOW_QUALITY_{quality})  # {QUALITY}")
+        if key in want:
+            lines.append(f"light.{key} = {_gd(s[key])}")
+    if want & {SIZE, BITS}:
+        lines.append(f"RenderingServer.directional_shadow_atlas_set_size({s[SIZE]}, {_gd(s[BITS])})  # {SIZE}, {BITS}")
+    if QUALITY in want:
+        quality = ("HARD", "SOFT_VERY_LOW", "SOFT_LOW", "SOFT_MEDIUM", "SOFT_HIGH", "SOFT_ULTRA")[int(s[QUALITY])]
+        lines.append(f"RenderingServer.directional_soft_shadow_filter_set_quality(RenderingServer.SHADOW_QUALITY_{quality})  # {QUALITY}")
     return "\n".join(lines)
 
 

@@ -180,16 +180,27 @@ def _build(s: Mapping[str, Any], camera) -> Pipeline:
                     memory=res * res * bytes_per, notes=tuple(notes), bands=blend_bands(s, camera.near, camera.far))
 
 
-def snippet(s: Mapping[str, Any]) -> str:
-    """JavaScript: the light component's data."""
-    keys = ("numCascades", "cascadeDistribution", "cascadeBlend", "shadowDistance", "shadowResolution", "shadowBias", "normalOffsetBias")
-    body = ",\n".join([f"  {k}: {_js(s[k])}" for k in keys] + [f"  shadowType: pc.{s['shadowType']}"]
-                      + ([f"  vsmBlurSize: {s['vsmBlurSize']}", f"  vsmBias: {_js(s['vsmBias'])}"] if "VSM" in s["shadowType"] else [])
-                      + ([f"  shadowSamples: {s['shadowSamples']}", f"  penumbraSize: {_js(s['penumbraSize'])}"] if "PCSS" in s["shadowType"] else []))
-    out = f"sun.addComponent('light', {{\n  type: 'directional',\n  castShadows: true,\n{body},\n}});"
-    if s["material.cull"] != "CULLFACE_BACK":
-        out += f"\nmaterial.cull = pc.{s['material.cull']};"
-    return out
+def snippet(s: Mapping[str, Any], keys: Any = None, light: str | None = None) -> str:
+    """JavaScript: the light component's data (``keys`` None: every setting, on a new component), or ``keys`` set on the
+    user's light entity ``light`` (its name, ``app.root.findByName``; None: a placeholder)."""
+    if keys is None:
+        order = ("numCascades", "cascadeDistribution", "cascadeBlend", "shadowDistance", "shadowResolution", "shadowBias", "normalOffsetBias")
+        body = ",\n".join([f"  {k}: {_js(s[k])}" for k in order] + [f"  shadowType: pc.{s['shadowType']}"]
+                          + ([f"  vsmBlurSize: {s['vsmBlurSize']}", f"  vsmBias: {_js(s['vsmBias'])}"] if "VSM" in s["shadowType"] else [])
+                          + ([f"  shadowSamples: {s['shadowSamples']}", f"  penumbraSize: {_js(s['penumbraSize'])}"] if "PCSS" in s["shadowType"] else []))
+        out = f"sun.addComponent('light', {{\n  type: 'directional',\n  castShadows: true,\n{body},\n}});"
+        if s["material.cull"] != "CULLFACE_BACK":
+            out += f"\nmaterial.cull = pc.{s['material.cull']};"
+        return out
+    lines = [f"const sun = app.root.findByName({light!r});" if light else "const sun = light;  // your directional light entity"]
+    for k in keys:
+        if k == "material.cull":
+            lines.append(f"material.cull = pc.{s[k]};")
+        elif k == "shadowType":
+            lines.append(f"sun.light.shadowType = pc.{s[k]};")
+        else:
+            lines.append(f"sun.light.{k} = {_js(s[k])};")
+    return "\n".join(lines)
 
 
 def _js(v: Any) -> str:

@@ -520,7 +520,9 @@ class Profile:
     build : callable
         ``build(settings, camera) -> Pipeline``; ``settings`` has every key, validated.
     snippet : callable or None
-        ``snippet(settings) -> str``: code in the engine's language that sets them.
+        ``snippet(settings, keys=None, light=None) -> str``: code in the engine's language that sets
+        ``keys`` of ``settings`` (None: every setting, on a new light) on the user's light named
+        ``light`` (None: a placeholder the user recognises).
     language : str
         The snippet's language.
     source : str
@@ -535,7 +537,7 @@ class Profile:
     settings: tuple
     build: Callable[[Mapping[str, Any], Any], Pipeline]
     releases: tuple = ()
-    snippet: Callable[[Mapping[str, Any]], str] | None = None
+    snippet: Callable[..., str] | None = None
     language: str = ""
     source: str = ""
     npm: str = ""

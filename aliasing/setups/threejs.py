@@ -225,29 +225,50 @@ def _build(split_form: str):
     return build
 
 
-def snippet(s: Mapping[str, Any]) -> str:
-    """JavaScript that sets the settings (the CSM constructor's data, then each light's shadow)."""
+def snippet(s: Mapping[str, Any], keys: Any = None, light: str | None = None) -> str:
+    """JavaScript that sets ``keys`` of ``s`` (None: every setting) on the user's light or CSM.
+
+    ``light`` is the DirectionalLight's name in the scene (``scene.getObjectByName``); None writes a
+    placeholder.  A CSM reads its count, map size, bias and light range in its constructor
+    (``CSM`` constructor and ``createLights``, examples/jsm/csm/CSM.js at the pinned release): where one of
+    those changes, the CSM is built anew; the split mode, ``maxFar`` and the lights' shadow
+    properties are set on the user's ``csm``, then ``csm.updateFrustums()``.
+    """
+    want = set(s) if keys is None else set(keys)
+    lines = []
     if s["class"] == "DirectionalLight":
-        lines = ["light.castShadow = true;"]
-        lines += [f"light.{k} = {_js(s[k])};" for k in s if k.startswith("shadow.")]
+        lines.append(f"const light = scene.getObjectByName({_js(light)});" if light else "const light = sun;  // your DirectionalLight")
+        if keys is None:
+            lines.append("light.castShadow = true;")
+        lines += [f"light.{k} = {_js(s[k])};" for k in s if k.startswith("shadow.") and k in want]
     else:
-        keys = ("cascades", "maxFar", "mode", "shadowMapSize", "shadowBias", "lightNear", "lightFar", "lightMargin")
-        body = ",\n".join(f"  {k}: {_js(s[k])}" for k in keys)
-        lines = [f"const csm = new CSM({{\n{body},\n  camera, parent: scene, lightDirection,\n}});"]
-        if s["mode"] == "custom":
+        built = ("cascades", "shadowMapSize", "shadowBias", "lightNear", "lightFar", "lightMargin")
+        if keys is None or want & set(built):
+            order = ("cascades", "maxFar", "mode", "shadowMapSize", "shadowBias", "lightNear", "lightFar", "lightMargin")
+            body = ",\n".join(f"  {k}: {_js(s[k])}" for k in order)
+            lines.append(f"csm.dispose();  // your CSM, built anew: its count, map size, bias and light range are read once\n"
+                         f"csm = new CSM({{\n{body},\n  camera, parent: scene, lightDirection,\n}});" if keys is not None else
+                         f"const csm = new CSM({{\n{body},\n  camera, parent: scene, lightDirection,\n}});")
+            want |= {"mode", "customSplitsLambda", "fade", "shadow.normalBias", "shadow.radius", "shadow.blurSamples"}
+        else:
+            lines.append("// csm: your CSM")
+            lines += [f"csm.{k} = {_js(s[k])};" for k in ("maxFar", "mode") if k in want]
+        if s["mode"] == "custom" and want & {"mode", "customSplitsLambda"}:
             lines.append(f"csm.customSplitsCallback = (n, near, far, breaks) => {{ for (let i = 1; i < n; i++) "
                          f"breaks.push(THREE.MathUtils.lerp((near + (far - near) * i / n) / far, near * (far / near) ** (i / n) / far, "
                          f"{s['customSplitsLambda']:g})); breaks.push(1); }};")
-        if s["fade"]:
-            lines.append("csm.fade = true;  // the constructor ignores data.fade")
-        lines.append(f"for (const light of csm.lights) {{ light.shadow.normalBias = {_js(s['shadow.normalBias'])}; "
-                     f"light.shadow.radius = {_js(s['shadow.radius'])}; light.shadow.blurSamples = {_js(s['shadow.blurSamples'])}; }}")
+        if "fade" in want and (s["fade"] or keys is not None):
+            lines.append(f"csm.fade = {_js(s['fade'])};  // the constructor ignores data.fade")
+        each = [f"light.shadow.{k[7:]} = {_js(s[k])};" for k in ("shadow.normalBias", "shadow.radius", "shadow.blurSamples") if k in want]
+        if each:
+            lines.append(f"for (const light of csm.lights) {{ {' '.join(each)} }}")
         lines.append("csm.updateFrustums();")
-    if s["material.side"] != "FrontSide":
+    if "material.side" in want and (keys is not None or s["material.side"] != "FrontSide"):
         lines.append(f"material.side = THREE.{s['material.side']};")
-    if s["material.shadowSide"] != "null":
-        lines.append(f"material.shadowSide = THREE.{s['material.shadowSide']};")
-    lines.append(f"renderer.shadowMap.type = THREE.{s['renderer.shadowMap.type']};")
+    if "material.shadowSide" in want and (keys is not None or s["material.shadowSide"] != "null"):
+        lines.append(f"material.shadowSide = {'null' if s['material.shadowSide'] == 'null' else 'THREE.' + s['material.shadowSide']};")
+    if "renderer.shadowMap.type" in want:
+        lines.append(f"renderer.shadowMap.type = THREE.{s['renderer.shadowMap.type']};")
     return "\n".join(lines)
 
 

@@ -147,25 +147,38 @@ def _cs(v: Any) -> str:
     return f"{v:g}f" if isinstance(v, float) else str(v)
 
 
-def snippet(s: Mapping[str, Any]) -> str:
-    """C# that sets the settings (the URP asset, then the light)."""
-    lines = ["var asset = (UniversalRenderPipelineAsset)GraphicsSettings.currentRenderPipeline;",
-             f"asset.shadowDistance = {_cs(s['shadowDistance'])};",
-             f"asset.shadowCascadeCount = {s['shadowCascadeCount']};",
-             f"asset.cascade2Split = {_cs(s['cascade2Split'])};",
-             f"asset.cascade3Split = new Vector2({_cs(s['cascade3Split.x'])}, {_cs(s['cascade3Split.y'])});",
-             f"asset.cascade4Split = new Vector3({_cs(s['cascade4Split.x'])}, {_cs(s['cascade4Split.y'])}, {_cs(s['cascade4Split.z'])});",
-             f"asset.cascadeBorder = {_cs(s['cascadeBorder'])};",
-             f"asset.mainLightShadowmapResolution = {s['mainLightShadowmapResolution']};",
-             f"asset.shadowDepthBias = {_cs(s['shadowDepthBias'])};",
-             f"asset.shadowNormalBias = {_cs(s['shadowNormalBias'])};",
-             f"// supportsSoftShadows = {_cs(s['supportsSoftShadows'])} and softShadowQuality = SoftShadowQuality.{s['softShadowQuality']} are set in the asset's inspector",
-             f"light.shadows = LightShadows.{s['light.shadows']};",
-             f"light.shadowBias = {_cs(s['light.shadowBias'])};",
-             f"light.shadowNormalBias = {_cs(s['light.shadowNormalBias'])};",
-             "var data = light.GetUniversalAdditionalLightData();",
-             f"data.usePipelineSettings = {_cs(s['light.usePipelineSettings'])};",
-             f"data.softShadowQuality = SoftShadowQuality.{s['light.softShadowQuality']};"]
+def snippet(s: Mapping[str, Any], keys: Any = None, light: str | None = None) -> str:
+    """C# that sets ``keys`` of ``s`` (None: every setting): the URP asset, then the user's light.
+
+    ``light`` is the light's GameObject name (``GameObject.Find``); None writes a placeholder.
+    """
+    want = set(s) if keys is None else set(keys)
+    asset = [f"asset.shadowDistance = {_cs(s['shadowDistance'])};" if "shadowDistance" in want else "",
+             f"asset.shadowCascadeCount = {s['shadowCascadeCount']};" if "shadowCascadeCount" in want else "",
+             f"asset.cascade2Split = {_cs(s['cascade2Split'])};" if "cascade2Split" in want else "",
+             f"asset.cascade3Split = new Vector2({_cs(s['cascade3Split.x'])}, {_cs(s['cascade3Split.y'])});"
+             if want & {"cascade3Split.x", "cascade3Split.y"} else "",
+             f"asset.cascade4Split = new Vector3({_cs(s['cascade4Split.x'])}, {_cs(s['cascade4Split.y'])}, {_cs(s['cascade4Split.z'])});"
+             if want & {"cascade4Split.x", "cascade4Split.y", "cascade4Split.z"} else ""]
+    asset += [f"asset.{k} = {_cs(s[k]) if k != 'mainLightShadowmapResolution' else s[k]};" for k in
+              ("cascadeBorder", "mainLightShadowmapResolution", "shadowDepthBias", "shadowNormalBias") if k in want]
+    if want & {"supportsSoftShadows", "softShadowQuality"}:
+        asset.append(f"// supportsSoftShadows = {_cs(s['supportsSoftShadows'])} and softShadowQuality = SoftShadowQuality.{s['softShadowQuality']} "
+                     "are set in the asset's inspector")
+    asset = [a for a in asset if a]
+    lines = (["var asset = (UniversalRenderPipelineAsset)GraphicsSettings.currentRenderPipeline;"] + asset) if asset else []
+    own = [f"light.shadows = LightShadows.{s['light.shadows']};" if "light.shadows" in want else "",
+           f"light.shadowBias = {_cs(s['light.shadowBias'])};" if "light.shadowBias" in want else "",
+           f"light.shadowNormalBias = {_cs(s['light.shadowNormalBias'])};" if "light.shadowNormalBias" in want else ""]
+    data = [f"data.usePipelineSettings = {_cs(s['light.usePipelineSettings'])};" if "light.usePipelineSettings" in want else "",
+            f"data.softShadowQuality = SoftShadowQuality.{s['light.softShadowQuality']};" if "light.softShadowQuality" in want else ""]
+    own, data = [x for x in own if x], [x for x in data if x]
+    if own or data:
+        lines.append(f'var light = GameObject.Find("{light}").GetComponent<Light>();' if light
+                     else "var light = RenderSettings.sun;  // your main light")
+        lines += own
+    if data:
+        lines += ["var data = light.GetUniversalAdditionalLightData();"] + data
     return "\n".join(lines)
 
 

@@ -111,12 +111,17 @@ def build(s: Mapping[str, Any], camera) -> Pipeline:
                     notes=notes, bands=bands)
 
 
-def snippet(s: Mapping[str, Any]) -> str:
-    """The console variables (DefaultEngine.ini ``[SystemSettings]``) and the light's properties (its .ini/.uasset defaults)."""
-    cvars = [k for k in s if k.startswith("r.")]
-    lines = ["; DefaultEngine.ini", "[SystemSettings]"] + [f"{k}={s[k]:g}" if isinstance(s[k], float) else f"{k}={s[k]}" for k in cvars]
-    lines += ["", "; the DirectionalLight component (Details panel or C++)"]
-    lines += [f"; DirectionalLight->{k} = {s[k]:g}" if isinstance(s[k], float) else f"; DirectionalLight->{k} = {s[k]}" for k in s if not k.startswith("r.")]
+def snippet(s: Mapping[str, Any], keys: Any = None, light: str | None = None) -> str:
+    """The console variables (DefaultEngine.ini ``[SystemSettings]``) and the light's properties (its .ini/.uasset defaults)
+    of ``keys`` (None: every setting); ``light`` names the DirectionalLight actor (None: a placeholder)."""
+    want = set(s) if keys is None else set(keys)
+    cvars = [k for k in s if k.startswith("r.") and k in want]
+    props = [k for k in s if not k.startswith("r.") and k in want]
+    lines = ["; DefaultEngine.ini", "[SystemSettings]"] + [f"{k}={s[k]:g}" if isinstance(s[k], float) else f"{k}={s[k]}" for k in cvars] if cvars else []
+    if props:
+        lines += ([""] if lines else []) + [f"; the DirectionalLight component of {light} (Details panel or C++)" if light else
+                                            "; the DirectionalLight component of your sun (Details panel or C++)"]
+        lines += [f"; DirectionalLight->{k} = {s[k]:g}" if isinstance(s[k], float) else f"; DirectionalLight->{k} = {s[k]}" for k in props]
     return "\n".join(lines)
 
 

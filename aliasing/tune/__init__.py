@@ -15,6 +15,10 @@ measure
     The objective and the constraints of one setup.
 search
     The search and the closed-form bias.
+receivers
+    The receivers' depths of a scene.
+report
+    What changed and what got worse, start against tuned.
 theory
     The tuned split against the papers' splits for the same budget.
 command
@@ -24,15 +28,16 @@ Example
 -------
 >>> from aliasing import setups
 >>> s = setups.build("threejs", {"cascades": 4}, "near=0.1,far=500,fov=50,aspect=16:9,height=1080", "15..60")
->>> t = tune(s, fixed=("cascades", "shadowMapSize"))
->>> t.feasible, t.changed, round(t.before.objective), round(t.objective, 2)   # px per texel, before and after
+>>> t = tune(s, keep=("cascades", "shadowMapSize"))
+>>> t.feasible, t.changed, round(t.before.objective), round(t.objective, 2)   # texels per pixel, before and after
 (True, {'mode': 'logarithmic'}, 677, 9.05)
 """
 
 from __future__ import annotations
 
 from .measure import LIMITS, MAX_ANGLE, Limits, Measure, limits, measure
-from .search import Tuned, closed_form_bias, scene_receivers, tune
+from .receivers import scene_receivers
+from .search import Tuned, closed_form_bias, tune
 from .theory import compare_splits, equal_error_split
 
 __all__ = ["LIMITS", "MAX_ANGLE", "Limits", "Measure", "Tuned", "closed_form_bias", "compare_splits", "equal_error_split", "limits",

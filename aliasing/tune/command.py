@@ -4,32 +4,45 @@
 
     aliasing tune --engine ENGINE[@RELEASE] --camera SPEC --sun ELEV[..ELEV][@AZ] \\
         [--receivers NEAR..FAR | --scene FILE] [--max-texels N] [--max-gap-px P] [--max-slope DEG] \\
-        [--moving] [--settings FILE] [--set KEY=VALUE]... [--format table|json]
+        [--moving] [--settings FILE] [--set KEY=VALUE]... [--keep KEY[,KEY...]]... [--patch | --write]
+        [--format table|json]
 
-The settings given with ``--settings`` and ``--set`` are fixed; the others the profile declares
-tunable are searched.  JSON: the ``check`` object of the tuned settings (feeding its
-``settings`` back through ``aliasing check --settings`` gives the same numbers), plus
-``objective``, ``binding``, ``feasible``, ``changed``, ``snippet``, ``tradeoff``, ``limits`` and
-``defaults`` (the ``check`` object of the settings before tuning).  Limits that cannot all be
-met are exit status 0 with ``binding``; a malformed limit is one line naming its flag, exit 2.
+The user's setup (``--settings``, ``--set`` and, where the command line has it, ``--project``) is
+the start, "before"; ``--keep`` holds settings at their start values; the others the profile
+declares tunable are searched from there.  Every changed setting is listed with its value before
+and after in the engine's units, and every measure that got worse (:func:`aliasing.tune.report.worse`)
+on its own line.  JSON: the ``check`` object of the tuned settings (feeding its ``settings`` back
+through ``aliasing check --settings`` gives the same numbers), plus ``objective``, ``binding``,
+``feasible``, ``changed``, ``changes`` (``[{key, before, after, unit}]``), ``worse``, ``keep``,
+``held_gap`` (where the gap grew unasked: the search with the start's gap as the limit, its
+objective and changes), ``snippet``, ``tradeoff``, ``limits``, ``measured`` and ``defaults`` (the
+``check`` object of the start); with ``--patch`` and ``--format json``, ``patch`` (file -> diff).  No
+NaN or inf: a number that does not exist is ``null`` with a reason beside it.  ``--patch`` prints
+the changes as a unified diff of the project's own files, ``--write`` applies it (both need
+``--project``).  Limits that cannot all be met are exit status 0 with ``binding``; a malformed
+limit is one line naming its flag, exit 2.
 """
 
 from __future__ import annotations
 
 import argparse
+import difflib
 import json
 import math
 import re
 import sys
+from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 from .. import _table as _tables
 from .. import setups
 from ..check import check
-from . import search
+from ..setups import files
+from . import report, search
 
 _FLAGS = {"receivers": "--receivers", "max_texels": "--max-texels", "max_gap_px": "--max-gap-px", "max_slope": "--max-slope",
-          "scene": "--scene"}
+          "scene": "--scene", "keep": "--keep"}
 
 
 def _flag_error(exc: ValueError) -> ValueError:
@@ -74,21 +87,98 @@ def _texels(text: str | None) -> int | None:
     return value
 
 
+def _keep(values: list[str] | None) -> tuple[str, ...]:
+    """``--keep KEY[,KEY...]`` (repeatable) as keys; each is checked against the profile's by :func:`aliasing.tune.tune`."""
+    out = []
+    for v in values or ():
+        parts = [p.strip() for p in v.split(",")]
+        if not all(parts):
+            raise ValueError(f"--keep must be KEY[,KEY...] of the engine's own setting keys, got {v!r}")
+        out += parts
+    return tuple(out)
+
+
+def _project(args: argparse.Namespace) -> list[Path]:
+    """The project files of ``--project`` (one or a list), [] without it."""
+    got = getattr(args, "project", None)
+    if not got:
+        return []
+    return [Path(p) for p in ([got] if isinstance(got, (str, Path)) else got)]
+
+
 def run(args: argparse.Namespace) -> dict[str, Any]:
-    """The result of the parsed options: the :class:`~aliasing.tune.Tuned` and its ``check`` reports."""
-    start = setups.from_args(args)
-    fixed: dict[str, Any] = {}
-    if args.settings:
-        fixed.update(setups.load_settings(args.settings))
-    fixed.update(setups.parse_set(args.set_))
+    """The result of the parsed options: the :class:`~aliasing.tune.Tuned`, its ``check`` reports, what got worse, the project found."""
     if args.receivers is not None and args.scene is not None:
         raise ValueError("--receivers and --scene both give the receivers: use one")
+    paths = _project(args)
+    if (args.patch or args.write) and not paths:
+        raise ValueError(f"{'--patch' if args.patch else '--write'} needs --project FILE (the engine's own project file to change)")
+    start = setups.from_args(args)
+    found = files.read(paths, getattr(args, "light", None), getattr(args, "camera_node", None)) if paths else None
     try:
         tuned = search.tune(start, receivers=_receivers(args.receivers), scene=args.scene, max_texels=_texels(args.max_texels),
-                            max_gap_px=args.max_gap_px, max_slope=args.max_slope, moving=args.moving, fixed=tuple(fixed))
+                            max_gap_px=args.max_gap_px, max_slope=args.max_slope, moving=args.moving, keep=_keep(args.keep))
     except ValueError as exc:
         raise _flag_error(exc) from None
-    return {"tuned": tuned, "after": check(tuned.setup), "before": check(tuned.start)}
+    light = found.light if found is not None and found.light else getattr(args, "light", None)
+    out = {"tuned": tuned, "after": check(tuned.setup), "before": check(tuned.start), "worse": report.worse(tuned), "light": light,
+           "found": found, "paths": paths}
+    if paths:
+        out["patches"] = patches(paths, tuned.changed, found, light, getattr(args, "camera_node", None))
+    return out
+
+
+def placed(paths: list[Path], changes: Mapping[str, Any], where: Mapping[str, str], light: str | None = None,
+           camera: str | None = None) -> dict[Path, dict[str, Any]]:
+    """The changed settings grouped by the project file that holds each.
+
+    A key is in the file that ``Found.where`` (:class:`aliasing.setups.files.Found`) names for it (``"main.tscn line 12"``: the
+    file's name first).  A key no file holds goes to the first file whose reader's patch takes it (a reader refuses,
+    with a ValueError, a key that does not belong in its file).
+    """
+    by_name = {p.name: p for p in paths}
+    out: dict[Path, dict[str, Any]] = {p: {} for p in paths}
+    for key, value in changes.items():
+        at = str(where.get(key, ""))
+        home = next((p for name, p in by_name.items() if at == name or at.startswith(name + " ") or at.startswith(name + ":")), None)
+        if home is None:
+            for p in paths:
+                try:
+                    files.patch(p, {key: value}, light, camera)
+                except ValueError:
+                    continue
+                home = p
+                break
+        if home is None:
+            raise ValueError(f"project: no file of {', '.join(p.name for p in paths)} takes the setting {key!r}; set it in the engine")
+        out[home][key] = value
+    return {p: c for p, c in out.items() if c}
+
+
+def patches(paths: list[Path], changes: Mapping[str, Any], found, light: str | None = None, camera: str | None = None) -> dict[Path, str]:
+    """Per project file with a changed key, the unified diff (``difflib.unified_diff``) of its patched text (:func:`aliasing.setups.files.patch`)."""
+    out = {}
+    for path, mine in placed(paths, changes, found.where if found is not None else {}, light, camera).items():
+        old = path.read_text(encoding="utf-8-sig")
+        new = files.patch(path, mine, light, camera)
+        out[path] = "".join(difflib.unified_diff(old.splitlines(keepends=True), new.splitlines(keepends=True),
+                                                 fromfile=f"a/{path.as_posix()}", tofile=f"b/{path.as_posix()}"))
+    return out
+
+
+def write(paths: list[Path], changes: Mapping[str, Any], found, light: str | None = None, camera: str | None = None) -> list[Path]:
+    """Apply the changes to each project file that holds one, atomically (:func:`aliasing.setups.files.write`)."""
+    return [files.write(path, mine, light, camera)
+            for path, mine in placed(paths, changes, found.where if found is not None else {}, light, camera).items()]
+
+
+def _before_reason(tuned) -> str | None:
+    """Why the start has no worst error: its shadows end before the receivers begin."""
+    if math.isfinite(tuned.before.objective):
+        return None
+    end = float(max(tuned.start.pipeline.far_i))
+    return (f"the start's shadows end at {end:.4g} world units, before the receivers begin ({tuned.limits.receivers[0]:.4g}): "
+            "no cascade draws a shadow there")
 
 
 def to_dict(result: dict[str, Any]) -> dict[str, Any]:
@@ -96,20 +186,28 @@ def to_dict(result: dict[str, Any]) -> dict[str, Any]:
     tuned = result["tuned"]
     lim = tuned.limits
     out = result["after"].to_dict()
+    held = tuned.held_gap
     out.update({
-        "objective": tuned.objective,
+        "objective": _finite(tuned.objective),
         "binding": list(tuned.binding),
         "feasible": tuned.feasible,
         "changed": dict(tuned.changed),
-        "snippet": tuned.snippet(),
+        "changes": tuned.changes,
+        "worse": result["worse"],
+        "keep": list(tuned.keep),
+        "held_gap": None if held is None else {"max_gap_px": held.limits.max_gap_px, "objective": _finite(held.objective),
+                                               "changes": held.changes, "feasible": held.feasible},
+        "snippet": tuned.snippet(result.get("light")),
         "language": tuned.setup.profile.language,
         "tradeoff": [{k: (v if math.isfinite(v) else None) for k, v in p.items()} for p in tuned.tradeoff],
         "limits": {"receivers": list(lim.receivers), "max_texels": lim.max_texels,
                    "max_gap_px": lim.max_gap_px if math.isfinite(lim.max_gap_px) else None, "max_slope": lim.max_slope, "moving": lim.moving},
         "measured": {"texels": tuned.measure.texels, "gap_px": _finite(max(tuned.measure.gap_px, default=0.0)),
-                     "objective_before": tuned.before.objective},
+                     "objective_before": _finite(tuned.before.objective), "objective_before_reason": _before_reason(tuned)},
         "defaults": result["before"].to_dict(),
     })
+    if "patches" in result:
+        out["patch"] = {str(p): d for p, d in result["patches"].items()}
     return out
 
 
@@ -119,30 +217,40 @@ def _finite(v: float) -> float | None:
 
 
 def text(result: dict[str, Any]) -> str:
-    """The table: the changed settings, the snippet, and check's rows before and after, side by side."""
+    """The table: the changes, what got worse, the snippet, and check's rows before and after, side by side."""
     tuned = result["tuned"]
     s = tuned.setup
     lines = [f"{s.profile.title} {s.release}: camera {s.camera.spec()} ({s.camera.width}x{s.camera.height}), sun {s.sun.spec()}, "
              f"receivers {tuned.limits.receivers[0]:g}..{tuned.limits.receivers[1]:g}"]
-    lines.append(f"worst perspective error: {tuned.before.objective:.4g} -> {tuned.objective:.4g} px per texel"
+    before = f"{tuned.before.objective:.4g}" if math.isfinite(tuned.before.objective) else f"none ({_before_reason(tuned)})"
+    lines.append(f"worst perspective error: {before} -> {tuned.objective:.4g} texels per pixel"
                  + ("" if tuned.feasible else " (limits not all met)"))
     lines.append("binding: " + (", ".join(_FLAGS.get(b, "--" + b.replace("_", "-")) for b in tuned.binding) or "none"))
-    lines.append("settings:" if tuned.changed else "settings: the start is already the best")
-    lines += [f"  {k} = {v!r}  (was {tuned.start.settings[k]!r})" for k, v in tuned.changed.items()]
+    if tuned.keep:
+        lines.append("kept: " + ", ".join(tuned.keep))
+    lines.append("changes (before → after, in the engine's units):" if tuned.changed else "changes: none (your settings are the best found within the limits)")
+    lines += ["  " + ln for ln in report.changes_text(tuned)]
+    lines += [w["line"] for w in result["worse"]]
+    if tuned.held_gap is not None:
+        h = tuned.held_gap
+        lines.append(f"  with --max-gap-px {h.limits.max_gap_px:.4g} (the start's gap) the worst error would be {h.objective:.4g} texels per pixel"
+                     + (f" ({len(h.changed)} changes)" if h.changed else " (your settings unchanged)"))
     rows = []
-    before, after = result["before"].cascades, result["after"].cascades
+    before_rows, after_rows = result["before"].cascades, result["after"].cascades
     keys = ("near", "far", "error_max", "acne", "gap_px")
     head = ["cascade"] + [f"{k} before" for k in keys] + [f"{k} after" for k in keys]
-    for i in range(max(len(before), len(after))):
-        b = before[i] if i < len(before) else {}
-        a = after[i] if i < len(after) else {}
+    for i in range(max(len(before_rows), len(after_rows))):
+        b = before_rows[i] if i < len(before_rows) else {}
+        a = after_rows[i] if i < len(after_rows) else {}
         rows.append([str(i)] + [_tables.cell(b.get(k)) for k in keys] + [_tables.cell(a.get(k)) for k in keys])
     lines += _tables.aligned([head] + rows).splitlines()
     if tuned.tradeoff:
         lines.append("trade-off (the smallest gap that leaves no acne up to each angle to the light):")
         lines += [f"  {p['angle']:5.1f}° (slope {p['slope']:+.1f}°): {_tables.cell(p['gap_px'])} px" for p in tuned.tradeoff]
-    lines.append(f"{s.profile.language or 'settings'}:")
-    lines += ["  " + ln for ln in tuned.snippet().splitlines()]
+    snippet = tuned.snippet(result.get("light"))
+    if snippet:
+        lines.append(f"{s.profile.language or 'settings'}:")
+        lines += ["  " + ln for ln in snippet.splitlines()]
     return "\n".join(lines) + "\n"
 
 
@@ -151,7 +259,13 @@ def _run(args: argparse.Namespace) -> int:
     tuned = result["tuned"]
     if not tuned.feasible:
         print(f"aliasing tune: {_verdict(tuned)}", file=sys.stderr)
-    sys.stdout.write(json.dumps(to_dict(result), indent=1) + "\n" if args.format == "json" else text(result))
+    if args.write:
+        done = write(result["paths"], tuned.changed, result["found"], result["light"], getattr(args, "camera_node", None))
+        print(f"aliasing tune: wrote {', '.join(str(p) for p in done) or 'nothing (no setting changed)'}", file=sys.stderr)
+    if args.patch and args.format != "json":
+        sys.stdout.write("".join(result["patches"].values()))
+        return 0
+    sys.stdout.write(json.dumps(to_dict(result), indent=1, allow_nan=False) + "\n" if args.format == "json" else text(result))
     return 0
 
 
@@ -174,8 +288,10 @@ def add_tune_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         help="what to set: the engine's own shadow settings with the lowest worst error for a camera, a sun band and limits",
         description="Search the engine's own shadow settings (split mode and λ or fractions, cascade count, map size, biases, filter, "
         "stabilization) for the lowest worst-case perspective error over the receivers and the sun band, with no acne up to "
-        "--max-slope, shadow edges moved within --max-gap-px, the texels within --max-texels and, with --moving, no shimmer. Settings "
-        "given with --settings or --set are kept. Biases are set to the closed-form minimum, not searched.",
+        "--max-slope, shadow edges moved within --max-gap-px, the texels within --max-texels and, with --moving, no shimmer. Your "
+        "settings (--settings, --set) are the start: the search begins there, --keep holds some at their values, every change is "
+        "listed before and after in the engine's units and every measure that gets worse is named. Biases are set to the "
+        "closed-form minimum, not searched.",
         epilog="Example: aliasing tune --engine threejs --set cascades=4 --set shadowMapSize=2048 "
         "--camera near=0.1,far=500,fov=50,aspect=16:9,height=1080 --sun 15..60 --receivers 1..200.  Where the limits cannot all "
         "be met the command still answers (exit 0): 'binding' names them and the trade-off between acne and gap is printed.",
@@ -188,6 +304,11 @@ def add_tune_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument("--max-slope", type=float, default=0.0, metavar="DEG",
                    help="the steepest receiver that must stay free of acne, degrees tilted from the ground away from the sun (default 0: the ground)")
     p.add_argument("--moving", action="store_true", help="the camera moves: the fit must be stabilized (no shimmer)")
+    p.add_argument("--keep", action="append", metavar="KEY[,KEY...]",
+                   help="settings held at your values, in the engine's own keys (repeatable; default: every tunable setting may change)")
+    out = p.add_mutually_exclusive_group()
+    out.add_argument("--patch", action="store_true", help="print the changes as a unified diff of your project files (needs --project)")
+    out.add_argument("--write", action="store_true", help="write the changes into your project files, atomically (needs --project)")
     p.add_argument("--format", default="table", choices=["table", "json"], help="output format (default table)")
     p.set_defaults(run=_run)
     return p

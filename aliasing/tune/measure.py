@@ -56,7 +56,7 @@ class Measure:
     Attributes
     ----------
     error : ndarray
-        Worst perspective error per cascade over the receivers and the sun band [px per texel]
+        Worst perspective error per cascade over the receivers and the sun band [texels per pixel]
         (NaN where no receiver uses the cascade).
     texel : ndarray
         Each cascade's largest world texel over the sun band [world units].
@@ -68,7 +68,7 @@ class Measure:
     gap_px : ndarray
         The lit gap at a caster's foot per cascade, in pixels at its nearest receiver.
     objective : float
-        ``max(error)``.
+        ``max(error)`` [texels per pixel]; inf where no cascade reaches the receivers.
     texels : int
         Texels of all maps (k·R²).
     stable : bool
@@ -161,6 +161,10 @@ def measure(setup: Setup, limits: Limits) -> Measure:
     >>> round(measure(s, limits(s)).objective, 1)      # three.js's λ = 0.5, 10 cm in front of the eye
     677.2
     """
+    if not isinstance(setup, Setup):
+        raise ValueError(f"setup must be an aliasing.setups.Setup (setups.build(...)), got {type(setup).__name__}")
+    if not isinstance(limits, Limits):
+        raise ValueError(f"limits must be the Limits of aliasing.tune.limits(setup, ...), got {type(limits).__name__}")
     pipe, cam = setup.pipeline, setup.camera
     lights = setup.sun.direction(setup.sun.elevations(SUN_SAMPLES))
     rn, rf = limits.receivers
@@ -192,26 +196,60 @@ def measure(setup: Setup, limits: Limits) -> Measure:
     gap = np.max(np.asarray(edge_shift(rule, w_sun, elev, ext), float) * np.ones_like(w_sun), axis=0)  # the worst sun, as check
     gap_px = np.where(used, gap * cam.height / (2 * t * mid), np.nan)
     covers = float(np.max(pipe.far_i)) >= rf * (1 - 1e-9) or pipe.fit == "fixed"
-    return Measure(error, texel, need, have, gap_px, float(np.nanmax(error)), int(pipe.k * pipe.resolution ** 2),
+    objective = float(np.nanmax(error)) if np.isfinite(error).any() else math.inf  # no receiver in any cascade: no error to speak of
+    return Measure(error, texel, need, have, gap_px, objective, int(pipe.k * pipe.resolution ** 2),
                    bool(pipe.stable), bool(covers))
 
 
 # -- limits ----------------------------------------------------------------------------------
 
 
+def depths(receivers: object, name: str = "receivers") -> tuple[float, float]:
+    """``receivers`` as (NEAR, FAR) eye depths with 0 < NEAR < FAR, finite [world units]; a ValueError naming ``name`` otherwise."""
+    try:
+        if isinstance(receivers, (str, bytes)):
+            raise TypeError
+        rn, rf = (float(x) for x in receivers)  # type: ignore[union-attr]
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{name} must be (near, far) eye depths [world units], got {receivers!r}") from None
+    if not (math.isfinite(rn) and math.isfinite(rf) and 0 < rn < rf):
+        raise ValueError(f"{name} must be NEAR..FAR eye depths with 0 < NEAR < FAR [world units], got {rn:g}..{rf:g}")
+    return rn, rf
+
+
 def limits(setup: Setup, *, receivers: Iterable[float] | None = None, max_texels: int | None = None, max_gap_px: float | None = None,
            max_slope: float = 0.0, moving: bool = False) -> Limits:
-    """The validated :class:`Limits` of :func:`tune` (defaults filled from ``setup``)."""
+    """The validated :class:`Limits` of :func:`tune` (defaults filled from ``setup``).
+
+    Parameters
+    ----------
+    setup : Setup
+        The engine, its settings, the camera and the sun band.
+    receivers : (float, float), optional
+        NEAR..FAR eye depths [world units] (default the camera's near to where ``setup``'s shadows end).
+    max_texels : int, optional
+        Texels of all maps together (default those of ``setup``).
+    max_gap_px : float, optional
+        The largest gap [px], >= 0 (default none: inf).
+    max_slope : float
+        The steepest acne-free receiver [deg from the ground], in [0, 90).
+    moving : bool
+        The camera moves.
+
+    Example
+    -------
+    >>> from aliasing import setups
+    >>> lim = limits(setups.build("threejs", {"cascades": 4}), receivers=(1, 200), max_slope=10)
+    >>> lim.receivers, lim.max_texels, lim.max_gap_px, lim.max_slope
+    ((1.0, 200.0), 16777216, inf, 10.0)
+    """
+    if not isinstance(setup, Setup):
+        raise ValueError(f"setup must be an aliasing.setups.Setup (setups.build(...)), got {type(setup).__name__}")
     cam = setup.camera
     if receivers is None:  # where the setup casts shadows now: the camera's near to the shadows' end
         rn, rf = cam.near, min(cam.far, float(max(setup.pipeline.far_i)))
     else:
-        try:
-            rn, rf = (float(x) for x in receivers)
-        except (TypeError, ValueError):
-            raise ValueError(f"receivers must be (near, far) eye depths [world units], got {receivers!r}") from None
-        if not (math.isfinite(rn) and math.isfinite(rf) and 0 < rn < rf):
-            raise ValueError(f"receivers must be NEAR..FAR eye depths with 0 < NEAR < FAR [world units], got {rn:g}..{rf:g}")
+        rn, rf = depths(receivers)
         if rn >= cam.far or rf <= cam.near:
             raise ValueError(f"receivers {rn:g}..{rf:g} must overlap the camera's near..far {cam.near:g}..{cam.far:g}")
         rn, rf = max(rn, cam.near), min(rf, cam.far)

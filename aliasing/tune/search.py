@@ -19,11 +19,24 @@ setting is set the cheapest way that is exact:
   Brent search (:func:`scipy.optimize.minimize_scalar`) around the best point of the scan, one
   parameter at a time until none moves.
 
-Among equal errors the search keeps the smaller gap, then the fewer changed settings.
+The user's setup is the start: its settings are where the search begins (the continuous split
+parameters keep their value where no other does better, the biases are tried as they are) and
+the start itself is a candidate, so a start that meets the limits is never replaced by a worse
+one.  ``keep`` holds settings at the start's values.  Among equal errors the search keeps the
+smaller gap, then the fewer changed settings.
+
+The start's gap is not held as a limit: a better split brings the first cascade closer to the eye,
+where the gap is measured in pixels, so holding it would often keep the start's split (Godot,
+``directional_shadow_max_distance`` 200 and receivers 1..100: every split with a lower error had a
+larger gap, and the search held to it returned the start).  Instead, where ``max_gap_px`` is
+not given, the start leaves no acne and the tuned gap is larger than the start's (and than one
+pixel), ``Tuned.held_gap`` is the search again with the start's gap as ``max_gap_px``: what
+holding it would cost in error, for the user to choose.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from collections.abc import Iterable, Mapping
@@ -33,8 +46,10 @@ from typing import Any
 import numpy as np
 from scipy import optimize
 
+from .. import _validation as check_names
 from ..setups import Setup, Tunable
 from .measure import AZIMUTH, LIMITS, Limits, Measure, limits, measure, sample, sample_extent, steepest
+from .receivers import scene_receivers
 
 _DIGITS = 4  # significant digits of a bias setting, rounded on the safe side
 
@@ -48,9 +63,9 @@ class Tuned:
     setup : Setup
         The tuned setup (the engine's own settings).
     start : Setup
-        The setup it started from (the engine's defaults with the settings given).
+        The setup it started from: the user's (the engine's defaults where the user gave no value).
     objective : float
-        Its worst perspective error over the receivers and the sun band [px per texel].
+        Its worst perspective error over the receivers and the sun band [texels per pixel].
     binding : tuple of str
         The limits that bind (:data:`LIMITS`): where all are met, those whose relaxing would
         lower the objective; where they cannot all be met, those the closest setup breaks.
@@ -64,9 +79,14 @@ class Tuned:
     measure, before : Measure
         The tuned and the starting setup measured.
     changed : dict
-        The settings that differ from the start.
+        The settings that differ from the start (key -> tuned value).
     evaluations : int
         Setups measured.
+    keep : tuple of str
+        The settings held at the start's values.
+    held_gap : Tuned or None
+        Where the gap grew unasked (module docstring): the same search with the start's gap as the
+        limit; None otherwise.
     """
 
     setup: Setup
@@ -80,16 +100,28 @@ class Tuned:
     before: Measure
     changed: dict = field(default_factory=dict)
     evaluations: int = 0
+    keep: tuple = ()
+    held_gap: Tuned | None = None
 
     @property
     def settings(self) -> dict[str, Any]:
         """Every setting of the tuned setup, by the engine's keys."""
         return dict(self.setup.settings)
 
-    def snippet(self) -> str:
-        """Code in the engine's language that sets the tuned settings."""
+    @property
+    def changes(self) -> list[dict[str, Any]]:
+        """Every setting that differs from the start: ``{key, before, after, unit}`` (the engine's units, ``""`` for none)."""
+        profile = self.setup.profile
+        return [{"key": k, "before": self.start.settings.get(k), "after": v, "unit": profile.setting(k).unit} for k, v in self.changed.items()]
+
+    def snippet(self, light: str | None = None) -> str:
+        """Code in the engine's language that sets the changed settings on the user's light ``light`` (its name; None: a placeholder)."""
+        if light is not None and (not isinstance(light, str) or not light.strip()):
+            raise ValueError(f"light must be the light's name in the project, got {light!r}")
         snip = self.setup.profile.snippet
-        return snip(self.setup.settings) if snip else "\n".join(f"{k} = {v!r}" for k, v in self.changed.items())
+        if not self.changed:
+            return ""
+        return snip(self.setup.settings, tuple(self.changed), light) if snip else "\n".join(f"{k} = {v!r}" for k, v in self.changed.items())
 
 
 # -- the search ------------------------------------------------------------------------------
@@ -98,13 +130,13 @@ class Tuned:
 class _Search:
     """One search: the setups measured, cached by their settings."""
 
-    def __init__(self, start: Setup, lim: Limits, fixed: frozenset):
-        self.start, self.limits, self.fixed = start, lim, fixed
+    def __init__(self, start: Setup, lim: Limits, keep: frozenset):
+        self.start, self.limits, self.keep = start, lim, keep
         self.profile = start.profile
         self.cache: dict = {}
 
     def tunables(self, settings: Mapping[str, Any], role: str) -> list[Tunable]:
-        return [t for t in self.profile.tunable if t.role == role and t.key not in self.fixed and t.active(settings)]
+        return [t for t in self.profile.tunable if t.role == role and t.key not in self.keep and t.active(settings)]
 
     def setup(self, settings: Mapping[str, Any]) -> Setup | None:
         key = tuple(sorted((k, repr(v)) for k, v in settings.items()))
@@ -320,6 +352,12 @@ def closed_form_bias(setup: Setup, key: str, *, max_slope: float = 0.0, receiver
     >>> 0.1 < v < 1.0
     True
     """
+    if not isinstance(setup, Setup):
+        raise ValueError(f"setup must be an aliasing.setups.Setup (setups.build(...)), got {type(setup).__name__}")
+    terms = [t.key for t in setup.pipeline.bias.terms]
+    if not isinstance(key, str) or key not in terms:
+        raise ValueError(f"key must be a bias setting of {setup.profile.title}, one of {', '.join(terms)}; got {key!r}"
+                         + check_names.did_you_mean(key, terms))
     lim = limits(setup, receivers=receivers, max_slope=max_slope)
     free = [t.key for t in setup.profile.tunable if t.role == "bias" and t.active(setup.settings)]
     s = setup.with_settings(**{k: _neutral(setup.profile.setting(k)) for k in free if k != key})
@@ -333,19 +371,36 @@ def _changes(a: Mapping[str, Any], b: Mapping[str, Any]) -> int:
     return sum(1 for k in a if a[k] != b.get(k))
 
 
-def tune(setup: Setup, *, receivers: Iterable[float] | None = None, scene: Any = None, max_texels: int | None = None,
-         max_gap_px: float | None = None, max_slope: float = 0.0, moving: bool = False, fixed: Iterable[str] = ()) -> Tuned:
-    """The engine's own settings with the lowest worst perspective error within the limits.
+def _keys(setup: Setup, keep: Any) -> frozenset:
+    """The settings of ``keep`` (one key or an iterable of keys), validated against the profile's keys."""
+    if isinstance(keep, str):
+        keep = (keep,)
+    if isinstance(keep, (bytes, Mapping)) or not isinstance(keep, Iterable):
+        raise ValueError(f"keep must be setting keys of {setup.profile.title} (a str or an iterable of str), got {type(keep).__name__}")
+    out = set()
+    for k in keep:
+        if not isinstance(k, str):
+            raise ValueError(f"keep must hold setting keys (str), got {k!r}")
+        try:
+            out.add(setup.profile.setting(k.strip()).key)
+        except ValueError as exc:
+            raise ValueError(f"keep: {exc}") from None
+    return frozenset(out)
 
-    Searches only the settings the profile declares tunable (the ``tunable`` of :class:`aliasing.setups.Profile`)
-    and not in ``fixed``; the rest keep ``setup``'s values.  How each kind is set: the module
-    docstring.
+
+def tune(setup: Setup, *, receivers: Iterable[float] | None = None, scene: Any = None, max_texels: int | None = None,
+         max_gap_px: float | None = None, max_slope: float = 0.0, moving: bool = False, keep: Iterable[str] = ()) -> Tuned:
+    """The engine's own settings with the lowest worst perspective error within the limits, from the user's setup.
+
+    ``setup`` is the start (the user's settings, the engine's defaults for the rest): the search
+    begins there and the start itself is a candidate.  Only the settings the profile declares
+    tunable (the ``tunable`` of :class:`aliasing.setups.Profile`) and not in ``keep`` move; the
+    rest keep ``setup``'s values.  How each kind is set: the module docstring.
 
     Parameters
     ----------
     setup : Setup
-        The engine, its settings (the start, and the values of the fixed settings), the camera
-        and the sun band.
+        The engine, the user's settings (the start), the camera and the sun band.
     receivers : (float, float), optional
         Eye depths of the receivers, NEAR..FAR [world units] (default the camera's near to where
         ``setup``'s shadows end).
@@ -354,33 +409,37 @@ def tune(setup: Setup, *, receivers: Iterable[float] | None = None, scene: Any =
     max_texels : int, optional
         Texels of all maps together (default: those of ``setup``).
     max_gap_px : float, optional
-        The largest lit gap at a caster's foot [px] (default: no limit).
+        The largest lit gap at a caster's foot [px]; ``math.inf`` for none.  Default: where the
+        start leaves no acne up to ``max_slope``, its own largest gap (at least 1 px), so that
+        tune does not trade a larger gap for a smaller error unasked; otherwise none.
     max_slope : float
         The steepest receiver that must stay free of acne: ground tilted this far away from the
         lowest sun [deg from the ground], in [0, 90).
     moving : bool
         The camera moves: the fit must be stabilized (no shimmer).
-    fixed : iterable of str
-        Setting keys not to search.
+    keep : str or iterable of str
+        Setting keys held at the start's values (the engine's own keys).
 
     Returns
     -------
     Tuned
-        The setup, its objective [px per texel], the binding limits and, where acne and the gap
-        limit conflict, the trade-off between them.
+        The setup, its objective [texels per pixel], every change from the start, the binding
+        limits and, where acne and the gap limit conflict, the trade-off between them.
 
     Raises
     ------
     ValueError
-        A malformed limit (naming it) or an unknown setting in ``fixed``.
+        A malformed limit (naming it) or an unknown setting in ``keep`` (with a did-you-mean).
 
     Example
     -------
     >>> from aliasing import setups
     >>> s = setups.build("threejs", {"cascades": 4}, "near=0.1,far=500,fov=50,aspect=16:9,height=1080", "15..60")
-    >>> t = tune(s, fixed=("cascades", "shadowMapSize"))
+    >>> t = tune(s, keep=("cascades", "shadowMapSize"))
     >>> t.setup.settings["mode"], round(t.objective, 2), t.binding
     ('logarithmic', 9.05, ())
+    >>> t.changes
+    [{'key': 'mode', 'before': 'practical', 'after': 'logarithmic', 'unit': ''}]
     """
     if not isinstance(setup, Setup):
         raise ValueError(f"setup must be an aliasing.setups.Setup (setups.build(...)), got {type(setup).__name__}")
@@ -388,11 +447,10 @@ def tune(setup: Setup, *, receivers: Iterable[float] | None = None, scene: Any =
         if receivers is not None:
             raise ValueError("give receivers or scene, not both")
         receivers = scene_receivers(scene, setup)
-    if isinstance(fixed, str):
-        fixed = (fixed,)
-    fixed = frozenset(setup.profile.setting(k).key for k in fixed)
+    keep = _keys(setup, keep)
     lim = limits(setup, receivers=receivers, max_texels=max_texels, max_gap_px=max_gap_px, max_slope=max_slope, moving=moving)
-    search = _Search(setup, lim, fixed)
+    before = measure(setup, lim)
+    search = _Search(setup, lim, keep)
     start = dict(setup.settings)
 
     # every combination of the enumerated settings (cascade counts, split modes, filters, stabilization, blends)
@@ -423,9 +481,7 @@ def tune(setup: Setup, *, receivers: Iterable[float] | None = None, scene: Any =
             got = search.setup(b)
             if got is not None:
                 candidates.append(got)
-    if not candidates:
-        got = search.setup(start)
-        candidates.append(got if got is not None else (setup, measure(setup, lim)))
+    candidates.append((setup, before))  # the start itself: a start within the limits is never replaced by a worse setup
 
     def rank(c):
         s, m = c
@@ -440,8 +496,12 @@ def tune(setup: Setup, *, receivers: Iterable[float] | None = None, scene: Any =
         best, binding = _closest(candidates, lim, start)
         tradeoff = _tradeoff(search, candidates, lim) if {"max_gap_px", "max_slope"} & set(binding) else ()
     s, m = best
-    return Tuned(s, setup, m.objective, tuple(binding), not m.violations(lim), tradeoff, lim, m, measure(setup, lim),
-                 {k: v for k, v in s.settings.items() if start.get(k) != v}, len(search.cache))
+    held = None
+    if max_gap_px is None and "max_slope" not in before.violations(lim) and _gap(m) > max(_gap(before), 1.0) * (1 + 1e-9):
+        held = tune(setup, receivers=lim.receivers, max_texels=lim.max_texels, max_gap_px=max(_gap(before), 1.0), max_slope=lim.max_slope,
+                    moving=lim.moving, keep=keep)
+    return Tuned(s, setup, m.objective, tuple(binding), not m.violations(lim), tradeoff, lim, m, before,
+                 {k: v for k, v in s.settings.items() if start.get(k) != v}, len(search.cache), tuple(sorted(keep)), held)
 
 
 def _binding_feasible(search: _Search, candidates, best, lim: Limits) -> list[str]:
@@ -509,8 +569,8 @@ def _tradeoff(search: _Search, candidates, lim: Limits, n: int = 10) -> tuple:
     out = []
     for angle in np.linspace(0.0, top, n):
         slope = float(angle - (90.0 - low))
-        sub = Limits(lim.receivers, lim.max_texels, math.inf, slope, lim.moving)
-        inner = _Search(search.start, sub, search.fixed)
+        sub = dataclasses.replace(lim, max_gap_px=math.inf, max_slope=slope)
+        inner = _Search(search.start, sub, search.keep)
         best = math.inf
         for s in bases.values():
             for b in inner.biases(dict(s.settings)):
@@ -519,53 +579,3 @@ def _tradeoff(search: _Search, candidates, lim: Limits, n: int = 10) -> tuple:
                     best = min(best, _gap(got[1]))
         out.append({"angle": float(angle), "slope": slope, "gap_px": best})
     return tuple(out)
-
-
-def scene_receivers(scene: Any, setup: Setup, samples: int = 6) -> tuple[float, float]:
-    """The eye depths of a scene's visible surface, (nearest, farthest) [world units]: its receivers.
-
-    Points on each triangle (a barycentric grid of ``samples`` steps per edge) inside the
-    camera's frustum (near..far, the vertical fov and the aspect) are kept; their least and
-    largest eye depths bound the receivers.
-
-    Parameters
-    ----------
-    scene : str, Scene or array_like
-        A scene file with a glTF camera (its first camera by name is used, with ``setup``'s near,
-        far and fov), an eye-space :class:`aliasing.raster.scenes.Scene`, or eye-space triangles
-        ``(T, 3, 3)`` (z the depth in front of the eye).
-    setup : Setup
-        The camera.
-
-    Example
-    -------
-    >>> from aliasing import setups
-    >>> from aliasing.raster.scenes import ground_and_boxes
-    >>> s = setups.build("threejs", camera="near=0.5,far=100,fov=60,aspect=1,height=1080")
-    >>> near, far = scene_receivers(ground_and_boxes(1.0, 50.0, 60.0, boxes=5), s)
-    >>> 0.5 <= near < 2.0 < 45.0 < far <= 53.0
-    True
-    """
-    from ..raster.scenes import load_scene  # noqa: PLC0415  (the loaders' optional trimesh only when a file is given)
-
-    cam = setup.camera
-    if isinstance(scene, (str, bytes)) or hasattr(scene, "__fspath__"):
-        ws = load_scene(scene)
-        if not ws.cameras:
-            raise ValueError(f"scene {str(scene)!r} has no glTF camera to place the receivers: give receivers NEAR..FAR instead")
-        scene = ws.in_eye_space(ws.camera(sorted(ws.cameras)[0], near=cam.near, far=cam.far, fov=cam.fov))
-    tri = np.asarray(getattr(scene, "triangles", scene), float)
-    if tri.ndim != 3 or tri.shape[1:] != (3, 3) or not len(tri) or not np.isfinite(tri).all():
-        raise ValueError(f"scene must be a scene file, a Scene or eye-space triangles of shape (T, 3, 3), got shape {tri.shape}")
-    n = samples
-    i, j = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="ij")
-    keep = i + j <= n
-    bary = np.stack([i[keep], j[keep], n - i[keep] - j[keep]], axis=-1) / n  # (P, 3)
-    pts = np.einsum("pv,tvc->tpc", bary, tri).reshape(-1, 3)
-    t = float(cam.view.tan_theta)
-    z = pts[:, 2]
-    seen = (z >= cam.near) & (z <= cam.far) & (np.abs(pts[:, 1]) <= z * t) & (np.abs(pts[:, 0]) <= z * t * cam.aspect)
-    if not seen.any():
-        raise ValueError("scene has no surface inside the camera's frustum: give receivers NEAR..FAR instead")
-    near, far = float(z[seen].min()), float(z[seen].max())
-    return (near, far) if far > near else (near, near * (1 + 1e-6))

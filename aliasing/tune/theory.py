@@ -34,15 +34,18 @@ from typing import Any
 
 import numpy as np
 
+from .. import _validation as _check
 from .. import budgets, partitioning
 from ..engines import stable
+from ..setups import Camera, Pipeline
+from .measure import depths
 from .search import Tuned
 
 METHODS = ("start", "tuned", "log", "practical", "equal-error", "budget")
 
 
 def _errors(pipe, cam, lights, near_i, far_i, receivers) -> np.ndarray:
-    """Worst error per cascade [px per texel] of contiguous ranges with the pipeline's fit, over the sun band and receivers."""
+    """Worst error per cascade [texels per pixel] of contiguous ranges with the pipeline's fit, over the sun band and receivers."""
     a, b = np.asarray(near_i, float), np.asarray(far_i, float)
     r = stable.evaluate((a, b), cam.near, float(b.max()), cam.fov, lights, aspect=cam.aspect, fit=pipe.fit, snap=pipe.snap,
                         resolution=float(pipe.resolution))
@@ -53,7 +56,45 @@ def _errors(pipe, cam, lights, near_i, far_i, receivers) -> np.ndarray:
 
 
 def equal_error_split(pipe, cam, lights, k: int, near: float, far: float, receivers, iterations: int = 40) -> np.ndarray:
-    """The split distances near = C_0 < … < C_k = far whose worst error is least (all cascades equal) [world units]."""
+    """The split distances near = C_0 < … < C_k = far whose worst error is least (all cascades equal) [world units].
+
+    Parameters
+    ----------
+    pipe : Pipeline
+        The engine's pipeline (its fit, snap and map resolution).
+    cam : Camera
+        The camera (:class:`aliasing.setups.Camera`).
+    lights : array_like
+        Directions towards the sun, (L, 3).
+    k : int
+        Cascades, >= 1.
+    near, far : float
+        Where the first cascade starts and the last ends, 0 < near < far [world units].
+    receivers : (float, float)
+        The receivers' eye depths [world units].
+    iterations : int
+        Bisection steps on the error, 1 to 200.
+
+    Example
+    -------
+    >>> from aliasing import setups
+    >>> s = setups.build("threejs", {"cascades": 2})
+    >>> c = equal_error_split(s.pipeline, s.camera, s.sun.direction(s.sun.elevations(3)), 2, 0.1, 100.0, (0.1, 100.0), iterations=20)
+    >>> len(c), float(c[0]), float(c[-1])
+    (3, 0.1, 100.0)
+    """
+    _check.instance(pipe, "pipe", Pipeline)
+    _check.instance(cam, "cam", Camera)
+    lights = _check.as_float_array(lights, "lights")
+    if lights.ndim != 2 or lights.shape[1] != 3 or not len(lights) or not np.isfinite(lights).all() or not (np.abs(lights).sum(axis=1) > 0).all():
+        raise ValueError(f"lights must be finite non-zero directions of shape (L, 3), got shape {lights.shape}")
+    k = _check.whole(k, "k", 1, 64)
+    near, far = _check.scalar(near, "near"), _check.scalar(far, "far")
+    if not (math.isfinite(near) and math.isfinite(far) and 0 < near < far):
+        raise ValueError(f"near and far must be finite with 0 < near < far [world units], got {near!r}, {far!r}")
+    receivers = depths(receivers)
+    iterations = _check.whole(iterations, "iterations", 1, 200)
+
     def walk(e: float) -> np.ndarray | None:
         ends = [near]
         for _ in range(k):
@@ -94,14 +135,14 @@ def compare_splits(tuned: Tuned) -> list[dict[str, Any]]:
     """The tuned split against the papers' (module docstring): one row per method.
 
     Each row: ``method``, ``splits`` (C_0 … C_k [world units]), ``error`` (the worst over the
-    receivers and the sun band [px per texel]) and ``ratio`` (error over the equal-error split's).
+    receivers and the sun band [texels per pixel]) and ``ratio`` (error over the equal-error split's).
 
     Example
     -------
     >>> from aliasing import setups
     >>> from aliasing.tune import tune
     >>> s = setups.build("threejs", {"cascades": 4}, "near=0.1,far=500,fov=50,aspect=16:9,height=1080", "15..60")
-    >>> rows = {r["method"]: r for r in compare_splits(tune(s, fixed=("cascades", "shadowMapSize")))}
+    >>> rows = {r["method"]: r for r in compare_splits(tune(s, keep=("cascades", "shadowMapSize")))}
     >>> round(rows["tuned"]["error"], 2), round(rows["equal-error"]["error"], 2), round(rows["practical"]["error"], 1)
     (9.05, 9.05, 677.2)
     """
