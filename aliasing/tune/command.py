@@ -114,30 +114,34 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     if (args.patch or args.write) and not paths:
         raise ValueError(f"{'--patch' if args.patch else '--write'} needs --project FILE (the engine's own project file to change)")
     start = setups.from_args(args)
-    found = files.read(paths, getattr(args, "light", None), getattr(args, "camera_node", None)) if paths else None
+    found = files.read(paths, getattr(args, "light_node", None), getattr(args, "camera_node", None)) if paths else None
     try:
         tuned = search.tune(start, receivers=_receivers(args.receivers), scene=args.scene, max_texels=_texels(args.max_texels),
                             max_gap_px=args.max_gap_px, max_slope=args.max_slope, moving=args.moving, keep=_keep(args.keep))
     except ValueError as exc:
         raise _flag_error(exc) from None
-    light = found.light if found is not None and found.light else getattr(args, "light", None)
+    light = found.light if found is not None and found.light else getattr(args, "light_node", None)
     out = {"tuned": tuned, "after": check(tuned.setup), "before": check(tuned.start), "worse": report.worse(tuned), "light": light,
            "found": found, "paths": paths}
     if paths:
-        out["patches"] = patches(paths, tuned.changed, found, light, getattr(args, "camera_node", None))
+        node, camera = getattr(args, "light_node", None), getattr(args, "camera_node", None)  # as the user named them, for the readers
+        out["placed"], out["unplaced"] = placed(paths, tuned.changed, found.where, node, camera)
+        out["patches"] = patches(out["placed"], node, camera)
     return out
 
 
 def placed(paths: list[Path], changes: Mapping[str, Any], where: Mapping[str, str], light: str | None = None,
-           camera: str | None = None) -> dict[Path, dict[str, Any]]:
-    """The changed settings grouped by the project file that holds each.
+           camera: str | None = None) -> tuple[dict[Path, dict[str, Any]], dict[str, Any]]:
+    """The changed settings grouped by the project file that holds each, and those no file takes.
 
     A key is in the file that ``Found.where`` (:class:`aliasing.setups.files.Found`) names for it (``"main.tscn line 12"``: the
     file's name first).  A key no file holds goes to the first file whose reader's patch takes it (a reader refuses,
-    with a ValueError, a key that does not belong in its file).
+    with a ValueError, a key that does not belong in its file); a key no file takes (Unreal's light properties live in
+    the level, not in ``DefaultEngine.ini``) is returned apart, for the engine's editor or the snippet.
     """
     by_name = {p.name: p for p in paths}
     out: dict[Path, dict[str, Any]] = {p: {} for p in paths}
+    apart: dict[str, Any] = {}
     for key, value in changes.items():
         at = str(where.get(key, ""))
         home = next((p for name, p in by_name.items() if at == name or at.startswith(name + " ") or at.startswith(name + ":")), None)
@@ -150,15 +154,17 @@ def placed(paths: list[Path], changes: Mapping[str, Any], where: Mapping[str, st
                 home = p
                 break
         if home is None:
-            raise ValueError(f"project: no file of {', '.join(p.name for p in paths)} takes the setting {key!r}; set it in the engine")
-        out[home][key] = value
-    return {p: c for p, c in out.items() if c}
+            apart[key] = value
+        else:
+            out[home][key] = value
+    return {p: c for p, c in out.items() if c}, apart
 
 
-def patches(paths: list[Path], changes: Mapping[str, Any], found, light: str | None = None, camera: str | None = None) -> dict[Path, str]:
-    """Per project file with a changed key, the unified diff (``difflib.unified_diff``) of its patched text (:func:`aliasing.setups.files.patch`)."""
+def patches(by_file: Mapping[Path, Mapping[str, Any]], light: str | None = None, camera: str | None = None) -> dict[Path, str]:
+    """Per project file with a changed key (:func:`placed`), the unified diff (``difflib.unified_diff``) of its patched text
+    (:func:`aliasing.setups.files.patch`)."""
     out = {}
-    for path, mine in placed(paths, changes, found.where if found is not None else {}, light, camera).items():
+    for path, mine in by_file.items():
         old = path.read_text(encoding="utf-8-sig")
         new = files.patch(path, mine, light, camera)
         out[path] = "".join(difflib.unified_diff(old.splitlines(keepends=True), new.splitlines(keepends=True),
@@ -166,10 +172,16 @@ def patches(paths: list[Path], changes: Mapping[str, Any], found, light: str | N
     return out
 
 
-def write(paths: list[Path], changes: Mapping[str, Any], found, light: str | None = None, camera: str | None = None) -> list[Path]:
-    """Apply the changes to each project file that holds one, atomically (:func:`aliasing.setups.files.write`)."""
-    return [files.write(path, mine, light, camera)
-            for path, mine in placed(paths, changes, found.where if found is not None else {}, light, camera).items()]
+def write(by_file: Mapping[Path, Mapping[str, Any]], light: str | None = None, camera: str | None = None) -> list[Path]:
+    """Apply the changes to each project file that holds one (:func:`placed`), each atomically
+    (:func:`aliasing.setups.files.write`), and none unless every file's patch reads back as written first."""
+    for path, mine in by_file.items():  # every file's patch read back before any file is replaced
+        new = files.patch(path, mine, light, camera)
+        back = files.reader(files.detect(path, new)).read([(path, new)], light, camera).settings
+        wrong = {k: v for k, v in mine.items() if back.get(k) != v}
+        if wrong:
+            raise ValueError(f"{path.name}: the patch does not read back as written ({wrong}); no file was changed")
+    return [files.write(path, mine, light, camera) for path, mine in by_file.items()]
 
 
 def _before_reason(tuned) -> str | None:
@@ -208,6 +220,7 @@ def to_dict(result: dict[str, Any]) -> dict[str, Any]:
     })
     if "patches" in result:
         out["patch"] = {str(p): d for p, d in result["patches"].items()}
+        out["unplaced"] = dict(result["unplaced"])
     return out
 
 
@@ -260,8 +273,11 @@ def _run(args: argparse.Namespace) -> int:
     if not tuned.feasible:
         print(f"aliasing tune: {_verdict(tuned)}", file=sys.stderr)
     if args.write:
-        done = write(result["paths"], tuned.changed, result["found"], result["light"], getattr(args, "camera_node", None))
+        done = write(result["placed"], getattr(args, "light_node", None), getattr(args, "camera_node", None))
         print(f"aliasing tune: wrote {', '.join(str(p) for p in done) or 'nothing (no setting changed)'}", file=sys.stderr)
+    if result.get("unplaced"):
+        print("aliasing tune: not in your project files (set them in the engine, as the snippet does): "
+              + ", ".join(f"{k} = {v}" for k, v in result["unplaced"].items()), file=sys.stderr)
     if args.patch and args.format != "json":
         sys.stdout.write("".join(result["patches"].values()))
         return 0
