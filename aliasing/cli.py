@@ -361,7 +361,7 @@ def build_parser(full: bool = True) -> argparse.ArgumentParser:
 
     _engine_validate(add_validate_parser(sub))
 
-    from .raster.pictures import add_render_parser
+    from .pictures import add_render_parser
 
     add_render_parser(sub)
     __import__("aliasing.engines.compare", fromlist=["add_engines_parser"]).add_engines_parser(sub)  # aliasing engines

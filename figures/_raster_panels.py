@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from aliasing.plotting import save, subplots
-from aliasing.raster import pictures
+from aliasing import pictures
 
 NEAR, FAR, FOV, GAMMA, AZIMUTH, BUDGET, IMAGE = 1.0, 100.0, 60.0, 110.0, 60.0, 256**2, 256
 LIGHT = f"gamma:{GAMMA:g}@azimuth:{AZIMUTH:g}"

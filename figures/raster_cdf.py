@@ -9,7 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from aliasing.plotting import save
-from aliasing.raster import pictures
+from aliasing import pictures
 
 NAME = "raster-cdf"
 SCHEMES = ["Standard", "P", "LogP", "ZP4+P"]

@@ -12,7 +12,7 @@ import pytest
 
 from aliasing.bias.scene import bias_margin, scene_bias
 from aliasing.raster.draw import cascade_set
-from aliasing.raster.pictures.images import render_view
+from aliasing.pictures.images import render_view
 from aliasing.raster.scenes import procedural, world
 
 

@@ -13,7 +13,7 @@ pytest.importorskip("ipywidgets")
 
 import aliasing  # noqa: E402
 from aliasing import budgets, error, explore, faces, geometry, schemes, warping  # noqa: E402
-from aliasing.raster import pictures  # noqa: E402
+from aliasing import pictures  # noqa: E402
 from aliasing.raster.validate import validate  # noqa: E402
 
 PNG = b"\x89PNG"

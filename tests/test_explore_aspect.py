@@ -14,7 +14,7 @@ pytest.importorskip("ipywidgets")
 from aliasing import View, budgets, error, explore, schemes, warping  # noqa: E402
 from aliasing.bias.cascades import cascade_bias  # noqa: E402
 from aliasing.explore import _bias, _cascades, _overhead, _raster, _shimmer  # noqa: E402
-from aliasing.raster import pictures  # noqa: E402
+from aliasing import pictures  # noqa: E402
 from aliasing.raster.validate import validate  # noqa: E402
 from aliasing.temporal import measure, points  # noqa: E402
 

@@ -240,7 +240,7 @@ def test_gl_shimmer_gets_only_bits_back_and_the_host_tests_states(monkeypatch):
 @GL
 def test_gl_render_shades_with_the_host_tests_states(monkeypatch):
     from aliasing.raster.draw import lookup
-    from aliasing.raster.pictures import images
+    from aliasing.pictures import images
 
     on = images.view(1.0, 100.0, 60.0, "gamma:50@azimuth:30", "P", image_res=64, budget=256**2, backend="gl").lit
     monkeypatch.setattr(lookup, "_ON_DEVICE", False)

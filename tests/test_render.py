@@ -1,4 +1,4 @@
-"""Pictures from the rasterizer (aliasing.raster.pictures), the render CLI, figure scripts."""
+"""Pictures from the rasterizer (aliasing.pictures), the render CLI, figure scripts."""
 
 from __future__ import annotations
 
@@ -9,7 +9,8 @@ import pytest
 
 from aliasing import cli
 from aliasing import raster
-from aliasing.raster import pictures, scenes
+from aliasing import pictures
+from aliasing.raster import scenes
 
 
 def test_pictures_deterministic():
@@ -139,7 +140,7 @@ def test_one_render_path_keeps_the_bare_images_pixels(scheme, light):
     """``render``'s single-scheme pictures once were the bare images of shadow_image, grid_image and error_image;
     every case now goes through the labelled figure (scenerender): the panels hold the same pixels, the grid's
     scene lightened under its lines and the error greyed where it is not measured, at full resolution."""
-    from aliasing.raster.pictures import scenerender
+    from aliasing.pictures import scenerender
 
     kw = dict(image_res=48, budget=64**2, seed=1)
     r = scenerender.render(scenerender.builtin(1.0, 50.0, 60.0, light, seed=1), [scheme], budget=64**2, image_res=48)
@@ -167,7 +168,7 @@ def test_one_render_path_keeps_the_bare_images_pixels(scheme, light):
 
 
 def test_large_render_panel_keeps_every_pixel():
-    from aliasing.raster.pictures import scenerender
+    from aliasing.pictures import scenerender
 
     r = scenerender.render(scenerender.builtin(1.0, 20.0, 60.0, "gamma:60", seed=1), ["P"], budget=64**2, image_res=400)
     fig = scenerender.figure(r, "shadows")

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from aliasing import View, cli
 from aliasing.raster import scenes
 from aliasing.raster.draw.cascades import cascade_set
-from aliasing.raster.pictures import scenerender
+from aliasing.pictures import scenerender
 from aliasing.raster.scenes import camera, procedural
 from aliasing.raster.validate import scene as scene_validate
 
@@ -168,7 +168,7 @@ def test_cdf_of_a_wide_image_is_over_its_area(glb, tmp_path, capsys):
     """Every one of the R × R pixels of a wide view covers the same share of the image (aspect : 1 wide),
     so their distribution is the distribution over the image: the same as over the picture's
     2R × R square pixels at aspect 2 (each column shown twice)."""
-    from aliasing.raster.pictures.images import cdf
+    from aliasing.pictures.images import cdf
 
     wide = scenes.setup(str(glb), camera="view", light_dir="-1,0.8,0.3", aspect=2.0)
     r = scenerender.render(wide, ["ZP2+LogP"], budget=128**2, image_res=48)[0]

@@ -1,4 +1,4 @@
-"""Rendering and measuring schemes on your own scene (aliasing.raster.pictures.scenerender, cascades, render CLI)."""
+"""Rendering and measuring schemes on your own scene (aliasing.pictures.scenerender, cascades, render CLI)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from aliasing.raster import scenes
 from aliasing.raster.scenes import camera, procedural
 from aliasing.raster.draw import cascades
 from aliasing.raster.validate import scene as scene_validate
-from aliasing.raster.pictures import scenerender
+from aliasing.pictures import scenerender
 from aliasing.raster.scenes import Scene
 
 trimesh = pytest.importorskip("trimesh")

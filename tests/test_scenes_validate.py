@@ -11,7 +11,7 @@ from aliasing import cli
 from aliasing.raster import scenes
 from aliasing.raster.scenes import camera, procedural
 from aliasing.raster.validate import scene as scene_validate
-from aliasing.raster.pictures import scenerender
+from aliasing.pictures import scenerender
 
 pytest.importorskip("trimesh")
 

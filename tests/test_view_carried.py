@@ -12,7 +12,7 @@ import pytest
 import aliasing._validation as check
 import aliasing.view as view_module
 from aliasing import View, raster, schemes
-from aliasing.raster import pictures
+from aliasing import pictures
 from aliasing.raster.draw.cascades import cascade_set
 from aliasing.raster.validate.single import validate
 

@@ -19,7 +19,7 @@ far above 1 its contacts peter-pan.
 
 Example
 -------
->>> from aliasing.raster.pictures import view
+>>> from aliasing.pictures import view
 >>> v = view(1.0, 30.0, 60.0, "gamma:50@azimuth:20", image_res=48, budget=3 * 128**2, boxes=10)
 >>> rows = scene_bias(v, "threejs")
 >>> rows[0]["acne_px"] > 0   # three.js' default bias is zero
@@ -50,10 +50,10 @@ _VIEW_FIELDS = ("scene", "maps", "map_res", "map_resolutions", "partition", "tri
 
 
 def _view(v: object) -> None:
-    """A rendered view (:class:`aliasing.raster.pictures.View`, a higher layer: checked by its fields)."""
+    """A rendered view (:class:`aliasing.pictures.View`, a higher layer: checked by its fields)."""
     missing = [f for f in _VIEW_FIELDS if not hasattr(v, f)]
     if missing:
-        raise ValueError(f"v must be a rendered view (aliasing.raster.pictures.View), missing {', '.join(missing)}")
+        raise ValueError(f"v must be a rendered view (aliasing.pictures.View), missing {', '.join(missing)}")
 
 
 def _cascades(v):
@@ -78,8 +78,8 @@ def scene_bias(v, preset: str) -> list[dict]:
     Parameters
     ----------
     v : View
-        A view rendered with the reference test (:func:`aliasing.raster.pictures.view` or
-        :func:`~aliasing.raster.pictures.images.render_view`).
+        A view rendered with the reference test (:func:`aliasing.pictures.view` or
+        :func:`~aliasing.pictures.images.render_view`).
     preset : str
         A bias preset of :data:`aliasing.bias.presets.PRESETS`.
 
@@ -111,7 +111,7 @@ def bias_margin(v, preset: str) -> Array:
 
     Example
     -------
-    >>> from aliasing.raster.pictures import view
+    >>> from aliasing.pictures import view
     >>> v = view(1.0, 30.0, 60.0, "gamma:50@azimuth:20", image_res=32, budget=128**2, boxes=5)
     >>> m = bias_margin(v, "unity-urp")
     >>> m.shape, bool(np.nanmin(m) > 1)   # URP's slope-scaled 2.5 alone covers its 2x2 filter

@@ -1,9 +1,9 @@
 """The rasterizer at a small resolution: shadows, the shadow map's texel grid, per-pixel error.
 
 A seeded ground-and-boxes scene is rendered and shadowed through the scheme's maps by
-:func:`aliasing.raster.pictures.view`; the texel grid is drawn as the iso-lines of the
+:func:`aliasing.pictures.view`; the texel grid is drawn as the iso-lines of the
 pixels' map coordinates s·R and t·R (every ``every`` texels); the per-pixel perspective
-error is :func:`aliasing.raster.pictures.error_field` (finite differences of the map
+error is :func:`aliasing.pictures.error_field` (finite differences of the map
 coordinates, texels per pixel); the measured/bound ratios are
 :func:`aliasing.raster.validate.validate`'s (probes' measured M_x, M_z over the analytic
 bounds of :func:`aliasing.schemes.evaluate`; ≤ 1 up to sampling, near 1 when the bound is tight).
@@ -21,7 +21,7 @@ from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 from matplotlib.transforms import Bbox
 
-from ..raster import pictures
+from .. import pictures
 from ..raster.validate import validate
 from ..view import View
 from . import widget as w

@@ -10,8 +10,11 @@ One package per concern, from the bottom up:
 * :mod:`.validate`: measuring and validating: perspective aliasing measured by finite
   differences against :func:`aliasing.schemes.evaluate`, validation grids, scene
   validation, and a ray-casting reference for the depth maps (optional,
-  ``pip install ".[bench]"``);
-* :mod:`.pictures`: shadowed renders, texel grids, error maps and distributions.
+  ``pip install ".[bench]"``).
+
+The pictures drawn from it (shadowed renders, texel grids, error maps, bias margins) are
+:mod:`aliasing.pictures`, a layer above: they also draw the bias margins of
+:mod:`aliasing.bias`.
 
 This package re-exports the documented names of the drawing, scenes and measuring
 packages; import from those packages in new code.

@@ -3,7 +3,7 @@
 * :func:`shadow_test`, the toolkit's own: it compares a point with the sample its texel
   stores, treating receiver and occluder as locally planar, within a tolerance ``bias``
   [world units] (:data:`BIAS` by default), so a plane never shadows itself; the pictures
-  (:mod:`aliasing.raster.pictures`) shade with it;
+  (:mod:`aliasing.pictures`) shade with it;
 * :func:`depth_test`, the engines': a plain depth compare with their biases, as real renderers
   do it.  Real engines compare the looked-up point's depth with the depth stored at the
   texel's centre, and fight the resulting self-shadowing (acne) with biases:

@@ -5,16 +5,16 @@ from __future__ import annotations
 import argparse
 import math
 
-from ... import partitioning, setups
-from ...bias import presets as bias_presets
-from ..draw import backends
-from ...view import check_aspect
-from ..scenes import world
+from .. import partitioning, setups
+from ..bias import presets as bias_presets
+from ..raster.draw import backends
+from ..view import check_aspect
+from ..raster.scenes import world
 from .scenerender import run
 
 
 def _render(args: argparse.Namespace) -> int:
-    """``aliasing render``: one path for every case (:func:`~aliasing.raster.pictures.scenerender.run`),
+    """``aliasing render``: one path for every case (:func:`~aliasing.pictures.scenerender.run`),
     the built-in scene or a loaded one, one scheme or several: labelled panels and their statistics."""
     try:  # parsed once here (float() alone named no option)
         args.f_over_n = float(args.f_over_n)

@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ...bias.scene import bias_margin
+from ..bias.scene import bias_margin
 from .images import _base_colour, _finish, view
 
 Array = NDArray[np.float64]
@@ -45,12 +45,12 @@ def margin_colours(margin: ArrayLike) -> Array:
 
 def bias_margin_image(near: float, far: float, fov: float, light: str | ArrayLike, scheme: str = "Standard", *, preset: str = "filament",
                       **kwargs) -> tuple[Array, Array]:
-    """(image (R, R, 3), margin (R, R)) of the seeded scene, row 0 at the top; ``kwargs`` as :func:`~aliasing.raster.pictures.view`."""
+    """(image (R, R, 3), margin (R, R)) of the seeded scene, row 0 at the top; ``kwargs`` as :func:`~aliasing.pictures.view`."""
     return margin_of(view(near, far, fov, light, scheme, **kwargs), preset)
 
 
 def margin_of(v, preset: str = "filament") -> tuple[Array, Array]:
-    """(image (R, R, 3), margin (R, R)) of a rendered view (:func:`~aliasing.raster.pictures.render_view`), row 0 at the top."""
+    """(image (R, R, 3), margin (R, R)) of a rendered view (:func:`~aliasing.pictures.render_view`), row 0 at the top."""
     m = bias_margin(v, preset)
     img = margin_colours(m)
     _, lam, hit = _base_colour(v)

@@ -17,8 +17,8 @@ Example
 
 from __future__ import annotations
 
-from ..draw.lookup import BIAS, shadow_test
-from ..scenes.world import add_scene_arguments
+from ..raster.draw.lookup import BIAS, shadow_test
+from ..raster.scenes.world import add_scene_arguments
 from .images import (
     AMBIENT, BOX, GRID_COLOURS, GROUND, SKY, View, analytic_max_error, cdf, error_cdf, error_colours, error_field, error_image, error_of,
     grid_image, grid_of, map_resolution, measured_max_error, random_lights, render_view, shade, shadow_image, view,

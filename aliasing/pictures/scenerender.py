@@ -5,7 +5,7 @@ The scene comes placed in eye space (:func:`aliasing.raster.scenes.setup`: file,
 light; :func:`builtin`: the seeded scene in the conventions' eye space).  :func:`render` draws the scene through each scheme's maps (any split method or
 engine preset, :mod:`aliasing.raster.draw.cascades`) sharing one texel budget and measures the
 perspective aliasing error per pixel on lit surfaces within [near, far]
-(:func:`aliasing.raster.pictures.error_field`:
+(:func:`aliasing.pictures.error_field`:
 m = max(m_x, m_z)·R_image/R_map [image pixels per texel], the projection factor of the
 surface left out as in the analytic model), with :func:`statistics`: its percentiles, the
 fraction of pixels at ≤ 1 texel per pixel, and each map's analytic maximum
@@ -32,16 +32,16 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ... import _table as _tables
-from ... import _validation as check
-from ... import geometry
-from ... import partitioning
-from ...sweep import store
-from ..scenes.camera import Camera, check_raster_frustum
-from ..draw.cascades import CascadeSet, budget_shares, cascade_set
+from .. import _table as _tables
+from .. import _validation as check
+from .. import geometry
+from .. import partitioning
+from ..sweep import store
+from ..raster.scenes.camera import Camera, check_raster_frustum
+from ..raster.draw.cascades import CascadeSet, budget_shares, cascade_set
 from .images import BIAS, View, error_field, render_view
-from ..scenes.world import MIN_COS_LIGHT, SceneSetup, json_safe, plane_ids, setup
-from ...view import View as Frustum
+from ..raster.scenes.world import MIN_COS_LIGHT, SceneSetup, json_safe, plane_ids, setup
+from ..view import View as Frustum
 
 Array = NDArray[np.float64]
 
@@ -72,7 +72,7 @@ def render(st: SceneSetup, schemes_: list[str], *, splits: str | None = None, k:
     ``splits``, ``k``, ``params``: the partitions of every scheme (a split method or engine
     preset, :func:`aliasing.raster.draw.cascades.cascade_set`); ``allocation``: ``equal`` or
     ``error`` (:func:`aliasing.raster.draw.cascades.budget_shares`); ``backend``: how the eye
-    pass and the maps are drawn (:func:`aliasing.raster.pictures.images.render_view`).
+    pass and the maps are drawn (:func:`aliasing.pictures.images.render_view`).
     """
     if not schemes_:
         raise ValueError("schemes must name at least one scheme")
@@ -255,7 +255,7 @@ def builtin(near: float, far: float, fov: float, light: str | ArrayLike, *, seed
     >>> st.ground, st.camera.far, len(st.scene.triangles) > st.ground
     (512, 50.0, True)
     """
-    from ..scenes.builtin import ground_and_boxes
+    from ..raster.scenes.builtin import ground_and_boxes
 
     frustum = Frustum(near, far, fov, aspect)
     n, f, fv = float(frustum.near), float(frustum.far), float(frustum.fov)

@@ -34,7 +34,7 @@ each of the k maps gets ⌊√(budget/k)⌋² texels, so ``ZP4+P`` at a 512² bu
   rasterizer (:func:`aliasing.raster.measure`) over a subset as a check.
 
 :func:`render_view` is the core of :func:`view` for any eye-space scene and map set, with one
-resolution per map (explicit cascades and error-based budgets, :mod:`aliasing.raster.pictures.scenerender`
+resolution per map (explicit cascades and error-based budgets, :mod:`aliasing.pictures.scenerender`
 for loaded scenes); :func:`grid_of` and :func:`error_of` draw an existing :class:`View`.
 
 Images are float arrays (R, R, 3) in [0, 1], row 0 at the *top* (ready for
@@ -54,13 +54,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ... import _validation as check
-from ... import geometry, schemes
-from ..validate.measure import measure, pixel_errors
-from ..draw import LightMap, MapSampler, MapSet, backends, check_resolution, eye_pass, map_set
-from ..draw.lookup import BIAS, _bias, shadow_test
-from ..scenes.builtin import Scene, ground_and_boxes
-from ...view import View as Frustum, view_args
+from .. import _validation as check
+from .. import geometry, schemes
+from ..raster.validate.measure import measure, pixel_errors
+from ..raster.draw import LightMap, MapSampler, MapSet, backends, check_resolution, eye_pass, map_set
+from ..raster.draw.lookup import BIAS, _bias, shadow_test
+from ..raster.scenes.builtin import Scene, ground_and_boxes
+from ..view import View as Frustum, view_args
 
 Array = NDArray[np.float64]
 
@@ -396,7 +396,7 @@ def error_cdf(schemes_: list[str], near: float | Frustum | None = None, far: flo
     The frustum defaults to near 1, far 1000, fov 60 [deg]; an :class:`aliasing.View` may
     stand for near, far, fov.
     """
-    from ...plotting import subplots
+    from ..plotting import subplots
 
     frustum, _ = view_args(near, far, fov, (), (1.0, 1000.0, 60.0))
     lights = random_lights(directions, seed)
