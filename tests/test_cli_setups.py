@@ -101,12 +101,11 @@ def test_set_needs_engine_and_radians_warn(capsys, command):
     assert err.count("\n") == 1 and "did you mean 'cascades'" in err
 
 
-def test_radians_warning_on_another_command(capsys):
-    with warnings.catch_warnings():
-        warnings.simplefilter("always")
-        assert main(["engines", "--camera", "near=1,far=100,fov=0.8727", "--schemes", "csm:log:k=2", "--format", "csv"]) == 0
+def test_radians_refused_on_another_command(capsys):
+    assert main(["engines", "--camera", "near=1,far=100,fov=0.8727", "--schemes", "csm:log:k=2", "--format", "csv"]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and err.startswith("aliasing engines: warning: camera fov 0.8727 looks like radians (50")
+    assert err.count("\n") == 1 and err.startswith("aliasing engines: error: camera fov 0.8727 looks like radians (50.00°)")
+    assert main(["engines", "--camera", "near=1,far=100,fov=0.8727rad", "--schemes", "csm:log:k=2", "--format", "csv"]) == 0
 
 
 @settings(max_examples=40, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])

@@ -8,7 +8,8 @@
 
 Bad input (an unknown engine, release or setting, a malformed settings file, a value the
 engine does not accept, a camera or sun typo) is one line on stderr and exit status 2
-(:func:`aliasing.cli.main`); a field of view that looks like radians is a one-line warning.
+(:func:`aliasing.cli.main`), as is a field of view without a unit that reads as radians (at or
+below π: written ``fov=0.8rad`` or ``fov=45.84``).
 """
 
 from __future__ import annotations

@@ -37,7 +37,7 @@ from typing import Any
 
 from .. import _validation as check
 from .profile import FACES, KINDS, ROLES, BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
-from .spec import (CAMERA_SPEC, SUN_SPEC, Camera, RadiansWarning, Setup, Sun, load_settings, parse_camera, parse_set,
+from .spec import (CAMERA_SPEC, SUN_SPEC, Camera, Setup, Sun, load_settings, parse_camera, parse_set,
                    parse_sun)
 
 #: The engines, by the toolkit's name, and the module that holds their profiles (newest release first).
@@ -53,7 +53,7 @@ ENGINES: dict[str, str] = {
 }
 
 __all__ = ["ENGINES", "FACES", "KINDS", "BiasRule", "BiasTerm", "CAMERA_SPEC", "Camera", "Filter", "Pipeline", "Profile",
-           "ROLES", "RadiansWarning", "SUN_SPEC", "Setting", "Tunable", "Setup", "Sun", "add_arguments", "build", "from_args", "get",
+           "ROLES", "SUN_SPEC", "Setting", "Tunable", "Setup", "Sun", "add_arguments", "build", "from_args", "get",
            "load_settings", "parse_camera", "parse_set", "parse_sun", "profiles", "resolve"]
 
 
@@ -131,8 +131,9 @@ def add_arguments(parser: argparse.ArgumentParser, *, sun: str | None = "15..60"
     parser.add_argument("--settings", metavar="FILE", help="the engine's settings, JSON or TOML, in the engine's own keys")
     parser.add_argument("--set", dest="set_", action="append", metavar="KEY=VALUE", help="one setting in the engine's own key (repeatable)")
     if camera:
-        parser.add_argument("--camera", metavar="SPEC", help=f"camera: {CAMERA_SPEC} (fov vertical in degrees, height the image's rows "
-                            "in pixels; default near=0.1,far=500,fov=50,aspect=16:9,height=1080)")
+        parser.add_argument("--camera", metavar="SPEC", help=f"camera: {CAMERA_SPEC} (fov vertical in degrees, or radians with rad; hfov=… for the "
+                            "horizontal one; minZ/maxZ for near/far; height the image's rows in pixels, or size=1920x1080 for aspect "
+                            "and height; default near=0.1,far=500,fov=50,aspect=16:9,height=1080)")
     parser.add_argument("--sun", default=sun, metavar="ELEV[..ELEV][@AZ]",
                         help=f"sun: {SUN_SPEC} (default {sun if sun else '15..60 with --engine'})")
 

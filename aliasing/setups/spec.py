@@ -5,8 +5,9 @@ line), then passed on as a value.  The one vocabulary of every command:
 
 * ``--engine NAME[@RELEASE]``;
 * ``--settings FILE`` (JSON or TOML, the engine's own keys) and repeatable ``--set KEY=VALUE``;
-* ``--camera near=N,far=F,fov=DEG,aspect=A,height=PX``: the vertical field of view in degrees,
-  the aspect as ``16:9`` or a number, the image height in pixels (the width is aspect·height);
+* ``--camera near=N,far=F,fov=DEG,aspect=A,height=PX``: the vertical field of view in degrees
+  (or radians with ``rad``: ``fov=0.8rad``; ``hfov=`` for the horizontal one), the aspect as
+  ``16:9``, ``1920x1080`` or a number, the image height in pixels (the width is aspect·height);
 * ``--sun ELEV[..ELEV][@AZ]``: the sun's elevation above the ground [deg], one value or a band,
   and its azimuth from the view direction [deg] (positive to the right).
 
@@ -30,7 +31,7 @@ from __future__ import annotations
 
 import json
 import math
-import warnings
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -50,18 +51,24 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 
 Array = NDArray[np.float64]
 
-CAMERA_SPEC = "near=N,far=F,fov=DEG,aspect=W:H|A,height=PX"
+CAMERA_SPEC = "near=N,far=F,fov=DEG|RADrad,aspect=W:H|WxH|A,height=PX"
 SUN_SPEC = "ELEV[..ELEV][@AZ] (degrees above the ground; azimuth from the view direction)"
 CAMERA_DEFAULTS = {"near": 0.1, "far": 500.0, "fov": 50.0, "aspect": 16 / 9, "height": 1080}
-#: fields of view at or below this look like radians (π is 180°): a warning gives them in degrees
+#: Other names of the camera's fields, as engines spell them (lower case): Babylon.js ``minZ``/``maxZ``,
+#: PlayCanvas ``nearClip``/``farClip``, Unity ``nearClipPlane``/``farClipPlane``/``fieldOfView``, ``znear``/``zfar``.
+CAMERA_ALIASES = {"minz": "near", "znear": "near", "nearclip": "near", "nearclipplane": "near",
+                  "maxz": "far", "zfar": "far", "farclip": "far", "farclipplane": "far", "fieldofview": "fov"}
+#: Fields besides :data:`CAMERA_DEFAULTS`: ``hfov`` (the horizontal field of view, converted to the vertical
+#: one with the aspect) and ``size`` (``WxH`` pixels: the aspect and the height at once).
+CAMERA_EXTRA = ("hfov", "size")
+#: A field of view written without a unit at or below this [deg] reads as radians (π is 180°) and is refused.
 RADIANS_BELOW = math.pi
-
-
-class RadiansWarning(UserWarning):
-    """A field of view that looks like radians (the toolkit takes degrees)."""
+_ANGLE = re.compile(r"^\s*(.*?)\s*(rad|deg|°)?\s*$", re.IGNORECASE)
 
 
 def _number(text: str, name: str) -> float:
+    if isinstance(text, bool) or not isinstance(text, (str, int, float, np.integer, np.floating)):
+        raise ValueError(f"{name} must be a number, got {text!r}")
     try:
         value = float(text)
     except ValueError:
@@ -71,17 +78,86 @@ def _number(text: str, name: str) -> float:
     return value
 
 
-def _aspect(text: str | float) -> float:
-    if isinstance(text, str) and ":" in text:
-        w, _, h = text.partition(":")
-        a, b = _number(w, "camera aspect width"), _number(h, "camera aspect height")
+def _angle(value: object, name: str) -> float:
+    """A field of view [deg] from a number or a text with a unit (``0.8rad``, ``50deg``, ``50°``).
+
+    A number without a unit is degrees, but one at or below π (3.14…) reads as radians and is refused
+    with both spellings (``fov=45.84`` or ``fov=0.8rad``); a narrow field of view in degrees is written
+    with ``deg`` (``fov=2deg``).
+    """
+    unit = ""
+    if isinstance(value, str):
+        m = _ANGLE.match(value)
+        if m is None or not m.group(1):
+            raise ValueError(f"camera {name} must be a number of degrees or a number with rad or deg (0.8rad, 50deg), got {value!r}")
+        text, unit = m.group(1), (m.group(2) or "").lower()
+        number = _number(text, f"camera {name}")
+    else:
+        number = _number(value, f"camera {name}")  # type: ignore[arg-type]
+    if unit == "rad":
+        return math.degrees(number)
+    if not unit and 0 < number <= RADIANS_BELOW:
+        shown = f"{number:g}"
+        raise ValueError(f"camera {name} {shown} looks like radians ({math.degrees(number):.2f}°): write {name}={math.degrees(number):.2f} "
+                         f"(degrees) or {name}={shown}rad; a field of view this narrow in degrees is written {name}={shown}deg")
+    return number
+
+
+def vertical_fov(horizontal_deg: float, aspect: float) -> float:
+    """The vertical field of view [deg] of a horizontal one [deg] at ``aspect`` (width/height):
+    tan(v/2) = tan(h/2)/aspect.
+
+    Parameters
+    ----------
+    horizontal_deg : float
+        The horizontal full field of view [deg], 0 < h < 180.
+    aspect : float
+        Image width/height, > 0.
+
+    Example
+    -------
+    >>> round(vertical_fov(90.0, 16 / 9), 4)
+    58.7155
+    """
+    h = _number(horizontal_deg, "horizontal_deg")
+    a = _number(aspect, "aspect")
+    if not 0 < h < 180:
+        raise ValueError(f"horizontal_deg must be a field of view in (0, 180) degrees, got {horizontal_deg!r}")
+    if not a > 0:
+        raise ValueError(f"aspect must be a number > 0 (width/height), got {aspect!r}")
+    return math.degrees(2.0 * math.atan(math.tan(math.radians(h) / 2.0) / a))
+
+
+def _pair(text: str) -> tuple[str, str] | None:
+    """``W:H``, ``WxH`` or ``W×H`` as its two texts (None for a plain number)."""
+    for sep in (":", "x", "X", "×"):
+        if sep in text:
+            w, _, h = text.partition(sep)
+            return w, h
+    return None
+
+
+def _aspect(text: object) -> float:
+    if isinstance(text, str) and (pair := _pair(text)) is not None:
+        a, b = _number(pair[0], "camera aspect width"), _number(pair[1], "camera aspect height")
         if not (a > 0 and b > 0):
-            raise ValueError(f"camera aspect must be W:H with W, H > 0 (16:9) or a number > 0, got {text!r}")
+            raise ValueError(f"camera aspect must be W:H or WxH with W, H > 0 (16:9, 1920x1080) or a number > 0, got {text!r}")
         return a / b
-    value = _number(text, "camera aspect") if isinstance(text, str) else float(text)
-    if not (value > 0 and math.isfinite(value)):
-        raise ValueError(f"camera aspect must be W:H (16:9) or a number > 0, got {text!r}")
+    value = _number(text, "camera aspect")  # type: ignore[arg-type]
+    if not value > 0:
+        raise ValueError(f"camera aspect must be W:H or WxH (16:9, 1920x1080) or a number > 0, got {text!r}")
     return value
+
+
+def _size(text: object) -> tuple[float, float]:
+    """``size=WxH`` [pixels]: (aspect, height)."""
+    pair = _pair(text) if isinstance(text, str) else None
+    if pair is None:
+        raise ValueError(f"camera size must be WxH in pixels (1920x1080), got {text!r}")
+    w, h = _number(pair[0], "camera size width"), _number(pair[1], "camera size height")
+    if not (w >= 1 and h >= 1):
+        raise ValueError(f"camera size must be WxH with W, H >= 1 pixels (1920x1080), got {text!r}")
+    return w / h, h
 
 
 @dataclass(frozen=True)
@@ -103,9 +179,11 @@ class Camera:
     view: View = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        for name in ("near", "far", "fov", "aspect"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
+                raise ValueError(f"camera {name} must be a single number, got {v!r}")
         v = View(self.near, self.far, self.fov, self.aspect)  # names near, far, fov or aspect and the range
-        if np.ndim(v.near) != 0:
-            raise ValueError("camera near, far, fov and aspect must be single numbers")
         h = self.height
         if isinstance(h, bool) or not isinstance(h, (int, float, np.integer, np.floating)) or not (1 <= h <= 65536) or not float(h).is_integer():
             raise ValueError(f"camera height must be a whole number of pixels in [1, 65536], got {h!r}")
@@ -120,20 +198,51 @@ class Camera:
         return int(round(self.aspect * self.height))
 
     def spec(self) -> str:
-        """The camera as a ``--camera`` text."""
-        return f"near={self.near:g},far={self.far:g},fov={self.fov:g},aspect={self.aspect:.6g},height={self.height}"
+        """The camera as a ``--camera`` text (a field of view at or below π degrees carries ``deg``)."""
+        fov = f"{self.fov:g}" + ("deg" if self.fov <= RADIANS_BELOW else "")
+        return f"near={self.near:g},far={self.far:g},fov={fov},aspect={self.aspect:.6g},height={self.height}"
 
 
-def parse_camera(spec: str | Mapping[str, Any] | Camera | None, *, warn: bool = True) -> Camera:
+def parse_camera(spec: str | Mapping[str, Any] | Camera | None) -> Camera:
     """A :class:`Camera` from ``near=N,far=F,fov=DEG,aspect=A,height=PX`` (any subset; the rest
-    default to near 0.1, far 500, fov 50, aspect 16:9, height 1080) or a mapping of those keys.
+    default to near 0.1, far 500, fov 50°, aspect 16:9, height 1080) or a mapping of those keys.
 
-    A fov at or below π (3.14…) looks like radians: a :class:`RadiansWarning` gives it in degrees.
+    Parameters
+    ----------
+    spec : str, mapping, Camera or None
+        The fields, as text or a mapping (keys case-insensitive):
+
+        * ``near``, ``far`` [world units] (also ``minZ``/``maxZ``, ``znear``/``zfar``,
+          ``nearClip``/``farClip``, ``nearClipPlane``/``farClipPlane``: :data:`CAMERA_ALIASES`);
+        * ``fov``: the vertical full field of view, degrees (``50``, ``50deg``, ``50°``) or radians
+          with ``rad`` (``0.8rad``, Babylon.js's ``fov``); a number without a unit at or below π
+          reads as radians and is refused: write ``deg`` for a narrow one (``fov=2deg``);
+        * ``hfov``: the horizontal full field of view instead (same units), converted with the
+          aspect: tan(fov/2) = tan(hfov/2)/aspect;
+        * ``aspect``: width/height as ``16:9``, ``1920x1080`` (``1920×1080``) or a number; the
+          ratio only: the height stays its own field;
+        * ``height``: the image's rows [pixels]; or ``size=1920x1080`` for the aspect and the
+          height at once.
+
+    Returns
+    -------
+    Camera
 
     Raises
     ------
     ValueError
         Naming the field (``camera near`` …) and what it takes; unknown fields get a did-you-mean.
+
+    Example
+    -------
+    >>> parse_camera("minZ=0.5,maxZ=800,fov=0.8rad")
+    Camera(near=0.5, far=800.0, fov=45.836623610465864, aspect=1.7777777777777777, height=1080)
+    >>> round(parse_camera("hfov=90,aspect=1920x1080").fov, 4), parse_camera("size=1280x720").height
+    (58.7155, 720)
+    >>> parse_camera("fov=0.8")
+    Traceback (most recent call last):
+    ...
+    ValueError: camera fov 0.8 looks like radians (45.84°): write fov=45.84 (degrees) or fov=0.8rad; a field of view this narrow in degrees is written fov=0.8deg
     """
     if isinstance(spec, Camera):
         return spec
@@ -141,7 +250,11 @@ def parse_camera(spec: str | Mapping[str, Any] | Camera | None, *, warn: bool = 
     if spec is None:
         items: dict[str, Any] = {}
     elif isinstance(spec, Mapping):
-        items = dict(spec)
+        items = {}
+        for key, value in spec.items():
+            if not isinstance(key, str):
+                raise ValueError(f"camera fields must be named by text ({', '.join(CAMERA_DEFAULTS)}), got the key {key!r}")
+            items[key.strip().lower()] = value
     elif isinstance(spec, str):
         items = {}
         for part in filter(None, (p.strip() for p in spec.split(","))):
@@ -150,26 +263,37 @@ def parse_camera(spec: str | Mapping[str, Any] | Camera | None, *, warn: bool = 
                 raise ValueError(f"camera must be {CAMERA_SPEC}, got {spec!r} (a field without '=': {part!r})")
             items[key.strip().lower()] = value.strip()
     else:
-        raise ValueError(f"camera must be {CAMERA_SPEC}, got {spec!r}")
+        raise ValueError(f"camera must be {CAMERA_SPEC} or a mapping of those fields, got {type(spec).__name__}")
     from .. import _validation as check
 
+    known = (*CAMERA_DEFAULTS, *CAMERA_EXTRA)
+    given: dict[str, str] = {}  # field -> the name it was given as
     for key, value in items.items():
-        if key not in CAMERA_DEFAULTS:
-            raise ValueError(f"unknown camera field {key!r}{check.did_you_mean(key, CAMERA_DEFAULTS)}; the fields are: {', '.join(CAMERA_DEFAULTS)}")
-        if key == "aspect":
-            fields[key] = _aspect(value)
-        elif key == "height":
-            number = _number(value, "camera height") if isinstance(value, str) else value
-            fields[key] = number
+        name = CAMERA_ALIASES.get(key, key)
+        if name not in known:
+            raise ValueError(f"unknown camera field {key!r}{check.did_you_mean(key, [*known, *CAMERA_ALIASES])}; the fields are: "
+                             f"{', '.join(known)} (also {', '.join(CAMERA_ALIASES)})")
+        if name in given:
+            raise ValueError(f"camera {name} given twice (as {given[name]!r} and {key!r})")
+        given[name] = key
+        if value is None:
+            raise ValueError(f"camera {key} must be a value, got None")
+        if name == "aspect":
+            fields[name] = _aspect(value)
+        elif name == "size":
+            fields["aspect"], fields["height"] = _size(value)
+        elif name in ("fov", "hfov"):
+            fields[name] = _angle(value, key)
         else:
-            fields[key] = _number(value, f"camera {key}") if isinstance(value, str) else value
-    for key in ("near", "far", "fov"):
-        v = fields[key]
-        if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
-            raise ValueError(f"camera {key} must be a number, got {v!r}")
-    if warn and 0 < float(fields["fov"]) <= RADIANS_BELOW:
-        warnings.warn(f"camera fov {float(fields['fov']):g} looks like radians ({math.degrees(float(fields['fov'])):.4g}°); "
-                      "the field of view is in degrees", RadiansWarning, stacklevel=2)
+            fields[name] = _number(value, f"camera {key}")
+    for a, b in (("fov", "hfov"), ("size", "aspect"), ("size", "height")):
+        if a in given and b in given:
+            raise ValueError(f"camera takes {a} or {b}, not both (got {given[a]} and {given[b]})")
+    if "hfov" in fields:
+        h = fields.pop("hfov")
+        if not 0 < h < 180:
+            raise ValueError(f"camera hfov must be a horizontal field of view in (0, 180) degrees, got {h:g}")
+        fields["fov"] = vertical_fov(h, fields["aspect"])
     try:
         return Camera(fields["near"], fields["far"], fields["fov"], fields["aspect"], fields["height"])
     except ValueError as exc:

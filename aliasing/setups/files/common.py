@@ -43,6 +43,8 @@ from typing import Any
 
 import numpy as np
 
+from ..spec import vertical_fov  # noqa: F401  (re-exported: one home for the conversion, aliasing.setups.spec)
+
 
 class FileError(ValueError):
     """A damaged or foreign project file: one line naming the file, the line or key, and what was expected.
@@ -92,11 +94,6 @@ class Found:
     camera_name: str | None = None
     where: dict[str, str] = field(default_factory=dict)
     notes: tuple[str, ...] = ()
-
-
-def vertical_fov(horizontal_deg: float, aspect: float) -> float:
-    """The vertical field of view [deg] of a horizontal one [deg] at ``aspect`` (width/height)."""
-    return math.degrees(2.0 * math.atan(math.tan(math.radians(horizontal_deg) / 2.0) / aspect))
 
 
 def sun_from_directions(towards_sun, camera_forward, up=(0.0, 1.0, 0.0)) -> tuple[float, float]:
