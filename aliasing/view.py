@@ -234,6 +234,22 @@ def half_angle(fov: ArrayLike, name: str = "fov") -> Array:
     return np.radians(check.fov(fov, name)) / 2
 
 
+def vertical_fov(hfov: ArrayLike, aspect: ArrayLike, name: str = "hfov") -> float | Array:
+    """The vertical full field of view [deg] of a horizontal one ``hfov`` [deg] at ``aspect`` (width/height).
+
+    tan(fov/2) = tan(hfov/2) / aspect: how Unreal, PlayCanvas's ``horizontalFov``, Babylon's
+    ``FOVMODE_HORIZONTAL_FIXED`` and Godot's ``KEEP_WIDTH`` cameras are turned into the toolkit's
+    vertical convention.
+
+    Example
+    -------
+    >>> round(float(vertical_fov(90.0, 16 / 9)), 4)
+    58.7155
+    """
+    a = check_aspect(aspect)
+    return _store(np.degrees(2.0 * np.arctan(np.tan(half_angle(hfov, name)) / a)))
+
+
 def theta_of(fov: View | ArrayLike, name: str = "fov") -> float | Array:
     """θ [rad] of a View (as it is, not validated again) or of a full field of view [deg] (validated).
 

@@ -11,7 +11,8 @@ import pytest
 from aliasing import setups
 from aliasing.cli import main
 from aliasing.setups.files import vertical_fov as files_vertical_fov
-from aliasing.setups.spec import CAMERA_ALIASES, vertical_fov
+from aliasing.setups.spec import CAMERA_ALIASES
+from aliasing.view import vertical_fov
 
 hypothesis = pytest.importorskip("hypothesis")
 from hypothesis import given, settings  # noqa: E402

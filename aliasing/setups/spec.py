@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..view import View
+from ..view import View, vertical_fov
 from .profile import Pipeline, Profile
 
 try:  # Python 3.11+
@@ -101,31 +101,6 @@ def _angle(value: object, name: str) -> float:
         raise ValueError(f"camera {name} {shown} looks like radians ({math.degrees(number):.2f}°): write {name}={math.degrees(number):.2f} "
                          f"(degrees) or {name}={shown}rad; a field of view this narrow in degrees is written {name}={shown}deg")
     return number
-
-
-def vertical_fov(horizontal_deg: float, aspect: float) -> float:
-    """The vertical field of view [deg] of a horizontal one [deg] at ``aspect`` (width/height):
-    tan(v/2) = tan(h/2)/aspect.
-
-    Parameters
-    ----------
-    horizontal_deg : float
-        The horizontal full field of view [deg], 0 < h < 180.
-    aspect : float
-        Image width/height, > 0.
-
-    Example
-    -------
-    >>> round(vertical_fov(90.0, 16 / 9), 4)
-    58.7155
-    """
-    h = _number(horizontal_deg, "horizontal_deg")
-    a = _number(aspect, "aspect")
-    if not 0 < h < 180:
-        raise ValueError(f"horizontal_deg must be a field of view in (0, 180) degrees, got {horizontal_deg!r}")
-    if not a > 0:
-        raise ValueError(f"aspect must be a number > 0 (width/height), got {aspect!r}")
-    return math.degrees(2.0 * math.atan(math.tan(math.radians(h) / 2.0) / a))
 
 
 def _pair(text: str) -> tuple[str, str] | None:
@@ -293,7 +268,7 @@ def parse_camera(spec: str | Mapping[str, Any] | Camera | None) -> Camera:
         h = fields.pop("hfov")
         if not 0 < h < 180:
             raise ValueError(f"camera hfov must be a horizontal field of view in (0, 180) degrees, got {h:g}")
-        fields["fov"] = vertical_fov(h, fields["aspect"])
+        fields["fov"] = float(vertical_fov(h, fields["aspect"]))
     try:
         return Camera(fields["near"], fields["far"], fields["fov"], fields["aspect"], fields["height"])
     except ValueError as exc:

@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from ..spec import vertical_fov  # noqa: F401  (re-exported: one home for the conversion, aliasing.setups.spec)
+from ...view import vertical_fov
 
 
 class FileError(ValueError):
