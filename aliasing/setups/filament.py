@@ -28,7 +28,7 @@ from .. import partitioning
 from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
 
 OPTIONS = "filament/include/filament/LightManager.h ShadowOptions (google/filament as stored)"
-TYPES = ("PCF", "VSM", "DPCF", "PCSS")
+TYPES = ("PCF", "VSM", "DPCF", "PCSS")  # View::ShadowType's first four, 0–3 (View.h; PCFd = 4 is for debugging)
 STABLE_FIT, FAR_FIT, SNAP = "centroid", "far", "border"  # stable mode without / with shadowFar; the one-texel border
 
 SETTINGS = (
@@ -50,7 +50,8 @@ SETTINGS = (
     Setting("screenSpaceContactShadows", False, "", "bool", source=OPTIONS, doc="screen-space contact shadows (not modelled)"),
     Setting("stepCount", 8, "", "int", (1, 255), source=OPTIONS, doc="contact shadow steps"),
     Setting("maxShadowDistance", 0.3, "m", "float", (0.0, None), source=OPTIONS, doc="contact shadow ray length"),
-    Setting("View.shadowType", "PCF", "", "choice", TYPES, source="filament/include/filament/View.h setShadowType (default PCF)",
+    Setting("View.shadowType", "PCF", "", "choice", TYPES, aliases=dict(enumerate(TYPES)),
+            source="filament/include/filament/View.h setShadowType (default PCF), enum class ShadowType",
             doc="PCF, VSM, DPCF or PCSS"),
 )
 

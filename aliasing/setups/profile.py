@@ -56,6 +56,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
+from .names import MISSING, hint, lookup, numeric, spellings
 
 Array = NDArray[np.float64]
 
@@ -91,6 +92,10 @@ class Setting:
         The file and line it was read from, at the pinned release.
     doc : str
         What the setting does, in a line.
+    aliases : mapping or pairs of (str or int, value)
+        Other spellings of a ``choice`` (or of an ``int`` the engine names) mapped to the canonical
+        value: the integers the engine's files store and its other names (cite their declaration in
+        ``source``); :mod:`aliasing.setups.names` says what else :meth:`coerce` takes.
     """
 
     key: str
@@ -101,10 +106,26 @@ class Setting:
     clamp: tuple | None = None
     source: str = ""
     doc: str = ""
+    aliases: tuple = ()
+    _names: Mapping = field(init=False, repr=False, compare=False, hash=False)
 
     def __post_init__(self) -> None:
         if self.kind not in TYPES:
             raise ValueError(f"kind must be one of {', '.join(TYPES)}, got {self.kind!r}")
+        object.__setattr__(self, "aliases", tuple((k, v) for k, v in (self.aliases.items() if isinstance(self.aliases, Mapping) else self.aliases)))
+        object.__setattr__(self, "_names", MappingProxyType(spellings(self)))
+
+    def names(self) -> dict:
+        """Every spelling :meth:`coerce` takes for a ``choice`` or a named ``int``, normalized
+        (lower case, underscores; integers as int), mapped to the canonical value.
+
+        Example
+        -------
+        >>> s = Setting("q", "QUALITY_HIGH", "", "choice", ("QUALITY_HIGH", "QUALITY_LOW"), aliases={0: "QUALITY_HIGH", 2: "QUALITY_LOW"})
+        >>> sorted((k for k, v in s.names().items() if v == "QUALITY_LOW"), key=str)
+        [2, 'low', 'quality_low']
+        """
+        return dict(self._names)
 
     def allowed(self) -> str:
         """The values the engine accepts, in words (for error messages)."""
@@ -114,12 +135,8 @@ class Setting:
             return "one of " + ", ".join(map(repr, self.accepts))
         lo, hi = self.accepts
         what = "a whole number" if self.kind == "int" else "a number"
-        if lo is None and hi is None:
-            return what
-        if hi is None:
-            return f"{what} >= {lo:g}"
-        if lo is None:
-            return f"{what} <= {hi:g}"
+        if lo is None or hi is None:
+            return what if lo is None and hi is None else f"{what} >= {lo:g}" if hi is None else f"{what} <= {hi:g}"
         return f"{what} in [{lo:g}, {hi:g}]"
 
     def coerce(self, value: object) -> Any:
@@ -134,8 +151,14 @@ class Setting:
                          + (" or null (the engine's derived default)" if self.default is None else "") + f", got {value!r}")
         if self.default is None and (value is None or isinstance(value, str) and value.strip().lower() in ("null", "none")):
             return None  # the engine's derived default (JSON null, --set KEY=null)
+        named = lookup(self._names, value, numbers=self.kind == "choice")
+        if named is not MISSING:
+            return named if self.kind == "choice" else self.coerce(named)
         if isinstance(value, str) and self.kind != "choice":
             text = value.strip()
+            if self._names and not numeric(text):
+                names = ", ".join(repr(k) for k, _ in self.aliases if isinstance(k, str))
+                raise ValueError(f"{self.key} must be {self.allowed()} or one of the engine's names ({names}), got {value!r}{hint(value, (), self._names)}")
             if self.kind == "bool":
                 if text.lower() not in ("true", "false"):
                     raise bad
@@ -149,13 +172,10 @@ class Setting:
                 raise bad
             return bool(value)
         if self.kind == "choice":
-            if not isinstance(value, str):
-                raise bad
-            for c in self.accepts:
-                if value.strip().lower() == str(c).lower():
-                    return c
-            null = " or null (the engine's derived default)" if self.default is None else ""
-            raise ValueError(f"{self.key} must be {self.allowed()}{null}, got {value!r}{check.did_you_mean(value, map(str, self.accepts))}")
+            numbers = ", ".join(str(k) for k in sorted(k for k in self._names if isinstance(k, int)))
+            raise ValueError(f"{self.key} must be {self.allowed()}" + (f" (or the engine's numbers {numbers})" if numbers else "")
+                             + (" or null (the engine's derived default)" if self.default is None else "")
+                             + f", got {value!r}{hint(value, self.accepts, self._names)}")
         if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
             raise bad
         number = float(value)
