@@ -30,7 +30,7 @@ def _json(capsys, argv):
 
 def test_json_contract(capsys):
     out = _json(capsys, BASE)
-    assert set(out) == {"engine", "release", "settings", "cascades", "verdicts"}
+    assert set(out) == {"engine", "release", "settings", "cascades", "units", "verdicts"}
     assert (out["engine"], out["release"]) == ("threejs", "r187")
     profile = setups.get("threejs")
     assert list(out["settings"]) == [s.key for s in profile.settings]  # every key, as three.js spells it

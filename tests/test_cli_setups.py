@@ -57,8 +57,8 @@ def test_bias_in_the_engines_units(capsys):
     front = ENGINE + ["--set", "material.shadowSide=FrontSide"]
     rows = _csv(capsys, ["bias"] + front)
     r = check(setups.build("threejs", {"cascades": 4, "material.shadowSide": "FrontSide"}, CAMERA, "15..60"))
-    assert [float(row["needed_shadow.normalBias"]) for row in rows] == [c["needed"]["shadow.normalBias"] for c in r.cascades]
-    assert [float(row["acne"]) for row in rows] == [1.0] * 4
+    assert [float(row["needed_shadow.normalBias [world units]"]) for row in rows] == [c["needed"]["shadow.normalBias"] for c in r.cascades]
+    assert [float(row["acne [fraction]"]) for row in rows] == [1.0] * 4
 
 
 def test_bias_camera_and_sun_without_engine(capsys):

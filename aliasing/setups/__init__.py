@@ -10,8 +10,10 @@ with image size, sun) is built and validated once and carried through every comm
 
 Modules
 -------
+setting
+    One setting (:class:`Setting`): key, unit, default, range, the engine's other spellings of its values.
 profile
-    The types: :class:`Setting`, :class:`BiasTerm`, :class:`BiasRule`, :class:`Filter`,
+    The types: :class:`BiasTerm`, :class:`BiasRule`, :class:`Filter`,
     :class:`Pipeline`, :class:`Profile`.
 spec
     The setup value (:class:`Setup`) and the camera and sun specs of the command line.

@@ -56,147 +56,15 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
-from .names import MISSING, hint, lookup, numeric, spellings
+from .setting import FLOAT32_MAX, TYPES, Setting, float32  # noqa: F401  (defined there, re-exported here)
 
 Array = NDArray[np.float64]
 
 KINDS = ("depth", "depth_texels", "depth_range", "normal", "normal_texels", "across_texels", "slope", "tan_texels")
 SCALES = ("one", "sin", "one-minus-cos")
 FACES = ("front", "back", "both")
-TYPES = ("float", "int", "bool", "choice")
+LENGTH_UNITS = ("m", "cm", "world units")
 ROLES = ("cascades", "size", "split", "distance", "bias", "filter", "stable", "blend")
-
-
-@dataclass(frozen=True)
-class Setting:
-    """One shadow setting of an engine, as the engine spells it.
-
-    Attributes
-    ----------
-    key : str
-        The engine's own name (``shadowBias``, ``shadow.normalBias``, ``lambda``).
-    default : float, int, bool, str or None
-        The engine's default at the profile's release; None where the engine derives it from
-        something else (Babylon's ``shadowMaxZ`` is the camera's ``maxZ``: ``doc`` says what).
-    unit : str
-        What one unit means (``world units``, ``normalized light depth``, ``texels``, ``m``, ``""``).
-    kind : str
-        ``float``, ``int``, ``bool`` or ``choice``.
-    accepts : tuple
-        ``(low, high)``: the values the engine accepts (inclusive; ``None`` for open), or, for
-        ``choice``, the choices.
-    clamp : tuple or None
-        ``(low, high)`` the engine clamps an accepted value to, silently (Babylon clamps
-        ``numCascades`` to 2–4), or None.
-    source : str
-        The file and line it was read from, at the pinned release.
-    doc : str
-        What the setting does, in a line.
-    aliases : mapping or pairs of (str or int, value)
-        Other spellings of a ``choice`` (or of an ``int`` the engine names) mapped to the canonical
-        value: the integers the engine's files store and its other names (cite their declaration in
-        ``source``); :mod:`aliasing.setups.names` says what else :meth:`coerce` takes.
-    """
-
-    key: str
-    default: Any
-    unit: str
-    kind: str
-    accepts: tuple = (None, None)
-    clamp: tuple | None = None
-    source: str = ""
-    doc: str = ""
-    aliases: tuple = ()
-    _names: Mapping = field(init=False, repr=False, compare=False, hash=False)
-
-    def __post_init__(self) -> None:
-        if self.kind not in TYPES:
-            raise ValueError(f"kind must be one of {', '.join(TYPES)}, got {self.kind!r}")
-        object.__setattr__(self, "aliases", tuple((k, v) for k, v in (self.aliases.items() if isinstance(self.aliases, Mapping) else self.aliases)))
-        object.__setattr__(self, "_names", MappingProxyType(spellings(self)))
-
-    def names(self) -> dict:
-        """Every spelling :meth:`coerce` takes for a ``choice`` or a named ``int``, normalized
-        (lower case, underscores; integers as int), mapped to the canonical value.
-
-        Example
-        -------
-        >>> s = Setting("q", "QUALITY_HIGH", "", "choice", ("QUALITY_HIGH", "QUALITY_LOW"), aliases={0: "QUALITY_HIGH", 2: "QUALITY_LOW"})
-        >>> sorted((k for k, v in s.names().items() if v == "QUALITY_LOW"), key=str)
-        [2, 'low', 'quality_low']
-        """
-        return dict(self._names)
-
-    def allowed(self) -> str:
-        """The values the engine accepts, in words (for error messages)."""
-        if self.kind == "bool":
-            return "true or false"
-        if self.kind == "choice":
-            return "one of " + ", ".join(map(repr, self.accepts))
-        lo, hi = self.accepts
-        what = "a whole number" if self.kind == "int" else "a number"
-        if lo is None or hi is None:
-            return what if lo is None and hi is None else f"{what} >= {lo:g}" if hi is None else f"{what} <= {hi:g}"
-        return f"{what} in [{lo:g}, {hi:g}]"
-
-    def coerce(self, value: object) -> Any:
-        """``value`` (from JSON, TOML or a ``--set`` text) as this setting's type, validated.
-
-        Raises
-        ------
-        ValueError
-            Naming the key and what it accepts.
-        """
-        bad = ValueError(f"{self.key} must be {self.allowed()}" + (f" [{self.unit}]" if self.unit else "")
-                         + (" or null (the engine's derived default)" if self.default is None else "") + f", got {value!r}")
-        if self.default is None and (value is None or isinstance(value, str) and value.strip().lower() in ("null", "none")):
-            return None  # the engine's derived default (JSON null, --set KEY=null)
-        named = lookup(self._names, value, numbers=self.kind == "choice")
-        if named is not MISSING:
-            return named if self.kind == "choice" else self.coerce(named)
-        if isinstance(value, str) and self.kind != "choice":
-            text = value.strip()
-            if self._names and not numeric(text):
-                names = ", ".join(repr(k) for k, _ in self.aliases if isinstance(k, str))
-                raise ValueError(f"{self.key} must be {self.allowed()} or one of the engine's names ({names}), got {value!r}{hint(value, (), self._names)}")
-            if self.kind == "bool":
-                if text.lower() not in ("true", "false"):
-                    raise bad
-                return text.lower() == "true"
-            try:
-                value = int(text) if self.kind == "int" and text.lstrip("+-").isdigit() else float(text)
-            except ValueError:
-                raise bad from None
-        if self.kind == "bool":
-            if not isinstance(value, (bool, np.bool_)):
-                raise bad
-            return bool(value)
-        if self.kind == "choice":
-            numbers = ", ".join(str(k) for k in sorted(k for k in self._names if isinstance(k, int)))
-            raise ValueError(f"{self.key} must be {self.allowed()}" + (f" (or the engine's numbers {numbers})" if numbers else "")
-                             + (" or null (the engine's derived default)" if self.default is None else "")
-                             + f", got {value!r}{hint(value, self.accepts, self._names)}")
-        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
-            raise bad
-        number = float(value)
-        if not math.isfinite(number):
-            raise bad
-        if self.kind == "int":
-            if not number.is_integer():
-                raise bad
-            number = int(number)
-        lo, hi = self.accepts
-        if lo is not None and number < lo or hi is not None and number > hi:
-            raise bad
-        return number
-
-    def clamped(self, value: Any) -> Any:
-        """The value as the engine uses it, after its own clamp."""
-        if self.clamp is None:
-            return value
-        lo, hi = self.clamp
-        out = value if lo is None else max(lo, value)
-        return out if hi is None else min(hi, out)
 
 
 @dataclass(frozen=True)
@@ -576,6 +444,12 @@ class Profile:
     @property
     def name(self) -> str:
         return f"{self.engine}@{self.release}"
+
+    @property
+    def length_unit(self) -> str:
+        """The engine's world unit: that of its first setting in ``m``, ``cm`` or ``world units`` (Unreal's
+        ``cm``, Godot's and Unity's ``m``; ``world units`` where the engine fixes none, as three.js)."""
+        return next((s.unit for s in self.settings if s.unit in LENGTH_UNITS), "world units")
 
     def setting(self, key: str) -> Setting:
         """The setting ``key``; a ValueError with a did-you-mean from this engine's keys."""

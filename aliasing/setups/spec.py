@@ -407,9 +407,20 @@ class Setup:
     pipeline: Pipeline = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        if not isinstance(self.profile, Profile) or not isinstance(self.camera, Camera) or not isinstance(self.sun, Sun):
+            raise ValueError("profile, camera and sun must be an aliasing.setups Profile, Camera and Sun (aliasing.setups.build(...)), got "
+                             f"{type(self.profile).__name__}, {type(self.camera).__name__}, {type(self.sun).__name__}")
         full = self.profile.resolve(self.settings)
         object.__setattr__(self, "settings", MappingProxyType(full))
-        object.__setattr__(self, "pipeline", self.profile.build(full, self.camera))
+        try:
+            pipeline = self.profile.build(full, self.camera)
+        except ValueError as exc:  # a message from below that names no setting: say which settings led there
+            changed = [k for k, v in full.items() if self.profile.defaults().get(k) != v]
+            if any(k in str(exc) for k in full):
+                raise
+            raise ValueError(f"{self.profile.title} builds no cascades from the settings {', '.join(changed) or '(the defaults)'} "
+                             f"with camera {self.camera.spec()}: {exc}") from None
+        object.__setattr__(self, "pipeline", pipeline)
 
     @property
     def engine(self) -> str:

@@ -9,7 +9,7 @@ import pytest
 
 from aliasing import setups
 from aliasing.cli import main
-from aliasing.setups.names import affixes
+from aliasing.setups.setting import affixes
 
 hypothesis = pytest.importorskip("hypothesis")
 from hypothesis import given, settings  # noqa: E402
