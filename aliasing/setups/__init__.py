@@ -117,6 +117,8 @@ def build(engine: str | Profile, settings: Mapping[str, Any] | None = None, came
         :data:`SUN_SPEC` (default the band 15..60° ahead).
     """
     profile = engine if isinstance(engine, Profile) else get(engine)
+    if settings is not None and not isinstance(settings, Mapping):
+        raise ValueError(f"settings must be a mapping of {profile.title} setting names to values, got {type(settings).__name__}")
     return Setup(profile, dict(settings or {}), parse_camera(camera), parse_sun(sun))
 
 
@@ -140,8 +142,14 @@ def add_arguments(parser: argparse.ArgumentParser, *, sun: str | None = "15..60"
                         help=f"sun: {SUN_SPEC} (default {sun if sun else '15..60 with --engine'})")
 
 
+def _namespace(args: object) -> None:
+    if not isinstance(args, argparse.Namespace):
+        raise ValueError(f"args must be the argparse.Namespace of a parser given add_arguments, got {type(args).__name__}")
+
+
 def from_args(args: argparse.Namespace) -> Setup:
     """The :class:`Setup` of parsed :func:`add_arguments` options (the settings file first, ``--set`` over it)."""
+    _namespace(args)
     settings: dict[str, Any] = {}
     if getattr(args, "settings", None):
         settings.update(load_settings(args.settings))
@@ -158,6 +166,7 @@ def resolve(args: argparse.Namespace) -> tuple[Setup | None, Camera | None, Sun 
     takes a camera spec there too: a value with ``=`` is the spec; a name is left in
     ``args.camera`` for the command.
     """
+    _namespace(args)
     camera_text = getattr(args, "camera", None)
     if isinstance(camera_text, str) and "=" not in camera_text:  # a glTF camera's name: not ours
         args = argparse.Namespace(**{**vars(args), "camera": None})

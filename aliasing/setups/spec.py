@@ -334,10 +334,21 @@ class Sun:
 
 
 def parse_sun(spec: str | Sun | float) -> Sun:
-    """A :class:`Sun` from ``ELEV``, ``LOW..HIGH`` and an optional ``@AZ`` [deg]."""
+    """A :class:`Sun` from ``ELEV``, ``LOW..HIGH`` and an optional ``@AZ`` [deg], or one elevation [deg].
+
+    Raises
+    ------
+    ValueError
+        Naming the sun's elevation or azimuth and what it takes.
+
+    Example
+    -------
+    >>> parse_sun("15..60@30").spec(), parse_sun(45).elevation
+    ('15..60@30', (45.0, 45.0))
+    """
     if isinstance(spec, Sun):
         return spec
-    if isinstance(spec, (int, float)) and not isinstance(spec, bool):
+    if isinstance(spec, (int, float, np.integer, np.floating)) and not isinstance(spec, (bool, np.bool_)):
         return Sun((spec, spec))
     if not isinstance(spec, str) or not spec.strip():
         raise ValueError(f"sun must be {SUN_SPEC}, got {spec!r}")
@@ -383,10 +394,25 @@ def _flatten(data: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
 
 
 def parse_set(items: list[str] | None) -> dict[str, str]:
-    """``--set KEY=VALUE`` texts as a dict (values stay text; the profile types them)."""
+    """``--set KEY=VALUE`` texts as a dict (values stay text; the profile types them).
+
+    Raises
+    ------
+    ValueError
+        Naming ``--set`` (``items``) where ``items`` is not a list of ``KEY=VALUE`` texts.
+
+    Example
+    -------
+    >>> parse_set(["cascades=4", "shadow.bias = -0.001"])
+    {'cascades': '4', 'shadow.bias': '-0.001'}
+    """
+    if items is not None and (isinstance(items, (str, bytes)) or not isinstance(items, (list, tuple))):
+        raise ValueError(f"items (--set) must be a list of KEY=VALUE texts, got {type(items).__name__}")
     out: dict[str, str] = {}
     for item in items or ():
-        key, eq, value = str(item).partition("=")
+        if not isinstance(item, str):
+            raise ValueError(f"items (--set) must be KEY=VALUE texts, got {item!r}")
+        key, eq, value = item.partition("=")
         if not eq or not key.strip():
             raise ValueError(f"--set must be KEY=VALUE, got {item!r}")
         out[key.strip()] = value.strip()
