@@ -11,7 +11,7 @@ image height, a sun band), :func:`check` evaluates the pipeline the engine build
     own fit and snap (:func:`aliasing.engines.pipeline.texels`), the largest over the sun band
     (square stabilized fits do not depend on the sun).
 ``error_max``, ``error_median``
-    The aliasing error [px/texel] (:data:`ERROR_NAME`, :data:`ERROR_UNIT`): pixels of the camera's
+    The aliasing error [px/texel] (:data:`aliasing.check.units.ERROR_NAME`, :data:`aliasing.check.units.ERROR_UNIT`): pixels of the camera's
     image per shadow-map texel, a texel's width over a pixel's width at the cascade's first depth u, max(M_x, M_z)·H/R with M of
     :func:`aliasing.engines.stable.evaluate` (Lloyd et al. 2006, eq. 2 with a uniform map), H the
     image height [pixels] and R the map's texels per side; the worst and the median over the
