@@ -210,8 +210,10 @@ class Report:
     def text(self) -> str:
         """An aligned table, then the verdicts."""
         s = self.setup
-        head = (f"{s.profile.title} {s.release}: camera {s.camera.spec()} ({s.camera.width}x{s.camera.height}), sun {s.sun.spec()}; "
-                f"changed: {', '.join(f'{k}={v}' for k, v in s.changed().items()) or 'none'}\n")
+        unit = {st.key: st.unit for st in s.profile.settings}
+        changed = ", ".join(f"{k}={v}" + (f" [{unit[k]}]" if unit.get(k) else "") for k, v in s.changed().items()) or "none"
+        head = (f"{s.profile.title} {s.release}: camera {s.camera.spec()} (near, far [{s.profile.length_unit}], fov [deg], "
+                f"{s.camera.width}x{s.camera.height} px), sun {s.sun.spec()} [deg]; changed: {changed}\n")
         return head + _tables.table(self.labelled()) + "".join(f"- {v}\n" for v in self.verdicts)
 
     def __str__(self) -> str:
@@ -381,7 +383,7 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
             verdicts.append(f"cascade {k}: shadow edges on the ground move by {gap:.1f} px at the lowest sun, {lo_sun:g}° (detached at contacts, "
                             f"shortened by normal offsets: {', '.join(t_.key for t_ in rule.terms)})")
         if k + 1 < K:
-            seam = _seam_verdict(k, row, 2 * t / H)  # a pixel's world width per unit of eye depth
+            seam = _seam_verdict(k, row, 2 * t / H, profile.length_unit)  # a pixel's world width per unit of eye depth
             if seam:
                 verdicts.append(seam)
     verdicts.append(f"{ERROR_NAME} at each cascade's near end [{ERROR_UNIT}]: " + ", ".join(f"{c['error_max']:.3g}" for c in cascades)
@@ -457,7 +459,7 @@ def _accepted(setting, value: float, upper: bool) -> tuple[float | None, str | N
     return value, None
 
 
-def _seam_verdict(k: int, row: dict, pixel: float) -> str | None:
+def _seam_verdict(k: int, row: dict, pixel: float, world: str = "world units") -> str | None:
     """The seam between cascade k and k + 1: the texel's step and whether the blend band hides it.
 
     The band's width in pixels is counted at the boundary's depth for a receiver facing the
@@ -472,14 +474,14 @@ def _seam_verdict(k: int, row: dict, pixel: float) -> str | None:
     need = float(blend_band(step))
     end = row["far"]
     if row["blend"] is None:
-        return (f"seam {k}|{k + 1} near depth {end:.3g}: the texel grows ×{step:.2g} with no blend band: the step shows as a line "
+        return (f"seam {k}|{k + 1} near depth {end:.3g} {world}: the texel grows ×{step:.2g} with no blend band: the step shows as a line "
                 f"(a band of ≥ {need:.0f} px would hide it)")
     a, b = row["blend"]
     px = (b - a) / (pixel * 0.5 * (a + b))
     if px >= need:
-        return (f"seam {k}|{k + 1}: the texel grows ×{step:.2g} inside the blend band {a:.3g}–{b:.3g} (up to {px:.0f} px wide, "
+        return (f"seam {k}|{k + 1}: the texel grows ×{step:.2g} inside the blend band {a:.3g}–{b:.3g} {world} (up to {px:.0f} px wide, "
                 f"{need:.0f} px needed): the band hides the step where receivers face the camera")
-    return (f"seam {k}|{k + 1}: the texel grows ×{step:.2g}; the blend band {a:.3g}–{b:.3g} spans at most {px:.0f} px, "
+    return (f"seam {k}|{k + 1}: the texel grows ×{step:.2g}; the blend band {a:.3g}–{b:.3g} {world} spans at most {px:.0f} px, "
             f"{need:.0f} px are needed to hide the step")
 
 
