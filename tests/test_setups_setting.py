@@ -9,7 +9,7 @@ import pytest
 
 from aliasing import setups
 from aliasing.cli import main
-from aliasing.setups.setting import affixes
+from aliasing.setups.setting import _affixes as affixes
 
 hypothesis = pytest.importorskip("hypothesis")
 from hypothesis import given, settings  # noqa: E402

@@ -13,10 +13,9 @@ A short form that two choices share is left out; the output keeps the canonical 
 
 Example
 -------
->>> normal("DirectionalLight3D::SHADOW_PARALLEL_4_SPLITS"), normal("Soft Low (Fast)")
-('directionallight3d.shadow_parallel_4_splits', 'soft_low')
->>> affixes(["QUALITY_HIGH", "QUALITY_LOW"]), affixes(["BasicShadowMap", "PCFShadowMap"])
-((8, 0), (0, 9))
+>>> s = Setting("filteringQuality", "QUALITY_HIGH", "", "choice", ("QUALITY_HIGH", "QUALITY_LOW"), aliases={0: "QUALITY_HIGH", 2: "QUALITY_LOW"})
+>>> [s.coerce(v) for v in ("high", 0, "ShadowGenerator.QUALITY_LOW", "2", "quality low")]
+['QUALITY_HIGH', 'QUALITY_HIGH', 'QUALITY_LOW', 'QUALITY_LOW', 'QUALITY_LOW']
 """
 
 from __future__ import annotations
@@ -33,12 +32,14 @@ import numpy as np
 
 from .. import _validation as check
 
+__all__ = ["FLOAT32_MAX", "TYPES", "Setting", "float32"]
+
 TYPES = ("float", "int", "bool", "choice")
 #: What a lookup returns where a text spells no value.
-MISSING = object()
+_MISSING = object()
 
 
-def numeric(text: str) -> bool:
+def _numeric(text: str) -> bool:
     try:
         float(text)
     except ValueError:
@@ -46,40 +47,40 @@ def numeric(text: str) -> bool:
     return True
 
 
-def lookup(table: Mapping, value: object, numbers: bool = True) -> Any:
-    """The value that ``value`` spells in ``table`` (:func:`spellings`), or :data:`MISSING`: an
+def _lookup(table: Mapping, value: object, numbers: bool = True) -> Any:
+    """The value that ``value`` spells in ``table`` (``_spellings``), or ``_MISSING``: an
     integer (as int or text, where ``numbers``), a name without case, or the name after a qualifier
     (``ShadowGenerator.QUALITY_HIGH``)."""
     if not table:
-        return MISSING
+        return _MISSING
     if isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_)):
-        return table.get(int(value), MISSING) if numbers else MISSING
+        return table.get(int(value), _MISSING) if numbers else _MISSING
     if not isinstance(value, str):
-        return MISSING
-    text = normal(value)
+        return _MISSING
+    text = _normal(value)
     if text.lstrip("+-").isdigit():
-        return table.get(int(text), MISSING) if numbers else MISSING
+        return table.get(int(text), _MISSING) if numbers else _MISSING
     for candidate in (text, text.rpartition(".")[2]):
         if candidate in table:
             return table[candidate]
-    return MISSING
+    return _MISSING
 
 
-def hint(value: object, choices: Iterable, table: Mapping) -> str:
+def _hint(value: object, choices: Iterable, table: Mapping) -> str:
     """A did-you-mean for a misspelt ``value`` from the ``choices``, else from the other spellings in ``table``."""
     if not isinstance(value, str):
         return ""
-    return check.did_you_mean(value, map(str, choices)) or check.did_you_mean(normal(value), [k for k in table if isinstance(k, str)])
+    return check.did_you_mean(value, map(str, choices)) or check.did_you_mean(_normal(value), [k for k in table if isinstance(k, str)])
 
 
-def normal(text: str) -> str:
+def _normal(text: str) -> str:
     """A spelling as :meth:`Setting.names` keys it: lower case, spaces and hyphens as underscores, a
     trailing parenthesis dropped (Godot's editor writes ``Soft Low (Fast)``)."""
     text = re.sub(r"\s*\([^)]*\)\s*$", "", text.strip()).replace("::", ".")
     return re.sub(r"[\s-]+", "_", text).lower()
 
 
-def affixes(names: list[str]) -> tuple[int, int]:
+def _affixes(names: list[str]) -> tuple[int, int]:
     """The length of the prefix and of the suffix that all ``names`` share, cut at a word's edge
     (after an underscore; before an underscore or a capitalized word), 0 where none or where a name
     would be left empty."""
@@ -99,7 +100,7 @@ def affixes(names: list[str]) -> tuple[int, int]:
     return len(pre), len(suf)
 
 
-def spellings(setting: Any) -> dict:
+def _spellings(setting: Any) -> dict:
     """The table behind :meth:`Setting.names`: the choices, their short forms and the aliases;
     a short form two choices share is left out (ambiguous)."""
     out: dict = {}
@@ -112,17 +113,17 @@ def spellings(setting: Any) -> dict:
 
     if setting.kind == "choice":
         names = [str(c) for c in setting.accepts if str(c).lower() != "null"]
-        a, b = affixes(names)
+        a, b = _affixes(names)
         for c in setting.accepts:
             text = str(c)
             if text.lower() != "null" and (a or b):
-                put(normal(text[a: len(text) - b].strip("_")), c)
+                put(_normal(text[a: len(text) - b].strip("_")), c)
     for key, value in setting.aliases:
         if isinstance(key, bool) or not isinstance(key, (str, int)):
             raise ValueError(f"{setting.key}: an alias must be a name or an integer, got {key!r}")
         if setting.kind == "choice" and value not in setting.accepts:
             raise ValueError(f"{setting.key}: the alias {key!r} names {value!r}, not one of {setting.accepts!r}")
-        put(normal(key) if isinstance(key, str) else key, value)
+        put(_normal(key) if isinstance(key, str) else key, value)
     for key in clash:
         del out[key]
     if setting.default is None:  # null and none are the engine's derived default there (Babylon's filter: not FILTER_NONE)
@@ -130,7 +131,7 @@ def spellings(setting: Any) -> dict:
         out.pop("none", None)
     if setting.kind == "choice":
         for c in setting.accepts:  # the full names win over any short form
-            out[normal(str(c))] = c
+            out[_normal(str(c))] = c
     return out
 
 
@@ -148,6 +149,8 @@ def float32(settings: tuple) -> tuple:
     >>> float32((Setting("bias", 0.0, "m", "float"),))[0].allowed()
     'a number in [-3.40282e+38, 3.40282e+38] (a 32-bit float)'
     """
+    if not isinstance(settings, (tuple, list)) or not all(isinstance(s, Setting) for s in settings):
+        raise ValueError(f"settings must be a tuple of Setting, got {type(settings).__name__}")
     out = []
     for s in settings:
         lo, hi = s.accepts if s.kind == "float" else (0, 0)
@@ -201,7 +204,7 @@ class Setting:
         if self.kind not in TYPES:
             raise ValueError(f"kind must be one of {', '.join(TYPES)}, got {self.kind!r}")
         object.__setattr__(self, "aliases", tuple((k, v) for k, v in (self.aliases.items() if isinstance(self.aliases, Mapping) else self.aliases)))
-        object.__setattr__(self, "_names", MappingProxyType(spellings(self)))
+        object.__setattr__(self, "_names", MappingProxyType(_spellings(self)))
 
     def names(self) -> dict:
         """Every spelling :meth:`coerce` takes for a ``choice`` or a named ``int``, normalized
@@ -239,14 +242,14 @@ class Setting:
                          + (" or null (the engine's derived default)" if self.default is None else "") + f", got {value!r}")
         if self.default is None and (value is None or isinstance(value, str) and value.strip().lower() in ("null", "none")):
             return None  # the engine's derived default (JSON null, --set KEY=null)
-        named = lookup(self._names, value, numbers=self.kind == "choice")
-        if named is not MISSING:
+        named = _lookup(self._names, value, numbers=self.kind == "choice")
+        if named is not _MISSING:
             return named if self.kind == "choice" else self.coerce(named)
         if isinstance(value, str) and self.kind != "choice":
             text = value.strip()
-            if self._names and not numeric(text):
+            if self._names and not _numeric(text):
                 names = ", ".join(repr(k) for k, _ in self.aliases if isinstance(k, str))
-                raise ValueError(f"{self.key} must be {self.allowed()} or one of the engine's names ({names}), got {value!r}{hint(value, (), self._names)}")
+                raise ValueError(f"{self.key} must be {self.allowed()} or one of the engine's names ({names}), got {value!r}{_hint(value, (), self._names)}")
             if self.kind == "bool":
                 if text.lower() not in ("true", "false"):
                     raise bad
@@ -263,7 +266,7 @@ class Setting:
             numbers = ", ".join(str(k) for k in sorted(k for k in self._names if isinstance(k, int)))
             raise ValueError(f"{self.key} must be {self.allowed()}" + (f" (or the engine's numbers {numbers})" if numbers else "")
                              + (" or null (the engine's derived default)" if self.default is None else "")
-                             + f", got {value!r}{hint(value, self.accepts, self._names)}")
+                             + f", got {value!r}{_hint(value, self.accepts, self._names)}")
         if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
             raise bad
         number = float(value)
