@@ -186,7 +186,7 @@ class Setting:
     aliases : mapping or pairs of (str or int, value)
         Other spellings of a ``choice`` (or of an ``int`` the engine names) mapped to the canonical
         value: the integers the engine's files store and its other names (cite their declaration in
-        ``source``); :mod:`aliasing.setups.names` says what else :meth:`coerce` takes.
+        ``source``); the module docstring says what else :meth:`coerce` takes.
     """
 
     key: str
