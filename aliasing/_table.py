@@ -16,7 +16,11 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 from collections.abc import Iterable, Mapping, Sequence
+
+#: A result without a finite bound (an overflow, a bias that cannot help), in words in place of ``inf``.
+UNBOUNDED = "unbounded"
 
 
 def cell(value: object, digits: int = 4) -> str:
@@ -91,3 +95,24 @@ def csv_text(rows: Sequence[Mapping[str, object]], keys: Iterable[str] | None = 
     wr.writeheader()
     wr.writerows({k: "" if r.get(k) is None else r[k] for k in keys} for r in rows)
     return buf.getvalue()
+
+
+def labelled(rows: Sequence[Mapping[str, object]], headers: Mapping[str, str]) -> list[dict]:
+    """Rows with each key renamed to its header (``gap_px`` → ``gap [px]``; a key without one kept) and
+    each non-finite float as :data:`UNBOUNDED` (NaN as None): for a table or CSV that names units and
+    never prints ``inf``.
+
+    Example
+    -------
+    >>> labelled([{"gap_px": float("inf"), "cascade": 0}], {"gap_px": "gap [px]"})
+    [{'gap [px]': 'unbounded', 'cascade': 0}]
+    """
+    if not isinstance(headers, Mapping):
+        raise ValueError(f"headers must be a mapping of keys to headers, got {type(headers).__name__}")
+
+    def shown(v: object) -> object:
+        if isinstance(v, float) and not math.isfinite(v):
+            return None if math.isnan(v) else UNBOUNDED if v > 0 else "-" + UNBOUNDED
+        return v
+
+    return [{headers.get(k, k): shown(v) for k, v in r.items()} for r in rows]

@@ -1,5 +1,5 @@
 """``aliasing check`` and :func:`aliasing.check.check`: the JSON contract, the needed settings fed back,
-verdicts naming settings, bad input as one line, the radians warning, and fuzzing."""
+verdicts naming settings, bad input as one line, a field of view in radians refused, and fuzzing."""
 
 from __future__ import annotations
 
@@ -30,7 +30,7 @@ def _json(capsys, argv):
 
 def test_json_contract(capsys):
     out = _json(capsys, BASE)
-    assert set(out) == {"engine", "release", "settings", "cascades", "verdicts"}
+    assert set(out) == {"engine", "release", "settings", "cascades", "units", "verdicts"}
     assert (out["engine"], out["release"]) == ("threejs", "r187")
     profile = setups.get("threejs")
     assert list(out["settings"]) == [s.key for s in profile.settings]  # every key, as three.js spells it
@@ -175,12 +175,11 @@ def test_settings_file_nested_toml(tmp_path, capsys):
     assert out["settings"]["cascades"] == 3 and out["settings"]["shadow.normalBias"] == 0.5  # --set over the file
 
 
-def test_radians_warning_is_one_line(capsys):
-    with warnings.catch_warnings():
-        warnings.simplefilter("always")
-        assert main(["check", "--engine", "threejs", "--camera", "fov=0.8727", "--format", "csv"]) == 0
+def test_radians_refused_in_one_line(capsys):
+    assert main(["check", "--engine", "threejs", "--camera", "fov=0.8727", "--format", "csv"]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and err.startswith("aliasing check: warning: ") and "50" in err and "degrees" in err
+    assert err.count("\n") == 1 and err.startswith("aliasing check: error: camera fov 0.8727 looks like radians (50.00°)")
+    assert "fov=50.00 (degrees) or fov=0.8727rad" in err and "fov=0.8727deg" in err
 
 
 FIELDS = ["cascades=4", "cascades=0", "cascades=-1", "shadowBias=-0.001", "shadowBias=nan", "shadow.normalBias=0.3", "mode=uniform",

@@ -13,6 +13,7 @@ from aliasing import setups
 from aliasing.check import check
 from aliasing.cli import main
 from aliasing.engines import pipeline as _pipeline
+from aliasing.setups.profile import FLOAT32_MAX
 
 CAMERAS = ("near=0.1,far=500,fov=50,aspect=16:9,height=1080", "near=0.5,far=100,fov=70,aspect=1,height=720")
 SUN = "15..60"
@@ -68,7 +69,7 @@ def test_needed_fed_back_removes_the_acne(capsys, engine):
     camera = CAMERAS[0]
     profile = setups.get(engine)
     keys = [t.key for t in setups.build(engine, {}, camera).pipeline.bias.terms if t.key in {s.key for s in profile.settings}]
-    low = [(k, float(profile.setting(k).accepts[0] or 0.0)) for k in dict.fromkeys(keys)]
+    low = [(k, float(lo if (lo := profile.setting(k).accepts[0]) is not None and lo > -FLOAT32_MAX else 0.0)) for k in dict.fromkeys(keys)]
     base = _json(capsys, engine, camera, low)
     tried = 0
     for i, c in enumerate(base["cascades"]):
@@ -96,7 +97,7 @@ def test_needed_beyond_the_accepted_range_is_null_with_a_verdict(capsys):
     assert main(["check", "--engine", "unreal", "--camera", CAMERAS[0], "--sun", "5..10", "--set", "ShadowSlopeBias=0",
                  "--set", "r.Shadow.CSMDepthBias=1", "--format", "csv"]) == 0
     rows = capsys.readouterr().out.splitlines()
-    assert rows[0].split(",")[-2:] == ["needed_ShadowBias", "needed_ShadowSlopeBias"] and rows[1].endswith(",,")
+    assert rows[0].split(",")[-2:] == ["needed_ShadowBias [unitless]", "needed_ShadowSlopeBias [unitless]"] and rows[1].endswith(",,")
     # and a need below the accepted low is met by any accepted value: the bound is reported
     r = check(setups.build("unity-urp", {}, CAMERAS[0], SUN))
     assert all(c["needed"]["shadowDepthBias"] == 0.0 and c["acne"] == 0 for c in r.cascades)

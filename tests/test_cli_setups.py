@@ -57,8 +57,8 @@ def test_bias_in_the_engines_units(capsys):
     front = ENGINE + ["--set", "material.shadowSide=FrontSide"]
     rows = _csv(capsys, ["bias"] + front)
     r = check(setups.build("threejs", {"cascades": 4, "material.shadowSide": "FrontSide"}, CAMERA, "15..60"))
-    assert [float(row["needed_shadow.normalBias"]) for row in rows] == [c["needed"]["shadow.normalBias"] for c in r.cascades]
-    assert [float(row["acne"]) for row in rows] == [1.0] * 4
+    assert [float(row["needed_shadow.normalBias [world units]"]) for row in rows] == [c["needed"]["shadow.normalBias"] for c in r.cascades]
+    assert [float(row["acne [fraction]"]) for row in rows] == [1.0] * 4
 
 
 def test_bias_camera_and_sun_without_engine(capsys):
@@ -101,12 +101,11 @@ def test_set_needs_engine_and_radians_warn(capsys, command):
     assert err.count("\n") == 1 and "did you mean 'cascades'" in err
 
 
-def test_radians_warning_on_another_command(capsys):
-    with warnings.catch_warnings():
-        warnings.simplefilter("always")
-        assert main(["engines", "--camera", "near=1,far=100,fov=0.8727", "--schemes", "csm:log:k=2", "--format", "csv"]) == 0
+def test_radians_refused_on_another_command(capsys):
+    assert main(["engines", "--camera", "near=1,far=100,fov=0.8727", "--schemes", "csm:log:k=2", "--format", "csv"]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and err.startswith("aliasing engines: warning: camera fov 0.8727 looks like radians (50")
+    assert err.count("\n") == 1 and err.startswith("aliasing engines: error: camera fov 0.8727 looks like radians (50.00°)")
+    assert main(["engines", "--camera", "near=1,far=100,fov=0.8727rad", "--schemes", "csm:log:k=2", "--format", "csv"]) == 0
 
 
 @settings(max_examples=40, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])

@@ -264,7 +264,7 @@ def test_write_is_atomic_and_refuses_bad_values(tmp_path):
     ("nan.unity", "%YAML 1.1\n--- !u!20 &1\nCamera:\n  near clip plane: nan\n",
      "nan.unity: line 4 / near clip plane: expected a finite number [m], got 'nan'"),
     ("bad.ini", "[SystemSettings]\nr.Shadow.CSMDepthBias=ten\n",
-     "bad.ini: line 2 / r.Shadow.CSMDepthBias: expected a number, got 'ten'"),
+     "bad.ini: line 2 / r.Shadow.CSMDepthBias: expected a number in [-3.40282e+38, 3.40282e+38] (a 32-bit float), got 'ten'"),
     ("res.ini", "[ConsoleVariables]\nr.Shadow.MaxCSMResolution=2.5\n",
      "res.ini: line 2 / r.Shadow.MaxCSMResolution: expected a whole number in [4, 16384] [texels], got '2.5'"),
     ("none.ini", "; nothing\n", "none.ini: the whole file: expected an Unreal .ini with [Section] lines, got no section"),

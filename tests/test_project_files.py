@@ -28,6 +28,7 @@ import pytest
 from conftest import need
 
 from aliasing.cli import main
+from aliasing import setups
 from aliasing.setups import files
 from aliasing.setups.files import FileError
 
@@ -86,7 +87,7 @@ def test_godot_enum_keep_aspect_and_light_picking(tmp_path):
     assert files.read(scene, light="B").settings == {"directional_shadow_mode": "SHADOW_PARALLEL_2_SPLITS"}
     assert a.camera == {"near": 0.05, "far": 4000.0, "horizontal_fov": 90.0}  # KEEP_WIDTH: horizontal
     fields, notes = files.merge_camera(a.camera, {"aspect": "2"})
-    assert fields["fov"] == pytest.approx(math.degrees(2 * math.atan(0.5))) and "horizontal 90°" in notes[0]
+    assert setups.parse_camera(fields).fov == pytest.approx(math.degrees(2 * math.atan(0.5))) and "horizontal 90°" in notes[0]
     with pytest.raises(FileError, match=r"two\.tscn: DirectionalLight3D 'C': expected one of: 'A', 'B'"):
         files.read(scene, light="C")
 

@@ -79,9 +79,9 @@ def test_snippets_carry_the_settings(spec, changes, shown):
     ("threejs", "fade", "yes", r"^fade must be true or false, got 'yes'$"),
     ("babylon", "cascadeBlendPercentage", 2, r"^cascadeBlendPercentage must be a number in \[0, 1\] \[fraction of a cascade\], got 2$"),
     ("babylon", "numCascades", "four", r"^numCascades must be a whole number, got 'four'$"),
-    ("babylon", "filter", "PCF", r"^filter must be one of 'FILTER_NONE'.* or null .*got 'PCF'"),
+    ("babylon", "filter", "PFC", r"^filter must be one of 'FILTER_NONE'.* or null .*got 'PFC'"),
     ("babylon", "shadowMaxZ", [1, 2], r"^shadowMaxZ must be a number \[world units\] or null \(the engine's derived default\), got \[1, 2\]$"),
-    ("playcanvas", "shadowType", "SHADOW_PCF3", r"^shadowType must be one of .*did you mean .*'SHADOW_PCF3_32F'"),
+    ("playcanvas", "shadowType", "SHADOW_PCF3_23F", r"^shadowType must be one of .*did you mean .*'SHADOW_PCF3_32F'"),
     ("playcanvas", "shadowDistance", math.inf, r"^shadowDistance must be a number >= 0 \[world units\], got inf$"),
 ])
 def test_bad_values_name_the_key_and_range(spec, key, value, message):

@@ -1,6 +1,6 @@
 """Projection aliasing: the full error m·cos ψ_e / cos ψ_l of a receiver of any orientation.
 
-Perspective aliasing m (texels per pixel on a surface facing both eye and light) is only part
+Perspective aliasing m (pixels per texel, px/texel, on a surface facing both eye and light) is only part
 of the error: a surface whose normal makes ψ_e with the direction to the eye and ψ_l with the
 direction to the light receives texels stretched by 1/cos ψ_l and seen foreshortened by
 cos ψ_e (Lloyd et al. 2006 §3.3; Lloyd et al. 2007 eqs. 29–31, the cos ψ_e / cos ψ_l factor of

@@ -11,11 +11,11 @@ image height, a sun band), :func:`check` evaluates the pipeline the engine build
     own fit and snap (:func:`aliasing.engines.pipeline.texels`), the largest over the sun band
     (square stabilized fits do not depend on the sun).
 ``error_max``, ``error_median``
-    The perspective aliasing error, texels per pixel of the camera's image: a texel's width
-    over a pixel's width at the cascade's first depth u, max(M_x, M_z)·H/R with M of
+    The aliasing error [px/texel] (:data:`aliasing.check.units.ERROR_NAME`, :data:`aliasing.check.units.ERROR_UNIT`): pixels of the camera's
+    image per shadow-map texel, a texel's width over a pixel's width at the cascade's first depth u, max(M_x, M_z)·H/R with M of
     :func:`aliasing.engines.stable.evaluate` (Lloyd et al. 2006, eq. 2 with a uniform map), H the
     image height [pixels] and R the map's texels per side; the worst and the median over the
-    sun band.  Above 1 a texel covers more than a pixel there.
+    sun band.  Above 1 a texel spans more than a pixel there (blocky shadows).
 ``stable_cost``
     ``error_max`` over that of the papers' tight fit (no snap) of the same cascades: what the
     engine's stabilized fit costs in texel size (1 for a tight fit).
@@ -53,7 +53,14 @@ image height, a sun band), :func:`check` evaluates the pipeline the engine build
     displacement that :mod:`aliasing.temporal.predict` turns into flips with a scene's edge
     density (not modelled here: no scene).
 ``memory``
-    Bytes of the cascade's depth map.
+    Bytes of the cascade's depth map (the table and the CSV: ``memory [MiB]``).
+
+Units
+-----
+Every number has a unit (:mod:`aliasing.check.units`): the table's and the CSV's headers carry it in
+brackets (``texel_s [m]``, lengths in the engine's world unit; ``needed_<key> [the setting's unit]``)
+and show a result without a finite bound as ``unbounded``; the JSON keeps its keys, adds ``units``
+(the same units by key, ``needed`` by setting) and writes such a result as null.
 
 The receivers sampled
 ---------------------
@@ -101,8 +108,9 @@ from ..raster.draw.lookup import PCF_MAX
 from ..setups import Setup
 from .scene import scene_pixels as _scene_pixels
 from .seen import seen_block, seen_text
+from .units import ERROR_NAME, ERROR_UNIT, ERROR_WORDS, header, units
 
-__all__ = ["MAX_ANGLE", "Report", "check"]
+__all__ = ["ERROR_NAME", "ERROR_UNIT", "ERROR_WORDS", "MAX_ANGLE", "Report", "check", "header", "units"]
 
 #: The largest angle between a receiver's normal and the light that is sampled [deg] (N·L = cos 85° ≈ 0.087).
 MAX_ANGLE = 85.0
@@ -110,7 +118,7 @@ MAX_ANGLE = 85.0
 _TOL = 1e-9
 #: Columns of the tidy table (:meth:`Report.to_rows`).
 COLUMNS = ("cascade", "near", "far", "texel_s", "texel_t", "error_max", "error_median", "stable_cost", "acne", "gap_px",
-           "seam_step", "blend_start", "blend_end", "footprint_px", "shimmer_px", "memory")
+           "seam_step", "blend_start", "blend_end", "footprint_px", "shimmer_px", "memory_mib")
 
 
 def _receivers(receivers: ArrayLike | None) -> np.ndarray:
@@ -153,9 +161,9 @@ class Report:
     >>> from aliasing import setups
     >>> r = check(setups.build("threejs", {"cascades": 2}, sun=30))
     >>> sorted(r.to_dict())
-    ['cascades', 'engine', 'release', 'settings', 'verdicts']
-    >>> [row["cascade"] for row in r.to_rows()], r.to_csv().splitlines()[0].split(",")[:5]
-    ([0, 1], ['cascade', 'near', 'far', 'texel_s', 'texel_t'])
+    ['cascades', 'engine', 'release', 'settings', 'units', 'verdicts']
+    >>> [row["cascade"] for row in r.to_rows()], r.to_csv().splitlines()[0].split(",")[:6]
+    ([0, 1], ['cascade', 'near [world units]', 'far [world units]', 'texel_s [world units]', 'texel_t [world units]', 'error_max [px/texel]'])
     """
 
     setup: Setup
@@ -165,23 +173,28 @@ class Report:
     seen: dict | None = None
 
     def to_dict(self) -> dict[str, Any]:
-        """The JSON contract: ``engine``, ``release``, ``settings`` (every key), ``cascades``, ``verdicts`` (and ``seen`` when measured)."""
+        """The JSON contract: ``engine``, ``release``, ``settings`` (every key), ``cascades``, ``units`` (of the
+        cascades' fields, :func:`units`), ``verdicts`` (and ``seen`` when measured)."""
+        u = units(self.setup)
         return {
             "engine": self.setup.engine,
             "release": self.setup.release,
             "settings": dict(self.setup.settings),
             "cascades": [_json(c) for c in self.cascades],
+            "units": {k: u[k] for k in {k for c in self.cascades for k in c}},
             "verdicts": list(self.verdicts),
             **({"seen": self.seen} if self.seen is not None else {}),
         }
 
     def to_rows(self) -> list[dict]:
-        """A tidy table: one row per cascade, flat columns (:data:`COLUMNS`), then ``needed_<key>`` per bias setting."""
+        """A tidy table: one row per cascade, flat columns (:data:`COLUMNS`), then ``needed_<key>`` per bias setting;
+        the units of the keys are :func:`units` (``memory_mib``: MiB)."""
         rows = []
         for c in self.cascades:
             band = c["blend"] or [None, None]
             row = {"cascade": c["cascade"], "near": c["near"], "far": c["far"], "texel_s": c["texel"][0], "texel_t": c["texel"][1],
-                   "blend_start": band[0], "blend_end": band[1], **{k: c[k] for k in COLUMNS[5:] if not k.startswith("blend")}}
+                   "blend_start": band[0], "blend_end": band[1], "memory_mib": c["memory"] / 2**20,
+                   **{k: c[k] for k in COLUMNS[5:-1] if not k.startswith("blend")}}
             row = {k: row[k] for k in COLUMNS} | {k: c[k] for k in ("acne_px", "receiver_px") if k in c}
             row.update({f"needed_{k}": v for k, v in c["needed"].items()})
             rows.append(row)
@@ -190,16 +203,22 @@ class Report:
     def to_json(self) -> str:
         return json.dumps(self.to_dict(), indent=1) + "\n"
 
+    def labelled(self) -> list[dict]:
+        """:meth:`to_rows` with a unit in each header (``texel_s [m]``) and ``unbounded`` for an infinite value."""
+        u = units(self.setup)
+        return _tables.labelled(self.to_rows(), {k: header(k, u[k]) for k in u if isinstance(u[k], str)})
+
     def to_csv(self) -> str:
-        return _tables.csv_text(self.to_rows())
+        return _tables.csv_text(self.labelled())
 
     def text(self) -> str:
         """An aligned table, then the verdicts."""
-        rows = self.to_rows()
         s = self.setup
-        head = (f"{s.profile.title} {s.release}: camera {s.camera.spec()} ({s.camera.width}x{s.camera.height}), sun {s.sun.spec()}; "
-                f"changed: {', '.join(f'{k}={v}' for k, v in s.changed().items()) or 'none'}\n")
-        return head + _tables.table(rows) + "".join(f"- {v}\n" for v in self.verdicts) + ("" if self.seen is None else seen_text(self.seen))
+        unit = {st.key: st.unit for st in s.profile.settings}
+        changed = ", ".join(f"{k}={v}" + (f" [{unit[k]}]" if unit.get(k) else "") for k, v in s.changed().items()) or "none"
+        head = (f"{s.profile.title} {s.release}: camera {s.camera.spec()} (near, far [{s.profile.length_unit}], fov [deg], "
+                f"{s.camera.width}x{s.camera.height} px), sun {s.sun.spec()} [deg]; changed: {changed}\n")
+        return head + _tables.table(self.labelled()) + "".join(f"- {v}\n" for v in self.verdicts) + ("" if self.seen is None else seen_text(self.seen))
 
     def __str__(self) -> str:
         return self.text()
@@ -366,15 +385,18 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
                             seen.verdict(k, short, elev, _fixes(needed, rule), acne))
         for limit in unreachable.get(k, []):
             verdicts.append(f"cascade {k}: {limit}")
-        if gap >= 1.0:
+        if not math.isfinite(gap):
+            verdicts.append(f"cascade {k}: shadow edges on the ground move without bound at the lowest sun, {lo_sun:g}°: the bias "
+                            f"({', '.join(t_.key for t_ in rule.terms)}) is beyond what the map's depth can hold")
+        elif gap >= 1.0:
             verdicts.append(f"cascade {k}: shadow edges on the ground move by {gap:.1f} px at the lowest sun, {lo_sun:g}° (detached at contacts, "
                             f"shortened by normal offsets: {', '.join(t_.key for t_ in rule.terms)})")
         if k + 1 < K:
-            seam = _seam_verdict(k, row, 2 * t / H)  # a pixel's world width per unit of eye depth
+            seam = _seam_verdict(k, row, 2 * t / H, profile.length_unit)  # a pixel's world width per unit of eye depth
             if seam:
                 verdicts.append(seam)
-    verdicts.append("texels per pixel at each cascade's near end: " + ", ".join(f"{c['error_max']:.3g}" for c in cascades)
-                    + " (above 1 a texel covers more than a pixel; the first cascade's near end is the camera's near plane)")
+    verdicts.append(f"{ERROR_NAME} at each cascade's near end [{ERROR_UNIT}]: " + ", ".join(f"{c['error_max']:.3g}" for c in cascades)
+                    + f" ({ERROR_WORDS}: above 1 a texel spans more than a pixel; the first cascade's near end is the camera's near plane)")
     if not pl.stable:
         verdicts.append(f"the fit is not stabilized: shadow edges shimmer up to {max(c['shimmer_px'] for c in cascades):.2g} px per frame "
                         f"under a {step:g} m/frame walk")
@@ -446,7 +468,7 @@ def _accepted(setting, value: float, upper: bool) -> tuple[float | None, str | N
     return value, None
 
 
-def _seam_verdict(k: int, row: dict, pixel: float) -> str | None:
+def _seam_verdict(k: int, row: dict, pixel: float, world: str = "world units") -> str | None:
     """The seam between cascade k and k + 1: the texel's step and whether the blend band hides it.
 
     The band's width in pixels is counted at the boundary's depth for a receiver facing the
@@ -461,14 +483,14 @@ def _seam_verdict(k: int, row: dict, pixel: float) -> str | None:
     need = float(blend_band(step))
     end = row["far"]
     if row["blend"] is None:
-        return (f"seam {k}|{k + 1} near depth {end:.3g}: the texel grows ×{step:.2g} with no blend band: the step shows as a line "
+        return (f"seam {k}|{k + 1} near depth {end:.3g} {world}: the texel grows ×{step:.2g} with no blend band: the step shows as a line "
                 f"(a band of ≥ {need:.0f} px would hide it)")
     a, b = row["blend"]
     px = (b - a) / (pixel * 0.5 * (a + b))
     if px >= need:
-        return (f"seam {k}|{k + 1}: the texel grows ×{step:.2g} inside the blend band {a:.3g}–{b:.3g} (up to {px:.0f} px wide, "
+        return (f"seam {k}|{k + 1}: the texel grows ×{step:.2g} inside the blend band {a:.3g}–{b:.3g} {world} (up to {px:.0f} px wide, "
                 f"{need:.0f} px needed): the band hides the step where receivers face the camera")
-    return (f"seam {k}|{k + 1}: the texel grows ×{step:.2g}; the blend band {a:.3g}–{b:.3g} spans at most {px:.0f} px, "
+    return (f"seam {k}|{k + 1}: the texel grows ×{step:.2g}; the blend band {a:.3g}–{b:.3g} {world} spans at most {px:.0f} px, "
             f"{need:.0f} px are needed to hide the step")
 
 

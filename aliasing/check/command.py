@@ -8,18 +8,20 @@
 
 Bad input (an unknown engine, release or setting, a malformed settings file, a value the
 engine does not accept, a camera or sun typo) is one line on stderr and exit status 2
-(:func:`aliasing.cli.main`); a field of view that looks like radians is a one-line warning.
+(:func:`aliasing.cli.main`), as is a field of view without a unit that reads as radians (at or
+below π: written ``fov=0.8rad`` or ``fov=45.84``).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 
 from .. import _table as _tables
 from .. import setups
-from . import MAX_ANGLE, check
+from . import ERROR_UNIT, ERROR_WORDS, MAX_ANGLE, check, header, units
 
 
 def _slopes(text: str | None) -> list[float] | None:
@@ -55,18 +57,22 @@ BIAS_COLUMNS = ("cascade", "near", "far", "texel_s", "texel_t", "acne", "gap_px"
 
 def run_bias(args: argparse.Namespace) -> int:
     """``aliasing bias --engine ...``: the bias columns of the check (the engine's own fit, filter and bias rule,
-    the needed settings in the engine's units), then the bias verdicts."""
+    the needed settings in the engine's units), then the bias verdicts; units as :func:`aliasing.check.units`."""
     report = check(setups.from_args(args))
+    u = units(report.setup)
     rows = [{k: r[k] for k in BIAS_COLUMNS} | {k: v for k, v in r.items() if k.startswith("needed_")} for r in report.to_rows()]
+    verdicts = [v for v in report.verdicts if "acne" in v or "faces" in v or "detach" in v or "without bound" in v]
     if args.format == "json":
-        sys.stdout.write(json.dumps({"engine": report.setup.engine, "release": report.setup.release, "rows": rows,
-                                     "verdicts": [v for v in report.verdicts if "acne" in v or "faces" in v or "detach" in v]}, indent=1) + "\n")
+        clean = [{k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in r.items()} for r in rows]
+        sys.stdout.write(json.dumps({"engine": report.setup.engine, "release": report.setup.release, "rows": clean,
+                                     "units": {k: u[k] for k in rows[0]}, "verdicts": verdicts}, indent=1) + "\n")
         return 0
+    shown = _tables.labelled(rows, {k: header(k, u[k]) for k in rows[0]})
     if args.format == "csv":
-        sys.stdout.write(_tables.csv_text(rows))
+        sys.stdout.write(_tables.csv_text(shown))
         return 0
-    sys.stdout.write(_tables.table(rows))
-    sys.stdout.write("".join(f"- {v}\n" for v in report.verdicts if "acne" in v or "faces" in v or "detach" in v))
+    sys.stdout.write(_tables.table(shown))
+    sys.stdout.write("".join(f"- {v}\n" for v in verdicts))
     return 0
 
 
@@ -76,9 +82,11 @@ def add_check_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser
         "check",
         help="per cascade of an engine's own setup: texel, error, the bias settings it needs, acne, peter-panning, seams, shimmer, memory",
         description="What an engine's shadow settings do, per cascade, in the engine's own terms: each cascade's depth range and world "
-        "texel (the engine's own fit), the perspective error (texels per pixel of the camera's image) over the sun band, the bias "
+        f"texel (the engine's own fit), the aliasing error ({ERROR_WORDS} [{ERROR_UNIT}]: how many of the camera's image pixels one "
+        "texel spans) over the sun band, the bias "
         "settings that remove acne (in the engine's units), the acne and peter-panning at the given settings, the seam step, the "
-        "filter footprint, shimmer under a walk and memory, with verdict lines naming the setting to change.",
+        "filter footprint, shimmer under a walk and memory, with verdict lines naming the setting to change. Every column names its "
+        "unit in brackets (lengths in the engine's world unit, needed_<key> in the setting's own unit); --format json adds 'units'.",
         epilog="Example: aliasing check --engine threejs --set cascades=4 --camera near=0.1,far=500,fov=50,aspect=16:9,height=1080 "
         "--sun 15..60.  'needed' is a lower bound (set at or above) for settings of positive scale and an upper bound (set at or "
         "below) for three.js's shadowBias and shadow.bias, which lift the receiver when negative.",

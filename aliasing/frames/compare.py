@@ -24,7 +24,8 @@ on the same pixels (those the engine drew, at the positions and normals it compu
 ``texels_per_pixel``
     Per cascade: the eye pixel's side at the cascade's first depth over the map texel's
     larger side (2 d tan(fov/2) / H over side / R), from the engine's light matrices and
-    breaks (measured) and from the toolkit's split and fit (predicted).
+    breaks (measured) and from the toolkit's split and fit (predicted): texels per pixel, the
+    inverse of ``check``'s aliasing error [px/texel] (:data:`aliasing.check.units.ERROR_UNIT`).
 
 Examples
 --------

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from .. import partitioning, setups
+from .. import _validation, partitioning, setups
 from ..bias import presets as bias_presets
 from ..raster.draw import backends
 from ..view import check_aspect
@@ -22,6 +22,8 @@ def _render(args: argparse.Namespace) -> int:
         raise ValueError(f"--f-over-n must be a number, got {args.f_over_n!r}") from None
     if args.seed < 0:
         raise ValueError(f"--seed must be a whole number >= 0, got {args.seed}")
+    _validation.whole(args.res, "--res", 1, 65536, " (the texel budget's side: RES² texels over all maps)")
+    _validation.whole(args.every, "--every", 1, 65536, " [texels between grid lines]")
     backends.check(args.backend, "eye_pass")  # refused before any work, like the bias preset and the aspect
     _setup(args)
     if args.what == "bias-margin":

@@ -10,8 +10,10 @@ with image size, sun) is built and validated once and carried through every comm
 
 Modules
 -------
+setting
+    One setting (:class:`Setting`): key, unit, default, range, the engine's other spellings of its values.
 profile
-    The types: :class:`Setting`, :class:`BiasTerm`, :class:`BiasRule`, :class:`Filter`,
+    The types: :class:`BiasTerm`, :class:`BiasRule`, :class:`Filter`,
     :class:`Pipeline`, :class:`Profile`.
 spec
     The setup value (:class:`Setup`) and the camera and sun specs of the command line.
@@ -39,7 +41,7 @@ from typing import Any
 from .. import _validation as check
 from . import files
 from .profile import FACES, KINDS, ROLES, BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
-from .spec import (CAMERA_SPEC, SUN_SPEC, Camera, RadiansWarning, Setup, Sun, camera_items, load_settings, parse_camera,
+from .spec import (CAMERA_SPEC, SUN_SPEC, Camera, Setup, Sun, camera_items, load_settings, parse_camera,
                    parse_set, parse_sun)
 
 #: The engines, by the toolkit's name, and the module that holds their profiles (newest release first).
@@ -55,7 +57,7 @@ ENGINES: dict[str, str] = {
 }
 
 __all__ = ["ENGINES", "FACES", "KINDS", "BiasRule", "BiasTerm", "CAMERA_SPEC", "Camera", "Filter", "Pipeline", "Profile",
-           "ROLES", "RadiansWarning", "SUN_SPEC", "Setting", "Tunable", "Setup", "Sun", "add_arguments", "build", "from_args", "get",
+           "ROLES", "SUN_SPEC", "Setting", "Tunable", "Setup", "Sun", "add_arguments", "build", "from_args", "get",
            "ProjectNote", "load_settings", "parse_camera", "parse_set", "parse_sun", "profiles", "project", "resolve"]
 
 
@@ -117,6 +119,8 @@ def build(engine: str | Profile, settings: Mapping[str, Any] | None = None, came
         :data:`SUN_SPEC` (default the band 15..60° ahead).
     """
     profile = engine if isinstance(engine, Profile) else get(engine)
+    if settings is not None and not isinstance(settings, Mapping):
+        raise ValueError(f"settings must be a mapping of {profile.title} setting names to values, got {type(settings).__name__}")
     return Setup(profile, dict(settings or {}), parse_camera(camera), parse_sun(sun))
 
 
@@ -153,8 +157,9 @@ def add_arguments(parser: argparse.ArgumentParser, *, sun: str | None = "15..60"
     parser.add_argument("--settings", metavar="FILE", help="the engine's settings, JSON or TOML, in the engine's own keys")
     parser.add_argument("--set", dest="set_", action="append", metavar="KEY=VALUE", help="one setting in the engine's own key (repeatable)")
     if camera:
-        parser.add_argument("--camera", metavar="SPEC", help=f"camera: {CAMERA_SPEC} (fov vertical in degrees, height the image's rows "
-                            "in pixels; default near=0.1,far=500,fov=50,aspect=16:9,height=1080, or the --project camera's)")
+        parser.add_argument("--camera", metavar="SPEC", help=f"camera: {CAMERA_SPEC} (fov vertical in degrees, or radians with rad; hfov=… for the "
+                            "horizontal one; minZ/maxZ for near/far; height the image's rows in pixels, or size=1920x1080 for aspect "
+                            "and height; default near=0.1,far=500,fov=50,aspect=16:9,height=1080, or the --project camera's)")
     parser.add_argument("--sun", default=None if sun is None else _Default(sun), metavar="ELEV[..ELEV][@AZ]",
                         help=f"sun: {SUN_SPEC} (default {'the --project light, else ' if sun else ''}{sun if sun else '15..60 with --engine'})")
 
@@ -185,12 +190,18 @@ def project(args: argparse.Namespace) -> files.Found | None:
     return files.Found(found.engine, typed, found.camera, found.sun, found.light, found.camera_name, found.where, found.notes)
 
 
+def _namespace(args: object) -> None:
+    if not isinstance(args, argparse.Namespace):
+        raise ValueError(f"args must be the argparse.Namespace of a parser given add_arguments, got {type(args).__name__}")
+
+
 def from_args(args: argparse.Namespace) -> Setup:
     """The :class:`Setup` of parsed :func:`add_arguments` options: the ``--project`` files' values, the settings file over
     them, ``--set`` over that; the files' camera fields, then ``--camera``'s; the files' sun unless ``--sun`` is typed.
 
     Each conversion from the engine's conventions is a :class:`ProjectNote` warning.
     """
+    _namespace(args)
     found = project(args)
     engine = getattr(args, "engine", None)
     if found is not None:
@@ -227,6 +238,7 @@ def resolve(args: argparse.Namespace) -> tuple[Setup | None, Camera | None, Sun 
     takes a camera spec there too: a value with ``=`` is the spec; a name is left in
     ``args.camera`` for the command.
     """
+    _namespace(args)
     camera_text = getattr(args, "camera", None)
     if isinstance(camera_text, str) and "=" not in camera_text:  # a glTF camera's name: not ours
         args = argparse.Namespace(**{**vars(args), "camera": None})

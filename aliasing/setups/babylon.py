@@ -111,10 +111,11 @@ def _settings() -> tuple[Setting, ...]:
                     "with PCSS or without depthClamp)"),
         Setting("normalBias", 0.0, "world units", "float", (-1e6, 1e6), source=f"{SG}:584, 948{AT}",
                 doc="casters move inwards along their normal by normalBias·sin θ"),
-        Setting("filter", None, "", "choice", FILTERS, source=f"{SG}:589, 1735–1774; {CSG}:27, 556{AT}",
+        Setting("filter", None, "", "choice", FILTERS, aliases={v: k for k, v in FILTER_VALUES.items()}, source=f"{SG}:589, 1735–1774; {CSG}:27, 556{AT}",
                 doc="null: the class's default (CascadedShadowGenerator FILTER_PCF with shadow samplers, ShadowGenerator FILTER_NONE); "
                     "CascadedShadowGenerator takes NONE, PCF and PCSS (others log an error and give NONE)"),
-        Setting("filteringQuality", "QUALITY_HIGH", "", "choice", QUALITIES, source=f"{SG}:590, 1362–1377{AT}",
+        Setting("filteringQuality", "QUALITY_HIGH", "", "choice", QUALITIES, aliases=dict(enumerate(QUALITIES)),
+                source=f"{SG}:590, 1362–1377, 1783–1801{AT}",
                 doc="PCF: 5×5 (HIGH), 3×3 (MEDIUM), one hardware 2×2 comparison (LOW); PCSS: 64, 32, 16 samples"),
         Setting("contactHardeningLightSizeUVRatio", 0.1, "fraction of the map", "float", (0.0, 1.0), source=f"{SG}:591{AT}",
                 doc="PCSS light size"),

@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 
 from .. import partitioning
-from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
+from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable, float32
 
 CASCADE = "crates/bevy_light/src/cascade.rs CascadeShadowConfigBuilder::default (bevyengine/bevy commit 0876f40a)"
 LIGHT = "crates/bevy_light/src/directional_light.rs (bevyengine/bevy as stored)"
@@ -42,7 +42,7 @@ MAX_CASCADES = 4  # MAX_CASCADES_PER_LIGHT (non-WebGL)
 FIT, SNAP = "diagonal", "bevy"
 FILTERS = ("Hardware2x2", "Gaussian", "Temporal")
 
-SETTINGS = (
+SETTINGS = float32((  # the fields are f32 (DirectionalLight, CascadeShadowConfig)
     Setting("num_cascades", 4, "", "int", (1, 64), clamp=(1, MAX_CASCADES), source=CASCADE,
             doc="cascades (build asserts > 0; at most MAX_CASCADES_PER_LIGHT = 4 are rendered, so shadows end at the 4th bound)"),
     Setting("minimum_distance", 0.1, "m", "float", (0.0, None), source=CASCADE, doc="where the first cascade starts"),
@@ -61,7 +61,7 @@ SETTINGS = (
     Setting("ShadowFilteringMethod", "Gaussian", "", "choice", FILTERS,
             source="crates/bevy_pbr/src/lib.rs ShadowFilteringMethod::default (bevyengine/bevy as stored)",
             doc="Hardware2x2, Gaussian (Castaño 2013, 5×5) or Temporal (Jimenez 2014)"),
-)
+))
 
 
 def _filter(s: Mapping[str, Any]) -> Filter:

@@ -25,13 +25,13 @@ from collections.abc import Mapping
 from typing import Any
 
 from .. import partitioning
-from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
+from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable, float32
 
 OPTIONS = "filament/include/filament/LightManager.h ShadowOptions (google/filament as stored)"
-TYPES = ("PCF", "VSM", "DPCF", "PCSS")
+TYPES = ("PCF", "VSM", "DPCF", "PCSS")  # View::ShadowType's first four, 0–3 (View.h; PCFd = 4 is for debugging)
 STABLE_FIT, FAR_FIT, SNAP = "centroid", "far", "border"  # stable mode without / with shadowFar; the one-texel border
 
-SETTINGS = (
+SETTINGS = float32((  # the fields are float (LightManager.h ShadowOptions)
     Setting("mapSize", 1024, "texels", "int", (8, 16384), source=OPTIONS, doc="side of each cascade's map (a power of two, >= 8)"),
     Setting("shadowCascades", 1, "", "int", (1, 4), source=OPTIONS, doc="number of cascades, 1 to 4"),
     Setting("cascadeSplitPositions[0]", 0.125, "fraction of (far − near)", "float", (0.0, 1.0), source=OPTIONS, doc="end of cascade 1"),
@@ -50,9 +50,10 @@ SETTINGS = (
     Setting("screenSpaceContactShadows", False, "", "bool", source=OPTIONS, doc="screen-space contact shadows (not modelled)"),
     Setting("stepCount", 8, "", "int", (1, 255), source=OPTIONS, doc="contact shadow steps"),
     Setting("maxShadowDistance", 0.3, "m", "float", (0.0, None), source=OPTIONS, doc="contact shadow ray length"),
-    Setting("View.shadowType", "PCF", "", "choice", TYPES, source="filament/include/filament/View.h setShadowType (default PCF)",
+    Setting("View.shadowType", "PCF", "", "choice", TYPES, aliases=dict(enumerate(TYPES)),
+            source="filament/include/filament/View.h setShadowType (default PCF), enum class ShadowType",
             doc="PCF, VSM, DPCF or PCSS"),
-)
+))
 
 
 def rule(s: Mapping[str, Any]) -> BiasRule:

@@ -55,12 +55,17 @@ BITS = "rendering/lights_and_shadows/directional_shadow/16_bits"
 #: directional_soft_shadow_filter_set_quality: (quality radius, Vogel-disk samples) for Hard … Soft Ultra
 QUALITY_RADIUS = {0: (1.0, 0), 1: (1.5, 1), 2: (2.0, 4), 3: (2.0, 8), 4: (3.0, 16), 5: (4.0, 32)}
 QUALITY_NAMES = ("Hard", "Soft Very Low", "Soft Low", "Soft Medium", "Soft High", "Soft Ultra")
+#: the numbers .tscn files store: DirectionalLight3D::ShadowMode (scene/3d/light_3d.h) and RenderingServer::ShadowQuality
+#: (servers/rendering_server.h: SHADOW_QUALITY_HARD = 0 … SHADOW_QUALITY_SOFT_ULTRA = 5; the project setting's hint spells them as QUALITY_NAMES)
+MODE_NUMBERS = dict(enumerate(MODES))
+QUALITY_ALIASES = {**{n: i for i, n in enumerate(QUALITY_NAMES)},
+                   **{"SHADOW_QUALITY_" + n.upper().replace(" ", "_"): i for i, n in enumerate(QUALITY_NAMES)}}
 BLEND_BAND = 0.1  # smoothstep(split − 0.1·split, split, depth) in scene_forward_clustered.glsl
 FIT, SNAP = "centroid", "godot"  # the stable fit of renderer_scene_cull.cpp (aliasing.engines.stable)
 
 SETTINGS = (
-    Setting("directional_shadow_mode", "SHADOW_PARALLEL_4_SPLITS", "", "choice", MODES,
-            source=f"{LIGHT} DirectionalLight3D::DirectionalLight3D{AT}", doc="orthogonal (1 map), PSSM 2 or PSSM 4 splits"),
+    Setting("directional_shadow_mode", "SHADOW_PARALLEL_4_SPLITS", "", "choice", MODES, aliases=MODE_NUMBERS,
+            source=f"{LIGHT} DirectionalLight3D::DirectionalLight3D; scene/3d/light_3d.h ShadowMode{AT}", doc="orthogonal (1 map), PSSM 2 or PSSM 4 splits"),
     Setting("directional_shadow_split_1", 0.1, "fraction of (max distance − near)", "float", (0.0, 1.0),
             source=f"{LIGHT} Light3D::Light3D (PARAM_SHADOW_SPLIT_1_OFFSET){AT}", doc="end of split 1 (2 and 4 splits)"),
     Setting("directional_shadow_split_2", 0.2, "fraction of (max distance − near)", "float", (0.0, 1.0),
@@ -87,7 +92,7 @@ SETTINGS = (
             doc="> 0: PCSS soft shadows (the quality radius no longer scales the bias)"),
     Setting(SIZE, 4096, "texels", "int", (256, 16384), source=f"{SERVER} GLOBAL_DEF",
             doc="side of the one directional shadow atlas (4 splits: quadrants of size/2)"),
-    Setting(QUALITY, 2, "", "int", (0, 5), source=f"{SERVER} GLOBAL_DEF",
+    Setting(QUALITY, 2, "", "int", (0, 5), aliases=QUALITY_ALIASES, source=f"{SERVER} GLOBAL_DEF; servers/rendering_server.h ShadowQuality{AT}",
             doc="0 Hard, 1 Soft Very Low, 2 Soft Low, 3 Soft Medium, 4 Soft High, 5 Soft Ultra"),
     Setting(BITS, True, "", "bool", source=f"{SERVER} GLOBAL_DEF", doc="16-bit depth atlas (else 32-bit)"),
 )

@@ -65,6 +65,9 @@ SHADOW_TYPES = {"SHADOW_PCF3_32F": 0, "SHADOW_VSM_16F": 2, "SHADOW_VSM_32F": 3, 
 #: material cull modes (platform/graphics/constants.js lines 56–58) and the faces that cast
 CULL = {"CULLFACE_BACK": "front", "CULLFACE_FRONT": "back", "CULLFACE_NONE": "both"}
 CULL_VALUES = {"CULLFACE_NONE": 0, "CULLFACE_BACK": 1, "CULLFACE_FRONT": 2}
+#: the numbers and the older names of the shadow types (scene/constants.js lines 71–84: SHADOW_PCF3 = 0, SHADOW_VSM16 = 2, …)
+SHADOW_ALIASES = {**{v: k for k, v in SHADOW_TYPES.items()}, "SHADOW_PCF3": "SHADOW_PCF3_32F", "SHADOW_VSM16": "SHADOW_VSM_16F",
+                  "SHADOW_VSM32": "SHADOW_VSM_32F", "SHADOW_PCF5": "SHADOW_PCF5_32F", "SHADOW_PCF1": "SHADOW_PCF1_32F"}
 
 
 def _settings() -> tuple[Setting, ...]:
@@ -85,16 +88,19 @@ def _settings() -> tuple[Setting, ...]:
                 doc="caster depth bias: constant and slope factor 10·clamp(shadowBias, 0, 1)"),
         Setting("normalOffsetBias", 0.0, "world units", "float", (None, None), clamp=(0.0, 1.0), source=f"{LIGHT}:154; {COMP}:193{AT}",
                 doc="the receiver's looked-up point moves along its world normal by this"),
-        Setting("shadowType", "SHADOW_PCF3_32F", "", "choice", tuple(SHADOW_TYPES), source=f"{LIGHT}:115, 314–343{AT}",
+        Setting("shadowType", "SHADOW_PCF3_32F", "", "choice", tuple(SHADOW_TYPES), aliases=SHADOW_ALIASES,
+                source=f"{LIGHT}:115, 314–343; scene/constants.js:71–84{AT}",
                 doc="PCF1/3/5: 1, 3×3, 5×5 filters; VSM: variance maps; PCSS: soft (needs float render targets)"),
         Setting("vsmBlurSize", 11, "texels", "int", (1, 25), source=f"{LIGHT}:116{AT}", doc="VSM blur kernel"),
         Setting("vsmBias", 0.0025, "", "float", (None, None), clamp=(0.0, 1.0), source=f"{LIGHT}:118; {COMP}:241{AT}", doc="VSM bias"),
-        Setting("vsmBlurMode", "BLUR_GAUSSIAN", "", "choice", ("BLUR_BOX", "BLUR_GAUSSIAN"), source=f"{LIGHT}:117{AT}", doc="VSM blur kernel shape"),
+        Setting("vsmBlurMode", "BLUR_GAUSSIAN", "", "choice", ("BLUR_BOX", "BLUR_GAUSSIAN"), aliases={0: "BLUR_BOX", 1: "BLUR_GAUSSIAN"},
+                source=f"{LIGHT}:117; scene/constants.js:101–102{AT}", doc="VSM blur kernel shape"),
         Setting("shadowSamples", 16, "", "int", (1, 128), source=f"{LIGHT}:161{AT}", doc="PCSS samples"),
         Setting("penumbraSize", 1.0, "", "float", (0.0, None), source=f"{LIGHT}:163{AT}", doc="PCSS penumbra size"),
         Setting("penumbraFalloff", 1.0, "", "float", (0.0, None), source=f"{LIGHT}:164{AT}", doc="PCSS penumbra falloff"),
         Setting("shadowIntensity", 1.0, "", "float", (0.0, 1.0), source=f"{LIGHT}:153{AT}", doc="shadow strength (1: full)"),
-        Setting("material.cull", "CULLFACE_BACK", "", "choice", tuple(CULL), source=f"scene/materials/material.js:72{AT}",
+        Setting("material.cull", "CULLFACE_BACK", "", "choice", tuple(CULL), aliases={v: k for k, v in CULL_VALUES.items()},
+                source=f"scene/materials/material.js:72; platform/graphics/constants.js:56–58{AT}",
                 doc="faces culled in the main and shadow passes: CULLFACE_BACK casts the front faces"),
     )
 

@@ -56,127 +56,15 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
+from .setting import FLOAT32_MAX, TYPES, Setting, float32  # noqa: F401  (defined there, re-exported here)
 
 Array = NDArray[np.float64]
 
 KINDS = ("depth", "depth_texels", "depth_range", "normal", "normal_texels", "across_texels", "slope", "tan_texels")
 SCALES = ("one", "sin", "one-minus-cos")
 FACES = ("front", "back", "both")
-TYPES = ("float", "int", "bool", "choice")
+LENGTH_UNITS = ("m", "cm", "world units")
 ROLES = ("cascades", "size", "split", "distance", "bias", "filter", "stable", "blend")
-
-
-@dataclass(frozen=True)
-class Setting:
-    """One shadow setting of an engine, as the engine spells it.
-
-    Attributes
-    ----------
-    key : str
-        The engine's own name (``shadowBias``, ``shadow.normalBias``, ``lambda``).
-    default : float, int, bool, str or None
-        The engine's default at the profile's release; None where the engine derives it from
-        something else (Babylon's ``shadowMaxZ`` is the camera's ``maxZ``: ``doc`` says what).
-    unit : str
-        What one unit means (``world units``, ``normalized light depth``, ``texels``, ``m``, ``""``).
-    kind : str
-        ``float``, ``int``, ``bool`` or ``choice``.
-    accepts : tuple
-        ``(low, high)``: the values the engine accepts (inclusive; ``None`` for open), or, for
-        ``choice``, the choices.
-    clamp : tuple or None
-        ``(low, high)`` the engine clamps an accepted value to, silently (Babylon clamps
-        ``numCascades`` to 2–4), or None.
-    source : str
-        The file and line it was read from, at the pinned release.
-    doc : str
-        What the setting does, in a line.
-    """
-
-    key: str
-    default: Any
-    unit: str
-    kind: str
-    accepts: tuple = (None, None)
-    clamp: tuple | None = None
-    source: str = ""
-    doc: str = ""
-
-    def __post_init__(self) -> None:
-        if self.kind not in TYPES:
-            raise ValueError(f"kind must be one of {', '.join(TYPES)}, got {self.kind!r}")
-
-    def allowed(self) -> str:
-        """The values the engine accepts, in words (for error messages)."""
-        if self.kind == "bool":
-            return "true or false"
-        if self.kind == "choice":
-            return "one of " + ", ".join(map(repr, self.accepts))
-        lo, hi = self.accepts
-        what = "a whole number" if self.kind == "int" else "a number"
-        if lo is None and hi is None:
-            return what
-        if hi is None:
-            return f"{what} >= {lo:g}"
-        if lo is None:
-            return f"{what} <= {hi:g}"
-        return f"{what} in [{lo:g}, {hi:g}]"
-
-    def coerce(self, value: object) -> Any:
-        """``value`` (from JSON, TOML or a ``--set`` text) as this setting's type, validated.
-
-        Raises
-        ------
-        ValueError
-            Naming the key and what it accepts.
-        """
-        bad = ValueError(f"{self.key} must be {self.allowed()}" + (f" [{self.unit}]" if self.unit else "")
-                         + (" or null (the engine's derived default)" if self.default is None else "") + f", got {value!r}")
-        if self.default is None and (value is None or isinstance(value, str) and value.strip().lower() in ("null", "none")):
-            return None  # the engine's derived default (JSON null, --set KEY=null)
-        if isinstance(value, str) and self.kind != "choice":
-            text = value.strip()
-            if self.kind == "bool":
-                if text.lower() not in ("true", "false"):
-                    raise bad
-                return text.lower() == "true"
-            try:
-                value = int(text) if self.kind == "int" and text.lstrip("+-").isdigit() else float(text)
-            except ValueError:
-                raise bad from None
-        if self.kind == "bool":
-            if not isinstance(value, (bool, np.bool_)):
-                raise bad
-            return bool(value)
-        if self.kind == "choice":
-            if not isinstance(value, str):
-                raise bad
-            for c in self.accepts:
-                if value.strip().lower() == str(c).lower():
-                    return c
-            null = " or null (the engine's derived default)" if self.default is None else ""
-            raise ValueError(f"{self.key} must be {self.allowed()}{null}, got {value!r}{check.did_you_mean(value, map(str, self.accepts))}")
-        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
-            raise bad
-        number = float(value)
-        if not math.isfinite(number):
-            raise bad
-        if self.kind == "int":
-            if not number.is_integer():
-                raise bad
-            number = int(number)
-        lo, hi = self.accepts
-        if lo is not None and number < lo or hi is not None and number > hi:
-            raise bad
-        return number
-
-    def clamped(self, value: Any) -> Any:
-        """The value as the engine uses it, after its own clamp."""
-        if self.clamp is None:
-            return value
-        lo, hi = self.clamp
-        out = value if lo is None else max(lo, value)
-        return out if hi is None else min(hi, out)
 
 
 @dataclass(frozen=True)
@@ -486,6 +374,8 @@ class Pipeline:
             raise ValueError(f"cascade depths must be finite with 0 < near_i < far_i, got {n.tolist()}, {f.tolist()}")
         object.__setattr__(self, "near_i", tuple(map(float, n)))
         object.__setattr__(self, "far_i", tuple(map(float, f)))
+        if not (isinstance(self.resolution, (int, float, np.integer, np.floating)) and 3 <= self.resolution < math.inf):
+            raise ValueError(f"each map must be at least 3 texels per side to have a texel grid to study, got {self.resolution!r}")
         object.__setattr__(self, "notes", tuple(self.notes))
         grow = np.asarray(self.grow, float)
         if grow.size and (grow.shape != n.shape or not np.all(np.isfinite(grow)) or np.any(grow < 0)):
@@ -558,6 +448,12 @@ class Profile:
     @property
     def name(self) -> str:
         return f"{self.engine}@{self.release}"
+
+    @property
+    def length_unit(self) -> str:
+        """The engine's world unit: that of its first setting in ``m``, ``cm`` or ``world units`` (Unreal's
+        ``cm``, Godot's and Unity's ``m``; ``world units`` where the engine fixes none, as three.js)."""
+        return next((s.unit for s in self.settings if s.unit in LENGTH_UNITS), "world units")
 
     def setting(self, key: str) -> Setting:
         """The setting ``key``; a ValueError with a did-you-mean from this engine's keys."""

@@ -6,8 +6,9 @@ line), then passed on as a value.  The one vocabulary of every command:
 * ``--engine NAME[@RELEASE]``, or ``--project FILE`` (repeatable): the engine's own project files
   (:mod:`aliasing.setups.files`), whose settings, camera and sun the options below go over;
 * ``--settings FILE`` (JSON or TOML, the engine's own keys) and repeatable ``--set KEY=VALUE``;
-* ``--camera near=N,far=F,fov=DEG,aspect=A,height=PX``: the vertical field of view in degrees,
-  the aspect as ``16:9`` or a number, the image height in pixels (the width is aspect·height);
+* ``--camera near=N,far=F,fov=DEG,aspect=A,height=PX``: the vertical field of view in degrees
+  (or radians with ``rad``: ``fov=0.8rad``; ``hfov=`` for the horizontal one), the aspect as
+  ``16:9``, ``1920x1080`` or a number, the image height in pixels (the width is aspect·height);
 * ``--sun ELEV[..ELEV][@AZ]``: the sun's elevation above the ground [deg], one value or a band,
   and its azimuth from the view direction [deg] (positive to the right).
 
@@ -31,7 +32,7 @@ from __future__ import annotations
 
 import json
 import math
-import warnings
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -41,7 +42,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..view import View
+from ..view import View, vertical_fov
 from .profile import Pipeline, Profile
 
 try:  # Python 3.11+
@@ -51,18 +52,24 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 
 Array = NDArray[np.float64]
 
-CAMERA_SPEC = "near=N,far=F,fov=DEG,aspect=W:H|A,height=PX"
+CAMERA_SPEC = "near=N,far=F,fov=DEG|RADrad,aspect=W:H|WxH|A,height=PX"
 SUN_SPEC = "ELEV[..ELEV][@AZ] (degrees above the ground; azimuth from the view direction)"
 CAMERA_DEFAULTS = {"near": 0.1, "far": 500.0, "fov": 50.0, "aspect": 16 / 9, "height": 1080}
-#: fields of view at or below this look like radians (π is 180°): a warning gives them in degrees
+#: Other names of the camera's fields, as engines spell them (lower case): Babylon.js ``minZ``/``maxZ``,
+#: PlayCanvas ``nearClip``/``farClip``, Unity ``nearClipPlane``/``farClipPlane``/``fieldOfView``, ``znear``/``zfar``.
+CAMERA_ALIASES = {"minz": "near", "znear": "near", "nearclip": "near", "nearclipplane": "near",
+                  "maxz": "far", "zfar": "far", "farclip": "far", "farclipplane": "far", "fieldofview": "fov"}
+#: Fields besides :data:`CAMERA_DEFAULTS`: ``hfov`` (the horizontal field of view, converted to the vertical
+#: one with the aspect) and ``size`` (``WxH`` pixels: the aspect and the height at once).
+CAMERA_EXTRA = ("hfov", "size")
+#: A field of view written without a unit at or below this [deg] reads as radians (π is 180°) and is refused.
 RADIANS_BELOW = math.pi
-
-
-class RadiansWarning(UserWarning):
-    """A field of view that looks like radians (the toolkit takes degrees)."""
+_ANGLE = re.compile(r"^\s*(.*?)\s*(rad|deg|°)?\s*$", re.IGNORECASE)
 
 
 def _number(text: str, name: str) -> float:
+    if isinstance(text, bool) or not isinstance(text, (str, int, float, np.integer, np.floating)):
+        raise ValueError(f"{name} must be a number, got {text!r}")
     try:
         value = float(text)
     except ValueError:
@@ -72,17 +79,61 @@ def _number(text: str, name: str) -> float:
     return value
 
 
-def _aspect(text: str | float) -> float:
-    if isinstance(text, str) and ":" in text:
-        w, _, h = text.partition(":")
-        a, b = _number(w, "camera aspect width"), _number(h, "camera aspect height")
+def _angle(value: object, name: str) -> float:
+    """A field of view [deg] from a number or a text with a unit (``0.8rad``, ``50deg``, ``50°``).
+
+    A number without a unit is degrees, but one at or below π (3.14…) reads as radians and is refused
+    with both spellings (``fov=45.84`` or ``fov=0.8rad``); a narrow field of view in degrees is written
+    with ``deg`` (``fov=2deg``).
+    """
+    unit = ""
+    if isinstance(value, str):
+        m = _ANGLE.match(value)
+        if m is None or not m.group(1):
+            raise ValueError(f"camera {name} must be a number of degrees or a number with rad or deg (0.8rad, 50deg), got {value!r}")
+        text, unit = m.group(1), (m.group(2) or "").lower()
+        number = _number(text, f"camera {name}")
+    else:
+        number = _number(value, f"camera {name}")  # type: ignore[arg-type]
+    if unit == "rad":
+        return math.degrees(number)
+    if not unit and 0 < number <= RADIANS_BELOW:
+        shown = f"{number:g}"
+        raise ValueError(f"camera {name} {shown} looks like radians ({math.degrees(number):.2f}°): write {name}={math.degrees(number):.2f} "
+                         f"(degrees) or {name}={shown}rad; a field of view this narrow in degrees is written {name}={shown}deg")
+    return number
+
+
+def _pair(text: str) -> tuple[str, str] | None:
+    """``W:H``, ``WxH`` or ``W×H`` as its two texts (None for a plain number)."""
+    for sep in (":", "x", "X", "×"):
+        if sep in text:
+            w, _, h = text.partition(sep)
+            return w, h
+    return None
+
+
+def _aspect(text: object) -> float:
+    if isinstance(text, str) and (pair := _pair(text)) is not None:
+        a, b = _number(pair[0], "camera aspect width"), _number(pair[1], "camera aspect height")
         if not (a > 0 and b > 0):
-            raise ValueError(f"camera aspect must be W:H with W, H > 0 (16:9) or a number > 0, got {text!r}")
+            raise ValueError(f"camera aspect must be W:H or WxH with W, H > 0 (16:9, 1920x1080) or a number > 0, got {text!r}")
         return a / b
-    value = _number(text, "camera aspect") if isinstance(text, str) else float(text)
-    if not (value > 0 and math.isfinite(value)):
-        raise ValueError(f"camera aspect must be W:H (16:9) or a number > 0, got {text!r}")
+    value = _number(text, "camera aspect")  # type: ignore[arg-type]
+    if not value > 0:
+        raise ValueError(f"camera aspect must be W:H or WxH (16:9, 1920x1080) or a number > 0, got {text!r}")
     return value
+
+
+def _size(text: object) -> tuple[float, float]:
+    """``size=WxH`` [pixels]: (aspect, height)."""
+    pair = _pair(text) if isinstance(text, str) else None
+    if pair is None:
+        raise ValueError(f"camera size must be WxH in pixels (1920x1080), got {text!r}")
+    w, h = _number(pair[0], "camera size width"), _number(pair[1], "camera size height")
+    if not (w >= 1 and h >= 1):
+        raise ValueError(f"camera size must be WxH with W, H >= 1 pixels (1920x1080), got {text!r}")
+    return w / h, h
 
 
 @dataclass(frozen=True)
@@ -104,9 +155,11 @@ class Camera:
     view: View = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        for name in ("near", "far", "fov", "aspect"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
+                raise ValueError(f"camera {name} must be a single number, got {v!r}")
         v = View(self.near, self.far, self.fov, self.aspect)  # names near, far, fov or aspect and the range
-        if np.ndim(v.near) != 0:
-            raise ValueError("camera near, far, fov and aspect must be single numbers")
         h = self.height
         if isinstance(h, bool) or not isinstance(h, (int, float, np.integer, np.floating)) or not (1 <= h <= 65536) or not float(h).is_integer():
             raise ValueError(f"camera height must be a whole number of pixels in [1, 65536], got {h!r}")
@@ -121,43 +174,95 @@ class Camera:
         return int(round(self.aspect * self.height))
 
     def spec(self) -> str:
-        """The camera as a ``--camera`` text."""
-        return f"near={self.near:g},far={self.far:g},fov={self.fov:g},aspect={self.aspect:.6g},height={self.height}"
+        """The camera as a ``--camera`` text (a field of view at or below π degrees carries ``deg``)."""
+        fov = f"{self.fov:g}" + ("deg" if self.fov <= RADIANS_BELOW else "")
+        return f"near={self.near:g},far={self.far:g},fov={fov},aspect={self.aspect:.6g},height={self.height}"
 
 
 def camera_items(spec: str | Mapping[str, Any] | None) -> dict[str, Any]:
-    """The fields a camera spec gives, as written (``near=0.1,fov=50`` -> ``{'near': '0.1', 'fov': '50'}``), unchecked.
+    """The fields a camera spec gives, as written, under their canonical names (:data:`CAMERA_ALIASES`: ``minZ`` is ``near``),
+    the values unchecked.
+
+    Raises
+    ------
+    ValueError
+        A spec that is neither text nor a mapping, a field without ``=``, a key that is not text, or one field given twice.
 
     Example
     -------
     >>> camera_items("near=0.5, FOV=40")
     {'near': '0.5', 'fov': '40'}
+    >>> camera_items({"minZ": 0.5, "maxZ": 800})
+    {'near': 0.5, 'far': 800}
     """
     if spec is None:
         return {}
     if isinstance(spec, Mapping):
-        return dict(spec)
-    if not isinstance(spec, str):
-        raise ValueError(f"camera must be {CAMERA_SPEC}, got {spec!r}")
+        pairs = []
+        for key, value in spec.items():
+            if not isinstance(key, str):
+                raise ValueError(f"camera fields must be named by text ({', '.join(CAMERA_DEFAULTS)}), got the key {key!r}")
+            pairs.append((key.strip(), value))
+    elif isinstance(spec, str):
+        pairs = []
+        for part in filter(None, (p.strip() for p in spec.split(","))):
+            key, eq, value = part.partition("=")
+            if not eq:
+                raise ValueError(f"camera must be {CAMERA_SPEC}, got {spec!r} (a field without '=': {part!r})")
+            pairs.append((key.strip(), value.strip()))
+    else:
+        raise ValueError(f"camera must be {CAMERA_SPEC} or a mapping of those fields, got {type(spec).__name__}")
     items: dict[str, Any] = {}
-    for part in filter(None, (p.strip() for p in spec.split(","))):
-        key, eq, value = part.partition("=")
-        if not eq:
-            raise ValueError(f"camera must be {CAMERA_SPEC}, got {spec!r} (a field without '=': {part!r})")
-        items[key.strip().lower()] = value.strip()
+    given: dict[str, str] = {}
+    for key, value in pairs:
+        name = CAMERA_ALIASES.get(key.lower(), key.lower())
+        if name in given:
+            raise ValueError(f"camera {name} given twice (as {given[name]!r} and {key!r})")
+        given[name] = key
+        items[name] = value
     return items
 
 
-def parse_camera(spec: str | Mapping[str, Any] | Camera | None, *, warn: bool = True) -> Camera:
+def parse_camera(spec: str | Mapping[str, Any] | Camera | None) -> Camera:
     """A :class:`Camera` from ``near=N,far=F,fov=DEG,aspect=A,height=PX`` (any subset; the rest
-    default to near 0.1, far 500, fov 50, aspect 16:9, height 1080) or a mapping of those keys.
+    default to near 0.1, far 500, fov 50°, aspect 16:9, height 1080) or a mapping of those keys.
 
-    A fov at or below π (3.14…) looks like radians: a :class:`RadiansWarning` gives it in degrees.
+    Parameters
+    ----------
+    spec : str, mapping, Camera or None
+        The fields, as text or a mapping (keys case-insensitive):
+
+        * ``near``, ``far`` [world units] (also ``minZ``/``maxZ``, ``znear``/``zfar``,
+          ``nearClip``/``farClip``, ``nearClipPlane``/``farClipPlane``: :data:`CAMERA_ALIASES`);
+        * ``fov``: the vertical full field of view, degrees (``50``, ``50deg``, ``50°``) or radians
+          with ``rad`` (``0.8rad``, Babylon.js's ``fov``); a number without a unit at or below π
+          reads as radians and is refused: write ``deg`` for a narrow one (``fov=2deg``);
+        * ``hfov``: the horizontal full field of view instead (same units), converted with the
+          aspect: tan(fov/2) = tan(hfov/2)/aspect;
+        * ``aspect``: width/height as ``16:9``, ``1920x1080`` (``1920×1080``) or a number; the
+          ratio only: the height stays its own field;
+        * ``height``: the image's rows [pixels]; or ``size=1920x1080`` for the aspect and the
+          height at once.
+
+    Returns
+    -------
+    Camera
 
     Raises
     ------
     ValueError
         Naming the field (``camera near`` …) and what it takes; unknown fields get a did-you-mean.
+
+    Example
+    -------
+    >>> parse_camera("minZ=0.5,maxZ=800,fov=0.8rad")
+    Camera(near=0.5, far=800.0, fov=45.836623610465864, aspect=1.7777777777777777, height=1080)
+    >>> round(parse_camera("hfov=90,aspect=1920x1080").fov, 4), parse_camera("size=1280x720").height
+    (58.7155, 720)
+    >>> parse_camera("fov=0.8")
+    Traceback (most recent call last):
+    ...
+    ValueError: camera fov 0.8 looks like radians (45.84°): write fov=45.84 (degrees) or fov=0.8rad; a field of view this narrow in degrees is written fov=0.8deg
     """
     if isinstance(spec, Camera):
         return spec
@@ -165,23 +270,34 @@ def parse_camera(spec: str | Mapping[str, Any] | Camera | None, *, warn: bool = 
     items = camera_items(spec)
     from .. import _validation as check
 
+    known = (*CAMERA_DEFAULTS, *CAMERA_EXTRA)
+    given: dict[str, str] = {}  # field -> the name it was given as
     for key, value in items.items():
-        if key not in CAMERA_DEFAULTS:
-            raise ValueError(f"unknown camera field {key!r}{check.did_you_mean(key, CAMERA_DEFAULTS)}; the fields are: {', '.join(CAMERA_DEFAULTS)}")
-        if key == "aspect":
-            fields[key] = _aspect(value)
-        elif key == "height":
-            number = _number(value, "camera height") if isinstance(value, str) else value
-            fields[key] = number
+        name = CAMERA_ALIASES.get(key, key)
+        if name not in known:
+            raise ValueError(f"unknown camera field {key!r}{check.did_you_mean(key, [*known, *CAMERA_ALIASES])}; the fields are: "
+                             f"{', '.join(known)} (also {', '.join(CAMERA_ALIASES)})")
+        if name in given:
+            raise ValueError(f"camera {name} given twice (as {given[name]!r} and {key!r})")
+        given[name] = key
+        if value is None:
+            raise ValueError(f"camera {key} must be a value, got None")
+        if name == "aspect":
+            fields[name] = _aspect(value)
+        elif name == "size":
+            fields["aspect"], fields["height"] = _size(value)
+        elif name in ("fov", "hfov"):
+            fields[name] = _angle(value, key)
         else:
-            fields[key] = _number(value, f"camera {key}") if isinstance(value, str) else value
-    for key in ("near", "far", "fov"):
-        v = fields[key]
-        if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
-            raise ValueError(f"camera {key} must be a number, got {v!r}")
-    if warn and 0 < float(fields["fov"]) <= RADIANS_BELOW:
-        warnings.warn(f"camera fov {float(fields['fov']):g} looks like radians ({math.degrees(float(fields['fov'])):.4g}°); "
-                      "the field of view is in degrees", RadiansWarning, stacklevel=2)
+            fields[name] = _number(value, f"camera {key}")
+    for a, b in (("fov", "hfov"), ("size", "aspect"), ("size", "height")):
+        if a in given and b in given:
+            raise ValueError(f"camera takes {a} or {b}, not both (got {given[a]} and {given[b]})")
+    if "hfov" in fields:
+        h = fields.pop("hfov")
+        if not 0 < h < 180:
+            raise ValueError(f"camera hfov must be a horizontal field of view in (0, 180) degrees, got {h:g}")
+        fields["fov"] = float(vertical_fov(h, fields["aspect"]))
     try:
         return Camera(fields["near"], fields["far"], fields["fov"], fields["aspect"], fields["height"])
     except ValueError as exc:
@@ -247,10 +363,21 @@ class Sun:
 
 
 def parse_sun(spec: str | Sun | float) -> Sun:
-    """A :class:`Sun` from ``ELEV``, ``LOW..HIGH`` and an optional ``@AZ`` [deg]."""
+    """A :class:`Sun` from ``ELEV``, ``LOW..HIGH`` and an optional ``@AZ`` [deg], or one elevation [deg].
+
+    Raises
+    ------
+    ValueError
+        Naming the sun's elevation or azimuth and what it takes.
+
+    Example
+    -------
+    >>> parse_sun("15..60@30").spec(), parse_sun(45).elevation
+    ('15..60@30', (45.0, 45.0))
+    """
     if isinstance(spec, Sun):
         return spec
-    if isinstance(spec, (int, float)) and not isinstance(spec, bool):
+    if isinstance(spec, (int, float, np.integer, np.floating)) and not isinstance(spec, (bool, np.bool_)):
         return Sun((spec, spec))
     if not isinstance(spec, str) or not spec.strip():
         raise ValueError(f"sun must be {SUN_SPEC}, got {spec!r}")
@@ -296,10 +423,25 @@ def _flatten(data: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
 
 
 def parse_set(items: list[str] | None) -> dict[str, str]:
-    """``--set KEY=VALUE`` texts as a dict (values stay text; the profile types them)."""
+    """``--set KEY=VALUE`` texts as a dict (values stay text; the profile types them).
+
+    Raises
+    ------
+    ValueError
+        Naming ``--set`` (``items``) where ``items`` is not a list of ``KEY=VALUE`` texts.
+
+    Example
+    -------
+    >>> parse_set(["cascades=4", "shadow.bias = -0.001"])
+    {'cascades': '4', 'shadow.bias': '-0.001'}
+    """
+    if items is not None and (isinstance(items, (str, bytes)) or not isinstance(items, (list, tuple))):
+        raise ValueError(f"items (--set) must be a list of KEY=VALUE texts, got {type(items).__name__}")
     out: dict[str, str] = {}
     for item in items or ():
-        key, eq, value = str(item).partition("=")
+        if not isinstance(item, str):
+            raise ValueError(f"items (--set) must be KEY=VALUE texts, got {item!r}")
+        key, eq, value = item.partition("=")
         if not eq or not key.strip():
             raise ValueError(f"--set must be KEY=VALUE, got {item!r}")
         out[key.strip()] = value.strip()
@@ -320,9 +462,20 @@ class Setup:
     pipeline: Pipeline = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        if not isinstance(self.profile, Profile) or not isinstance(self.camera, Camera) or not isinstance(self.sun, Sun):
+            raise ValueError("profile, camera and sun must be an aliasing.setups Profile, Camera and Sun (aliasing.setups.build(...)), got "
+                             f"{type(self.profile).__name__}, {type(self.camera).__name__}, {type(self.sun).__name__}")
         full = self.profile.resolve(self.settings)
         object.__setattr__(self, "settings", MappingProxyType(full))
-        object.__setattr__(self, "pipeline", self.profile.build(full, self.camera))
+        try:
+            pipeline = self.profile.build(full, self.camera)
+        except ValueError as exc:  # a message from below that names no setting: say which settings led there
+            changed = [k for k, v in full.items() if self.profile.defaults().get(k) != v]
+            if any(k in str(exc) for k in full):
+                raise
+            raise ValueError(f"{self.profile.title} builds no cascades from the settings {', '.join(changed) or '(the defaults)'} "
+                             f"with camera {self.camera.spec()}: {exc}") from None
+        object.__setattr__(self, "pipeline", pipeline)
 
     @property
     def engine(self) -> str:

@@ -65,6 +65,9 @@ SHADOW = "src/lights/LightShadow.js"
 SIDES = ("FrontSide", "BackSide", "DoubleSide")
 _CAST = {"FrontSide": "back", "BackSide": "front", "DoubleSide": "both"}  # WebGLShadowMap.js:51 shadowSide map
 _FACES = {"FrontSide": "front", "BackSide": "back", "DoubleSide": "both"}
+#: the sides' and the shadow map types' numbers, as three.js's JSON stores them (src/constants.js:57–108 at r187 and r184)
+SIDE_NUMBERS = {0: "FrontSide", 1: "BackSide", 2: "DoubleSide"}
+MAP_TYPES = ("BasicShadowMap", "PCFShadowMap", "PCFSoftShadowMap", "VSMShadowMap")
 #: line numbers that moved between the releases read
 _LINES = {
     "0.187.0": {"side": 88, "shadowSide": 342, "cast": "486, 490", "bias": 162, "normal": 35},
@@ -113,11 +116,13 @@ def _settings(pkg: str) -> tuple[Setting, ...]:
         Setting("shadow.camera.bottom", -5.0, "world units", "float", (None, None), source=cam),
         Setting("shadow.camera.near", 0.5, "world units", "float", (0.0, None), source=cam),
         Setting("shadow.camera.far", 500.0, "world units", "float", (0.0, None), source=cam),
-        Setting("material.side", "FrontSide", "", "choice", SIDES, source=f"src/materials/Material.js:{ln['side']}{at}"),
-        Setting("material.shadowSide", "null", "", "choice", ("null",) + SIDES, source=f"src/materials/Material.js:{ln['shadowSide']}{at}",
+        Setting("material.side", "FrontSide", "", "choice", SIDES, source=f"src/materials/Material.js:{ln['side']}; src/constants.js:92–108{at}",
+                aliases=SIDE_NUMBERS),
+        Setting("material.shadowSide", "null", "", "choice", ("null",) + SIDES, aliases=SIDE_NUMBERS,
+                source=f"src/materials/Material.js:{ln['shadowSide']}; src/constants.js:92–108{at}",
                 doc=f"faces drawn into the map; null: the opposite of material.side (VSM: the side itself; WebGLShadowMap.js:{ln['cast']})"),
-        Setting("renderer.shadowMap.type", "PCFShadowMap", "", "choice", ("BasicShadowMap", "PCFShadowMap", "PCFSoftShadowMap", "VSMShadowMap"),
-                source=f"src/renderers/webgl/WebGLShadowMap.js:89{at}", doc="PCFSoftShadowMap is replaced by PCFShadowMap (lines 99–102)"),
+        Setting("renderer.shadowMap.type", "PCFShadowMap", "", "choice", MAP_TYPES, aliases=dict(enumerate(MAP_TYPES)),
+                source=f"src/renderers/webgl/WebGLShadowMap.js:89; src/constants.js:57–84{at}", doc="PCFSoftShadowMap is replaced by PCFShadowMap (lines 99–102)"),
     )
 
 

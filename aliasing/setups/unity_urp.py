@@ -58,8 +58,10 @@ SETTINGS = (
     Setting("shadowDepthBias", 1.0, "texels", "float", (0.0, MAX_BIAS), source=ASSET, doc="caster pushed away from the light by this many texels"),
     Setting("shadowNormalBias", 1.0, "texels", "float", (0.0, MAX_BIAS), source=ASSET, doc="caster pulled in along its normal by (1 − N·L) × this many texels"),
     Setting("supportsSoftShadows", False, "", "bool", source=ASSET, doc="soft shadows (the light's Soft type then filters and scales the biases)"),
-    Setting("softShadowQuality", "Medium", "", "choice", ("Low", "Medium", "High"), source=ASSET, doc="3×3, 5×5 or 7×7 tent filter"),
-    Setting("light.shadows", "Soft", "", "choice", ("Hard", "Soft"), source="UnityEngine.Light.shadows (the editor's new Directional Light: Soft Shadows)",
+    Setting("softShadowQuality", "Medium", "", "choice", ("Low", "Medium", "High"), aliases={1: "Low", 2: "Medium", 3: "High"},
+            source=f"{ASSET}; {PKG}/Runtime/UniversalAdditionalLightData.cs enum SoftShadowQuality (the asset stores its number)", doc="3×3, 5×5 or 7×7 tent filter"),
+    Setting("light.shadows", "Soft", "", "choice", ("Hard", "Soft"), aliases={1: "Hard", 2: "Soft"},
+            source="UnityEngine.Light.shadows, enum LightShadows {None, Hard, Soft} (the editor's new Directional Light: Soft Shadows)",
             doc="the light's shadow type; Soft counts only when supportsSoftShadows"),
     Setting("light.usePipelineSettings", True, "", "bool", source=f"{PKG}/Runtime/UniversalAdditionalLightData.cs (as stored)",
             doc="take the biases from the asset; off: the light's own shadowBias and shadowNormalBias"),
@@ -68,6 +70,7 @@ SETTINGS = (
     Setting("light.shadowNormalBias", 0.4, "texels", "float", (0.0, MAX_BIAS), source="UnityEngine.Light.shadowNormalBias (default 0.4)",
             doc="the light's normal bias, used when usePipelineSettings is off"),
     Setting("light.softShadowQuality", "UsePipelineSettings", "", "choice", ("UsePipelineSettings", "Low", "Medium", "High"),
+            aliases={0: "UsePipelineSettings", 1: "Low", 2: "Medium", 3: "High"},
             source=f"{PKG}/Runtime/UniversalAdditionalLightData.cs (as stored)", doc="the light's soft shadow quality"),
 )
 

@@ -33,7 +33,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from .. import partitioning
-from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable
+from .profile import BiasRule, BiasTerm, Filter, Pipeline, Profile, Setting, Tunable, float32
 
 COMPONENT = "Engine/Source/Runtime/Engine/Classes/Components/DirectionalLightComponent.h (copies in the index; Epic's repository is private)"
 LIGHTCOMP = ("Engine/Source/Runtime/Engine/Classes/Components/LightComponent.h ULightComponent (ShadowBias 0.5, ShadowSlopeBias 0.5: "
@@ -42,7 +42,7 @@ RENDERING = "Engine/Source/Runtime/Renderer/Private/ShadowRendering.cpp (UE5, a 
 CVAR = "console variable"
 FIT, SNAP = "sphere", "origin"
 
-SETTINGS = (
+SETTINGS = float32((  # the console variables and properties are float
     Setting("DynamicShadowDistanceMovableLight", 20000.0, "cm", "float", (0.0, None), source=COMPONENT, doc="where CSM shadows end"),
     Setting("DynamicShadowCascades", 3, "", "int", (0, 10), clamp=(0, 10), source=COMPONENT, doc="cascades (0: none; at most r.Shadow.CSM.MaxCascades)"),
     Setting("CascadeDistributionExponent", 3.0, "", "float", (1.0, 4.0), source=COMPONENT, doc="> 1 puts the cascades' ends closer to the camera"),
@@ -66,7 +66,7 @@ SETTINGS = (
             doc="scales DynamicShadowDistanceMovableLight"),
     Setting("r.Shadow.Virtual.Enable", 0, "", "int", (0, 1), source=f"{CVAR} (code default 0 assumed, not read; new UE5 projects set 1 in DefaultEngine.ini)",
             doc="1: virtual shadow maps instead of CSM (aliasing.engines.vsm)"),
-)
+))
 
 
 def rule(s: Mapping[str, Any]) -> BiasRule:

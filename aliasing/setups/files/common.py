@@ -147,16 +147,22 @@ def merge_camera(found: Mapping[str, Any] | None, user: Mapping[str, Any] | None
 
     Examples
     --------
-    >>> merge_camera({"near": 0.5, "far": 800.0, "fov": 45.0}, {"far": 100})[0]
-    {'near': 0.5, 'far': 100, 'fov': 45.0}
+    >>> merge_camera({"near": 0.5, "far": 800.0, "fov": 45.0}, {"far": 100})[0]    # the file's fov in degrees, said so
+    {'near': 0.5, 'far': 100, 'fov': '45.0deg'}
     >>> fields, notes = merge_camera({"horizontal_fov": 90.0}, {"aspect": "1"})
     >>> fields["fov"], notes
-    (90.0, ('camera.fov: the horizontal 90° at aspect 1 is a vertical 90°',))
+    ('90.0deg', ('camera.fov: the horizontal 90° at aspect 1 is a vertical 90°',))
     """
     for name, value in (("found", found), ("user", user)):
         if value is not None and not isinstance(value, Mapping):
             raise ValueError(f"{name} must be a mapping of camera fields (near, far, fov, aspect, height, horizontal_fov), got {value!r}")
     out = dict(found or {})
+    fov = out.get("fov")
+    if isinstance(fov, (int, float)) and not isinstance(fov, bool):
+        out["fov"] = f"{float(fov)!r}deg"  # the file's degrees, said so: a narrow one is not read as radians
+    if user and ("fov" in user or "hfov" in user):  # the user's field of view, either way, replaces the file's
+        out.pop("fov", None)
+        out.pop("horizontal_fov", None)
     out.update(user or {})
     horizontal = out.pop("horizontal_fov", None)
     if horizontal is None or (user and "fov" in user):
@@ -164,8 +170,9 @@ def merge_camera(found: Mapping[str, Any] | None, user: Mapping[str, Any] | None
     aspect = _aspect(out["aspect"]) if "aspect" in out else CAMERA_DEFAULTS["aspect"]
     if isinstance(horizontal, bool) or not isinstance(horizontal, (int, float)) or not 0 < float(horizontal) < 180:
         raise ValueError(f"camera horizontal_fov must be in (0, 180) degrees, got {horizontal!r}")
-    out["fov"] = vertical_fov(float(horizontal), aspect)
-    return out, (f"camera.fov: the horizontal {float(horizontal):.12g}° at aspect {aspect:.6g} is a vertical {out['fov']:.12g}°",)
+    vertical = float(vertical_fov(float(horizontal), aspect))
+    out["fov"] = f"{vertical!r}deg"
+    return out, (f"camera.fov: the horizontal {float(horizontal):.12g}° at aspect {aspect:.6g} is a vertical {vertical:.12g}°",)
 
 
 def number(path: str | Path, where: str, value: Any, expected: str = "a finite number") -> float:
