@@ -20,7 +20,7 @@ Examples
 --------
 >>> from aliasing import frames
 >>> sorted(frames.PINS)
-['babylon', 'filament', 'playcanvas', 'threejs']
+['babylon', 'filament', 'godot', 'playcanvas', 'threejs']
 """
 
 from .install import PINS, MissingTool

