@@ -632,7 +632,7 @@ def test_page_errors_are_one_line(chromium, boxes):
     with pytest.raises(fb.PageError, match=r"^threejs page threw: side and shadowSide must be") as e:
         chromium.render("threejs", job)
     assert "\n" not in str(e.value)
-    with pytest.raises(ValueError, match="engine must be one of babylon, filament, playcanvas, threejs"):
+    with pytest.raises(ValueError, match="engine must be one of babylon, filament, godot, playcanvas, threejs"):
         chromium.render("godot", job)
 
 
@@ -645,7 +645,7 @@ BASE = ["--scene", "boxes", "--camera", "near=0.5,far=60,fov=50,aspect=16:9,heig
 
 
 @pytest.mark.parametrize("args, message", [
-    (["--engine", "unreal"], "--engine must be one of babylon, filament, playcanvas, threejs"),
+    (["--engine", "unreal"], "--engine must be one of babylon, filament, godot, playcanvas, threejs"),
     (["--engine", "threejs", "--camera", "near=1,far=0.5,fov=50,aspect=1,height=64"], "camera far must be greater than near"),
     (["--engine", "threejs", "--sun", "95"], "sun elevation must be in (0, 90]"),
     (["--engine", "threejs", "--set", "shadowBiass=0"], "unknown three.js setting 'shadowBiass'"),

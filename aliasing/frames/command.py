@@ -109,7 +109,7 @@ def run(args: argparse.Namespace) -> dict:
     >>> run(parser.parse_args(["frames", "--engine", "unity-urp", "--scene", "boxes"]))   # refused before any browser starts
     Traceback (most recent call last):
     ...
-    ValueError: --engine must be one of babylon, filament, playcanvas, threejs (the engines drawn in a browser), got 'unity-urp'
+    ValueError: --engine must be one of babylon, filament, godot, playcanvas, threejs (the engines drawn in a browser), got 'unity-urp'
 
     A frame itself needs Chromium and the installed engine, so it is not run here:
 

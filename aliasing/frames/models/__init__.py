@@ -8,7 +8,7 @@ pinned package), and the cascades' ends and map sides from the toolkit's presets
 Examples
 --------
 >>> sorted(MODELS)
-['babylon', 'playcanvas', 'threejs']
+['babylon', 'godot', 'playcanvas', 'threejs']
 >>> MODELS["threejs"].settings({"shadowBias": 0})["shadowBias"]   # CSM: `data.shadowBias || 0.000001`
 1e-06
 """
@@ -23,15 +23,16 @@ from ..predict import Prediction, reference
 from ..single import BabylonSingle, ThreeDirectional
 from .babylon import BabylonCSM, tight_sides
 from .filament import Filament
+from .godot import Godot
 from .playcanvas import PlayCanvas
 from .threejs import ThreeCSM
 
 Array = NDArray[np.float64]
 __all__ = ["MODELS", "SINGLE", "Prediction", "reference", "tight_sides", "ThreeCSM", "ThreeDirectional", "BabylonCSM", "BabylonSingle",
-           "PlayCanvas", "Filament", "model_for", "from_setup"]
+           "PlayCanvas", "Filament", "Godot", "model_for", "from_setup"]
 
 
-MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvas()}
+MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvas(), "godot": Godot()}
 #: the engines' single-map classes, by the ``class`` setting
 SINGLE = {("threejs", "DirectionalLight"): ThreeDirectional(), ("babylon", "ShadowGenerator"): BabylonSingle()}
 

@@ -34,7 +34,38 @@ function bytes(b64) {
   return out;
 }
 
+// The directional shadow data Godot uploads (rasterizer_scene_gles3.cpp _setup_lights: one glBufferData of
+// MAX_DIRECTIONAL_LIGHTS DirectionalShadowData structs of 320 bytes, scene.glsl's layout): the page keeps the
+// last uniform-buffer uploads whose size is a multiple of 320 bytes; the toolkit finds the light's struct in them.
+const STRUCT = 320;
+const uploads = [];
+function watchUniformBuffers() {
+  const proto = WebGL2RenderingContext.prototype;
+  if (proto.__aliasingWatched) return;
+  const original = proto.bufferData;
+  proto.bufferData = function (target, data, usage, offset, length) {
+    if (target === this.UNIFORM_BUFFER && data && data.buffer) {
+      const start = data.byteOffset + (offset || 0) * (data.BYTES_PER_ELEMENT || 1);
+      const n = length !== undefined ? length * (data.BYTES_PER_ELEMENT || 1) : data.byteLength - (offset || 0) * (data.BYTES_PER_ELEMENT || 1);
+      if (n > 0 && n % STRUCT === 0) {
+        uploads.push(new Uint8Array(data.buffer.slice(start, start + n)));
+        if (uploads.length > 8) uploads.shift();
+      }
+    }
+    return original.apply(this, arguments);
+  };
+  proto.__aliasingWatched = true;
+}
+
+function b64(bytes) {
+  let s = "";
+  for (let i = 0; i < bytes.length; i += 0x8000) s += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+  return btoa(s);
+}
+
 window.frame = async (job) => {
+  watchUniformBuffers();
+  uploads.length = 0;
   if (!job.pack) throw new Error("the job has no main pack (aliasing.frames.browser adds it for Godot)");
   if (!job.runtime) throw new Error("the job has no runtime address (aliasing.frames.browser adds it for Godot)");
   await load(job.runtime);
@@ -61,7 +92,8 @@ window.frame = async (job) => {
     check();
   });
   const res = await Promise.race([done, failed]);
+  const seen = uploads.map(b64);
   const ms = performance.now() - t0;
   engine.requestQuit();
-  return { ...res, revision: "4.6", ms, ms_init: tInit - t0, ms_start: tStart - tInit, printed: printed.slice(0, 40) };
+  return { ...res, revision: "4.6", ms, ms_init: tInit - t0, ms_start: tStart - tInit, uniform_uploads: seen, printed: printed.slice(0, 40) };
 };

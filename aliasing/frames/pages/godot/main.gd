@@ -88,6 +88,7 @@ func _ready() -> void:
 	var sun := _vec(job["sun"])
 	var up := Vector3.UP if abs(sun.y) < 0.999 else Vector3.FORWARD
 	light.look_at_from_position(Vector3.ZERO, -sun, up)
+	RenderingServer.set_default_clear_color(Color(0.0, 0.0, 1.0))  # blue: no surface (the factor is grey)
 	RenderingServer.directional_shadow_atlas_set_size(int(s.get(SIZE, 4096)), bool(s.get(BITS, true)))
 	RenderingServer.directional_soft_shadow_filter_set_quality(int(s.get(QUALITY, 2)))
 
