@@ -82,6 +82,12 @@ def from_setup(setup) -> dict:
     engine, s = setup.engine, dict(setup.settings)
     if engine == "filament":
         return FILAMENT.from_setup(setup)
+    if engine == "godot":
+        from ...setups.godot import RENDERER
+
+        if s[RENDERER] != "gl_compatibility":
+            raise ValueError(f"{RENDERER}: Godot's frames are its web runtime, the Compatibility renderer: set "
+                             f"{RENDERER}=gl_compatibility (the check then uses that renderer's bias and filter), got {s[RENDERER]!r}")
     if engine not in MODELS:
         raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")
     if engine == "threejs" and s["class"] == "DirectionalLight":
@@ -125,6 +131,8 @@ def from_setup(setup) -> dict:
         if s["material.backFaceCulling"] != s["material.cullBackFaces"] and not s["material.cullBackFaces"]:
             raise ValueError("material.cullBackFaces false (front faces culled) is not rendered by the frames")
         out["backFaceCulling"] = s["material.backFaceCulling"]
+    elif engine == "godot":
+        out = dict(s)
     else:
         out = {k: s[k] for k in ("shadowBias", "normalOffsetBias", "shadowResolution", "numCascades", "cascadeDistribution", "cascadeBlend",
                                  "shadowDistance")}

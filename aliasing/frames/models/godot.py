@@ -354,7 +354,14 @@ class Godot:
         rects = RECTS[k]
         expect_v = np.array([[*cam.rotation[0], -cam.rotation[0] @ cam.eye], [*cam.rotation[1], -cam.rotation[1] @ cam.eye],
                              [*-cam.rotation[2], cam.rotation[2] @ cam.eye], [0, 0, 0, 1]])
-        checks = {"view_vs_toolkit": float(np.max(np.abs(view - expect_v))), "coverage_vs_engine": float(np.mean(engine_drawn != seen)),
+        f = 1 / np.tan(np.radians(cam.fov) / 2)
+        n_, f_ = cam.near, cam.far
+        expect_p = np.array([[f * h / w, 0, 0, 0], [0, f, 0, 0], [0, 0, -(f_ + n_) / (f_ - n_), -2 * f_ * n_ / (f_ - n_)], [0, 0, -1, 0]])
+        lx = np.asarray(out["light_transform"], float)
+        checks = {"view_vs_toolkit": float(np.max(np.abs(view - expect_v))),
+                  "projection_vs_toolkit": float(np.max(np.abs(np.asarray(out["projection"], float).reshape(4, 4).T - expect_p))),
+                  "light_basis_vs_toolkit": float(np.max(np.abs(lx[:9].reshape(3, 3) - light_basis(sun)))),
+                  "coverage_vs_engine": float(np.mean(engine_drawn != seen)),
                   "light_direction_vs_sun": float(np.max(np.abs(data[:3] @ view[:3, :3] - np.asarray(sun) / np.linalg.norm(sun))))}
         rest = {key: v for key, v in out.items() if key not in ("factor", "uniform_uploads")}
         return {**rest, "shadow": f32(np.stack([factor, sel, ndotl, one], -1)),
@@ -363,7 +370,7 @@ class Godot:
                 "split_offsets": offsets.tolist(), "normal_biases": data[4:4 + k].tolist(), "fade": data[76:78].tolist(),
                 "atlas_matrices": [m.T.ravel().tolist() for m in mats],
                 "cascades": [{"matrix": _split_local(m, r).T.ravel().tolist(), "size": [res, res]} for m, r in zip(mats, rects)],
-                "frame": out.get("frame", "data:image/png;base64,")}
+                "frame": out.get("frame") or "data:image/png;base64,"}
 
     @staticmethod
     def _mode(out: dict) -> str:

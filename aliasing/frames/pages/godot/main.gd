@@ -105,6 +105,7 @@ func _ready() -> void:
 		"engine": "godot", "version": Engine.get_version_info()["string"],
 		"renderer": RenderingServer.get_video_adapter_name(), "method": ProjectSettings.get_setting("rendering/renderer/rendering_method"),
 		"width": img.get_width(), "height": img.get_height(), "factor": Marshalls.raw_to_base64(img.get_data()),
+		"frame": "data:image/png;base64," + Marshalls.raw_to_base64(img.save_png_to_buffer()),
 		"camera_transform": _xform(cam.global_transform), "light_transform": _xform(light.global_transform),
 		"projection": proj, "light": _light(light), "ms_setup": t1 - t0,
 	}
