@@ -123,6 +123,8 @@ def read_pack(data: bytes) -> dict[str, bytes]:
     magic, fmt, _, _, _, flags, base, diro = HEADER.unpack_from(data)
     if magic != b"GDPC" or fmt != FORMAT or not flags & REL_FILEBASE:
         raise ValueError(f"data must be a Godot pack (magic GDPC, format 3, relative file base), got magic {magic!r} format {fmt}")
+    if not HEADER.size <= diro <= len(data) - 4 or base > diro:
+        raise ValueError(f"data: the pack's directory offset {diro} lies outside its {len(data)} bytes")
     try:
         (n,) = struct.unpack_from("<I", data, diro)
         o, out = diro + 4, {}
