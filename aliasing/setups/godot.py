@@ -28,7 +28,18 @@ Read from godotengine/godot as stored in the index (Godot 4, 4.4 or later: the l
 * ``servers/rendering_server.cpp``: ``directional_shadow/size`` 4096 (256–16384) and
   ``soft_shadow_filter_quality`` 2 (Soft Low).
 
-The constant term, in world units along the light, is therefore
+The renderer (``rendering/renderer/rendering_method``, default ``forward_plus``, Godot's desktop
+default) picks the rest.  Forward+ and Mobile: the RD light data and ``BIAS_FUNC`` above.
+``gl_compatibility`` (the web export; what ``aliasing frames --engine godot`` renders and measures,
+docs/ERRATA.md F13), from 4.6-stable's ``drivers/gles3/shaders/scene.glsl`` (as the web runtime's
+``index.wasm`` holds it) and ``drivers/gles3/rasterizer_scene_gles3.cpp`` ``_render_shadow_pass`` /
+``_setup_lights``: the depth pass moves each caster vertex by v·b/|v|² in the light's view
+(b = ``shadow_bias``/100 · (2r + pancake_size), about ``shadow_bias``/100 world units), the receiver
+moves along its normal by ``shadow_normal_bias`` · 2r/R on every face turned to the sun, the filter
+is one hardware lookup or a fixed 5- or 13-tap PCF (:data:`COMPAT_PCF`), blend splits mix over
+the whole split.
+
+The constant term (Forward+), in world units along the light, is therefore
 ``shadow_bias/100 · (2r + pancake_size) · shadow_blur · quality_radius``: at the defaults
 0.001·(w·2048 + 20)·2 per cascade of texel w, about 4.1 texels plus 4 cm.
 """
@@ -51,7 +62,7 @@ RENDERER = "rendering/renderer/rendering_method"
 RENDERERS = ("forward_plus", "mobile", "gl_compatibility")
 COMPAT = "drivers/gles3/shaders/scene.glsl (Godot 4.6-stable, as its web runtime's index.wasm holds it)"
 #: gl_compatibility: soft_shadow_filter_quality → taps of scene.glsl's sample_shadow (1: one hardware 2×2 lookup;
-#: 5: SHADOW_MODE_PCF_5, ±1 texel; 13: SHADOW_MODE_PCF_13, ±2 texels); measured in Godot 4.6's web runtime (ERRATA F15)
+#: 5: SHADOW_MODE_PCF_5, ±1 texel; 13: SHADOW_MODE_PCF_13, ±2 texels); measured in Godot 4.6's web runtime (ERRATA F13)
 COMPAT_PCF = {0: 1, 1: 1, 2: 5, 3: 5, 4: 13, 5: 13}
 MODES = ("SHADOW_ORTHOGONAL", "SHADOW_PARALLEL_2_SPLITS", "SHADOW_PARALLEL_4_SPLITS")
 SPLITS = {"SHADOW_ORTHOGONAL": 1, "SHADOW_PARALLEL_2_SPLITS": 2, "SHADOW_PARALLEL_4_SPLITS": 4}
@@ -96,7 +107,7 @@ SETTINGS = (
     Setting(QUALITY, 2, "", "int", (0, 5), source=f"{SERVER} GLOBAL_DEF",
             doc="0 Hard, 1 Soft Very Low, 2 Soft Low, 3 Soft Medium, 4 Soft High, 5 Soft Ultra"),
     Setting(BITS, True, "", "bool", source=f"{SERVER} GLOBAL_DEF", doc="16-bit depth atlas (else 32-bit)"),
-    Setting(RENDERER, "forward_plus", "", "choice", RENDERERS, source="servers/rendering_server.cpp GLOBAL_DEF_RST_BASIC (desktop default)",
+    Setting(RENDERER, "forward_plus", "", "choice", RENDERERS, source="main/main.cpp GLOBAL_DEF_RST_BASIC (the first renderer hint: forward_plus on desktop; rendering_method.web: gl_compatibility)",
             doc="forward_plus and mobile: the RD renderer's bias and filter; gl_compatibility (the web export): its own (rule, filter_of)"),
 )
 

@@ -13,7 +13,7 @@ What Godot 4.6 draws, read from its source at 4.6-stable (the shaders as the run
   of ``directional_shadow/size``; 4 splits are its quadrants (x first), 2 splits its halves
   along y; the shadow matrix is atlas-rect · bias · reversed-z · projection · view (``_setup_lights``).
 * **Faces that cast**: the material's front faces (back with ``shadow_reverse_cull_face``), as in
-  Forward+: at bias 0 the lit faces acne as predicted only with the front faces drawn (ERRATA F15).
+  Forward+: at bias 0 the lit faces acne as predicted only with the front faces drawn (ERRATA F13).
 * **Constant bias** (``scene.glsl`` vertex stage, ``RENDER_SHADOWS``): each *caster* vertex moves,
   in the light's view, by v · b / |v|², b = ``shadow_bias``/100 · (2r + pancake) (the split's
   ``bias_scale``): about b/(r + pancake) world units, away from the light.
@@ -404,9 +404,9 @@ def _filter(stored: Array, c: Array, taps: int, step: float) -> Array:
     ring = [(1, 0), (-1, 0), (0, 1), (0, -1)]
     if taps == 5:
         return (look(0, 0) + sum(look(a, b) for a, b in ring)) / 5
-    far = sum(look(2 * a, 2 * b) for a, b in ring)
-    total = look(0, 0) + far + sum(look(a, b) for a, b in ring + [(1, 1), (-1, 1), (1, -1), (-1, -1)])
-    return np.where(far <= 1e-6, 0.0, np.where(far >= 4 - 1e-6, 1.0, total / 13))
+    first = look(0, 0) + sum(look(2 * a, 2 * b) for a, b in ring)      # the centre and the four at ±2 texels
+    total = first + sum(look(a, b) for a, b in ring + [(1, 1), (-1, 1), (1, -1), (-1, -1)])
+    return np.where(first <= 1e-6, 0.0, np.where(first >= 5 - 1e-6, 1.0, total / 13))   # the early bail on those five
 
 
 def _smoothstep(e0, e1, x):
