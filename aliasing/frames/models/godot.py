@@ -346,7 +346,11 @@ class Godot:
         mats = mats_view @ view
         offsets = data[8:8 + k] if k > 1 else data[8:9]
         depth = -(np.nan_to_num(pos) - cam_world[:3, 3]) @ cam_world[:3, 2]
-        sel = self.select({}, offsets, np.where(hit, depth, np.nan))
+        by_offsets = self.select({}, offsets, np.where(hit, depth, np.nan))
+        sel = by_offsets
+        if out.get("splits_frame"):                                   # the split Godot's shader chose (pages/godot.mjs)
+            probe = np.frombuffer(base64.b64decode(out["splits_frame"]), np.uint8).reshape(h, w, 4)[::-1]
+            sel = split_markers(probe[..., 1], k)
         ndotl = np.clip(nrm @ (np.asarray(sun, float) / np.linalg.norm(sun)), 0, 1)
         one = np.ones((h, w))
         f32 = lambda a: base64.b64encode(np.ascontiguousarray(a, np.float32).tobytes()).decode()  # noqa: E731
@@ -362,7 +366,9 @@ class Godot:
                   "projection_vs_toolkit": float(np.max(np.abs(np.asarray(out["projection"], float).reshape(4, 4).T - expect_p))),
                   "light_basis_vs_toolkit": float(np.max(np.abs(lx[:9].reshape(3, 3) - light_basis(sun)))),
                   "coverage_vs_engine": float(np.mean(engine_drawn != seen)),
-                  "light_direction_vs_sun": float(np.max(np.abs(data[:3] @ view[:3, :3] - np.asarray(sun) / np.linalg.norm(sun))))}
+                  "light_direction_vs_sun": float(np.max(np.abs(data[:3] @ view[:3, :3] - np.asarray(sun) / np.linalg.norm(sun)))),
+                  "cascade_from": "shader" if out.get("splits_frame") else "offsets",
+                  "shader_splits_vs_offsets": float(np.mean(sel[hit] == by_offsets[hit])) if hit.any() else None}
         rest = {key: v for key, v in out.items() if key not in ("factor", "uniform_uploads")}
         return {**rest, "shadow": f32(np.stack([factor, sel, ndotl, one], -1)),
                 "position": f32(np.concatenate([pos, hit[..., None].astype(float)], -1)),
@@ -376,6 +382,21 @@ class Godot:
     def _mode(out: dict) -> str:
         mode = int(out["light"]["directional_shadow_mode"])
         return profile.MODES[mode]
+
+
+def split_markers(green: Array, k: int) -> NDArray[np.int64]:
+    """The split of each pixel of the page's split frame: the 8-bit sRGB green of the markers 0.1, 0.3, 0.5, 0.7
+    (splits 0–3) and 1.0 (none: −1), decoded to the nearest.
+
+    Examples
+    --------
+    >>> split_markers(np.array([89, 149, 188, 218, 255]), 4).tolist()     # sRGB of 0.1, 0.3, 0.5, 0.7, 1.0
+    [0, 1, 2, 3, -1]
+    """
+    marks = np.array([0.1, 0.3, 0.5, 0.7, 1.0])
+    idx = np.argmin(np.abs(srgb_to_linear(green)[..., None] - marks), axis=-1)
+    idx = np.where(idx == 4, -1, idx)
+    return np.where(idx >= k, -1, idx).astype(np.int64)
 
 
 def _split_local(m: Array, rect) -> Array:

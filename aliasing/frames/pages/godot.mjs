@@ -57,6 +57,29 @@ function watchUniformBuffers() {
   proto.__aliasingWatched = true;
 }
 
+// The split each pixel samples, from Godot's own shader: with job.probe === "splits" every compiled
+// shader has scene.glsl's PSSM choices "directional_shadow = shadowN;" replaced by a marker
+// (0.1, 0.3, 0.5, 0.7 for splits 1-4; beyond the last split it stays 1.0) and its fade turned off,
+// so the factor frame shows the split instead of the shadow.
+const MARKERS = [["directional_shadow = shadow1;", "directional_shadow = 0.1;"], ["directional_shadow = shadow2;", "directional_shadow = 0.3;"],
+  ["directional_shadow = shadow3;", "directional_shadow = 0.5;"], ["directional_shadow = shadow4;", "directional_shadow = 0.7;"],
+  ["directional_shadow = mix(directional_shadow, 1.0, smoothstep(", "directional_shadow = mix(directional_shadow, 1.0, 0.0 * smoothstep("]];
+let probing = false;
+let probed = 0;
+function watchShaders() {
+  const proto = WebGL2RenderingContext.prototype;
+  if (proto.__aliasingShaders) return;
+  const original = proto.shaderSource;
+  proto.shaderSource = function (shader, source) {
+    if (probing && source.includes("directional_shadow = shadow1;")) {
+      for (const [a, b] of MARKERS) source = source.split(a).join(b);
+      probed++;
+    }
+    return original.call(this, shader, source);
+  };
+  proto.__aliasingShaders = true;
+}
+
 function b64(bytes) {
   let s = "";
   for (let i = 0; i < bytes.length; i += 0x8000) s += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
@@ -65,7 +88,10 @@ function b64(bytes) {
 
 window.frame = async (job) => {
   watchUniformBuffers();
+  watchShaders();
   uploads.length = 0;
+  probing = job.probe === "splits";
+  probed = 0;
   if (!job.pack) throw new Error("the job has no main pack (aliasing.frames.browser adds it for Godot)");
   if (!job.runtime) throw new Error("the job has no runtime address (aliasing.frames.browser adds it for Godot)");
   await load(job.runtime);
@@ -95,5 +121,5 @@ window.frame = async (job) => {
   const seen = uploads.map(b64);
   const ms = performance.now() - t0;
   engine.requestQuit();
-  return { ...res, revision: "4.6", ms, ms_init: tInit - t0, ms_start: tStart - tInit, uniform_uploads: seen, printed: printed.slice(0, 40) };
+  return { ...res, revision: "4.6", ms, ms_init: tInit - t0, ms_start: tStart - tInit, uniform_uploads: seen, probe: job.probe || null, shaders_probed: probed, printed: printed.slice(0, 40) };
 };
