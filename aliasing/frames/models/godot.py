@@ -44,6 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ... import _validation as check
 from ...setups import godot as profile
 from .. import predict
 from ..predict import Prediction, reference
@@ -67,7 +68,7 @@ def srgb_to_linear(v: Array) -> Array:
     >>> srgb_to_linear(np.array([0, 188, 255])).round(3).tolist()
     [0.0, 0.503, 1.0]
     """
-    c = np.asarray(v, float) / 255.0
+    c = check.closed_range(v, "v", 0.0, 255.0) / 255.0
     return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
 
 
@@ -81,7 +82,8 @@ def light_basis(sun: Array) -> Array:
     >>> light_basis(np.array([0.0, 0.6, 0.8])).round(3).tolist()
     [[1.0, 0.0, 0.0], [0.0, 0.8, -0.6], [0.0, 0.6, 0.8]]
     """
-    z = np.asarray(sun, float) / np.linalg.norm(sun)
+    z = check.direction(sun)
+    z = z / np.linalg.norm(z)
     up = np.array([0.0, 1.0, 0.0]) if abs(z[1]) < 0.999 else np.array([0.0, 0.0, -1.0])
     x = np.cross(up, z)
     x /= np.linalg.norm(x)
@@ -393,6 +395,7 @@ def split_markers(green: Array, k: int) -> NDArray[np.int64]:
     >>> split_markers(np.array([89, 149, 188, 218, 255]), 4).tolist()     # sRGB of 0.1, 0.3, 0.5, 0.7, 1.0
     [0, 1, 2, 3, -1]
     """
+    check.whole(k, "k", 1, 4, " [splits]")
     marks = np.array([0.1, 0.3, 0.5, 0.7, 1.0])
     idx = np.argmin(np.abs(srgb_to_linear(green)[..., None] - marks), axis=-1)
     idx = np.where(idx == 4, -1, idx)
