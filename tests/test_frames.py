@@ -633,7 +633,7 @@ def test_page_errors_are_one_line(chromium, boxes):
         chromium.render("threejs", job)
     assert "\n" not in str(e.value)
     with pytest.raises(ValueError, match="engine must be one of babylon, filament, godot, playcanvas, threejs"):
-        chromium.render("godot", job)
+        chromium.render("unity", job)
 
 
 def _cli(*args: str, env: dict | None = None) -> subprocess.CompletedProcess:

@@ -256,7 +256,7 @@ class Godot:
         splits = self.transforms(s, cam, sun)
         edges = self.edges(s, cam)
         res = self.resolution(s)
-        atlas = int(s[profile.SIZE])
+        rows = profile.layout(int(s[profile.SIZE]), len(splits))[1]       # 2 splits: size × size/2 texels each
         depth = np.where(rb.drawn, cam.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
         sel = self.select(s, edges[1:], depth)
         cast = scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))]
@@ -266,8 +266,8 @@ class Godot:
         for sp, local in zip(splits, rb.matrices):                    # world → each split's [0, 1]², depth 0 at the light
             b = float(s["shadow_bias"]) / 100.0 * sp.zfar
             moved = _caster_bias(cast, sp, b)
-            dm = predict.light_depth_map(moved, local, res)
-            stored = dm.depth
+            squeeze = np.diag([1.0, rows / res, 1.0, 1.0])               # t over the first `rows` rows of a res² raster
+            stored = predict.light_depth_map(moved, squeeze @ local, res).depth[:rows]
             if s[profile.BITS]:
                 stored = np.where(np.isfinite(stored), np.round(np.clip(stored, 0, 1) * 65535) / 65535, stored)
             off = nrm * (float(s["shadow_normal_bias"]) * 2 * sp.radius / res * (1 - facing))[..., None]
@@ -289,10 +289,13 @@ class Godot:
         factor = np.where(rb.drawn, factor, np.nan)
         ref = reference(scene, sun, rb, res)
         sides = np.array([2 * max(sp.half) for sp in splits])
-        return Prediction(factor, sel, edges[:-1], sides, np.full(k, float(res)), self.matrices(s, cam, sun)), ref
+        blend = bool(s["directional_shadow_blend_splits"])
+        starts = np.array([edges[i - 1] if blend and i > 0 else edges[i] for i in range(k)])   # the fit's first depth
+        return Prediction(factor, sel, starts, sides, np.full(k, float(res)), self.matrices(s, cam, sun)), ref
 
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
-        """From Godot's uniform buffer: each split's first depth (its offsets), its side [m] from the matrix, and its resolution.
+        """From Godot's uniform buffer: each split's first sampled depth (its offsets; with blend splits the previous one), its side [m]
+        from the matrix, and its resolution.
 
         Examples
         --------
@@ -303,7 +306,9 @@ class Godot:
         [[0.5, 5.0], [10.0, 10.0], [2048.0, 2048.0]]
         """
         offsets = np.asarray(rb.info["split_offsets"], float)
-        starts = np.concatenate([[camera.near], offsets[:-1]])
+        edges = np.concatenate([[camera.near], offsets])
+        blend = bool((s or {}).get("directional_shadow_blend_splits", False))   # split i is blended in over split i − 1
+        starts = np.array([edges[i - 1] if blend and i > 0 else edges[i] for i in range(len(offsets))])
         sides = np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3])) for m in rb.matrices])
         return starts, sides, rb.sizes[:, 0].astype(float)
 
@@ -377,7 +382,7 @@ class Godot:
                 "normal": f32(np.concatenate([nrm, one[..., None]], -1)), "checks": checks, "rects": rects,
                 "split_offsets": offsets.tolist(), "normal_biases": data[4:4 + k].tolist(), "fade": data[76:78].tolist(),
                 "atlas_matrices": [m.T.ravel().tolist() for m in mats],
-                "cascades": [{"matrix": _split_local(m, r).T.ravel().tolist(), "size": [res, res]} for m, r in zip(mats, rects)],
+                "cascades": [{"matrix": _split_local(m, r).T.ravel().tolist(), "size": [res, round(res * r[3] / r[2])]} for m, r in zip(mats, rects)],
                 "frame": out.get("frame") or "data:image/png;base64,"}
 
     @staticmethod
@@ -418,11 +423,30 @@ def _caster_bias(tri: Array, sp: Split, b: float) -> Array:
     return v @ sp.basis + sp.origin
 
 
+def _compare(depth: Array, s: Array, t: Array, ref: Array) -> Array:
+    """A LINEAR ``sampler2DShadow`` lookup in a rows × cols map: the bilinear weights of the 4 nearest texels' compares
+    (lit where ``ref`` ≤ the stored depth, toolkit depth: 0 at the light), clamped to the edge."""
+    rows, cols = depth.shape
+    u, v = s * cols - 0.5, t * rows - 0.5
+    i0, j0 = np.floor(u), np.floor(v)
+    fu, fv = u - i0, v - j0
+    out = np.zeros_like(ref)
+    for di, wu in ((0, 1 - fu), (1, fu)):
+        for dj, wv in ((0, 1 - fv), (1, fv)):
+            i = np.clip(i0 + di, 0, cols - 1).astype(np.int64)
+            j = np.clip(j0 + dj, 0, rows - 1).astype(np.int64)
+            out += wu * wv * (ref <= depth[j, i])
+    return out
+
+
 def _filter(stored: Array, c: Array, taps: int, step: float) -> Array:
-    """``sample_shadow``: hardware bilinear compares at the centre, then PCF_5 (±1 texel) or PCF_13 (±1, ±2 texels and diagonals)."""
+    """``sample_shadow``: hardware bilinear compares at the centre, then PCF_5 (±1 texel) or PCF_13 (±1, ±2 texels and diagonals).
+
+    ``step``: the tap spacing in the split's texels (the atlas texel, ``shadow_atlas_pixel_size``: one texel of the split
+    along s and along t in every mode)."""
     s, t, ref = c[..., 0], c[..., 1], c[..., 2]
-    r = stored.shape[0]
-    look = lambda ds, dt: predict._hardware_pcf(stored, s + ds * step / r, t + dt * step / r, ref)  # noqa: E731
+    rows, cols = stored.shape
+    look = lambda ds, dt: _compare(stored, s + ds * step / cols, t + dt * step / rows, ref)  # noqa: E731
     if taps == 1:
         return look(0, 0)
     ring = [(1, 0), (-1, 0), (0, 1), (0, -1)]

@@ -59,11 +59,12 @@ function watchUniformBuffers() {
 
 // The split each pixel samples, from Godot's own shader: with job.probe === "splits" every compiled
 // shader has scene.glsl's PSSM choices "directional_shadow = shadowN;" replaced by a marker
-// (0.1, 0.3, 0.5, 0.7 for splits 1-4; beyond the last split it stays 1.0) and its fade turned off,
+// (0.1, 0.3, 0.5, 0.7 for splits 1-4; beyond the last split it stays 1.0), its fade and its blend turned off,
 // so the factor frame shows the split instead of the shadow.
 const MARKERS = [["directional_shadow = shadow1;", "directional_shadow = 0.1;"], ["directional_shadow = shadow2;", "directional_shadow = 0.3;"],
   ["directional_shadow = shadow3;", "directional_shadow = 0.5;"], ["directional_shadow = shadow4;", "directional_shadow = 0.7;"],
-  ["directional_shadow = mix(directional_shadow, 1.0, smoothstep(", "directional_shadow = mix(directional_shadow, 1.0, 0.0 * smoothstep("]];
+  ["directional_shadow = mix(directional_shadow, 1.0, smoothstep(", "directional_shadow = mix(directional_shadow, 1.0, 0.0 * smoothstep("],
+  ["directional_shadow = mix(directional_shadow, directional_shadow2, pssm_blend);", "directional_shadow = directional_shadow;"]];
 let probing = false;
 let probed = 0;
 function watchShaders() {
