@@ -832,7 +832,7 @@ def test_single_map_and_playcanvas_models_without_a_browser():
     with pytest.raises(ValueError, match="filter must be null or FILTER_NONE"):
         from_setup(setups.build("babylon", {**SG, "filter": "FILTER_PCF"}, CAMERA_SPEC, "35@30"))
     with pytest.raises(ValueError, match="engine must be one of"):
-        model_for("godot", {})
+        model_for("unity-urp", {})
 
 
 def test_polygon_offset_fuzz():
