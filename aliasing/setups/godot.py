@@ -33,7 +33,7 @@ default) picks the rest.  Forward+ and Mobile: the RD light data and ``BIAS_FUNC
 ``gl_compatibility`` (the web export; what ``aliasing frames --engine godot`` renders and measures,
 docs/ERRATA.md F13), from 4.6-stable's ``drivers/gles3/shaders/scene.glsl`` (as the web runtime's
 ``index.wasm`` holds it) and ``drivers/gles3/rasterizer_scene_gles3.cpp`` ``_render_shadow_pass`` /
-``_setup_lights``: the depth pass moves each caster vertex by v·b/|v|² in the light's view
+``_setup_lights``: the depth pass moves each caster vertex by ``v·b/|v|²`` in the light's view
 (b = ``shadow_bias``/100 · (2r + pancake_size), about ``shadow_bias``/100 world units), the receiver
 moves along its normal by ``shadow_normal_bias`` · 2r/R on every face turned to the sun, the filter
 is one hardware lookup or a fixed 5- or 13-tap PCF (:data:`COMPAT_PCF`), blend splits mix over

@@ -15,7 +15,7 @@ What Godot 4.6 draws, read from its source at 4.6-stable (the shaders as the run
 * **Faces that cast**: the material's front faces (back with ``shadow_reverse_cull_face``), as in
   Forward+: at bias 0 the lit faces acne as predicted only with the front faces drawn (ERRATA F13).
 * **Constant bias** (``scene.glsl`` vertex stage, ``RENDER_SHADOWS``): each *caster* vertex moves,
-  in the light's view, by v · b / |v|², b = ``shadow_bias``/100 · (2r + pancake) (the split's
+  in the light's view, by ``v · b / |v|²``, b = ``shadow_bias``/100 · (2r + pancake) (the split's
   ``bias_scale``): about b/(r + pancake) world units, away from the light.
 * **Normal bias** (``scene.glsl`` vertex stage, ``ADDITIVE_DIRECTIONAL``): each *receiver* moves
   along its normal by ``shadow_normal_bias`` · 2r/R · (1 − max(0, dir · (−n))), ``dir`` the
@@ -415,7 +415,7 @@ def _split_local(m: Array, rect) -> Array:
 
 
 def _caster_bias(tri: Array, sp: Split, b: float) -> Array:
-    """The casters as the depth pass moves them: v += v · b / |v|² in the light's view (``RENDER_SHADOWS``)."""
+    """The casters as the depth pass moves them: ``v += v · b / |v|²`` in the light's view (``RENDER_SHADOWS``)."""
     if b == 0 or not len(tri):
         return tri
     v = (tri - sp.origin) @ sp.basis.T
