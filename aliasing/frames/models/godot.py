@@ -423,22 +423,6 @@ def _caster_bias(tri: Array, sp: Split, b: float) -> Array:
     return v @ sp.basis + sp.origin
 
 
-def _compare(depth: Array, s: Array, t: Array, ref: Array) -> Array:
-    """A LINEAR ``sampler2DShadow`` lookup in a rows × cols map: the bilinear weights of the 4 nearest texels' compares
-    (lit where ``ref`` ≤ the stored depth, toolkit depth: 0 at the light), clamped to the edge."""
-    rows, cols = depth.shape
-    u, v = s * cols - 0.5, t * rows - 0.5
-    i0, j0 = np.floor(u), np.floor(v)
-    fu, fv = u - i0, v - j0
-    out = np.zeros_like(ref)
-    for di, wu in ((0, 1 - fu), (1, fu)):
-        for dj, wv in ((0, 1 - fv), (1, fv)):
-            i = np.clip(i0 + di, 0, cols - 1).astype(np.int64)
-            j = np.clip(j0 + dj, 0, rows - 1).astype(np.int64)
-            out += wu * wv * (ref <= depth[j, i])
-    return out
-
-
 def _filter(stored: Array, c: Array, taps: int, step: float) -> Array:
     """``sample_shadow``: hardware bilinear compares at the centre, then PCF_5 (±1 texel) or PCF_13 (±1, ±2 texels and diagonals).
 
@@ -446,7 +430,7 @@ def _filter(stored: Array, c: Array, taps: int, step: float) -> Array:
     along s and along t in every mode)."""
     s, t, ref = c[..., 0], c[..., 1], c[..., 2]
     rows, cols = stored.shape
-    look = lambda ds, dt: _compare(stored, s + ds * step / cols, t + dt * step / rows, ref)  # noqa: E731
+    look = lambda ds, dt: predict._hardware_pcf(stored, s + ds * step / cols, t + dt * step / rows, ref)  # noqa: E731
     if taps == 1:
         return look(0, 0)
     ring = [(1, 0), (-1, 0), (0, 1), (0, -1)]
