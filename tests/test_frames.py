@@ -632,8 +632,8 @@ def test_page_errors_are_one_line(chromium, boxes):
     with pytest.raises(fb.PageError, match=r"^threejs page threw: side and shadowSide must be") as e:
         chromium.render("threejs", job)
     assert "\n" not in str(e.value)
-    with pytest.raises(ValueError, match="engine must be one of babylon, filament, playcanvas, threejs"):
-        chromium.render("godot", job)
+    with pytest.raises(ValueError, match="engine must be one of babylon, filament, godot, playcanvas, threejs"):
+        chromium.render("unity", job)
 
 
 def _cli(*args: str, env: dict | None = None) -> subprocess.CompletedProcess:
@@ -645,7 +645,7 @@ BASE = ["--scene", "boxes", "--camera", "near=0.5,far=60,fov=50,aspect=16:9,heig
 
 
 @pytest.mark.parametrize("args, message", [
-    (["--engine", "unreal"], "--engine must be one of babylon, filament, playcanvas, threejs"),
+    (["--engine", "unreal"], "--engine must be one of babylon, filament, godot, playcanvas, threejs"),
     (["--engine", "threejs", "--camera", "near=1,far=0.5,fov=50,aspect=1,height=64"], "camera far must be greater than near"),
     (["--engine", "threejs", "--sun", "95"], "sun elevation must be in (0, 90]"),
     (["--engine", "threejs", "--set", "shadowBiass=0"], "unknown three.js setting 'shadowBiass'"),
@@ -832,7 +832,7 @@ def test_single_map_and_playcanvas_models_without_a_browser():
     with pytest.raises(ValueError, match="filter must be null or FILTER_NONE"):
         from_setup(setups.build("babylon", {**SG, "filter": "FILTER_PCF"}, CAMERA_SPEC, "35@30"))
     with pytest.raises(ValueError, match="engine must be one of"):
-        model_for("godot", {})
+        model_for("unity-urp", {})
 
 
 def test_polygon_offset_fuzz():

@@ -40,7 +40,7 @@ DEFAULTS = {
               "shadow_blur": 1.0, "shadow_reverse_cull_face": False, "light_angular_distance": 0.0,
               "rendering/lights_and_shadows/directional_shadow/size": 4096,
               "rendering/lights_and_shadows/directional_shadow/soft_shadow_filter_quality": 2,
-              "rendering/lights_and_shadows/directional_shadow/16_bits": True},
+              "rendering/lights_and_shadows/directional_shadow/16_bits": True, "rendering/renderer/rendering_method": "forward_plus"},
     "bevy": {"num_cascades": 4, "minimum_distance": 0.1, "maximum_distance": 150.0, "first_cascade_far_bound": 10.0, "overlap_proportion": 0.2,
              "shadow_depth_bias": 0.02, "shadow_normal_bias": 1.8, "DirectionalLightShadowMap.size": 2048, "ShadowFilteringMethod": "Gaussian"},
     "unity-urp": {"shadowDistance": 50.0, "shadowCascadeCount": 1, "cascade2Split": 0.25, "cascade3Split.x": 0.1, "cascade3Split.y": 0.3,

@@ -11,6 +11,8 @@ engine's rules (:mod:`.models`, :mod:`.predict`), and both are measured alike
 for texel (:mod:`.maps`), and Babylon.js's cascade matrices are predicted (:mod:`.babylon_cascades`).
 Filament (npm, WebGL 2) is rendered and measured against the exact shadows, not predicted: its
 factor is the ratio of two 8-bit frames (:class:`.models.Filament`);
+Godot 4.6 (its official web export template: the Compatibility renderer) is rendered from a
+main pack written per frame (:mod:`.godot`) and predicted (:class:`.models.Godot`);
 ``aliasing frames`` is the command (:mod:`.command`).
 
 ``import aliasing.frames`` needs neither Playwright nor Chromium: they are looked for when a
@@ -20,7 +22,7 @@ Examples
 --------
 >>> from aliasing import frames
 >>> sorted(frames.PINS)
-['babylon', 'filament', 'playcanvas', 'threejs']
+['babylon', 'filament', 'godot', 'playcanvas', 'threejs']
 """
 
 from .install import PINS, MissingTool

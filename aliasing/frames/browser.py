@@ -17,6 +17,7 @@ True
 
 from __future__ import annotations
 
+import base64
 import json
 import mimetypes
 import os
@@ -28,7 +29,8 @@ from .install import PINS, MissingTool, package_root
 PAGES = Path(__file__).parent / "pages"
 ORIGIN = "http://frames.invalid"
 ARGS = ["--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--no-sandbox", "--disable-background-networking",
-        "--disable-component-update", "--disable-sync", "--no-first-run", "--ignore-gpu-blocklist"]
+        "--disable-component-update", "--disable-sync", "--no-first-run", "--ignore-gpu-blocklist",
+        "--disable-features=BlockInsecurePrivateNetworkRequests,PrivateNetworkAccessSendPreflights,LocalNetworkAccessChecks"]  # Godot: 127.0.0.1
 CANDIDATES = ("/usr/bin/chromium", "/usr/bin/chromium-browser", "/usr/bin/google-chrome")
 
 
@@ -36,6 +38,43 @@ _CALL = """async ({job, ms}) => {
   const limit = new Promise((_, reject) => setTimeout(() => reject(new Error(`the frame took longer than ${ms / 1000} s`)), ms));
   try { return await Promise.race([window.frame(job), limit]); } catch (e) { return { error: String(e && e.message || e) }; }
 }"""
+
+
+class _LocalFiles:
+    """A read-only HTTP server on 127.0.0.1 (a free port) for the files of one folder, in a thread.
+
+    Godot's runtime (a 37 MB WebAssembly) is served this way: through Playwright's request routing
+    its body would cross the DevTools protocol, which takes seconds.  Any path outside the folder,
+    and any method but GET and HEAD, is refused.
+    """
+
+    def __init__(self, folder: Path):
+        import http.server
+        import threading
+
+        root = Path(folder).resolve()
+
+        class Handler(http.server.SimpleHTTPRequestHandler):
+            def __init__(self, *a, **k):
+                super().__init__(*a, directory=str(root), **k)
+
+            def end_headers(self):
+                self.send_header("Access-Control-Allow-Origin", ORIGIN)
+                self.send_header("Cache-Control", "no-store")
+                super().end_headers()
+
+            def log_message(self, *a):  # quiet
+                pass
+
+        Handler.extensions_map = {**Handler.extensions_map, ".wasm": "application/wasm", ".js": "text/javascript"}
+        self._server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Handler)
+        self.url = f"http://127.0.0.1:{self._server.server_address[1]}/"
+        self._thread = threading.Thread(target=self._server.serve_forever, daemon=True)
+        self._thread.start()
+
+    def close(self) -> None:
+        self._server.shutdown()
+        self._server.server_close()
 
 
 class PageError(RuntimeError):
@@ -128,6 +167,7 @@ class Browser:
             self._pw.stop()
             raise MissingTool(f"Chromium at {exe} did not start: {_first_line(e)}") from None
         self._roots: dict[str, Path] = {}
+        self._local: _LocalFiles | None = None
 
     def __enter__(self) -> "Browser":
         return self
@@ -149,6 +189,9 @@ class Browser:
         >>> b = Browser()                  # doctest: +SKIP
         >>> b.close(); b.close()           # doctest: +SKIP
         """
+        if getattr(self, "_local", None) is not None:
+            self._local.close()
+            self._local = None
         if getattr(self, "_browser", None) is not None:
             self._browser.close()
             self._browser = None
@@ -156,6 +199,9 @@ class Browser:
 
     def _serve(self, route) -> None:
         url = route.request.url
+        if self._local is not None and url.startswith(self._local.url) and ".." not in url:
+            route.continue_()
+            return
         if not url.startswith(ORIGIN + "/"):
             route.abort()
             return
@@ -172,7 +218,7 @@ class Browser:
         if path is None or not path.is_file() or ".." in Path(rel).parts:
             route.fulfill(status=404, body="not found")
             return
-        ctype = "text/javascript" if path.suffix in (".js", ".mjs") else (mimetypes.guess_type(path.name)[0] or "application/octet-stream")
+        ctype = "text/javascript" if path.suffix in (".js", ".mjs") else "application/wasm" if path.suffix == ".wasm" else (mimetypes.guess_type(path.name)[0] or "application/octet-stream")
         route.fulfill(status=200, body=path.read_bytes(), headers={"content-type": ctype, "cache-control": "no-store"})
 
     def render(self, engine: str, job: dict) -> dict:
@@ -216,6 +262,15 @@ class Browser:
         if engine not in PINS:
             raise ValueError(f"engine must be one of {', '.join(sorted(PINS))}, got {engine!r}")
         self._roots[engine] = package_root(engine)
+        if engine == "godot":  # Godot's runtime checked, and the job's scene as its main pack
+            from .godot import job_pack
+            from .install import godot_runtime
+
+            runtime = godot_runtime(self._roots[engine])
+            if self._local is None:
+                self._local = _LocalFiles(runtime)
+            job = {**job, "pack": base64.b64encode(job_pack({k: v for k, v in job.items() if k not in ("pack", "runtime")})).decode(),
+                   "runtime": self._local.url}
         page = self._browser.new_page(viewport={"width": int(job["width"]), "height": int(job["height"])})
         errors: list[str] = []
         page.on("pageerror", lambda e: errors.append(_first_line(e)))

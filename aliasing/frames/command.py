@@ -109,7 +109,7 @@ def run(args: argparse.Namespace) -> dict:
     >>> run(parser.parse_args(["frames", "--engine", "unity-urp", "--scene", "boxes"]))   # refused before any browser starts
     Traceback (most recent call last):
     ...
-    ValueError: --engine must be one of babylon, filament, playcanvas, threejs (the engines drawn in a browser), got 'unity-urp'
+    ValueError: --engine must be one of babylon, filament, godot, playcanvas, threejs (the engines drawn in a browser), got 'unity-urp'
 
     A frame itself needs Chromium and the installed engine, so it is not run here:
 
@@ -134,7 +134,7 @@ def run(args: argparse.Namespace) -> dict:
     frames_run.refuse_unrendered(setup.engine, setup.settings.get("class"), args.path, args.maps)
     if args.path is not None:
         frames_run.parse_path(args.path, scenes.frame_scene("boxes", near=1.0, far=2.0, fov=50.0, aspect=1.0, boxes=0, ground_cells=1).camera)
-    if setup.release != PINS[name].release:
+    if setup.release != PINS[name].release and PINS[name].release not in getattr(setup.profile, "releases", ()):
         raise ValueError(f"--engine {engine}: the frames render {name} {PINS[name].release} only (the pinned npm release), not {setup.release}")
     cam = setup.camera
     if not 16 <= cam.height <= 2160:
@@ -206,7 +206,7 @@ def add_frames_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
     """
     p = sub.add_parser(
         "frames",
-        help="an engine's own frame (three.js, Babylon.js, PlayCanvas, Filament in headless Chromium) against the toolkit's prediction: shadow mask, acne, gap, texel footprint",
+        help="an engine's own frame (three.js, Babylon.js, PlayCanvas, Filament, Godot in headless Chromium) against the toolkit's prediction: shadow mask, acne, gap, texel footprint",
         description="Renders the scene with the engine itself (pinned npm release, system Chromium, WebGL 2 on SwiftShader), reads back its "
         "shadow factor, positions, normals and light matrices, and measures them against the toolkit's prediction for the same pixels.",
     )

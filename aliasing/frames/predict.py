@@ -302,16 +302,17 @@ BABYLON_PCF = {0: _babylon_pcf5, 1: _babylon_pcf3, 2: _babylon_pcf1}  # filterin
 
 
 def _hardware_compare(depth: Array, s: Array, t: Array, ref: Array, *, strict: bool) -> Array:
-    """A LINEAR shadow-sampler lookup: the bilinear weights of the 4 nearest texels' compares (LESS if strict, else LEQUAL), clamped to the edge."""
-    r = depth.shape[0]
-    u, v = s * r - 0.5, t * r - 0.5
+    """A LINEAR shadow-sampler lookup: the bilinear weights of the 4 nearest texels' compares (LESS if strict, else LEQUAL), clamped
+    to the edge; ``depth`` rows (t) × columns (s), square or not (Godot's 2 splits: 2048 × 4096)."""
+    rows, cols = depth.shape
+    u, v = s * cols - 0.5, t * rows - 0.5
     i0, j0 = np.floor(u), np.floor(v)
     fu, fv = u - i0, v - j0
     out = np.zeros_like(ref)
     for di, wu in ((0, 1 - fu), (1, fu)):
         for dj, wv in ((0, 1 - fv), (1, fv)):
-            i = np.clip(i0 + di, 0, r - 1).astype(np.int64)
-            j = np.clip(j0 + dj, 0, r - 1).astype(np.int64)
+            i = np.clip(i0 + di, 0, cols - 1).astype(np.int64)
+            j = np.clip(j0 + dj, 0, rows - 1).astype(np.int64)
             d = depth[j, i]
             out += wu * wv * ((ref < d) if strict else (ref <= d))
     return out

@@ -353,7 +353,8 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     browser : Browser
         An open :class:`aliasing.frames.browser.Browser`.
     setup : aliasing.setups.Setup
-        From :func:`aliasing.setups.build` (engine threejs, babylon or playcanvas at the pinned release).
+        From :func:`aliasing.setups.build` (an engine of :data:`aliasing.frames.PINS` at its pinned release).
+        Godot draws a second frame, the split each pixel's shader chose (``pages/godot.mjs``).
     scene : FrameScene
         From :func:`aliasing.frames.scenes.frame_scene` with the setup's camera.
     sun : array_like (3,), optional
@@ -393,7 +394,11 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
         refuse_unrendered(setup.engine, settings.get("class"), path, None)
         poses = parse_path(path, scene.camera)
     refuse_unrendered(setup.engine, settings.get("class"), None, maps)
-    out = browser.render(setup.engine, make_job(scene, sv, settings, cam.height, poses, maps))
+    job = make_job(scene, sv, settings, cam.height, poses, maps)
+    out = browser.render(setup.engine, job)
+    if setup.engine == "godot":  # the split per pixel from Godot's own shader: a second frame that draws it
+        probe = browser.render("godot", {**job, "probe": "splits"})
+        out["splits_frame"], out["shaders_probed"] = probe["factor"], probe.get("shaders_probed")
     result = measure(setup.engine, scene, sv, settings, out, pipeline=setup.pipeline)
     if maps is not None:
         from . import maps as frame_maps

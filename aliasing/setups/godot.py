@@ -28,7 +28,18 @@ Read from godotengine/godot as stored in the index (Godot 4, 4.4 or later: the l
 * ``servers/rendering_server.cpp``: ``directional_shadow/size`` 4096 (256–16384) and
   ``soft_shadow_filter_quality`` 2 (Soft Low).
 
-The constant term, in world units along the light, is therefore
+The renderer (``rendering/renderer/rendering_method``, default ``forward_plus``, Godot's desktop
+default) picks the rest.  Forward+ and Mobile: the RD light data and ``BIAS_FUNC`` above.
+``gl_compatibility`` (the web export; what ``aliasing frames --engine godot`` renders and measures,
+docs/ERRATA.md F13), from 4.6-stable's ``drivers/gles3/shaders/scene.glsl`` (as the web runtime's
+``index.wasm`` holds it) and ``drivers/gles3/rasterizer_scene_gles3.cpp`` ``_render_shadow_pass`` /
+``_setup_lights``: the depth pass moves each caster vertex by ``v·b/|v|²`` in the light's view
+(b = ``shadow_bias``/100 · (2r + pancake_size), about ``shadow_bias``/100 world units), the receiver
+moves along its normal by ``shadow_normal_bias`` · 2r/R on every face turned to the sun, the filter
+is one hardware lookup or a fixed 5- or 13-tap PCF (:data:`COMPAT_PCF`), blend splits mix over
+the whole split.
+
+The constant term (Forward+), in world units along the light, is therefore
 ``shadow_bias/100 · (2r + pancake_size) · shadow_blur · quality_radius``: at the defaults
 0.001·(w·2048 + 20)·2 per cascade of texel w, about 4.1 texels plus 4 cm.
 """
@@ -47,6 +58,12 @@ CULL = "servers/rendering/renderer_scene_cull.cpp _light_instance_setup_directio
 STORAGE = "servers/rendering/renderer_rd/storage_rd/light_storage.cpp"
 SERVER = "servers/rendering_server.cpp"
 AT = " (godotengine/godot commit 8ea4ec95)"
+RENDERER = "rendering/renderer/rendering_method"
+RENDERERS = ("forward_plus", "mobile", "gl_compatibility")
+COMPAT = "drivers/gles3/shaders/scene.glsl (Godot 4.6-stable, as its web runtime's index.wasm holds it)"
+#: gl_compatibility: soft_shadow_filter_quality → taps of scene.glsl's sample_shadow (1: one hardware 2×2 lookup;
+#: 5: SHADOW_MODE_PCF_5, ±1 texel; 13: SHADOW_MODE_PCF_13, ±2 texels); measured in Godot 4.6's web runtime (ERRATA F13)
+COMPAT_PCF = {0: 1, 1: 1, 2: 5, 3: 5, 4: 13, 5: 13}
 MODES = ("SHADOW_ORTHOGONAL", "SHADOW_PARALLEL_2_SPLITS", "SHADOW_PARALLEL_4_SPLITS")
 SPLITS = {"SHADOW_ORTHOGONAL": 1, "SHADOW_PARALLEL_2_SPLITS": 2, "SHADOW_PARALLEL_4_SPLITS": 4}
 SIZE = "rendering/lights_and_shadows/directional_shadow/size"
@@ -95,10 +112,22 @@ SETTINGS = (
     Setting(QUALITY, 2, "", "int", (0, 5), aliases=QUALITY_ALIASES, source=f"{SERVER} GLOBAL_DEF; servers/rendering_server.h ShadowQuality{AT}",
             doc="0 Hard, 1 Soft Very Low, 2 Soft Low, 3 Soft Medium, 4 Soft High, 5 Soft Ultra"),
     Setting(BITS, True, "", "bool", source=f"{SERVER} GLOBAL_DEF", doc="16-bit depth atlas (else 32-bit)"),
+    Setting(RENDERER, "forward_plus", "", "choice", RENDERERS, source="main/main.cpp GLOBAL_DEF_RST_BASIC (the first renderer hint: forward_plus on desktop; rendering_method.web: gl_compatibility)",
+            doc="forward_plus and mobile: the RD renderer's bias and filter; gl_compatibility (the web export): its own (rule, filter_of)"),
 )
 
 
-def _distances(s: Mapping[str, Any], camera) -> tuple[list[float], int]:
+def distances(s: Mapping[str, Any], camera) -> tuple[list[float], int]:
+    """The split distances [m] (camera near … min(max distance, far)) and the split count, as
+    ``_light_instance_setup_directional_shadow`` computes them (module docstring).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> s = {st.key: st.default for st in SETTINGS}
+    >>> [round(d, 2) for d in distances(s, SimpleNamespace(near=0.5, far=40.0))[0]]
+    [0.5, 4.45, 8.4, 20.25, 40.0]
+    """
     k = SPLITS[s["directional_shadow_mode"]]
     far = camera.far
     if s["directional_shadow_max_distance"] > 0:
@@ -115,7 +144,22 @@ def _distances(s: Mapping[str, Any], camera) -> tuple[list[float], int]:
 
 
 def filter_of(s: Mapping[str, Any]) -> Filter:
+    """The directional filter: the RD renderer's Vogel disk, or the Compatibility renderer's fixed PCF (:data:`COMPAT_PCF`).
+
+    Examples
+    --------
+    >>> s = {st.key: st.default for st in SETTINGS}
+    >>> filter_of({**s, RENDERER: "gl_compatibility"}).taps, filter_of(s).taps
+    (3, 5)
+    """
     quality = int(s[QUALITY])
+    if s.get(RENDERER, "forward_plus") == "gl_compatibility":
+        taps = COMPAT_PCF[quality]
+        if taps == 1:
+            return Filter("pcf", 2, 0.0, note=f"Compatibility, {QUALITY_NAMES[quality]}: one hardware 2×2 comparison ({COMPAT} sample_shadow)")
+        return Filter("pcf", 3 if taps == 5 else 5, 1.0 if taps == 5 else 2.0,
+                      note=f"Compatibility, {QUALITY_NAMES[quality]}: SHADOW_MODE_PCF_{taps}, {taps} hardware 2×2 comparisons "
+                      f"to ±{1 if taps == 5 else 2} atlas texels ({COMPAT} sample_shadow)")
     radius, samples = QUALITY_RADIUS[quality]
     if s["light_angular_distance"] > 0:
         return Filter("pcss", max(2, samples), 0.0, note="PCSS-like soft shadows from light_angular_distance (penumbra samples, not modelled as PCF)")
@@ -134,12 +178,18 @@ def rule(s: Mapping[str, Any], resolution: int) -> BiasRule:
     light, with 2r = w·R (w the split's texel): a ``depth_texels`` term of scale R·soft/100 and
     offset pancake/R.  Normal: ``shadow_normal_bias`` texels across the light (``across_texels``).
     """
+    faces = "back" if s["shadow_reverse_cull_face"] else "front"
+    if s.get(RENDERER, "forward_plus") == "gl_compatibility":
+        # the caster moves v·b/|v|² in the light's view, b = shadow_bias/100·(2r + pancake): about b/(r + pancake),
+        # shadow_bias/100 world units for a small r (exact in aliasing.frames.models.godot); the receiver moves along
+        # its normal by shadow_normal_bias texels on every face turned to the sun (scene.glsl's base_normal_bias)
+        return BiasRule((BiasTerm("shadow_bias", float(s["shadow_bias"]), "depth", 0.01),
+                         BiasTerm("shadow_normal_bias", float(s["shadow_normal_bias"]), "normal_texels", 1.0)), faces)
     angular = float(s["light_angular_distance"])
     soft = float(s["shadow_blur"]) * (QUALITY_RADIUS[int(s[QUALITY])][0] if angular <= 0 else 1.0)
     return BiasRule((BiasTerm("shadow_bias", float(s["shadow_bias"]), "depth_texels", resolution * soft / 100.0,
                               offset=float(s["directional_shadow_pancake_size"]) / resolution),
-                     BiasTerm("shadow_normal_bias", float(s["shadow_normal_bias"]), "across_texels", 1.0)),
-                    "back" if s["shadow_reverse_cull_face"] else "front")
+                     BiasTerm("shadow_normal_bias", float(s["shadow_normal_bias"]), "across_texels", 1.0)), faces)
 
 
 def layout(size: int, k: int) -> tuple[int, int, str]:
@@ -161,13 +211,16 @@ def layout(size: int, k: int) -> tuple[int, int, str]:
 
 def build(s: Mapping[str, Any], camera) -> Pipeline:
     """Godot's pipeline for ``camera`` (module docstring)."""
-    edges, k = _distances(s, camera)
+    edges, k = distances(s, camera)
     size = int(s[SIZE])
     res, rows, words = layout(size, k)
     blend = bool(s["directional_shadow_blend_splits"]) and k > 1
     near_i = [edges[i - 1] if blend and i > 0 else edges[i] for i in range(k)]
     far_i = edges[1:]
-    bands = tuple((edges[i + 1] * (1 - BLEND_BAND), edges[i + 1]) for i in range(k - 1)) if blend else ()
+    if s.get(RENDERER, "forward_plus") == "gl_compatibility":  # scene.glsl: smoothstep(previous offset, offset, depth), the whole split
+        bands = tuple((edges[i] if i else 0.0, edges[i + 1]) for i in range(k - 1)) if blend else ()
+    else:
+        bands = tuple((edges[i + 1] * (1 - BLEND_BAND), edges[i + 1]) for i in range(k - 1)) if blend else ()
     frac = max(((b - a) / (edges[i + 1] - edges[i]) for i, (a, b) in enumerate(bands)), default=0.0)
     notes = [
         f"directional_shadow_fade_start: shadows fade out over [{s['directional_shadow_fade_start']:g}, 1] × {edges[-1]:g} (not modelled)",

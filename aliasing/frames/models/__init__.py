@@ -8,7 +8,7 @@ pinned package), and the cascades' ends and map sides from the toolkit's presets
 Examples
 --------
 >>> sorted(MODELS)
-['babylon', 'playcanvas', 'threejs']
+['babylon', 'godot', 'playcanvas', 'threejs']
 >>> MODELS["threejs"].settings({"shadowBias": 0})["shadowBias"]   # CSM: `data.shadowBias || 0.000001`
 1e-06
 """
@@ -23,15 +23,16 @@ from ..predict import Prediction, reference
 from ..single import BabylonSingle, ThreeDirectional
 from .babylon import BabylonCSM, tight_sides
 from .filament import Filament
+from .godot import Godot
 from .playcanvas import PlayCanvas
 from .threejs import ThreeCSM
 
 Array = NDArray[np.float64]
 __all__ = ["MODELS", "SINGLE", "Prediction", "reference", "tight_sides", "ThreeCSM", "ThreeDirectional", "BabylonCSM", "BabylonSingle",
-           "PlayCanvas", "Filament", "model_for", "from_setup"]
+           "PlayCanvas", "Filament", "Godot", "model_for", "from_setup"]
 
 
-MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvas()}
+MODELS = {"threejs": ThreeCSM(), "babylon": BabylonCSM(), "playcanvas": PlayCanvas(), "godot": Godot()}
 #: the engines' single-map classes, by the ``class`` setting
 SINGLE = {("threejs", "DirectionalLight"): ThreeDirectional(), ("babylon", "ShadowGenerator"): BabylonSingle()}
 
@@ -81,6 +82,12 @@ def from_setup(setup) -> dict:
     engine, s = setup.engine, dict(setup.settings)
     if engine == "filament":
         return FILAMENT.from_setup(setup)
+    if engine == "godot":
+        from ...setups.godot import RENDERER
+
+        if s[RENDERER] != "gl_compatibility":
+            raise ValueError(f"{RENDERER}: Godot's frames are its web runtime, the Compatibility renderer: set "
+                             f"{RENDERER}=gl_compatibility (the check then uses that renderer's bias and filter), got {s[RENDERER]!r}")
     if engine not in MODELS:
         raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")
     if engine == "threejs" and s["class"] == "DirectionalLight":
@@ -124,6 +131,8 @@ def from_setup(setup) -> dict:
         if s["material.backFaceCulling"] != s["material.cullBackFaces"] and not s["material.cullBackFaces"]:
             raise ValueError("material.cullBackFaces false (front faces culled) is not rendered by the frames")
         out["backFaceCulling"] = s["material.backFaceCulling"]
+    elif engine == "godot":
+        out = dict(s)
     else:
         out = {k: s[k] for k in ("shadowBias", "normalOffsetBias", "shadowResolution", "numCascades", "cascadeDistribution", "cascadeBlend",
                                  "shadowDistance")}

@@ -13,6 +13,36 @@ from ...view import tan_theta
 Array = NDArray[np.float64]
 
 
+def eye_buffers(scene, w: int, h: int) -> tuple[Array, Array, NDArray[np.bool_]]:
+    """World positions and normals of the ``w`` × ``h`` pixels the scene's camera sees (GL rows bottom-up), and where it sees a surface.
+
+    The toolkit's eye pass (:func:`aliasing.raster.draw.eye.eye_pass`) on a square grid of ``w``
+    pixels whose middle ``h`` rows are the image: ``w − h`` must be even.  No far clip.  Where
+    nothing is hit, positions and normals are 0.
+
+    Examples
+    --------
+    >>> from aliasing.frames.scenes import frame_scene
+    >>> fs = frame_scene("boxes", near=0.5, far=30.0, fov=50.0, aspect=1.5, boxes=1, ground_cells=1)
+    >>> pos, nrm, hit = eye_buffers(fs, 24, 16)
+    >>> pos.shape, bool(hit[0].any()), bool(hit[-1].any())       # bottom row: the ground; top row: the sky
+    ((16, 24, 3), True, False)
+    """
+    from ...raster.draw.eye import eye_pass
+
+    if (w - h) % 2 or w < h:
+        raise ValueError(f"w − h must be even and ≥ 0 (the eye pass's square pixel grid), got {w}×{h}")
+    cam = scene.camera
+    half = np.arctan(tan_theta(cam.fov) * w / h)
+    eb = eye_pass(cam.to_eye(scene.triangles), float(np.degrees(2 * half)), w, near=cam.near)
+    k0 = (w - h) // 2
+    pos_e, nrm_e = eb.position[k0:k0 + h], eb.normal[k0:k0 + h]          # rows bottom-up, as WebGL's
+    hit = np.isfinite(pos_e[..., 0])
+    pos = np.where(hit[..., None], np.nan_to_num(pos_e) @ cam.rotation + cam.eye, 0.0)
+    nrm = np.where(hit[..., None], np.nan_to_num(nrm_e) @ cam.rotation, 0.0)
+    return pos, nrm, hit
+
+
 @dataclass(frozen=True)
 class Filament:
     """Filament 1.53.4 from npm (``filament``: filament.js + filament.wasm, WebGL 2), a DIRECTIONAL light with shadows.
@@ -136,20 +166,12 @@ class Filament:
         """
         import base64
 
-        from ...raster.draw.eye import eye_pass
-
         w, h = int(out["width"]), int(out["height"])
         if (w - h) % 2:
             raise ValueError(f"Filament's frames need an even width − height (the eye pass's square pixels), got {w}×{h}")
         lit, unlit = (np.frombuffer(base64.b64decode(out[k]), np.uint8).reshape(h, w, 4).astype(float) for k in ("lit", "unlit"))
         cam = scene.camera
-        half = np.arctan(tan_theta(cam.fov) * w / h)
-        eb = eye_pass(cam.to_eye(scene.triangles), float(np.degrees(2 * half)), w, near=cam.near)
-        k0 = (w - h) // 2
-        pos_e, nrm_e = eb.position[k0:k0 + h], eb.normal[k0:k0 + h]          # rows bottom-up, as WebGL's
-        hit = np.isfinite(pos_e[..., 0])   # no far clip: Filament projects with an infinite far (getProjectionMatrix)
-        pos = np.where(hit[..., None], np.nan_to_num(pos_e) @ cam.rotation + cam.eye, 0.0)
-        nrm = np.where(hit[..., None], np.nan_to_num(nrm_e) @ cam.rotation, 0.0)
+        pos, nrm, hit = eye_buffers(scene, w, h)   # no far clip: Filament projects with an infinite far (getProjectionMatrix)
         sun = np.asarray(sun, float) / np.linalg.norm(sun)
         ndotl = nrm @ sun
         g_lit, g_un = lit[..., 1], unlit[..., 1]
