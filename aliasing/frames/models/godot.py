@@ -46,6 +46,7 @@ from numpy.typing import NDArray
 
 from ... import _validation as check
 from ...setups import godot as profile
+from ...view import tan_theta
 from .. import predict
 from ..predict import Prediction, reference
 from .filament import eye_buffers
@@ -365,7 +366,7 @@ class Godot:
         rects = RECTS[k]
         expect_v = np.array([[*cam.rotation[0], -cam.rotation[0] @ cam.eye], [*cam.rotation[1], -cam.rotation[1] @ cam.eye],
                              [*-cam.rotation[2], cam.rotation[2] @ cam.eye], [0, 0, 0, 1]])
-        f = 1 / np.tan(np.radians(cam.fov) / 2)
+        f = 1 / float(tan_theta(cam.fov))
         n_, f_ = cam.near, cam.far
         expect_p = np.array([[f * h / w, 0, 0, 0], [0, f, 0, 0], [0, 0, -(f_ + n_) / (f_ - n_), -2 * f_ * n_ / (f_ - n_)], [0, 0, -1, 0]])
         lx = np.asarray(out["light_transform"], float)
