@@ -4,7 +4,7 @@ Not a paper figure.  Each engine (pinned npm release) renders the built-in boxes
 headless Chromium with WebGL 2 on SwiftShader (:mod:`aliasing.frames`); per row: the
 engine's frame, the toolkit's predicted shadow factor for the same pixels, the acne map (lit
 receivers the engine shades as shadowed: red where the toolkit predicts it too, yellow where
-only the engine, blue where only the toolkit) and the error map (texels per pixel of the
+only the engine, blue where only the toolkit) and the error map (pixels per texel of the
 cascade each pixel samples, from the engine's light matrices; below 1 a texel covers more than
 a pixel).
 
@@ -32,14 +32,14 @@ CASES = (("threejs", {}, "three.js r187, defaults"), ("threejs", {"material.shad
 CAMERA, SUN = "near=0.5,far=60,fov=50,aspect=16:9,height=288", "35@30"
 
 
-def _tpp(result, scene) -> np.ndarray:
+def _ppt(result, scene) -> np.ndarray:
     rb = result.readback
     depth = scene.camera.to_eye(np.nan_to_num(rb.position))[..., 2]
     sides = np.array([max(1 / np.linalg.norm(m[0, :3]), 1 / np.linalg.norm(m[1, :3])) for m in rb.matrices])
     tex = sides / rb.sizes[:, 0]
     pixel = 2 * depth * tan_theta(scene.camera.fov) / rb.shadow.shape[0]
     c = rb.cascade
-    return np.where(rb.drawn & (c >= 0), pixel / tex[np.clip(c, 0, None)], np.nan)
+    return np.where(rb.drawn & (c >= 0), tex[np.clip(c, 0, None)] / pixel, np.nan)
 
 
 def main(out_dir: Path) -> list[Path]:
@@ -70,8 +70,8 @@ def main(out_dir: Path) -> list[Path]:
         rep = r.report
         ax[2].imshow(acne)
         ax[2].set_title(f"acne: engine {100 * rep['measured']['acne']:.2f} %, toolkit {100 * rep['predicted']['acne']:.2f} %", fontsize=8)
-        im = ax[3].imshow(_tpp(r, fs), cmap="viridis", vmin=0, vmax=2)
-        ax[3].set_title("texels per pixel (engine's matrices)", fontsize=8)
+        im = ax[3].imshow(_ppt(r, fs), cmap="viridis", vmin=0, vmax=2)
+        ax[3].set_title("pixels per texel (engine's matrices)", fontsize=8)
         fig.colorbar(im, ax=ax[3], shrink=0.8)
         for a in ax:
             a.set_xticks([]), a.set_yticks([])

@@ -11,7 +11,7 @@ depth bias, PCF's five rotated hardware-PCF taps), and the two are measured alik
 * acne within 2 percentage points, at three.js's defaults and with front faces casting at
   CSM's default bias (a bias below the one front faces need);
 * the lit gap at the boxes' feet within 1 px;
-* texels per pixel from the engine's matrices equal to the toolkit's fit to 1e-6 relative;
+* pixels per texel from the engine's matrices equal to the toolkit's fit to 1e-6 relative;
 * the engines' shadow maps, read back, equal to the toolkit's rasterizer's texel for texel
   within float32 depth and SwiftShader's 1/16-texel snapping (three.js, Babylon.js);
 * shimmer along a camera path: three.js and Babylon.js (turning: ratio 0.8-1.25 to the
@@ -136,7 +136,7 @@ def test_threejs_frame_matches_the_prediction(three, name):
     assert abs(m["acne"] - p["acne"]) <= 0.02, r
     assert abs(m["lost_shadow"] - p["lost_shadow"]) <= 0.02, r  # the acne's 2 points, for the shadow lost
     assert m["gap_px"] is not None and abs(m["gap_px"] - p["gap_px"]) <= 1.0, r
-    got, want = np.array(m["texels_per_pixel"]), np.array(p["texels_per_pixel"])
+    got, want = np.array(m["px_per_texel"]), np.array(p["px_per_texel"])
     assert got.shape == want.shape == (three[name].settings["cascades"],) and np.max(np.abs(got / want - 1)) <= 1e-6, r
     assert r["details"]["cascade_agreement"] >= 0.999, r
     # the whole light matrices (light frame, diagonal side, centre floored to a texel, margin) as predicted
@@ -158,7 +158,7 @@ def test_babylon_frame_matches_the_prediction(babylon, name):
     assert abs(m["acne"] - p["acne"]) <= 0.02, r
     assert abs(m["lost_shadow"] - p["lost_shadow"]) <= 0.02, r  # the acne's 2 points, for the shadow lost
     assert m["gap_px"] is not None and abs(m["gap_px"] - p["gap_px"]) <= 1.0, r
-    got, want = np.array(m["texels_per_pixel"]), np.array(p["texels_per_pixel"])
+    got, want = np.array(m["px_per_texel"]), np.array(p["px_per_texel"])
     assert got.shape == want.shape == (4,) and np.max(np.abs(got / want - 1)) <= 1e-6, r
     assert r["details"]["cascade_agreement"] >= 0.999, r
     # the cascade matrices modelled in the engine's float32: the engine's, bit for bit
@@ -166,7 +166,7 @@ def test_babylon_frame_matches_the_prediction(babylon, name):
 
 
 def test_babylon_footprint_is_the_engines_float32(babylon, boxes):
-    # ERRATA F6: the setups' float64 fit is 2.5e-6 to 2.6e-6 off the engine's texels per pixel (its
+    # ERRATA F6: the setups' float64 fit is 2.5e-6 to 2.6e-6 off the engine's pixels per texel (its
     # float32 inverse view-projection moves the slices' corners); the float32 model is not off at all.
     # Along both camera paths (turning: setTarget's Euler angles; forward) every pose is bit for bit
     from aliasing.frames import babylon_cascades
@@ -174,10 +174,10 @@ def test_babylon_footprint_is_the_engines_float32(babylon, boxes):
 
     fs, sun = boxes
     rep = babylon["defaults"].report
-    m, d = np.array(rep["measured"]["texels_per_pixel"]), np.array(rep["details"]["pipeline_texels_per_pixel"])
+    m, d = np.array(rep["measured"]["px_per_texel"]), np.array(rep["details"]["pipeline_px_per_texel"])
     off = np.abs(m / d - 1)
     assert round(float(off.min()), 7) == 2.5e-6 and round(float(off.max()), 7) == 2.6e-6, off
-    assert rep["measured"]["texels_per_pixel"] == rep["predicted"]["texels_per_pixel"], rep
+    assert rep["measured"]["px_per_texel"] == rep["predicted"]["px_per_texel"], rep
     f64 = babylon_cascades.matrices(babylon["defaults"].settings, fs.camera, sun, fs.triangles, float32=False)
     rb = babylon["defaults"].readback
     assert round(float(np.max(np.abs(f64 - rb.matrices)) / np.max(np.abs(rb.matrices))), 8) == 1.8e-7
@@ -215,7 +215,7 @@ def test_babylon_shadow_generator_matches_the_prediction(babylon_single, name):
     assert abs(m["acne"] - p["acne"]) <= 0.02, r
     assert abs(m["lost_shadow"] - p["lost_shadow"]) <= 0.02, r  # the acne's 2 points, for the shadow lost
     assert m["gap_px"] is not None and abs(m["gap_px"] - p["gap_px"]) <= 1.0, r
-    got, want = np.array(m["texels_per_pixel"]), np.array(p["texels_per_pixel"])
+    got, want = np.array(m["px_per_texel"]), np.array(p["px_per_texel"])
     assert got.shape == want.shape == (1,) and np.max(np.abs(got / want - 1)) <= BABYLON_FLOAT32, r
     # LookAtLH from the light, OrthoLH of the box, in float32
     assert r["details"]["matrices_vs_engine"] <= BABYLON_FLOAT32, r
@@ -294,7 +294,7 @@ def test_playcanvas_frame_matches_the_prediction(playcanvas, boxes, name):
     assert abs(m["acne"] - p["acne"]) <= 0.02, rep
     assert abs(m["lost_shadow"] - p["lost_shadow"]) <= 0.02, rep  # the acne's 2 points, for the shadow lost
     assert m["gap_px"] is not None and abs(m["gap_px"] - p["gap_px"]) <= 1.0, rep
-    got, want = np.array(m["texels_per_pixel"]), np.array(p["texels_per_pixel"])
+    got, want = np.array(m["px_per_texel"]), np.array(p["px_per_texel"])
     k = r.settings["numCascades"]
     assert got.shape == want.shape == (k,) and np.max(np.abs(got / want - 1)) <= PLAYCANVAS_FLOAT32, rep
     assert rep["details"]["cascade_agreement"] >= 0.999, rep
@@ -428,7 +428,7 @@ def test_threejs_directional_light_matches_the_prediction(three_single, name):
     assert abs(m["acne"] - p["acne"]) <= 0.02, r
     assert abs(m["lost_shadow"] - p["lost_shadow"]) <= 0.02, r  # the acne's 2 points, for the shadow lost
     assert m["gap_px"] is not None and abs(m["gap_px"] - p["gap_px"]) <= 1.0, r
-    got, want = np.array(m["texels_per_pixel"]), np.array(p["texels_per_pixel"])
+    got, want = np.array(m["px_per_texel"]), np.array(p["px_per_texel"])
     assert got.shape == want.shape == (1,) and np.max(np.abs(got / want - 1)) <= 1e-6, r
     # the shadow matrix (the light at its target + sun · (near + far)/2, lookAt, the box, [½ bias]) as predicted
     assert r["details"]["matrices_vs_engine"] <= 1e-9, r
@@ -443,7 +443,7 @@ def test_threejs_directional_light_acne_and_tuned_normal_bias(three_single):
 
 
 def _rel(rep) -> float:
-    return float(np.max(np.abs(np.array(rep["measured"]["texels_per_pixel"]) / np.array(rep["predicted"]["texels_per_pixel"]) - 1)))
+    return float(np.max(np.abs(np.array(rep["measured"]["px_per_texel"]) / np.array(rep["predicted"]["px_per_texel"]) - 1)))
 
 
 def test_frames_numbers_in_the_docs(playcanvas, three_single, boxes):
@@ -712,8 +712,8 @@ def test_cli_writes_the_frame_and_the_report(tmp_path, chromium):
             depth = np.where(np.isfinite(dm.depth), dm.depth, 1.0)
             snapped = compare(EngineMap(got.astype(float), 2048, 8), depth, dm.triangle, np.full(depth.shape, 2.0**-23))
             assert snapped["agreement"] == 1.0, snapped
-    assert set(report["measured"]) == {"shadow_agreement", "acne", "lost_shadow", "gap_px", "texels_per_pixel"}
-    assert set(report["predicted"]) == {"acne", "lost_shadow", "gap_px", "texels_per_pixel"}
+    assert set(report["measured"]) == {"shadow_agreement", "acne", "lost_shadow", "gap_px", "px_per_texel"}
+    assert set(report["predicted"]) == {"acne", "lost_shadow", "gap_px", "px_per_texel"}
     assert report["engine"] == "threejs" and report["release"] == "r187" and report["details"]["engine_revision"] == "187"
     assert report["measured"]["acne"] > 0.3 and abs(report["measured"]["acne"] - report["predicted"]["acne"]) <= 0.02
     assert json.loads((tmp_path / "frames.json").read_text()) == report

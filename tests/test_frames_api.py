@@ -124,11 +124,11 @@ def _cases():
         "compare.agreement": (lambda d: lambda: compare.agreement(fac, fac, np.ones(_shape(d, 2, (3, 3)), bool)), "drawn"),
         "compare.acne": (lambda d: lambda: compare.acne(fac, np.ones(_shape(d, 2, (3, 3)), bool)), "receivers"),
         "compare.gap": (lambda d: lambda: compare.gap(fac, mask, np.ones(_shape(d, 2, (3, 3)), bool), mask), "ground"),
-        "compare.texels_per_pixel fov": (lambda d: lambda: compare.texels_per_pixel([1.0], [2.0], [1024], d.draw(st.one_of(
+        "compare.px_per_texel fov": (lambda d: lambda: compare.px_per_texel([1.0], [2.0], [1024], d.draw(st.one_of(
             st.floats(-1e3, 0), st.floats(180, 1e3), nonfinite)), 512), "fov"),
-        "compare.texels_per_pixel sides": (lambda d: lambda: compare.texels_per_pixel(
+        "compare.px_per_texel sides": (lambda d: lambda: compare.px_per_texel(
             [1.0, 2.0], _with(d.draw(st.one_of(st.floats(-1e3, 0), nonfinite)), d.draw(st.integers(0, 1)))([2.0, 3.0]), [1024, 1024], 50.0, 512), "sides"),
-        "compare.texels_per_pixel height": (lambda d: lambda: compare.texels_per_pixel([1.0], [2.0], [1024], 50.0, d.draw(st.integers(-5, 0))), "height"),
+        "compare.px_per_texel height": (lambda d: lambda: compare.px_per_texel([1.0], [2.0], [1024], 50.0, d.draw(st.integers(-5, 0))), "height"),
         "run.flips": (lambda d: lambda: run.flips(np.ones((3, 2, 2), bool), np.ones(_shape(d, 2, (2, 2)), bool)), "masks"),
         "run.make_job height": (lambda d: lambda: run.make_job(SCENE, [0.0, 1.0, 0.0], {}, d.draw(st.one_of(st.integers(-5, 15), st.integers(2161, 10**5)))), "height"),
         "run.make_job sun": (lambda d: lambda: run.make_job(SCENE, _with(d.draw(nonfinite), d.draw(st.integers(0, 2)))([0.0, 1.0, 0.0]), {}, 64), "sun"),
@@ -267,9 +267,9 @@ def test_polygon_offset_is_finite_and_not_negative(tri, res, factor, units):
 
 @FAST
 @given(st.lists(st.floats(0.1, 100), min_size=1, max_size=4), st.floats(1, 170), st.integers(1, 4000))
-def test_texels_per_pixel_is_positive(starts, fov, height):
+def test_px_per_texel_is_positive(starts, fov, height):
     sides = [2.0 * s for s in starts]
-    out = compare.texels_per_pixel(starts, sides, [1024.0] * len(starts), fov, height)
+    out = compare.px_per_texel(starts, sides, [1024.0] * len(starts), fov, height)
     assert len(out) == len(starts) and all(np.isfinite(v) and v > 0 for v in out)
 
 

@@ -66,7 +66,7 @@ def test_godot_draws_with_the_toolkits_camera_light_and_matrices(frames):
         assert d["pipeline_starts_vs_model"] == 0.0              # the setups profile's split distances are the model's
         assert d["engine_ms"] < 10_000                          # the page, Godot's start included [ms]
         assert d["coverage_vs_engine"] < 0.01                    # Godot clips at the far plane, the eye pass does not
-        np.testing.assert_allclose(r.report["measured"]["texels_per_pixel"], r.report["predicted"]["texels_per_pixel"], rtol=1e-5)
+        np.testing.assert_allclose(r.report["measured"]["px_per_texel"], r.report["predicted"]["px_per_texel"], rtol=1e-5)
 
 
 def test_acne_at_bias_zero_and_none_at_the_defaults_as_predicted(frames):

@@ -4,9 +4,8 @@ The **aliasing error** (Lloyd et al. 2006's m = dp/ds, "the perspective aliasing
 width of one shadow-map texel as it lands on the camera's image, in image pixels: **pixels per
 texel** [px/texel].  At 1 a texel covers one pixel; at 8 one texel spans 8 pixels (the blocky
 shadows the papers fight); below 1 several texels share a pixel.  ``check``, ``bias``, ``tune`` and
-the docs say it with :data:`ERROR_NAME` and :data:`ERROR_UNIT`.  (The frames reports'
-``texels_per_pixel`` is its inverse, a pixel's side over a texel's, measured in the engines'
-own frames: :mod:`aliasing.frames.compare`.)
+the docs say it with :data:`ERROR_NAME` and :data:`ERROR_UNIT`, and the frames' reports measure the
+same quantity in the engines' own frames as ``px_per_texel`` (:mod:`aliasing.frames.compare`).
 
 Every field of the report has a unit (:func:`units`), or is unitless by declaration
 (:data:`UNITLESS`): the table's and the CSV's headers carry it in brackets (``texel_s [m]``,

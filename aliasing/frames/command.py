@@ -177,7 +177,7 @@ def _run(args: argparse.Namespace) -> int:
         sys.stdout.write(json.dumps(report, indent=1) + "\n")
     else:
         m, p = report["measured"], report["predicted"]
-        rows = [("shadow_agreement", m["shadow_agreement"], None)] + [(k, m[k], p[k]) for k in ("acne", "lost_shadow", "gap_px", "texels_per_pixel")]
+        rows = [("shadow_agreement", m["shadow_agreement"], None)] + [(k, m[k], p[k]) for k in ("acne", "lost_shadow", "gap_px", "px_per_texel")]
         sys.stdout.write(f"{report['engine']} {report['release']}  measured  predicted\n")
         for k, a, b in rows:
             sys.stdout.write(f"{k}  {a}  {'-' if b is None else b}\n")

@@ -21,11 +21,12 @@ on the same pixels (those the engine drew, at the positions and normals it compu
     are shaded lit (factor ≥ ½) within :data:`GAP_REACH` px of a non-ground pixel, over the
     ground pixels in shadow that touch one (the contact line's length in pixels): the lit
     gap's mean width [px].  None for a scene without a ground.
-``texels_per_pixel``
-    Per cascade: the eye pixel's side at the cascade's first depth over the map texel's
-    larger side (2 d tan(fov/2) / H over side / R), from the engine's light matrices and
-    breaks (measured) and from the toolkit's split and fit (predicted): texels per pixel, the
-    inverse of ``check``'s aliasing error [px/texel] (:data:`aliasing.check.units.ERROR_UNIT`).
+``px_per_texel``
+    Per cascade: the map texel's larger side over the eye pixel's side at the cascade's first
+    depth (side / R over 2 d tan(fov/2) / H), from the engine's light matrices and breaks
+    (measured) and from the toolkit's split and fit (predicted): the pixels one texel spans,
+    ``check``'s aliasing error in the same direction and unit [px/texel]
+    (:data:`aliasing.check.units.ERROR_UNIT`), at the cascade's near end.
 
 Examples
 --------
@@ -207,8 +208,9 @@ def gap(factor: Array, ref_lit: NDArray[np.bool_], ground: NDArray[np.bool_], dr
     return float(lit_gap.sum() / contact.sum())
 
 
-def texels_per_pixel(starts: Array, sides: Array, resolution: Array, fov: float, height: int) -> list[float]:
-    """Per cascade: (2 d tan(fov/2) / height) / (side / resolution) at the cascade's first depth ``d`` [world units].
+def px_per_texel(starts: Array, sides: Array, resolution: Array, fov: float, height: int) -> list[float]:
+    """Per cascade: (side / resolution) / (2 d tan(fov/2) / height) at the cascade's first depth ``d`` [world units]:
+    the pixels a texel spans [px/texel], ``check``'s aliasing error.
 
     Parameters
     ----------
@@ -226,12 +228,12 @@ def texels_per_pixel(starts: Array, sides: Array, resolution: Array, fov: float,
     Returns
     -------
     list of float
-        Per cascade: the eye pixel's side over the texel's [texels per pixel].
+        Per cascade: the texel's side over the eye pixel's [px/texel].
 
     Examples
     --------
-    >>> texels_per_pixel([1.0, 10.0], [2.0, 20.0], [1024, 1024], 90.0, 512)   # tan 45° = 1: 2 d / 512 over d / 512
-    [2.0, 2.0]
+    >>> px_per_texel([1.0, 10.0], [2.0, 20.0], [1024, 1024], 90.0, 512)   # tan 45° = 1: d / 512 over 2 d / 512
+    [0.5, 0.5]
     """
     starts, sides, resolution = (np.asarray(check.positive(v, n), float) for v, n in ((starts, "starts"), (sides, "sides"), (resolution, "resolution")))
     if not (starts.ndim == 1 and starts.shape == sides.shape == resolution.shape):
@@ -240,4 +242,4 @@ def texels_per_pixel(starts: Array, sides: Array, resolution: Array, fov: float,
     check.whole(height, "height", 1, what=" [px]")
     starts, sides, resolution = (np.asarray(v, float) for v in (starts, sides, resolution))
     pixel = 2 * starts * tan_theta(fov) / height
-    return (pixel / (sides / resolution)).tolist()
+    return ((sides / resolution) / pixel).tolist()

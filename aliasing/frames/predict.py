@@ -11,7 +11,7 @@ For every pixel the engine drew, the toolkit predicts the shadow factor from
 
 The light matrices used to draw the predicted maps are the engine's own (read back), so that
 the shadow mask and the acne test the rasterizer, faces, bias and filter: the matrices
-themselves are predicted separately (the texel footprint, :func:`texels_per_pixel`).
+themselves are predicted separately (the texel footprint, :func:`px_per_texel`).
 
 The reference (what is really lit) is exact: for each pixel, the surface nearest the light in
 its texel of a map of *all* faces is compared as a plane at the pixel's own map position

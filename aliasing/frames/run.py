@@ -223,7 +223,7 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     >>> rep = measure("threejs", fs, sun, s, out).report
     >>> rep["measured"]["acne"], rep["predicted"]["acne"], rep["details"]["matrices_vs_engine"]
     (0.0, 0.0, 0.0)
-    >>> np.round(rep["measured"]["texels_per_pixel"], 6).tolist() == np.round(rep["predicted"]["texels_per_pixel"], 6).tolist()
+    >>> np.round(rep["measured"]["px_per_texel"], 6).tolist() == np.round(rep["predicted"]["px_per_texel"], 6).tolist()
     True
     """
     if not isinstance(scene, FrameScene):
@@ -240,7 +240,7 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
     measured = {
         "shadow_agreement": compare.agreement(rb.shadow, pred.factor, rb.drawn) if predicts else None,
         **shading(rb.shadow, ref, receivers, facing, ground, rb.drawn),
-        "texels_per_pixel": compare.texels_per_pixel(m_starts, m_sides, m_res, scene.camera.fov, h),
+        "px_per_texel": compare.px_per_texel(m_starts, m_sides, m_res, scene.camera.fov, h),
     }
     starts, sides, res = pred.starts, pred.sides, pred.resolution
     extra_pipe = {}
@@ -248,12 +248,12 @@ def measure(engine: str, scene: FrameScene, sun: Array, settings: dict, out: dic
         starts, sides, res = pipeline_footprint(pipeline, scene.camera, sun)
         extra_pipe = {"pipeline_fit": pipeline.fit, "pipeline_starts_vs_model": float(np.max(np.abs(starts / pred.starts - 1))) if len(starts) == len(pred.starts) else None}
         if getattr(model, "footprint_from_matrices", False):  # Babylon.js: its float32 matrices modelled; the setups' fit is float64
-            extra_pipe["pipeline_texels_per_pixel"] = compare.texels_per_pixel(starts, sides, res, scene.camera.fov, h)
+            extra_pipe["pipeline_px_per_texel"] = compare.px_per_texel(starts, sides, res, scene.camera.fov, h)
             starts, sides, res = pred.starts, pred.sides, pred.resolution
     predicted = {
         **shading(pred.factor, ref, receivers, facing, ground, rb.drawn),
-        "texels_per_pixel": compare.texels_per_pixel(starts, sides, res, scene.camera.fov, h),
-    } if predicts else {"acne": None, "lost_shadow": None, "gap_px": None, "texels_per_pixel": None}
+        "px_per_texel": compare.px_per_texel(starts, sides, res, scene.camera.fov, h),
+    } if predicts else {"acne": None, "lost_shadow": None, "gap_px": None, "px_per_texel": None}
     drawn = rb.drawn
     if predicts and (pred.matrices is not None or hasattr(model, "matrices")):  # the whole light matrices, predicted from the fit, snap and light frame
         pm = pred.matrices if pred.matrices is not None else model.matrices(settings, scene.camera, sun)

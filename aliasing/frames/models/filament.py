@@ -66,7 +66,7 @@ class Filament:
       frames and is read as shadowed (0).
     * **Positions and normals.**  From the toolkit's eye pass (:func:`aliasing.raster.draw.eye.eye_pass`)
       of the scene through the camera, checked against what the engine drew (``details``).
-    * **Light matrices.**  Not readable from JavaScript: ``texels_per_pixel`` is not measured, and
+    * **Light matrices.**  Not readable from JavaScript: ``px_per_texel`` is not measured, and
       the exact reference shadows are drawn through the toolkit's own light box around the
       scene (:meth:`reference_matrix`, 2048² texels).
 
@@ -119,7 +119,7 @@ class Filament:
         return "front"
 
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
-        """Not readable from the binding: empty (``texels_per_pixel`` is an empty list)."""
+        """Not readable from the binding: empty (``px_per_texel`` is an empty list)."""
         return np.zeros(0), np.zeros(0), np.zeros(0)
 
     @staticmethod

@@ -32,7 +32,7 @@ Examples
 >>> fs = frame_scene("boxes", near=0.5, far=40.0, fov=50.0, aspect=16 / 9, boxes=6, ground_cells=2)
 >>> r = synthetic_frame(s, fs)
 >>> r.readback.shadow.shape, sorted(r.report["predicted"])
-((36, 64), ['acne', 'gap_px', 'lost_shadow', 'texels_per_pixel'])
+((36, 64), ['acne', 'gap_px', 'lost_shadow', 'px_per_texel'])
 """
 
 from __future__ import annotations
@@ -211,7 +211,7 @@ def synthetic_frame(setup, scene: FrameScene, sun: Array | None = None) -> Frame
     FrameResult
         ``readback`` (synthesized; its ``shadow`` the predicted factor), ``prediction``,
         ``reference`` and ``report`` with ``predicted`` (``acne``, ``lost_shadow``, ``gap_px``,
-        ``texels_per_pixel``) as :func:`aliasing.frames.run.measure` reports it.
+        ``px_per_texel``) as :func:`aliasing.frames.run.measure` reports it.
 
     Raises
     ------
@@ -251,11 +251,11 @@ def predict_synthetic(model, settings: dict, scene: FrameScene, sun: Array, geom
     rb = synthetic_readback(model, settings, scene, sun, geometry, engine)
     pred, ref, _, _ = predict_readback(model, settings, scene, sun, rb)
     receivers, facing, ground = pixel_masks(scene, sun, rb, ref)
-    from ..compare import texels_per_pixel
+    from ..compare import px_per_texel
 
     h = rb.shadow.shape[0]
     predicted = {**shading(pred.factor, ref, receivers, facing, ground, rb.drawn),
-                 "texels_per_pixel": texels_per_pixel(pred.starts, pred.sides, pred.resolution, scene.camera.fov, h)}
+                 "px_per_texel": px_per_texel(pred.starts, pred.sides, pred.resolution, scene.camera.fov, h)}
     rb = Readback(rb.engine, rb.release, pred.factor, rb.cascade, rb.position, rb.normal, rb.matrices, rb.sizes, rb.info, rb.frame)
     report = {"engine": engine, "release": release, "scene": scene.name, "predicted": predicted,
               "details": {"pixels": int(rb.drawn.sum()), "receivers": int(receivers.sum())}}
