@@ -105,7 +105,7 @@ def _ground_pixels(scene: FrameScene, rb: Readback) -> NDArray[np.bool_]:
 def pipeline_footprint(pipeline, camera, sun: Array) -> tuple[Array, Array, Array]:
     """Per cascade from an :class:`aliasing.setups.Pipeline`: first depth, map side [world units], resolution.
 
-    The sides are :func:`aliasing.engines.stable.evaluate` of the pipeline's ranges, fit and snap,
+    The sides are :func:`aliasing.engines.pipeline.result` of the pipeline whole (its ranges, fit, snap and size),
     except the tight fit, measured in the light frame rolled by the world's up
     (:func:`aliasing.frames.models.tight_sides`, ERRATA F5).
 
@@ -120,7 +120,7 @@ def pipeline_footprint(pipeline, camera, sun: Array) -> tuple[Array, Array, Arra
     ([1.0, 7.486], True, [2048.0, 2048.0])
     """
     check.direction(sun)
-    from ..engines import stable
+    from ..engines import pipeline as engine_pipeline
     from .models import tight_sides
 
     near_i, far_i = np.asarray(pipeline.near_i, float), np.asarray(pipeline.far_i, float)
@@ -130,8 +130,7 @@ def pipeline_footprint(pipeline, camera, sun: Array) -> tuple[Array, Array, Arra
     if pipeline.fit == "tight":
         sides = np.array([tight_sides(camera, np.array([a, b]), -sun, np.array([0.0, 1.0, 0.0]))[0] for a, b in zip(near_i, far_i)])
     else:
-        box = stable.evaluate((near_i, far_i), camera.near, float(far_i[-1]), camera.fov, camera.direction_to_eye(sun)[None], aspect=camera.aspect,
-                              fit=pipeline.fit, snap=pipeline.snap, resolution=res)
+        box = engine_pipeline.result(pipeline, camera, camera.direction_to_eye(sun)[None])  # the pipeline whole: its ranges, fit, snap, size
         sides = np.maximum(box.width_x[0], box.width_y[0])
     return near_i, sides, np.full(len(sides), res)
 
