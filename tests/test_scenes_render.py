@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from aliasing import cli, partitioning
-from aliasing.raster import map_set, pictures
+from aliasing import pictures
+from aliasing.raster import map_set
 from aliasing.raster import scenes
 from aliasing.raster.scenes import camera, procedural
 from aliasing.raster.draw import cascades
