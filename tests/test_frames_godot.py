@@ -14,6 +14,9 @@ Checked here, on the boxes scene at 144 × 96 with one browser (four settings, t
   2 blended splits;
 * the split each pixel samples, as Godot's own shader chooses it (a second frame per setting in which
   the page's rewrite of scene.glsl draws the split instead of the shadow), is the predicted split;
+* along a camera path (sideways, 4 poses, a 256² atlas) Godot's camera itself moves; the flips at
+  world points seen in consecutive poses are predicted within 0.002 per frame, the pose matrices to
+  1e-5, and without the snap the prediction is three times as large;
 * the runtime's pin, the pack writer and the refusals (another renderer, bad packs) in one line.
 
 Without Chromium, npm or Playwright the browser tests skip with one line, except under CI

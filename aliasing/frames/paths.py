@@ -4,6 +4,9 @@ matrices through the toolkit's rasterizer (:func:`replay`, the diagnostic of ERR
 
 The engine's page draws each pose's maps with the cascades' camera at the pose and the picture's
 camera in place, so every pixel keeps its world point (:func:`aliasing.frames.run.frame_setup`).
+Godot fits its shadow to the camera it draws only: its picture moves with the camera, and its
+flips are counted at the world points two consecutive poses both see (:func:`matched_flips`,
+:func:`godot_shimmer`).
 
 Examples
 --------

@@ -359,7 +359,8 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     sun : array_like (3,), optional
         World direction towards the sun.
     path : str, optional
-        ``KIND:STEP[:FRAMES]`` (:func:`parse_path`): adds ``flips_per_frame``.
+        ``KIND:STEP[:FRAMES]`` (:func:`parse_path`): adds ``flips_per_frame`` (Godot: its camera itself moves,
+        flips at matched world points, :func:`aliasing.frames.paths.godot_shimmer`).
     maps : int, optional
         Read the shadow maps back (three.js, Babylon.js; PlayCanvas's atlas), every stride-th texel so that at most
         ``maps`` texels per side come back, and add ``report["maps"]``: the engine's maps

@@ -2,7 +2,8 @@
 # ground and boxes, the Camera3D and the DirectionalLight3D with the job's settings, draw one frame
 # whose every pixel is the raw shadow factor of the sun (a spatial shader whose light() adds
 # ATTENUATION), and hand it with the camera's and light's transforms and projection to the page
-# (window.godotDone, through JavaScriptBridge).
+# (window.godotDone, through JavaScriptBridge); along a camera path (job.path) the camera then moves to
+# each pose and each pose's frame and transforms come back too.
 extends Node3D
 
 const LIGHT_KEYS = ["directional_shadow_split_1", "directional_shadow_split_2", "directional_shadow_split_3",
