@@ -85,7 +85,7 @@ def test_the_shadows_agree_with_the_exact_ones(frames):
 
 
 @pytest.mark.parametrize("extra, message", [
-    (["--path", "sideways:0.1"], "--path: the camera path is rendered for threejs, babylon, playcanvas only (not for filament)"),
+    (["--path", "sideways:0.1"], "--path: the camera path is rendered for threejs, babylon, playcanvas, godot only (not for filament)"),
     (["--maps", "64"], "--maps: the shadow maps are read back for three.js's CSM, Babylon.js's CascadedShadowGenerator and PlayCanvas's directional light only (not yet for filament)"),
     (["--set", "mapSize=2048"], "mapSize: Filament 1.53.4's JavaScript binding cannot set ShadowOptions"),
     (["--set", "lispsm=false"], "lispsm: Filament 1.53.4's JavaScript binding cannot set ShadowOptions"),

@@ -216,8 +216,9 @@ def add_frames_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParse
     p.add_argument("--scene", help="boxes, city or a scene file (.glb, .gltf, .obj, .ply, .stl)")
     p.add_argument("--eye", metavar="X,Y,Z", help="camera position, world space (a scene file needs it; write --eye=-5,2,0 when X is negative)")
     p.add_argument("--target", metavar="X,Y,Z", help="point the camera looks at, world space")
-    p.add_argument("--path", metavar="KIND:STEP[:FRAMES]", help="a camera path for shimmer (threejs, babylon, playcanvas): sideways or forward, STEP world units per "
-                   "frame, or turn, STEP degrees per frame about the world's up; FRAMES (default 30); the cascades follow it while the picture's camera stays, and flips_per_frame is added")
+    p.add_argument("--path", metavar="KIND:STEP[:FRAMES]", help="a camera path for shimmer (threejs, babylon, playcanvas, godot): sideways or forward, STEP world units per "
+                   "frame, or turn, STEP degrees per frame about the world's up; FRAMES (default 30); the cascades follow it while the picture's camera stays "
+                   "(godot: the picture moves with the camera and flips are counted at world points seen in consecutive frames), and flips_per_frame is added")
     p.add_argument("--maps", nargs="?", type=int, const=1024, metavar="SIDE",
                    help="read the shadow maps back (threejs, babylon; playcanvas: its one atlas, each cascade compared in its cell): every stride-th texel, "
                    "at most SIDE per side (default 1024); writes map<i>.npy and map<i>.png and adds maps (agreement with the toolkit's rasterizer) to the JSON")

@@ -4,6 +4,9 @@ matrices through the toolkit's rasterizer (:func:`replay`, the diagnostic of ERR
 
 The engine's page draws each pose's maps with the cascades' camera at the pose and the picture's
 camera in place, so every pixel keeps its world point (:func:`aliasing.frames.run.frame_setup`).
+Godot fits its shadow to the camera it draws only: its picture moves with the camera, and its
+flips are counted at the world points two consecutive poses both see (:func:`matched_flips`,
+:func:`godot_shimmer`).
 
 Examples
 --------
@@ -20,6 +23,8 @@ from dataclasses import replace
 import numpy as np
 from numpy.typing import NDArray
 
+from .. import _validation as check
+from ..view import tan_theta
 from . import babylon_cascades
 from .models import MODELS
 from .readback import FrameResult
@@ -28,7 +33,13 @@ from .scenes import FrameScene, frame_scene  # noqa: F401 - frame_scene for the 
 Array = NDArray[np.float64]
 
 PATHS = ("sideways", "forward", "turn")
+#: the engines whose page holds the picture's camera in place while the cascades follow the path
 PATH_ENGINES = ("threejs", "babylon", "playcanvas")
+#: the engines whose picture moves with the camera along the path (flips counted at matched world points, :func:`matched_flips`)
+MOVING_ENGINES = ("godot",)
+#: :func:`matched_flips`'s visibility test: a point is seen again where the next pose's pixel holds a point this
+#: fraction of its distance from that pose's eye away, on a surface turned the same way (normals within 8°)
+MATCH_TOLERANCE, MATCH_COS = 0.02, float(np.cos(np.radians(8.0)))
 
 
 def parse_path(spec: str, camera) -> list[dict]:
@@ -108,6 +119,84 @@ def flips(masks: NDArray[np.bool_], keep: NDArray[np.bool_]) -> float:
     return float(np.mean(m[1:] != m[:-1])) if m.shape[1] and len(m) > 1 else float("nan")
 
 
+def matched_flips(factors, positions, normals, keep, cameras: list, tolerance: float = MATCH_TOLERANCE) -> dict:
+    """Flips per frame at matched world points, for frames whose camera moves (Godot's path).
+
+    For consecutive frames k, k + 1, each kept pixel of frame k is reprojected through frame
+    k + 1's camera; it is *matched* where it lands in the image on a kept pixel whose point lies
+    within ``tolerance`` · (its distance from frame k + 1's eye) of it, with normals within 8°
+    (a visibility test: the point is seen again, not hidden behind another surface).  A flip is a
+    matched point whose factor crosses ½ between the two frames.
+
+    Parameters
+    ----------
+    factors : array_like (F, H, W)
+        The shadow factor per frame and pixel (rows top down); F ≥ 2.
+    positions, normals : array_like (F, H, W, 3)
+        Each pixel's world point [world units] and unit normal.
+    keep : array_like of bool (F, H, W)
+        The pixels counted (drawn, within the shadow's range).
+    cameras : list of Camera
+        Each frame's camera (:func:`pose_camera`), with the image's aspect.
+    tolerance : float
+        The visibility test's distance, as a fraction of the distance from the eye, in (0, 1).
+
+    Returns
+    -------
+    dict
+        ``flips_per_frame`` (the mean over the F − 1 pairs of flips / matched points; None where no pair
+        matched a point) and ``matched`` (the mean fraction of frame k's kept pixels matched in k + 1).
+
+    Examples
+    --------
+    >>> from aliasing.raster.scenes.camera import look_at
+    >>> cams = [pose_camera(look_at("0,1,0", "0,0,-4"), {"eye": [x, 1.0, 0.0], "target": [x, 0.0, -4.0]}) for x in (0.0, 0.0)]
+    >>> pts = np.zeros((2, 2, 2, 3)); pts[...] = [0.0, 0.0, -4.0]          # every pixel sees the same point of the ground
+    >>> up = np.zeros((2, 2, 2, 3)); up[..., 1] = 1.0
+    >>> f = np.array([np.ones((2, 2)), np.zeros((2, 2))])                 # lit, then shadowed
+    >>> matched_flips(f, pts, up, np.ones((2, 2, 2), bool), cams)["flips_per_frame"]
+    1.0
+    """
+    f, pos, nrm = _reals(factors, "factors"), _reals(positions, "positions"), _reals(normals, "normals")
+    keep = np.asarray(keep, bool) if _reals(keep, "keep").size else np.zeros(0, bool)
+    if f.ndim != 3 or len(f) < 2 or pos.shape != f.shape + (3,) or nrm.shape != pos.shape or keep.shape != f.shape:
+        raise ValueError(f"factors must be (F, H, W) with F >= 2, positions and normals (F, H, W, 3), keep (F, H, W); "
+                         f"got {f.shape}, {pos.shape}, {nrm.shape}, {keep.shape}")
+    if not isinstance(cameras, (list, tuple)) or len(cameras) != len(f) or not all(hasattr(c, "to_eye") for c in cameras):
+        raise ValueError(f"cameras must be one camera per frame ({len(f)}), got {type(cameras).__name__}")
+    tol = check.scalar(tolerance, "tolerance")
+    if not 0 < tol < 1:
+        raise ValueError(f"tolerance must be in (0, 1) [fraction of the distance from the eye], got {tolerance!r}")
+    keep = keep & np.all(np.isfinite(pos), -1) & np.all(np.isfinite(nrm), -1) & np.isfinite(f)
+    _, h, w = f.shape
+    rates, matched = [], []
+    for k in range(len(f) - 1):                       # one vectorized pass per pair of frames
+        cam = cameras[k + 1]
+        p, a = pos[k][keep[k]], f[k][keep[k]]
+        e = cam.to_eye(p)
+        t = float(tan_theta(cam.fov))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            col = np.floor((e[:, 0] / (e[:, 2] * t * cam.aspect) + 1) / 2 * w)
+            row = np.floor((1 - e[:, 1] / (e[:, 2] * t)) / 2 * h)
+        inside = (e[:, 2] > 0) & (col >= 0) & (col < w) & (row >= 0) & (row < h)
+        r, c = np.where(inside, row, 0).astype(np.int64), np.where(inside, col, 0).astype(np.int64)
+        q = pos[k + 1][r, c]
+        same = inside & keep[k + 1][r, c] & (np.linalg.norm(q - p, axis=-1) <= tol * np.linalg.norm(e, axis=-1)) \
+            & (np.sum(nrm[k][keep[k]] * nrm[k + 1][r, c], -1) >= MATCH_COS)
+        matched.append(float(np.mean(same)) if len(same) else 0.0)
+        if same.any():
+            rates.append(float(np.mean((a[same] < 0.5) != (f[k + 1][r, c][same] < 0.5))))
+    return {"flips_per_frame": float(np.mean(rates)) if rates else None, "matched": float(np.mean(matched))}
+
+
+def _reals(value, name: str) -> Array:
+    """An array of real numbers, NaN allowed (what is not drawn), named in the refusal."""
+    raw = np.asarray(value) if not isinstance(value, (str, bytes)) and value is not None else np.asarray([""])
+    if raw.dtype.kind not in "biuf":
+        raise ValueError(f"{name} must be an array of real numbers, got {type(value).__name__}")
+    return raw.astype(float)
+
+
 def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]) -> dict:
     """``flips_per_frame`` of the engine along ``path`` (its read-back ``path``) and as the toolkit
     predicts it (three.js: each pose's predicted matrices, the toolkit's maps and three.js's filter at
@@ -145,6 +234,8 @@ def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]
     frames = rb.info.get("path") or []
     if len(frames) != len(path):
         raise ValueError("the page returned no camera path")
+    if rb.engine in MOVING_ENGINES:
+        return godot_shimmer(result, scene, sun, path)
     h, w = rb.shadow.shape
     measured = np.array([np.frombuffer(__import__("base64").b64decode(f["shadow"]), np.float32).reshape(h, w)[::-1] for f in frames])
     keep = rb.drawn & (rb.cascade >= 0)
@@ -173,6 +264,62 @@ def shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict]
     out["predicted"] = flips(np.array(masks), keep)
     out["matrices_vs_engine"] = worst
     return out
+
+
+def godot_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], matrices: str = "model") -> dict:
+    """Godot's flips along ``path``, measured and predicted, at matched world points (:func:`matched_flips`).
+
+    Godot fits its directional shadow to the camera that draws the picture, so its page moves the
+    camera itself along the path: each pose's read-back is its own (the factor Godot drew, the
+    toolkit's eye pass through the pose's camera for the world points and normals, the split
+    matrices Godot uploaded; :meth:`aliasing.frames.models.godot.Godot.readback`), and each pose's
+    factor is predicted from it as for a single frame (:meth:`~aliasing.frames.models.godot.Godot.predict`
+    through the toolkit's own matrices of the pose, ``matrices="model"``; ``"unsnapped"``: without
+    Godot's 4r/R snap; ``"engine"``: through Godot's).  Returns ``measured`` and ``predicted``
+    (flips per frame), ``matched`` (the fraction of each pose's pixels seen again in the next),
+    ``resampling`` (the flips per frame of the exact shadows, no map at all, at the same points: the
+    pixels' own motion, a matched point's neighbour lies up to half a pixel away),
+    ``matrices_vs_engine`` (the largest relative difference of the poses' split matrices, the
+    toolkit's snapped ones against Godot's) and ``view_vs_toolkit`` (the largest difference of a
+    pose's camera view as Godot held it and the pose's).
+
+    Examples
+    --------
+    The poses come from Godot's page, so the example is not run here:
+
+    >>> godot_shimmer(r, fs, sun, parse_path("sideways:0.05:4", fs.camera))["measured"]   # doctest: +SKIP
+    0.0
+    """
+    from .models.godot import Godot
+    from .readback import decode
+
+    if not isinstance(result, FrameResult) or result.readback.engine != "godot":
+        raise ValueError("result must be Godot's FrameResult (frame_setup with a path)")
+    which = check.choice(matrices, "matrices", ("engine", "model", "unsnapped"))
+    rb, s, model = result.readback, result.settings, Godot()
+    frames = rb.info.get("path") or []
+    if not isinstance(path, list) or len(path) < 2 or len(frames) != len(path):
+        raise ValueError(f"path must be the {len(frames)} poses Godot's page rendered (parse_path), got {len(path) if isinstance(path, list) else path!r}")
+    base = {k: rb.info[k] for k in ("engine", "revision", "width", "height", "light") if k in rb.info}
+    cams, got, pred, lit, worst, view = [], [], [], [], 0.0, 0.0
+    for pose, f in zip(path, frames):
+        sc = replace(scene, camera=pose_camera(scene.camera, pose))
+        rk = decode(model.readback({**base, **f, "frame": ""}, sc, sun))
+        own = model.matrices(s, sc.camera, sun)
+        worst = max(worst, float(np.max(np.abs(own - rk.matrices)) / np.max(np.abs(rk.matrices))))
+        view = max(view, rk.info["checks"]["view_vs_toolkit"])
+        p, ref = model.predict(s, sc, sun, rk, matrices=which)
+        cams.append(sc.camera)
+        got.append(rk)
+        pred.append(p.factor)
+        lit.append(ref.astype(float))
+    pos, nrm = np.array([g.position for g in got]), np.array([g.normal for g in got])
+    keep = np.array([g.drawn & (g.cascade >= 0) for g in got])
+    measured = matched_flips(np.array([g.shadow for g in got]), pos, nrm, keep, cams)
+    predicted = matched_flips(np.array(pred), pos, nrm, keep, cams)
+    return {"measured": measured["flips_per_frame"], "predicted": predicted["flips_per_frame"], "matched": measured["matched"],
+            "resampling": matched_flips(np.array(lit), pos, nrm, keep, cams)["flips_per_frame"],
+            "matrices_vs_engine": worst, "view_vs_toolkit": view}
 
 
 def _babylon_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list[dict], frames: list[dict], keep) -> dict:

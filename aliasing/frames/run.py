@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 from .. import _validation as check
 from . import compare
 from .models import Prediction, model_for
-from .paths import PATH_ENGINES, flips, parse_path, pose_camera, replay, shimmer  # noqa: F401 - flips, pose_camera, replay re-exported
+from .paths import MOVING_ENGINES, PATH_ENGINES, flips, parse_path, pose_camera, replay, shimmer  # noqa: F401 - flips, pose_camera, replay re-exported
 from .readback import FrameResult, Readback, decode
 from .scenes import FrameScene, frame_scene, light_target  # noqa: F401 - frame_scene for the example, light_target re-exported
 
@@ -76,8 +76,8 @@ def refuse_unrendered(engine: str, cls: str | None, path, maps) -> None:
     """
     single = cls in ("DirectionalLight", "ShadowGenerator")
     if path is not None:
-        if engine not in PATH_ENGINES:
-            raise ValueError(f"--path: the camera path is rendered for {', '.join(PATH_ENGINES)} only (not for {engine})")
+        if engine not in PATH_ENGINES + MOVING_ENGINES:
+            raise ValueError(f"--path: the camera path is rendered for {', '.join(PATH_ENGINES + MOVING_ENGINES)} only (not for {engine})")
         if single:
             raise ValueError(f"--path: the camera path is rendered for the cascaded classes only (a {cls}'s box does not follow the camera)")
     if maps is not None:
@@ -359,7 +359,8 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     sun : array_like (3,), optional
         World direction towards the sun.
     path : str, optional
-        ``KIND:STEP[:FRAMES]`` (:func:`parse_path`): adds ``flips_per_frame``.
+        ``KIND:STEP[:FRAMES]`` (:func:`parse_path`): adds ``flips_per_frame`` (Godot: its camera itself moves,
+        flips at matched world points, :func:`aliasing.frames.paths.godot_shimmer`).
     maps : int, optional
         Read the shadow maps back (three.js, Babylon.js; PlayCanvas's atlas), every stride-th texel so that at most
         ``maps`` texels per side come back, and add ``report["maps"]``: the engine's maps
@@ -396,7 +397,7 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     job = make_job(scene, sv, settings, cam.height, poses, maps)
     out = browser.render(setup.engine, job)
     if setup.engine == "godot":  # the split per pixel from Godot's own shader: a second frame that draws it
-        probe = browser.render("godot", {**job, "probe": "splits"})
+        probe = browser.render("godot", {**job, "probe": "splits", "path": None})
         out["splits_frame"], out["shaders_probed"] = probe["factor"], probe.get("shaders_probed")
     result = measure(setup.engine, scene, sv, settings, out, pipeline=setup.pipeline)
     if maps is not None:
@@ -416,6 +417,9 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
         result.report["predicted"]["flips_per_frame"] = sh["predicted"]
         result.report["details"]["path"] = path
         result.report["details"]["path_matrices_vs_engine"] = sh["matrices_vs_engine"]
+        if "matched" in sh:  # Godot: the picture moves with the camera, flips counted at matched world points
+            for key in ("matched", "resampling", "view_vs_toolkit"):
+                result.report["details"][f"path_{key}"] = sh[key]
         if "grid_vs_engine" in sh:
             result.report["details"]["path_grid_vs_engine"] = sh["grid_vs_engine"]
     result.report["details"]["engine_revision"] = result.report["release"]

@@ -168,8 +168,11 @@ class Godot:
         """The split distances [m] from the camera's near to min(max distance, far) (:func:`aliasing.setups.godot.distances`)."""
         return np.array(profile.distances(s, camera)[0])
 
-    def transforms(self, s: dict, camera, sun: Array) -> list[Split]:
+    def transforms(self, s: dict, camera, sun: Array, snap: bool = True) -> list[Split]:
         """Each split's light camera as ``_light_instance_setup_directional_shadow`` builds it (module docstring).
+
+        ``snap=False``: the box's ends not snapped to 4r/R (not Godot: the texel grid then follows the
+        camera, the contrast of the camera path's shimmer).
 
         Examples
         --------
@@ -193,19 +196,21 @@ class Godot:
             radius = float(np.max(np.linalg.norm(corners - centre, axis=1))) * tex / (tex - 2.0)
             unit = radius * 4.0 / tex
             c = basis @ centre
-            lo = np.array([_snapped(c[0] - radius, unit), _snapped(c[1] - radius, unit)])
-            hi = np.array([_snapped(c[0] + radius, unit), _snapped(c[1] + radius, unit)])
+            snapped = _snapped if check.flag(snap, "snap") else (lambda v, _: float(v))
+            lo = np.array([snapped(c[0] - radius, unit), snapped(c[1] - radius, unit)])
+            hi = np.array([snapped(c[0] + radius, unit), snapped(c[1] + radius, unit)])
             half = (hi - lo) / 2
             z_max = c[2] + radius + float(s["directional_shadow_pancake_size"])
             origin = basis[0] * (lo[0] + half[0]) + basis[1] * (lo[1] + half[1]) + basis[2] * z_max
             out.append(Split(basis, origin, half, z_max - (c[2] - radius), radius, rects[i], float(edges[i + 1])))
         return out
 
-    def matrices(self, s: dict, camera, sun: Array) -> Array:
-        """Each split's world → its own [0, 1]³ (s, t in its rectangle of the atlas, depth 0 at the light … 1 at 2r + pancake)."""
-        return np.array([_split_local(m, sp.rect) for m, sp in zip(self.atlas_matrices(s, camera, sun), self.transforms(s, camera, sun))])
+    def matrices(self, s: dict, camera, sun: Array, snap: bool = True) -> Array:
+        """Each split's world → its own [0, 1]³ (s, t in its rectangle of the atlas, depth 0 at the light … 1 at 2r + pancake);
+        ``snap=False``: unsnapped (:meth:`transforms`)."""
+        return np.array([_split_local(m, sp.rect) for m, sp in zip(self.atlas_matrices(s, camera, sun, snap), self.transforms(s, camera, sun, snap))])
 
-    def atlas_matrices(self, s: dict, camera, sun: Array) -> Array:
+    def atlas_matrices(self, s: dict, camera, sun: Array, snap: bool = True) -> Array:
         """Each split's world → atlas matrix as Godot uploads it (s, t in the atlas, depth 1 at the light … 0 at 2r + pancake).
 
         Examples
@@ -218,7 +223,7 @@ class Godot:
         [0.75, 0.75, 1.0, 1.0]
         """
         out = []
-        for sp in self.transforms(s, camera, sun):
+        for sp in self.transforms(s, camera, sun, snap):
             view = np.eye(4)
             view[:3, :3] = sp.basis
             view[:3, 3] = -sp.basis @ sp.origin
@@ -242,8 +247,12 @@ class Godot:
         idx = np.searchsorted(np.asarray(offsets, float), np.nan_to_num(depth, nan=np.inf), side="right")
         return np.where(np.isfinite(depth) & (idx < len(offsets)), idx, -1).astype(np.int64)
 
-    def predict(self, s: dict, scene, sun: Array, rb) -> tuple[Prediction, NDArray[np.bool_]]:
-        """The predicted factor at the engine's pixels (maps drawn through Godot's own matrices), and the exact reference.
+    def predict(self, s: dict, scene, sun: Array, rb, matrices: str = "engine", exact: bool = True) -> tuple[Prediction, NDArray[np.bool_] | None]:
+        """The predicted factor at the engine's pixels, and the exact reference (None with ``exact=False``).
+
+        ``matrices``: the split matrices the maps are drawn and looked up through: ``"engine"`` (Godot's
+        own, read back), ``"model"`` (the toolkit's, :meth:`matrices`) or ``"unsnapped"`` (the toolkit's
+        without the 4r/R snap: not Godot).
 
         Examples
         --------
@@ -253,8 +262,11 @@ class Godot:
         >>> rb = decode(Godot().readback(page_answer, scene, sun))             # doctest: +SKIP
         >>> pred, ref = Godot().predict(Godot().settings({}), scene, sun, rb)  # doctest: +SKIP
         """
+        which = check.choice(matrices, "matrices", ("engine", "model", "unsnapped"))
         cam = scene.camera
-        splits = self.transforms(s, cam, sun)
+        snap = which != "unsnapped"
+        splits = self.transforms(s, cam, sun, snap)
+        local_matrices = rb.matrices if which == "engine" else self.matrices(s, cam, sun, snap)
         edges = self.edges(s, cam)
         res = self.resolution(s)
         rows = profile.layout(int(s[profile.SIZE]), len(splits))[1]       # 2 splits: size × size/2 texels each
@@ -264,7 +276,7 @@ class Godot:
         pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
         facing = np.maximum(0.0, nrm @ -np.asarray(sun, float))        # dot(direction, −n), direction = the light's +Z = sun
         shadows = []
-        for sp, local in zip(splits, rb.matrices):                    # world → each split's [0, 1]², depth 0 at the light
+        for sp, local in zip(splits, local_matrices):                 # world → each split's [0, 1]², depth 0 at the light
             b = float(s["shadow_bias"]) / 100.0 * sp.zfar
             moved = _caster_bias(cast, sp, b)
             squeeze = np.diag([1.0, rows / res, 1.0, 1.0])               # t over the first `rows` rows of a res² raster
@@ -288,11 +300,11 @@ class Godot:
         fade = _smoothstep(-last * min(float(s["directional_shadow_fade_start"]), 0.999), -last, -depth)
         factor = factor + (1 - factor) * fade
         factor = np.where(rb.drawn, factor, np.nan)
-        ref = reference(scene, sun, rb, res)
+        ref = reference(scene, sun, rb, res) if check.flag(exact, "exact") else None
         sides = np.array([2 * max(sp.half) for sp in splits])
         blend = bool(s["directional_shadow_blend_splits"])
         starts = np.array([edges[i - 1] if blend and i > 0 else edges[i] for i in range(k)])   # the fit's first depth
-        return Prediction(factor, sel, starts, sides, np.full(k, float(res)), self.matrices(s, cam, sun)), ref
+        return Prediction(factor, sel, starts, sides, np.full(k, float(res)), self.matrices(s, cam, sun, snap)), ref
 
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
         """From Godot's uniform buffer: each split's first sampled depth (its offsets; with blend splits the previous one), its side [m]

@@ -7,7 +7,8 @@
 // draws it with a spatial shader whose light() adds ATTENUATION (the sun's raw shadow factor) to a
 // white albedo, no ambient, no specular; it reads the frame back (Viewport.get_texture().get_image(),
 // RGBA8, rows top-down) and calls window.godotDone(json) with the frame, the camera's and light's
-// transforms and the camera's projection, as Godot holds them.
+// transforms and the camera's projection, as Godot holds them; along a camera path (job.path) the camera
+// itself moves to each pose and each pose's frame, transforms and shadow data come back as res.path.
 // window.frame(job) returns that answer; the toolkit turns it into the read-back of the other pages
 // (aliasing.frames.models.godot.Godot.readback).
 // The runtime's files come from job.runtime: the godot/ folder served on 127.0.0.1 (aliasing.frames.browser).
@@ -87,10 +88,15 @@ function b64(bytes) {
   return btoa(s);
 }
 
+// Along a camera path main.gd calls window.godotPose() once each pose's frame is drawn: the uploads of that frame.
+const poseUploads = [];
+window.godotPose = () => { poseUploads.push(uploads.map(b64)); };
+
 window.frame = async (job) => {
   watchUniformBuffers();
   watchShaders();
   uploads.length = 0;
+  poseUploads.length = 0;
   probing = job.probe === "splits";
   probed = 0;
   if (!job.pack) throw new Error("the job has no main pack (aliasing.frames.browser adds it for Godot)");
@@ -120,6 +126,7 @@ window.frame = async (job) => {
   });
   const res = await Promise.race([done, failed]);
   const seen = uploads.map(b64);
+  if (res.path) res.path.forEach((p, i) => { p.uniform_uploads = poseUploads[i] || []; });
   const ms = performance.now() - t0;
   engine.requestQuit();
   return { ...res, revision: "4.6", ms, ms_init: tInit - t0, ms_start: tStart - tInit, uniform_uploads: seen, probe: job.probe || null, shaders_probed: probed, printed: printed.slice(0, 40) };

@@ -2,7 +2,8 @@
 # ground and boxes, the Camera3D and the DirectionalLight3D with the job's settings, draw one frame
 # whose every pixel is the raw shadow factor of the sun (a spatial shader whose light() adds
 # ATTENUATION), and hand it with the camera's and light's transforms and projection to the page
-# (window.godotDone, through JavaScriptBridge).
+# (window.godotDone, through JavaScriptBridge); along a camera path (job.path) the camera then moves to
+# each pose and each pose's frame and transforms come back too.
 extends Node3D
 
 const LIGHT_KEYS = ["directional_shadow_split_1", "directional_shadow_split_2", "directional_shadow_split_3",
@@ -97,19 +98,42 @@ func _ready() -> void:
 	var t1 := Time.get_ticks_msec()
 	var img := get_viewport().get_texture().get_image()
 	img.convert(Image.FORMAT_RGBA8)
-	var p := cam.get_camera_projection()
-	var proj := []
-	for col in [p.x, p.y, p.z, p.w]:
-		proj.append_array([col.x, col.y, col.z, col.w])
 	var result := {
 		"engine": "godot", "version": Engine.get_version_info()["string"],
 		"renderer": RenderingServer.get_video_adapter_name(), "method": ProjectSettings.get_setting("rendering/renderer/rendering_method"),
 		"width": img.get_width(), "height": img.get_height(), "factor": Marshalls.raw_to_base64(img.get_data()),
 		"frame": "data:image/png;base64," + Marshalls.raw_to_base64(img.save_png_to_buffer()),
 		"camera_transform": _xform(cam.global_transform), "light_transform": _xform(light.global_transform),
-		"projection": proj, "light": _light(light), "ms_setup": t1 - t0,
+		"projection": _projection(cam), "light": _light(light), "ms_setup": t1 - t0,
 	}
+	# a camera path: the camera itself moves to each pose (Godot fits its directional shadow to the current
+	# camera only); each pose's frame is read back after `settle` frames, and the page keeps the shadow data
+	# Godot uploaded for it (window.godotPose)
+	var poses = job.get("path")
+	if poses != null:
+		var window = JavaScriptBridge.get_interface("window")
+		var frames := []
+		for pose in poses:
+			cam.look_at_from_position(_vec(pose["eye"]), _vec(pose["target"]), _vec(c["up"]))
+			for i in range(int(job.get("settle", 2))):
+				await RenderingServer.frame_post_draw
+			var pimg := get_viewport().get_texture().get_image()
+			pimg.convert(Image.FORMAT_RGBA8)
+			if window != null:
+				window.godotPose()
+			frames.append({"factor": Marshalls.raw_to_base64(pimg.get_data()), "camera_transform": _xform(cam.global_transform),
+				"light_transform": _xform(light.global_transform), "projection": _projection(cam)})
+		result["path"] = frames
+		result["ms_path"] = Time.get_ticks_msec() - t1
 	_done(result)
+
+
+func _projection(cam: Camera3D) -> Array:
+	var p := cam.get_camera_projection()
+	var proj := []
+	for col in [p.x, p.y, p.z, p.w]:
+		proj.append_array([col.x, col.y, col.z, col.w])
+	return proj
 
 
 func _xform(t: Transform3D) -> Array:
