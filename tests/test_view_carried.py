@@ -110,6 +110,7 @@ OTHER_ANGLES = {
     ("scenes.py", "el"): "the sun's elevation placed in the engines' frames",
     ("scenes.py", "az"): "the sun's azimuth placed in the engines' frames",
     ("playcanvas.py", "float(a)"): "an entity's Euler rotation angles in a PlayCanvas scene JSON",
+    ("paths.py", "8.0"): "the largest angle between two poses' normals at a matched world point (Godot's camera paths)",
     ("paths.py", "i * step"): "the yaw of a turning camera path in the engines' frames (--path turn:DEG, degrees per frame)",
     ("profile.py", 'check.closed_range(angle, "angle", 0.0, 90.0, " degrees")'): "a receiver's angle θ to the light (bias terms)",
     ("profile.py", 'check.finite(azimuth, "azimuth")'): "a receiver's slope azimuth φ (slope bias terms)",
