@@ -36,11 +36,10 @@ holding it would cost in error, for the user to choose.
 
 from __future__ import annotations
 
-import dataclasses
 import itertools
 import math
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -569,7 +568,7 @@ def _tradeoff(search: _Search, candidates, lim: Limits, n: int = 10) -> tuple:
     out = []
     for angle in np.linspace(0.0, top, n):
         slope = float(angle - (90.0 - low))
-        sub = dataclasses.replace(lim, max_gap_px=math.inf, max_slope=slope)
+        sub = replace(lim, max_gap_px=math.inf, max_slope=slope)
         inner = _Search(search.start, sub, search.keep)
         best = math.inf
         for s in bases.values():
