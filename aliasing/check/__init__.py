@@ -416,7 +416,7 @@ def _acne_verdict(k: int, short: np.ndarray, slopes: np.ndarray, elev: np.ndarra
             where = "ground" if s == 0 else f"{s:g}° slopes"
             hit = elev[short[i]]
             clean = elev[~short[i] & (elev > hit.max())]
-            when = (f"below {clean.min():g}° sun" if clean.size else
+            when = (f"below {clean.min():g}° sun" if clean.size else f"at the sun of {elev.min():g}°" if elev.min() == elev.max() else
                     f"at every sun of {elev.min():g}–{elev.max():g}°" if hit.size == elev.size else f"at suns of {hit.min():g}–{hit.max():g}°")
             parts.append(f"{where} {when}")
     return f"cascade {k} acnes on {'; '.join(parts)} ({acne:.0%} of the sampled receivers): " + _fixes(needed, rule)
