@@ -25,6 +25,7 @@ import numpy as np
 from ... import _validation as check
 from ...raster.scenes.builtin import _box
 from ..scenes import FrameScene, frame_scene, wind_outward
+from ...view import tan_theta
 
 #: Boxes in the reference scene.
 BOXES = 24
@@ -62,7 +63,7 @@ def reference_scene(near: float, far: float, fov: float, aspect: float) -> Frame
     """
     fs = frame_scene("boxes", near=near, far=far, fov=fov, aspect=aspect, boxes=BOXES, ground_cells=GROUND_CELLS, seed=SEED)
     n, f = float(check.scalar(near, "near")), float(check.scalar(far, "far"))
-    tan_x = float(np.tan(np.radians(fov) / 2)) * float(aspect)
+    tan_x = float(tan_theta(fov)) * float(aspect)
     depth = np.geomspace(min(max(4.0 * n, 0.01 * f), 0.25 * f), 0.5 * f, WALLS)
     side = np.where(np.arange(WALLS) % 2 == 0, -1.0, 1.0)  # alternately left and right of the view's axis
     half = np.stack([0.125 * tan_x * depth, 0.025 * depth + 0.05, 0.005 * depth + 0.02], axis=-1)

@@ -43,6 +43,7 @@ from numpy.typing import NDArray
 from ... import _validation as check
 from ...raster.draw import eye_pass
 from .. import babylon_cascades
+from ...view import tan_theta
 from ..models import from_setup, model_for
 from ..readback import FrameResult, Readback
 from ..run import frame_inputs, pixel_masks, predict_readback, shading
@@ -134,7 +135,7 @@ def eye_geometry(scene: FrameScene, width: int, height: int, side: str = "front"
     >>> pos, nrm, drawn = eye_geometry(fs, 8, 4)
     >>> drawn.astype(int).tolist()                     # the ground (1 below the eye) in the lower half
     [[0, 0, 0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0, 0, 0], [0, 1, 1, 1, 1, 1, 1, 0], [1, 1, 1, 1, 1, 1, 1, 1]]
-    >>> t = np.tan(np.radians(25.0)); y, x = -0.75 * t, -1.75 * t   # the bottom left pixel's ray (x, y, −1)
+    >>> t = tan_theta(50.0); y, x = -0.75 * t, -1.75 * t   # the bottom left pixel's ray (x, y, −1)
     >>> bool(np.allclose(pos[3, 0], [x / -y, -1.0, -1 / -y])), np.round(nrm[3, 0], 9).tolist()
     (True, [0.0, 1.0, 0.0])
     """
@@ -148,7 +149,7 @@ def eye_geometry(scene: FrameScene, width: int, height: int, side: str = "front"
     if not len(tri):
         return pos, nrm, np.zeros((h, w), bool)
     r = max(w, h)
-    t = float(np.tan(np.radians(cam.fov) / 2))
+    t = float(tan_theta(cam.fov))
     tx = t * w / h  # the image's horizontal half-width at unit depth
     # the shear: the square's pixel centres (i + ½)/R, i < W (j < H) fall on the image's (i + ½)/W ((j + ½)/H)
     shear = np.array([[t * w / (r * tx), 0.0, t * (w / r - 1)], [0.0, h / r, t * (h / r - 1)], [0.0, 0.0, 1.0]])

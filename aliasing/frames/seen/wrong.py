@@ -54,6 +54,7 @@ from scipy import ndimage
 from ... import _validation as check
 from ..compare import MIN_COS
 from ..run import at_pixel_aspect
+from ...view import tan_theta
 from ..scenes import FrameScene, frame_scene, sun_direction
 from .scene import reference_scene
 from .synth import VISIBLE, engine_settings, eye_geometry, predict_synthetic
@@ -189,7 +190,7 @@ def wrong_pixels(setup, scene: FrameScene | str | None = None, *, eye=None, targ
     if not drawn.any():
         raise ValueError(f"scene: nothing is drawn within near..far ({cam.near:g}..{cam.far:g}) by this camera")
     depth = np.where(drawn, fs.camera.to_eye(np.nan_to_num(geometry[0]))[..., 2], np.nan)
-    tan = math.tan(math.radians(cam.fov) / 2)
+    tan = float(tan_theta(cam.fov))
     pixel_user = 2 * depth * tan / cam.height  # [world units] the user's pixel at each sample pixel
     pixel_small = 2 * depth * tan / h
     taps = max(1, int(setup.pipeline.filter.taps))
