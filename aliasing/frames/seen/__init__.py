@@ -15,6 +15,6 @@ Examples
 
 from .scene import reference_scene
 from .synth import ENGINES, synthetic_frame
-from .wrong import UNITS, Wrong, wrong_pixels
+from .wrong import UNITS, Sample, Wrong, count, sample, wrong_pixels
 
-__all__ = ["ENGINES", "UNITS", "Wrong", "reference_scene", "synthetic_frame", "wrong_pixels"]
+__all__ = ["ENGINES", "UNITS", "Sample", "Wrong", "count", "reference_scene", "sample", "synthetic_frame", "wrong_pixels"]
