@@ -28,10 +28,7 @@ Examples
 
 from __future__ import annotations
 
-import contextlib
 import hashlib
-from collections import OrderedDict
-from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -142,56 +139,18 @@ def light_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) ->
     tri = check.triangles(triangles, empty=True)
     if not len(tri):
         tri = np.full((1, 3, 3), 10.0)  # nothing casts: one triangle far outside the map
-    mapped = to_map(matrix, tri)
-    if _MEMO is None:
-        return rasterize(mapped, int(resolution))
-    key = (hashlib.blake2b(np.ascontiguousarray(mapped, np.float64).tobytes(), digest_size=16).digest(), int(resolution))
-    if key in _MEMO:
-        _MEMO.move_to_end(key)
-        return _MEMO[key]
-    dm = rasterize(mapped, int(resolution))
-    size = int(resolution) ** 2 * 16  # the depth (float64) and the triangle (int64) per texel
-    if size <= _MEMO_LIMIT[0]:
-        _MEMO[key] = dm
-        while sum(int(v.resolution) ** 2 * 16 for v in _MEMO.values()) > _MEMO_LIMIT[0]:
-            _MEMO.popitem(last=False)
-    return dm
+    mapped, r = to_map(matrix, tri), int(resolution)
+    kept = KEPT["maps"]
+    if kept is None:
+        return rasterize(mapped, r)
+    key = (hashlib.blake2b(np.ascontiguousarray(mapped, np.float64).tobytes(), digest_size=16).digest(), r)
+    if key not in kept:
+        kept[key] = rasterize(mapped, r)
+    return kept[key]
 
 
-_MEMO: OrderedDict | None = None
-_MEMO_LIMIT = [0]
-
-
-def remember(limit: int = 2**30) -> contextlib.AbstractContextManager:
-    """Within the block, :func:`light_depth_map` keeps the maps it drew (the least recently used dropped beyond ``limit`` bytes).
-
-    A search that changes only the biases or the filter draws the same maps again: the same triangles through the
-    same matrices at the same size give the same map.  Outside the block nothing is kept.
-
-    Parameters
-    ----------
-    limit : int
-        The most bytes the kept maps hold together, >= 0 [bytes].
-
-    Examples
-    --------
-    >>> m = np.eye(4); tri = np.array([[[0.1, 0.1, 0.5], [0.9, 0.1, 0.5], [0.1, 0.9, 0.5]]])
-    >>> with remember():
-    ...     light_depth_map(tri, m, 8) is light_depth_map(tri, m, 8)
-    True
-    """
-    return _remembering(check.whole(limit, "limit", 0, 2**40, " [bytes]"))
-
-
-@contextlib.contextmanager
-def _remembering(limit: int) -> Iterator[None]:
-    global _MEMO
-    outer = _MEMO, _MEMO_LIMIT[0]
-    _MEMO, _MEMO_LIMIT[0] = (OrderedDict() if outer[0] is None else outer[0]), int(limit)
-    try:
-        yield
-    finally:
-        _MEMO, _MEMO_LIMIT[0] = outer
+#: The maps kept within :func:`aliasing.frames.seen.remember`'s block (None outside it), by the mapped triangles and the size.
+KEPT: dict = {"maps": None}
 
 
 def reference_lit(triangles: Array, matrix: Array, resolution: int, points: Array, normals: Array, sun: Array) -> NDArray[np.bool_]:

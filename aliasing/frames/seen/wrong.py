@@ -285,3 +285,27 @@ def wrong_pixels(setup, scene: FrameScene | str | None = None, *, eye=None, targ
     (True, [40.0])
     """
     return count(setup, sample(setup, scene, eye=eye, target=target, height=height, suns=suns))
+
+
+def fractions(factor: Array, reference: NDArray[np.bool_], drawn: NDArray[np.bool_], normal: Array, sun: Array, texel: Array,
+              pixel: Array, taps: int) -> dict:
+    """Acne, false and lost shadow (and their sum, ``wrong``) of one frame's shadow ``factor``, as fractions of its sun-facing pixels.
+
+    The same counts as :func:`count` makes of a predicted frame, for any frame: an engine's read-back
+    (:func:`aliasing.frames.run.frame_setup`) or its prediction.  ``texel`` and ``pixel`` [world units] per
+    pixel (NaN where no cascade); ``sun`` the world direction towards the sun; ``pixels`` the count.
+
+    Examples
+    --------
+    >>> ref = np.array([[False, True, True, True, True]]); every = np.ones((1, 5), bool); up = np.tile([0.0, 1.0, 0.0], (1, 5, 1))
+    >>> f = fractions(np.array([[1.0, 0.0, 1.0, 1.0, 0.0]]), ref, every, up, np.array([0.0, 1.0, 0.0]), np.ones((1, 5)), np.ones((1, 5)), 1)
+    >>> f["pixels"], f["acne"], f["false_shadow"], f["lost_shadow"]
+    (5, 0.2, 0.2, 0.2)
+    """
+    sun = check.direction(sun)
+    facing = drawn & ((np.nan_to_num(normal) @ sun) > MIN_COS)
+    masks = classify(factor, reference, drawn, facing, np.nan_to_num(reach_px(taps, texel, pixel), nan=0.0))
+    n = int(facing.sum())
+    out = {"pixels": n, **{k: _fraction(int(m.sum()), n) for k, m in masks.items()}}
+    out["wrong"] = _fraction(int(sum(int(m.sum()) for m in masks.values())), n)
+    return out
