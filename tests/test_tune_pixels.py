@@ -6,6 +6,7 @@ Small cameras (far 60) and small maps keep each search to seconds.
 from __future__ import annotations
 
 import json
+import math
 
 import pytest
 from hypothesis import given, settings
@@ -151,3 +152,27 @@ def test_frames_2_end_to_end(capsys, monkeypatch):
     for c in fr["candidates"]:
         assert 0 <= c["measured"]["wrong"] <= 1 and 0 <= c["predicted"]["wrong"] <= 1
     assert got["settings"] == fr["candidates"][fr["pick"]]["settings"]
+
+
+_GARBAGE = st.one_of(st.none(), st.booleans(), st.integers(-10**6, 10**6), st.floats(allow_nan=True, allow_infinity=True), st.text(max_size=6),
+                     st.lists(st.integers(), max_size=3))
+
+
+@settings(max_examples=40, deadline=None)
+@given(_GARBAGE)
+def test_api_refuses_garbage_naming_it(bad):
+    from aliasing.frames import seen
+    from aliasing.tune import proof
+
+    s = setups.build("playcanvas", {}, CAMERA, "30..50")
+    lim = limits(s)
+    calls = [(lambda: pixels.refine(bad, s, lim), "start"), (lambda: pixels.refine(s, bad, lim), "perspective"),
+             (lambda: pixels.hard(bad, False), "lim"), (lambda: pixels.why_not(bad), "setup"), (lambda: seen.count(s, bad), "where")]
+    if not (isinstance(bad, str) and bad in pixels.PREFER):
+        calls += [(lambda: pixels.front([], bad), "prefer"), (lambda: pixels.refine(s, s, lim, prefer=bad), "prefer")]
+    whole = isinstance(bad, (int, float)) and not isinstance(bad, bool) and math.isfinite(bad) and float(bad).is_integer()
+    if not (whole and 1 <= bad <= 64):
+        calls.append((lambda: proof.candidates([], "wrong", bad), "n"))
+    for call, name in calls:
+        with pytest.raises(ValueError, match=name):
+            call()

@@ -154,6 +154,12 @@ def _wrong_pixels(args: argparse.Namespace, start, tuned) -> tuple[Any, dict[str
     ``why`` and ``infeasible`` (why no candidate met the limits, or None).
     """
     kind = getattr(args, "objective", "auto") or "auto"
+    n = getattr(args, "frames", None)
+    if n is not None and (isinstance(n, bool) or not 1 <= n <= 64):
+        raise ValueError(f"--frames must be a whole number of candidates to render, 1 to 64, got {n!r}")
+    mem = getattr(args, "max_memory", None)
+    if mem is not None and not (math.isfinite(mem) and mem > 0):
+        raise ValueError(f"--max-memory must be a number of MiB > 0, got {mem!r}")
     note = pixels.why_not(start)
     if kind == "wrong" and note:
         raise ValueError(f"--objective wrong: {note}")
@@ -196,8 +202,6 @@ def _frames(args: argparse.Namespace, start, got) -> dict[str, Any] | None:
     n = getattr(args, "frames", None)
     if n is None:
         return None
-    if isinstance(n, bool) or not 1 <= n <= 64:
-        raise ValueError(f"--frames must be a whole number of candidates to render, 1 to 64, got {n!r}")
     from ..frames import MissingTool
 
     try:

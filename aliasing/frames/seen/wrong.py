@@ -303,6 +303,10 @@ def fractions(factor: Array, reference: NDArray[np.bool_], drawn: NDArray[np.boo
     (5, 0.2, 0.2, 0.2)
     """
     sun = check.direction(sun)
+    shape = np.shape(drawn)
+    if not all(np.shape(a) == shape for a in (factor, reference, texel, pixel)) or np.shape(normal) != (*shape, 3):
+        raise ValueError(f"factor, reference, drawn, texel and pixel must have one shape (H, W) and normal (H, W, 3), got "
+                         f"{[np.shape(a) for a in (factor, reference, drawn, texel, pixel, normal)]}")
     facing = drawn & ((np.nan_to_num(normal) @ sun) > MIN_COS)
     masks = classify(factor, reference, drawn, facing, np.nan_to_num(reach_px(taps, texel, pixel), nan=0.0))
     n = int(facing.sum())
