@@ -161,6 +161,13 @@ def _wrong_pixels(args: argparse.Namespace, start, tuned) -> tuple[Any, dict[str
     if mem is not None and not (math.isfinite(mem) and mem > 0):
         raise ValueError(f"--max-memory must be a number of MiB > 0, got {mem!r}")
     note = pixels.why_not(start)
+    if n is not None and not (kind == "perspective" or note):
+        from ..frames import MissingTool
+
+        try:
+            proof.ready(start.engine)
+        except MissingTool as exc:
+            raise ValueError(f"--frames renders in the engine and needs its tools: {exc} (install them all with `aliasing frames --install`)") from None
     if kind == "wrong" and note:
         raise ValueError(f"--objective wrong: {note}")
     out: dict[str, Any] = {"objective_kind": "perspective", "objective_note": note, "seen": None, "why": [], "infeasible": None}

@@ -46,6 +46,36 @@ def candidates(points, prefer: str, n: int) -> list[Point]:
     return list(unique.values())[:k]
 
 
+def ready(engine: str) -> None:
+    """Refuse, before any search, where ``engine``'s frames cannot be rendered: Playwright, Chromium or its pinned package missing.
+
+    Raises
+    ------
+    aliasing.frames.MissingTool
+        One line saying what is missing and how to install it.
+    ValueError
+        ``engine`` is not an engine with pinned frames.
+
+    Examples
+    --------
+    >>> ready("godot")
+    Traceback (most recent call last):
+    ...
+    ValueError: engine must be one of threejs, babylon, playcanvas (the engines whose frames tune renders), got 'godot'
+    """
+    from ..frames import MissingTool, browser, install
+
+    if engine not in seen.ENGINES:
+        raise ValueError(f"engine must be one of {', '.join(seen.ENGINES)} (the engines whose frames tune renders), got {engine!r}")
+    try:
+        import playwright  # noqa: F401
+    except ImportError:
+        raise MissingTool("Playwright for Python is not installed: pip install 'aliasing[frames]'") from None
+    if browser.chromium_path() is None:
+        raise MissingTool("Chromium not found: install it (Debian: apt-get install chromium) or set ALIASING_CHROMIUM to its path")
+    install.package_root(engine)
+
+
 def _scene(setup: Setup, scene: Any):
     cam = setup.camera
     if isinstance(scene, FrameScene):
