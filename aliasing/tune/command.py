@@ -185,7 +185,8 @@ def _wrong_pixels(args: argparse.Namespace, start, tuned) -> tuple[Any, dict[str
                             max_memory=max_memory, max_gap_given=args.max_gap_px is not None)
     except pixels.Infeasible as exc:
         out["infeasible"] = str(exc)
-        return dataclasses.replace(tuned, feasible=False), out
+        binding = tuned.binding if not tuned.feasible else (("max_memory",) if max_memory is not None else tuned.binding)
+        return dataclasses.replace(tuned, feasible=False, binding=tuple(binding)), out
     except ValueError as exc:
         raise _flag_error(exc) from None
     frames = _frames(args, start, got)

@@ -75,18 +75,17 @@ def why_not(setup: Setup) -> str | None:
     >>> from aliasing import setups
     >>> why_not(setups.build("threejs", {})) is None
     True
-    >>> why_not(setups.build("godot", {})).endswith("the objective is the worst perspective error")
+    >>> why_not(setups.build("godot", {})).startswith("the toolkit does not predict Godot")
     True
     """
     if not isinstance(setup, Setup):
         raise ValueError(f"setup must be an aliasing.setups.Setup (setups.build(...)), got {type(setup).__name__}")
     if setup.engine not in seen.ENGINES:
-        return (f"the toolkit does not predict {setup.profile.title} {setup.release} shadows per pixel "
-                f"(only {', '.join(seen.ENGINES)}): the objective is the worst perspective error")
+        return f"the toolkit does not predict {setup.profile.title} {setup.release} shadows per pixel (only {', '.join(seen.ENGINES)})"
     try:
         seen.synth.engine_settings(setup)
     except ValueError as exc:
-        return f"{exc}: the objective is the worst perspective error"
+        return f"the toolkit does not predict these settings per pixel: {exc}"
     return None
 
 
@@ -115,8 +114,8 @@ class Point:
     memory: float
 
     def axes(self, prefer: str) -> tuple:
-        """The point's values in the order of ``PREFER[prefer]``."""
-        return tuple(round(getattr(self, a), 12) for a in PREFER[prefer])
+        """The point's values in the order of ``PREFER[prefer]`` (``prefer`` one of :data:`PREFER`)."""
+        return tuple(round(getattr(self, a), 12) for a in PREFER[check.choice(prefer, "prefer", tuple(PREFER))])
 
     def to_dict(self, changed: Mapping[str, Any] | None = None) -> dict:
         """JSON-ready (no inf: None), with ``changed``: the settings that differ from ``changed``'s (the start)."""
