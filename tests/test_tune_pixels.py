@@ -177,3 +177,23 @@ def test_api_refuses_garbage_naming_it(bad):
     for call, name in calls:
         with pytest.raises(ValueError, match=name):
             call()
+
+
+def test_scene_file_seen_from_its_camera(capsys, tmp_path):
+    """A glTF scene with a camera: the receivers and the wrong pixels both come from it, seen from that camera."""
+    trimesh = pytest.importorskip("trimesh")
+    import numpy as np
+
+    ground = trimesh.creation.box(extents=[80, 0.1, 80])
+    ground.apply_translation([0, -1.05, -40])
+    box = trimesh.creation.box(extents=[1, 2, 1])
+    box.apply_translation([0.5, 0, -8])
+    sc = trimesh.Scene([ground, box])
+    sc.camera = trimesh.scene.Camera(name="cam", fov=(50 * 16 / 9, 50), resolution=(1280, 720))
+    sc.camera_transform = np.eye(4)
+    path = tmp_path / "yard.glb"
+    sc.export(str(path))
+    keep = "numCascades,shadowResolution,cascadeDistribution,shadowDistance,cascadeBlend,normalOffsetBias"
+    got, _ = _json(capsys, PLAYCANVAS + ["--scene", str(path), "--keep", keep])
+    assert got["wrong"]["sample"]["scene"] == "yard.glb" and got["objective_kind"] == "wrong"
+    assert got["wrong"]["after"]["wrong"] < got["wrong"]["before"]["wrong"]

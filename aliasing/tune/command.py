@@ -180,8 +180,9 @@ def _wrong_pixels(args: argparse.Namespace, start, tuned) -> tuple[Any, dict[str
     if note:
         return tuned, out
     max_memory = getattr(args, "max_memory", None)
+    scene = _frame_scene(args.scene, start)
     try:
-        got = pixels.refine(start, tuned.setup, tuned.limits, scene=args.scene, keep=frozenset(tuned.keep), prefer=getattr(args, "prefer", "wrong"),
+        got = pixels.refine(start, tuned.setup, tuned.limits, scene=scene, keep=frozenset(tuned.keep), prefer=getattr(args, "prefer", "wrong"),
                             max_memory=max_memory, max_gap_given=args.max_gap_px is not None)
     except pixels.Infeasible as exc:
         out["infeasible"] = str(exc)
@@ -189,12 +190,12 @@ def _wrong_pixels(args: argparse.Namespace, start, tuned) -> tuple[Any, dict[str
         return dataclasses.replace(tuned, feasible=False, binding=tuple(binding)), out
     except ValueError as exc:
         raise _flag_error(exc) from None
-    frames = _frames(args, start, got)
+    frames = _frames(args, start, got, scene)
     if frames is not None:
         chosen = frames["candidates"][frames["pick"]]["settings"]
         if chosen != dict(got.setup.settings):
             pick = setups.Setup(start.profile, dict(chosen), start.camera, start.sun)
-            final = _seen.sample(start, args.scene, height=pixels.FINAL_HEIGHT, suns=pixels.FINAL_SUNS)
+            final = _seen.sample(start, scene, height=pixels.FINAL_HEIGHT, suns=pixels.FINAL_SUNS)
             got = dataclasses.replace(got, setup=pick, after=_seen.count(pick, final).total)
         out["frames"] = frames
     pick = got.setup
@@ -205,7 +206,25 @@ def _wrong_pixels(args: argparse.Namespace, start, tuned) -> tuple[Any, dict[str
     return picked, out
 
 
-def _frames(args: argparse.Namespace, start, got) -> dict[str, Any] | None:
+def _frame_scene(scene: str | None, start) -> Any:
+    """``--scene`` for the wrong pixels: None (the reference scene), boxes or city as named, a file seen from its first glTF camera."""
+    if scene is None or scene in ("boxes", "city"):
+        return scene
+    from ..frames.scenes import frame_scene
+    from ..raster.scenes import load_scene
+
+    cam = start.camera
+    try:
+        ws = load_scene(scene)
+    except (ValueError, ImportError, OSError) as exc:
+        raise ValueError(f"--scene {scene} could not be loaded: {str(exc).splitlines()[0] if str(exc) else type(exc).__name__}") from None
+    if not ws.cameras:
+        raise ValueError(f"--scene {scene!r} has no glTF camera to see it from: give --receivers NEAR..FAR instead")
+    c = ws.camera(sorted(ws.cameras)[0], near=cam.near, far=cam.far, fov=cam.fov)
+    return frame_scene(str(scene), near=cam.near, far=cam.far, fov=cam.fov, aspect=cam.aspect, eye=c.eye, target=c.eye + c.rotation[2])
+
+
+def _frames(args: argparse.Namespace, start, got, scene: Any = None) -> dict[str, Any] | None:
     """``--frames N``: the N best candidates rendered in the engine (:func:`aliasing.tune.proof.prove`); None without it."""
     n = getattr(args, "frames", None)
     if n is None:
@@ -213,7 +232,7 @@ def _frames(args: argparse.Namespace, start, got) -> dict[str, Any] | None:
     from ..frames import MissingTool
 
     try:
-        return proof.prove(start, got.points, prefer=got.prefer, n=n, scene=args.scene)
+        return proof.prove(start, got.points, prefer=got.prefer, n=n, scene=scene)
     except MissingTool as exc:
         raise ValueError(f"--frames renders in the engine and needs its tools: {exc} (install them all with `aliasing frames --install`)") from None
 
@@ -470,7 +489,8 @@ def add_tune_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     )
     setups.add_arguments(p, required=True)
     p.add_argument("--receivers", metavar="NEAR..FAR", help="eye depths of the receivers [world units] (default the camera's near..far)")
-    p.add_argument("--scene", metavar="FILE", help="a scene (glTF/GLB with a camera, OBJ, PLY, STL) whose visible depths give the receivers")
+    p.add_argument("--scene", metavar="FILE", help="a scene (glTF/GLB with a camera) whose visible depths give the receivers and, for the "
+                   "wrong-pixel objective, on which the frames are predicted, seen from its first camera (default: the reference scene)")
     p.add_argument("--max-texels", metavar="N|KxR", help="texels of all maps together, a number or K x R (default: those of the given settings)")
     p.add_argument("--max-gap-px", type=float, metavar="P", help="the most a bias may move a shadow's edge on the ground [pixels]: the gap at a contact, the shortening by a normal offset (default: no limit)")
     p.add_argument("--max-slope", type=float, default=0.0, metavar="DEG",
