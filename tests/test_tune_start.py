@@ -41,7 +41,7 @@ def _both(argv):
 
 def test_the_users_settings_are_the_start(capsys):
     """Babylon with λ 0.7: 'before' is 0.7 (not the engine's 0.5), λ moves, and --keep lambda holds it."""
-    argv = ["tune", "--engine", "babylon", "--set", "lambda=0.7", "--camera", CAMERA, "--receivers", "1..200"]
+    argv = ["tune", "--objective", "perspective", "--engine", "babylon", "--set", "lambda=0.7", "--camera", CAMERA, "--receivers", "1..200"]
     got, _ = _json(capsys, argv)
     assert got["defaults"]["settings"]["lambda"] == 0.7
     lam = [c for c in got["changes"] if c["key"] == "lambda"]
@@ -53,7 +53,8 @@ def test_the_users_settings_are_the_start(capsys):
 
 def test_every_change_has_its_line():
     """A setting the user did not give that tune changes is listed; every key whose value differs has a line, in both outputs."""
-    argv = ["tune", "--engine", "threejs", "--camera", CAMERA, "--set", "material.shadowSide=FrontSide", "--receivers", "1..200"]
+    argv = ["tune", "--objective", "perspective", "--engine", "threejs", "--camera", CAMERA, "--set", "material.shadowSide=FrontSide",
+            "--receivers", "1..200"]
     got, out = _both(argv)
     differ = {k for k, v in got["settings"].items() if got["defaults"]["settings"][k] != v}
     assert differ and {c["key"] for c in got["changes"]} == differ == set(got["changed"])
@@ -238,7 +239,7 @@ def _with_project(monkeypatch, paths):
 def check_project(capsys, monkeypatch, paths, engine, extra=()):
     """End to end on sample project files ``paths`` of ``engine``: the diff touches only changed keys, reading the patched
     files back gives tune's settings, and ``--write`` writes exactly the diff's text (every other line unchanged)."""
-    base = ["tune", "--engine", engine, "--camera", CAMERA, "--receivers", "1..200", *extra]
+    base = ["tune", "--objective", "perspective", "--engine", engine, "--camera", CAMERA, "--receivers", "1..200", *extra]
     got, _ = _json(capsys, base)
     changed = got["changed"]
     assert changed

@@ -28,6 +28,7 @@ Examples
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass
 
 import numpy as np
@@ -138,7 +139,22 @@ def light_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) ->
     tri = check.triangles(triangles, empty=True)
     if not len(tri):
         tri = np.full((1, 3, 3), 10.0)  # nothing casts: one triangle far outside the map
-    return rasterize(to_map(matrix, tri), int(resolution))
+    return _draw(to_map(matrix, tri), int(resolution))
+
+
+def _draw(mapped: Array, r: int) -> DepthMap:
+    """:func:`rasterize` of map-space triangles, kept within :func:`aliasing.frames.seen.remember`'s block."""
+    kept = KEPT["maps"]
+    if kept is None:
+        return rasterize(mapped, r)
+    key = (hashlib.blake2b(np.ascontiguousarray(mapped, np.float64).tobytes(), digest_size=16).digest(), r)
+    if key not in kept:
+        kept[key] = rasterize(mapped, r)
+    return kept[key]
+
+
+#: The maps kept within :func:`aliasing.frames.seen.remember`'s block (None outside it), by the mapped triangles and the size.
+KEPT: dict = {"maps": None}
 
 
 def reference_lit(triangles: Array, matrix: Array, resolution: int, points: Array, normals: Array, sun: Array) -> NDArray[np.bool_]:
@@ -455,7 +471,7 @@ def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution
             mt = to_map(m, check.finite(triangles, "triangles"))
             q = r * 2.0**subpixel_bits
             mt[..., :2] = np.floor(mt[..., :2] * q + 0.5) / q
-            dm = rasterize(mt, r)
+            dm = _draw(mt, r)
         bias = polygon_offset(mt, r, off, off, slope) if off and len(triangles) else np.zeros(max(len(triangles), 1))
         d = np.where(dm.triangle >= 0, dm.depth + bias[np.maximum(dm.triangle, 0)], 1.0)
         cols = (centre >= x) & (centre < x + w)

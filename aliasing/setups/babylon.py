@@ -344,7 +344,8 @@ def _js(v: Any) -> str:
 
 _CSG = (("class", "CascadedShadowGenerator"),)
 #: What :func:`aliasing.tune.tune` searches: the CascadedShadowGenerator's count, size, λ,
-#: stabilization and shadowMaxZ, both biases and the PCF quality (PCF's kernel moves only the bias).
+#: stabilization and shadowMaxZ, both biases and the PCF quality (PCF's kernel moves only the bias), which faces
+#: cast (``forceBackFacesOnly``) and the blend band.
 TUNABLE = (
     Tunable("numCascades", "cascades", values=(2, 3, 4), when=_CSG),
     Tunable("mapSize", "size", values=(512, 1024, 2048, 4096, 8192)),
@@ -354,6 +355,10 @@ TUNABLE = (
     Tunable("bias", "bias"),
     Tunable("normalBias", "bias"),
     Tunable("filteringQuality", "filter", values=("QUALITY_HIGH", "QUALITY_MEDIUM", "QUALITY_LOW")),
+    # which faces cast: Lights/Shadows/shadowGenerator.js forceBackFacesOnly (lines 618, 1002–1020 at the pin)
+    Tunable("forceBackFacesOnly", "faces", values=(False, True)),
+    # the blend band: Lights/Shadows/cascadedShadowGenerator.pure.js cascadeBlendPercentage (lines 575, 730 at the pin)
+    Tunable("cascadeBlendPercentage", "blend", values=(0.0, 0.05, 0.1, 0.2), when=_CSG),
 )
 
 PROFILES = (

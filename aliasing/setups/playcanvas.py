@@ -214,7 +214,7 @@ def _js(v: Any) -> str:
 
 
 #: What :func:`aliasing.tune.tune` searches: count, resolution, the practical split's λ, the
-#: shadow distance and both biases.
+#: shadow distance, both biases and the cascades' blend band.
 TUNABLE = (
     Tunable("numCascades", "cascades", values=(1, 2, 3, 4)),
     Tunable("shadowResolution", "size", values=(512, 1024, 2048, 4096, 8192)),
@@ -222,6 +222,8 @@ TUNABLE = (
     Tunable("shadowDistance", "distance"),
     Tunable("shadowBias", "bias"),
     Tunable("normalOffsetBias", "bias"),
+    # the dithered blend band: scene/light.js cascadeBlend (line 135 at the pin; framework/components/light/component.js:169)
+    Tunable("cascadeBlend", "blend", values=(0.0, 0.1, 0.2)),
 )
 
 PROFILES = (

@@ -64,7 +64,7 @@ KINDS = ("depth", "depth_texels", "depth_range", "normal", "normal_texels", "acr
 SCALES = ("one", "sin", "one-minus-cos")
 FACES = ("front", "back", "both")
 LENGTH_UNITS = ("m", "cm", "world units")
-ROLES = ("cascades", "size", "split", "distance", "bias", "filter", "stable", "blend")
+ROLES = ("cascades", "size", "split", "distance", "bias", "filter", "stable", "blend", "faces", "depth", "radius")
 
 
 @dataclass(frozen=True)
@@ -241,7 +241,11 @@ class Tunable:
         What it does to the shadows (:data:`ROLES`): ``cascades`` (their count), ``size`` (texels
         per side of each map), ``split`` (the split mode or a split parameter), ``distance``
         (where shadows end), ``bias`` (a term of the bias rule: set to its minimum, not searched),
-        ``filter``, ``stable`` (stabilization) or ``blend`` (the blend band).
+        ``filter``, ``stable`` (stabilization), ``blend`` (the blend band) or ``faces`` (which faces cast:
+        searched by the wrong-pixel objective only, :mod:`aliasing.tune.pixels`; the perspective error cannot
+        tell the shadow that thin casters lose when only their back faces cast), ``depth`` (the light's
+        depth range, a margin behind the casters) or ``radius`` (the filter's radius): these two also by
+        the wrong-pixel objective only (the perspective error does not depend on them).
     values : tuple
         The values searched, for discrete settings (map sizes, counts, modes, booleans).
     range : tuple or None

@@ -289,7 +289,8 @@ _CSM = (("class", "CSM"),)
 _LIGHT = (("class", "DirectionalLight"),)
 #: What :func:`aliasing.tune.tune` may set: the CSM addon's count, map size, split (the named modes
 #: and a custom callback's λ), where shadows end, the bias pair and the filter; one DirectionalLight's
-#: map size and biases (its fixed box is the user's).  ``fade`` is not searched: its grown boxes
+#: map size and biases (its fixed box is the user's); which faces cast (``material.shadowSide``), the light's depth
+#: margin and the filter's radius.  ``fade`` is not searched: its grown boxes
 #: are not in the fit (the profile's notes).
 TUNABLE = (
     Tunable("cascades", "cascades", values=tuple(range(1, 9)), when=_CSM),
@@ -302,6 +303,12 @@ TUNABLE = (
     Tunable("shadow.mapSize.width", "size", values=(512, 1024, 2048, 4096, 8192, 16384), when=_LIGHT),
     Tunable("shadow.bias", "bias", when=_LIGHT),
     Tunable("renderer.shadowMap.type", "filter", values=("PCFShadowMap", "BasicShadowMap")),
+    # which faces cast (src/materials/Material.js shadowSide; src/renderers/webgl/WebGLShadowMap.js getDepthMaterial)
+    Tunable("material.shadowSide", "faces", values=("null",) + SIDES),
+    # the light's depth range behind the casters' box (examples/jsm/csm/CSM.js lightMargin, line 132 at the pin)
+    Tunable("lightMargin", "depth", values=(50.0, 100.0, 200.0, 400.0), when=_CSM),
+    # the PCF disk's radius (src/lights/LightShadow.js radius, line 87 at the pin)
+    Tunable("shadow.radius", "radius", values=(1.0, 2.0, 4.0)),
 )
 
 PROFILES = (

@@ -5,7 +5,11 @@ the camera and the sun band) and the limits (receivers' depths, a texel budget, 
 receiver that must stay free of acne, the largest lit gap in pixels, a moving camera), and
 searches only the settings the engine's profile declares tunable
 (the ``tunable`` of :class:`aliasing.setups.Profile`) for the lowest worst-case perspective error.
-Biases are not searched: they are set to the closed-form minimum that leaves no acne.  Where
+Biases are not searched there: they are set to the closed-form minimum that leaves no acne.  For
+the engines whose frames are predicted (three.js, Babylon.js, PlayCanvas), :func:`aliasing.tune.pixels.refine`
+then searches the same levers, the biases included, for the fewest pixels the user sees wrong
+(the ``aliasing tune`` command's objective), with a Pareto front of wrong pixels, texels per pixel
+and memory, and :func:`aliasing.tune.proof.prove` renders the best in the engine.  Where
 the limits cannot all be met, :attr:`Tuned.binding` says which break and
 :attr:`Tuned.tradeoff` gives the curve between acne and gap.
 
@@ -21,6 +25,10 @@ report
     What changed and what got worse, start against tuned.
 theory
     The tuned split against the papers' splits for the same budget.
+pixels
+    The wrong-pixel objective: the coordinate search, the Pareto front, the why lines.
+proof
+    ``--frames N``: the best candidates rendered in the engine itself.
 command
     The ``aliasing tune`` subcommand.
 

@@ -13,8 +13,9 @@ Examples
 ('threejs', 'babylon', 'playcanvas')
 """
 
+from .memo import remember
 from .scene import reference_scene
 from .synth import ENGINES, synthetic_frame
-from .wrong import UNITS, Wrong, wrong_pixels
+from .wrong import UNITS, Sample, Wrong, count, fractions, sample, wrong_pixels
 
-__all__ = ["ENGINES", "UNITS", "Wrong", "reference_scene", "synthetic_frame", "wrong_pixels"]
+__all__ = ["ENGINES", "UNITS", "Sample", "Wrong", "count", "fractions", "reference_scene", "remember", "sample", "synthetic_frame", "wrong_pixels"]

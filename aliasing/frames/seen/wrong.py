@@ -141,6 +141,113 @@ def _fraction(num: int, den: int) -> float | None:
     return float(num / den) if den else None
 
 
+@dataclass(frozen=True)
+class Sample:
+    """What :func:`wrong_pixels` measures on, for a camera, a scene and a sun band: kept between setups of the same camera.
+
+    Built by :func:`sample`; :func:`count` measures a setup on it.  Holds the scene, the eye pass
+    (:func:`~aliasing.frames.seen.synth.eye_geometry`) of the ``side`` faces the main pass draws,
+    each sample pixel's eye depth, the side [world units] of one pixel of the sample and of the
+    user's image there, the suns' elevations [deg] and azimuth [deg].
+    """
+
+    scene: FrameScene
+    camera: object
+    side: str
+    geometry: tuple
+    depth: Array
+    pixel_small: Array
+    pixel_user: Array
+    elevations: tuple
+    azimuth: float
+    height: int
+    width: int
+
+
+def sample(setup, scene: FrameScene | str | None = None, *, eye=None, target=None, height: int = 144, suns: int = 3) -> Sample:
+    """The :class:`Sample` of ``setup``'s camera, sun band and main-pass faces on ``scene`` (parameters: :func:`wrong_pixels`).
+
+    Examples
+    --------
+    >>> from aliasing import setups
+    >>> s = setups.build("threejs", {"cascades": 2, "shadowMapSize": 512}, "near=0.5,far=60,fov=50,aspect=16:9,height=720", "30..50")
+    >>> sm = sample(s, height=36, suns=2)
+    >>> sm.geometry[2].shape, sm.elevations
+    ((36, 64), (30.0, 50.0))
+    """
+    model, settings = engine_settings(setup)
+    h = check.whole(height, "height", 16, 1080, " [px] (rows of the sample image)")
+    n = check.whole(suns, "suns", 1, 16, " (suns over the elevation band)")
+    fs = _scene(setup, scene, eye, target)
+    from ...setups import Setup, spec
+
+    cam = setup.camera
+    small, fs = at_pixel_aspect(Setup(setup.profile, dict(setup.settings), spec.Camera(cam.near, cam.far, cam.fov, cam.aspect, h), setup.sun), fs)
+    side = VISIBLE[setup.engine](settings)
+    geometry = eye_geometry(fs, small.camera.width, h, side)
+    drawn = geometry[2]
+    if not drawn.any():
+        raise ValueError(f"scene: nothing is drawn within near..far ({cam.near:g}..{cam.far:g}) by this camera")
+    depth = np.where(drawn, fs.camera.to_eye(np.nan_to_num(geometry[0]))[..., 2], np.nan)
+    tan = float(tan_theta(cam.fov))
+    return Sample(fs, cam, side, geometry, depth, 2 * depth * tan / h, 2 * depth * tan / cam.height,
+                  tuple(float(v) for v in setup.sun.elevations(n)), float(setup.sun.azimuth), h, int(small.camera.width))
+
+
+def count(setup, where: Sample) -> Wrong:
+    """The wrong-pixel measure of ``setup`` on a :class:`Sample` of its camera and sun band (module docstring).
+
+    Raises
+    ------
+    ValueError
+        ``where`` not a Sample, or one of another camera, sun band or main-pass faces than ``setup``'s.
+
+    Examples
+    --------
+    >>> from aliasing import setups
+    >>> s = setups.build("playcanvas", {"numCascades": 2, "shadowResolution": 512}, "near=0.5,far=60,fov=50,aspect=16:9,height=720", 40)
+    >>> sm = sample(s, height=36, suns=1)
+    >>> count(s, sm).total == wrong_pixels(s, height=36, suns=1).total    # the sample kept, the same numbers
+    True
+    """
+    model, settings = engine_settings(setup)
+    if not isinstance(where, Sample):
+        raise ValueError(f"where must be a Sample (aliasing.frames.seen.sample(...)), got {type(where).__name__}")
+    if (where.camera != setup.camera or where.side != VISIBLE[setup.engine](settings) or where.azimuth != float(setup.sun.azimuth)
+            or not all(setup.sun.elevation[0] <= e <= setup.sun.elevation[1] for e in where.elevations)):
+        raise ValueError("where: the sample is of another camera, sun band or main-pass faces than setup's: take sample(setup, ...) again")
+    fs, geometry, drawn = where.scene, where.geometry, where.geometry[2]
+    taps = max(1, int(setup.pipeline.filter.taps))
+    k = None
+    counts = None
+    for e in where.elevations:
+        sun = sun_direction(float(e), setup.sun.azimuth, fs.camera)
+        r = predict_synthetic(model, settings, fs, sun, geometry, setup.engine, setup.release)
+        pred = r.prediction
+        k = len(pred.sides)
+        texel = np.append(pred.sides / pred.resolution, np.nan)[pred.cascade]  # −1 (no cascade) picks NaN
+        facing = drawn & ((np.nan_to_num(geometry[1]) @ sun) > MIN_COS)
+        masks = classify(pred.factor, r.reference, drawn, facing, np.nan_to_num(reach_px(taps, texel, where.pixel_small), nan=0.0))
+        row = np.where(pred.cascade >= 0, pred.cascade, k)  # k: beyond the last cascade
+        layers = [facing, masks["acne"], masks["false_shadow"], masks["lost_shadow"], drawn,
+                  drawn & (np.nan_to_num(texel / where.pixel_user) > 1)]
+        c = np.stack([np.bincount(row[m], minlength=k + 1) for m in layers])
+        counts = c if counts is None else counts + c
+    memory = int(setup.pipeline.memory)
+    rows = []
+    for i in range(k + 1):
+        pix, acne, false, lost, shown, blocky = (int(v) for v in counts[:, i])
+        rows.append({"cascade": i if i < k else "beyond", "pixels": pix, "acne": _fraction(acne, pix), "false_shadow": _fraction(false, pix),
+                     "lost_shadow": _fraction(lost, pix), "wrong": _fraction(acne + false + lost, pix),
+                     "blocky": _fraction(blocky, shown) if i < k else None, "memory": memory // k if i < k else 0})
+    tot = counts.sum(axis=1)
+    total = {"pixels": int(tot[0]), "acne": _fraction(tot[1], tot[0]), "false_shadow": _fraction(tot[2], tot[0]), "lost_shadow": _fraction(tot[3], tot[0]),
+             "wrong": _fraction(tot[1] + tot[2] + tot[3], tot[0]), "blocky": _fraction(counts[5, :k].sum(), counts[4, :k].sum())}
+    info = {"scene": fs.name, "elevations": list(where.elevations), "azimuth": where.azimuth, "width_px": where.width,
+            "height_px": where.height, "image_height_px": int(setup.camera.height), "filter_taps": taps, "memory": memory}
+    return Wrong(tuple(rows), total, info)
+
+
 def wrong_pixels(setup, scene: FrameScene | str | None = None, *, eye=None, target=None, height: int = 144, suns: int = 3) -> Wrong:
     """The wrong-pixel measure of ``setup`` on ``scene`` (module docstring).
 
@@ -177,48 +284,32 @@ def wrong_pixels(setup, scene: FrameScene | str | None = None, *, eye=None, targ
     >>> math.isclose(w.total["wrong"], w.total["acne"] + w.total["false_shadow"] + w.total["lost_shadow"]), w.sample["elevations"]
     (True, [40.0])
     """
-    model, settings = engine_settings(setup)
-    h = check.whole(height, "height", 16, 1080, " [px] (rows of the sample image)")
-    n = check.whole(suns, "suns", 1, 16, " (suns over the elevation band)")
-    fs = _scene(setup, scene, eye, target)
-    from ...setups import Setup, spec
+    return count(setup, sample(setup, scene, eye=eye, target=target, height=height, suns=suns))
 
-    cam = setup.camera
-    small, fs = at_pixel_aspect(Setup(setup.profile, dict(setup.settings), spec.Camera(cam.near, cam.far, cam.fov, cam.aspect, h), setup.sun), fs)
-    geometry = eye_geometry(fs, small.camera.width, h, VISIBLE[setup.engine](settings))
-    drawn = geometry[2]
-    if not drawn.any():
-        raise ValueError(f"scene: nothing is drawn within near..far ({cam.near:g}..{cam.far:g}) by this camera")
-    depth = np.where(drawn, fs.camera.to_eye(np.nan_to_num(geometry[0]))[..., 2], np.nan)
-    tan = float(tan_theta(cam.fov))
-    pixel_user = 2 * depth * tan / cam.height  # [world units] the user's pixel at each sample pixel
-    pixel_small = 2 * depth * tan / h
-    taps = max(1, int(setup.pipeline.filter.taps))
-    elev = setup.sun.elevations(n)
-    k = None
-    counts = None
-    for e in elev:
-        sun = sun_direction(float(e), setup.sun.azimuth, fs.camera)
-        r = predict_synthetic(model, settings, fs, sun, geometry, setup.engine, setup.release)
-        pred = r.prediction
-        k = len(pred.sides)
-        texel = np.append(pred.sides / pred.resolution, np.nan)[pred.cascade]  # −1 (no cascade) picks NaN
-        facing = drawn & ((np.nan_to_num(geometry[1]) @ sun) > MIN_COS)
-        masks = classify(pred.factor, r.reference, drawn, facing, np.nan_to_num(reach_px(taps, texel, pixel_small), nan=0.0))
-        row = np.where(pred.cascade >= 0, pred.cascade, k)  # k: beyond the last cascade
-        layers = [facing, masks["acne"], masks["false_shadow"], masks["lost_shadow"], drawn, drawn & (np.nan_to_num(texel / pixel_user) > 1)]
-        c = np.stack([np.bincount(row[m], minlength=k + 1) for m in layers])
-        counts = c if counts is None else counts + c
-    memory = int(setup.pipeline.memory)
-    rows = []
-    for i in range(k + 1):
-        pix, acne, false, lost, shown, blocky = (int(v) for v in counts[:, i])
-        rows.append({"cascade": i if i < k else "beyond", "pixels": pix, "acne": _fraction(acne, pix), "false_shadow": _fraction(false, pix),
-                     "lost_shadow": _fraction(lost, pix), "wrong": _fraction(acne + false + lost, pix),
-                     "blocky": _fraction(blocky, shown) if i < k else None, "memory": memory // k if i < k else 0})
-    tot = counts.sum(axis=1)
-    total = {"pixels": int(tot[0]), "acne": _fraction(tot[1], tot[0]), "false_shadow": _fraction(tot[2], tot[0]), "lost_shadow": _fraction(tot[3], tot[0]),
-             "wrong": _fraction(tot[1] + tot[2] + tot[3], tot[0]), "blocky": _fraction(counts[5, :k].sum(), counts[4, :k].sum())}
-    sample = {"scene": fs.name, "elevations": [float(v) for v in elev], "azimuth": float(setup.sun.azimuth), "width_px": int(small.camera.width),
-              "height_px": h, "image_height_px": int(cam.height), "filter_taps": taps, "memory": memory}
-    return Wrong(tuple(rows), total, sample)
+
+def fractions(factor: Array, reference: NDArray[np.bool_], drawn: NDArray[np.bool_], normal: Array, sun: Array, texel: Array,
+              pixel: Array, taps: int) -> dict:
+    """Acne, false and lost shadow (and their sum, ``wrong``) of one frame's shadow ``factor``, as fractions of its sun-facing pixels.
+
+    The same counts as :func:`count` makes of a predicted frame, for any frame: an engine's read-back
+    (:func:`aliasing.frames.run.frame_setup`) or its prediction.  ``texel`` and ``pixel`` [world units] per
+    pixel (NaN where no cascade); ``sun`` the world direction towards the sun; ``pixels`` the count.
+
+    Examples
+    --------
+    >>> ref = np.array([[False, True, True, True, True]]); every = np.ones((1, 5), bool); up = np.tile([0.0, 1.0, 0.0], (1, 5, 1))
+    >>> f = fractions(np.array([[1.0, 0.0, 1.0, 1.0, 0.0]]), ref, every, up, np.array([0.0, 1.0, 0.0]), np.ones((1, 5)), np.ones((1, 5)), 1)
+    >>> f["pixels"], f["acne"], f["false_shadow"], f["lost_shadow"]
+    (5, 0.2, 0.2, 0.2)
+    """
+    sun = check.direction(sun)
+    shape = np.shape(drawn)
+    if not all(np.shape(a) == shape for a in (factor, reference, texel, pixel)) or np.shape(normal) != (*shape, 3):
+        raise ValueError(f"factor, reference, drawn, texel and pixel must have one shape (H, W) and normal (H, W, 3), got "
+                         f"{[np.shape(a) for a in (factor, reference, drawn, texel, pixel, normal)]}")
+    facing = drawn & ((np.nan_to_num(normal) @ sun) > MIN_COS)
+    masks = classify(factor, reference, drawn, facing, np.nan_to_num(reach_px(taps, texel, pixel), nan=0.0))
+    n = int(facing.sum())
+    out = {"pixels": n, **{k: _fraction(int(m.sum()), n) for k, m in masks.items()}}
+    out["wrong"] = _fraction(int(sum(int(m.sum()) for m in masks.values())), n)
+    return out

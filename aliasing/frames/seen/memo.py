@@ -1,0 +1,73 @@
+"""Light depth maps kept while a search redraws the same maps: :func:`remember`.
+
+A search that changes only the biases, the filter or the blend band draws the same triangles
+through the same light matrices at the same size again and gets the same map.  Within
+:func:`remember`'s block :func:`aliasing.frames.predict.light_depth_map` keeps the maps it drew
+(by a digest of the mapped triangles and the size), the least recently used dropped beyond the
+block's byte limit; outside it nothing is kept.
+
+Examples
+--------
+>>> import numpy as np
+>>> from aliasing.frames.predict import light_depth_map
+>>> tri = np.array([[[0.1, 0.1, 0.5], [0.9, 0.1, 0.5], [0.1, 0.9, 0.5]]])
+>>> with remember():
+...     light_depth_map(tri, np.eye(4), 8) is light_depth_map(tri, np.eye(4), 8)
+True
+>>> light_depth_map(tri, np.eye(4), 8) is light_depth_map(tri, np.eye(4), 8)
+False
+"""
+
+from __future__ import annotations
+
+import contextlib
+from collections import OrderedDict
+from collections.abc import Iterator
+
+from ... import _validation as check
+from .. import predict
+
+
+class _Kept(OrderedDict):
+    """Maps by key, the least recently used dropped beyond ``limit`` bytes (16 per texel: depth and triangle)."""
+
+    def __init__(self, limit: int):
+        super().__init__()
+        self.limit = limit
+
+    def __getitem__(self, key):
+        self.move_to_end(key)
+        return super().__getitem__(key)
+
+    def __setitem__(self, key, value):
+        super().__setitem__(key, value)
+        while len(self) > 1 and sum(int(v.resolution) ** 2 * 16 for v in self.values()) > self.limit:
+            self.popitem(last=False)
+
+
+def remember(limit: int = 2**30) -> contextlib.AbstractContextManager:
+    """Within the block the light depth maps drawn are kept (module docstring).
+
+    Parameters
+    ----------
+    limit : int
+        The most bytes the kept maps hold together, 0 to 2⁴⁰ [bytes] (at least the last map is kept).
+
+    Examples
+    --------
+    >>> remember(-1)
+    Traceback (most recent call last):
+    ...
+    ValueError: limit must be a whole number >= 0 [bytes], got -1
+    """
+    return _remembering(check.whole(limit, "limit", 0, 2**40, " [bytes]"))
+
+
+@contextlib.contextmanager
+def _remembering(limit: int) -> Iterator[None]:
+    outer = predict.KEPT["maps"]
+    predict.KEPT["maps"] = _Kept(limit) if outer is None else outer
+    try:
+        yield
+    finally:
+        predict.KEPT["maps"] = outer

@@ -1,0 +1,199 @@
+"""``aliasing tune``'s wrong-pixel objective: the search, the Pareto front, the why lines, the exit status, ``--frames``.
+
+Small cameras (far 60) and small maps keep each search to seconds.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from aliasing import setups
+from aliasing.cli import main
+from aliasing.tune import pixels
+from aliasing.tune.command import INFEASIBLE
+from aliasing.tune.measure import limits
+from conftest import need_frames
+
+CAMERA = "near=0.5,far=60,fov=50,aspect=16:9,height=720"
+PLAYCANVAS = ["tune", "--engine", "playcanvas", "--set", "numCascades=2", "--set", "shadowResolution=512", "--set", "shadowBias=0",
+              "--camera", CAMERA, "--sun", "30..50"]
+
+
+def _json(capsys, argv, code=0):
+    assert main(argv + ["--format", "json"]) == code
+    out = capsys.readouterr()
+    return json.loads(out.out), out.err
+
+
+@pytest.fixture(scope="module")
+def playcanvas():
+    """The command's JSON for PlayCanvas from shadowBias 0 (acne over the whole ground)."""
+    import contextlib
+    import io
+
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        assert main(PLAYCANVAS + ["--format", "json"]) == 0
+    return json.loads(buf.getvalue())
+
+
+def test_the_objective_is_wrong_pixels_and_falls(playcanvas):
+    got = playcanvas
+    assert got["objective_kind"] == "wrong" and got["objective_note"] is None
+    w = got["wrong"]
+    assert w["before"]["acne"] > 0.1  # shadowBias 0: acne
+    assert w["after"]["wrong"] < w["before"]["wrong"] / 10
+    assert w["sample"]["height_px"] == pixels.HEIGHT and w["final"]["height_px"] == pixels.FINAL_HEIGHT
+    assert got["settings"]["shadowBias"] > 0
+
+
+def test_every_change_has_its_why_line(playcanvas):
+    got = playcanvas
+    assert {c["key"] for c in got["changes"]} == {w["key"] for w in got["why"]}
+    for w in got["why"]:
+        assert w["line"].startswith(f"{w['key']} ") and "→" in w["line"]
+
+
+def test_the_front_is_not_dominated_and_the_pick_is_first(playcanvas):
+    front = playcanvas["pareto"]
+    assert front
+    keys = ("wrong", "texels_per_pixel", "memory")
+    for a in front:
+        for b in front:
+            if a is not b:
+                assert not (all(a[k] <= b[k] for k in keys) and any(a[k] < b[k] for k in keys))
+    assert front[0]["changed"] == playcanvas["changed"]
+    assert [p["wrong"] for p in front] == sorted(p["wrong"] for p in front)
+
+
+_POINT = st.builds(lambda w, t, m, k: pixels.Point({"k": k}, w, 0.0, 0.0, w, t, m), st.floats(0, 1), st.floats(0.1, 1e3),
+                   st.sampled_from([1.0, 4.0, 16.0]), st.integers(0, 10**6))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(_POINT, max_size=12), st.sampled_from(sorted(pixels.PREFER)))
+def test_front_of_any_points(points, prefer):
+    got = pixels.front(points, prefer)
+    axes = pixels.PREFER[prefer]
+    assert [p.axes(prefer) for p in got] == sorted(p.axes(prefer) for p in got)
+    for p in points:  # every point is on the front or beaten (or equalled) by one on it
+        assert any(all(getattr(q, a) <= getattr(p, a) for a in axes) for q in got)
+
+
+def test_threejs_front_faces_at_bias_zero():
+    """three.js with front faces casting and shadowBias 0 (its 1e-6): acne everywhere; the pick removes it."""
+    s = setups.build("threejs", {"cascades": 2, "shadowMapSize": 512, "material.shadowSide": "FrontSide"}, CAMERA, "30..50")
+    lim = limits(s)
+    got = pixels.refine(s, s, lim, keep=frozenset({"cascades", "shadowMapSize", "mode", "maxFar"}), height=64, suns=1)
+    assert got.before["acne"] > 0.1 and got.after["wrong"] < got.before["wrong"] / 5
+    assert got.setup.settings != s.settings
+
+
+def test_other_engines_keep_the_perspective_objective(capsys):
+    got, _ = _json(capsys, ["tune", "--engine", "godot", "--camera", CAMERA, "--sun", "30..50", "--receivers", "1..40"])
+    assert got["objective_kind"] == "perspective" and got["objective_note"].startswith("the toolkit does not predict Godot")
+    assert got["pareto"] == [] and got["wrong"] is None
+    assert main(["tune", "--engine", "godot", "--camera", CAMERA, "--sun", "30..50", "--receivers", "1..40"]) == 0
+    assert "objective: worst perspective error (the toolkit does not predict" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv", [["--engine", "godot", "--max-texels", "1"],
+                                  ["--engine", "playcanvas", "--set", "shadowResolution=512", "--max-memory", "0.001"]])
+def test_infeasible_limits_exit_3(argv, capsys):
+    assert INFEASIBLE not in (0, 2)
+    code = main(["tune", *argv, "--camera", CAMERA, "--sun", "30..50"])
+    out = capsys.readouterr()
+    assert code == INFEASIBLE
+    assert len(out.err.strip().splitlines()) == 1 and f"(exit status {INFEASIBLE})" in out.err
+    assert out.out  # the closest settings are still printed
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.sampled_from(["--prefer", "--max-memory", "--frames", "--objective"]),
+       st.one_of(st.sampled_from(["nan", "inf", "-1", "0", "1e400", "", "x", "65", "blockyy"]), st.text(max_size=6)))
+def test_bad_flags_refused_in_one_line(flag, value):
+    import contextlib
+    import io
+
+    err = io.StringIO()
+    argv = PLAYCANVAS[:1] + ["--engine", "godot", "--camera", CAMERA, "--sun", "30..50", "--receivers", "1..40", flag, value]
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+        try:
+            code = main(argv)
+        except SystemExit as exc:  # argparse's choices and types
+            code = exc.code
+    if code == 2:
+        assert len(err.getvalue().strip().splitlines()) == 1, err.getvalue()
+    else:
+        assert code in (0, INFEASIBLE)
+
+
+def test_frames_refused_without_the_engine(monkeypatch, capsys, tmp_path):
+    monkeypatch.setenv("ALIASING_ENGINES_JS_CACHE", str(tmp_path))  # an empty cache: no engine installed
+    assert main(PLAYCANVAS + ["--frames", "2"]) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "aliasing frames --install" in err
+
+
+def test_frames_2_end_to_end(capsys, monkeypatch):
+    need_frames("playcanvas", "PlayCanvas")
+    from aliasing.tune import proof
+
+    monkeypatch.setattr(proof, "HEIGHT", 48)
+    monkeypatch.setattr(proof, "SUNS", 1)
+    keep = "numCascades,shadowResolution,cascadeDistribution,shadowDistance,cascadeBlend,normalOffsetBias"  # shadowBias searched alone
+    got, _ = _json(capsys, PLAYCANVAS + ["--frames", "2", "--keep", keep])
+    fr = got["frames"]
+    assert len(fr["candidates"]) == 2 and 0 <= fr["pick"] < 2
+    for c in fr["candidates"]:
+        assert 0 <= c["measured"]["wrong"] <= 1 and 0 <= c["predicted"]["wrong"] <= 1
+    assert got["settings"] == fr["candidates"][fr["pick"]]["settings"]
+
+
+_GARBAGE = st.one_of(st.none(), st.booleans(), st.integers(-10**6, 10**6), st.floats(allow_nan=True, allow_infinity=True), st.text(max_size=6),
+                     st.lists(st.integers(), max_size=3))
+
+
+@settings(max_examples=40, deadline=None)
+@given(_GARBAGE)
+def test_api_refuses_garbage_naming_it(bad):
+    from aliasing.frames import seen
+    from aliasing.tune import proof
+
+    s = setups.build("playcanvas", {}, CAMERA, "30..50")
+    lim = limits(s)
+    calls = [(lambda: pixels.refine(bad, s, lim), "start"), (lambda: pixels.refine(s, bad, lim), "perspective"),
+             (lambda: pixels.hard(bad, False), "lim"), (lambda: pixels.why_not(bad), "setup"), (lambda: seen.count(s, bad), "where")]
+    if not (isinstance(bad, str) and bad in pixels.PREFER):
+        calls += [(lambda: pixels.front([], bad), "prefer"), (lambda: pixels.refine(s, s, lim, prefer=bad), "prefer")]
+    whole = isinstance(bad, (int, float)) and not isinstance(bad, bool) and math.isfinite(bad) and float(bad).is_integer()
+    if not (whole and 1 <= bad <= 64):
+        calls.append((lambda: proof.candidates([], "wrong", bad), "n"))
+    for call, name in calls:
+        with pytest.raises(ValueError, match=name):
+            call()
+
+
+def test_scene_file_seen_from_its_camera(capsys, tmp_path):
+    """A glTF scene with a camera: the receivers and the wrong pixels both come from it, seen from that camera."""
+    trimesh = pytest.importorskip("trimesh")
+    import numpy as np
+
+    ground = trimesh.creation.box(extents=[80, 0.1, 80])
+    ground.apply_translation([0, -1.05, -40])
+    box = trimesh.creation.box(extents=[1, 2, 1])
+    box.apply_translation([0.5, 0, -8])
+    sc = trimesh.Scene([ground, box])
+    sc.camera = trimesh.scene.Camera(name="cam", fov=(50 * 16 / 9, 50), resolution=(1280, 720))
+    sc.camera_transform = np.eye(4)
+    path = tmp_path / "yard.glb"
+    sc.export(str(path))
+    keep = "numCascades,shadowResolution,cascadeDistribution,shadowDistance,cascadeBlend,normalOffsetBias"
+    got, _ = _json(capsys, PLAYCANVAS + ["--scene", str(path), "--keep", keep])
+    assert got["wrong"]["sample"]["scene"] == "yard.glb" and got["objective_kind"] == "wrong"
+    assert got["wrong"]["after"]["wrong"] < got["wrong"]["before"]["wrong"]
