@@ -7,7 +7,7 @@ built-in boxes scene with another seed and count (:data:`SEED`, :data:`BOXES`). 
 ``--height`` rows under ``--suns`` suns over the band: tune's pick, the engine's defaults, and a small grid
 over the engine's cascade count (or map size) and its main bias term (the closed-form minimum times 0.5,
 1 and 2).  For each: the wrong pixels measured in the engine's frame and predicted by the toolkit (fractions
-of the sun-facing pixels), the worst texels per pixel over the receivers, and the time.
+of the sun-facing pixels), the worst px/texel over the receivers, and the time.
 
 Run: ``python benchmarks/tune_frames.py [--engines threejs,babylon,playcanvas] [--height 144] [--suns 2]``
 (needs ``aliasing frames --install``).  The grid is kept small on purpose: the machine is shared.
@@ -60,7 +60,7 @@ def run(engine: str, height: int, suns: int) -> dict:
         s = setups.Setup(start.profile, settings, start.camera, start.sun)
         tpp = measure(s, tuned.limits).objective
         changed = {k: v for k, v in settings.items() if start.settings.get(k) != v}
-        out.append({"name": name, "changed": changed, "measured": r["measured"], "predicted": r["predicted"], "texels_per_pixel": tpp})
+        out.append({"name": name, "changed": changed, "measured": r["measured"], "predicted": r["predicted"], "px_per_texel": tpp})
     return {"engine": engine, "tune_s": round(t_tune, 1), "frames_s": round(t_frames, 1), "frames": len(rows), "rows": out,
             "evaluations": got.evaluations}
 
@@ -87,7 +87,7 @@ def main() -> None:
         for row in r["rows"]:
             m, p = row["measured"], row["predicted"]
             print(f"  {row['name']:9} {pct(m['wrong']):>9} {pct(p['wrong']):>9} {pct(m['acne']):>8} {pct(m['lost_shadow']):>8} "
-                  f"{row['texels_per_pixel']:9.3g}  {row['changed']}")
+                  f"{row['px_per_texel']:9.3g}  {row['changed']}")
         grid_best = min(x["measured"]["wrong"] for x in r["rows"] if x["name"].startswith("grid"))
         pick, dflt = r["rows"][0]["measured"]["wrong"], r["rows"][1]["measured"]["wrong"]
         gap = max(abs(x["measured"]["wrong"] - x["predicted"]["wrong"]) for x in r["rows"])

@@ -4,7 +4,7 @@ Not a paper figure.  The three.js CSM addon (r187) with 4 cascades of 2048² tex
 (near 0.1 m, far 500 m, vertical fov 50°, 1920×1080), the sun 15–60° above the ground
 (:func:`aliasing.check.check` of :func:`aliasing.setups.build`).
 
-* left: the perspective error along the view, texels per pixel (a texel's width over a pixel's at
+* left: the perspective error along the view, px/texel (a texel's width over a pixel's at
   eye depth z, the texel from three.js's own fit: the diagonal-sized, texel-snapped box), one
   sawtooth tooth per cascade;
 * middle: the ``shadow.normalBias`` each cascade needs so that the ground does not acne where front
@@ -64,7 +64,7 @@ def main(out_dir: Path) -> list[Path]:
         z = np.geomspace(max(cols["near"][k], 0.5), cols["far"][k], 60)
         ax.plot(z, cols["texel"][k] * h / (2 * t * z), color=f"C{k}", lw=2, label=f"cascade {k}: {cols['texel'][k] * 100:.1f} cm texel")
     ax.axhline(1.0, color="k", lw=0.8, ls=":")
-    ax.set(xscale="log", yscale="log", xlabel="eye depth z [m]", ylabel="texels per pixel (error)", title="Error along the view")
+    ax.set(xscale="log", yscale="log", xlabel="eye depth z [m]", ylabel="pixels per texel (error)", title="Error along the view")
     ax.legend(fontsize=7.5)
     ax = axes[1]
     for k in range(4):

@@ -7,7 +7,7 @@ default map size (the count and the size kept, so the memory is the same), front
 (three.js: ``material.shadowSide = FrontSide``) so that the ground can acne, receivers up to a
 10° slope kept free of acne (:func:`aliasing.tune.tune`, measured by :func:`aliasing.check.check`).
 
-* left: the worst perspective error per cascade, texels per pixel at the cascade's near end
+* left: the worst perspective error per cascade, px/texel at the cascade's near end
   (Lloyd et al. 2006, eq. 2 with a uniform map), defaults and tuned;
 * middle: the steepest receiver free of acne per cascade, as its angle to the light, scanned from
   the flattest receiver of the band (the ground under the highest sun, 30°; "acne" where even it
@@ -108,7 +108,7 @@ def _figure(engine: str, t, cols: dict[str, np.ndarray], out_dir: Path) -> list[
     fig, axes = subplots(3, width=4.2, height=3.6)
     w = 0.8 / len(labels)
     need = min(90 - t.setup.sun.elevation[0] + SLOPE, 85.0)
-    for ax, key, title, ylabel in ((axes[0], "error", "Worst error per cascade", "texels per pixel (error)"),
+    for ax, key, title, ylabel in ((axes[0], "error", "Worst error per cascade", "pixels per texel (error)"),
                                    (axes[1], "angle", "Steepest receiver free of acne", "angle to the light [deg]"),
                                    (axes[2], "gap", "Shadow edges moved", "edge shift on the ground [px]")):
         for j, label in enumerate(labels):
@@ -141,7 +141,7 @@ def _overview(rows: list[tuple[str, dict[str, np.ndarray]]], out_dir: Path) -> l
     x = np.arange(len(rows))
     fig, axes = subplots(2, width=5.0, height=3.6)
     columns: dict[str, np.ndarray] = {}
-    for ax, key, title, ylabel, reduce in ((axes[0], "error", "Worst error over the cascades", "texels per pixel (error)", np.nanmax),
+    for ax, key, title, ylabel, reduce in ((axes[0], "error", "Worst error over the cascades", "pixels per texel (error)", np.nanmax),
                                            (axes[1], "gap", "Largest peter-panning over the cascades", "lit gap at a wall's foot [px]", np.nanmax)):
         for j, (label, color) in enumerate((("defaults", "0.6"), ("tuned", "C0"))):
             v = np.array([float(reduce(cols[f"{key}|{label}"])) for _, cols in rows])

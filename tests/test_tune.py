@@ -197,7 +197,7 @@ def test_tune_no_worse_than_the_grid_of_counts_and_sizes():
 
 
 def test_issue_case_numbers():
-    """The three.js developer's case: λ 0.5 gives 677 texels per pixel at 10 cm; 0.95 gives 76; the search goes further."""
+    """The three.js developer's case: λ 0.5 gives 677 px/texel at 10 cm; 0.95 gives 76; the search goes further."""
     start = _setup()
     lim = limits(start)
     assert round(measure(start, lim).objective, 1) == 677.2

@@ -53,7 +53,7 @@ def test_unmeetable_limits_exit_3_with_binding(capsys):
 def test_table(capsys):
     assert main(BASE) == 0
     out = capsys.readouterr().out
-    assert "677.2 -> 9.045 texels per pixel" in out and "mode: 'practical' → 'logarithmic'" in out and "csm.mode = 'logarithmic';" in out
+    assert "677.2 -> 9.045 px/texel" in out and "mode: 'practical' → 'logarithmic'" in out and "csm.mode = 'logarithmic';" in out
 
 
 @pytest.mark.parametrize("extra, words", [

@@ -62,7 +62,7 @@ def test_every_change_has_its_why_line(playcanvas):
 def test_the_front_is_not_dominated_and_the_pick_is_first(playcanvas):
     front = playcanvas["pareto"]
     assert front
-    keys = ("wrong", "texels_per_pixel", "memory")
+    keys = ("wrong", "px_per_texel", "memory")
     for a in front:
         for b in front:
             if a is not b:

@@ -290,7 +290,7 @@ def test_write_is_atomic(capsys, monkeypatch, tmp_path):
 
 def test_readme_and_guide_numbers(godot):
     """README's 'Tune your engine': count and size kept 67.7 → 5.33 with the seam step ×2.3 → ×4.96 named; free, 8 × 1024² (half the memory) give 5.03.
-    The guide's Godot case: 24.4 → 3.67 texels per pixel, or 24.41 holding the start's 29.52 px."""
+    The guide's Godot case: 24.4 → 3.67 px/texel, or 24.41 holding the start's 29.52 px."""
     start = setups.build("threejs", {"cascades": 4, "shadowMapSize": 2048}, CAMERA, "15..60")
     kept = tune(start, receivers=(1.0, 200.0), keep="cascades,shadowMapSize".split(","))
     assert (round(kept.before.objective, 1), round(kept.objective, 2)) == (67.7, 5.33)

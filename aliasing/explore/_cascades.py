@@ -68,7 +68,7 @@ def compute(method: str, k: int, lam: float, near: float, far: float, fov: float
     dict
         ``rows`` (:func:`aliasing.budgets.splits_report`'s rows), ``near_i``, ``far_i``,
         ``S_max`` (per partition), ``res_s``, ``res_t``, ``error`` (per partition) and
-        ``worst`` (the largest error over partitions and :data:`LIGHTS`) [texels per pixel].
+        ``worst`` (the largest error over partitions and :data:`LIGHTS`) [px/texel].
 
     Example
     -------

@@ -103,7 +103,7 @@ def draw(fig: Figure, d: dict[str, Any]) -> None:
             a.text(xi, 0.02, "no receivers", rotation=90, ha="center", va="bottom", fontsize=6, color=color, transform=a.get_xaxis_transform())
     a.set_yscale("log")
     w.readable_log_ticks(a.yaxis)
-    a.set(xlabel="cascade", xticks=range(n), ylabel="texels per pixel (error)", title="worst error per cascade over the receivers")
+    a.set(xlabel="cascade", xticks=range(n), ylabel="pixels per texel (error)", title="worst error per cascade over the receivers")
     a.legend(fontsize=7)
     b.axis("off")
     lines = [f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}" for k, v in d["changed"].items()] or ["(the defaults are best)"]
@@ -111,7 +111,7 @@ def draw(fig: Figure, d: dict[str, Any]) -> None:
               f"gap: {d['gap_px']:.3g} px", "splits: " + ", ".join(f"{c:.3g}" for c in d["splits"])]
     b.text(0.0, 1.0, "\n".join(lines), va="top", family="monospace", fontsize=8, transform=b.transAxes)
     b.set_title("tuned settings", fontsize=9)
-    fig.suptitle(f"{d['title']}: {d['objective_before']:.3g} → {d['objective']:.3g} texels per pixel", fontsize=9)
+    fig.suptitle(f"{d['title']}: {d['objective_before']:.3g} → {d['objective']:.3g} px/texel", fontsize=9)
     fig.subplots_adjust(left=0.08, right=0.98, bottom=0.15, top=0.84, wspace=0.15)
 
 

@@ -8,7 +8,7 @@ searches only the settings the engine's profile declares tunable
 Biases are not searched there: they are set to the closed-form minimum that leaves no acne.  For
 the engines whose frames are predicted (three.js, Babylon.js, PlayCanvas), :func:`aliasing.tune.pixels.refine`
 then searches the same levers, the biases included, for the fewest pixels the user sees wrong
-(the ``aliasing tune`` command's objective), with a Pareto front of wrong pixels, texels per pixel
+(the ``aliasing tune`` command's objective), with a Pareto front of wrong pixels, px/texel
 and memory, and :func:`aliasing.tune.proof.prove` renders the best in the engine.  Where
 the limits cannot all be met, :attr:`Tuned.binding` says which break and
 :attr:`Tuned.tradeoff` gives the curve between acne and gap.
@@ -37,7 +37,7 @@ Example
 >>> from aliasing import setups
 >>> s = setups.build("threejs", {"cascades": 4}, "near=0.1,far=500,fov=50,aspect=16:9,height=1080", "15..60")
 >>> t = tune(s, keep=("cascades", "shadowMapSize"))
->>> t.feasible, t.changed, round(t.before.objective), round(t.objective, 2)   # texels per pixel, before and after
+>>> t.feasible, t.changed, round(t.before.objective), round(t.objective, 2)   # px/texel, before and after
 (True, {'mode': 'logarithmic'}, 677, 9.05)
 """
 

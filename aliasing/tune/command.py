@@ -382,12 +382,12 @@ def _wrong_text(result: dict[str, Any]) -> list[str]:
         for i, c in enumerate(fr["candidates"]):
             ch = ", ".join(f"{k}={v}" for k, v in c["search"]["changed"].items()) or "(your settings)"
             lines.append(f"  {'*' if i == fr['pick'] else ' '} {_pct(c['measured']['wrong'])} / {_pct(c['predicted']['wrong'])}  {ch}")
-    lines.append(f"Pareto front (wrong pixels, worst texels per pixel, memory; picked by --prefer {got.prefer}: the first row):")
+    lines.append(f"Pareto front (wrong pixels, worst px/texel, memory; picked by --prefer {got.prefer}: the first row):")
     start = result["tuned"].start.settings
     rows = [["wrong", "acne", "false shadow", "lost shadow", "texels/px", "memory [MiB]", "changes"]]
     for p in got.pareto[:12]:
         d = p.to_dict(start)
-        rows.append([_pct(p.wrong), _pct(p.acne), _pct(p.false_shadow), _pct(p.lost_shadow), _tables.cell(d["texels_per_pixel"]),
+        rows.append([_pct(p.wrong), _pct(p.acne), _pct(p.false_shadow), _pct(p.lost_shadow), _tables.cell(d["px_per_texel"]),
                      f"{p.memory:.4g}", ", ".join(f"{k}={v}" for k, v in d["changed"].items()) or "(your settings)"])
     lines += ["  " + ln for ln in _tables.aligned(rows).splitlines()]
     if len(got.pareto) > 12:
@@ -407,7 +407,7 @@ def text(result: dict[str, Any]) -> str:
     lines = [f"{s.profile.title} {s.release}: camera {s.camera.spec()} ({s.camera.width}x{s.camera.height}), sun {s.sun.spec()}, "
              f"receivers {tuned.limits.receivers[0]:g}..{tuned.limits.receivers[1]:g}"]
     before = f"{tuned.before.objective:.4g}" if math.isfinite(tuned.before.objective) else f"none ({_before_reason(tuned)})"
-    lines.append(f"worst perspective error: {before} -> {tuned.objective:.4g} texels per pixel"
+    lines.append(f"worst perspective error: {before} -> {tuned.objective:.4g} px/texel"
                  + ("" if tuned.feasible else " (limits not all met)"))
     lines.append("binding: " + (", ".join(_FLAGS.get(b, "--" + b.replace("_", "-")) for b in tuned.binding) or "none"))
     lines += _wrong_text(result)
@@ -418,7 +418,7 @@ def text(result: dict[str, Any]) -> str:
     lines += [w["line"] for w in result["worse"]]
     if tuned.held_gap is not None:
         h = tuned.held_gap
-        lines.append(f"  with --max-gap-px {h.limits.max_gap_px:.4g} (the start's gap) the worst error would be {h.objective:.4g} texels per pixel"
+        lines.append(f"  with --max-gap-px {h.limits.max_gap_px:.4g} (the start's gap) the worst error would be {h.objective:.4g} px/texel"
                      + (f" ({len(h.changed)} changes)" if h.changed else " (your settings unchanged)"))
     rows = []
     before_rows, after_rows = result["before"].cascades, result["after"].cascades
@@ -481,7 +481,7 @@ def add_tune_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
         "acne up to --max-slope and shadow edges moved within --max-gap-px; the texels within --max-texels and, with --moving, no "
         "shimmer. Your settings (--settings, --set) are the start: the search begins there, --keep holds some at their values, every "
         "change is listed before and after in the engine's units with what it fixes and costs, and every measure that gets worse is "
-        "named. The Pareto front of wrong pixels, texels per pixel and memory is printed; --prefer picks from it.",
+        "named. The Pareto front of wrong pixels, px/texel and memory is printed; --prefer picks from it.",
         epilog="Example: aliasing tune --engine threejs --set cascades=4 --set shadowMapSize=2048 "
         "--camera near=0.1,far=500,fov=50,aspect=16:9,height=1080 --sun 15..60 --receivers 1..200.  Exit status: 0 tuned within "
         f"the limits; {INFEASIBLE} the limits cannot all be met (the closest settings are still printed: 'binding' names the "
@@ -501,8 +501,8 @@ def add_tune_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    "reference scene or --scene (threejs, babylon, playcanvas); perspective, the worst perspective error; auto "
                    "(default): wrong where the engine's frames are predicted, else perspective (the output says which and why)")
     p.add_argument("--prefer", default="wrong", choices=list(pixels.PREFER),
-                   help="the pick from the Pareto front of wrong pixels, texels per pixel and memory: wrong (default: fewest wrong "
-                   "pixels, ties by texels per pixel, then memory), blocky (fewest texels per pixel first) or memory (least memory first)")
+                   help="the pick from the Pareto front of wrong pixels, px/texel and memory: wrong (default: fewest wrong "
+                   "pixels, ties by px/texel, then memory), blocky (fewest px/texel first) or memory (least memory first)")
     p.add_argument("--max-memory", type=float, metavar="MIB", help="the most memory of all shadow maps together [MiB] (wrong-pixel search)")
     p.add_argument("--frames", type=int, metavar="N", help="render the N best candidates in the engine itself (headless Chromium) on the "
                    "same scene and pick the best measured (needs 'aliasing frames --install'); JSON holds measured beside predicted")

@@ -56,7 +56,7 @@ class Measure:
     Attributes
     ----------
     error : ndarray
-        Worst perspective error per cascade over the receivers and the sun band [texels per pixel]
+        Worst perspective error per cascade over the receivers and the sun band [px/texel]
         (NaN where no receiver uses the cascade).
     texel : ndarray
         Each cascade's largest world texel over the sun band [world units].
@@ -68,7 +68,7 @@ class Measure:
     gap_px : ndarray
         The lit gap at a caster's foot per cascade, in pixels at its nearest receiver.
     objective : float
-        ``max(error)`` [texels per pixel]; inf where no cascade reaches the receivers.
+        ``max(error)`` [px/texel]; inf where no cascade reaches the receivers.
     texels : int
         Texels of all maps (k·R²).
     stable : bool

@@ -4,7 +4,7 @@ For the engines whose frames the toolkit predicts (:data:`aliasing.frames.seen.E
 Babylon.js, PlayCanvas; their CSM and single-map classes) the objective is the fraction of the
 sun-facing pixels that the predicted frame gets wrong (acne, false shadow and lost shadow,
 :func:`aliasing.frames.seen.wrong_pixels`) on the user's scene or the reference scene, over suns
-across the band.  Blockiness, the worst texels per pixel over the receivers
+across the band.  Blockiness, the worst px/texel over the receivers
 (:func:`aliasing.tune.measure.measure`), and the maps' memory [MiB] are their own axes.
 
 The search (:func:`refine`):
@@ -61,9 +61,9 @@ SPLIT_POINTS = 5
 #: Coordinate passes at most.
 PASSES = 2
 #: The pick rules: the axes in the order compared (``wrong``: fewest wrong pixels, ties by texels
-#: per pixel, then memory; ``blocky``: fewest texels per pixel first; ``memory``: least memory first).
-PREFER = {"wrong": ("wrong", "texels_per_pixel", "memory"), "blocky": ("texels_per_pixel", "wrong", "memory"),
-          "memory": ("memory", "wrong", "texels_per_pixel")}
+#: per pixel, then memory; ``blocky``: fewest px/texel first; ``memory``: least memory first).
+PREFER = {"wrong": ("wrong", "px_per_texel", "memory"), "blocky": ("px_per_texel", "wrong", "memory"),
+          "memory": ("memory", "wrong", "px_per_texel")}
 _ORDERED = ("cascades", "size")
 
 
@@ -99,8 +99,8 @@ class Point:
         The engine's settings.
     wrong, acne, false_shadow, lost_shadow : float
         Fractions of the sun-facing pixels of the search's sample [0..1].
-    texels_per_pixel : float
-        The worst perspective error over the receivers [texels per pixel] (inf where no cascade reaches them).
+    px_per_texel : float
+        The worst perspective error over the receivers [px/texel] (inf where no cascade reaches them).
     memory : float
         The maps' memory [MiB].
     """
@@ -110,7 +110,7 @@ class Point:
     acne: float
     false_shadow: float
     lost_shadow: float
-    texels_per_pixel: float
+    px_per_texel: float
     memory: float
 
     def axes(self, prefer: str) -> tuple:
@@ -119,7 +119,7 @@ class Point:
 
     def to_dict(self, changed: Mapping[str, Any] | None = None) -> dict:
         """JSON-ready (no inf: None), with ``changed``: the settings that differ from ``changed``'s (the start)."""
-        out = {k: (v if math.isfinite(v) else None) for k in ("wrong", "acne", "false_shadow", "lost_shadow", "texels_per_pixel", "memory")
+        out = {k: (v if math.isfinite(v) else None) for k in ("wrong", "acne", "false_shadow", "lost_shadow", "px_per_texel", "memory")
                for v in (float(getattr(self, k)),)}
         if changed is not None:
             out["changed"] = {k: v for k, v in self.settings.items() if changed.get(k) != v}
@@ -324,7 +324,7 @@ def why(result: Seen, start: Setup, lim: Limits) -> list[dict]:
             else:
                 parts = [f"{name} {_pct(getattr(back, a))} → {_pct(getattr(after, a))}" for a, name in _AXES[:4]
                          if abs(getattr(back, a) - getattr(after, a)) >= 5e-5]
-                for a, name, u in (("texels_per_pixel", "worst texels per pixel", ""), ("memory", "memory", " MiB")):
+                for a, name, u in (("px_per_texel", "worst px/texel", ""), ("memory", "memory", " MiB")):
                     va, vb = getattr(back, a), getattr(after, a)
                     if not math.isclose(va, vb, rel_tol=1e-6):
                         parts.append(f"{name} {va:.3g}{u} → {vb:.3g}{u}")
@@ -345,7 +345,7 @@ def _value(v: Any) -> str:
 
 
 def front(points, prefer: str = "wrong", start: Mapping[str, Any] | None = None) -> tuple:
-    """The points no other beats on all three axes (wrong, texels per pixel, memory), in the order of ``PREFER[prefer]``.
+    """The points no other beats on all three axes (wrong, px/texel, memory), in the order of ``PREFER[prefer]``.
 
     Of points equal on all three axes only one is kept: the one with the fewest settings changed from ``start``.
 
@@ -366,7 +366,7 @@ def front(points, prefer: str = "wrong", start: Mapping[str, Any] | None = None)
     """
     rule = check.choice(prefer, "prefer", tuple(PREFER))
     pts = [p for p in points if isinstance(p, Point)]
-    keys = ("wrong", "texels_per_pixel", "memory")
+    keys = ("wrong", "px_per_texel", "memory")
 
     def beats(a, b):
         va, vb = [getattr(a, k) for k in keys], [getattr(b, k) for k in keys]

@@ -20,6 +20,7 @@ from .. import _validation as check
 from ..frames import seen
 from ..frames.scenes import FrameScene, frame_scene, sun_direction
 from ..setups import Setup, spec
+from ..view import tan_theta
 from .pixels import PREFER, Point
 
 #: Rows of each rendered frame [px].
@@ -206,7 +207,7 @@ def render(start: Setup, settings: list, *, scene: Any = None, height: int | Non
                 r = frame_setup(browser, s, fs, sun)
                 rb, pred = r.readback, r.prediction
                 depth = np.where(rb.drawn, fs.camera.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
-                pixel = 2 * depth * np.tan(np.radians(cam.fov) / 2) / rb.shadow.shape[0]
+                pixel = 2 * depth * tan_theta(cam.fov) / rb.shadow.shape[0]
                 sides = np.append(pred.sides / pred.resolution, np.nan)
                 for name, factor, cascade in (("measured", rb.shadow, rb.cascade), ("predicted", pred.factor, pred.cascade)):
                     texel = sides[np.where((cascade >= 0) & (cascade < len(pred.sides)), cascade, len(pred.sides))]

@@ -2,7 +2,7 @@
 
 :func:`worse` compares the user's setup (the start) with the tuned one on every measure that
 ``check`` reports, so that no trade is made silently: the worst error over the receivers
-[texels per pixel], the acne (the share of the sampled receivers, ground and ``max_slope``), the
+[px/texel], the acne (the share of the sampled receivers, ground and ``max_slope``), the
 gap at a caster's foot [px], the step of the texel at a cascade seam [×], the shimmer under a walk
 [px per frame] and the memory of the maps [MiB].  Each measure that grows is one entry, with its
 line of text.
@@ -21,7 +21,7 @@ from .search import Tuned
 __all__ = ["MEASURES", "changes_text", "worse"]
 
 #: The measures compared: (name, words, unit).
-MEASURES = (("error", "worst error over the receivers", "texels per pixel"), ("acne", "acne", "of the sampled receivers"),
+MEASURES = (("error", "worst error over the receivers", "px/texel"), ("acne", "acne", "of the sampled receivers"),
             ("gap_px", "gap at the walls' foot over the receivers", "px"), ("seam_step", "seam step", "×"), ("shimmer_px", "shimmer", "px per frame"),
             ("memory", "memory", "MiB"))
 

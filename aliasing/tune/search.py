@@ -64,7 +64,7 @@ class Tuned:
     start : Setup
         The setup it started from: the user's (the engine's defaults where the user gave no value).
     objective : float
-        Its worst perspective error over the receivers and the sun band [texels per pixel].
+        Its worst perspective error over the receivers and the sun band [px/texel].
     binding : tuple of str
         The limits that bind (:data:`LIMITS`): where all are met, those whose relaxing would
         lower the objective; where they cannot all be met, those the closest setup breaks.
@@ -422,7 +422,7 @@ def tune(setup: Setup, *, receivers: Iterable[float] | None = None, scene: Any =
     Returns
     -------
     Tuned
-        The setup, its objective [texels per pixel], every change from the start, the binding
+        The setup, its objective [px/texel], every change from the start, the binding
         limits and, where acne and the gap limit conflict, the trade-off between them.
 
     Raises

@@ -45,7 +45,7 @@ METHODS = ("start", "tuned", "log", "practical", "equal-error", "budget")
 
 
 def _errors(pipe, cam, lights, near_i, far_i, receivers) -> np.ndarray:
-    """Worst error per cascade [texels per pixel] of contiguous ranges with the pipeline's fit, over the sun band and receivers."""
+    """Worst error per cascade [px/texel] of contiguous ranges with the pipeline's fit, over the sun band and receivers."""
     a, b = np.asarray(near_i, float), np.asarray(far_i, float)
     r = stable.evaluate((a, b), cam.near, float(b.max()), cam.fov, lights, aspect=cam.aspect, fit=pipe.fit, snap=pipe.snap,
                         resolution=float(pipe.resolution))
@@ -135,7 +135,7 @@ def compare_splits(tuned: Tuned) -> list[dict[str, Any]]:
     """The tuned split against the papers' (module docstring): one row per method.
 
     Each row: ``method``, ``splits`` (C_0 … C_k [world units]), ``error`` (the worst over the
-    receivers and the sun band [texels per pixel]) and ``ratio`` (error over the equal-error split's).
+    receivers and the sun band [px/texel]) and ``ratio`` (error over the equal-error split's).
 
     Example
     -------
