@@ -373,7 +373,9 @@ def _ab(a: ArrayLike, b: ArrayLike, y0: Array, y1: Array) -> tuple[Array, Array]
     bb = check.as_float_array(b, "b")
     if ((-bb >= y0) & (-bb <= y1)).any():
         raise ValueError(f"b must be > −y0 or < −y1 (the root −b of δ_lp,t, eq. 106, must lie off the face [y0, y1]), got b={check._show(bb)}")
-    if (np.abs(bb - aa) <= 1e-9 * (aa + y0)).any():  # eq. 110 is 0/0 at b = a, and all rounding near it
+    with np.errstate(invalid="ignore"):  # a = b = inf (the uniform limit): inf − inf is NaN, not "equal"
+        same = np.abs(bb - aa) <= 1e-9 * (aa + y0)
+    if same.any():  # eq. 110 is 0/0 at b = a, and all rounding near it
         raise ValueError(f"b must differ from a by more than 1e-9·(a + y0) (b = a makes eq. 110's logarithm 0); use b = inf for eq. 78; got a={check._show(aa)}, b={check._show(bb)}")
     # beyond 1e150 the products (y + a)(y + b) of eq. 110 overflow to inf/inf
     if (np.isinf(aa) & np.isfinite(bb)).any() or (np.isfinite(bb) & (np.abs(bb) > _BIG)).any() or (np.isfinite(aa) & (aa > _BIG)).any():
@@ -387,9 +389,17 @@ _BIG = 1e150  # largest finite a, b, lx, ly for which the closed forms stay insi
 def _log_ratio(dx: Array, x0: Array) -> Array:
     """ln((x0 + dx)/x0) for x0 > 0, dx ≥ 0: log1p(dx/x0), exact also as the ratio → 1 (a ≫ y: the
     map tends to uniform); where dx/x0 overflows (near → 0), ln(x0 + dx) − ln x0, which loses nothing there."""
-    with np.errstate(over="ignore"):
+    with np.errstate(over="ignore", invalid="ignore"):  # x0 = inf (a = inf): step 0; the other branch's inf − inf is not taken
         step = dx / x0
-    return np.where(np.isinf(step), np.log(x0 + dx) - np.log(x0), np.log1p(np.where(np.isinf(step), 0.0, step)))
+        big = np.log(x0 + dx) - np.log(x0)
+    return np.where(np.isinf(step), big, np.log1p(np.where(np.isinf(step), 0.0, step)))
+
+
+def _log_map(dy: Array, span: Array, y0a: Array, vv: Array) -> Array:
+    """ln((y0+a+dy)/(y0+a)) / ln((y0+a+span)/(y0+a)) (eqs. 77, 78), and its limit v, the uniform map, at a = inf."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = _log_ratio(dy, y0a) / _log_ratio(span, y0a)
+    return np.where(np.isinf(y0a), vv, ratio)
 
 
 @check.public
@@ -441,11 +451,11 @@ def parameterization(kind: str, v: ArrayLike, near: ArrayLike, far: ArrayLike, f
             t = (y1 + aa) * (yy - y0) / ((y1 - y0) * (yy + aa))  # eqs. (75)-(76): p2 + p3/(y + a)
         return np.where(np.isinf(aa), vv, t)
     if key == "log_t":
-        return _log_ratio(yy - y0, y0 + aa) / _log_ratio(y1 - y0, y0 + aa)  # eq. (77)
+        return _log_map(yy - y0, y1 - y0, y0 + aa, vv)  # eq. (77)
     # logp_t: c0 log((y0+a)(y+b)/((y0+b)(y+a))), eqs. (106)-(110); b = inf gives eq. (78)
     with np.errstate(invalid="ignore", divide="ignore"):
         finite = np.log((y0 + aa) * (yy + bb) / ((y0 + bb) * (yy + aa))) / np.log((y0 + aa) * (y1 + bb) / ((y0 + bb) * (y1 + aa)))  # eq. (110)
-    return np.where(np.isinf(bb), _log_ratio(yy - y0, y0 + aa) / _log_ratio(y1 - y0, y0 + aa), finite)
+    return np.where(np.isinf(bb), _log_map(yy - y0, y1 - y0, y0 + aa, vv), finite)
 
 
 @check.public
@@ -515,7 +525,7 @@ def logp_inverse(t: ArrayLike, near: ArrayLike, far: ArrayLike, fov: ArrayLike, 
         E = np.exp(tt / c0)
         y_fin = (aa * (y0 + bb) * E - bb * (y0 + aa)) / ((y0 + aa) - (y0 + bb) * E)
     yy = np.where(np.isinf(bb), y_inf, y_fin)
-    return (yy - y0) / (y1 - y0)
+    return np.where(np.isinf(aa), tt, (yy - y0) / (y1 - y0))  # a = inf: the uniform limit, v = t (as parameterization has it)
 
 
 @check.public

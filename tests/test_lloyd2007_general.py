@@ -546,3 +546,22 @@ def test_eqs63_65_72_rho_bound_is_largest_for_the_overhead_light():
 def test_eq19_point_light_tends_to_directional_light():
     # §3.2: as the light recedes (image plane fixed), n_l/d_l → 1 and the point-light m becomes eq. 25's
     assert sp.cancel(sp.together(J.m_point_far_limit() / L.m_directional_2d())) == 1
+
+
+def test_log_maps_at_a_infinite_are_the_uniform_limit_without_warnings():
+    """a = inf (with b = inf) is the uniform limit of eqs. 77, 78 and 84: v for the maps, t for the inverse, and no
+    inf − inf on the way (the API fuzz found logp_inverse(0.5, 1, 100, 60, a=[inf, 0, 1]) warning, and the maps NaN)."""
+    import warnings
+
+    from aliasing import logpsm
+
+    v = np.linspace(0.0, 1.0, 5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for kind in ("log_t", "logp_t", "perspective_t"):
+            np.testing.assert_array_equal(logpsm.parameterization(kind, v, 1.0, 50.0, 60.0, a=np.inf), v)
+        np.testing.assert_array_equal(logpsm.logp_inverse(v, 1.0, 50.0, 60.0, a=np.inf), v)
+        out = logpsm.logp_inverse(0.5, 1.0, 100.0, 60.0, a=[np.inf, 0.0, 1.0])
+    assert np.isfinite(out).all() and out[0] == 0.5
+    t = logpsm.parameterization("logp_t", 0.3, 1.0, 50.0, 60.0, a=[0.0, 1.0])  # finite a: the inverse undoes the map
+    np.testing.assert_allclose(logpsm.logp_inverse(t, 1.0, 50.0, 60.0, a=[0.0, 1.0]), 0.3, rtol=1e-12)
