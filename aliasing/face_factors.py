@@ -365,7 +365,7 @@ def optimal_factors(kind: str, near: ArrayLike, far: ArrayLike, fov: ArrayLike, 
     tau, _ = _extremum(value, np.zeros(shape), np.zeros(shape) + tau_max, 49, sign=-1.0, iterations=40)
     a_opt = y0 * np.expm1(tau)
     out = face_factors(key, near, far, fov, lx=lx, ly=ly, lz=lz, directional=directional, a=a_opt, b=b, samples=samples)
-    return {**out, "a": a_opt + 0 * out["S"]}
+    return {**out, "a": a_opt + np.zeros(np.shape(out["S"]))}  # broadcast; 0·S would be NaN where S is inf (a grazing light)
 
 
 @check.public

@@ -253,3 +253,14 @@ def test_eq68_numeric_is_stable_for_a_light_near_the_face_plane():
     for lz in (1e-9, 1e-4, 1.0, 100.0):
         for ly in (-300.0, 700.0, 1300.0, 2000.0):
             assert float(logpsm.rho_bound("side_t", NEAR, FAR, FOV, ly=ly, lz=lz)) == pytest.approx(rho_ref(ly, lz), rel=1e-13)
+
+
+def test_optimal_factors_of_a_grazing_light_are_inf_not_nan():
+    """A directional light almost in the face's plane (lz = 6.1e-281) has S = inf; the optimal a stays a number
+    (the API fuzz found a + 0·S warning there)."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = optimal_factors("logp", 1.0, 10.0, 60.0, lz=6.1e-281, b=1.0, directional=True)
+    assert np.isinf(r["S"]) and np.isfinite(r["a"]) and not any(np.isnan(v).any() for v in r.values())
