@@ -30,11 +30,24 @@ def _lights(light: str | ArrayLike) -> Array:
     return geometry.lights(light)
 
 
-def result(pipeline: Pipeline, camera: Camera, light: str | ArrayLike) -> stable.StableResult:
-    """:func:`aliasing.engines.stable.evaluate` of the pipeline's cascades (not for ``fit="fixed"``)."""
+def result(pipeline: Pipeline, camera: Camera, light: str | ArrayLike, ranges: tuple[ArrayLike, ArrayLike] | None = None) -> stable.StableResult:
+    """:func:`aliasing.engines.stable.evaluate` of the pipeline's cascades (not for ``fit="fixed"``): the pipeline and
+    the camera reach it whole (ranges, fit, snap, map size; near, fov, aspect).
+
+    ``ranges``: other cascade ranges ``(near_i, far_i)`` [world units] with the pipeline's fit, snap and size (a
+    split the pipeline might have had: :mod:`aliasing.tune.theory`).
+
+    Example
+    -------
+    >>> from aliasing import setups
+    >>> s = setups.build("threejs", camera="near=0.1,far=500,fov=50,aspect=16:9,height=1080", sun=30)
+    >>> r = result(s.pipeline, s.camera, s.sun.direction()[None], ranges=([0.1, 50.0], [50.0, 500.0]))
+    >>> r.M_x.shape                                   # (directions, cascades)
+    (1, 2)
+    """
     if pipeline.fit == "fixed":
         raise ValueError("a fixed shadow box has no cascade fit: use texels()")
-    a, b = np.asarray(pipeline.near_i), np.asarray(pipeline.far_i)
+    a, b = (np.asarray(pipeline.near_i), np.asarray(pipeline.far_i)) if ranges is None else (np.asarray(x, float) for x in ranges)
     return stable.evaluate((a, b), camera.near, float(b.max()), camera.fov, _lights(light), aspect=camera.aspect,
                            fit=pipeline.fit, snap=pipeline.snap, resolution=float(pipeline.resolution))
 

@@ -36,7 +36,7 @@ import numpy as np
 
 from .. import _validation as _check
 from .. import budgets, partitioning
-from ..engines import stable
+from ..engines import pipeline as engine_pipeline
 from ..setups import Camera, Pipeline
 from .measure import depths
 from .search import Tuned
@@ -47,8 +47,7 @@ METHODS = ("start", "tuned", "log", "practical", "equal-error", "budget")
 def _errors(pipe, cam, lights, near_i, far_i, receivers) -> np.ndarray:
     """Worst error per cascade [px/texel] of contiguous ranges with the pipeline's fit, over the sun band and receivers."""
     a, b = np.asarray(near_i, float), np.asarray(far_i, float)
-    r = stable.evaluate((a, b), cam.near, float(b.max()), cam.fov, lights, aspect=cam.aspect, fit=pipe.fit, snap=pipe.snap,
-                        resolution=float(pipe.resolution))
+    r = engine_pipeline.result(pipe, cam, lights, ranges=(a, b))
     rn, rf = receivers
     u, v = (np.asarray(x, float) for x in r.used)
     err = np.maximum(r.M_x, r.M_z).max(axis=0) * cam.height / pipe.resolution * u / np.maximum(u, rn)  # eq. (2) at max(u, rn)
@@ -168,8 +167,7 @@ def compare_splits(tuned: Tuned) -> list[dict[str, Any]]:
     c = equal_error_split(pipe, cam, lights, k, near, far, rec)
     row("equal-error", c, float(np.nanmax(_errors(pipe, cam, lights, c[:-1], c[1:], rec))))
     c = partitioning.split_distances("log", near, far, k)
-    r = stable.evaluate((c[:-1], c[1:]), near, far, cam.fov, lights, aspect=cam.aspect, fit=pipe.fit, snap=pipe.snap,
-                        resolution=float(pipe.resolution))
+    r = engine_pipeline.result(pipe, cam, lights, ranges=(c[:-1], c[1:]))  # near: the camera's; far: c[-1]
     u = np.asarray(r.used[0], float)
     scale = u / np.maximum(u, rec[0])  # the error at the first receiver
     mx, mz = r.M_x * scale, r.M_z * scale
