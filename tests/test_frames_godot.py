@@ -4,7 +4,7 @@ The page starts Godot's runtime with a main pack written for the job (a PCK, pac
 project.godot, main.tscn, main.gd and the job), reads back the sun's raw shadow factor per pixel,
 the camera's and light's transforms and the projection as GDScript sees them, and the
 DirectionalShadowData uniform buffer Godot uploads (its matrices, split offsets, normal biases).
-Checked here, on the boxes scene at 144 × 96 with one browser (four settings, two frames each):
+Checked here, on the boxes scene at 144 × 96 with one browser (five settings, tune's pick among them, two frames each):
 
 * the camera's view and projection and the light's basis are the toolkit's to 1e-5, and so are
   Godot's four split matrices (the toolkit's prediction of the fit, snap and atlas);
@@ -55,13 +55,21 @@ RUNS = {"defaults": {}, "bias0": {"shadow_bias": 0.0, "shadow_normal_bias": 0.0}
 PATH, SMALL = "sideways:0.05:4", {"rendering/lights_and_shadows/directional_shadow/size": 256}
 
 
+def _tuned() -> dict:
+    """What ``aliasing tune`` sets for Godot's Compatibility renderer at the tests' camera and sun (the renderer kept)."""
+    from aliasing.tune import tune
+
+    start = setups.build("godot@4.6", COMPAT, SPEC, "35@30")
+    return {**COMPAT, **tune(start, keep=tuple(COMPAT)).changed}
+
+
 @pytest.fixture(scope="module")
 def rendered():
     need_frames("godot", "Godot web runtime")
     boxes = scenes.frame_scene("boxes", **CAMERA)
     out = {}
     with fb.Browser(timeout=120) as b:
-        for name, given in RUNS.items():
+        for name, given in {**RUNS, "tuned": _tuned()}.items():
             out[name] = frame_setup(b, setups.build("godot@4.6", {**COMPAT, **given}, SPEC, "35@30"), boxes)
         path = frame_setup(b, setups.build("godot@4.6", {**COMPAT, **SMALL}, SPEC, "35@30"), boxes, path=PATH)
     return out, path
@@ -92,6 +100,8 @@ def test_godot_draws_with_the_toolkits_camera_light_and_matrices(frames):
 
 
 def test_acne_at_bias_zero_and_none_at_the_defaults_as_predicted(frames):
+    """At the defaults, at bias 0, at tune's settings (and the other runs): agreement and acne and lost shadow as predicted."""
+    assert frames["tuned"].settings["shadow_normal_bias"] != 2.0  # tune changed Godot's settings: the frame tests its pick
     m0, p0 = frames["defaults"].report["measured"], frames["defaults"].report["predicted"]
     m1, p1 = frames["bias0"].report["measured"], frames["bias0"].report["predicted"]
     assert m0["acne"] < 0.01 and m1["acne"] > 0.3
