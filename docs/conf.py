@@ -54,7 +54,7 @@ nitpicky = True
 # Third-party types in signatures and docstrings have no intersphinx inventory offline
 # (no network at build time), so they cannot resolve; the project's own names are never here.
 nitpick_ignore_regex = [
-    (r"py:.*", r"(functools|types|numpy|np|npt|numpy\.typing|sympy|sp|scipy|matplotlib|plt|mpl|pandas|pd|xarray|xr|dask|distributed|ipywidgets|trimesh|embreex|argparse|collections|pathlib|os|typing|typing_extensions|dataclasses|enum|concurrent|tqdm)(\..*)?"),
+    (r"py:.*", r"(functools|types|numpy|np|npt|numpy\.typing|sympy|sp|scipy|matplotlib|plt|mpl|pandas|pd|xarray|xr|dask|distributed|ipywidgets|trimesh|embreex|argparse|collections|pathlib|os|typing|typing_extensions|dataclasses|contextlib|enum|concurrent|tqdm)(\..*)?"),
     # traitlets/ipywidgets annotate with ``import typing as t`` (the explorers' base class, a VBox)
     (r"py:.*", r"t\.\w+"),
     # numpy.typing.ArrayLike and friends as they appear unqualified in rendered signatures

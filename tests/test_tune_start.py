@@ -283,7 +283,7 @@ def test_write_is_atomic(capsys, monkeypatch, tmp_path):
     light.write_text(text)
     mod.patch = lambda path, t, changes, found: t + "maxFar = 1\n" if "maxFar" in changes else t  # the second maxFar wins on read
     _with_project(monkeypatch, [str(light)])
-    status = main(["tune", "--engine", "threejs", "--camera", CAMERA, "--receivers", "1..200", "--keep", "cascades", "--write"])
+    status = main(["tune", "--objective", "perspective", "--engine", "threejs", "--camera", CAMERA, "--receivers", "1..200", "--keep", "cascades", "--write"])
     assert status == 2 and "does not read back" in capsys.readouterr().err
     assert light.read_text() == text and sorted(p.name for p in tmp_path.iterdir()) == ["scene.light"]
 

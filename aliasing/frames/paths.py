@@ -285,10 +285,14 @@ def godot_shimmer(result: FrameResult, scene: FrameScene, sun: Array, path: list
 
     Examples
     --------
-    The poses come from Godot's page, so the example is not run here:
+    The poses come from Godot's page, so the example's render is not run here; its bad input is:
 
+    >>> godot_shimmer(None, None, [0.0, 1.0, 0.0], [])
+    Traceback (most recent call last):
+    ...
+    ValueError: result must be Godot's FrameResult (frame_setup with a path)
     >>> godot_shimmer(r, fs, sun, parse_path("sideways:0.05:4", fs.camera))["measured"]   # doctest: +SKIP
-    0.0
+    0.0088
     """
     from .models.godot import Godot
     from .readback import decode

@@ -149,6 +149,14 @@ class Sample:
     (:func:`~aliasing.frames.seen.synth.eye_geometry`) of the ``side`` faces the main pass draws,
     each sample pixel's eye depth, the side [world units] of one pixel of the sample and of the
     user's image there, the suns' elevations [deg] and azimuth [deg].
+
+    Examples
+    --------
+    >>> from aliasing import setups
+    >>> s = setups.build("playcanvas", {}, "near=0.5,far=60,fov=50,aspect=2,height=720", "30..50")
+    >>> sm = sample(s, height=32, suns=2)
+    >>> sm.height, sm.width, sm.elevations, bool((sm.pixel_user < sm.pixel_small)[sm.geometry[2]].all())   # the user's pixel is the smaller
+    (32, 64, (30.0, 50.0), True)
     """
 
     scene: FrameScene
