@@ -5,8 +5,8 @@ headless Chromium with WebGL 2 on SwiftShader (:mod:`aliasing.frames`); per row:
 engine's frame, the toolkit's predicted shadow factor for the same pixels, the acne map (lit
 receivers the engine shades as shadowed: red where the toolkit predicts it too, yellow where
 only the engine, blue where only the toolkit) and the error map (pixels per texel of the
-cascade each pixel samples, from the engine's light matrices; below 1 a texel covers more than
-a pixel).
+cascade each pixel samples, from the engine's light matrices, on a log scale; above 1 a texel
+covers more than a pixel: the shadow is blocky there).
 
 Setting (ours): near 0.5, far 60, vertical fov 50°, 16:9, 512 × 288 px, sun 35° above the
 ground and 30° from the view direction; 30 boxes.  Needs Chromium, npm and Playwright
@@ -51,6 +51,7 @@ def main(out_dir: Path) -> list[Path]:
 
     import matplotlib
     import matplotlib.image
+    from matplotlib.colors import LogNorm
 
     fig, axes = subplots(4, nrows=len(results), width=3.2, height=2.0)
     axes = np.asarray(axes).reshape(len(results), 4)
@@ -70,9 +71,9 @@ def main(out_dir: Path) -> list[Path]:
         rep = r.report
         ax[2].imshow(acne)
         ax[2].set_title(f"acne: engine {100 * rep['measured']['acne']:.2f} %, toolkit {100 * rep['predicted']['acne']:.2f} %", fontsize=8)
-        im = ax[3].imshow(_ppt(r, fs), cmap="viridis", vmin=0, vmax=2)
+        im = ax[3].imshow(_ppt(r, fs), cmap="viridis", norm=LogNorm(0.1, 10.0))  # 1: a texel per pixel; above, blocky
         ax[3].set_title("pixels per texel (engine's matrices)", fontsize=8)
-        fig.colorbar(im, ax=ax[3], shrink=0.8)
+        fig.colorbar(im, ax=ax[3], shrink=0.8, extend="both")
         for a in ax:
             a.set_xticks([]), a.set_yticks([])
         rows.append({"case": title, **{f"measured_{k}": v for k, v in rep["measured"].items()}, **{f"predicted_{k}": v for k, v in rep["predicted"].items()}})
