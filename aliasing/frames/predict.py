@@ -35,7 +35,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
-from ..raster.draw import DepthMap, rasterize
+from ..raster.draw import DepthMap, rasterize, rasterize_at
+from ..raster.draw.core import TexelStore, texel_indices
 
 Array = NDArray[np.float64]
 SIDES = ("front", "back", "double")
@@ -148,13 +149,218 @@ def _draw(mapped: Array, r: int) -> DepthMap:
     if kept is None:
         return rasterize(mapped, r)
     key = (hashlib.blake2b(np.ascontiguousarray(mapped, np.float64).tobytes(), digest_size=16).digest(), r)
-    if key not in kept:
-        kept[key] = rasterize(mapped, r)
-    return kept[key]
+    try:
+        return kept[key]
+    except KeyError:  # not drawn yet (or dropped)
+        kept[key] = dm = rasterize(mapped, r)
+        return dm
 
 
 #: The maps kept within :func:`aliasing.frames.seen.remember`'s block (None outside it), by the mapped triangles and the size.
 KEPT: dict = {"maps": None}
+
+
+class SampledMap:
+    """:func:`light_depth_map`'s map drawn only at the texels looked up (:meth:`at`), those found kept: bit for bit the whole map's values.
+
+    A frame of H × W pixels reads a few texels per pixel through each map; an engine's map has
+    millions.  The factor functions (:func:`threejs_factor`, :func:`babylon_factor`,
+    :func:`playcanvas_factor`) take a sampled map where they take a :class:`DepthMap`; run them
+    through :func:`gathered` to draw every texel they read in one pass per map.
+
+    Attributes
+    ----------
+    resolution : int
+        Texels per side [texels].
+    texels : int
+        Texels drawn so far.
+
+    Examples
+    --------
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
+    >>> roof = [[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]]
+    >>> sm = sampled_depth_map(roof, m, 4)
+    >>> d, tri = sm.at(np.array([1, 1]), np.array([1, 3]))
+    >>> d.tolist(), tri.tolist(), sm.texels                     # only the 2 texels asked are drawn
+    ([0.25, inf], [0, -1], 2)
+    >>> bool((d == light_depth_map(roof, m, 4).depth[[1, 1], [1, 3]]).all())
+    True
+    """
+
+    def __init__(self, mapped: Array, resolution: int) -> None:
+        self.mapped = mapped
+        self.resolution = int(resolution)
+        self._kept = TexelStore(size=self.resolution**2)  # a slot table: 4 bytes per texel
+        self._asked: list | None = None  # while gathered's first run records the texels read
+
+    @property
+    def texels(self) -> int:
+        """The texels drawn so far.
+
+        Examples
+        --------
+        >>> sampled_depth_map([[[0, 0, 0], [1, 0, 0], [0, 0, 1]]], np.eye(4), 8).texels
+        0
+        """
+        return len(self._kept)
+
+    @property
+    def nbytes(self) -> int:
+        """The bytes kept [bytes]: the slot table's 4 per texel of the map, and 24 per texel drawn.
+
+        Examples
+        --------
+        >>> sm = sampled_depth_map([[[0, 0, 0], [1, 0, 0], [0, 0, 1]]], np.eye(4), 8)
+        >>> sm.draw([0, 1, 1]); sm.nbytes                 # 64 · 4 + 2 · (8 + 8 + 8)
+        304
+        """
+        return self._kept.nbytes
+
+    def at(self, row: ArrayLike, col: ArrayLike) -> tuple[Array, NDArray[np.int64]]:
+        """Depth (``inf`` where empty) and visible triangle (−1 where empty) of texels (``row``, ``col``), whole numbers in [0, R) of one shape."""
+        flat = texel_indices(row, col, self.resolution)
+        if self._asked is not None:  # recording (gathered): the values are not used
+            self._asked.append(flat.ravel())
+            return np.zeros(flat.shape), np.full(flat.shape, -1, np.int64)
+        self.draw(flat)
+        return self._kept.get(flat)
+
+    def draw(self, flat: ArrayLike) -> None:
+        """Draw the texels of flat indices row·R + column (those not drawn yet), in one pass.
+
+        Examples
+        --------
+        >>> sm = sampled_depth_map([[[0, 0, 0], [1, 0, 0], [0, 0, 1]]], np.eye(4), 8)
+        >>> sm.draw([3, 3, 9]); sm.texels
+        2
+        """
+        missing = self._kept.missing(np.asarray(flat, np.int64))
+        if missing.size:
+            self._kept.add(missing, *rasterize_at(self.mapped, self.resolution, missing // self.resolution, missing % self.resolution))
+
+
+class TexelArray:
+    """An (R, R) array of a map's texels made where indexed: ``values(depth, triangle)`` at the texels of ``array[row, col]``.
+
+    Examples
+    --------
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])
+    >>> stored = TexelArray(sampled_depth_map([[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]], m, 4), lambda d, tri: np.where(tri >= 0, d, 1.0))
+    >>> stored.shape, stored[np.array([1, 1]), np.array([1, 3])].tolist()
+    ((4, 4), [0.25, 1.0])
+    """
+
+    ndim = 2
+
+    def __init__(self, source, values) -> None:
+        self.source = source
+        self.values = values
+        self.shape = (source.resolution, source.resolution)
+
+    def __getitem__(self, key) -> Array:
+        row, col = np.broadcast_arrays(*key)
+        return self.values(*self.source.at(row, col))
+
+
+def texels(dm, values) -> Array | TexelArray:
+    """``values(depth, triangle)`` of a whole :class:`DepthMap`, or the :class:`TexelArray` of a :class:`SampledMap`.
+
+    Examples
+    --------
+    >>> dm = light_depth_map([[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]], np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]]), 2)
+    >>> texels(dm, lambda d, tri: np.where(tri >= 0, d, 1.0)).tolist()
+    [[0.25, 1.0], [1.0, 1.0]]
+    """
+    if isinstance(dm, DepthMap):
+        return values(dm.depth, dm.triangle)
+    if not isinstance(dm, (SampledMap, _Atlas)):
+        raise ValueError(f"dm must be a DepthMap or a SampledMap, got {type(dm).__name__}")
+    return TexelArray(dm, values)
+
+
+def sampled_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) -> SampledMap:
+    """:func:`light_depth_map`, drawn only at the texels looked up (:class:`SampledMap`); kept within :func:`aliasing.frames.seen.remember`'s block.
+
+    Parameters
+    ----------
+    triangles : array_like (T, 3, 3)
+        World triangles [world units].
+    matrix : array_like (4, 4)
+        World → (s, t, depth) in [0, 1]³ (an orthographic light: w = 1).
+    resolution : int
+        Texels per side [texels], in [1, 16384].
+
+    Examples
+    --------
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])
+    >>> sampled_depth_map([[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]], m, 4).at(np.array([0]), np.array([0]))[0].tolist()
+    [0.25]
+    """
+    check.whole(resolution, "resolution", 1, 16384, " [texels]")
+    tri = check.triangles(triangles, empty=True)
+    if not len(tri):
+        tri = np.full((1, 3, 3), 10.0)  # nothing casts: one triangle far outside the map
+    return _sampled(to_map(matrix, tri), int(resolution))
+
+
+def _sampled(mapped: Array, r: int) -> SampledMap:
+    """A :class:`SampledMap` of map-space triangles, kept within :func:`aliasing.frames.seen.remember`'s block."""
+    kept = KEPT["maps"]
+    if kept is None:
+        return SampledMap(mapped, r)
+    key = ("sampled", hashlib.blake2b(np.ascontiguousarray(mapped, np.float64).tobytes(), digest_size=16).digest(), r)
+    try:
+        return kept[key]
+    except KeyError:  # not drawn yet (or dropped)
+        kept[key] = sm = SampledMap(mapped, r)
+        return sm
+
+
+def _sampled_maps(a) -> list:
+    """The :class:`SampledMap` objects behind ``a`` (a sampled map, a :class:`TexelArray`, an atlas); none for a whole map."""
+    if isinstance(a, TexelArray):
+        return _sampled_maps(a.source)
+    if isinstance(a, _Atlas):
+        return [dm for dm, _, _ in a.parts if isinstance(dm, SampledMap)]
+    return [a] if isinstance(a, SampledMap) else []
+
+
+def gathered(compute, maps):
+    """``compute()`` with the texels it reads of sampled ``maps`` drawn in one pass per map.
+
+    ``compute`` runs twice: first recording the texels it reads (the values are then zeros: its
+    lookups must not depend on them, as the factor functions' do not), then, with those texels
+    drawn, for its result.  Maps that are not sampled are left as they are.
+
+    Examples
+    --------
+    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])
+    >>> roof = [[[0, 0.25, 0], [2, 0.25, 0], [0, 0.25, 2]]]
+    >>> pts = np.array([[0.5, 0.0, 0.5], [0.5, 0.3, 0.5]]); up = np.array([[0.0, 1.0, 0.0]] * 2)   # under the roof, above it
+    >>> def factor(maps):
+    ...     return threejs_factor(maps, m[None], np.array([0, 0]), pts, up, np.array([0.5, 1.5]), np.array([0.5, 0.5]),
+    ...                           bias=0.0, normal_bias=0.0, radius=1.0)
+    >>> sm = sampled_depth_map(roof, m, 64)
+    >>> gathered(lambda: factor([sm]), [sm]).tolist(), sm.texels    # 2 points · 5 taps · 4 texels read, 13 distinct
+    ([0.0, 1.0], 13)
+    >>> factor([light_depth_map(roof, m, 64)]).tolist()              # the whole map's 4096 texels: the same
+    [0.0, 1.0]
+    """
+    lazy = [m for a in maps for m in _sampled_maps(a)]
+    if not lazy:
+        return compute()
+    for m in lazy:
+        m._asked = []
+    try:
+        compute()
+    finally:
+        asked = [(m, m._asked) for m in lazy]
+        for m in lazy:
+            m._asked = None
+    for m, flat in asked:
+        if flat:
+            m.draw(np.concatenate(flat))
+    return compute()
 
 
 def reference_lit(triangles: Array, matrix: Array, resolution: int, points: Array, normals: Array, sun: Array) -> NDArray[np.bool_]:
@@ -176,14 +382,14 @@ def reference_lit(triangles: Array, matrix: Array, resolution: int, points: Arra
     if np.shape(sun) != (3,):
         raise ValueError(f"sun must be a 3-vector, got shape {np.shape(sun)}")
     normals, sun = check.finite(normals, "normals"), check.finite(sun, "sun")
-    dm = light_depth_map(triangles, matrix, resolution)
+    dm = sampled_depth_map(triangles, matrix, resolution)  # one texel per point: only those are drawn
     c = to_map(matrix, points)
     r = dm.resolution
     inside = np.all((c[..., :2] >= 0) & (c[..., :2] < 1), axis=-1)
     col = np.clip(np.floor(np.nan_to_num(c[..., 0]) * r), 0, r - 1).astype(np.int64)
     row = np.clip(np.floor(np.nan_to_num(c[..., 1]) * r), 0, r - 1).astype(np.int64)
-    tid = dm.triangle[row, col]
-    mt = to_map(matrix, triangles)  # (T, 3, 3) corners in map space
+    tid = dm.at(row, col)[1]
+    mt = dm.mapped if len(dm.mapped) == len(triangles) else to_map(matrix, triangles)  # (T, 3, 3) corners in map space
     a, b, cc = mt[:, 0], mt[:, 1], mt[:, 2]
     nrm = np.cross(b - a, cc - a)  # plane of each triangle in map space
     t = np.maximum(tid, 0)
@@ -256,8 +462,8 @@ def threejs_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
         c = to_map32(m, q) if float32 else to_map(m, q)
         z = c[:, 2] + bias
         inside = (c[:, 0] >= 0) & (c[:, 0] <= 1) & (c[:, 1] >= 0) & (c[:, 1] <= 1) & (z <= 1)
-        r = dm.depth.shape[0]
-        depth = np.where(np.isfinite(dm.depth), dm.depth, 1.0)  # cleared to the far plane
+        r = dm.resolution
+        depth = texels(dm, lambda d, _: np.where(np.isfinite(d), d, 1.0))  # cleared to the far plane
         if map_type == "BasicShadowMap":
             col = np.clip(np.floor(c[:, 0] * r), 0, r - 1).astype(np.int64)
             row = np.clip(np.floor(c[:, 1] * r), 0, r - 1).astype(np.int64)
@@ -366,7 +572,7 @@ def babylon_factor(maps: list[DepthMap], matrices: Array, cascade: NDArray[np.in
 
     def lookup(i: int, sel: NDArray[np.bool_]) -> Array:
         c = to_map(matrices[i], points[sel])
-        stored = np.clip(np.where(np.isfinite(maps[i].depth), maps[i].depth, 1.0) + 1.5 * bias, 0.0, 1.0)
+        stored = texels(maps[i], lambda d, _: np.clip(np.where(np.isfinite(d), d, 1.0) + 1.5 * bias, 0.0, 1.0))
         ref = np.clip(c[:, 2], 0.0, 0.99999994)
         return pcf(stored, c[:, 0], c[:, 1], ref)
 
@@ -427,7 +633,7 @@ def polygon_offset(map_triangles: Array, resolution: int, factor: float, units: 
 
 
 def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution: int, shadow_bias: float, slope: str = "max",
-                     subpixel_bits: int | None = None) -> Array:
+                     subpixel_bits: int | None = None, sampled: bool = False) -> Array | TexelArray:
     """PlayCanvas's shadow atlas: each cascade's casters drawn through its palette matrix into its cell, with the polygon offset.
 
     ``matrices`` (k, 4, 4) map world points to the atlas's (s, t, depth) (the engine's
@@ -437,7 +643,8 @@ def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution
     (``light.js`` ``_updateShadowBias``: −1000 × the light's −0.01 · shadowBias).
     Empty texels hold the clear depth 1; ``slope``: :func:`polygon_offset`'s.  ``subpixel_bits``: each
     corner's (s, t) first rounded to 1/2^bits of a texel, as a rasterizer with that sub-texel precision
-    places it (SwiftShader: 4; None: exact).  Returns the (R, R) depth array.
+    places it (SwiftShader: 4; None: exact).  Returns the (R, R) depth array; ``sampled``: a :class:`TexelArray`
+    of it whose cascades' maps are drawn only where read (:class:`SampledMap`, :func:`gathered`), the same values.
 
     Examples
     --------
@@ -448,6 +655,8 @@ def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution
     [0.25, 0.25, 0.25, 0.25]
     >>> float(playcanvas_atlas(roof, m[None], [[0.0, 0.0, 1.0, 1.0]], 4, 0.05)[2, 2] - 0.25) == 0.5 * 2.0**-25   # a flat caster: units · r
     True
+    >>> playcanvas_atlas(roof, m[None], [[0.0, 0.0, 1.0, 1.0]], 4, 0.0, sampled=True)[np.array([2, 2]), np.array([0, 3])].tolist()
+    [0.25, 0.25]
     """
     r = int(resolution)
     cells = check.finite(cells, "cells")
@@ -458,27 +667,55 @@ def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution
         raise ValueError(f"resolution must be a whole number of texels >= 1, got {resolution!r}")
     if not np.isfinite(shadow_bias):
         raise ValueError(f"shadow_bias must be finite, got {shadow_bias!r}")
-    out = np.ones((r, r))
     off = 10.0 * min(max(shadow_bias, 0.0), 1.0)
-    centre = (np.arange(r) + 0.5) / r
     if subpixel_bits is not None and not (isinstance(subpixel_bits, (int, np.integer)) and 0 <= subpixel_bits <= 16):
         raise ValueError(f"subpixel_bits must be a whole number in [0, 16] or None, got {subpixel_bits!r}")
-    for m, (x, y, w, h) in zip(mats, cells):
+    parts = []
+    for m, cell in zip(mats, cells):
         if subpixel_bits is None or not len(triangles):
-            dm = light_depth_map(triangles, m, r)
+            dm = (sampled_depth_map if sampled else light_depth_map)(triangles, m, r)
             mt = to_map(m, triangles) if len(triangles) else None
         else:
             mt = to_map(m, check.finite(triangles, "triangles"))
             q = r * 2.0**subpixel_bits
             mt[..., :2] = np.floor(mt[..., :2] * q + 0.5) / q
-            dm = _draw(mt, r)
+            dm = _sampled(mt, r) if sampled else _draw(mt, r)
         bias = polygon_offset(mt, r, off, off, slope) if off and len(triangles) else np.zeros(max(len(triangles), 1))
-        d = np.where(dm.triangle >= 0, dm.depth + bias[np.maximum(dm.triangle, 0)], 1.0)
+        parts.append((dm, bias, cell))
+    if sampled:
+        return TexelArray(_Atlas(parts, r), lambda d, _: d)
+    out = np.ones((r, r))
+    centre = (np.arange(r) + 0.5) / r
+    for dm, bias, (x, y, w, h) in parts:
+        d = _offset(dm.depth, dm.triangle, bias)
         cols = (centre >= x) & (centre < x + w)
         rows = (centre >= y) & (centre < y + h)
         cell = rows[:, None] & cols[None, :]
         out[cell] = d[cell]
     return out
+
+
+def _offset(depth: Array, triangle: NDArray[np.int64], bias: Array) -> Array:
+    """The atlas's stored depth: the window depth plus the polygon offset of the texel's triangle, 1 (cleared) where empty."""
+    return np.where(triangle >= 0, depth + bias[np.maximum(triangle, 0)], 1.0)
+
+
+class _Atlas:
+    """:func:`playcanvas_atlas`'s texels from its cascades' sampled maps (``parts``: map, polygon offsets, cell), drawn where read."""
+
+    def __init__(self, parts: list, resolution: int) -> None:
+        self.parts = parts
+        self.resolution = resolution
+
+    def at(self, row: NDArray[np.int64], col: NDArray[np.int64]) -> tuple[Array, NDArray[np.int64]]:
+        r = self.resolution
+        out = np.ones(row.shape)
+        cs, ct = (col + 0.5) / r, (row + 0.5) / r  # the texel centres, as the whole atlas's
+        for dm, bias, (x, y, w, h) in self.parts:
+            cell = (cs >= x) & (cs < x + w) & (ct >= y) & (ct < y + h)
+            if cell.any():
+                out[cell] = _offset(*dm.at(row[cell], col[cell]), bias)
+        return out, np.full(row.shape, -1, np.int64)
 
 
 def _playcanvas_pcf3(stored: Array, s: Array, t: Array, ref: Array) -> Array:
@@ -521,8 +758,9 @@ def playcanvas_factor(atlas: Array, matrices: Array, cascade: NDArray[np.int64],
     """
     if taps not in (1, 3, 5):
         raise ValueError(f"taps must be 1, 3 or 5, got {taps!r}")
-    if np.ndim(atlas) != 2 or np.shape(atlas)[0] != np.shape(atlas)[1]:
-        raise ValueError(f"atlas must be a square (R, R) array, got shape {np.shape(atlas)}")
+    shape = atlas.shape if isinstance(atlas, TexelArray) else np.shape(atlas)
+    if len(shape) != 2 or shape[0] != shape[1]:
+        raise ValueError(f"atlas must be a square (R, R) array, got shape {shape}")
     check.finite(matrices, "matrices")
     if np.shape(matrices)[1:] != (4, 4) or np.ndim(matrices) != 3:
         raise ValueError(f"matrices must have shape (k, 4, 4), got {np.shape(matrices)}")
@@ -585,10 +823,23 @@ def reference(scene, sun: Array, rb, resolution: int) -> NDArray[np.bool_]:
     [[False, True]]
     """
     check.whole(resolution, "resolution", 1, 16384, " [texels]")
+    kept, key = KEPT["maps"], None
+    if kept is not None:  # a search that moves only biases or filters asks again for the same matrices, cascades and pixels
+        digest = hashlib.blake2b(digest_size=16)
+        for a in (rb.matrices, rb.cascade, rb.drawn, rb.position, rb.normal, sun, scene.triangles):
+            digest.update(np.ascontiguousarray(a).tobytes())
+        key = ("reference", digest.digest(), int(resolution))
+        try:
+            return kept[key].copy()
+        except KeyError:  # not found yet (or dropped)
+            pass
     pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
     ref = np.ones(rb.shadow.shape, bool)
     for i, m in enumerate(rb.matrices):
         here = rb.drawn & ((rb.cascade == i) | ((rb.cascade < 0) & (i == len(rb.matrices) - 1)))
         if here.any():
             ref[here] = reference_lit(scene.triangles, m, resolution, pts[here], nrm[here], sun)
-    return ref & rb.drawn & ((nrm @ sun) > 0)
+    ref &= rb.drawn & ((nrm @ sun) > 0)
+    if key is not None:
+        kept[key] = ref.copy()
+    return ref

@@ -146,12 +146,13 @@ class BabylonCSM:
         sel = self.select(s, cam, depth)
         res = int(s["mapSize"])
         cast = babylon_cascades.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))], sun, float(s["normalBias"]))
-        maps = [predict.light_depth_map(cast, m, res) for m in rb.matrices]
+        maps = [predict.sampled_depth_map(cast, m, res) for m in rb.matrices]  # drawn where the pixels read them
         edges = self.edges(s, cam)
         pct = float(s["cascadeBlendPercentage"])
         pts = np.nan_to_num(rb.position)
-        factor = predict.babylon_factor(maps, rb.matrices, sel, depth, pts, ends=edges[1:], lengths=np.diff(edges),
-                                        blend_factor=10000.0 if pct == 0 else 1 / pct, bias=float(s["bias"]), quality=int(s["filteringQuality"]))
+        factor = predict.gathered(lambda: predict.babylon_factor(
+            maps, rb.matrices, sel, depth, pts, ends=edges[1:], lengths=np.diff(edges), blend_factor=10000.0 if pct == 0 else 1 / pct,
+            bias=float(s["bias"]), quality=int(s["filteringQuality"])), maps)
         factor = np.where(rb.drawn, factor, np.nan)
         ref = reference(scene, sun, rb, res)
         # the whole cascade matrices as the engine computes them, in its float32 (ERRATA F6), at the render's aspect

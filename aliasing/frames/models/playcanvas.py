@@ -153,10 +153,10 @@ class PlayCanvas:
         sel = self.select(s, cam, depth)
         res = int(s["shadowResolution"])
         cast = scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))]
-        atlas = predict.playcanvas_atlas(cast, rb.matrices, self.cells(s), res, float(s["shadowBias"]))
+        atlas = predict.playcanvas_atlas(cast, rb.matrices, self.cells(s), res, float(s["shadowBias"]), sampled=True)  # drawn where read
         pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
-        factor = predict.playcanvas_factor(atlas, rb.matrices, sel, pts, nrm, normal_offset=float(s["normalOffsetBias"]),
-                                           taps=self.FILTERS[int(s["shadowType"])])
+        factor = predict.gathered(lambda: predict.playcanvas_factor(atlas, rb.matrices, sel, pts, nrm, normal_offset=float(s["normalOffsetBias"]),
+                                                                    taps=self.FILTERS[int(s["shadowType"])]), [atlas])
         factor = np.where(rb.drawn, factor, np.nan)
         ref = reference(scene, sun, rb, res)
         edges = self.edges(s, cam)

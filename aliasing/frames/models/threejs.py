@@ -130,13 +130,14 @@ class ThreeCSM:
         sel = self.select(s, cam, depth)
         res = int(s["shadowMapSize"])
         cast = scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))]
-        maps = [predict.light_depth_map(cast, m, res) for m in rb.matrices]
+        maps = [predict.sampled_depth_map(cast, m, res) for m in rb.matrices]  # drawn where the pixels read them
         h, w = depth.shape
         fy, fx = np.mgrid[0:h, 0:w]
         gl_y = (h - 1 - fy) + 0.5
         pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
-        factor = predict.threejs_factor(maps, rb.matrices, sel, pts, nrm, fx + 0.5, gl_y, bias=float(s["shadowBias"]),
-                                        normal_bias=float(s["normalBias"]), radius=float(s["shadowRadius"]), map_type=s["shadowMapType"])
+        factor = predict.gathered(lambda: predict.threejs_factor(
+            maps, rb.matrices, sel, pts, nrm, fx + 0.5, gl_y, bias=float(s["shadowBias"]), normal_bias=float(s["normalBias"]),
+            radius=float(s["shadowRadius"]), map_type=s["shadowMapType"]), maps)
         factor = np.where(rb.drawn, factor, np.nan)
         ref = reference(scene, sun, rb, res)  # the exact reference, through each cascade's matrix at its own pixels
         edges = self.edges(s, cam)

@@ -2,9 +2,11 @@
 
 A search that changes only the biases, the filter or the blend band draws the same triangles
 through the same light matrices at the same size again and gets the same map.  Within
-:func:`remember`'s block :func:`aliasing.frames.predict.light_depth_map` keeps the maps it drew
-(by a digest of the mapped triangles and the size), the least recently used dropped beyond the
-block's byte limit; outside it nothing is kept.
+:func:`remember`'s block :func:`aliasing.frames.predict.light_depth_map` and
+:func:`~aliasing.frames.predict.sampled_depth_map` keep the maps they drew (by a digest of the
+mapped triangles and the size), and :func:`~aliasing.frames.predict.reference` the exact
+reference it found (by a digest of the matrices, cascades, pixels, sun and scene); the least
+recently used are dropped beyond the block's byte limit; outside it nothing is kept.
 
 Examples
 --------
@@ -21,6 +23,7 @@ False
 from __future__ import annotations
 
 import contextlib
+import threading
 from collections import OrderedDict
 from collections.abc import Iterator
 
@@ -29,20 +32,32 @@ from .. import predict
 
 
 class _Kept(OrderedDict):
-    """Maps by key, the least recently used dropped beyond ``limit`` bytes (16 per texel: depth and triangle)."""
+    """Maps by key, the least recently used dropped beyond ``limit`` bytes (:func:`_bytes`)."""
 
     def __init__(self, limit: int):
         super().__init__()
         self.limit = limit
+        self.lock = threading.RLock()  # the suns of a count are measured on threads
+
+    def __contains__(self, key) -> bool:
+        with self.lock:
+            return super().__contains__(key)
 
     def __getitem__(self, key):
-        self.move_to_end(key)
-        return super().__getitem__(key)
+        with self.lock:
+            self.move_to_end(key)
+            return super().__getitem__(key)
 
     def __setitem__(self, key, value):
-        super().__setitem__(key, value)
-        while len(self) > 1 and sum(int(v.resolution) ** 2 * 16 for v in self.values()) > self.limit:
-            self.popitem(last=False)
+        with self.lock:
+            super().__setitem__(key, value)
+            while len(self) > 1 and sum(_bytes(v) for v in self.values()) > self.limit:
+                self.popitem(last=False)
+
+
+def _bytes(kept) -> int:
+    """A kept value's bytes: a sampled map's texels found so far and its slot table, an array's, a whole map's 16 per texel."""
+    return int(kept.nbytes) if hasattr(kept, "nbytes") else int(kept.resolution) ** 2 * 16
 
 
 def remember(limit: int = 2**30) -> contextlib.AbstractContextManager:

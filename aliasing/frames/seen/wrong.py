@@ -45,6 +45,8 @@ Examples
 from __future__ import annotations
 
 import math
+import os
+from concurrent import futures
 from dataclasses import dataclass
 
 import numpy as np
@@ -60,6 +62,8 @@ from .scene import reference_scene
 from .synth import VISIBLE, engine_settings, eye_geometry, predict_synthetic
 
 Array = NDArray[np.float64]
+#: Suns measured at once (threads: numpy's array work runs outside the interpreter's lock), at most the machine's cores.
+WORKERS = max(1, min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)))
 #: What each number of :meth:`Wrong.to_dict` is in.
 UNITS = {"pixels": "pixels (sample image, summed over the suns)", "acne": "fraction of pixels", "false_shadow": "fraction of pixels",
          "lost_shadow": "fraction of pixels", "wrong": "fraction of pixels", "blocky": "fraction of the cascade's drawn pixels",
@@ -226,9 +230,8 @@ def count(setup, where: Sample) -> Wrong:
         raise ValueError("where: the sample is of another camera, sun band or main-pass faces than setup's: take sample(setup, ...) again")
     fs, geometry, drawn = where.scene, where.geometry, where.geometry[2]
     taps = max(1, int(setup.pipeline.filter.taps))
-    k = None
-    counts = None
-    for e in where.elevations:
+
+    def one_sun(e: float) -> NDArray[np.int64]:  # each sun draws its own maps: the suns share nothing but the memo
         sun = sun_direction(float(e), setup.sun.azimuth, fs.camera)
         r = predict_synthetic(model, settings, fs, sun, geometry, setup.engine, setup.release)
         pred = r.prediction
@@ -239,8 +242,11 @@ def count(setup, where: Sample) -> Wrong:
         row = np.where(pred.cascade >= 0, pred.cascade, k)  # k: beyond the last cascade
         layers = [facing, masks["acne"], masks["false_shadow"], masks["lost_shadow"], drawn,
                   drawn & (np.nan_to_num(texel / where.pixel_user) > 1)]
-        c = np.stack([np.bincount(row[m], minlength=k + 1) for m in layers])
-        counts = c if counts is None else counts + c
+        return np.stack([np.bincount(row[m], minlength=k + 1) for m in layers])
+
+    with futures.ThreadPoolExecutor(max(1, min(WORKERS, len(where.elevations)))) as pool:
+        counts = sum(pool.map(one_sun, where.elevations))
+    k = counts.shape[1] - 1
     memory = int(setup.pipeline.memory)
     rows = []
     for i in range(k + 1):

@@ -37,7 +37,7 @@ Example
 
 from __future__ import annotations
 
-from .core import CHUNK, MAX_RESOLUTION, DepthMap, _triangles, check_resolution, clip_near, rasterize
+from .core import CHUNK, MAX_RESOLUTION, DepthMap, _triangles, check_resolution, clip_near, rasterize, rasterize_at
 from .eye import EyeBuffer, eye_pass, project
 from .facemaps import MapSet, fixed_face_map, frame_map, map_set, near_face_map
 from .lightmap import LightMap, _unit_vector, light_map, light_maps
@@ -48,5 +48,5 @@ from .lookup import depth_test, texel_edges
 
 __all__ = [
     "BIAS", "CHUNK", "MapSampler", "CascadeSet", "MAX_RESOLUTION", "DepthMap", "budget_shares", "cascade_set", "shadow_test", "depth_test", "texel_edges", "EyeBuffer", "LightMap", "MapSet", "check_resolution", "clip_near", "eye_pass",
-    "fixed_face_map", "frame_map", "light_map", "light_maps", "log_row_centres", "map_set", "near_face_map", "project", "rasterize", "shadow_map", "shadow_maps",
+    "fixed_face_map", "frame_map", "light_map", "light_maps", "log_row_centres", "map_set", "near_face_map", "project", "rasterize", "rasterize_at", "shadow_map", "shadow_maps",
 ]

@@ -147,6 +147,130 @@ def rasterize(triangles: ArrayLike, resolution: int, *, w: ArrayLike | None = No
     return zbuffer(tri, res, inv_w, rows, uniform_rows, chunk)
 
 
+def rasterize_at(triangles: ArrayLike, resolution: int, row: ArrayLike, col: ArrayLike, *, w: ArrayLike | None = None,
+                 row_centres: ArrayLike | None = None, chunk: int = CHUNK) -> tuple[Array, NDArray[np.int64]]:
+    """:func:`rasterize`'s depth and visible triangle at the texels (``row``, ``col``) only, bit for bit the whole map's.
+
+    Only the rows holding an asked texel are set up and each span only at the asked texels
+    (:func:`zbuffer_at`): the work grows with the texels asked, not with R².
+
+    Parameters
+    ----------
+    triangles, resolution, w, row_centres, chunk
+        As for :func:`rasterize`.
+    row, col : array_like of int
+        Texel indices, whole numbers in [0, R) of one shape [texels].
+
+    Returns
+    -------
+    depth : ndarray
+        The depth at each asked texel [the triangles' depth unit], ``inf`` where empty; the shape of ``row``.
+    triangle : ndarray of int64
+        The visible triangle's index, −1 where empty.
+
+    Raises
+    ------
+    ValueError
+        As :func:`rasterize`, and ``row``/``col`` not whole texel indices of one shape.
+
+    Example
+    -------
+    >>> import numpy as np
+    >>> sq = np.array([[[0, 0, 1], [1, 0, 1], [1, 1, 1]], [[0, 0, 2], [1, 1, 2], [0, 1, 2]]], float)
+    >>> d, t = rasterize_at(sq, 4, [[0, 3], [3, 3]], [[3, 0], [3, 3]])     # below and above the diagonal, twice one texel
+    >>> d.tolist(), t.tolist(), bool((d == rasterize(sq, 4).depth[[[0, 3], [3, 3]], [[3, 0], [3, 3]]]).all())
+    ([[1.0, 2.0], [1.0, 1.0]], [[0, 1], [0, 0]], True)
+    """
+    tri = _triangles(triangles)
+    res = check_resolution(resolution)
+    chunk = check_chunk(chunk)
+    flat = texel_indices(row, col, res)
+    inv_w, rows, uniform_rows = weights_and_rows(tri, res, w, row_centres)
+    asked, where = np.unique(flat, return_inverse=True)
+    depth, ident, _, _ = zbuffer_at(tri, res, inv_w, rows, uniform_rows, chunk, asked)
+    return depth[where].reshape(flat.shape), ident[where].reshape(flat.shape)
+
+
+def texel_indices(row: ArrayLike, col: ArrayLike, res: int) -> NDArray[np.int64]:
+    """Flat texel indices row·R + column of whole texel indices (``row``, ``col``) in [0, R) of one shape (refused by name otherwise)."""
+    r, c = np.asarray(row), np.asarray(col)
+    if r.shape != c.shape or r.dtype.kind not in "iu" or c.dtype.kind not in "iu" or (r.size and (min(r.min(), c.min()) < 0 or max(r.max(), c.max()) >= res)):
+        raise ValueError(f"row and col must be whole texel indices in [0, {res - 1}] of one shape, got {r.dtype} {r.shape} and {c.dtype} {c.shape}")
+    return r.astype(np.int64) * res + c.astype(np.int64)
+
+
+class TexelStore:
+    """The texels of one map found so far (depth and triangle by flat index row·R + column): which of those asked are missing, add, read.
+
+    ``size``: the map's texels R²; given, the store keeps a table of 4 bytes per texel from
+    flat index to slot, and a question costs one gather instead of a binary search (for maps
+    that fit: R² up to 2³¹); None: sorted keys only, memory as the texels found.
+
+    Example
+    -------
+    >>> import numpy as np
+    >>> for kept in (TexelStore(), TexelStore(size=16)):
+    ...     m = kept.missing(np.array([7, 3, 7])).tolist()
+    ...     kept.add(np.array([3, 7]), np.array([0.5, np.inf]), np.array([2, -1]))
+    ...     print(m, kept.missing(np.array([7, 9])).tolist(), [v.tolist() for v in kept.get(np.array([[7, 3]]))], len(kept))
+    [3, 7] [9] [[[inf, 0.5]], [[-1, 2]]] 2
+    [3, 7] [9] [[[inf, 0.5]], [[-1, 2]]] 2
+    """
+
+    def __init__(self, size: int | None = None) -> None:
+        self._flat = np.zeros(0, np.int64)
+        self._depth = np.zeros(0)
+        self._ident = np.zeros(0, np.int64)
+        if size is not None and not (isinstance(size, (int, np.integer)) and 1 <= size <= 2**31):
+            raise ValueError(f"size must be a whole number of texels in [1, 2**31] or None, got {size!r}")
+        self._slot = None if size is None else np.zeros(int(size), np.int32)  # slot + 1, 0: missing (zeros: pages taken as written)
+
+    def __len__(self) -> int:
+        return int(self._flat.size)
+
+    @property
+    def nbytes(self) -> int:
+        """The bytes held [bytes]."""
+        return int(self._flat.nbytes + self._depth.nbytes + self._ident.nbytes + (0 if self._slot is None else self._slot.nbytes))
+
+    def missing(self, flat: NDArray[np.int64]) -> NDArray[np.int64]:
+        """The asked flat indices not held, sorted and unique."""
+        flat = np.asarray(flat).ravel()
+        if not self._flat.size:
+            return np.unique(flat) if self._slot is None else self._new(flat)
+        if self._slot is not None:
+            return self._new(flat[self._slot[flat] == 0])
+        pos = np.minimum(np.searchsorted(self._flat, flat), self._flat.size - 1)
+        return np.unique(flat[self._flat[pos] != flat])
+
+    def _new(self, flat: NDArray[np.int64]) -> NDArray[np.int64]:
+        """``flat``'s distinct values, sorted, through the slot table (no hashing): each marks its slot, the last mark of a value keeps it."""
+        if not flat.size:
+            return flat
+        mark = -np.arange(1, flat.size + 1, dtype=np.int64)
+        self._slot[flat] = mark  # negative: not a slot; cleared below
+        once = flat[self._slot[flat] == mark]
+        self._slot[once] = 0
+        return np.sort(once)
+
+    def add(self, flat: NDArray[np.int64], depth: Array, ident: NDArray[np.int64]) -> None:
+        """Hold the values of flat indices not held yet (:meth:`missing`'s)."""
+        if self._slot is not None:  # appended: the table says where
+            self._slot[flat] = np.arange(self._flat.size + 1, self._flat.size + flat.size + 1, dtype=np.int32)
+            self._flat, self._depth, self._ident = (np.concatenate(v) for v in ((self._flat, flat), (self._depth, depth), (self._ident, ident)))
+            return
+        keys = np.concatenate([self._flat, flat])
+        order = np.argsort(keys, kind="stable")
+        self._flat = keys[order]
+        self._depth = np.concatenate([self._depth, depth])[order]
+        self._ident = np.concatenate([self._ident, ident])[order]
+
+    def get(self, flat: NDArray[np.int64]) -> tuple[Array, NDArray[np.int64]]:
+        """The depth and triangle of held flat indices, in the shape of ``flat``."""
+        at = self._slot[flat] - 1 if self._slot is not None else np.searchsorted(self._flat, flat)
+        return self._depth[at], self._ident[at]
+
+
 def weights_and_rows(tri: Array, res: int, w: ArrayLike | None, row_centres: ArrayLike | None) -> tuple[Array, Array, bool]:
     """:func:`rasterize`'s checks of ``w`` and ``row_centres``: (1/w, row centres, whether uniform)."""
     n_tri = tri.shape[0]

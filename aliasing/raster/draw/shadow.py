@@ -57,7 +57,7 @@ from typing import Sequence
 from ... import _validation as check
 from . import backends, gl
 from . import resident
-from .core import CHUNK, DepthMap, _triangles, check_chunk, check_resolution, clip_near, rasterize, weights_and_rows, zbuffer_at
+from .core import CHUNK, DepthMap, _triangles, check_chunk, check_resolution, clip_near, TexelStore, rasterize, texel_indices, weights_and_rows, zbuffer_at
 from .facemaps import MapSet
 from .lightmap import LightMap, light_map
 
@@ -282,38 +282,23 @@ class MapSampler:
         self.backend = "numpy" if name == "gl" and _logarithmic(lm) else name
         if self.backend == "gl":
             resident.check_size(self.resolution)
-        self._texels = np.zeros(0, np.int64)
-        self._depth = np.zeros(0)
-        self._ident = np.zeros(0, np.int64)
+        self._kept = TexelStore()
         self._prepared: tuple | None = None
         self._device: resident.DeviceMap | None = None
         self._planes: tuple | None = None  # (the scene, its plane rows) of device_test
 
     @property
     def texels(self) -> int:
-        return int(self._texels.size)
+        return len(self._kept)
 
     def at(self, row: ArrayLike, col: ArrayLike) -> tuple[Array, NDArray[np.int64]]:
         """Depth [the map's depth units; ``inf`` where empty] and visible triangle (−1 where
         empty) of texels (``row``, ``col``), whole numbers in [0, R) of any one shape."""
-        r, c = (np.asarray(v) for v in (row, col))
-        res = self.resolution
-        if r.shape != c.shape or r.dtype.kind not in "iu" or c.dtype.kind not in "iu" or (r.size and (min(r.min(), c.min()) < 0 or max(r.max(), c.max()) >= res)):
-            raise ValueError(f"row and col must be whole texel indices in [0, {res - 1}] of one shape, got {r.dtype} {r.shape} and {c.dtype} {c.shape}")
-        flat = r.astype(np.int64) * res + c.astype(np.int64)
-        asked = np.unique(flat)
-        pos = np.searchsorted(self._texels, asked)
-        known = (pos < self._texels.size) & (self._texels[np.minimum(pos, max(self._texels.size - 1, 0))] == asked) if self._texels.size else np.zeros(asked.size, bool)
-        missing = asked[~known]
+        flat = texel_indices(row, col, self.resolution)
+        missing = self._kept.missing(flat)
         if missing.size:
-            depth, ident = self._draw(missing)
-            texels = np.concatenate([self._texels, missing])
-            order = np.argsort(texels, kind="stable")
-            self._texels = texels[order]
-            self._depth = np.concatenate([self._depth, depth])[order]
-            self._ident = np.concatenate([self._ident, ident])[order]
-        at = np.searchsorted(self._texels, flat)
-        return self._depth[at], self._ident[at]
+            self._kept.add(missing, *self._draw(missing))
+        return self._kept.get(flat)
 
     def _drawn(self, texels: NDArray[np.int64]) -> resident.DeviceMap:
         """The device map (gl), drawn (again) over a box that holds ``texels`` if it does not."""
