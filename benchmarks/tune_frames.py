@@ -83,7 +83,7 @@ def main() -> None:
         r = run(engine, args.height, args.suns)
         results.append(r)
         print(f"\n{engine}: tune {r['tune_s']} s ({r['evaluations']} candidates), {r['frames']} frames {r['frames_s']} s")
-        print(f"  {'':9} {'measured':>9} {'predicted':>9} {'acne':>8} {'lost':>8} {'texels/px':>9}  changed")
+        print(f"  {'':9} {'measured':>9} {'predicted':>9} {'acne':>8} {'lost':>8} {'px/texel':>9}  changed")
         for row in r["rows"]:
             m, p = row["measured"], row["predicted"]
             print(f"  {row['name']:9} {pct(m['wrong']):>9} {pct(p['wrong']):>9} {pct(m['acne']):>8} {pct(m['lost_shadow']):>8} "

@@ -68,7 +68,10 @@ def test_the_front_is_not_dominated_and_the_pick_is_first(playcanvas):
             if a is not b:
                 assert not (all(a[k] <= b[k] for k in keys) and any(a[k] < b[k] for k in keys))
     assert front[0]["changed"] == playcanvas["changed"]
-    assert [p["wrong"] for p in front] == sorted(p["wrong"] for p in front)
+    assert [p["wrong"] for p in front[1:]] == sorted(p["wrong"] for p in front[1:])
+    n = playcanvas["wrong"]["sample"]["pixels"]
+    best = min(p["wrong"] for p in front)
+    assert n > 1000 and not pixels.significant(best, front[0]["wrong"], n)  # the pick: within the noise of the fewest
 
 
 _POINT = st.builds(lambda w, t, m, k: pixels.Point({"k": k}, w, 0.0, 0.0, w, t, m), st.floats(0, 1), st.floats(0.1, 1e3),
@@ -83,6 +86,36 @@ def test_front_of_any_points(points, prefer):
     assert [p.axes(prefer) for p in got] == sorted(p.axes(prefer) for p in got)
     for p in points:  # every point is on the front or beaten (or equalled) by one on it
         assert any(all(getattr(q, a) <= getattr(p, a) for a in axes) for q in got)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(_POINT, min_size=1, max_size=12), st.integers(0, 10**5))
+def test_the_pick_is_the_fewest_changes_within_the_noise(points, n):
+    start = {"k": points[0].settings["k"]}
+    got = pixels.front(points, "wrong", start, n)
+    best = min(p.wrong for p in got)
+    tied = [p for p in got if not pixels.significant(best, p.wrong, n)]
+    assert got[0] in tied
+    changes = [sum(start.get(k) != v for k, v in p.settings.items()) for p in tied]
+    assert sum(start.get(k) != v for k, v in got[0].settings.items()) == min(changes)
+    assert [p.axes("wrong") for p in got[1:]] == sorted(p.axes("wrong") for p in got[1:])
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.floats(0, 1), st.floats(0, 1), st.integers(0, 10**7), st.floats(0, 5))
+def test_significant_is_one_sided_and_grows_with_the_pixels(a, b, n, z):
+    if pixels.significant(a, b, n, z):
+        assert a < b and not pixels.significant(b, a, n, z)
+        assert pixels.significant(a, b, 4 * n, z)  # the difference grows as n, its deviation as √n
+    if n and a < b:
+        assert pixels.significant(a, b, n, 0.0)
+
+
+@pytest.mark.parametrize("call, name", [((0.1, 0.2, -1), "pixels"), ((0.1, 0.2, 1.5), "pixels"), ((-0.1, 0.2, 10), "a"),
+                                        ((0.1, 2.0, 10), "b"), ((0.1, 0.2, 10, -1.0), "z"), ((0.1, float("nan"), 10), "b")])
+def test_significant_refuses_by_name(call, name):
+    with pytest.raises(ValueError, match=name):
+        pixels.significant(*call)
 
 
 def test_threejs_front_faces_at_bias_zero():

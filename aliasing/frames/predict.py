@@ -29,14 +29,15 @@ Examples
 from __future__ import annotations
 
 import hashlib
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
-from ..raster.draw import DepthMap, rasterize, rasterize_at
-from ..raster.draw.core import TexelStore, texel_indices
+from ..raster.draw import DepthMap, rasterize
+from ..raster.draw.core import CHUNK, TexelStore, _triangles, texel_indices, weights_and_rows, zbuffer_at
 
 Array = NDArray[np.float64]
 SIDES = ("front", "back", "double")
@@ -191,7 +192,10 @@ class SampledMap:
         self.mapped = mapped
         self.resolution = int(resolution)
         self._kept = TexelStore(size=self.resolution**2)  # a slot table: 4 bytes per texel
+        weakref.finalize(self, self._kept.release)  # its table serves the next map once this one is gone
         self._asked: list | None = None  # while gathered's first run records the texels read
+        self._prepared: tuple | None = None
+        self._strict = False  # while gathered tries a run on the texels drawn before: a missing one stops it
 
     @property
     def texels(self) -> int:
@@ -222,7 +226,11 @@ class SampledMap:
         if self._asked is not None:  # recording (gathered): the values are not used
             self._asked.append(flat.ravel())
             return np.zeros(flat.shape), np.full(flat.shape, -1, np.int64)
-        self.draw(flat)
+        if self._strict:
+            if not self._kept.holds(flat):
+                raise _Missing
+        else:
+            self.draw(flat)
         return self._kept.get(flat)
 
     def draw(self, flat: ArrayLike) -> None:
@@ -234,9 +242,19 @@ class SampledMap:
         >>> sm.draw([3, 3, 9]); sm.texels
         2
         """
-        missing = self._kept.missing(np.asarray(flat, np.int64))
-        if missing.size:
-            self._kept.add(missing, *rasterize_at(self.mapped, self.resolution, missing // self.resolution, missing % self.resolution))
+        flat = np.asarray(flat, np.int64)
+        if self._kept.holds(flat):
+            return
+        missing = self._kept.missing(flat)
+        if self._prepared is None:  # rasterize_at's set-up, once
+            self._prepared = (_triangles(self.mapped),) + weights_and_rows(_triangles(self.mapped), self.resolution, None, None)
+        tri, inv_w, rows, uniform = self._prepared
+        depth, ident, _, _ = zbuffer_at(tri, self.resolution, inv_w, rows, uniform, CHUNK, missing)
+        self._kept.add(missing, depth, ident)
+
+
+class _Missing(Exception):
+    """A texel read in :func:`gathered`'s first try was not drawn yet."""
 
 
 class TexelArray:
@@ -328,9 +346,10 @@ def _sampled_maps(a) -> list:
 def gathered(compute, maps):
     """``compute()`` with the texels it reads of sampled ``maps`` drawn in one pass per map.
 
-    ``compute`` runs twice: first recording the texels it reads (the values are then zeros: its
-    lookups must not depend on them, as the factor functions' do not), then, with those texels
-    drawn, for its result.  Maps that are not sampled are left as they are.
+    ``compute`` runs once if every texel it reads was drawn before (a search that moves only the
+    biases of the same maps), else twice: first recording the texels it reads (the values are then
+    zeros: its lookups must not depend on them, as the factor functions' do not), then, with
+    those texels drawn, for its result.  Maps that are not sampled are left as they are.
 
     Examples
     --------
@@ -349,6 +368,15 @@ def gathered(compute, maps):
     lazy = [m for a in maps for m in _sampled_maps(a)]
     if not lazy:
         return compute()
+    for m in lazy:
+        m._strict = True
+    try:
+        return compute()
+    except _Missing:
+        pass
+    finally:
+        for m in lazy:
+            m._strict = False
     for m in lazy:
         m._asked = []
     try:
@@ -382,7 +410,8 @@ def reference_lit(triangles: Array, matrix: Array, resolution: int, points: Arra
     if np.shape(sun) != (3,):
         raise ValueError(f"sun must be a 3-vector, got shape {np.shape(sun)}")
     normals, sun = check.finite(normals, "normals"), check.finite(sun, "sun")
-    dm = sampled_depth_map(triangles, matrix, resolution)  # one texel per point: only those are drawn
+    tri = check.triangles(triangles, empty=True)
+    dm = SampledMap(to_map(matrix, tri if len(tri) else np.full((1, 3, 3), 10.0)), int(resolution))  # one texel per point: only those drawn
     c = to_map(matrix, points)
     r = dm.resolution
     inside = np.all((c[..., :2] >= 0) & (c[..., :2] < 1), axis=-1)
@@ -706,13 +735,16 @@ class _Atlas:
     def __init__(self, parts: list, resolution: int) -> None:
         self.parts = parts
         self.resolution = resolution
+        centre = (np.arange(resolution) + 0.5) / resolution  # the texel centres, as the whole atlas's
+        # per column and per row: a bit for each cell whose columns (rows) hold it
+        self._cols = sum(((centre >= x) & (centre < x + w)).astype(np.int64) << i for i, (_, _, (x, _, w, _)) in enumerate(parts))
+        self._rows = sum(((centre >= y) & (centre < y + h)).astype(np.int64) << i for i, (_, _, (_, y, _, h)) in enumerate(parts))
 
     def at(self, row: NDArray[np.int64], col: NDArray[np.int64]) -> tuple[Array, NDArray[np.int64]]:
-        r = self.resolution
         out = np.ones(row.shape)
-        cs, ct = (col + 0.5) / r, (row + 0.5) / r  # the texel centres, as the whole atlas's
-        for dm, bias, (x, y, w, h) in self.parts:
-            cell = (cs >= x) & (cs < x + w) & (ct >= y) & (ct < y + h)
+        cells = self._cols[col] & self._rows[row]
+        for i, (dm, bias, _) in enumerate(self.parts):
+            cell = (cells >> i) == 1  # in cell i and in no later one (a later cell is drawn over it)
             if cell.any():
                 out[cell] = _offset(*dm.at(row[cell], col[cell]), bias)
         return out, np.full(row.shape, -1, np.int64)

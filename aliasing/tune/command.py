@@ -232,7 +232,7 @@ def _frames(args: argparse.Namespace, start, got, scene: Any = None) -> dict[str
     from ..frames import MissingTool
 
     try:
-        return proof.prove(start, got.points, prefer=got.prefer, n=n, scene=scene)
+        return proof.prove(start, got.points, prefer=got.prefer, n=n, scene=scene, first=got.pareto[0] if got.pareto else None)
     except MissingTool as exc:
         raise ValueError(f"--frames renders in the engine and needs its tools: {exc} (install them all with `aliasing frames --install`)") from None
 

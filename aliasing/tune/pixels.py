@@ -18,8 +18,9 @@ The search (:func:`refine`):
   receivers' far and its half and quarter, each bias term to its closed-form minimum
   (:func:`aliasing.tune.search.closed_form_bias`) times each of :data:`BIAS_STEPS` and then to
   the geometric middles on both sides of the best (a 1-D search on the wrong-pixel objective);
-  a move is kept where it lowers the wrong pixels; passes repeat until none moves (at most
-  :data:`PASSES`);
+  a move is kept where it lowers the wrong pixels by more than their count's noise
+  (:func:`significant`: a few pixels of one arrangement of boxes say nothing of another scene);
+  passes repeat until none moves (at most :data:`PASSES`);
 * holds ``--max-texels``, ``--max-memory``, with ``--moving`` a stabilized fit, and
   ``--max-gap-px`` and ``--max-slope`` where given (:func:`hard`); acne and lost shadow are
   otherwise in the objective itself.
@@ -29,8 +30,9 @@ the eye pass and the scene kept between candidates (:func:`aliasing.frames.seen.
 light depth maps kept while only biases, filter or blend change
 (:func:`aliasing.frames.seen.remember`).  Every candidate within the limits is a point; those no
 other point beats on all three axes form the Pareto front, and :data:`PREFER` orders it: the pick is
-the front's first.  The pick and the start are measured again at :data:`FINAL_HEIGHT` rows and
-:data:`FINAL_SUNS` suns.
+the front's first, where for ``wrong`` the points within the noise of the fewest wrong pixels count
+as tied and the one with the fewest settings changed from the start is first.  The pick and the
+start are measured again at :data:`FINAL_HEIGHT` rows and :data:`FINAL_SUNS` suns.
 """
 
 from __future__ import annotations
@@ -52,7 +54,7 @@ HEIGHT = 240
 #: Suns over the band in the search.
 SUNS = 2
 #: Rows [px] and suns of the final measure of the start and the pick.
-FINAL_HEIGHT = 360
+FINAL_HEIGHT = 240
 FINAL_SUNS = 4
 #: Multiples of a bias term's closed-form minimum tried by the 1-D search.
 BIAS_STEPS = (0.0, 0.25, 0.5, 1.0, 2.0, 4.0)
@@ -60,6 +62,11 @@ BIAS_STEPS = (0.0, 0.25, 0.5, 1.0, 2.0, 4.0)
 SPLIT_POINTS = 5
 #: Coordinate passes at most.
 PASSES = 2
+#: Bytes of light depth maps kept between candidates (:func:`aliasing.frames.seen.remember`): the current
+#: candidates' maps; the older ones give their tables to the next maps (a fresh table costs page faults).
+MEMORY = 2**28
+#: Standard deviations by which a move must lower the wrong pixels' count (:func:`significant`).
+NOISE_Z = 2.0
 #: The pick rules: the axes in the order compared (``wrong``: fewest wrong pixels, ties by texels
 #: per pixel, then memory; ``blocky``: fewest px/texel first; ``memory``: least memory first).
 PREFER = {"wrong": ("wrong", "px_per_texel", "memory"), "blocky": ("px_per_texel", "wrong", "memory"),
@@ -141,7 +148,8 @@ class Seen:
     before, after : dict
         The start's and the pick's :func:`aliasing.frames.seen.wrong_pixels` totals at the final measure.
     sample, final : dict
-        The search's and the final measure's sample: ``scene``, ``height_px``, ``suns``.
+        The search's and the final measure's sample: ``scene``, ``height_px``, ``suns`` (and the
+        search's ``pixels``: the sun-facing pixels its fractions are of, :func:`significant`).
     evaluations : int
         Candidates measured.
     seconds : float
@@ -171,9 +179,10 @@ class _Pixels:
     def __init__(self, start: Setup, lim: Limits, where, max_memory: float | None, hard: frozenset):
         self.start, self.limits, self.where, self.max_memory, self.hard = start, lim, where, max_memory, hard
         self.cache: dict = {}
+        self.pixels = 0  # the sample's sun-facing pixels (the same for every candidate)
 
     def point(self, settings: Mapping[str, Any]) -> Point | None:
-        key = tuple(sorted((k, repr(v)) for k, v in settings.items()))
+        key = _key(settings)
         if key not in self.cache:
             self.cache[key] = self._measure(settings)
         return self.cache[key]
@@ -191,11 +200,52 @@ class _Pixels:
             return None
         if t["wrong"] is None:
             return None
+        self.pixels = int(t["pixels"])
         return Point(dict(s.settings), t["wrong"], t["acne"], t["false_shadow"], t["lost_shadow"], float(m.objective), float(memory))
 
     def wrong(self, settings: Mapping[str, Any]) -> float:
         p = self.point(settings)
         return math.inf if p is None else p.wrong
+
+    def better(self, a: Mapping[str, Any], b: Mapping[str, Any]) -> bool:
+        """Whether settings ``a`` have fewer wrong pixels than ``b`` beyond the noise (:func:`significant`)."""
+        wa, wb = self.wrong(a), self.wrong(b)
+        return wa < wb and (math.isinf(wb) or significant(wa, wb, self.pixels))
+
+
+def _key(settings: Mapping[str, Any]) -> tuple:
+    """A candidate's key in the cache: its settings, sorted."""
+    return tuple(sorted((k, repr(v)) for k, v in settings.items()))
+
+
+def significant(a: float, b: float, pixels: int, z: float = NOISE_Z) -> bool:
+    """Whether wrong-pixel fraction ``a`` is lower than ``b`` by more than ``z`` standard deviations of their counts.
+
+    Over ``pixels`` pixels the counts are A = a·pixels and B = b·pixels; taken as Poisson counts
+    the difference B − A has the standard deviation √(A + B), and a move counts where
+    B − A > z·√(A + B) (z = :data:`NOISE_Z`: about 2.3 % one-sided).  A few pixels more or
+    fewer on one arrangement of the reference scene are how its boxes happen to fall, not
+    what the settings do on another scene.
+
+    Parameters
+    ----------
+    a, b : float
+        Fractions of the pixels [0..1].
+    pixels : int
+        The pixels the fractions are of, >= 0.
+    z : float
+        Standard deviations, >= 0.
+
+    Examples
+    --------
+    >>> significant(0.0004, 0.0006, 50000), significant(0.0002, 0.0006, 50000)    # 20 against 30 pixels; 10 against 30
+    (False, True)
+    """
+    n = check.whole(pixels, "pixels", 0)
+    z = float(check.closed_range(z, "z", 0.0, math.inf))
+    for v, name in ((a, "a"), (b, "b")):
+        check.closed_range(v, name, 0.0, 1.0)
+    return (b - a) * n > z * math.sqrt((a + b) * n)
 
 
 def hard(lim: Limits, max_gap_given: bool) -> frozenset:
@@ -256,9 +306,9 @@ def _bias_refine(px: _Pixels, key: str, settings: dict, tried: list) -> dict:
             a, b = best, values[j]
             mid = math.sqrt(a * b) if a * b > 0 else (a + b) / 2
             mid = float(f"{mid:.4g}")
-            if px.wrong({**out, key: mid}) < px.wrong(out):
+            if px.better({**out, key: mid}, out):
                 out = {**out, key: mid}
-    return {**out, key: best} if px.wrong({**settings, key: best}) < px.wrong(out) else out
+    return {**out, key: best} if px.better({**settings, key: best}, out) else out
 
 
 def _coordinate(px: _Pixels, settings: dict, keep: frozenset) -> dict:
@@ -276,11 +326,11 @@ def _coordinate(px: _Pixels, settings: dict, keep: frozenset) -> dict:
                 except ValueError:
                     continue
                 tried.append(v)
-                if px.wrong({**best, t.key: v}) < px.wrong(best) * (1 - 1e-9):
+                if px.better({**best, t.key: v}, best):
                     best, moved = {**best, t.key: v}, True
             if t.role == "bias" and tried:
                 got = _bias_refine(px, t.key, best, tried + [best[t.key]])
-                if px.wrong(got) < px.wrong(best) * (1 - 1e-9):
+                if px.better(got, best):
                     best, moved = got, True
         if not moved:
             break
@@ -309,9 +359,10 @@ def why(result: Seen, start: Setup, lim: Limits) -> list[dict]:
         raise ValueError("result must be a Seen (refine(...)), start an aliasing.setups.Setup and lim a Limits (limits(...))")
     pick = result.setup
     px = _Pixels(start, lim, result.where, None, frozenset())
+    px.cache.update((_key(p.settings), p) for p in result.points)  # the search measured these on the same sample
     after = px.point(pick.settings)
     out = []
-    with seen.remember():
+    with seen.remember(MEMORY):
         for key, value in pick.settings.items():
             old = start.settings.get(key)
             if old == value:
@@ -344,10 +395,13 @@ def _value(v: Any) -> str:
     return f"{v:g}" if isinstance(v, float) else str(v)
 
 
-def front(points, prefer: str = "wrong", start: Mapping[str, Any] | None = None) -> tuple:
-    """The points no other beats on all three axes (wrong, px/texel, memory), in the order of ``PREFER[prefer]``.
+def front(points, prefer: str = "wrong", start: Mapping[str, Any] | None = None, pixels: int | None = None) -> tuple:
+    """The points no other beats on all three axes (wrong, px/texel, memory), in the order of ``PREFER[prefer]``, the pick first.
 
     Of points equal on all three axes only one is kept: the one with the fewest settings changed from ``start``.
+    With ``pixels`` (the count the fractions are of) and ``prefer`` "wrong", the points whose wrong
+    pixels are within the noise of the fewest (not :func:`significant`\ ly more) are tied, and the
+    pick is the tied point with the fewest settings changed from ``start`` (then the usual order).
 
     Parameters
     ----------
@@ -363,6 +417,8 @@ def front(points, prefer: str = "wrong", start: Mapping[str, Any] | None = None)
     >>> c = Point({"k": 3}, 0.03, 0.0, 0.0, 0.03, 6.0, 64.0)                       # worse than a on every axis
     >>> [p.settings["k"] for p in front([a, b, c])], [p.settings["k"] for p in front([a, b, c], "blocky")]
     ([1, 2], [2, 1])
+    >>> [p.settings["k"] for p in front([a, b, c], start={"k": 2}, pixels=1000)]   # 10 against 20 pixels: tied, b is the start
+    [2, 1]
     """
     rule = check.choice(prefer, "prefer", tuple(PREFER))
     pts = [p for p in points if isinstance(p, Point)]
@@ -376,8 +432,13 @@ def front(points, prefer: str = "wrong", start: Mapping[str, Any] | None = None)
     unique: dict = {}
     for p in sorted(pts, key=lambda p: sum(base.get(k) != v for k, v in p.settings.items())):
         unique.setdefault(p.axes("wrong"), p)
-    out = [p for p in unique.values() if not any(beats(q, p) for q in unique.values() if q is not p)]
-    return tuple(sorted(out, key=lambda p: p.axes(rule)))
+    out = sorted((p for p in unique.values() if not any(beats(q, p) for q in unique.values() if q is not p)), key=lambda p: p.axes(rule))
+    if pixels is not None and rule == "wrong" and out:
+        n = check.whole(pixels, "pixels", 0)
+        tied = [p for p in out if not significant(out[0].wrong, p.wrong, n)]
+        pick = min(tied, key=lambda p: (sum(base.get(k) != v for k, v in p.settings.items()), p.axes(rule)))
+        out = [pick] + [p for p in out if p is not pick]
+    return tuple(out)
 
 
 def refine(start: Setup, perspective: Setup, lim: Limits, *, scene: Any = None, keep: frozenset = frozenset(), prefer: str = "wrong",
@@ -444,17 +505,17 @@ def refine(start: Setup, perspective: Setup, lim: Limits, *, scene: Any = None, 
     t0 = time.perf_counter()
     where = seen.sample(start, scene, height=h, suns=n)
     px = _Pixels(start, lim, where, max_memory, hard(lim, max_gap_given))
-    with seen.remember():
-        first = min((dict(start.settings), dict(perspective.settings)), key=px.wrong)
+    with seen.remember(MEMORY):
+        first = dict(perspective.settings) if px.better(perspective.settings, start.settings) else dict(start.settings)
         _coordinate(px, first, keep)
     points = [p for p in px.cache.values() if p is not None]
     if not points:
         raise Infeasible("no setting the search reached meets the limits (--max-texels, --max-memory, --moving, --max-gap-px, "
                          "--max-slope): relax one")
-    pareto = front(points, rule, start.settings)
+    pareto = front(points, rule, start.settings, px.pixels)
     pick = Setup(start.profile, dict(pareto[0].settings), start.camera, start.sun)
     final_where = seen.sample(start, scene, height=FINAL_HEIGHT, suns=FINAL_SUNS)
     before, after = seen.count(start, final_where).total, seen.count(pick, final_where).total
-    return Seen(pick, pareto, rule, before, after, {"scene": where.scene.name, "height_px": h, "suns": n},
+    return Seen(pick, pareto, rule, before, after, {"scene": where.scene.name, "height_px": h, "suns": n, "pixels": px.pixels},
                 {"scene": where.scene.name, "height_px": FINAL_HEIGHT, "suns": FINAL_SUNS}, len(px.cache), time.perf_counter() - t0,
                 tuple(points), where)

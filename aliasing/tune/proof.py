@@ -1,16 +1,19 @@
-"""``tune --frames N``: tune's best candidates rendered in the engine itself, the best measured picked.
+"""``tune --frames N``: tune's best candidates rendered in the engine itself, the pick kept or bettered by what they draw.
 
-The N candidates are the Pareto front's first N in the pick rule's order (:func:`aliasing.tune.pixels.front`),
-then the other candidates by the same rule.  Each is rendered by the engine at its pinned release
+The N candidates are the search's pick, then the Pareto front in the pick rule's order
+(:func:`aliasing.tune.pixels.front`), then the other candidates by the same rule.  Each is rendered by the engine at its pinned release
 (:func:`aliasing.frames.run.frame_setup`, one shared :class:`aliasing.frames.browser.Browser`) on the same scene
 as the search (the reference scene or the user's), at :data:`HEIGHT` rows and under :data:`SUNS` suns over the band;
 the engine's read-back shadow and the toolkit's prediction of the same frame are counted alike
 (:func:`aliasing.frames.seen.fractions`: acne, false and lost shadow of the sun-facing pixels).  The pick is the
-fewest wrong pixels *measured*.
+search's pick (the first) unless another candidate measures significantly fewer wrong pixels
+(:func:`aliasing.tune.pixels.significant`: beyond the noise of the frames' counts), then the fewest
+measured.
 """
 
 from __future__ import annotations
 
+import math
 import time
 from typing import Any
 
@@ -21,7 +24,7 @@ from ..frames import seen
 from ..frames.scenes import FrameScene, frame_scene, sun_direction
 from ..setups import Setup, spec
 from ..view import tan_theta
-from .pixels import PREFER, Point
+from .pixels import PREFER, Point, significant
 
 #: Rows of each rendered frame [px].
 HEIGHT = 144
@@ -30,20 +33,22 @@ SUNS = 2
 _KEYS = ("acne", "false_shadow", "lost_shadow", "wrong")
 
 
-def candidates(points, prefer: str, n: int) -> list[Point]:
-    """The first ``n`` points in ``prefer``'s order (the front's points first, then the rest).
+def candidates(points, prefer: str, n: int, first: Point | None = None) -> list[Point]:
+    """The first ``n`` points: ``first`` (the search's pick), then the others in ``prefer``'s order.
 
     Examples
     --------
     >>> a = Point({"k": 1}, 0.01, 0.0, 0.0, 0.01, 5.0, 64.0); b = Point({"k": 2}, 0.02, 0.0, 0.0, 0.02, 9.0, 64.0)
-    >>> [p.settings["k"] for p in candidates([b, a], "wrong", 2)]
-    [1, 2]
+    >>> [p.settings["k"] for p in candidates([b, a], "wrong", 2)], [p.settings["k"] for p in candidates([b, a], "wrong", 2, first=b)]
+    ([1, 2], [2, 1])
     """
     rule = check.choice(prefer, "prefer", tuple(PREFER))
     k = check.whole(n, "n", 1, 64, " (candidates rendered)")
-    unique: dict = {}  # one of the points equal on every axis (they differ in a digit of a bias or a setting that does nothing here)
+    if first is not None and not isinstance(first, Point):
+        raise ValueError(f"first must be a Point (the search's pick) or None, got {type(first).__name__}")
+    unique: dict = {} if first is None else {first.axes(rule): first}
     for p in sorted((p for p in points if isinstance(p, Point)), key=lambda p: p.axes(rule)):
-        unique.setdefault(p.axes(rule), p)
+        unique.setdefault(p.axes(rule), p)  # one of the points equal on every axis (they differ in a digit of a bias or a setting that does nothing here)
     return list(unique.values())[:k]
 
 
@@ -87,7 +92,7 @@ def _scene(setup: Setup, scene: Any):
 
 
 def prove(start: Setup, points, *, prefer: str = "wrong", n: int = 8, scene: Any = None, height: int | None = None,
-          suns: int | None = None) -> dict:
+          suns: int | None = None, first: Point | None = None) -> dict:
     """Render the ``n`` best candidates in the engine (module docstring) and pick the best measured.
 
     Parameters
@@ -106,12 +111,15 @@ def prove(start: Setup, points, *, prefer: str = "wrong", n: int = 8, scene: Any
         Rows of each frame [px], 16 to 1080 (default :data:`HEIGHT`).
     suns : int, optional
         Suns over the band per candidate, 1 to 16 (default :data:`SUNS`).
+    first : Point, optional
+        The search's pick (:attr:`aliasing.tune.pixels.Seen.pareto`'s first), rendered first and kept unless
+        another candidate measures significantly fewer wrong pixels.
 
     Returns
     -------
     dict
         ``candidates`` (each: ``settings``, ``measured`` and ``predicted`` fractions of the sun-facing pixels
-        summed over the suns), ``pick`` (the index of the fewest measured wrong pixels), ``height_px``, ``suns``,
+        summed over the suns), ``pick`` (the index picked: module docstring), ``height_px``, ``suns``,
         ``seconds``.
 
     Raises
@@ -134,16 +142,37 @@ def prove(start: Setup, points, *, prefer: str = "wrong", n: int = 8, scene: Any
     """
     if not isinstance(start, Setup):
         raise ValueError(f"start must be an aliasing.setups.Setup (setups.build(...)), got {type(start).__name__}")
-    picks = candidates(points, prefer, n)
+    picks = candidates(points, prefer, n, first)
     if not picks:
         raise ValueError("points: no candidate to render")
     t0 = time.perf_counter()
     got = render(start, [p.settings for p in picks], scene=scene, height=height, suns=suns)
     rows = [{"settings": r["settings"], "search": p.to_dict(start.settings), "measured": r["measured"], "predicted": r["predicted"]}
             for p, r in zip(picks, got["rows"])]
-    best = min(range(len(rows)), key=lambda i: (rows[i]["measured"]["wrong"] is None, rows[i]["measured"]["wrong"] or 0.0, i))
+    best = pick(rows)
     return {"candidates": rows, "pick": best, "height_px": got["height_px"], "suns": got["suns"], "seconds": round(time.perf_counter() - t0, 3),
             "scene": got["scene"], "units": "fractions of the sun-facing pixels, summed over the suns"}
+
+
+def pick(rows: list) -> int:
+    """The index kept of rendered ``rows`` (each with ``measured`` ``wrong`` and ``pixels``): the first unless another
+    measures significantly fewer wrong pixels (:func:`aliasing.tune.pixels.significant`), then the fewest of those.
+
+    Examples
+    --------
+    >>> row = lambda w: {"measured": {"wrong": w, "pixels": 20000}}
+    >>> pick([row(0.0010), row(0.0008)]), pick([row(0.0010), row(0.0002), row(0.0001)])    # 20 against 16 pixels; 2 against 20
+    (0, 2)
+    """
+    def wrong(i: int) -> float:
+        w = rows[i]["measured"]["wrong"]
+        return math.inf if w is None else w
+
+    if not rows:
+        raise ValueError("rows: nothing rendered")
+    better = [i for i in range(1, len(rows)) if rows[0]["measured"]["wrong"] is None
+              or (wrong(i) < wrong(0) and significant(wrong(i), wrong(0), int(rows[0]["measured"]["pixels"])))]
+    return min(better, key=lambda i: (wrong(i), i)) if better else 0
 
 
 def render(start: Setup, settings: list, *, scene: Any = None, height: int | None = None, suns: int | None = None) -> dict:

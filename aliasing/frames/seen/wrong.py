@@ -244,8 +244,12 @@ def count(setup, where: Sample) -> Wrong:
                   drawn & (np.nan_to_num(texel / where.pixel_user) > 1)]
         return np.stack([np.bincount(row[m], minlength=k + 1) for m in layers])
 
-    with futures.ThreadPoolExecutor(max(1, min(WORKERS, len(where.elevations)))) as pool:
-        counts = sum(pool.map(one_sun, where.elevations))
+    workers = min(WORKERS, len(where.elevations))
+    if workers > 1:
+        with futures.ThreadPoolExecutor(workers) as pool:
+            counts = sum(pool.map(one_sun, where.elevations))
+    else:
+        counts = sum(map(one_sun, where.elevations))
     k = counts.shape[1] - 1
     memory = int(setup.pipeline.memory)
     rows = []

@@ -199,12 +199,33 @@ def texel_indices(row: ArrayLike, col: ArrayLike, res: int) -> NDArray[np.int64]
     return r.astype(np.int64) * res + c.astype(np.int64)
 
 
+#: Slot tables released (:meth:`TexelStore.release`) kept for the next stores, at most.
+TABLES_KEPT = 32
+_TABLES: dict = {}
+
+
+def _table(size: int, dtype=np.int32) -> NDArray:
+    """A zeroed table of ``size`` entries of ``dtype``: a released one if kept, else a new one."""
+    try:
+        return _TABLES.get((np.dtype(dtype).str, size), []).pop()
+    except IndexError:
+        return np.zeros(size, dtype)
+
+
+def _give_back(table: NDArray) -> None:
+    """Keep a zeroed table for the next store (up to :data:`TABLES_KEPT` in all)."""
+    if sum(len(v) for v in _TABLES.values()) < TABLES_KEPT:
+        _TABLES.setdefault((table.dtype.str, table.size), []).append(table)
+
+
 class TexelStore:
     """The texels of one map found so far (depth and triangle by flat index row·R + column): which of those asked are missing, add, read.
 
     ``size``: the map's texels R²; given, the store keeps a table of 4 bytes per texel from
     flat index to slot, and a question costs one gather instead of a binary search (for maps
-    that fit: R² up to 2³¹); None: sorted keys only, memory as the texels found.
+    that fit: R² up to 2³¹); None: sorted keys only, memory as the texels found.  A table is
+    taken from the tables released before (:meth:`release`, up to :data:`TABLES_KEPT` kept):
+    a fresh one costs the system a page fault per 4 KiB the first time it is written.
 
     Example
     -------
@@ -212,9 +233,10 @@ class TexelStore:
     >>> for kept in (TexelStore(), TexelStore(size=16)):
     ...     m = kept.missing(np.array([7, 3, 7])).tolist()
     ...     kept.add(np.array([3, 7]), np.array([0.5, np.inf]), np.array([2, -1]))
-    ...     print(m, kept.missing(np.array([7, 9])).tolist(), [v.tolist() for v in kept.get(np.array([[7, 3]]))], len(kept))
-    [3, 7] [9] [[[inf, 0.5]], [[-1, 2]]] 2
-    [3, 7] [9] [[[inf, 0.5]], [[-1, 2]]] 2
+    ...     print(m, kept.missing(np.array([7, 9])).tolist(), [v.tolist() for v in kept.get(np.array([[7, 3]]))], len(kept),
+    ...           kept.holds(np.array([3, 7])), kept.holds(np.array([3, 9])))
+    [3, 7] [9] [[[inf, 0.5]], [[-1, 2]]] 2 True False
+    [3, 7] [9] [[[inf, 0.5]], [[-1, 2]]] 2 True False
     """
 
     def __init__(self, size: int | None = None) -> None:
@@ -223,35 +245,55 @@ class TexelStore:
         self._ident = np.zeros(0, np.int64)
         if size is not None and not (isinstance(size, (int, np.integer)) and 1 <= size <= 2**31):
             raise ValueError(f"size must be a whole number of texels in [1, 2**31] or None, got {size!r}")
-        self._slot = None if size is None else np.zeros(int(size), np.int32)  # slot + 1, 0: missing (zeros: pages taken as written)
+        self._slot = None if size is None else _table(int(size))  # slot + 1, 0: missing
+        self._mark: NDArray[np.bool_] | None = None  # missing's table (size entries), made when first needed
 
     def __len__(self) -> int:
         return int(self._flat.size)
 
+    def release(self) -> None:
+        """Give the slot table back for another store of the same size (cleared where written); the store is then empty."""
+        if self._slot is not None:
+            self._slot[self._flat] = 0
+            _give_back(self._slot)
+            self._slot = np.zeros(0, np.int32)  # released: this store holds nothing more
+        if self._mark is not None:
+            _give_back(self._mark)  # all False between questions
+            self._mark = None
+        self._flat, self._depth, self._ident = np.zeros(0, np.int64), np.zeros(0), np.zeros(0, np.int64)
+
     @property
     def nbytes(self) -> int:
         """The bytes held [bytes]."""
-        return int(self._flat.nbytes + self._depth.nbytes + self._ident.nbytes + (0 if self._slot is None else self._slot.nbytes))
+        return int(self._flat.nbytes + self._depth.nbytes + self._ident.nbytes + sum(t.nbytes for t in (self._slot, self._mark) if t is not None))
+
+    def holds(self, flat: NDArray[np.int64]) -> bool:
+        """Whether every asked flat index is held."""
+        flat = np.asarray(flat)
+        if not self._flat.size:
+            return not flat.size
+        if self._slot is not None:
+            return bool(self._slot[flat].all())
+        pos = np.minimum(np.searchsorted(self._flat, flat), self._flat.size - 1)
+        return bool((self._flat[pos] == flat).all())
 
     def missing(self, flat: NDArray[np.int64]) -> NDArray[np.int64]:
         """The asked flat indices not held, sorted and unique."""
         flat = np.asarray(flat).ravel()
-        if not self._flat.size:
-            return np.unique(flat) if self._slot is None else self._new(flat)
-        if self._slot is not None:
-            return self._new(flat[self._slot[flat] == 0])
-        pos = np.minimum(np.searchsorted(self._flat, flat), self._flat.size - 1)
-        return np.unique(flat[self._flat[pos] != flat])
-
-    def _new(self, flat: NDArray[np.int64]) -> NDArray[np.int64]:
-        """``flat``'s distinct values, sorted, through the slot table (no hashing): each marks its slot, the last mark of a value keeps it."""
-        if not flat.size:
-            return flat
-        mark = -np.arange(1, flat.size + 1, dtype=np.int64)
-        self._slot[flat] = mark  # negative: not a slot; cleared below
-        once = flat[self._slot[flat] == mark]
-        self._slot[once] = 0
-        return np.sort(once)
+        if self._slot is None:
+            if not self._flat.size:
+                return np.unique(flat)
+            pos = np.minimum(np.searchsorted(self._flat, flat), self._flat.size - 1)
+            return np.unique(flat[self._flat[pos] != flat])
+        new = flat[self._slot[flat] == 0] if self._flat.size else flat
+        if new.size * 16 < self._slot.size:  # a few: sorted
+            return _sorted_unique(new)
+        if self._mark is None:  # many (a frame's texels, repeated by its neighbouring pixels): marked on a table and read back in order
+            self._mark = _table(self._slot.size, bool)
+        self._mark[new] = True
+        out = np.flatnonzero(self._mark)
+        self._mark[out] = False
+        return out
 
     def add(self, flat: NDArray[np.int64], depth: Array, ident: NDArray[np.int64]) -> None:
         """Hold the values of flat indices not held yet (:meth:`missing`'s)."""
@@ -317,6 +359,12 @@ def zbuffer(tri: Array, res: int, inv_w: Array, rows: Array, uniform_rows: bool,
     return DepthMap(depth.reshape(res, res), ident.reshape(res, res), res, int(good.sum()), int(tri.shape[0] - good.sum()))
 
 
+def _sorted_unique(values: NDArray[np.int64], presorted: bool = False) -> NDArray[np.int64]:
+    """The distinct values, sorted (a sort and a comparison of neighbours: faster than hashing for these sizes)."""
+    v = values if presorted else np.sort(values)
+    return v[np.concatenate([[True], v[1:] != v[:-1]])] if v.size else v
+
+
 def zbuffer_at(tri: Array, res: int, inv_w: Array, rows: Array, uniform_rows: bool, chunk: int, texels: NDArray[np.int64]) -> tuple[Array, NDArray[np.int64], int, int]:
     """:func:`zbuffer` at the given texels only: (depth, triangle) of ``texels`` (sorted unique
     flat indices row·R + column), and the counts rasterized and degenerate.
@@ -329,7 +377,7 @@ def zbuffer_at(tri: Array, res: int, inv_w: Array, rows: Array, uniform_rows: bo
     depth = np.full(texels.size, np.inf)
     ident = np.full(texels.size, -1, dtype=np.int64)
     sx, ty, row_coord, area2, good, idx, x0, x1, y0, y1 = _boxes(tri, res, inv_w, rows, uniform_rows)
-    need = np.unique(texels // res)
+    need = _sorted_unique(texels // res, presorted=True)
     lo = np.searchsorted(need, y0, side="left")
     count = np.searchsorted(need, y1, side="right") - lo  # asked rows inside each triangle's box
     if idx.size and texels.size:
