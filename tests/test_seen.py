@@ -163,6 +163,28 @@ def test_the_reference_scene_is_deterministic_with_casters_near_and_far():
     assert depth.min() < 5 and depth.max() > 100 and size.max() > 20 * size.min()
 
 
+def test_the_frames_guide_table_of_the_reference_scene():
+    """docs/guide/frames.rst's table: the check's default camera, sun 15–60°, each engine's defaults and changes, at its printed digits."""
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[1] / "docs" / "guide" / "frames.rst").read_text(encoding="utf-8")
+    table = text[text.index("   * - three.js, defaults (back faces cast)"):text.index("Every cascade is blocky there")]
+    printed = [[c.strip()[2:] for c in row.strip().split("\n")[1:]] for row in table.split("   * - ")[1:]]
+    rows = [("threejs", {}), ("threejs", {"material.shadowSide": "FrontSide"}),
+            ("threejs", {"material.shadowSide": "FrontSide", "shadow.normalBias": 2.0}), ("babylon", {}), ("babylon", {"bias": 0.0}),
+            ("babylon", {"normalBias": 2.0}), ("playcanvas", {}), ("playcanvas", {"shadowBias": 0.0}), ("playcanvas", {"normalOffsetBias": 2.0})]
+
+    def fmt(v):
+        return "0" if v == 0 else (f"{100 * v:.2f} %" if v < 0.01 else f"{100 * v:.1f} %")
+
+    got = []
+    for engine, given in rows:
+        total = check(setups.build(engine, given, "near=0.1,far=500,fov=50,aspect=16:9,height=1080", "15..60"), wrong=True).seen["total"]
+        assert total["blocky"] == 1.0  # "every cascade is blocky there"
+        got.append([fmt(total[k]) for k in ("acne", "false_shadow", "lost_shadow", "wrong")])
+    assert got == printed
+
+
 # ----------------------------------------------------------------------------- bad input, check and the command line
 
 BAD = settings(max_examples=15, deadline=None, suppress_health_check=list(HealthCheck))

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import pytest
 from hypothesis import given, settings
@@ -18,6 +19,8 @@ from aliasing.tune import pixels
 from aliasing.tune.command import INFEASIBLE
 from aliasing.tune.measure import limits
 from conftest import need_frames
+
+ROOT = Path(__file__).resolve().parents[1]
 
 CAMERA = "near=0.5,far=60,fov=50,aspect=16:9,height=720"
 PLAYCANVAS = ["tune", "--engine", "playcanvas", "--set", "numCascades=2", "--set", "shadowResolution=512", "--set", "shadowBias=0",
@@ -52,6 +55,18 @@ def test_the_objective_is_wrong_pixels_and_falls(playcanvas):
     assert got["settings"]["shadowBias"] > 0
 
 
+def test_readme_numbers(playcanvas):
+    """README's 'Tune your engine' (this fixture's command): wrong pixels 41.9 % → 0.682 %, and its why line for shadowBias."""
+    w = playcanvas["wrong"]
+    assert (f"{100 * w['before']['wrong']:.3g}", f"{100 * w['after']['wrong']:.3g}") == ("41.9", "0.682")
+    line = next(x["line"] for x in playcanvas["why"] if x["key"] == "shadowBias")
+    assert line == ("shadowBias 0 → 0.1486: wrong pixels 33.9 % → 0.724 %, acne 20.5 % → 0 %, false shadow 13 % → 0.0757 %, "
+                    "lost shadow 0.37 % → 0.648 %")
+    with open(ROOT / "README.md", encoding="utf-8") as f:
+        readme = f.read()
+    assert "wrong pixels fall from 41.9 % to\n0.682 %" in readme and line in readme
+
+
 def test_every_change_has_its_why_line(playcanvas):
     got = playcanvas
     assert {c["key"] for c in got["changes"]} == {w["key"] for w in got["why"]}
@@ -63,8 +78,8 @@ def test_the_front_is_not_dominated_and_the_pick_is_first(playcanvas):
     front = playcanvas["pareto"]
     assert front
     keys = ("wrong", "px_per_texel", "memory")
-    for a in front:
-        for b in front:
+    for a in front[1:]:  # the front; the pick first may be beaten there within the noise only
+        for b in front[1:]:
             if a is not b:
                 assert not (all(a[k] <= b[k] for k in keys) and any(a[k] < b[k] for k in keys))
     assert front[0]["changed"] == playcanvas["changed"]
@@ -93,12 +108,14 @@ def test_front_of_any_points(points, prefer):
 def test_the_pick_is_the_fewest_changes_within_the_noise(points, n):
     start = {"k": points[0].settings["k"]}
     got = pixels.front(points, "wrong", start, n)
-    best = min(p.wrong for p in got)
-    tied = [p for p in got if not pixels.significant(best, p.wrong, n)]
+    best = min(p.wrong for p in points)
+    tied = [p for p in points if not pixels.significant(best, p.wrong, n)]  # the front's and those beaten only within the noise
     assert got[0] in tied
     changes = [sum(start.get(k) != v for k, v in p.settings.items()) for p in tied]
     assert sum(start.get(k) != v for k, v in got[0].settings.items()) == min(changes)
     assert [p.axes("wrong") for p in got[1:]] == sorted(p.axes("wrong") for p in got[1:])
+    rest = pixels.front(points, "wrong", start)
+    assert set(map(id, got[1:])) <= set(map(id, rest))  # after the pick: the front
 
 
 @settings(max_examples=100, deadline=None)

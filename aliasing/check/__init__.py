@@ -313,7 +313,7 @@ def check(setup: Setup, *, receivers: ArrayLike | None = None, scene: object = N
         cost = np.ones(K)
     else:
         res = _pipeline.result(pl, cam, lv)
-        err = np.maximum(res.M_x, res.M_z) * H / R  # eq. (2): texels per pixel of an H-row image
+        err = np.maximum(res.M_x, res.M_z) * H / R  # eq. (2): pixels per texel of an H-row image
         tight = stable.evaluate((near_i, far_i), cam.near, float(far_i.max()), cam.fov, lv, aspect=cam.aspect, resolution=R)
         cost = err.max(axis=0) / (np.maximum(tight.M_x, tight.M_z) * H / R).max(axis=0)
     w = tex.max(axis=-1)  # (E, K) the largest texel side

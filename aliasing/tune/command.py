@@ -384,7 +384,7 @@ def _wrong_text(result: dict[str, Any]) -> list[str]:
             lines.append(f"  {'*' if i == fr['pick'] else ' '} {_pct(c['measured']['wrong'])} / {_pct(c['predicted']['wrong'])}  {ch}")
     lines.append(f"Pareto front (wrong pixels, worst px/texel, memory; picked by --prefer {got.prefer}: the first row):")
     start = result["tuned"].start.settings
-    rows = [["wrong", "acne", "false shadow", "lost shadow", "texels/px", "memory [MiB]", "changes"]]
+    rows = [["wrong", "acne", "false shadow", "lost shadow", "px/texel", "memory [MiB]", "changes"]]
     for p in got.pareto[:12]:
         d = p.to_dict(start)
         rows.append([_pct(p.wrong), _pct(p.acne), _pct(p.false_shadow), _pct(p.lost_shadow), _tables.cell(d["px_per_texel"]),

@@ -31,7 +31,7 @@ light depth maps kept while only biases, filter or blend change
 (:func:`aliasing.frames.seen.remember`).  Every candidate within the limits is a point; those no
 other point beats on all three axes form the Pareto front, and :data:`PREFER` orders it: the pick is
 the front's first, where for ``wrong`` the points within the noise of the fewest wrong pixels count
-as tied and the one with the fewest settings changed from the start is first.  The pick and the
+as tied and the one with the fewest settings changed from the start is the pick.  The pick and the
 start are measured again at :data:`FINAL_HEIGHT` rows and :data:`FINAL_SUNS` suns.
 """
 
@@ -399,9 +399,10 @@ def front(points, prefer: str = "wrong", start: Mapping[str, Any] | None = None,
     """The points no other beats on all three axes (wrong, px/texel, memory), in the order of ``PREFER[prefer]``, the pick first.
 
     Of points equal on all three axes only one is kept: the one with the fewest settings changed from ``start``.
-    With ``pixels`` (the count the fractions are of) and ``prefer`` "wrong", the points whose wrong
-    pixels are within the noise of the fewest (not :func:`significant`\ ly more) are tied, and the
-    pick is the tied point with the fewest settings changed from ``start`` (then the usual order).
+    With ``pixels`` (the count the fractions are of) and ``prefer`` "wrong", every point whose wrong
+    pixels are within the noise of the fewest (not :func:`significant`\ ly more) is tied, on the
+    front or beaten there only within the noise, and the pick, put first, is the tied point with
+    the fewest settings changed from ``start`` (then the usual order); the front follows.
 
     Parameters
     ----------
@@ -435,7 +436,8 @@ def front(points, prefer: str = "wrong", start: Mapping[str, Any] | None = None,
     out = sorted((p for p in unique.values() if not any(beats(q, p) for q in unique.values() if q is not p)), key=lambda p: p.axes(rule))
     if pixels is not None and rule == "wrong" and out:
         n = check.whole(pixels, "pixels", 0)
-        tied = [p for p in out if not significant(out[0].wrong, p.wrong, n)]
+        least = min(p.wrong for p in unique.values())
+        tied = [p for p in unique.values() if not significant(least, p.wrong, n)]  # beaten only within the noise counts too
         pick = min(tied, key=lambda p: (sum(base.get(k) != v for k, v in p.settings.items()), p.axes(rule)))
         out = [pick] + [p for p in out if p is not pick]
     return tuple(out)

@@ -199,8 +199,8 @@ def texel_indices(row: ArrayLike, col: ArrayLike, res: int) -> NDArray[np.int64]
     return r.astype(np.int64) * res + c.astype(np.int64)
 
 
-#: Slot tables released (:meth:`TexelStore.release`) kept for the next stores, at most.
-TABLES_KEPT = 32
+#: Bytes of the tables released (:meth:`TexelStore.release`) kept for the next stores, at most [bytes].
+TABLES_KEPT = 2**28
 _TABLES: dict = {}
 
 
@@ -213,8 +213,8 @@ def _table(size: int, dtype=np.int32) -> NDArray:
 
 
 def _give_back(table: NDArray) -> None:
-    """Keep a zeroed table for the next store (up to :data:`TABLES_KEPT` in all)."""
-    if sum(len(v) for v in _TABLES.values()) < TABLES_KEPT:
+    """Keep a zeroed table for the next store (up to :data:`TABLES_KEPT` bytes in all)."""
+    if sum(t.nbytes for v in _TABLES.values() for t in v) + table.nbytes <= TABLES_KEPT:
         _TABLES.setdefault((table.dtype.str, table.size), []).append(table)
 
 
@@ -224,7 +224,7 @@ class TexelStore:
     ``size``: the map's texels R²; given, the store keeps a table of 4 bytes per texel from
     flat index to slot, and a question costs one gather instead of a binary search (for maps
     that fit: R² up to 2³¹); None: sorted keys only, memory as the texels found.  A table is
-    taken from the tables released before (:meth:`release`, up to :data:`TABLES_KEPT` kept):
+    taken from the tables released before (:meth:`release`, up to :data:`TABLES_KEPT` bytes kept):
     a fresh one costs the system a page fault per 4 KiB the first time it is written.
 
     Example
