@@ -137,24 +137,34 @@ def light_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) ->
     >>> dm.depth[1].tolist(), dm.triangle[1].tolist()                                # row t = 3/8: centres s = 1/8, 3/8 inside
     ([0.25, 0.25, inf, inf], [0, 0, -1, -1])
     """
+    return _draw(*_mapped(triangles, matrix, resolution))
+
+
+def _mapped(triangles: ArrayLike, matrix: ArrayLike, resolution: int) -> tuple[Array, int]:
+    """Checked world triangles through ``matrix`` (one far outside the map where none is given) and the checked size."""
     check.whole(resolution, "resolution", 1, 16384, " [texels]")
     tri = check.triangles(triangles, empty=True)
     if not len(tri):
         tri = np.full((1, 3, 3), 10.0)  # nothing casts: one triangle far outside the map
-    return _draw(to_map(matrix, tri), int(resolution))
+    return to_map(matrix, tri), int(resolution)
+
+
+def _keep(kind: str, mapped: Array, r: int, make):
+    """``make(mapped, r)``, kept by ``kind`` and a digest of the map-space triangles within :func:`aliasing.frames.seen.remember`'s block."""
+    kept = KEPT["maps"]
+    if kept is None:
+        return make(mapped, r)
+    key = (kind, hashlib.blake2b(np.ascontiguousarray(mapped, np.float64).tobytes(), digest_size=16).digest(), r)
+    try:
+        return kept[key]
+    except KeyError:  # not made yet (or dropped)
+        kept[key] = made = make(mapped, r)
+        return made
 
 
 def _draw(mapped: Array, r: int) -> DepthMap:
     """:func:`rasterize` of map-space triangles, kept within :func:`aliasing.frames.seen.remember`'s block."""
-    kept = KEPT["maps"]
-    if kept is None:
-        return rasterize(mapped, r)
-    key = (hashlib.blake2b(np.ascontiguousarray(mapped, np.float64).tobytes(), digest_size=16).digest(), r)
-    try:
-        return kept[key]
-    except KeyError:  # not drawn yet (or dropped)
-        kept[key] = dm = rasterize(mapped, r)
-        return dm
+    return _keep("whole", mapped, r, rasterize)
 
 
 #: The maps kept within :func:`aliasing.frames.seen.remember`'s block (None outside it), by the mapped triangles and the size.
@@ -297,16 +307,9 @@ def texels(dm, values) -> Array | TexelArray:
 
 
 def sampled_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) -> SampledMap:
-    """:func:`light_depth_map`, drawn only at the texels looked up (:class:`SampledMap`); kept within :func:`aliasing.frames.seen.remember`'s block.
+    """:func:`light_depth_map` (the same parameters), drawn only at the texels looked up (:class:`SampledMap`).
 
-    Parameters
-    ----------
-    triangles : array_like (T, 3, 3)
-        World triangles [world units].
-    matrix : array_like (4, 4)
-        World → (s, t, depth) in [0, 1]³ (an orthographic light: w = 1).
-    resolution : int
-        Texels per side [texels], in [1, 16384].
+    Kept within :func:`aliasing.frames.seen.remember`'s block, as the whole maps are.
 
     Examples
     --------
@@ -314,24 +317,12 @@ def sampled_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) 
     >>> sampled_depth_map([[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]], m, 4).at(np.array([0]), np.array([0]))[0].tolist()
     [0.25]
     """
-    check.whole(resolution, "resolution", 1, 16384, " [texels]")
-    tri = check.triangles(triangles, empty=True)
-    if not len(tri):
-        tri = np.full((1, 3, 3), 10.0)  # nothing casts: one triangle far outside the map
-    return _sampled(to_map(matrix, tri), int(resolution))
+    return _sampled(*_mapped(triangles, matrix, resolution))
 
 
 def _sampled(mapped: Array, r: int) -> SampledMap:
     """A :class:`SampledMap` of map-space triangles, kept within :func:`aliasing.frames.seen.remember`'s block."""
-    kept = KEPT["maps"]
-    if kept is None:
-        return SampledMap(mapped, r)
-    key = ("sampled", hashlib.blake2b(np.ascontiguousarray(mapped, np.float64).tobytes(), digest_size=16).digest(), r)
-    try:
-        return kept[key]
-    except KeyError:  # not drawn yet (or dropped)
-        kept[key] = sm = SampledMap(mapped, r)
-        return sm
+    return _keep("sampled", mapped, r, SampledMap)
 
 
 def _sampled_maps(a) -> list:
@@ -410,8 +401,7 @@ def reference_lit(triangles: Array, matrix: Array, resolution: int, points: Arra
     if np.shape(sun) != (3,):
         raise ValueError(f"sun must be a 3-vector, got shape {np.shape(sun)}")
     normals, sun = check.finite(normals, "normals"), check.finite(sun, "sun")
-    tri = check.triangles(triangles, empty=True)
-    dm = SampledMap(to_map(matrix, tri if len(tri) else np.full((1, 3, 3), 10.0)), int(resolution))  # one texel per point: only those drawn
+    dm = SampledMap(*_mapped(triangles, matrix, resolution))  # one texel per point: only those drawn (not kept: its table serves the next)
     c = to_map(matrix, points)
     r = dm.resolution
     inside = np.all((c[..., :2] >= 0) & (c[..., :2] < 1), axis=-1)

@@ -502,10 +502,12 @@ def add_tune_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
                    "(default): wrong where the engine's frames are predicted, else perspective (the output says which and why)")
     p.add_argument("--prefer", default="wrong", choices=list(pixels.PREFER),
                    help="the pick from the Pareto front of wrong pixels, px/texel and memory: wrong (default: fewest wrong "
-                   "pixels, ties by px/texel, then memory), blocky (fewest px/texel first) or memory (least memory first)")
+                   "pixels within the noise of their counts, then the fewest of your settings changed, then px/texel and memory), "
+                   "blocky (fewest px/texel first) or memory (least memory first)")
     p.add_argument("--max-memory", type=float, metavar="MIB", help="the most memory of all shadow maps together [MiB] (wrong-pixel search)")
-    p.add_argument("--frames", type=int, metavar="N", help="render the N best candidates in the engine itself (headless Chromium) on the "
-                   "same scene and pick the best measured (needs 'aliasing frames --install'); JSON holds measured beside predicted")
+    p.add_argument("--frames", type=int, metavar="N", help="render the pick and the next N - 1 candidates in the engine itself (headless "
+                   "Chromium) on the same scene; a candidate that measures significantly fewer wrong pixels replaces the pick (needs "
+                   "'aliasing frames --install'); JSON holds measured beside predicted")
     p.add_argument("--keep", action="append", metavar="KEY[,KEY...]",
                    help="settings held at your values, in the engine's own keys (repeatable; default: every tunable setting may change)")
     out = p.add_mutually_exclusive_group()

@@ -93,7 +93,7 @@ def _scene(setup: Setup, scene: Any):
 
 def prove(start: Setup, points, *, prefer: str = "wrong", n: int = 8, scene: Any = None, height: int | None = None,
           suns: int | None = None, first: Point | None = None) -> dict:
-    """Render the ``n`` best candidates in the engine (module docstring) and pick the best measured.
+    """Render the search's pick and the next ``n`` − 1 candidates in the engine (module docstring) and keep the pick or a significantly better one.
 
     Parameters
     ----------
