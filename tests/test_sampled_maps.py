@@ -2,7 +2,7 @@
 
 * ``raster.draw.rasterize_at`` against ``rasterize`` at random texels of random triangles (Hypothesis);
 * ``TexelStore`` with a slot table against the sorted one, and its tables handed on clean;
-* each engine's factor function through sampled maps (``frames.predict.gathered``) against the whole maps, bit for bit,
+* each engine's factor function through sampled maps (``frames.lightmaps.sampled.gathered``) against the whole maps, bit for bit,
   on the reference scene at the engines' filters; the exact reference the same; a second run over drawn texels in one pass;
 * ``frames.seen.count`` the same with its suns on threads as on one.
 """

@@ -122,7 +122,7 @@ def decode_maps(out: dict) -> list[EngineMap]:
 
 
 def snapped_depth_map(triangles: Array, matrix: Array, size: int, subpixel_bits: int | None = SUBPIXEL_BITS):
-    """:func:`aliasing.frames.predict.light_depth_map` with each corner's (s, t) rounded to 1/2^bits of
+    """:func:`aliasing.frames.lightmaps.depth.light_depth_map` with each corner's (s, t) rounded to 1/2^bits of
     a texel first, as a rasterizer with ``subpixel_bits`` of sub-texel precision places it (None: exact).
 
     Parameters
@@ -169,7 +169,7 @@ def gpu_depth_map(triangles: Array, view: Array, projection: Array, size: int, s
     times the mesh's ``matrixWorld``, float64 in JavaScript: ``view``) and the shadow camera's
     ``projectionMatrix`` as float32 uniforms (WebGLShadowMap.js 530), and the vertex shader computes
     ``projectionMatrix * ( modelViewMatrix * vec4( position, 1.0 ) )`` in float32 (project_vertex.glsl.js
-    16–18; :func:`aliasing.frames.predict.to_map32`).  The viewport transform places each corner
+    16–18; :func:`aliasing.frames.lightmaps.depth.to_map32`).  The viewport transform places each corner
     at ``round(X0·2^b + x·(R/2)·2^b)`` in 1/2^b texel (SwiftShader's VertexRoutine; ``b`` =
     ``subpixel_bits``, rounded to nearest, ties to even).  The corners are those of a light camera
     that moved by whole texels, but not its float32 translation: a corner within about 10⁻⁴ texel

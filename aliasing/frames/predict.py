@@ -29,69 +29,20 @@ Examples
 from __future__ import annotations
 
 import hashlib
-import weakref
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
-from ..raster.draw import DepthMap, rasterize
-from ..raster.draw.core import CHUNK, TexelStore, _triangles, texel_indices, weights_and_rows, zbuffer_at
+from ..raster.draw import DepthMap
+from .lightmaps.depth import KEPT, _draw, _mapped, _sampled, light_depth_map, sampled_depth_map, to_map, to_map32  # noqa: F401 - re-exported
+from .lightmaps.sampled import SampledMap, TexelArray, gathered, texels  # noqa: F401 - re-exported
 
 Array = NDArray[np.float64]
 SIDES = ("front", "back", "double")
 
 
-def _matrix(m: ArrayLike) -> Array:
-    mm = check.finite(m, "matrix")
-    if mm.shape != (4, 4):
-        raise ValueError(f"matrix must be 4x4, got shape {mm.shape}")
-    return mm
-
-
-def to_map(matrix: ArrayLike, points: ArrayLike) -> Array:
-    """Map coordinates (s, t, depth) of world points ``(..., 3)`` through a 4×4 light matrix (column vectors).
-
-    Examples
-    --------
-    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])   # s = x, t = z, depth = 0.5 − y
-    >>> to_map(m, [[0.25, 0.1, 0.75], [1.0, 0.0, 0.0]]).tolist()
-    [[0.25, 0.75, 0.4], [1.0, 0.0, 0.5]]
-    """
-    if np.shape(points)[-1:] != (3,):
-        raise ValueError(f"points must have shape (..., 3), got {np.shape(points)}")
-    check.finite(points, "points")
-    m = _matrix(matrix)
-    p = np.asarray(points, float)
-    h = p @ m[:3, :3].T + m[:3, 3]
-    w = p @ m[3, :3] + m[3, 3]
-    return h / w[..., None]
-
-
-def to_map32(matrix: ArrayLike, points: ArrayLike) -> Array:
-    """:func:`to_map` as a float32 shader computes ``matrix * vec4( point, 1.0 )``: the matrix and the
-    points rounded to float32, then per row the first column's product and each further column's
-    product added in order, every step rounded to float32 (SwiftShader's ``OpMatrixTimesVector``).
-    The last row is not used: w = 1, an orthographic matrix (the lights' here).
-
-    Examples
-    --------
-    >>> float(to_map32(np.eye(4), [[0.1, 0.2, 0.3]])[0, 0]) == float(np.float32(0.1))
-    True
-    """
-    m = _matrix(matrix).astype(np.float32)
-    p = np.asarray(points, float)
-    if p.shape[-1:] != (3,):
-        raise ValueError(f"points must have shape (..., 3), got {p.shape}")
-    q = p.reshape(-1, 3).astype(np.float32)
-    out = np.empty(q.shape, np.float32)
-    for i in range(3):
-        v = m[i, 0] * q[:, 0]
-        for j in (1, 2):
-            v = v + m[i, j] * q[:, j]
-        out[:, i] = v + m[i, 3]  # times w = 1
-    return out.astype(float).reshape(p.shape)
 
 
 def casting(triangles: ArrayLike, sun: ArrayLike, side: str) -> NDArray[np.bool_]:
@@ -117,269 +68,6 @@ def casting(triangles: ArrayLike, sun: ArrayLike, side: str) -> NDArray[np.bool_
     facing = n @ s
     return {"front": facing > 0, "back": facing < 0, "double": facing != 0}[side]
 
-
-def light_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) -> DepthMap:
-    """The toolkit's depth map (smaller depth = nearer the light) of world triangles through a light matrix.
-
-    Parameters
-    ----------
-    triangles : array_like (T, 3, 3)
-        World triangles [world units].
-    matrix : array_like (4, 4)
-        World → (s, t, depth) in [0, 1]³ (an orthographic light: w = 1).
-    resolution : int
-        Texels per side [texels], in [1, 16384].
-
-    Examples
-    --------
-    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
-    >>> dm = light_depth_map([[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]], m, 4)      # half the map (s + t < 1), at depth 0.25
-    >>> dm.depth[1].tolist(), dm.triangle[1].tolist()                                # row t = 3/8: centres s = 1/8, 3/8 inside
-    ([0.25, 0.25, inf, inf], [0, 0, -1, -1])
-    """
-    return _draw(*_mapped(triangles, matrix, resolution))
-
-
-def _mapped(triangles: ArrayLike, matrix: ArrayLike, resolution: int) -> tuple[Array, int]:
-    """Checked world triangles through ``matrix`` (one far outside the map where none is given) and the checked size."""
-    check.whole(resolution, "resolution", 1, 16384, " [texels]")
-    tri = check.triangles(triangles, empty=True)
-    if not len(tri):
-        tri = np.full((1, 3, 3), 10.0)  # nothing casts: one triangle far outside the map
-    return to_map(matrix, tri), int(resolution)
-
-
-def _keep(kind: str, mapped: Array, r: int, make):
-    """``make(mapped, r)``, kept by ``kind`` and a digest of the map-space triangles within :func:`aliasing.frames.seen.remember`'s block."""
-    kept = KEPT["maps"]
-    if kept is None:
-        return make(mapped, r)
-    key = (kind, hashlib.blake2b(np.ascontiguousarray(mapped, np.float64).tobytes(), digest_size=16).digest(), r)
-    try:
-        return kept[key]
-    except KeyError:  # not made yet (or dropped)
-        kept[key] = made = make(mapped, r)
-        return made
-
-
-def _draw(mapped: Array, r: int) -> DepthMap:
-    """:func:`rasterize` of map-space triangles, kept within :func:`aliasing.frames.seen.remember`'s block."""
-    return _keep("whole", mapped, r, rasterize)
-
-
-#: The maps kept within :func:`aliasing.frames.seen.remember`'s block (None outside it), by the mapped triangles and the size.
-KEPT: dict = {"maps": None}
-
-
-class SampledMap:
-    """:func:`light_depth_map`'s map drawn only at the texels looked up (:meth:`at`), those found kept: bit for bit the whole map's values.
-
-    A frame of H × W pixels reads a few texels per pixel through each map; an engine's map has
-    millions.  The factor functions (:func:`threejs_factor`, :func:`babylon_factor`,
-    :func:`playcanvas_factor`) take a sampled map where they take a :class:`DepthMap`; run them
-    through :func:`gathered` to draw every texel they read in one pass per map.
-
-    Attributes
-    ----------
-    resolution : int
-        Texels per side [texels].
-    texels : int
-        Texels drawn so far.
-
-    Examples
-    --------
-    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])    # s = x, t = z, depth = 0.5 − y
-    >>> roof = [[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]]
-    >>> sm = sampled_depth_map(roof, m, 4)
-    >>> d, tri = sm.at(np.array([1, 1]), np.array([1, 3]))
-    >>> d.tolist(), tri.tolist(), sm.texels                     # only the 2 texels asked are drawn
-    ([0.25, inf], [0, -1], 2)
-    >>> bool((d == light_depth_map(roof, m, 4).depth[[1, 1], [1, 3]]).all())
-    True
-    """
-
-    def __init__(self, mapped: Array, resolution: int) -> None:
-        self.mapped = mapped
-        self.resolution = int(resolution)
-        self._kept = TexelStore(size=self.resolution**2)  # a slot table: 4 bytes per texel
-        weakref.finalize(self, self._kept.release)  # its table serves the next map once this one is gone
-        self._asked: list | None = None  # while gathered's first run records the texels read
-        self._prepared: tuple | None = None
-        self._strict = False  # while gathered tries a run on the texels drawn before: a missing one stops it
-
-    @property
-    def texels(self) -> int:
-        """The texels drawn so far.
-
-        Examples
-        --------
-        >>> sampled_depth_map([[[0, 0, 0], [1, 0, 0], [0, 0, 1]]], np.eye(4), 8).texels
-        0
-        """
-        return len(self._kept)
-
-    @property
-    def nbytes(self) -> int:
-        """The bytes kept [bytes]: the slot table's 4 per texel of the map, and 24 per texel drawn.
-
-        Examples
-        --------
-        >>> sm = sampled_depth_map([[[0, 0, 0], [1, 0, 0], [0, 0, 1]]], np.eye(4), 8)
-        >>> sm.draw([0, 1, 1]); sm.nbytes                 # 64 · 4 + 2 · (8 + 8 + 8)
-        304
-        """
-        return self._kept.nbytes
-
-    def at(self, row: ArrayLike, col: ArrayLike) -> tuple[Array, NDArray[np.int64]]:
-        """Depth (``inf`` where empty) and visible triangle (−1 where empty) of texels (``row``, ``col``), whole numbers in [0, R) of one shape."""
-        flat = texel_indices(row, col, self.resolution)
-        if self._asked is not None:  # recording (gathered): the values are not used
-            self._asked.append(flat.ravel())
-            return np.zeros(flat.shape), np.full(flat.shape, -1, np.int64)
-        if self._strict:
-            if not self._kept.holds(flat):
-                raise _Missing
-        else:
-            self.draw(flat)
-        return self._kept.get(flat)
-
-    def draw(self, flat: ArrayLike) -> None:
-        """Draw the texels of flat indices row·R + column (those not drawn yet), in one pass.
-
-        Examples
-        --------
-        >>> sm = sampled_depth_map([[[0, 0, 0], [1, 0, 0], [0, 0, 1]]], np.eye(4), 8)
-        >>> sm.draw([3, 3, 9]); sm.texels
-        2
-        """
-        flat = np.asarray(flat, np.int64)
-        if self._kept.holds(flat):
-            return
-        missing = self._kept.missing(flat)
-        if self._prepared is None:  # rasterize_at's set-up, once
-            self._prepared = (_triangles(self.mapped),) + weights_and_rows(_triangles(self.mapped), self.resolution, None, None)
-        tri, inv_w, rows, uniform = self._prepared
-        depth, ident, _, _ = zbuffer_at(tri, self.resolution, inv_w, rows, uniform, CHUNK, missing)
-        self._kept.add(missing, depth, ident)
-
-
-class _Missing(Exception):
-    """A texel read in :func:`gathered`'s first try was not drawn yet."""
-
-
-class TexelArray:
-    """An (R, R) array of a map's texels made where indexed: ``values(depth, triangle)`` at the texels of ``array[row, col]``.
-
-    Examples
-    --------
-    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])
-    >>> stored = TexelArray(sampled_depth_map([[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]], m, 4), lambda d, tri: np.where(tri >= 0, d, 1.0))
-    >>> stored.shape, stored[np.array([1, 1]), np.array([1, 3])].tolist()
-    ((4, 4), [0.25, 1.0])
-    """
-
-    ndim = 2
-
-    def __init__(self, source, values) -> None:
-        self.source = source
-        self.values = values
-        self.shape = (source.resolution, source.resolution)
-
-    def __getitem__(self, key) -> Array:
-        row, col = np.broadcast_arrays(*key)
-        return self.values(*self.source.at(row, col))
-
-
-def texels(dm, values) -> Array | TexelArray:
-    """``values(depth, triangle)`` of a whole :class:`DepthMap`, or the :class:`TexelArray` of a :class:`SampledMap`.
-
-    Examples
-    --------
-    >>> dm = light_depth_map([[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]], np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]]), 2)
-    >>> texels(dm, lambda d, tri: np.where(tri >= 0, d, 1.0)).tolist()
-    [[0.25, 1.0], [1.0, 1.0]]
-    """
-    if isinstance(dm, DepthMap):
-        return values(dm.depth, dm.triangle)
-    if not isinstance(dm, (SampledMap, _Atlas)):
-        raise ValueError(f"dm must be a DepthMap or a SampledMap, got {type(dm).__name__}")
-    return TexelArray(dm, values)
-
-
-def sampled_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) -> SampledMap:
-    """:func:`light_depth_map` (the same parameters), drawn only at the texels looked up (:class:`SampledMap`).
-
-    Kept within :func:`aliasing.frames.seen.remember`'s block, as the whole maps are.
-
-    Examples
-    --------
-    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])
-    >>> sampled_depth_map([[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]], m, 4).at(np.array([0]), np.array([0]))[0].tolist()
-    [0.25]
-    """
-    return _sampled(*_mapped(triangles, matrix, resolution))
-
-
-def _sampled(mapped: Array, r: int) -> SampledMap:
-    """A :class:`SampledMap` of map-space triangles, kept within :func:`aliasing.frames.seen.remember`'s block."""
-    return _keep("sampled", mapped, r, SampledMap)
-
-
-def _sampled_maps(a) -> list:
-    """The :class:`SampledMap` objects behind ``a`` (a sampled map, a :class:`TexelArray`, an atlas); none for a whole map."""
-    if isinstance(a, TexelArray):
-        return _sampled_maps(a.source)
-    if isinstance(a, _Atlas):
-        return [dm for dm, _, _ in a.parts if isinstance(dm, SampledMap)]
-    return [a] if isinstance(a, SampledMap) else []
-
-
-def gathered(compute, maps):
-    """``compute()`` with the texels it reads of sampled ``maps`` drawn in one pass per map.
-
-    ``compute`` runs once if every texel it reads was drawn before (a search that moves only the
-    biases of the same maps), else twice: first recording the texels it reads (the values are then
-    zeros: its lookups must not depend on them, as the factor functions' do not), then, with
-    those texels drawn, for its result.  Maps that are not sampled are left as they are.
-
-    Examples
-    --------
-    >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])
-    >>> roof = [[[0, 0.25, 0], [2, 0.25, 0], [0, 0.25, 2]]]
-    >>> pts = np.array([[0.5, 0.0, 0.5], [0.5, 0.3, 0.5]]); up = np.array([[0.0, 1.0, 0.0]] * 2)   # under the roof, above it
-    >>> def factor(maps):
-    ...     return threejs_factor(maps, m[None], np.array([0, 0]), pts, up, np.array([0.5, 1.5]), np.array([0.5, 0.5]),
-    ...                           bias=0.0, normal_bias=0.0, radius=1.0)
-    >>> sm = sampled_depth_map(roof, m, 64)
-    >>> gathered(lambda: factor([sm]), [sm]).tolist(), sm.texels    # 2 points · 5 taps · 4 texels read, 13 distinct
-    ([0.0, 1.0], 13)
-    >>> factor([light_depth_map(roof, m, 64)]).tolist()              # the whole map's 4096 texels: the same
-    [0.0, 1.0]
-    """
-    lazy = [m for a in maps for m in _sampled_maps(a)]
-    if not lazy:
-        return compute()
-    for m in lazy:
-        m._strict = True
-    try:
-        return compute()
-    except _Missing:
-        pass
-    finally:
-        for m in lazy:
-            m._strict = False
-    for m in lazy:
-        m._asked = []
-    try:
-        compute()
-    finally:
-        asked = [(m, m._asked) for m in lazy]
-        for m in lazy:
-            m._asked = None
-    for m, flat in asked:
-        if flat:
-            m.draw(np.concatenate(flat))
-    return compute()
 
 
 def reference_lit(triangles: Array, matrix: Array, resolution: int, points: Array, normals: Array, sun: Array) -> NDArray[np.bool_]:
@@ -729,6 +417,10 @@ class _Atlas:
         # per column and per row: a bit for each cell whose columns (rows) hold it
         self._cols = sum(((centre >= x) & (centre < x + w)).astype(np.int64) << i for i, (_, _, (x, _, w, _)) in enumerate(parts))
         self._rows = sum(((centre >= y) & (centre < y + h)).astype(np.int64) << i for i, (_, _, (_, y, _, h)) in enumerate(parts))
+
+    def sampled_maps(self) -> list:
+        """The cascades' sampled maps, for :func:`aliasing.frames.lightmaps.sampled.gathered`."""
+        return [dm for dm, _, _ in self.parts if isinstance(dm, SampledMap)]
 
     def at(self, row: NDArray[np.int64], col: NDArray[np.int64]) -> tuple[Array, NDArray[np.int64]]:
         out = np.ones(row.shape)

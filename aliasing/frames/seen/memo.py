@@ -2,8 +2,8 @@
 
 A search that changes only the biases, the filter or the blend band draws the same triangles
 through the same light matrices at the same size again and gets the same map.  Within
-:func:`remember`'s block :func:`aliasing.frames.predict.light_depth_map` and
-:func:`~aliasing.frames.predict.sampled_depth_map` keep the maps they drew (by a digest of the
+:func:`remember`'s block :func:`aliasing.frames.lightmaps.depth.light_depth_map` and
+:func:`~aliasing.frames.lightmaps.depth.sampled_depth_map` keep the maps they drew (by a digest of the
 mapped triangles and the size), and :func:`~aliasing.frames.predict.reference` the exact
 reference it found (by a digest of the matrices, cascades, pixels, sun and scene); the least
 recently used are dropped beyond the block's byte limit; outside it nothing is kept.
@@ -11,7 +11,7 @@ recently used are dropped beyond the block's byte limit; outside it nothing is k
 Examples
 --------
 >>> import numpy as np
->>> from aliasing.frames.predict import light_depth_map
+>>> from aliasing.frames.lightmaps.depth import light_depth_map
 >>> tri = np.array([[[0.1, 0.1, 0.5], [0.9, 0.1, 0.5], [0.1, 0.9, 0.5]]])
 >>> with remember():
 ...     light_depth_map(tri, np.eye(4), 8) is light_depth_map(tri, np.eye(4), 8)
@@ -28,7 +28,8 @@ from collections import OrderedDict
 from collections.abc import Iterator
 
 from ... import _validation as check
-from .. import predict
+from ..lightmaps import depth
+from ..lightmaps.sampled import SampledMap
 
 
 class _Kept(OrderedDict):
@@ -80,9 +81,9 @@ def remember(limit: int = 2**30) -> contextlib.AbstractContextManager:
 
 @contextlib.contextmanager
 def _remembering(limit: int) -> Iterator[None]:
-    outer = predict.KEPT["maps"]
-    predict.KEPT["maps"] = _Kept(limit) if outer is None else outer
+    outer = depth.KEPT["maps"]
+    depth.KEPT["maps"] = _Kept(limit) if outer is None else outer
     try:
         yield
     finally:
-        predict.KEPT["maps"] = outer
+        depth.KEPT["maps"] = outer
