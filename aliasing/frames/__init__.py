@@ -6,7 +6,8 @@ Python: the optional ``frames`` extra).  Its page (``pages/<engine>.mjs``) reads
 pixel, the raw shadow factor the engine multiplied into the sun's light, the cascade it
 sampled, the world position and normal, and per cascade the light matrix and map size
 (:mod:`.readback`).  The toolkit predicts the same pixels with its own rasterizer and the
-engine's rules (:mod:`.models`, :mod:`.predict`), and both are measured alike
+engine's rules (:mod:`.models`, :mod:`.predict`; its light depth maps, whole or drawn only
+where the pixels read them, :mod:`.lightmaps`), and both are measured alike
 (:mod:`.compare`, :mod:`.run`); the shadow maps themselves can be read back and checked texel
 for texel (:mod:`.maps`), and Babylon.js's cascade matrices are predicted (:mod:`.babylon_cascades`).
 Filament (npm, WebGL 2) is rendered and measured against the exact shadows, not predicted: its
