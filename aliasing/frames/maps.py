@@ -47,9 +47,9 @@ from scipy import ndimage
 
 from .. import _validation as check
 from . import babylon_cascades, predict
+from .lightmaps.depth import SUBPIXEL_BITS, snap
 
 Array = NDArray[np.float64]
-SUBPIXEL_BITS = 4
 FLOAT32_DEPTH = 2.0**-24
 MAX_SIDE = 1024
 
@@ -156,10 +156,7 @@ def snapped_depth_map(triangles: Array, matrix: Array, size: int, subpixel_bits:
     tri = np.asarray(triangles, float)
     if not len(tri):
         return predict.light_depth_map(tri.reshape(0, 3, 3), matrix, size)
-    mt = predict.to_map(matrix, tri)
-    q = float(size) * 2.0**subpixel_bits
-    mt[..., :2] = np.floor(mt[..., :2] * q + 0.5) / q
-    return rasterize(mt, int(size))
+    return rasterize(snap(predict.to_map(matrix, tri), int(size), int(subpixel_bits)), int(size))
 
 
 def gpu_depth_map(triangles: Array, view: Array, projection: Array, size: int, subpixel_bits: int = SUBPIXEL_BITS):

@@ -20,7 +20,8 @@ The search (:func:`refine`):
   the geometric middles on both sides of the best (a 1-D search on the wrong-pixel objective);
   a move is kept where it lowers the wrong pixels by more than their count's noise
   (:func:`significant`: a few pixels of one arrangement of boxes say nothing of another scene);
-  passes repeat until none moves (at most :data:`PASSES`);
+  passes repeat until none moves (at most :data:`PASSES`); then each changed setting is put back
+  to your value where that is not significantly worse;
 * holds ``--max-texels``, ``--max-memory``, with ``--moving`` a stabilized fit, and
   ``--max-gap-px`` and ``--max-slope`` where given (:func:`hard`); acne and lost shadow are
   otherwise in the objective itself.
@@ -337,6 +338,17 @@ def _coordinate(px: _Pixels, settings: dict, keep: frozenset) -> dict:
     return best
 
 
+def _undo(px: _Pixels, settings: dict, start: Mapping[str, Any]) -> dict:
+    """Each setting the descent changed, put back to the start's value where that is not significantly worse (one at a
+    time, in the settings' order): a change is kept only where it pays beyond the noise on its own."""
+    best = dict(settings)
+    for key in [k for k, v in settings.items() if k in start and start[k] != v]:
+        back = {**best, key: start[key]}
+        if px.point(back) is not None and not px.better(best, back):
+            best = back
+    return best
+
+
 def why(result: Seen, start: Setup, lim: Limits) -> list[dict]:
     """For each setting the pick changed: what it fixes and what it costs, that setting alone put back to the start's value.
 
@@ -509,7 +521,7 @@ def refine(start: Setup, perspective: Setup, lim: Limits, *, scene: Any = None, 
     px = _Pixels(start, lim, where, max_memory, hard(lim, max_gap_given))
     with seen.remember(MEMORY):
         first = dict(perspective.settings) if px.better(perspective.settings, start.settings) else dict(start.settings)
-        _coordinate(px, first, keep)
+        _undo(px, _coordinate(px, first, keep), start.settings)
     points = [p for p in px.cache.values() if p is not None]
     if not points:
         raise Infeasible("no setting the search reached meets the limits (--max-texels, --max-memory, --moving, --max-gap-px, "

@@ -27,6 +27,10 @@ from ...raster.draw import DepthMap, rasterize
 from .sampled import SampledMap
 
 Array = NDArray[np.float64]
+#: The sub-texel precision [bits] with which SwiftShader, the renderer of the engines' frames here, places a
+#: triangle's corners (``SUBPIXEL_PRECISION_BITS`` in its src/Vulkan/VkConfig.hpp: 4 with
+#: ``SWIFTSHADER_LEGACY_PRECISION``; the maps read back from Debian's Chromium show 4, ERRATA F14).
+SUBPIXEL_BITS = 4
 
 
 def _matrix(m: ArrayLike) -> Array:
@@ -133,8 +137,11 @@ def _draw(mapped: Array, r: int) -> DepthMap:
 KEPT: dict = {"maps": None}
 
 
-def sampled_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) -> SampledMap:
+def sampled_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int, subpixel_bits: int | None = None) -> SampledMap:
     """:func:`light_depth_map` (the same parameters), drawn only at the texels looked up (:class:`SampledMap`).
+
+    ``subpixel_bits``: each corner's (s, t) first rounded to 1/2^bits of a texel (:func:`snap`), as the
+    frames' renderer places it (:data:`SUBPIXEL_BITS`); None: exact corners.
 
     Kept within :func:`aliasing.frames.seen.remember`'s block, as the whole maps are.
 
@@ -144,7 +151,28 @@ def sampled_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) 
     >>> sampled_depth_map([[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]], m, 4).at(np.array([0]), np.array([0]))[0].tolist()
     [0.25]
     """
-    return _sampled(*_mapped(triangles, matrix, resolution))
+    mapped, r = _mapped(triangles, matrix, resolution)
+    return _sampled(mapped if subpixel_bits is None else snap(mapped, r, subpixel_bits), r)
+
+
+def snap(mapped: Array, resolution: int, subpixel_bits: int) -> Array:
+    """Map-space triangles with each corner's (s, t) rounded to 1/2^``subpixel_bits`` of a texel of a ``resolution`` map.
+
+    A rasterizer with that sub-texel precision places the corners there before it decides which
+    texel centres a triangle covers: SwiftShader, which draws the engines' frames here, with 4 bits
+    (:data:`SUBPIXEL_BITS`).  The depth is left as it is.
+
+    Examples
+    --------
+    >>> snap(np.array([[[0.1, 0.2, 0.5], [0.9, 0.1, 0.5], [0.1, 0.9, 0.5]]]), 8, 4)[0, 0].tolist()   # 0.8 and 1.6 texels: 13/16, 26/16
+    [0.1015625, 0.203125, 0.5]
+    """
+    if not (isinstance(subpixel_bits, (int, np.integer)) and 0 <= subpixel_bits <= 16):
+        raise ValueError(f"subpixel_bits must be a whole number in [0, 16] or None, got {subpixel_bits!r}")
+    out = np.array(mapped, float)
+    q = float(resolution) * 2.0**subpixel_bits
+    out[..., :2] = np.floor(out[..., :2] * q + 0.5) / q
+    return out
 
 
 def _sampled(mapped: Array, r: int) -> SampledMap:

@@ -10,6 +10,7 @@ from numpy.typing import NDArray
 from ... import _validation as check
 from ...setups import babylon as babylon_setup
 from .. import babylon_cascades, predict
+from ..lightmaps.depth import SUBPIXEL_BITS
 from ..predict import Prediction, reference
 
 Array = NDArray[np.float64]
@@ -146,7 +147,7 @@ class BabylonCSM:
         sel = self.select(s, cam, depth)
         res = int(s["mapSize"])
         cast = babylon_cascades.offset_casters(scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))], sun, float(s["normalBias"]))
-        maps = [predict.sampled_depth_map(cast, m, res) for m in rb.matrices]  # drawn where the pixels read them
+        maps = [predict.sampled_depth_map(cast, m, res, SUBPIXEL_BITS) for m in rb.matrices]  # drawn where the pixels read them, corners as SwiftShader snaps them
         edges = self.edges(s, cam)
         pct = float(s["cascadeBlendPercentage"])
         pts = np.nan_to_num(rb.position)

@@ -9,6 +9,7 @@ from numpy.typing import NDArray
 
 from ...engines import stable
 from .. import predict
+from ..lightmaps.depth import SUBPIXEL_BITS
 from ..predict import Prediction, reference
 
 Array = NDArray[np.float64]
@@ -153,7 +154,8 @@ class PlayCanvas:
         sel = self.select(s, cam, depth)
         res = int(s["shadowResolution"])
         cast = scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))]
-        atlas = predict.playcanvas_atlas(cast, rb.matrices, self.cells(s), res, float(s["shadowBias"]), sampled=True)  # drawn where read
+        atlas = predict.playcanvas_atlas(cast, rb.matrices, self.cells(s), res, float(s["shadowBias"]), subpixel_bits=SUBPIXEL_BITS,
+                                         sampled=True)  # drawn where read, corners as SwiftShader snaps them
         pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
         factor = predict.gathered(lambda: predict.playcanvas_factor(atlas, rb.matrices, sel, pts, nrm, normal_offset=float(s["normalOffsetBias"]),
                                                                     taps=self.FILTERS[int(s["shadowType"])]), [atlas])

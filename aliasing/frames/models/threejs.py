@@ -11,6 +11,7 @@ from ... import partitioning
 from ... import _validation as check
 from ...engines import stable
 from .. import predict
+from ..lightmaps.depth import SUBPIXEL_BITS
 from ..predict import Prediction, reference
 
 Array = NDArray[np.float64]
@@ -130,7 +131,7 @@ class ThreeCSM:
         sel = self.select(s, cam, depth)
         res = int(s["shadowMapSize"])
         cast = scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))]
-        maps = [predict.sampled_depth_map(cast, m, res) for m in rb.matrices]  # drawn where the pixels read them
+        maps = [predict.sampled_depth_map(cast, m, res, SUBPIXEL_BITS) for m in rb.matrices]  # drawn where the pixels read them, corners as SwiftShader snaps them
         h, w = depth.shape
         fy, fx = np.mgrid[0:h, 0:w]
         gl_y = (h - 1 - fy) + 0.5
