@@ -36,7 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _validation as check
 from ..raster.draw import DepthMap
-from .lightmaps.depth import KEPT, _draw, _mapped, _sampled, light_depth_map, sampled_depth_map, to_map, to_map32  # noqa: F401 - re-exported
+from .lightmaps.depth import KEPT, _draw, _mapped, _sampled, light_depth_map, sampled_depth_map, snap, to_map, to_map32  # noqa: F401 - re-exported
 from .lightmaps.sampled import SampledMap, TexelArray, gathered, texels  # noqa: F401 - re-exported
 
 Array = NDArray[np.float64]
@@ -383,9 +383,7 @@ def playcanvas_atlas(triangles: Array, matrices: Array, cells: Array, resolution
             dm = (sampled_depth_map if sampled else light_depth_map)(triangles, m, r)
             mt = to_map(m, triangles) if len(triangles) else None
         else:
-            mt = to_map(m, check.finite(triangles, "triangles"))
-            q = r * 2.0**subpixel_bits
-            mt[..., :2] = np.floor(mt[..., :2] * q + 0.5) / q
+            mt = snap(to_map(m, check.finite(triangles, "triangles")), r, subpixel_bits)
             dm = _sampled(mt, r) if sampled else _draw(mt, r)
         bias = polygon_offset(mt, r, off, off, slope) if off and len(triangles) else np.zeros(max(len(triangles), 1))
         parts.append((dm, bias, cell))

@@ -40,10 +40,6 @@ class _Kept(OrderedDict):
         self.limit = limit
         self.lock = threading.RLock()  # the suns of a count are measured on threads
 
-    def __contains__(self, key) -> bool:
-        with self.lock:
-            return super().__contains__(key)
-
     def __getitem__(self, key):
         with self.lock:
             self.move_to_end(key)
