@@ -266,12 +266,16 @@ def test_a_view_that_draws_nothing_is_refused_by_name():
 
 
 def test_engines_without_predicted_matrices_are_refused_or_reported():
-    godot = setups.build("godot", {}, USER, 30)
-    with pytest.raises(ValueError, match="engine must be one of threejs, babylon, playcanvas"):
-        wrong_pixels(godot)
-    assert "not_predicted" in check(godot, wrong=True).to_dict()["seen"]
+    bevy = setups.build("bevy", {}, USER, 30)
+    with pytest.raises(ValueError, match="engine must be one of threejs, babylon, playcanvas, godot"):
+        wrong_pixels(bevy)
+    assert "not_predicted" in check(bevy, wrong=True).to_dict()["seen"]
     with pytest.raises(ValueError, match="wrong"):
-        check(godot, wrong="yes")
+        check(bevy, wrong="yes")
+    godot = setups.build("godot", {}, USER, 30)  # Forward+, Godot's desktop default: its Compatibility renderer is predicted
+    with pytest.raises(ValueError, match="rendering/renderer/rendering_method must be gl_compatibility"):
+        wrong_pixels(godot)
+    assert check(godot, wrong=True).to_dict()["seen"]["not_predicted"].startswith("rendering/renderer/rendering_method")
 
 
 def test_check_reports_the_measure_per_cascade_only_when_asked():

@@ -12,9 +12,11 @@ matrices the toolkit does not predict, and settings the frames' models do not mo
 Examples
 --------
 >>> from aliasing import setups
->>> block = seen_block(setups.build("godot", {}, "near=0.5,far=60,fov=50,aspect=16:9,height=720", 30))
->>> block["not_predicted"].startswith("setup's engine must be one of threejs, babylon, playcanvas")
+>>> block = seen_block(setups.build("bevy", {}, "near=0.5,far=60,fov=50,aspect=16:9,height=720", 30))
+>>> block["not_predicted"].startswith("setup's engine must be one of threejs, babylon, playcanvas, godot")
 True
+>>> seen_block(setups.build("godot", {}, "near=0.5,far=60,fov=50,aspect=16:9,height=720", 30))["not_predicted"][:63]
+'rendering/renderer/rendering_method must be gl_compatibility: G'
 """
 
 from __future__ import annotations

@@ -520,6 +520,27 @@ class Prediction:
     matrices: Array | None = None  # per cascade, the predicted world → [0, 1]³ matrices, where the model predicts them whole
 
 
+#: The read-back ``info`` key of a digest of its pixels (``drawn``, ``position``, ``normal``) and the scene's triangles, set by a
+#: caller that measures the same pixels many times (:func:`aliasing.frames.seen.count`): :func:`reference` then keys its memo by
+#: it instead of digesting those arrays again.
+GEOMETRY_KEY = "geometry_digest"
+
+
+def geometry_digest(drawn: Array, position: Array, normal: Array, triangles: Array) -> bytes:
+    """The digest :func:`reference` takes for the pixels and scene under :data:`GEOMETRY_KEY`.
+
+    Examples
+    --------
+    >>> a = np.zeros((1, 2, 3)); tri = np.zeros((1, 3, 3))
+    >>> geometry_digest(np.ones((1, 2), bool), a, a, tri) == geometry_digest(np.ones((1, 2), bool), a, a, tri), len(geometry_digest(np.ones((1, 2), bool), a, a, tri))
+    (True, 16)
+    """
+    digest = hashlib.blake2b(digest_size=16)
+    for a in (drawn, position, normal, triangles):
+        digest.update(np.ascontiguousarray(a).tobytes())
+    return digest.digest()
+
+
 def reference(scene, sun: Array, rb, resolution: int) -> NDArray[np.bool_]:
     """The exact reference's lit pixels, through the matrix of the cascade each pixel sampled (the last one where none).
 
@@ -538,8 +559,10 @@ def reference(scene, sun: Array, rb, resolution: int) -> NDArray[np.bool_]:
     kept, key = KEPT["maps"], None
     if kept is not None:  # a search that moves only biases or filters asks again for the same matrices, cascades and pixels
         digest = hashlib.blake2b(digest_size=16)
-        for a in (rb.matrices, rb.cascade, rb.drawn, rb.position, rb.normal, sun, scene.triangles):
+        geometry = rb.info.get(GEOMETRY_KEY) if isinstance(rb.info, dict) else None  # the pixels and scene, digested once by their owner
+        for a in (rb.matrices, rb.cascade, sun) + (() if geometry else (rb.drawn, rb.position, rb.normal, scene.triangles)):
             digest.update(np.ascontiguousarray(a).tobytes())
+        digest.update(geometry or b"")
         key = ("reference", digest.digest(), int(resolution))
         try:
             return kept[key].copy()

@@ -339,7 +339,8 @@ def frame_inputs(setup, scene: FrameScene, sun: Array | None = None):
     return setup, scene, np.asarray(sv, float) / np.linalg.norm(sv)
 
 
-def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, path: str | None = None, maps: int | None = None) -> FrameResult:
+def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, path: str | None = None, maps: int | None = None,
+                probe: bool = True) -> FrameResult:
     """Render an :class:`aliasing.setups.Setup` (engine, settings, camera with image size, sun) on ``scene``.
 
     ``scene`` must have been built with the setup's camera (:func:`aliasing.frames.scenes.frame_scene`);
@@ -365,6 +366,10 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
         Read the shadow maps back (three.js, Babylon.js; PlayCanvas's atlas), every stride-th texel so that at most
         ``maps`` texels per side come back, and add ``report["maps"]``: the engine's maps
         against the toolkit's rasterizer (:func:`aliasing.frames.maps.measure_maps`).
+    probe : bool
+        Godot: draw the second frame, the split each pixel's shader chose (default); False: the split
+        Godot's own split offsets pick at each pixel's view depth (the same on 99.99 % of the pixels,
+        docs/ERRATA.md F13), one frame per call (``tune --frames``).  Other engines draw one frame either way.
 
     Returns
     -------
@@ -386,6 +391,8 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     """
     from .models import from_setup
 
+    if not isinstance(probe, (bool, np.bool_)):
+        raise ValueError(f"probe must be True or False, got {probe!r}")
     setup, scene, sv = frame_inputs(setup, scene, sun)
     cam = setup.camera
     settings = from_setup(setup)
@@ -396,7 +403,7 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     refuse_unrendered(setup.engine, settings.get("class"), None, maps)
     job = make_job(scene, sv, settings, cam.height, poses, maps)
     out = browser.render(setup.engine, job)
-    if setup.engine == "godot":  # the split per pixel from Godot's own shader: a second frame that draws it
+    if setup.engine == "godot" and probe:  # the split per pixel from Godot's own shader: a second frame that draws it
         probe = browser.render("godot", {**job, "probe": "splits", "path": None})
         out["splits_frame"], out["shaders_probed"] = probe["factor"], probe.get("shaders_probed")
     result = measure(setup.engine, scene, sv, settings, out, pipeline=setup.pipeline)

@@ -265,7 +265,8 @@ def snippet(s: Mapping[str, Any], keys: Any = None, light: str | None = None) ->
 
 _SPLITS = frozenset(("SHADOW_PARALLEL_2_SPLITS", "SHADOW_PARALLEL_4_SPLITS"))
 #: What :func:`aliasing.tune.tune` searches: the mode (1, 2 or 4 splits), the split fractions
-#: each mode reads, the max distance, the atlas size, both biases and blend splits.
+#: each mode reads, the max distance, the atlas size, both biases, blend splits and, with the
+#: Compatibility renderer, its filter quality.
 TUNABLE = (
     Tunable("directional_shadow_mode", "cascades", values=("SHADOW_ORTHOGONAL", "SHADOW_PARALLEL_2_SPLITS", "SHADOW_PARALLEL_4_SPLITS")),
     Tunable("directional_shadow_split_1", "split", range=(0.0, 1.0), step=0.05, when=(("directional_shadow_mode", _SPLITS),)),
@@ -276,6 +277,9 @@ TUNABLE = (
     Tunable("shadow_bias", "bias"),
     Tunable("shadow_normal_bias", "bias"),
     Tunable("directional_shadow_blend_splits", "blend", values=(False, True), when=(("directional_shadow_mode", _SPLITS),)),
+    # the Compatibility renderer's three filters (COMPAT_PCF: Hard, Soft Low, Soft High are one lookup, PCF_5, PCF_13; the
+    # qualities between repeat them), which the frames render and predict; Forward+'s Vogel disk is not searched
+    Tunable(QUALITY, "filter", values=(0, 2, 4), when=((RENDERER, "gl_compatibility"),)),
 )
 
 PROFILES = (

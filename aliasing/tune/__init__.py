@@ -6,7 +6,7 @@ receiver that must stay free of acne, the largest lit gap in pixels, a moving ca
 searches only the settings the engine's profile declares tunable
 (the ``tunable`` of :class:`aliasing.setups.Profile`) for the lowest worst-case perspective error.
 Biases are not searched there: they are set to the closed-form minimum that leaves no acne.  For
-the engines whose frames are predicted (three.js, Babylon.js, PlayCanvas), :func:`aliasing.tune.pixels.refine`
+the engines whose frames are predicted (three.js, Babylon.js, PlayCanvas, Godot's Compatibility renderer), :func:`aliasing.tune.pixels.refine`
 then searches the same levers, the biases included, for the fewest pixels the user sees wrong
 (the ``aliasing tune`` command's objective), with a Pareto front of wrong pixels, px/texel
 and memory, and :func:`aliasing.tune.proof.prove` renders the best in the engine.  Where
@@ -26,7 +26,9 @@ report
 theory
     The tuned split against the papers' splits for the same budget.
 pixels
-    The wrong-pixel objective: the coordinate search, the Pareto front, the why lines.
+    The wrong-pixel objective: the coordinate search, the Pareto front.
+explain
+    The why lines: what each change of the pick fixes and costs.
 proof
     ``--frames N``: the best candidates rendered in the engine itself.
 command

@@ -11,7 +11,7 @@ The user's setup (``--settings``, ``--set`` and, where the command line has it, 
 the start, "before"; ``--keep`` holds settings at their start values; the others the profile
 declares tunable are searched from there: first for the lowest worst perspective error
 (:func:`aliasing.tune.search.tune`), then, for the engines whose frames are predicted (three.js,
-Babylon.js, PlayCanvas), for the fewest wrong pixels (:mod:`aliasing.tune.pixels`: the objective;
+Babylon.js, PlayCanvas; Godot with ``rendering/renderer/rendering_method=gl_compatibility``), for the fewest wrong pixels (:mod:`aliasing.tune.pixels`: the objective;
 the other engines keep the perspective one and the output says why in one line).  Every changed
 setting is listed with its value before and after in the engine's units, with a line saying what it
 fixes and costs, and every measure that got worse (:func:`aliasing.tune.report.worse`) on its own
@@ -50,7 +50,7 @@ from .. import setups
 from ..check import check
 from ..frames import seen as _seen
 from ..setups import files
-from . import pixels, proof, report, search
+from . import explain, pixels, proof, report, search
 from .measure import measure as _measure
 
 #: The exit status where the limits cannot all be met (the closest settings are still printed).
@@ -173,7 +173,7 @@ def _wrong_pixels(args: argparse.Namespace, start, tuned) -> tuple[Any, dict[str
     out: dict[str, Any] = {"objective_kind": "perspective", "objective_note": note, "seen": None, "why": [], "infeasible": None}
     if getattr(args, "frames", None) is not None and (kind == "perspective" or note):
         raise ValueError("--frames renders the wrong-pixel search's candidates: it needs --objective wrong or auto and an engine whose "
-                         f"frames are predicted ({', '.join(_seen.ENGINES)})")
+                         f"frames are predicted ({', '.join(_seen.ENGINES)})" + (f"; here {note}" if note else ""))
     if kind == "perspective":
         out["objective_note"] = "the worst perspective error, as asked (--objective perspective)"
         return tuned, out
@@ -202,7 +202,7 @@ def _wrong_pixels(args: argparse.Namespace, start, tuned) -> tuple[Any, dict[str
     m = _measure(pick, tuned.limits)
     picked = dataclasses.replace(tuned, setup=pick, objective=m.objective, measure=m, feasible=True, binding=(), tradeoff=(), held_gap=None,
                                  changed={k: v for k, v in pick.settings.items() if start.settings.get(k) != v})
-    out.update({"objective_kind": "wrong", "seen": got, "why": pixels.why(got, start, tuned.limits)})
+    out.update({"objective_kind": "wrong", "seen": got, "why": explain.why(got, start, tuned.limits)})
     return picked, out
 
 
@@ -498,7 +498,7 @@ def add_tune_parser(sub: argparse._SubParsersAction) -> argparse.ArgumentParser:
     p.add_argument("--moving", action="store_true", help="the camera moves: the fit must be stabilized (no shimmer)")
     p.add_argument("--objective", default="auto", choices=["auto", "wrong", "perspective"],
                    help="what is minimised: wrong, the pixels the predicted frame gets wrong (acne, false and lost shadow) on the "
-                   "reference scene or --scene (threejs, babylon, playcanvas); perspective, the worst perspective error; auto "
+                   "reference scene or --scene (threejs, babylon, playcanvas; godot with rendering/renderer/rendering_method=gl_compatibility); perspective, the worst perspective error; auto "
                    "(default): wrong where the engine's frames are predicted, else perspective (the output says which and why)")
     p.add_argument("--prefer", default="wrong", choices=list(pixels.PREFER),
                    help="the pick from the Pareto front of wrong pixels, px/texel and memory: wrong (default: fewest wrong "

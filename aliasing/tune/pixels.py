@@ -1,7 +1,7 @@
 """The wrong-pixel objective: the engine's levers searched for the fewest pixels the user sees wrong.
 
 For the engines whose frames the toolkit predicts (:data:`aliasing.frames.seen.ENGINES`: three.js,
-Babylon.js, PlayCanvas; their CSM and single-map classes) the objective is the fraction of the
+Babylon.js, PlayCanvas, their CSM and single-map classes; Godot's Compatibility renderer) the objective is the fraction of the
 sun-facing pixels that the predicted frame gets wrong (acne, false shadow and lost shadow,
 :func:`aliasing.frames.seen.wrong_pixels`) on the user's scene or the reference scene, over suns
 across the band.  Blockiness, the worst px/texel over the receivers
@@ -18,6 +18,9 @@ The search (:func:`refine`):
   receivers' far and its half and quarter, each bias term to its closed-form minimum
   (:func:`aliasing.tune.search.closed_form_bias`) times each of :data:`BIAS_STEPS` and then to
   the geometric middles on both sides of the best (a 1-D search on the wrong-pixel objective);
+  another lever moves with the bias terms at the same multiple of their closed-form minimum
+  (:func:`_scaled`), and in the first pass a cascade count together with the split: each
+  neighbouring count at the split lever's values near the current (:func:`_with_split`);
   a move is kept where it lowers the wrong pixels by more than their count's noise
   (:func:`significant`: a few pixels of one arrangement of boxes say nothing of another scene);
   passes repeat until none moves (at most :data:`PASSES`); then each changed setting is put back
@@ -83,7 +86,9 @@ def why_not(setup: Setup) -> str | None:
     >>> from aliasing import setups
     >>> why_not(setups.build("threejs", {})) is None
     True
-    >>> why_not(setups.build("godot", {})).startswith("the toolkit does not predict Godot")
+    >>> why_not(setups.build("godot", {"rendering/renderer/rendering_method": "gl_compatibility"})) is None
+    True
+    >>> why_not(setups.build("bevy", {})).startswith("the toolkit does not predict Bevy")
     True
     """
     if not isinstance(setup, Setup):
@@ -180,6 +185,7 @@ class _Pixels:
     def __init__(self, start: Setup, lim: Limits, where, max_memory: float | None, hard: frozenset):
         self.start, self.limits, self.where, self.max_memory, self.hard = start, lim, where, max_memory, hard
         self.cache: dict = {}
+        self.closed: dict = {}  # closed-form bias minima by (settings, key)
         self.pixels = 0  # the sample's sun-facing pixels (the same for every candidate)
 
     def point(self, settings: Mapping[str, Any]) -> Point | None:
@@ -312,23 +318,82 @@ def _bias_refine(px: _Pixels, key: str, settings: dict, tried: list) -> dict:
     return {**out, key: best} if px.better({**settings, key: best}, out) else out
 
 
+def _closed_forms(px: _Pixels, settings: Mapping[str, Any], keys: list) -> dict:
+    """Each bias term's closed-form minimum at ``settings`` (:func:`aliasing.tune.search.closed_form_bias`), cached; None where none."""
+    out = {}
+    for key in keys:
+        cache_key = (_key(settings), key)
+        if cache_key not in px.closed:
+            try:
+                px.closed[cache_key] = closed_form_bias(px.start.with_settings(**settings), key, receivers=px.limits.receivers)
+            except ValueError:
+                px.closed[cache_key] = None
+        out[key] = px.closed[cache_key]
+    return out
+
+
+def _scaled(px: _Pixels, now: dict, trial: dict, keep: frozenset) -> dict:
+    """``trial`` (a lever other than a bias moved from ``now``) with each free bias term at ``now``'s multiple of its
+    closed-form minimum (:func:`aliasing.tune.search.closed_form_bias`, where it changed by over 5 %): a count, split, size
+    or filter changes the bias a surface needs, and at ``now``'s bias a finer map would lose to its acne, a coarser one to
+    its peter-panning."""
+    keys = [t.key for t in _tunables(px.start.profile, trial, keep) if t.role == "bias" and isinstance(trial.get(t.key), (int, float))
+            and trial.get(t.key)]
+    if not keys:
+        return trial
+    a, b = _closed_forms(px, now, keys), _closed_forms(px, trial, keys)
+    scaled = dict(trial)
+    for key in keys:
+        if a[key] and b[key] and abs(b[key] / a[key] - 1) > 0.05:
+            try:
+                scaled[key] = px.start.profile.setting(key).coerce(float(f"{trial[key] * b[key] / a[key]:.4g}"))
+            except ValueError:  # beyond the setting's range: kept
+                pass
+    return scaled
+
+
+def _with_split(px: _Pixels, now: dict, trial: dict, keep: frozenset) -> list:
+    """``trial`` (a cascade count moved from ``now``) at each value of the first split lever active there (of a continuous
+    one the three points nearest its value), biases :func:`_scaled`: one lever at a time leaves the count at the split
+    that suited the old count."""
+    splits = [u for u in _tunables(px.start.profile, trial, keep) if u.role == "split" and u.key in trial]
+    if not splits:
+        return []
+    u = splits[0]
+    tries = _tries(px, u, trial)
+    if u.range is not None and isinstance(trial[u.key], (int, float)):  # a continuous split: the three points nearest the current
+        tries = sorted(tries, key=lambda w: abs(w - trial[u.key]))[:3]
+    return [_scaled(px, now, {**trial, u.key: w}, keep) for w in (_coerced(px, u.key, w) for w in tries) if w is not None and w != trial[u.key]]
+
+
+def _coerced(px: _Pixels, key: str, value: Any) -> Any:
+    """``value`` as setting ``key`` takes it, or None where it refuses it."""
+    try:
+        return px.start.profile.setting(key).coerce(value)
+    except ValueError:
+        return None
+
+
 def _coordinate(px: _Pixels, settings: dict, keep: frozenset) -> dict:
     """Coordinate-wise descent on the wrong pixels from ``settings`` (module docstring)."""
     best = dict(settings)
-    for _ in range(PASSES):
+    for n in range(PASSES):
         moved = False
         for t in _tunables(px.start.profile, best, keep):
             if t.key not in best:
                 continue
-            tried = []
-            for v in _tries(px, t, best):
-                try:
-                    v = px.start.profile.setting(t.key).coerce(v)
-                except ValueError:
+            tried, trials = [], []
+            now = dict(best)
+            for v in (_coerced(px, t.key, v) for v in _tries(px, t, now)):
+                if v is None:
                     continue
                 tried.append(v)
-                if px.better({**best, t.key: v}, best):
-                    best, moved = {**best, t.key: v}, True
+                trials.append({**now, t.key: v} if t.role == "bias" else _scaled(px, now, {**now, t.key: v}, keep))
+                if t.role == "cascades" and n == 0:  # the count and the split together, in the first pass (module docstring)
+                    trials += _with_split(px, now, {**now, t.key: v}, keep)
+            for trial in trials:
+                if px.better(trial, best):
+                    best, moved = trial, True
             if t.role == "bias" and tried:
                 got = _bias_refine(px, t.key, best, tried + [best[t.key]])
                 if px.better(got, best):
@@ -340,71 +405,20 @@ def _coordinate(px: _Pixels, settings: dict, keep: frozenset) -> dict:
 
 def _undo(px: _Pixels, settings: dict, start: Mapping[str, Any]) -> dict:
     """Each setting the descent changed, put back to the start's value where that is not significantly worse (one at a
-    time, in the settings' order): a change is kept only where it pays beyond the noise on its own."""
+    time in the settings' order, then the levers of one role together, as split fractions that must stay in order; again
+    until none goes back): a change is kept only where it pays beyond the noise on its own."""
     best = dict(settings)
-    for key in [k for k, v in settings.items() if k in start and start[k] != v]:
-        back = {**best, key: start[key]}
-        if px.point(back) is not None and not px.better(best, back):
-            best = back
-    return best
-
-
-def why(result: Seen, start: Setup, lim: Limits) -> list[dict]:
-    """For each setting the pick changed: what it fixes and what it costs, that setting alone put back to the start's value.
-
-    Each entry: ``key``, ``before``, ``after``, ``unit`` and ``line`` (``"shadowBias 0.001 → 0.05: acne 12 % → 0.04 %, lost
-    shadow 0.1 % → 2 %"``), the numbers the pick's with the setting at the start's value (the first) and at the pick's (the
-    second), on the search's sample; a setting that acts only with another changed one says so.
-
-    Examples
-    --------
-    >>> from aliasing import setups
-    >>> from aliasing.tune.measure import limits
-    >>> s = setups.build("playcanvas", {"numCascades": 2, "shadowResolution": 512, "shadowBias": 0.0},
-    ...                  "near=0.5,far=60,fov=50,aspect=16:9,height=720", "30..50")
-    >>> k = frozenset({"numCascades", "shadowResolution", "cascadeDistribution", "shadowDistance", "cascadeBlend", "normalOffsetBias"})
-    >>> r = refine(s, s, limits(s), keep=k, height=48, suns=1)
-    >>> why(r, s, limits(s))[0]["line"].startswith("shadowBias 0 → ")
-    True
-    """
-    if not isinstance(result, Seen) or not isinstance(start, Setup) or not isinstance(lim, Limits):
-        raise ValueError("result must be a Seen (refine(...)), start an aliasing.setups.Setup and lim a Limits (limits(...))")
-    pick = result.setup
-    px = _Pixels(start, lim, result.where, None, frozenset())
-    px.cache.update((_key(p.settings), p) for p in result.points)  # the search measured these on the same sample
-    after = px.point(pick.settings)
-    out = []
-    with seen.remember(MEMORY):
-        for key, value in pick.settings.items():
-            old = start.settings.get(key)
-            if old == value:
-                continue
-            unit = pick.profile.setting(key).unit
-            head = f"{key} {_value(old)} → {_value(value)}" + (f" [{unit}]" if unit else "")
-            back = px.point({**pick.settings, key: old})
-            if back is None or after is None:
-                line = f"{head}: acts together with the other changes (put back alone, the engine refuses it or the frame is not predicted)"
-            else:
-                parts = [f"{name} {_pct(getattr(back, a))} → {_pct(getattr(after, a))}" for a, name in _AXES[:4]
-                         if abs(getattr(back, a) - getattr(after, a)) >= 5e-5]
-                for a, name, u in (("px_per_texel", "worst px/texel", ""), ("memory", "memory", " MiB")):
-                    va, vb = getattr(back, a), getattr(after, a)
-                    if not math.isclose(va, vb, rel_tol=1e-6):
-                        parts.append(f"{name} {va:.3g}{u} → {vb:.3g}{u}")
-                line = f"{head}: " + (", ".join(parts) if parts else "no change on the sample alone (it acts with the other changes)")
-            out.append({"key": key, "before": old, "after": value, "unit": unit, "line": line})
-    return out
-
-
-_AXES = (("wrong", "wrong pixels"), ("acne", "acne"), ("false_shadow", "false shadow"), ("lost_shadow", "lost shadow"))
-
-
-def _pct(v: float) -> str:
-    return f"{100 * v:.3g} %"
-
-
-def _value(v: Any) -> str:
-    return f"{v:g}" if isinstance(v, float) else str(v)
+    roles = {t.key: t.role for t in px.start.profile.tunable}
+    while True:
+        keys = [k for k, v in best.items() if k in start and start[k] != v]
+        groups = [[k] for k in keys] + [g for r in {roles.get(k) for k in keys} if len(g := [k for k in keys if roles.get(k) == r]) > 1]
+        for group in groups:
+            back = {**best, **{k: start[k] for k in group}}
+            if back != best and px.point(back) is not None and not px.better(best, back):
+                best = back
+                break
+        else:
+            return best
 
 
 def front(points, prefer: str = "wrong", start: Mapping[str, Any] | None = None, pixels: int | None = None) -> tuple:
@@ -412,7 +426,7 @@ def front(points, prefer: str = "wrong", start: Mapping[str, Any] | None = None,
 
     Of points equal on all three axes only one is kept: the one with the fewest settings changed from ``start``.
     With ``pixels`` (the count the fractions are of) and ``prefer`` "wrong", every point whose wrong
-    pixels are within the noise of the fewest (not :func:`significant`\ ly more) is tied, on the
+    pixels are within the noise of the fewest (not more by :func:`significant`) is tied, on the
     front or beaten there only within the noise, and the pick, put first, is the tied point with
     the fewest settings changed from ``start`` (then the usual order); the front follows.
 

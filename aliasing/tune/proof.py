@@ -5,7 +5,9 @@ The N candidates are the search's pick, then the Pareto front in the pick rule's
 (:func:`aliasing.frames.run.frame_setup`, one shared :class:`aliasing.frames.browser.Browser`) on the same scene
 as the search (the reference scene or the user's), at :data:`HEIGHT` rows and under :data:`SUNS` suns over the band;
 the engine's read-back shadow and the toolkit's prediction of the same frame are counted alike
-(:func:`aliasing.frames.seen.fractions`: acne, false and lost shadow of the sun-facing pixels).  The pick is the
+(:func:`aliasing.frames.seen.fractions`: acne, false and lost shadow of the sun-facing pixels; Godot draws one frame per
+sun, the split per pixel from its own split offsets, not the second frame of its shader's choice: the counts need
+the split only for a texel's size).  The pick is the
 search's pick (the first) unless another candidate measures significantly fewer wrong pixels
 (:func:`aliasing.tune.pixels.significant`: beyond the noise of the frames' counts), then the fewest
 measured.
@@ -64,10 +66,10 @@ def ready(engine: str) -> None:
 
     Examples
     --------
-    >>> ready("godot")
+    >>> ready("filament")
     Traceback (most recent call last):
     ...
-    ValueError: engine must be one of threejs, babylon, playcanvas (the engines whose frames tune renders), got 'godot'
+    ValueError: engine must be one of threejs, babylon, playcanvas, godot (the engines whose frames tune renders), got 'filament'
     """
     from ..frames import MissingTool, browser, install
 
@@ -98,7 +100,7 @@ def prove(start: Setup, points, *, prefer: str = "wrong", n: int = 8, scene: Any
     Parameters
     ----------
     start : Setup
-        The user's setup (engine threejs, babylon or playcanvas; its camera and sun band).
+        The user's setup (engine threejs, babylon, playcanvas or godot; its camera and sun band).
     points : iterable of Point
         The wrong-pixel search's candidates (:attr:`aliasing.tune.pixels.Seen.points`).
     prefer : str
@@ -233,7 +235,7 @@ def render(start: Setup, settings: list, *, scene: Any = None, height: int | Non
             tally = {"measured": np.zeros(5), "predicted": np.zeros(5)}
             for e in s.sun.elevations(k):
                 sun = sun_direction(float(e), s.sun.azimuth, fs.camera)
-                r = frame_setup(browser, s, fs, sun)
+                r = frame_setup(browser, s, fs, sun, probe=False)  # Godot: the split from its offsets (no second frame)
                 rb, pred = r.readback, r.prediction
                 depth = np.where(rb.drawn, fs.camera.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
                 pixel = 2 * depth * tan_theta(cam.fov) / rb.shadow.shape[0]

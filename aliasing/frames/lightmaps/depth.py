@@ -84,7 +84,7 @@ def to_map32(matrix: ArrayLike, points: ArrayLike) -> Array:
     return out.astype(float).reshape(p.shape)
 
 
-def light_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) -> DepthMap:
+def light_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int, subpixel_bits: int | None = None) -> DepthMap:
     """The toolkit's depth map (smaller depth = nearer the light) of world triangles through a light matrix.
 
     Parameters
@@ -95,6 +95,9 @@ def light_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) ->
         World → (s, t, depth) in [0, 1]³ (an orthographic light: w = 1).
     resolution : int
         Texels per side [texels], in [1, 16384].
+    subpixel_bits : int, optional
+        Each corner's (s, t) first rounded to 1/2^bits of a texel (:func:`snap`), as the frames'
+        renderer places it (:data:`SUBPIXEL_BITS`); None: exact corners.
 
     Examples
     --------
@@ -102,8 +105,13 @@ def light_depth_map(triangles: ArrayLike, matrix: ArrayLike, resolution: int) ->
     >>> dm = light_depth_map([[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]], m, 4)      # half the map (s + t < 1), at depth 0.25
     >>> dm.depth[1].tolist(), dm.triangle[1].tolist()                                # row t = 3/8: centres s = 1/8, 3/8 inside
     ([0.25, 0.25, inf, inf], [0, 0, -1, -1])
+    >>> light_depth_map([[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]], m, 4, subpixel_bits=-1)
+    Traceback (most recent call last):
+    ...
+    ValueError: subpixel_bits must be a whole number in [0, 16] or None, got -1
     """
-    return _draw(*_mapped(triangles, matrix, resolution))
+    mapped, r = _mapped(triangles, matrix, resolution)
+    return _draw(mapped if subpixel_bits is None else snap(mapped, r, subpixel_bits), r)
 
 
 def _mapped(triangles: ArrayLike, matrix: ArrayLike, resolution: int) -> tuple[Array, int]:

@@ -143,6 +143,9 @@ class _Missing(Exception):
 class TexelArray:
     """An (R, R) array of a map's texels made where indexed: ``values(depth, triangle)`` at the texels of ``array[row, col]``.
 
+    ``rows``: only the map's first rows, an (rows, R) array (Godot's 2 splits: each split a
+    4096 × 2048 half of its atlas, drawn on the first rows of a 4096² raster); None: all R.
+
     Examples
     --------
     >>> m = np.array([[1.0, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0.5], [0, 0, 0, 1]])
@@ -150,14 +153,19 @@ class TexelArray:
     >>> stored = TexelArray(sampled_depth_map([[[0, 0.25, 0], [1, 0.25, 0], [0, 0.25, 1]]], m, 4), lambda d, tri: np.where(tri >= 0, d, 1.0))
     >>> stored.shape, stored[np.array([1, 1]), np.array([1, 3])].tolist()
     ((4, 4), [0.25, 1.0])
+    >>> TexelArray(stored.source, stored.values, rows=2).shape
+    (2, 4)
     """
 
     ndim = 2
 
-    def __init__(self, source, values) -> None:
+    def __init__(self, source, values, rows: int | None = None) -> None:
         self.source = source
         self.values = values
-        self.shape = (source.resolution, source.resolution)
+        r = source.resolution
+        if rows is not None and not (isinstance(rows, (int, np.integer)) and 1 <= rows <= r):
+            raise ValueError(f"rows must be a whole number of texel rows in [1, {r}] or None, got {rows!r}")
+        self.shape = (r if rows is None else int(rows), r)
 
     def sampled_maps(self) -> list:
         """The sampled maps behind the array (its source's), for :func:`gathered`.

@@ -86,8 +86,9 @@ def from_setup(setup) -> dict:
         from ...setups.godot import RENDERER
 
         if s[RENDERER] != "gl_compatibility":
-            raise ValueError(f"{RENDERER}: Godot's frames are its web runtime, the Compatibility renderer: set "
-                             f"{RENDERER}=gl_compatibility (the check then uses that renderer's bias and filter), got {s[RENDERER]!r}")
+            raise ValueError(f"{RENDERER} must be gl_compatibility: Godot's frames are its web runtime, the Compatibility renderer, the "
+                             f"one the toolkit renders and predicts (set {RENDERER}=gl_compatibility: its bias and filter are then "
+                             f"the ones checked and tuned), got {s[RENDERER]!r}")
     if engine not in MODELS:
         raise ValueError(f"engine must be one of {', '.join(sorted(MODELS))}, got {engine!r}")
     if engine == "threejs" and s["class"] == "DirectionalLight":

@@ -21,10 +21,13 @@ What Godot 4.6 draws, read from its source at 4.6-stable (the shaders as the run
   along its normal by ``shadow_normal_bias`` · 2r/R · (1 − max(0, dir · (−n))), ``dir`` the
   light's +Z (towards the sun): the whole offset on every face that faces the sun.
 * **Depth**: 16 bits by default (``directional_shadow/16_bits``); the receiver's depth is
-  compared with the stored one by a LINEAR ``sampler2DShadow`` (bilinear 2×2 compares).
+  compared with the stored one by a LINEAR ``sampler2DShadow`` (bilinear 2×2 compares).  The maps
+  are the toolkit's rasterizer's with each caster corner at 1/16 texel (the web runtime draws on
+  SwiftShader, ERRATA F13, F14), drawn only at the texels the pixels read (:func:`split_maps`,
+  :func:`godot_factor`: the same values as whole maps).
 * **Filter** (``scene.glsl`` ``sample_shadow``): one hardware lookup (Hard), ``SHADOW_MODE_PCF_5``
   (the centre and ±1 atlas texel in s and t, /5) or ``SHADOW_MODE_PCF_13`` (13 taps to ±2 texels);
-  which quality picks which is measured (:data:`aliasing.setups.godot.COMPAT_PCF`).
+  which quality picks which is measured (:data:`aliasing.setups.godot.COMPAT_PCF`, :data:`PCF`).
 * **Selection, blend, fade** (``scene.glsl`` fragment, ``LIGHT_USE_PSSM4``/``PSSM2``): the split
   whose offset exceeds the view depth; with blend splits, mix(split i, split i+1,
   smoothstep(previous offset, offset i, depth)) over the whole split; beyond the last offset no
@@ -47,13 +50,18 @@ from numpy.typing import NDArray
 from ... import _validation as check
 from ...setups import godot as profile
 from ...view import tan_theta
+from ...raster.draw import DepthMap
 from .. import predict
+from ..lightmaps import depth as depth_maps
+from ..lightmaps.sampled import TexelArray
 from ..predict import Prediction, reference
 from .filament import eye_buffers
 
 Array = NDArray[np.float64]
-#: soft_shadow_filter_quality → the Compatibility shader's filter: 1 (one hardware lookup), 5 or 13 taps
-PCF = {0: 1, 1: 5, 2: 5, 3: 13, 4: 13, 5: 13}
+#: soft_shadow_filter_quality → the Compatibility shader's filter: 1 (one hardware lookup), 5 or 13 taps, as measured
+#: (ERRATA F13) and as ``drivers/gles3/rasterizer_scene_gles3.cpp`` picks the shader's variant: below SOFT_LOW one
+#: compare, SOFT_LOW and SOFT_MEDIUM ``SHADOW_MODE_PCF_5``, SOFT_HIGH and above ``SHADOW_MODE_PCF_13``
+PCF = dict(profile.COMPAT_PCF)
 #: scene.glsl's DirectionalShadowData: 80 float32 (direction, atlas pixel size, normal biases, split offsets, 4 matrices, fade)
 STRUCT_FLOATS = 80
 #: each split's rectangle (x0, y0, w, h) in the atlas, by split count (``_render_shadow_pass``: quadrants x first, halves along y)
@@ -266,45 +274,24 @@ class Godot:
         cam = scene.camera
         snap = which != "unsnapped"
         splits = self.transforms(s, cam, sun, snap)
-        local_matrices = rb.matrices if which == "engine" else self.matrices(s, cam, sun, snap)
+        model_matrices = self.matrices(s, cam, sun, snap)
+        local_matrices = rb.matrices if which == "engine" else model_matrices
         edges = self.edges(s, cam)
         res = self.resolution(s)
-        rows = profile.layout(int(s[profile.SIZE]), len(splits))[1]       # 2 splits: size × size/2 texels each
-        depth = np.where(rb.drawn, cam.to_eye(np.nan_to_num(rb.position))[..., 2], np.nan)
+        pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
+        depth = np.where(rb.drawn, cam.to_eye(pts)[..., 2], np.nan)
         sel = self.select(s, edges[1:], depth)
         cast = scene.triangles[predict.casting(scene.triangles, sun, self.cast_side(s))]
-        pts, nrm = np.nan_to_num(rb.position), np.nan_to_num(rb.normal)
-        facing = np.maximum(0.0, nrm @ -np.asarray(sun, float))        # dot(direction, −n), direction = the light's +Z = sun
-        shadows = []
-        for sp, local in zip(splits, local_matrices):                 # world → each split's [0, 1]², depth 0 at the light
-            b = float(s["shadow_bias"]) / 100.0 * sp.zfar
-            moved = _caster_bias(cast, sp, b)
-            squeeze = np.diag([1.0, rows / res, 1.0, 1.0])               # t over the first `rows` rows of a res² raster
-            stored = predict.light_depth_map(moved, squeeze @ local, res).depth[:rows]
-            if s[profile.BITS]:
-                stored = np.where(np.isfinite(stored), np.round(np.clip(stored, 0, 1) * 65535) / 65535, stored)
-            off = nrm * (float(s["shadow_normal_bias"]) * 2 * sp.radius / res * (1 - facing))[..., None]
-            c = predict.to_map(local, pts + off)
-            shadows.append(_filter(stored, c, PCF[int(s[profile.QUALITY])], 1.0))      # one atlas texel = one split texel
-        shadows = np.array(shadows)                                   # (k, H, W)
-        k = len(splits)
-        pick = np.clip(sel, 0, k - 1)
-        factor = np.take_along_axis(shadows, pick[None], 0)[0]
-        if s["directional_shadow_blend_splits"] and k > 1:
-            nxt = np.take_along_axis(shadows, np.clip(pick + 1, 0, k - 1)[None], 0)[0]
-            lo = np.where(pick > 0, edges[1:][np.maximum(pick - 1, 0)], 0.0)
-            w = _smoothstep(lo, edges[1:][pick], depth)
-            factor = np.where(pick < k - 1, factor + (nxt - factor) * w, factor)
-        factor = np.where(sel < 0, 1.0, factor)
-        last = edges[-1]
-        fade = _smoothstep(-last * min(float(s["directional_shadow_fade_start"]), 0.999), -last, -depth)
-        factor = factor + (1 - factor) * fade
+        maps = split_maps(cast, splits, local_matrices, s)           # drawn where the pixels read them
+        factor = predict.gathered(lambda: godot_factor(maps, local_matrices, sel, depth, pts, nrm, sun, s, edges=edges,
+                                                       radii=[sp.radius for sp in splits]), maps)
         factor = np.where(rb.drawn, factor, np.nan)
         ref = reference(scene, sun, rb, res) if check.flag(exact, "exact") else None
+        k = len(splits)
         sides = np.array([2 * max(sp.half) for sp in splits])
         blend = bool(s["directional_shadow_blend_splits"])
         starts = np.array([edges[i - 1] if blend and i > 0 else edges[i] for i in range(k)])   # the fit's first depth
-        return Prediction(factor, sel, starts, sides, np.full(k, float(res)), self.matrices(s, cam, sun, snap)), ref
+        return Prediction(factor, sel, starts, sides, np.full(k, float(res)), model_matrices), ref
 
     def measured_cascades(self, s: dict, camera, rb) -> tuple[Array, Array, Array]:
         """From Godot's uniform buffer: each split's first sampled depth (its offsets; with blend splits the previous one), its side [m]
@@ -436,6 +423,119 @@ def _caster_bias(tri: Array, sp: Split, b: float) -> Array:
     return v @ sp.basis + sp.origin
 
 
+#: The sub-texel precision [bits] Godot's depth pass places the casters' corners with: its web runtime draws on
+#: SwiftShader as the other engines' pages do (:data:`aliasing.frames.lightmaps.depth.SUBPIXEL_BITS`; ERRATA F13, F14).
+SUBPIXEL_BITS = depth_maps.SUBPIXEL_BITS
+
+
+def split_maps(casters: Array, splits: list, matrices: Array, s: dict, *, sampled: bool = True,
+               subpixel_bits: int | None = SUBPIXEL_BITS) -> list:
+    """Each split's depth map of ``casters`` as Godot's depth pass draws it: every vertex moved by the constant bias
+    (:func:`_caster_bias`, ``shadow_bias``/100 · the split's 2r + pancake), drawn through the split's world → [0, 1]³
+    matrix at R texels across and the layout's rows (``squeeze``: a 4096 × 2048 split on the first rows of a 4096² raster).
+
+    ``sampled``: maps drawn only where read (:func:`aliasing.frames.lightmaps.depth.sampled_depth_map`), else whole
+    (:func:`~aliasing.frames.lightmaps.depth.light_depth_map`), the same texels; ``subpixel_bits``: the corners
+    rounded to 1/2^bits texel as SwiftShader places them (None: exact).
+
+    Examples
+    --------
+    >>> from aliasing.frames.scenes import frame_scene
+    >>> g, fs, sun = Godot(), frame_scene("boxes", near=0.5, far=40.0, fov=50.0, aspect=1.5, boxes=2, ground_cells=1), np.array([0.0, 0.6, 0.8])
+    >>> s = g.settings({"directional_shadow_mode": "SHADOW_PARALLEL_2_SPLITS", profile.SIZE: 256})
+    >>> maps = split_maps(fs.triangles, g.transforms(s, fs.camera, sun), g.matrices(s, fs.camera, sun), s, sampled=False)
+    >>> len(maps), maps[0].depth.shape              # each split's 256 × 128 texels: the first 128 rows of a 256² raster
+    (2, (256, 256))
+    """
+    if len(splits) != len(matrices) or not all(isinstance(sp, Split) for sp in splits):
+        raise ValueError(f"splits (Godot.transforms) and matrices must have one entry per split, got {len(splits)} and {len(matrices)}")
+    if not isinstance(sampled, (bool, np.bool_)):
+        raise ValueError(f"sampled must be True or False, got {sampled!r}")
+    res = Godot().resolution(s)
+    rows = profile.layout(int(s[profile.SIZE]), len(splits))[1]
+    squeeze = np.diag([1.0, rows / res, 1.0, 1.0])                   # t over the first `rows` rows of a res² raster
+    draw = depth_maps.sampled_depth_map if sampled else depth_maps.light_depth_map
+    return [draw(_caster_bias(casters, sp, float(s["shadow_bias"]) / 100.0 * sp.zfar), squeeze @ m, res, subpixel_bits)
+            for sp, m in zip(splits, matrices)]
+
+
+def godot_factor(maps: list, matrices: Array, cascade: NDArray[np.int64], depth: Array, points: Array, normals: Array, sun: Array,
+                 s: dict, *, edges: Array, radii) -> Array:
+    """Godot 4.6 Compatibility's directional shadow factor per pixel (``scene.glsl``: the receiver's normal offset, ``sample_shadow``,
+    the split blend and the fade; module docstring), through each split's map (:func:`split_maps`: whole or sampled).
+
+    ``matrices``: each split's world → [0, 1]³; ``cascade``: the split each pixel selects (−1: none, factor 1);
+    ``depth``: the view depth [m]; ``sun``: towards the sun; ``s``: :meth:`Godot.settings`; ``edges``: near and the
+    split distances [m]; ``radii``: each split's sphere radius [m] (its texel 2r/R scales ``shadow_normal_bias``).
+    Only the splits a pixel reads are looked up (its own, and with blend splits the next).
+
+    Examples
+    --------
+    >>> from aliasing.frames.scenes import frame_scene
+    >>> g, fs, sun = Godot(), frame_scene("boxes", near=0.5, far=40.0, fov=50.0, aspect=1.5, boxes=0, ground_cells=1), np.array([0.0, 0.6, 0.8])
+    >>> s = g.settings({"directional_shadow_mode": "SHADOW_ORTHOGONAL", profile.SIZE: 256})
+    >>> roof = np.array([[[-50.0, 0.0, 50.0], [50.0, 0.0, -50.0], [-50.0, 0.0, -50.0]]])   # 1 above the ground
+    >>> sp, m = g.transforms(s, fs.camera, sun), g.matrices(s, fs.camera, sun)
+    >>> pts, up = np.array([[[0.0, -1.0, -3.0], [0.0, 0.5, -3.0]]]), np.array([[[0.0, 1.0, 0.0]] * 2])   # under the roof, above it
+    >>> godot_factor(split_maps(roof, sp, m, s), m, np.array([[0, 0]]), np.array([[3.0, 3.0]]), pts, up, sun, s,
+    ...              edges=g.edges(s, fs.camera), radii=[p.radius for p in sp]).tolist()
+    [[0.0, 1.0]]
+    """
+    check.finite(matrices, "matrices")
+    if np.shape(matrices) != (len(maps), 4, 4):
+        raise ValueError(f"matrices must have shape (k, 4, 4) with one map each (k = {len(maps)}), got {np.shape(matrices)}")
+    if np.shape(points)[-1:] != (3,) or np.shape(normals) != np.shape(points) or not np.shape(cascade) == np.shape(depth) == np.shape(points)[:-1]:
+        raise ValueError(f"points and normals must be (..., 3) with cascade and depth (...), got {np.shape(points)}, {np.shape(normals)}, "
+                         f"{np.shape(cascade)} and {np.shape(depth)}")
+    if len(edges) != len(maps) + 1 or len(radii) != len(maps):
+        raise ValueError(f"edges must hold near and one distance per split and radii one radius per split ({len(maps)}), got {len(edges)} and {len(radii)}")
+    k, offsets = len(maps), np.asarray(edges[1:], float)
+    rows, res = profile.layout(int(s[profile.SIZE]), k)[1], maps[0].resolution
+    blend = bool(s["directional_shadow_blend_splits"]) and k > 1
+    facing = np.maximum(0.0, normals @ -np.asarray(sun, float))      # dot(direction, −n), direction = the light's +Z = sun
+    factor = np.ones(np.shape(cascade))                              # each pixel's own split's factor
+    nxt = np.ones(np.shape(cascade)) if blend else None              # and the next split's, blended in
+    for i, (dm, m) in enumerate(zip(maps, matrices)):                # world → each split's [0, 1]², depth 0 at the light
+        own = cascade == i
+        prev = (cascade == i - 1) if blend and i > 0 else np.zeros_like(own)
+        here = own | prev
+        if not here.any():
+            continue
+        off = normals[here] * (float(s["shadow_normal_bias"]) * 2 * radii[i] / res * (1 - facing[here]))[..., None]
+        stored, c, taps = _stored(dm, rows, bool(s[profile.BITS])), predict.to_map(m, points[here] + off), PCF[int(s[profile.QUALITY])]
+        _prefetch(stored, c, taps, 1.0)                              # a sampled map: the texels read, drawn at once
+        got = _filter(stored, c, taps, 1.0)                          # one atlas texel = one split texel
+        factor[own] = got[own[here]]
+        if prev.any():
+            nxt[prev] = got[prev[here]]
+    pick = np.clip(cascade, 0, k - 1)
+    if blend:
+        lo = np.where(pick > 0, offsets[np.maximum(pick - 1, 0)], 0.0)
+        w = _smoothstep(lo, offsets[pick], depth)
+        factor = np.where(pick < k - 1, factor + (nxt - factor) * w, factor)
+    factor = np.where(cascade < 0, 1.0, factor)
+    last = offsets[-1]
+    fade = _smoothstep(-last * min(float(s["directional_shadow_fade_start"]), 0.999), -last, -depth)
+    return factor + (1 - factor) * fade
+
+
+def _stored(dm, rows: int, bits16: bool):
+    """A split's stored depths, its first ``rows`` rows (a whole map's array or a sampled map's :class:`TexelArray`): 16-bit
+    quantized with ``bits16`` (``directional_shadow/16_bits``), ``inf`` where empty."""
+    def values(d, _=None):
+        return np.where(np.isfinite(d), np.round(np.clip(d, 0, 1) * 65535) / 65535, d) if bits16 else d
+
+    if isinstance(dm, DepthMap):
+        return values(dm.depth[:rows])
+    return TexelArray(dm, values, rows=rows)
+
+
+#: ``sample_shadow``'s taps [texels] by filter (``scene.glsl``: the centre; PCF_5 ±1 along s and t; PCF_13 first the centre and
+#: ±2, then ±1 and the diagonals)
+TAPS = {1: ((0, 0),), 5: ((0, 0), (1, 0), (-1, 0), (0, 1), (0, -1)),
+        13: ((0, 0), (2, 0), (-2, 0), (0, 2), (0, -2), (1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (-1, 1), (1, -1), (-1, -1))}
+
+
 def _filter(stored: Array, c: Array, taps: int, step: float) -> Array:
     """``sample_shadow``: hardware bilinear compares at the centre, then PCF_5 (±1 texel) or PCF_13 (±1, ±2 texels and diagonals).
 
@@ -443,15 +543,30 @@ def _filter(stored: Array, c: Array, taps: int, step: float) -> Array:
     along s and along t in every mode)."""
     s, t, ref = c[..., 0], c[..., 1], c[..., 2]
     rows, cols = stored.shape
-    look = lambda ds, dt: predict._hardware_pcf(stored, s + ds * step / cols, t + dt * step / rows, ref)  # noqa: E731
+    look = [predict._hardware_pcf(stored, s + ds * step / cols, t + dt * step / rows, ref) for ds, dt in TAPS[taps]]
     if taps == 1:
-        return look(0, 0)
-    ring = [(1, 0), (-1, 0), (0, 1), (0, -1)]
+        return look[0]
     if taps == 5:
-        return (look(0, 0) + sum(look(a, b) for a, b in ring)) / 5
-    first = look(0, 0) + sum(look(2 * a, 2 * b) for a, b in ring)      # the centre and the four at ±2 texels
-    total = first + sum(look(a, b) for a, b in ring + [(1, 1), (-1, 1), (1, -1), (-1, -1)])
+        return (look[0] + sum(look[1:])) / 5
+    first = look[0] + sum(look[1:5])                                   # the centre and the four at ±2 texels
+    total = first + sum(look[5:])
     return np.where(first <= 1e-6, 0.0, np.where(first >= 5 - 1e-6, 1.0, total / 13))   # the early bail on those five
+
+
+def _prefetch(stored, c: Array, taps: int, step: float) -> None:
+    """Draw, in one pass, every texel :func:`_filter` reads of a sampled map's ``stored`` texels (the same coordinates and
+    clamping as :func:`aliasing.frames.predict._hardware_compare`); a whole map's array needs nothing."""
+    if not isinstance(stored, TexelArray):
+        return
+    s, t = c[..., 0], c[..., 1]
+    rows, cols = stored.shape
+    flat = []
+    for ds, dt in TAPS[taps]:
+        i0, j0 = np.floor((s + ds * step / cols) * cols - 0.5), np.floor((t + dt * step / rows) * rows - 0.5)
+        for di, dj in ((0, 0), (0, 1), (1, 0), (1, 1)):
+            j = np.clip(j0 + dj, 0, rows - 1).astype(np.int64)
+            flat.append(j * stored.source.resolution + np.clip(i0 + di, 0, cols - 1).astype(np.int64))
+    stored.source.draw(np.concatenate(flat).ravel())
 
 
 def _smoothstep(e0, e1, x):

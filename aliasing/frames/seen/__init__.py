@@ -10,7 +10,7 @@ Examples
 --------
 >>> from aliasing.frames import seen
 >>> seen.ENGINES
-('threejs', 'babylon', 'playcanvas')
+('threejs', 'babylon', 'playcanvas', 'godot')
 """
 
 from .memo import remember

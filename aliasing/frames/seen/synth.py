@@ -1,7 +1,7 @@
 """A predicted frame without a browser: the read-back an engine's page would return, synthesized.
 
-For a :class:`aliasing.setups.Setup` (three.js, Babylon.js or PlayCanvas, the engines whose
-light matrices the toolkit predicts) and a :class:`~aliasing.frames.scenes.FrameScene`, the
+For a :class:`aliasing.setups.Setup` (three.js, Babylon.js, PlayCanvas or Godot's Compatibility
+renderer, the engines whose light matrices the toolkit predicts) and a :class:`~aliasing.frames.scenes.FrameScene`, the
 toolkit makes, per pixel of the setup's image (its camera, ``height`` rows and
 round(aspect · height) columns), what the engine's page reads back
 (:class:`~aliasing.frames.readback.Readback`):
@@ -12,8 +12,10 @@ round(aspect · height) columns), what the engine's page reads back
   triangle's plane; a pixel is drawn where a triangle is visible within near … far;
 * the light matrices from the model's own prediction (three.js: ``ThreeCSM.matrices``;
   Babylon.js: its float32 cascades, :func:`aliasing.frames.babylon_cascades.matrices`;
-  PlayCanvas: ``PlayCanvas.light_matrices``; the single-map classes' ``matrices``);
-* the cascade each pixel selects by the engine's rule (the model's ``select``);
+  PlayCanvas: ``PlayCanvas.light_matrices``; Godot: ``Godot.matrices``, its split-local matrices,
+  which equal those Godot uploads to 1.2·10⁻⁷, docs/ERRATA.md F13; the single-map classes' ``matrices``);
+* the cascade each pixel selects by the engine's rule (the model's ``select``; Godot's from its split
+  offsets, ``Godot.select``);
 
 then the predicted shadow factor and the exact reference exactly as
 :func:`aliasing.frames.run.measure` takes them from a real read-back
@@ -42,6 +44,7 @@ from numpy.typing import NDArray
 
 from ... import _validation as check
 from ...raster.draw import eye_pass
+from ...setups.godot import SIZE, layout
 from .. import babylon_cascades
 from ...view import tan_theta
 from ..models import from_setup, model_for
@@ -52,17 +55,19 @@ from ..scenes import FrameScene, sun_direction  # noqa: F401 - sun_direction for
 Array = NDArray[np.float64]
 
 #: The engines whose light matrices the toolkit predicts (their frames can be synthesized).
-ENGINES = ("threejs", "babylon", "playcanvas")
+ENGINES = ("threejs", "babylon", "playcanvas", "godot")
 
 #: Which faces each engine's main pass draws, by its settings (the material's culling):
 #: three.js ``material.side`` (WebGLRenderer's ``setMaterial``: FrontSide culls back faces);
 #: Babylon.js ``backFaceCulling`` (``Material.backFaceCulling``, true: back faces culled);
-#: PlayCanvas ``cull`` (``CULLFACE_BACK`` default).  "front": faces whose right-handed normal
-#: points towards the eye.
+#: PlayCanvas ``cull`` (``CULLFACE_BACK`` default); Godot: the page's ShaderMaterial is ``cull_back`` (``pages/godot/main.gd``
+#: ``FACTOR_SHADER``; no Godot setting changes it) over the job's triangles rewound (a, c, b) for Godot's clockwise front
+#: faces, so the faces drawn are the job's front faces.  "front": faces whose right-handed normal points towards the eye.
 VISIBLE = {
     "threejs": lambda s: s.get("side", "front"),
     "babylon": lambda s: "front" if s.get("backFaceCulling", True) else "double",
     "playcanvas": lambda s: {"back": "front", "front": "back", "none": "double"}[s.get("cull", "back")],
+    "godot": lambda s: "front",
 }
 
 
@@ -110,7 +115,7 @@ def light_matrices(model, settings: dict, scene: FrameScene, sun: Array, aspect:
     sun = check.direction(sun)
     if hasattr(model, "light_matrices"):  # PlayCanvas: its palette, from the casters' box too
         return model.light_matrices(settings, scene.camera, sun, scene.triangles)
-    if hasattr(model, "matrices"):  # three.js's CSM and both single-map classes
+    if hasattr(model, "matrices"):  # three.js's CSM, both single-map classes and Godot's splits (split-local, as Godot.predict takes them)
         return model.matrices(settings, scene.camera, sun)
     return babylon_cascades.matrices(settings, scene.camera, sun, scene.triangles, aspect=aspect)  # Babylon.js's float32 cascades
 
@@ -187,10 +192,16 @@ def synthetic_readback(model, settings: dict, scene: FrameScene, sun: Array, geo
     cam = scene.camera
     mats = light_matrices(model, settings, scene, sun, w / h)
     depth = np.where(drawn, cam.to_eye(np.nan_to_num(pos))[..., 2], np.nan)
-    cascade = model.select(settings, cam, depth) if hasattr(model, "select") else np.where(drawn, 0, -1)
-    res = int(settings.get("shadowMapSize", settings.get("mapSize", settings.get("shadowResolution", 0))))
+    if engine == "godot":  # Godot.select takes its split offsets (scene.glsl compares the view depth with them)
+        cascade = model.select(settings, model.edges(settings, cam)[1:], depth)
+        res, rows = layout(int(settings[SIZE]), len(mats))[:2]      # a split's texels across and along t (2 splits: R × R/2)
+        sizes = np.tile([res, rows], (len(mats), 1))
+    else:
+        cascade = model.select(settings, cam, depth) if hasattr(model, "select") else np.where(drawn, 0, -1)
+        res = int(settings.get("shadowMapSize", settings.get("mapSize", settings.get("shadowResolution", 0))))
+        sizes = np.full((len(mats), 2), res, np.int64)
     return Readback(engine, "toolkit", np.where(drawn, 1.0, np.nan), np.asarray(cascade, np.int64), pos, nrm, mats,
-                    np.full((len(mats), 2), res, np.int64), {}, b"")
+                    np.asarray(sizes, np.int64), {}, b"")
 
 
 def synthetic_frame(setup, scene: FrameScene, sun: Array | None = None) -> FrameResult:
@@ -199,8 +210,8 @@ def synthetic_frame(setup, scene: FrameScene, sun: Array | None = None) -> Frame
     Parameters
     ----------
     setup : aliasing.setups.Setup
-        Engine threejs, babylon or playcanvas, its settings, the camera (its ``height`` [px] the
-        image's rows) and the sun.
+        Engine threejs, babylon, playcanvas or godot (its ``rendering/renderer/rendering_method``
+        gl_compatibility), its settings, the camera (its ``height`` [px] the image's rows) and the sun.
     scene : FrameScene
         Built with the setup's camera (:func:`aliasing.frames.scenes.frame_scene`).
     sun : array_like (3,), optional

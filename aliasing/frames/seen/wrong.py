@@ -55,11 +55,12 @@ from scipy import ndimage
 
 from ... import _validation as check
 from ..compare import MIN_COS
-from ..run import at_pixel_aspect
+from ..predict import GEOMETRY_KEY, geometry_digest
+from ..run import at_pixel_aspect, predict_readback
 from ...view import tan_theta
 from ..scenes import FrameScene, frame_scene, sun_direction
 from .scene import reference_scene
-from .synth import VISIBLE, engine_settings, eye_geometry, predict_synthetic
+from .synth import VISIBLE, engine_settings, eye_geometry, synthetic_readback
 
 Array = NDArray[np.float64]
 #: Suns measured at once (threads: numpy's array work runs outside the interpreter's lock), at most the machine's cores.
@@ -152,7 +153,8 @@ class Sample:
     Built by :func:`sample`; :func:`count` measures a setup on it.  Holds the scene, the eye pass
     (:func:`~aliasing.frames.seen.synth.eye_geometry`) of the ``side`` faces the main pass draws,
     each sample pixel's eye depth, the side [world units] of one pixel of the sample and of the
-    user's image there, the suns' elevations [deg] and azimuth [deg].
+    user's image there, the suns' elevations [deg] and azimuth [deg], and a digest of its pixels
+    and scene (:func:`aliasing.frames.predict.geometry_digest`).
 
     Examples
     --------
@@ -174,6 +176,7 @@ class Sample:
     azimuth: float
     height: int
     width: int
+    digest: bytes = b""
 
 
 def sample(setup, scene: FrameScene | str | None = None, *, eye=None, target=None, height: int = 144, suns: int = 3) -> Sample:
@@ -187,7 +190,7 @@ def sample(setup, scene: FrameScene | str | None = None, *, eye=None, target=Non
     >>> sm.geometry[2].shape, sm.elevations
     ((36, 64), (30.0, 50.0))
     """
-    model, settings = engine_settings(setup)
+    _, settings = engine_settings(setup)
     h = check.whole(height, "height", 16, 1080, " [px] (rows of the sample image)")
     n = check.whole(suns, "suns", 1, 16, " (suns over the elevation band)")
     fs = _scene(setup, scene, eye, target)
@@ -203,7 +206,8 @@ def sample(setup, scene: FrameScene | str | None = None, *, eye=None, target=Non
     depth = np.where(drawn, fs.camera.to_eye(np.nan_to_num(geometry[0]))[..., 2], np.nan)
     tan = float(tan_theta(cam.fov))
     return Sample(fs, cam, side, geometry, depth, 2 * depth * tan / h, 2 * depth * tan / cam.height,
-                  tuple(float(v) for v in setup.sun.elevations(n)), float(setup.sun.azimuth), h, int(small.camera.width))
+                  tuple(float(v) for v in setup.sun.elevations(n)), float(setup.sun.azimuth), h, int(small.camera.width),
+                  geometry_digest(drawn, geometry[0], geometry[1], fs.triangles))
 
 
 def count(setup, where: Sample) -> Wrong:
@@ -233,12 +237,14 @@ def count(setup, where: Sample) -> Wrong:
 
     def one_sun(e: float) -> NDArray[np.int64]:  # each sun draws its own maps: the suns share nothing but the memo
         sun = sun_direction(float(e), setup.sun.azimuth, fs.camera)
-        r = predict_synthetic(model, settings, fs, sun, geometry, setup.engine, setup.release)
-        pred = r.prediction
+        rb = synthetic_readback(model, settings, fs, sun, geometry, setup.engine)
+        if where.digest:  # the sample's pixels and scene, digested once
+            rb.info[GEOMETRY_KEY] = where.digest
+        pred, ref, _, _ = predict_readback(model, settings, fs, sun, rb)
         k = len(pred.sides)
         texel = np.append(pred.sides / pred.resolution, np.nan)[pred.cascade]  # −1 (no cascade) picks NaN
         facing = drawn & ((np.nan_to_num(geometry[1]) @ sun) > MIN_COS)
-        masks = classify(pred.factor, r.reference, drawn, facing, np.nan_to_num(reach_px(taps, texel, where.pixel_small), nan=0.0))
+        masks = classify(pred.factor, ref, drawn, facing, np.nan_to_num(reach_px(taps, texel, where.pixel_small), nan=0.0))
         row = np.where(pred.cascade >= 0, pred.cascade, k)  # k: beyond the last cascade
         layers = [facing, masks["acne"], masks["false_shadow"], masks["lost_shadow"], drawn,
                   drawn & (np.nan_to_num(texel / where.pixel_user) > 1)]
