@@ -63,8 +63,6 @@ def run(engine: str, height: int, suns: int, seeds=()) -> dict:
     got = pixels.refine(start, tuned.setup, tuned.limits, keep=frozenset(tuned.keep))
     t_tune = time.perf_counter() - t0
     cam = start.camera
-    if engine == "godot":  # an image width − rows even (its read-back's eye pass)
-        height = proof.godot_rows(cam.aspect, height)
     fs = frame_scene("boxes", near=cam.near, far=cam.far, fov=cam.fov, aspect=round(cam.aspect * height) / height, boxes=BOXES, seed=SEED)
     grid = []
     for c, sp in itertools.product(counts, splits):

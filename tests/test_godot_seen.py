@@ -17,6 +17,8 @@ import json
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from aliasing import setups
 from aliasing.cli import main
@@ -219,3 +221,32 @@ def test_the_memo_keeps_godots_maps_while_the_normal_bias_or_filter_moves_and_re
         assert all(a is b for a, b in zip(first, maps(shadow_normal_bias=0.5, **{profile.QUALITY: 4})))
         assert not any(a is b for a, b in zip(first, maps(shadow_bias=0.3)))   # the depth pass moves every caster vertex
     assert not any(a is b for a, b in zip(first, maps()))                          # outside the block nothing is kept
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.integers(8, 40), st.integers(8, 40))
+def test_eye_buffers_any_image_size(w, h):
+    """Godot's and Filament's read-back positions for any w × h: each seen pixel's position lies on its pixel-centre ray
+    (the sheared pass where w − h is odd or negative), and where w − h is even and ≥ 0 the square grid's and the sheared
+    pass's positions agree where both see a surface, their seen pixels differing only on the seen region's border (a
+    pixel-centre ray through a triangle's edge: a tie the two rasterizations break apart)."""
+    from aliasing.frames.models.filament import eye_buffers
+    from aliasing.raster.draw.eye import image_pass
+    from aliasing.view import tan_theta
+
+    fs = scenes.frame_scene("boxes", near=0.5, far=30.0, fov=50.0, aspect=w / h, boxes=3, ground_cells=2)
+    pos, nrm, hit = eye_buffers(fs, w, h)
+    assert pos.shape == (h, w, 3) and hit.any()
+    e = fs.camera.to_eye(pos[hit])
+    t = float(tan_theta(50.0))
+    rows, cols = np.nonzero(hit)
+    assert np.allclose(e[:, 0] / e[:, 2], ((cols + 0.5) / w * 2 - 1) * t * w / h, atol=1e-9)
+    assert np.allclose(e[:, 1] / e[:, 2], ((rows + 0.5) / h * 2 - 1) * t, atol=1e-9)
+    if (w - h) % 2 == 0 and w >= h:
+        from scipy import ndimage
+
+        p, _, tri = image_pass(fs.camera.to_eye(fs.triangles), 50.0, w, h, near=0.5)
+        both = hit & (tri >= 0)
+        assert np.allclose(p[both] @ fs.camera.rotation + fs.camera.eye, pos[both], atol=1e-9)
+        border = ndimage.binary_dilation(hit) & ~ndimage.binary_erosion(hit)
+        assert not ((hit != (tri >= 0)) & ~border).any()

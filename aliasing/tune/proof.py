@@ -54,25 +54,6 @@ def candidates(points, prefer: str, n: int, first: Point | None = None) -> list[
     return list(unique.values())[:k]
 
 
-def godot_rows(aspect: float, height: int) -> int:
-    """The fewest rows from ``height`` up whose image width round(``aspect`` · rows) exceeds them by an even count: Godot's
-    read-back takes positions from a square eye pass whose middle rows are the image
-    (:func:`aliasing.frames.models.filament.eye_buffers`).
-
-    Examples
-    --------
-    >>> godot_rows(16 / 9, 144), godot_rows(16 / 9, 240)        # 256 − 144 is even; 427 − 240 is not, 430 − 242 is
-    (144, 242)
-    """
-    a = float(check.scalar(aspect, "aspect"))
-    if not (math.isfinite(a) and a >= 1):
-        raise ValueError(f"aspect must be a finite width / height >= 1 (Godot's frames are at least as wide as tall), got {aspect!r}")
-    h = check.whole(height, "height", 16, 1080, " [px] (rows of each frame)")
-    while (round(a * h) - h) % 2:
-        h += 1
-    return h
-
-
 def ready(engine: str) -> None:
     """Refuse, before any search, where ``engine``'s frames cannot be rendered: Playwright, Chromium or its pinned package missing.
 
@@ -244,8 +225,6 @@ def render(start: Setup, settings: list, *, scene: Any = None, height: int | Non
     k = check.whole(SUNS if suns is None else suns, "suns", 1, 16, " (suns per candidate)")
     install.package_root(start.engine)  # MissingTool: how to install, before the browser starts
     cam = start.camera
-    if start.engine == "godot":  # its page's positions come from a square eye pass whose middle rows are the image
-        h = godot_rows(cam.aspect, h)
     small_cam = spec.Camera(cam.near, cam.far, cam.fov, cam.aspect, h)
     fs = _scene(Setup(start.profile, dict(start.settings), small_cam, start.sun), scene)
     rows = []

@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from ... import _validation as check
 from ...view import tan_theta
 
 
@@ -17,8 +18,9 @@ def eye_buffers(scene, w: int, h: int) -> tuple[Array, Array, NDArray[np.bool_]]
     """World positions and normals of the ``w`` × ``h`` pixels the scene's camera sees (GL rows bottom-up), and where it sees a surface.
 
     The toolkit's eye pass (:func:`aliasing.raster.draw.eye.eye_pass`) on a square grid of ``w``
-    pixels whose middle ``h`` rows are the image: ``w − h`` must be even.  No far clip.  Where
-    nothing is hit, positions and normals are 0.
+    pixels whose middle ``h`` rows are the image where ``w − h`` is even and ≥ 0, else through
+    :func:`aliasing.raster.draw.eye.image_pass`.  No far clip.  Where nothing is hit, positions
+    and normals are 0.
 
     Examples
     --------
@@ -27,16 +29,21 @@ def eye_buffers(scene, w: int, h: int) -> tuple[Array, Array, NDArray[np.bool_]]
     >>> pos, nrm, hit = eye_buffers(fs, 24, 16)
     >>> pos.shape, bool(hit[0].any()), bool(hit[-1].any())       # bottom row: the ground; top row: the sky
     ((16, 24, 3), True, False)
+    >>> odd = eye_buffers(fs, 25, 16)                                  # 25 − 16 is odd: the sheared pass
+    >>> odd[0].shape, bool(np.array_equal(odd[2], eye_buffers(fs, 25, 16)[2])), bool(odd[2][0].all())
+    ((16, 25, 3), True, True)
     """
-    from ...raster.draw.eye import eye_pass
+    from ...raster.draw.eye import eye_pass, image_pass
 
-    if (w - h) % 2 or w < h:
-        raise ValueError(f"w − h must be even and ≥ 0 (the eye pass's square pixel grid), got {w}×{h}")
+    w, h = check.whole(w, "w", 1, 16384, " [px]"), check.whole(h, "h", 1, 16384, " [px]")
     cam = scene.camera
-    half = np.arctan(tan_theta(cam.fov) * w / h)
-    eb = eye_pass(cam.to_eye(scene.triangles), float(np.degrees(2 * half)), w, near=cam.near)
-    k0 = (w - h) // 2
-    pos_e, nrm_e = eb.position[k0:k0 + h], eb.normal[k0:k0 + h]          # rows bottom-up, as WebGL's
+    if (w - h) % 2 or w < h:  # no square grid has the image as its middle rows: the sheared pass
+        pos_e, nrm_e, _ = image_pass(cam.to_eye(scene.triangles), float(cam.fov), w, h, near=cam.near)
+    else:
+        half = np.arctan(tan_theta(cam.fov) * w / h)
+        eb = eye_pass(cam.to_eye(scene.triangles), float(np.degrees(2 * half)), w, near=cam.near)
+        k0 = (w - h) // 2
+        pos_e, nrm_e = eb.position[k0:k0 + h], eb.normal[k0:k0 + h]          # rows bottom-up, as WebGL's
     hit = np.isfinite(pos_e[..., 0])
     pos = np.where(hit[..., None], np.nan_to_num(pos_e) @ cam.rotation + cam.eye, 0.0)
     nrm = np.where(hit[..., None], np.nan_to_num(nrm_e) @ cam.rotation, 0.0)

@@ -23,8 +23,8 @@ then the predicted shadow factor and the exact reference exactly as
 :func:`~aliasing.frames.run.shading`).
 
 The eye pass draws square R × R images; a W × H image is drawn on R = max(W, H) by a shear of
-eye space (x′ = a x + b z, y′ = c y + d z: linear, so planes, visibility and the near plane are
-kept) that puts the image's pixel centres on the square's first W columns and H rows.
+eye space that puts the image's pixel centres on the square's first W columns and H rows
+(:func:`aliasing.raster.draw.eye.image_pass`).
 
 Examples
 --------
@@ -43,7 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ... import _validation as check
-from ...raster.draw import eye_pass
+from ...raster.draw.eye import image_pass
 from ...setups.godot import SIZE, layout
 from .. import babylon_cascades
 from ...view import tan_theta
@@ -153,18 +153,8 @@ def eye_geometry(scene: FrameScene, width: int, height: int, side: str = "front"
     nrm = np.full((h, w, 3), np.nan)
     if not len(tri):
         return pos, nrm, np.zeros((h, w), bool)
-    r = max(w, h)
-    t = float(tan_theta(cam.fov))
-    tx = t * w / h  # the image's horizontal half-width at unit depth
-    # the shear: the square's pixel centres (i + ½)/R, i < W (j < H) fall on the image's (i + ½)/W ((j + ½)/H)
-    shear = np.array([[t * w / (r * tx), 0.0, t * (w / r - 1)], [0.0, h / r, t * (h / r - 1)], [0.0, 0.0, 1.0]])
-    eye = cam.to_eye(tri) @ shear.T
-    buf = eye_pass(eye, float(cam.fov), r, near=cam.near)
-    inv = np.linalg.inv(shear)
-    p = buf.position[:h, :w] @ inv.T  # back to eye space: p = S⁻¹ p′
-    n = buf.normal[:h, :w] @ shear  # planes: n ∝ Sᵀ n′ (facing the eye is kept: n·p = n′·p′)
-    n /= np.linalg.norm(n, axis=-1, keepdims=True)
-    drawn = (buf.triangle[:h, :w] >= 0) & (p[..., 2] <= cam.far)
+    p, n, triangle = image_pass(cam.to_eye(tri), float(cam.fov), w, h, near=cam.near)
+    drawn = (triangle >= 0) & (p[..., 2] <= cam.far)
     world = p @ cam.rotation + cam.eye
     nw = n @ cam.rotation
     pos[drawn], nrm[drawn] = world[drawn], nw[drawn]

@@ -155,6 +155,38 @@ def eye_pass(triangles: ArrayLike, fov: float | View, resolution: int, *, near: 
     return _buffer(tri, dm.triangle.ravel(), src, res, fv, aspect, tx, ty, outputs)
 
 
+def image_pass(triangles: ArrayLike, fov: float, width: int, height: int, *, near: float = 1e-3) -> tuple[Array, Array, NDArray[np.int64]]:
+    """The eye pass of a ``width`` × ``height`` image (any two sizes): per pixel, rows bottom up, the eye-space position
+    [world units] and unit normal (NaN where nothing is seen) and the visible triangle (−1).
+
+    :func:`eye_pass` draws square R × R images; here R = max(width, height) and a shear of eye space
+    (x′ = a x + b z, y′ = c y + d z: linear, so planes, visibility and the near plane are kept) puts the
+    image's pixel centres, at vertical field of view ``fov`` [deg] and aspect width / height, on the
+    square's first ``width`` columns and ``height`` rows.
+
+    Examples
+    --------
+    >>> ground = np.array([[[-50.0, -1.0, 1.0], [50.0, -1.0, 1.0], [0.0, -1.0, 100.0]]])   # 1 below the eye, ahead
+    >>> pos, nrm, tri = image_pass(ground, 50.0, 5, 2)
+    >>> tri.tolist(), np.round(nrm[0, 2], 9).tolist()            # the lower row sees it, the upper one the sky
+    ([[0, 0, 0, 0, 0], [-1, -1, -1, -1, -1]], [0.0, 1.0, 0.0])
+    >>> t = tan_theta(50.0); bool(np.allclose(pos[0, 2], [0.0, -1.0, 1.0 / (0.5 * t)]))   # the centre pixel's ray (0, −t/2, 1)
+    True
+    """
+    w = check.whole(width, "width", 1, 16384, " [px]")
+    h = check.whole(height, "height", 1, 16384, " [px]")
+    r = max(w, h)
+    t = float(tan_theta(fov))
+    tx = t * w / h  # the image's horizontal half-width at unit depth
+    # the square's pixel centres (i + ½)/R, i < W (j < H), fall on the image's (i + ½)/W ((j + ½)/H)
+    shear = np.array([[t * w / (r * tx), 0.0, t * (w / r - 1)], [0.0, h / r, t * (h / r - 1)], [0.0, 0.0, 1.0]])
+    buf = eye_pass(np.asarray(triangles, float) @ shear.T, float(fov), r, near=near)
+    p = buf.position[:h, :w] @ np.linalg.inv(shear).T  # back to eye space: p = S⁻¹ p′
+    n = buf.normal[:h, :w] @ shear  # planes: n ∝ Sᵀ n′ (facing the eye is kept: n·p = n′·p′)
+    n = n / np.linalg.norm(n, axis=-1, keepdims=True)
+    return p, n, buf.triangle[:h, :w]
+
+
 def _buffer(tri: Array, tri_id: NDArray[np.int64], src: NDArray[np.int64], res: int, fv: float, aspect: float, tx: float, ty: float, outputs) -> EyeBuffer:
     """The eye buffer of the visible (drawn) triangle ids ``tri_id`` (−1 where empty; ``src``: their input indices)."""
     # exact positions: the ray (X, Y, 1) through the pixel centre ∩ the source triangle's
