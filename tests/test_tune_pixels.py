@@ -277,3 +277,29 @@ def test_the_count_moves_with_the_split(monkeypatch):
     monkeypatch.setattr(pixels, "_with_split", lambda *a: [])
     alone = pixels._coordinate(_Table(start, table), dict(start.settings), keep)
     assert (alone["numCascades"], alone["lambda"]) == (3, 1.0)
+
+
+class _Counts(pixels._Pixels):
+    """A search whose wrong pixels are a table over the settings that differ from the start: no frame drawn."""
+
+    def __init__(self, start, table):
+        super().__init__(start, limits(start), None, None, frozenset())
+        self.table, self.pixels = table, 100_000
+
+    def _measure(self, settings):
+        n = self.table[frozenset(k for k, v in settings.items() if v != self.start.settings[k])]
+        return pixels.Point(dict(settings), n / self.pixels, 0.0, 0.0, n / self.pixels, 1.0, 16.0)
+
+
+def test_changes_go_back_against_the_end_not_the_last_step():
+    """Three changes, each put back alone within the noise of the descent's end (100 → 115, 2√215 = 29 pixels), but all
+    three back is 100 → 190: the put-backs stop before their sum is significant (against the last step each of them would
+    pass: 100 → 115 → 140 → 190)."""
+    start = setups.build("babylon", {"numCascades": 3, "lambda": 0.5, "bias": 0.002}, CAMERA, "20..60")
+    end = {**start.settings, "numCascades": 4, "lambda": 0.9, "bias": 0.004}
+    n, l, b = "numCascades", "lambda", "bias"
+    table = {frozenset({n, l, b}): 100, frozenset({l, b}): 115, frozenset({n, b}): 115, frozenset({n, l}): 115,
+             frozenset({b}): 140, frozenset({l}): 140, frozenset({n}): 140, frozenset(): 190}
+    got = pixels._undo(_Counts(start, table), end, start.settings)
+    changed = {k for k in (n, l, b) if got[k] != start.settings[k]}
+    assert len(changed) == 2 and table[frozenset(changed)] == 115

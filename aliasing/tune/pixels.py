@@ -404,9 +404,10 @@ def _coordinate(px: _Pixels, settings: dict, keep: frozenset) -> dict:
 
 
 def _undo(px: _Pixels, settings: dict, start: Mapping[str, Any]) -> dict:
-    """Each setting the descent changed, put back to the start's value where that is not significantly worse (one at a
-    time in the settings' order, then the levers of one role together, as split fractions that must stay in order; again
-    until none goes back): a change is kept only where it pays beyond the noise on its own."""
+    """Each setting the descent changed, put back to the start's value where that is not significantly worse than the
+    descent's end ``settings`` (one at a time in the settings' order, then the levers of one role together, as split
+    fractions that must stay in order; again until none goes back): a change is kept only where it pays beyond the noise
+    on its own.  Compared with the end, not with the last put back: steps each within the noise add up to more."""
     best = dict(settings)
     roles = {t.key: t.role for t in px.start.profile.tunable}
     while True:
@@ -414,7 +415,7 @@ def _undo(px: _Pixels, settings: dict, start: Mapping[str, Any]) -> dict:
         groups = [[k] for k in keys] + [g for r in {roles.get(k) for k in keys} if len(g := [k for k in keys if roles.get(k) == r]) > 1]
         for group in groups:
             back = {**best, **{k: start[k] for k in group}}
-            if back != best and px.point(back) is not None and not px.better(best, back):
+            if back != best and px.point(back) is not None and not px.better(settings, back):
                 best = back
                 break
         else:
