@@ -24,7 +24,7 @@ The search (:func:`refine`):
   a move is kept where it lowers the wrong pixels by more than their count's noise
   (:func:`significant`: a few pixels of one arrangement of boxes say nothing of another scene);
   passes repeat until none moves (at most :data:`PASSES`); then each changed setting is put back
-  to your value where that is not significantly worse;
+  to your value where that is not significantly worse than the descent's end;
 * holds ``--max-texels``, ``--max-memory``, with ``--moving`` a stabilized fit, and
   ``--max-gap-px`` and ``--max-slope`` where given (:func:`hard`); acne and lost shadow are
   otherwise in the objective itself.
