@@ -233,17 +233,30 @@ BABYLON_PCF = {0: _babylon_pcf5, 1: _babylon_pcf3, 2: _babylon_pcf1}  # filterin
 def _hardware_compare(depth: Array, s: Array, t: Array, ref: Array, *, strict: bool) -> Array:
     """A LINEAR shadow-sampler lookup: the bilinear weights of the 4 nearest texels' compares (LESS if strict, else LEQUAL), clamped
     to the edge; ``depth`` rows (t) × columns (s), square or not (Godot's 2 splits: 2048 × 4096)."""
-    rows, cols = depth.shape
+    out = np.zeros_like(ref)
+    for j, i, w in bilinear_texels(depth.shape, s, t):
+        d = depth[j, i]
+        out += w * ((ref < d) if strict else (ref <= d))
+    return out
+
+
+def bilinear_texels(shape: tuple, s: Array, t: Array) -> list:
+    """The 4 texels (row, column, weight) a LINEAR lookup at (``s``, ``t``) reads of a ``shape`` (rows, columns) map, clamped
+    to the edge (:func:`_hardware_compare`).
+
+    Examples
+    --------
+    >>> [(j.tolist(), i.tolist(), w.tolist()) for j, i, w in bilinear_texels((4, 4), np.array([0.25]), np.array([0.5]))][:2]
+    [([1], [0], [0.25]), ([2], [0], [0.25])]
+    """
+    rows, cols = shape
     u, v = s * cols - 0.5, t * rows - 0.5
     i0, j0 = np.floor(u), np.floor(v)
     fu, fv = u - i0, v - j0
-    out = np.zeros_like(ref)
+    out = []
     for di, wu in ((0, 1 - fu), (1, fu)):
         for dj, wv in ((0, 1 - fv), (1, fv)):
-            i = np.clip(i0 + di, 0, cols - 1).astype(np.int64)
-            j = np.clip(j0 + dj, 0, rows - 1).astype(np.int64)
-            d = depth[j, i]
-            out += wu * wv * ((ref < d) if strict else (ref <= d))
+            out.append((np.clip(j0 + dj, 0, rows - 1).astype(np.int64), np.clip(i0 + di, 0, cols - 1).astype(np.int64), wu * wv))
     return out
 
 

@@ -554,18 +554,15 @@ def _filter(stored: Array, c: Array, taps: int, step: float) -> Array:
 
 
 def _prefetch(stored, c: Array, taps: int, step: float) -> None:
-    """Draw, in one pass, every texel :func:`_filter` reads of a sampled map's ``stored`` texels (the same coordinates and
-    clamping as :func:`aliasing.frames.predict._hardware_compare`); a whole map's array needs nothing."""
+    """Draw, in one pass, every texel :func:`_filter` reads of a sampled map's ``stored`` texels
+    (:func:`aliasing.frames.predict.bilinear_texels` at each tap), so that :func:`aliasing.frames.predict.gathered` needs no
+    recording pass (1.6 s of a Godot search's 9.3); a whole map's array needs nothing."""
     if not isinstance(stored, TexelArray):
         return
     s, t = c[..., 0], c[..., 1]
     rows, cols = stored.shape
-    flat = []
-    for ds, dt in TAPS[taps]:
-        i0, j0 = np.floor((s + ds * step / cols) * cols - 0.5), np.floor((t + dt * step / rows) * rows - 0.5)
-        for di, dj in ((0, 0), (0, 1), (1, 0), (1, 1)):
-            j = np.clip(j0 + dj, 0, rows - 1).astype(np.int64)
-            flat.append(j * stored.source.resolution + np.clip(i0 + di, 0, cols - 1).astype(np.int64))
+    flat = [j * stored.source.resolution + i for ds, dt in TAPS[taps]
+            for j, i, _ in predict.bilinear_texels((rows, cols), s + ds * step / cols, t + dt * step / rows)]
     stored.source.draw(np.concatenate(flat).ravel())
 
 
