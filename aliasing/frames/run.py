@@ -404,8 +404,8 @@ def frame_setup(browser, setup, scene: FrameScene, sun: Array | None = None, pat
     job = make_job(scene, sv, settings, cam.height, poses, maps)
     out = browser.render(setup.engine, job)
     if setup.engine == "godot" and probe:  # the split per pixel from Godot's own shader: a second frame that draws it
-        probe = browser.render("godot", {**job, "probe": "splits", "path": None})
-        out["splits_frame"], out["shaders_probed"] = probe["factor"], probe.get("shaders_probed")
+        splits = browser.render("godot", {**job, "probe": "splits", "path": None})
+        out["splits_frame"], out["shaders_probed"] = splits["factor"], splits.get("shaders_probed")
     result = measure(setup.engine, scene, sv, settings, out, pipeline=setup.pipeline)
     if maps is not None:
         from . import maps as frame_maps
